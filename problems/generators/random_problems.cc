@@ -1,0 +1,2 @@
+// PLACEHOLDER
+#include "problems/generators/random_problems.h"

@@ -1,0 +1,2 @@
+// PLACEHOLDER
+#include "problems/io/siconos_format.h"

@@ -1,0 +1,90 @@
+#include "solvers/core/options.h"
+
+#include <cerrno>
+#include <cmath>
+#include <cstdlib>
+#include <sstream>
+
+namespace smcbench {
+
+bool SolverOptions::IsValid(std::string* why) const {
+  std::ostringstream s;
+  if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
+    s << "tolerance must be a positive finite number, got " << tolerance;
+  } else if (!(time_limit_seconds > 0.0)) {
+    s << "time_limit_seconds must be positive, got " << time_limit_seconds;
+  } else if (verbosity < 0) {
+    s << "verbosity must be >= 0, got " << verbosity;
+  } else {
+    for (Eigen::Index i = 0; i < warm_start.size(); ++i) {
+      if (!std::isfinite(warm_start[i])) {
+        s << "warm_start[" << i << "] is not finite (" << warm_start[i] << ")";
+        break;
+      }
+    }
+  }
+  if (s.tellp() == 0) return true;
+  if (why) *why = s.str();
+  return false;
+}
+
+void OptionBinder::Add(std::string_view name, double* field, std::string_view help) {
+  entries_.push_back({std::string(name), field, std::string(help)});
+}
+void OptionBinder::Add(std::string_view name, int* field, std::string_view help) {
+  entries_.push_back({std::string(name), field, std::string(help)});
+}
+void OptionBinder::Add(std::string_view name, bool* field, std::string_view help) {
+  entries_.push_back({std::string(name), field, std::string(help)});
+}
+
+bool OptionBinder::Set(std::string_view name, std::string_view value, std::string* error) const {
+  for (const Entry& e : entries_) {
+    if (e.name != name) continue;
+    const std::string text(value);
+    char* end = nullptr;
+    errno = 0;
+    if (auto* d = std::get_if<double*>(&e.field)) {
+      const double v = std::strtod(text.c_str(), &end);
+      if (text.empty() || *end != '\0' || errno == ERANGE) {
+        *error = "option '" + e.name + "' expects a number, got '" + text + "'";
+        return false;
+      }
+      **d = v;
+    } else if (auto* i = std::get_if<int*>(&e.field)) {
+      const long v = std::strtol(text.c_str(), &end, 10);
+      if (text.empty() || *end != '\0' || errno == ERANGE || v < INT32_MIN || v > INT32_MAX) {
+        *error = "option '" + e.name + "' expects an integer, got '" + text + "'";
+        return false;
+      }
+      **i = static_cast<int>(v);
+    } else if (auto* b = std::get_if<bool*>(&e.field)) {
+      if (text == "1" || text == "true" || text == "yes" || text == "on") {
+        **b = true;
+      } else if (text == "0" || text == "false" || text == "no" || text == "off") {
+        **b = false;
+      } else {
+        *error = "option '" + e.name + "' expects true/false, got '" + text + "'";
+        return false;
+      }
+    }
+    return true;
+  }
+  std::string known;
+  for (const Entry& e : entries_) known += (known.empty() ? "" : ", ") + e.name;
+  *error = "unknown option '" + std::string(name) + "'" +
+           (known.empty() ? std::string(" (this backend has no options)") : " (known: " + known + ")");
+  return false;
+}
+
+std::string OptionBinder::Help() const {
+  std::ostringstream s;
+  for (const Entry& e : entries_) {
+    s << "  " << e.name << " = ";
+    std::visit([&](auto* p) { s << *p; }, e.field);
+    s << "  " << e.help << "\n";
+  }
+  return s.str();
+}
+
+}  // namespace smcbench

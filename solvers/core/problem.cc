@@ -1,0 +1,213 @@
+#include "solvers/core/problem.h"
+
+#include <cmath>
+#include <sstream>
+
+namespace smcbench {
+namespace {
+
+[[noreturn]] void Fail(const char* owner, const std::string& what) {
+  throw InvalidInputError(std::string(owner) + ": " + what);
+}
+
+std::string At(const char* field, Eigen::Index i) {
+  std::ostringstream s;
+  s << field << "[" << i << "]";
+  return s.str();
+}
+
+std::string At(const char* field, Eigen::Index i, Eigen::Index j) {
+  std::ostringstream s;
+  s << field << "(" << i << "," << j << ")";
+  return s.str();
+}
+
+void CheckFiniteValue(const char* owner, double value, const std::string& where) {
+  if (std::isnan(value)) Fail(owner, where + " is NaN");
+  if (std::isinf(value)) Fail(owner, where + " is infinite");
+}
+
+void CheckSizes(const char* owner, Eigen::Index rows, Eigen::Index cols, const Vector& q, const Vector& l,
+                const Vector& u) {
+  if (rows == 0 || cols == 0) Fail(owner, "empty problem (M is 0x0); a problem needs at least one unknown");
+  if (rows != cols) {
+    Fail(owner, "M is " + std::to_string(rows) + "x" + std::to_string(cols) + " but must be square");
+  }
+  const auto check = [&](const char* field, const Vector& v) {
+    if (v.size() != rows) {
+      Fail(owner, std::string(field) + " has size " + std::to_string(v.size()) + " but M is " +
+                      std::to_string(rows) + "x" + std::to_string(cols));
+    }
+  };
+  check("q", q);
+  check("l", l);
+  check("u", u);
+}
+
+}  // namespace
+
+void ValidateFinite(const char* owner, const char* field, const Vector& v) {
+  for (Eigen::Index i = 0; i < v.size(); ++i) CheckFiniteValue(owner, v[i], At(field, i));
+}
+
+void ValidateBounds(const char* owner, const Vector& l, const Vector& u) {
+  if (l.size() != u.size()) {
+    Fail(owner, "l has size " + std::to_string(l.size()) + " but u has size " + std::to_string(u.size()));
+  }
+  for (Eigen::Index i = 0; i < l.size(); ++i) {
+    if (std::isnan(l[i])) Fail(owner, At("l", i) + " is NaN");
+    if (std::isnan(u[i])) Fail(owner, At("u", i) + " is NaN");
+    if (l[i] == kInf) Fail(owner, At("l", i) + " is +inf (no feasible point)");
+    if (u[i] == -kInf) Fail(owner, At("u", i) + " is -inf (no feasible point)");
+    if (l[i] > u[i]) {
+      std::ostringstream s;
+      s << "l[" << i << "] = " << l[i] << " > u[" << i << "] = " << u[i];
+      Fail(owner, s.str());
+    }
+  }
+}
+
+double NaturalResidualNorm(const Vector& z, const Vector& w, const Vector& l, const Vector& u) {
+  double r = 0.0;
+  for (Eigen::Index i = 0; i < z.size(); ++i) {
+    const double projected = std::min(std::max(z[i] - w[i], l[i]), u[i]);
+    const double e = std::abs(z[i] - projected);
+    if (std::isnan(e)) return kInf;
+    r = std::max(r, e);
+  }
+  return r;
+}
+
+void ProjectZeroOntoBox(const Vector& l, const Vector& u, Vector* z) {
+  z->resize(l.size());
+  for (Eigen::Index i = 0; i < l.size(); ++i) (*z)[i] = std::min(std::max(0.0, l[i]), u[i]);
+}
+
+BoxMLCP::BoxMLCP(DenseMatrix M, Vector q, Vector l, Vector u, std::string name)
+    : is_sparse_(false), dense_(std::move(M)), q_(std::move(q)), l_(std::move(l)), u_(std::move(u)),
+      name_(std::move(name)) {
+  Validate();
+}
+
+BoxMLCP::BoxMLCP(SparseMatrix M, Vector q, Vector l, Vector u, std::string name)
+    : is_sparse_(true), sparse_(std::move(M)), q_(std::move(q)), l_(std::move(l)), u_(std::move(u)),
+      name_(std::move(name)) {
+  sparse_.makeCompressed();
+  Validate();
+}
+
+BoxMLCP BoxMLCP::LCP(DenseMatrix M, Vector q, std::string name) {
+  const Eigen::Index n = q.size();
+  return BoxMLCP(std::move(M), std::move(q), Vector::Zero(n), Vector::Constant(n, kInf), std::move(name));
+}
+
+BoxMLCP BoxMLCP::Relay(DenseMatrix M, Vector q, double lower, double upper, std::string name) {
+  const Eigen::Index n = q.size();
+  return BoxMLCP(std::move(M), std::move(q), Vector::Constant(n, lower), Vector::Constant(n, upper),
+                 std::move(name));
+}
+
+void BoxMLCP::Validate() {
+  constexpr const char* kOwner = "BoxMLCP";
+  if (is_sparse_) {
+    CheckSizes(kOwner, sparse_.rows(), sparse_.cols(), q_, l_, u_);
+    for (int k = 0; k < sparse_.outerSize(); ++k) {
+      for (SparseMatrix::InnerIterator it(sparse_, k); it; ++it) {
+        CheckFiniteValue(kOwner, it.value(), At("M", it.row(), it.col()));
+      }
+    }
+  } else {
+    CheckSizes(kOwner, dense_.rows(), dense_.cols(), q_, l_, u_);
+    for (Eigen::Index j = 0; j < dense_.cols(); ++j) {
+      for (Eigen::Index i = 0; i < dense_.rows(); ++i) CheckFiniteValue(kOwner, dense_(i, j), At("M", i, j));
+    }
+  }
+  ValidateFinite(kOwner, "q", q_);
+  ValidateBounds(kOwner, l_, u_);
+  q_inf_norm_ = q_.size() ? q_.cwiseAbs().maxCoeff() : 0.0;
+}
+
+const DenseMatrix& BoxMLCP::dense_matrix() const {
+  if (is_sparse_) throw std::logic_error("BoxMLCP::dense_matrix() called on a sparse problem");
+  return dense_;
+}
+
+const SparseMatrix& BoxMLCP::sparse_matrix() const {
+  if (!is_sparse_) throw std::logic_error("BoxMLCP::sparse_matrix() called on a dense problem");
+  return sparse_;
+}
+
+void BoxMLCP::Multiply(const Vector& z, Vector* out) const {
+  if (is_sparse_) {
+    out->noalias() = sparse_ * z;
+  } else {
+    out->noalias() = dense_ * z;
+  }
+}
+
+void BoxMLCP::Affine(const Vector& z, Vector* out) const {
+  Multiply(z, out);
+  *out += q_;
+}
+
+Residual BoxMLCP::NaturalResidual(const Vector& z, Vector* w) const {
+  if (w->size() != size()) w->resize(size());
+  Affine(z, w);
+  Residual r;
+  r.abs = NaturalResidualNorm(z, *w, l_, u_);
+  r.rel = r.abs / residual_scale();
+  return r;
+}
+
+bool BoxMLCP::IsSymmetric(double rel_tol) const {
+  if (is_sparse_) {
+    const SparseMatrix diff = SparseMatrix(sparse_.transpose()) - sparse_;
+    const double scale = sparse_.nonZeros() ? sparse_.coeffs().cwiseAbs().maxCoeff() : 0.0;
+    return diff.nonZeros() == 0 || diff.coeffs().cwiseAbs().maxCoeff() <= rel_tol * scale;
+  }
+  const double scale = dense_.cwiseAbs().maxCoeff();
+  return (dense_ - dense_.transpose()).cwiseAbs().maxCoeff() <= rel_tol * scale;
+}
+
+DenseMatrix BoxMLCP::ToDense() const { return is_sparse_ ? DenseMatrix(sparse_) : dense_; }
+
+double BoxMLCP::MatrixInfNorm() const {
+  if (is_sparse_) {
+    Vector row_sums = Vector::Zero(size());
+    for (int k = 0; k < sparse_.outerSize(); ++k) {
+      for (SparseMatrix::InnerIterator it(sparse_, k); it; ++it) row_sums[it.row()] += std::abs(it.value());
+    }
+    return row_sums.maxCoeff();
+  }
+  return dense_.cwiseAbs().rowwise().sum().maxCoeff();
+}
+
+MCP::MCP(Vector l, Vector u, std::string name) : l_(std::move(l)), u_(std::move(u)), name_(std::move(name)) {
+  if (l_.size() == 0) throw InvalidInputError("MCP: empty problem (n = 0); a problem needs at least one unknown");
+  ValidateBounds("MCP", l_, u_);
+}
+
+void MCP::JacobianDense(const Vector&, DenseMatrix*) const {
+  throw std::logic_error("MCP " + name_ + ": no dense Jacobian provided");
+}
+
+void MCP::JacobianSparse(const Vector&, SparseMatrix*) const {
+  throw std::logic_error("MCP " + name_ + ": no sparse Jacobian provided");
+}
+
+Residual MCP::NaturalResidual(const Vector& z, Vector* F, double scale) const {
+  if (F->size() != size()) F->resize(size());
+  Evaluate(z, F);
+  Residual r;
+  r.abs = NaturalResidualNorm(z, *F, l_, u_);
+  r.rel = r.abs / scale;
+  return r;
+}
+
+FunctionMCP::FunctionMCP(Vector l, Vector u, Function F, DenseJacobian J, std::string name)
+    : MCP(std::move(l), std::move(u), std::move(name)), F_(std::move(F)), J_(std::move(J)) {
+  if (!F_) throw InvalidInputError("FunctionMCP: F is empty");
+  if (!J_) throw InvalidInputError("FunctionMCP: Jacobian is empty");
+}
+
+}  // namespace smcbench

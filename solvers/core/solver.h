@@ -1,0 +1,75 @@
+// The one interface every backend implements. Solve() does all shared work once (Drake style): option and
+// capability checks, cold/warm start, timing, the merit function and the rule that "solved" requires it;
+// a backend implements only its algorithm in DoSolve().
+#pragma once
+
+#include <chrono>
+#include <string>
+#include <string_view>
+
+#include "solvers/core/options.h"
+#include "solvers/core/problem.h"
+#include "solvers/core/result.h"
+
+namespace smcbench {
+
+// What `smcbench list` prints about a backend.
+struct SolverInfo {
+  std::string_view name;        // registry name, e.g. "lemke"
+  std::string_view algorithm;   // one line: what it does
+  std::string_view reference;   // the paper or book the algorithm follows
+  bool dense = true;            // accepts dense M
+  bool sparse = false;          // accepts sparse M natively
+  bool symmetric_only = false;  // needs symmetric M (else kNotApplicable)
+  bool exact = false;           // finite termination (pivoting / enumeration) rather than iterative
+  bool mcp = false;             // also solves nonlinear MCPs
+  int default_size_limit = 0;   // refuses larger problems with kSizeLimit; 0 = none
+};
+
+// Not thread-safe: a Solver owns its workspace. Use one instance per thread.
+class Solver {
+ public:
+  virtual ~Solver() = default;
+  virtual const SolverInfo& info() const = 0;
+
+  // Solves problem into *result, reusing its storage. Never throws for a valid problem: every outcome,
+  // including invalid options, is a status with a message. Guarantees on return: result->w = F(z),
+  // result->residual_* is the merit function at z, and status == kSolved ⇒ residual_rel ≤ tolerance.
+  void Solve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
+  void Solve(const MCP& problem, const SolverOptions& options, SolveResult* result);
+  // Convenience forms that allocate a fresh result.
+  SolveResult Solve(const BoxMLCP& problem, const SolverOptions& options = {});
+  SolveResult Solve(const MCP& problem, const SolverOptions& options = {});
+
+  // Typed backend options set from text ("omega", "1.5"); false with *error on unknown name or bad value.
+  bool SetOption(std::string_view name, std::string_view value, std::string* error);
+  std::string OptionsHelp();
+
+ protected:
+  // Called with result->z holding the starting point (warm start or Π(0)), sizes checked, options valid.
+  // Must set status (and message when not solved), z and iterations. The base computes the residual.
+  virtual void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) = 0;
+  // Default: kNotApplicable.
+  virtual void DoSolveMCP(const MCP& problem, const SolverOptions& options, SolveResult* result);
+  // Binds the backend's typed options for SetOption/OptionsHelp.
+  virtual void BindOptions(OptionBinder* binder);
+  // Checks the backend's typed options; false with *why when invalid.
+  virtual bool ValidateBackendOptions(std::string* why) const;
+
+  // For iterative backends: true once the options' time limit has passed (cheap when there is none).
+  bool TimeLimitReached() const;
+  // max_iterations if positive, else fallback.
+  static int IterationBudget(const SolverOptions& options, int fallback) {
+    return options.max_iterations > 0 ? options.max_iterations : fallback;
+  }
+
+ private:
+  bool Prepare(int n, const Vector& l, const Vector& u, const SolverOptions& options, SolveResult* result);
+  void Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result);
+
+  std::chrono::steady_clock::time_point deadline_{};
+  bool has_deadline_ = false;
+  Vector scale_point_;  // Π(0) for the MCP relative scale, kept to avoid allocating per solve
+};
+
+}  // namespace smcbench
