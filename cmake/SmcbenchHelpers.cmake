@@ -27,7 +27,7 @@ function(smcbench_test name)
   endif()
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
-  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gtest GTest::gtest_main smcbench_build_flags)
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gmock GTest::gtest GTest::gtest_main smcbench_build_flags)
   target_compile_definitions(${name} PRIVATE
     SMCBENCH_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     SMCBENCH_PEER_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/peer-data")

@@ -1,5 +1,10 @@
 // Seeded random box-MLCPs that are feasible by construction: pick z* and a complementary (w, v) first,
 // then derive q = w − v − M z*. Used by the conformance tests and the benchmarks.
+//
+// Every family is a P-matrix, so z* is the unique solution. Rows of z*: at l with w ∈ [0.1, 1.1], at u with
+// w ∈ [−1.1, −0.1], or at least 0.1 (10% of a finite box) inside with w = 0, with equal odds among the states
+// the row's bounds allow; degenerate rows sit at a finite bound with w = 0. Sizes are capped (dense 8192,
+// sparse 4,000,000); the dense build costs n³/2 flops (about 1 s at n = 1024).
 #pragma once
 
 #include <cstdint>
@@ -10,26 +15,31 @@
 namespace smcbench {
 
 enum class MatrixFamily {
-  kSymmetricPositiveDefinite,  // M = AᵀA + δI, well conditioned
-  kNonsymmetricPMatrix,        // M = S + K with S SPD and K skew-symmetric: positive definite, so a P-matrix
-  kDiagonallyDominant,         // strictly row diagonally dominant with positive diagonal (nonsymmetric)
+  // M = AᵀA/λ̂ + δI, A with U(−1, 1) entries, λ̂ ≈ λ_max(AᵀA), δ = 1/99: spectrum in [δ, 1 + δ], cond ≈ 100.
+  kSymmetricPositiveDefinite,
+  // M = S + K with S as above and K skew-symmetric with ‖K‖₂ ≈ 1: positive definite, so a P-matrix.
+  kNonsymmetricPMatrix,
+  // Off-diagonal U(−1, 1)/(entries per row), M_ii = (1 + θ_i)·Σ_j≠i |M_ij| + 0.05 with θ_i ∈ [0.05, 0.5]:
+  // strictly row diagonally dominant with positive diagonal (nonsymmetric), hence a P-matrix.
+  kDiagonallyDominant,
 };
 
 enum class BoundKind {
   kLCP,    // l = 0, u = +∞
   kRelay,  // l = −1, u = +1 (the paper's sign problem)
   kBox,    // random finite l < u
-  kMixed,  // each row one of: free (−∞, +∞), LCP (0, +∞), upper only (−∞, u), finite box
+  kMixed,  // each row, with equal odds: free (−∞, +∞), LCP (0, +∞), upper only (−∞, u), finite box
 };
 
 struct GeneratorOptions {
   int size = 8;
   MatrixFamily family = MatrixFamily::kSymmetricPositiveDefinite;
   BoundKind bounds = BoundKind::kLCP;
-  // Fraction of rows made degenerate: z*_i at a bound AND w*_i = 0 (weak complementarity).
+  // Fraction of rows made degenerate: z*_i at a bound AND w*_i = 0 (weak complementarity). round(fraction·n)
+  // rows, fewer if fewer rows have a finite bound (free rows cannot be degenerate). Must lie in [0, 1].
   double degenerate_fraction = 0.0;
   std::uint64_t seed = 1;
-  bool sparse = false;  // store M sparse (a banded/block pattern is used when true)
+  bool sparse = false;  // store M sparse with half-bandwidth 3 (7 diagonals); same families and properties
 };
 
 struct GeneratedProblem {
@@ -38,8 +48,13 @@ struct GeneratedProblem {
   GeneratorOptions options;
 };
 
-// Deterministic for a given options (std::mt19937_64 seeded with options.seed).
-// The problem is named "<family>-<bounds>-n<size>-s<seed>" (e.g. "spd-lcp-n8-s1").
+// Deterministic for a given options: std::mt19937_64 seeded with options.seed, uniform doubles taken from its
+// raw bits and fixed-order loops (no std::*_distribution, no Eigen products), so the output is bit-identical
+// across standard libraries and optimisation levels; only FMA contraction (-march with FMA) changes rounding.
+// The problem is named "<family>-<bounds>-n<size>-s<seed>" (e.g. "spd-lcp-n8-s1"), with "-sparse" and
+// "-deg<fraction>" appended when those options are set, so distinct problems never share a name.
+// Throws InvalidInputError on invalid options (size <= 0 or above the cap, fraction outside [0, 1] or NaN,
+// an out-of-range enum value).
 GeneratedProblem GenerateProblem(const GeneratorOptions& options);
 
 std::string ToString(MatrixFamily family);

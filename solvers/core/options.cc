@@ -2,12 +2,20 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <sstream>
 
 namespace smcbench {
 
 bool SolverOptions::IsValid(std::string* why) const {
+  // Fast path first: this runs on every solve, so no message is built unless something is wrong.
+  bool warm_start_finite = true;
+  for (Eigen::Index i = 0; i < warm_start.size(); ++i) warm_start_finite = warm_start_finite && std::isfinite(warm_start[i]);
+  if (tolerance > 0.0 && std::isfinite(tolerance) && time_limit_seconds > 0.0 && verbosity >= 0 &&
+      warm_start_finite) {
+    return true;
+  }
   std::ostringstream s;
   if (!(tolerance > 0.0) || !std::isfinite(tolerance)) {
     s << "tolerance must be a positive finite number, got " << tolerance;
@@ -23,7 +31,6 @@ bool SolverOptions::IsValid(std::string* why) const {
       }
     }
   }
-  if (s.tellp() == 0) return true;
   if (why) *why = s.str();
   return false;
 }
@@ -75,6 +82,22 @@ bool OptionBinder::Set(std::string_view name, std::string_view value, std::strin
   *error = "unknown option '" + std::string(name) + "'" +
            (known.empty() ? std::string(" (this backend has no options)") : " (known: " + known + ")");
   return false;
+}
+
+std::string OptionBinder::ValueText(std::string_view name) const {
+  for (const Entry& e : entries_) {
+    if (e.name != name) continue;
+    char buffer[40];
+    if (auto* d = std::get_if<double*>(&e.field)) {
+      std::snprintf(buffer, sizeof buffer, "%.17g", **d);
+    } else if (auto* i = std::get_if<int*>(&e.field)) {
+      std::snprintf(buffer, sizeof buffer, "%d", **i);
+    } else {
+      std::snprintf(buffer, sizeof buffer, "%s", **std::get_if<bool*>(&e.field) ? "true" : "false");
+    }
+    return buffer;
+  }
+  return {};
 }
 
 std::string OptionBinder::Help() const {

@@ -21,6 +21,9 @@ struct SolverOptions {
   // 0 silent, 1 summary line, 2 per iteration (to stderr).
   int verbosity = 0;
   double time_limit_seconds = kInf;
+  // Stamp SolveResult::solve_seconds. Reading the clock twice costs ~40 ns, comparable to a whole m ≤ 2 solve,
+  // so time-steppers and benchmarks that time many solves externally turn it off.
+  bool measure_time = true;
 
   // True if every field is usable; otherwise *why explains which one and why.
   bool IsValid(std::string* why) const;
@@ -34,6 +37,8 @@ class OptionBinder {
   void Add(std::string_view name, bool* field, std::string_view help);
   // Sets name to value. Returns false with *error naming the problem (unknown key, unparsable value).
   bool Set(std::string_view name, std::string_view value, std::string* error) const;
+  // Current value of an option as text that Set() parses back exactly; empty if the name is unknown.
+  std::string ValueText(std::string_view name) const;
   // "name (type, now V): help" lines, one per option.
   std::string Help() const;
 

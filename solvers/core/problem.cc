@@ -47,7 +47,9 @@ void CheckSizes(const char* owner, Eigen::Index rows, Eigen::Index cols, const V
 }  // namespace
 
 void ValidateFinite(const char* owner, const char* field, const Vector& v) {
-  for (Eigen::Index i = 0; i < v.size(); ++i) CheckFiniteValue(owner, v[i], At(field, i));
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i])) CheckFiniteValue(owner, v[i], At(field, i));
+  }
 }
 
 void ValidateBounds(const char* owner, const Vector& l, const Vector& u) {
@@ -68,12 +70,17 @@ void ValidateBounds(const char* owner, const Vector& l, const Vector& u) {
 }
 
 double NaturalResidualNorm(const Vector& z, const Vector& w, const Vector& l, const Vector& u) {
+  // z_i − Π_[l_i,u_i](z_i − w_i) evaluated as mid(z_i − l_i, w_i, z_i − u_i): the same number in exact
+  // arithmetic, but without the cancellation z − (z − w) that rounds a large-|z| residual to 0 in floating point
+  // (an interior z ≈ 1e16 with w = 1 would otherwise "pass"). With infinite bounds, z − l = +∞ / z − u = −∞.
   double r = 0.0;
   for (Eigen::Index i = 0; i < z.size(); ++i) {
-    const double projected = std::min(std::max(z[i] - w[i], l[i]), u[i]);
-    const double e = std::abs(z[i] - projected);
-    if (std::isnan(e)) return kInf;
-    r = std::max(r, e);
+    const double above_lower = z[i] - l[i];
+    const double above_upper = z[i] - u[i];
+    const double wi = w[i];
+    const double e = wi > above_lower ? above_lower : (wi < above_upper ? above_upper : wi);
+    if (std::isnan(e) || std::isnan(wi) || std::isnan(z[i])) return kInf;
+    r = std::max(r, std::abs(e));
   }
   return r;
 }
@@ -113,18 +120,33 @@ void BoxMLCP::Validate() {
     CheckSizes(kOwner, sparse_.rows(), sparse_.cols(), q_, l_, u_);
     for (int k = 0; k < sparse_.outerSize(); ++k) {
       for (SparseMatrix::InnerIterator it(sparse_, k); it; ++it) {
-        CheckFiniteValue(kOwner, it.value(), At("M", it.row(), it.col()));
+        // The message is only formatted on failure: validation runs on every construction.
+        if (!std::isfinite(it.value())) CheckFiniteValue(kOwner, it.value(), At("M", it.row(), it.col()));
       }
     }
   } else {
     CheckSizes(kOwner, dense_.rows(), dense_.cols(), q_, l_, u_);
     for (Eigen::Index j = 0; j < dense_.cols(); ++j) {
-      for (Eigen::Index i = 0; i < dense_.rows(); ++i) CheckFiniteValue(kOwner, dense_(i, j), At("M", i, j));
+      for (Eigen::Index i = 0; i < dense_.rows(); ++i) {
+        if (!std::isfinite(dense_(i, j))) CheckFiniteValue(kOwner, dense_(i, j), At("M", i, j));
+      }
     }
   }
   ValidateFinite(kOwner, "q", q_);
   ValidateBounds(kOwner, l_, u_);
   q_inf_norm_ = q_.size() ? q_.cwiseAbs().maxCoeff() : 0.0;
+}
+
+void BoxMLCP::set_q(const Eigen::Ref<const Vector>& q) {
+  if (q.size() != q_.size()) {
+    Fail("BoxMLCP", "set_q: q has size " + std::to_string(q.size()) + " but the problem has " +
+                        std::to_string(q_.size()) + " unknowns");
+  }
+  for (Eigen::Index i = 0; i < q.size(); ++i) {
+    if (!std::isfinite(q[i])) CheckFiniteValue("BoxMLCP", q[i], At("q", i));
+  }
+  q_ = q;
+  q_inf_norm_ = q_.cwiseAbs().maxCoeff();
 }
 
 const DenseMatrix& BoxMLCP::dense_matrix() const {
@@ -140,9 +162,20 @@ const SparseMatrix& BoxMLCP::sparse_matrix() const {
 void BoxMLCP::Multiply(const Vector& z, Vector* out) const {
   if (is_sparse_) {
     out->noalias() = sparse_ * z;
-  } else {
-    out->noalias() = dense_ * z;
+    return;
   }
+  const Eigen::Index n = dense_.rows();
+  if (n <= kSmallSize) {
+    // The paper's one-step problems have m = 1, 2: Eigen's dynamic-size product costs more than the arithmetic.
+    const double* a = dense_.data();
+    for (Eigen::Index i = 0; i < n; ++i) {
+      double sum = 0.0;
+      for (Eigen::Index j = 0; j < n; ++j) sum += a[i + j * n] * z[j];
+      (*out)[i] = sum;
+    }
+    return;
+  }
+  out->noalias() = dense_ * z;
 }
 
 void BoxMLCP::Affine(const Vector& z, Vector* out) const {

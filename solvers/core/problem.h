@@ -52,7 +52,12 @@ class BoxMLCP {
   const Vector& u() const { return u_; }
   const std::string& name() const { return name_; }
   void set_name(std::string name) { name_ = std::move(name); }
+  // Replaces q in place (time-steppers: M fixed, q changes every step). Validates size and finiteness like the
+  // constructor and recomputes the relative scale; no allocation.
+  void set_q(const Eigen::Ref<const Vector>& q);
 
+  // Dense problems up to this size use plain loops for M z (cheaper than Eigen's dynamic-size kernels).
+  static constexpr int kSmallSize = 4;
   // out = M z + q. out must already have size(); no allocation.
   void Affine(const Vector& z, Vector* out) const;
   // out = M z (no q).

@@ -1,2 +1,192 @@
+// Pins down problem validation (every error names field and index) and the natural-map merit function.
+#include "solvers/core/problem.h"
+
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
-TEST(Placeholder, Empty) {}
+
+#include <cmath>
+#include <string>
+
+namespace smcbench {
+namespace {
+
+using ::testing::HasSubstr;
+
+std::string ErrorOf(const std::function<void()>& build) {
+  try {
+    build();
+  } catch (const InvalidInputError& e) {
+    return e.what();
+  }
+  return "(no error)";
+}
+
+DenseMatrix Identity(int n) { return DenseMatrix::Identity(n, n); }
+
+TEST(BoxMLCPValidation, RejectsNaNAndInfInMatrixWithIndex) {
+  DenseMatrix M = Identity(3);
+  M(2, 1) = std::nan("");
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP::LCP(M, Vector::Zero(3)); }), HasSubstr("M(2,1) is NaN"));
+  M(2, 1) = kInf;
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP::LCP(M, Vector::Zero(3)); }), HasSubstr("M(2,1) is infinite"));
+}
+
+TEST(BoxMLCPValidation, RejectsNaNInQWithIndex) {
+  Vector q = Vector::Zero(3);
+  q[1] = std::nan("");
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP::LCP(Identity(3), q); }), HasSubstr("q[1] is NaN"));
+  q[1] = -kInf;
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP::LCP(Identity(3), q); }), HasSubstr("q[1] is infinite"));
+}
+
+TEST(BoxMLCPValidation, RejectsSizeMismatches) {
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP::LCP(DenseMatrix::Ones(2, 3), Vector::Zero(2)); }),
+              HasSubstr("M is 2x3 but must be square"));
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP::LCP(Identity(3), Vector::Zero(2)); }), HasSubstr("q has size 2"));
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP(Identity(2), Vector::Zero(2), Vector::Zero(3), Vector::Ones(2)); }),
+              HasSubstr("l has size 3"));
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP(Identity(2), Vector::Zero(2), Vector::Zero(2), Vector::Ones(1)); }),
+              HasSubstr("u has size 1"));
+}
+
+TEST(BoxMLCPValidation, RejectsEmptyProblem) {
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP::LCP(DenseMatrix(0, 0), Vector(0)); }), HasSubstr("empty problem"));
+}
+
+TEST(BoxMLCPValidation, RejectsBadBoundsWithIndex) {
+  Vector l = Vector::Zero(3), u = Vector::Ones(3);
+  l[2] = 2.0;
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP(Identity(3), Vector::Zero(3), l, u); }), HasSubstr("l[2] = 2 > u[2] = 1"));
+  l[2] = std::nan("");
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP(Identity(3), Vector::Zero(3), l, u); }), HasSubstr("l[2] is NaN"));
+  l[2] = 0;
+  u[0] = std::nan("");
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP(Identity(3), Vector::Zero(3), l, u); }), HasSubstr("u[0] is NaN"));
+  u[0] = -kInf;
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP(Identity(3), Vector::Zero(3), l, u); }), HasSubstr("u[0] is -inf"));
+  u[0] = 1;
+  l[1] = kInf;
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP(Identity(3), Vector::Zero(3), l, u); }), HasSubstr("l[1] is +inf"));
+}
+
+TEST(BoxMLCPValidation, SparseMatrixEntriesAreChecked) {
+  SparseMatrix M(2, 2);
+  M.insert(0, 0) = 1.0;
+  M.insert(1, 0) = std::nan("");
+  M.insert(1, 1) = 1.0;
+  EXPECT_THAT(ErrorOf([&] { BoxMLCP(M, Vector::Zero(2), Vector::Zero(2), Vector::Constant(2, kInf)); }),
+              HasSubstr("M(1,0) is NaN"));
+}
+
+TEST(BoxMLCPValidation, AcceptsInfiniteBoundsOfEveryKind) {
+  Vector l(4), u(4);
+  l << -kInf, 0.0, -kInf, -1.0;
+  u << kInf, kInf, 3.0, 1.0;
+  const BoxMLCP p(Identity(4), Vector::Ones(4), l, u, "mixed");
+  EXPECT_EQ(p.size(), 4);
+  EXPECT_EQ(p.name(), "mixed");
+  EXPECT_FALSE(p.is_sparse());
+  EXPECT_THROW(p.sparse_matrix(), std::logic_error);
+}
+
+TEST(NaturalResidual, IsZeroExactlyAtTheSolution) {
+  // LCP with M = I, q = (-1, 2): z = (1, 0), w = (0, 2).
+  Vector q(2);
+  q << -1.0, 2.0;
+  const BoxMLCP p = BoxMLCP::LCP(Identity(2), q);
+  Vector z(2), w;
+  z << 1.0, 0.0;
+  Residual r = p.NaturalResidual(z, &w);
+  EXPECT_EQ(r.abs, 0.0);
+  EXPECT_EQ(w, Vector((Vector(2) << 0.0, 2.0).finished()));
+  z << 0.5, 0.25;
+  r = p.NaturalResidual(z, &w);
+  // z − Π(z − w): row 0: 0.5 − Π(0.5 − (−0.5)) = −0.5; row 1: 0.25 − Π(0.25 − 2.25) = 0.25.
+  EXPECT_DOUBLE_EQ(r.abs, 0.5);
+  EXPECT_DOUBLE_EQ(r.rel, 0.5 / 3.0);  // 1 + ‖q‖∞ = 3
+}
+
+TEST(NaturalResidual, RelayAndFreeRows) {
+  Vector l(2), u(2), q(2);
+  l << -1.0, -kInf;
+  u << 1.0, kInf;
+  q << 5.0, -2.0;
+  const BoxMLCP p(Identity(2), q, l, u);
+  Vector z(2), w;
+  z << -1.0, 2.0;  // row 0 at lower bound with w = 4 ≥ 0; free row w = 0.
+  EXPECT_EQ(p.NaturalResidual(z, &w).abs, 0.0);
+  z << -1.0, 1.0;  // free row off by 1.
+  EXPECT_DOUBLE_EQ(p.NaturalResidual(z, &w).abs, 1.0);
+}
+
+TEST(NaturalResidual, HugeIteratesDoNotCancelToZero) {
+  // M = 0, q = 1, so w = 1 at z = 1e16: z − Π(z − w) = 1e16 − (1e16 − 1) rounds to 0 in floating point,
+  // but the residual is really 1.
+  const DenseMatrix zero = DenseMatrix::Zero(1, 1);
+  const BoxMLCP free_row(zero, Vector::Ones(1), Vector::Constant(1, -kInf), Vector::Constant(1, kInf));
+  Vector z = Vector::Constant(1, 1e16), w;
+  EXPECT_EQ(free_row.NaturalResidual(z, &w).abs, 1.0);
+  const BoxMLCP lcp = BoxMLCP::LCP(zero, Vector::Ones(1));
+  EXPECT_EQ(lcp.NaturalResidual(z, &w).abs, 1.0);
+}
+
+TEST(NaturalResidual, InfeasibleIteratesAreMeasured) {
+  // z outside the box: z − Π(z − w) with z = 3 > u = 1, w = 0 → 3 − 1 = 2.
+  const BoxMLCP p = BoxMLCP::Relay(Identity(1), Vector::Constant(1, -3.0));
+  Vector z = Vector::Constant(1, 3.0), w;
+  EXPECT_EQ(p.NaturalResidual(z, &w).abs, 2.0);
+}
+
+TEST(NaturalResidual, NaNIteratesNeverPass) {
+  const BoxMLCP p = BoxMLCP::LCP(Identity(1), Vector::Ones(1));
+  Vector z(1), w;
+  z[0] = std::nan("");
+  EXPECT_EQ(p.NaturalResidual(z, &w).abs, kInf);
+}
+
+TEST(BoxMLCP, DenseAndSparseAgree) {
+  DenseMatrix M(2, 2);
+  M << 2.0, -1.0, 0.5, 3.0;
+  const SparseMatrix S = M.sparseView();
+  Vector q(2);
+  q << 1.0, -1.0;
+  const BoxMLCP d = BoxMLCP::LCP(M, q);
+  const BoxMLCP s(S, q, Vector::Zero(2), Vector::Constant(2, kInf));
+  Vector z(2), wd(2), ws(2);
+  z << 0.3, 0.7;
+  d.Affine(z, &wd);
+  s.Affine(z, &ws);
+  EXPECT_EQ(wd, ws);
+  EXPECT_FALSE(d.IsSymmetric());
+  EXPECT_FALSE(s.IsSymmetric());
+  EXPECT_DOUBLE_EQ(d.MatrixInfNorm(), 3.5);
+  EXPECT_DOUBLE_EQ(s.MatrixInfNorm(), 3.5);
+  EXPECT_TRUE(BoxMLCP::LCP(Identity(3), Vector::Zero(3)).IsSymmetric());
+}
+
+TEST(BoxMLCP, SetQReplacesInPlaceAndValidates) {
+  BoxMLCP p = BoxMLCP::Relay(Identity(2), Vector::Zero(2));
+  Vector q(2);
+  q << 3.0, -4.0;
+  p.set_q(q);
+  EXPECT_EQ(p.q(), q);
+  EXPECT_DOUBLE_EQ(p.residual_scale(), 5.0);
+  q[1] = std::nan("");
+  EXPECT_THAT(ErrorOf([&] { p.set_q(q); }), HasSubstr("q[1] is NaN"));
+  EXPECT_THAT(ErrorOf([&] { p.set_q(Vector::Zero(3)); }), HasSubstr("set_q: q has size 3"));
+  EXPECT_DOUBLE_EQ(p.residual_scale(), 5.0);  // unchanged after a rejected update
+}
+
+TEST(MCPValidation, BoundsAreChecked) {
+  Vector l(1), u(1);
+  l << 1.0;
+  u << 0.0;
+  auto F = [](const Vector& z, Vector* f) { *f = z; };
+  auto J = [](const Vector&, DenseMatrix* j) { j->setIdentity(1, 1); };
+  EXPECT_THAT(ErrorOf([&] { FunctionMCP(l, u, F, J); }), HasSubstr("l[0] = 1 > u[0] = 0"));
+  EXPECT_THAT(ErrorOf([&] { FunctionMCP(Vector(0), Vector(0), F, J); }), HasSubstr("empty problem"));
+  EXPECT_THAT(ErrorOf([&] { FunctionMCP(u, l, nullptr, J); }), HasSubstr("F is empty"));
+}
+
+}  // namespace
+}  // namespace smcbench

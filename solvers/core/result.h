@@ -24,14 +24,14 @@ struct SolveResult {
   // The merit function at z, computed by the base class (never by the backend).
   double residual_abs = kInf;
   double residual_rel = kInf;
-  double solve_seconds = 0.0;  // wall time of the whole Solve() call
+  double solve_seconds = 0.0;  // wall time of the whole Solve() call (0 when options.measure_time is off)
 
   // Backend-specific numbers (line-search backtracks, Ipopt objective, ...). Fixed capacity: no allocation.
   struct Detail {
     const char* name = nullptr;  // string literal
     double value = 0.0;
   };
-  static constexpr int kMaxDetails = 8;
+  static constexpr int kMaxDetails = 12;
   std::array<Detail, kMaxDetails> details{};
   int num_details = 0;
 

@@ -39,6 +39,7 @@ bool Solver::Prepare(int n, const Vector& l, const Vector& u, const SolverOption
 }
 
 void Solver::Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result) {
+  using Clock = std::chrono::steady_clock;
   if (result->status == SolveStatus::kSolved && !(result->residual_rel <= tolerance)) {
     // The rule: the merit function, not the backend, decides what "solved" means.
     std::ostringstream s;
@@ -51,16 +52,31 @@ void Solver::Finish(double tolerance, std::chrono::steady_clock::time_point star
     result->status = SolveStatus::kNumericalFailure;
     result->message = "backend returned without setting a status";
   }
-  result->solve_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  result->solve_seconds = start == Clock::time_point{} ? 0.0 : std::chrono::duration<double>(Clock::now() - start).count();
 }
 
+namespace {
+std::chrono::steady_clock::time_point StartClock(const SolverOptions& options) {
+  return options.measure_time ? std::chrono::steady_clock::now() : std::chrono::steady_clock::time_point{};
+}
+}  // namespace
+
 void Solver::Solve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = StartClock(options);
+  const SolverInfo& solver_info = info();
   if (Prepare(problem.size(), problem.l(), problem.u(), options, result)) {
-    const SolverInfo& solver_info = info();
     if (problem.is_sparse() && !solver_info.sparse) {
-      result->status = SolveStatus::kNotApplicable;
-      result->message = "backend accepts dense M only";
+      // A dense-only backend gets a dense copy (allocates per solve; sparse inputs are not its hot path),
+      // unless the copy would be unreasonably large.
+      if (problem.size() > kMaxDensifiedSize) {
+        result->status = SolveStatus::kNotApplicable;
+        result->message = "backend accepts dense M only and n = " + std::to_string(problem.size()) + " > " +
+                          std::to_string(kMaxDensifiedSize) + " is too large to densify";
+      } else {
+        const BoxMLCP dense(problem.ToDense(), problem.q(), problem.l(), problem.u(), problem.name());
+        DoSolve(dense, options, result);
+        result->SetDetail("densified", 1.0);
+      }
     } else if (solver_info.symmetric_only && !problem.IsSymmetric()) {
       result->status = SolveStatus::kNotApplicable;
       result->message = "backend requires symmetric M";
@@ -75,7 +91,7 @@ void Solver::Solve(const BoxMLCP& problem, const SolverOptions& options, SolveRe
 }
 
 void Solver::Solve(const MCP& problem, const SolverOptions& options, SolveResult* result) {
-  const auto start = std::chrono::steady_clock::now();
+  const auto start = StartClock(options);
   const int n = problem.size();
   if (Prepare(n, problem.l(), problem.u(), options, result)) {
     if (!info().mcp) {
@@ -121,9 +137,13 @@ bool Solver::ValidateBackendOptions(std::string*) const { return true; }
 bool Solver::SetOption(std::string_view name, std::string_view value, std::string* error) {
   OptionBinder binder;
   BindOptions(&binder);
+  const std::string previous = binder.ValueText(name);
   if (!binder.Set(name, value, error)) return false;
   std::string why;
   if (!ValidateBackendOptions(&why)) {
+    // A rejected value is never kept: the backend stays exactly as it was.
+    std::string ignored;
+    binder.Set(name, previous, &ignored);
     *error = "invalid value for option '" + std::string(name) + "': " + why;
     return false;
   }

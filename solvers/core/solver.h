@@ -29,6 +29,9 @@ struct SolverInfo {
 // Not thread-safe: a Solver owns its workspace. Use one instance per thread.
 class Solver {
  public:
+  // A dense-only backend given a sparse problem up to this size solves a dense copy (detail "densified" = 1).
+  static constexpr int kMaxDensifiedSize = 4096;
+
   virtual ~Solver() = default;
   virtual const SolverInfo& info() const = 0;
 
@@ -41,7 +44,8 @@ class Solver {
   SolveResult Solve(const BoxMLCP& problem, const SolverOptions& options = {});
   SolveResult Solve(const MCP& problem, const SolverOptions& options = {});
 
-  // Typed backend options set from text ("omega", "1.5"); false with *error on unknown name or bad value.
+  // Typed backend options set from text ("omega", "1.5"); false with *error on unknown name or bad value,
+  // in which case the option keeps its previous value.
   bool SetOption(std::string_view name, std::string_view value, std::string* error);
   std::string OptionsHelp();
 
@@ -65,6 +69,7 @@ class Solver {
 
  private:
   bool Prepare(int n, const Vector& l, const Vector& u, const SolverOptions& options, SolveResult* result);
+  // start == time_point{} means "not timed" (options.measure_time off).
   void Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result);
 
   std::chrono::steady_clock::time_point deadline_{};

@@ -1,2 +1,226 @@
+// Pins down what the Solver base guarantees for every backend: the merit-function rule, option checks,
+// start points, statuses and their names.
+#include "solvers/core/solver.h"
+
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
-TEST(Placeholder, Empty2) {}
+
+#include <cmath>
+
+namespace smcbench {
+namespace {
+
+using ::testing::HasSubstr;
+
+// A backend that returns a scripted z and status: lets us test what the base does with whatever a backend says.
+class ScriptedSolver final : public Solver {
+ public:
+  struct Options {
+    double factor = 1.0;
+  };
+  const SolverInfo& info() const override {
+    static const SolverInfo kInfo{"scripted", "returns a scripted answer", "none"};
+    return kInfo;
+  }
+  SolveStatus status_to_report = SolveStatus::kSolved;
+  Vector z_to_report;
+  Vector seen_start;
+  Options options;
+
+ protected:
+  void DoSolve(const BoxMLCP&, const SolverOptions&, SolveResult* result) override {
+    seen_start = result->z;
+    if (z_to_report.size()) result->z = z_to_report;
+    result->status = status_to_report;
+    result->iterations = 7;
+    result->SetDetail("answer", 42.0);
+  }
+  void BindOptions(OptionBinder* binder) override { binder->Add("factor", &options.factor, "a positive number"); }
+  bool ValidateBackendOptions(std::string* why) const override {
+    if (options.factor > 0) return true;
+    *why = "factor must be > 0";
+    return false;
+  }
+};
+
+BoxMLCP SimpleLCP() {
+  Vector q(2);
+  q << -1.0, 2.0;  // solution z = (1, 0)
+  return BoxMLCP::LCP(DenseMatrix::Identity(2, 2), q, "simple");
+}
+
+TEST(SolverBase, WrongClaimOfSuccessBecomesInaccurate) {
+  ScriptedSolver solver;
+  solver.z_to_report = Vector::Zero(2);  // not a solution: residual 1
+  const SolveResult r = solver.Solve(SimpleLCP());
+  EXPECT_EQ(r.status, SolveStatus::kInaccurate);
+  EXPECT_THAT(r.message, HasSubstr("natural residual"));
+  EXPECT_DOUBLE_EQ(r.residual_abs, 1.0);
+  EXPECT_DOUBLE_EQ(r.residual_rel, 1.0 / 3.0);
+  EXPECT_EQ(r.solver, "scripted");
+}
+
+TEST(SolverBase, TrueSuccessIsKeptAndResidualRecomputed) {
+  ScriptedSolver solver;
+  solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
+  const SolveResult r = solver.Solve(SimpleLCP());
+  EXPECT_EQ(r.status, SolveStatus::kSolved);
+  EXPECT_EQ(r.residual_abs, 0.0);
+  EXPECT_EQ(r.w, (Vector(2) << 0.0, 2.0).finished());
+  EXPECT_EQ(r.iterations, 7);
+  EXPECT_EQ(r.GetDetail("answer"), 42.0);
+  EXPECT_TRUE(std::isnan(r.GetDetail("missing")));
+  EXPECT_GE(r.solve_seconds, 0.0);
+}
+
+TEST(SolverBase, NaNIterateIsNeverSolved) {
+  ScriptedSolver solver;
+  solver.z_to_report = Vector::Constant(2, std::nan(""));
+  const SolveResult r = solver.Solve(SimpleLCP());
+  EXPECT_EQ(r.status, SolveStatus::kInaccurate);
+  EXPECT_EQ(r.residual_abs, kInf);
+}
+
+TEST(SolverBase, FailureStatusIsPassedThroughWithResidual) {
+  ScriptedSolver solver;
+  solver.status_to_report = SolveStatus::kIterationLimit;
+  solver.z_to_report = (Vector(2) << 0.5, 0.0).finished();
+  const SolveResult r = solver.Solve(SimpleLCP());
+  EXPECT_EQ(r.status, SolveStatus::kIterationLimit);
+  EXPECT_DOUBLE_EQ(r.residual_abs, 0.5);
+}
+
+TEST(SolverBase, ColdStartIsProjectionOfZeroWarmStartIsPassed) {
+  ScriptedSolver solver;
+  Vector l(2), u(2);
+  l << 0.5, -kInf;
+  u << 1.0, -2.0;
+  const BoxMLCP p(DenseMatrix::Identity(2, 2), Vector::Zero(2), l, u);
+  solver.Solve(p);
+  EXPECT_EQ(solver.seen_start, (Vector(2) << 0.5, -2.0).finished());
+  SolverOptions options;
+  options.warm_start = (Vector(2) << 0.75, -3.0).finished();
+  solver.Solve(p, options);
+  EXPECT_EQ(solver.seen_start, options.warm_start);
+}
+
+TEST(SolverBase, InvalidCommonOptionsAreAStatusNotACrash) {
+  ScriptedSolver solver;
+  SolverOptions options;
+  options.tolerance = -1.0;
+  SolveResult r = solver.Solve(SimpleLCP(), options);
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+  EXPECT_THAT(r.message, HasSubstr("tolerance"));
+  options = {};
+  options.tolerance = std::nan("");
+  EXPECT_EQ(solver.Solve(SimpleLCP(), options).status, SolveStatus::kInvalidOptions);
+  options = {};
+  options.warm_start = Vector::Zero(3);
+  r = solver.Solve(SimpleLCP(), options);
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+  EXPECT_THAT(r.message, HasSubstr("warm_start has size 3"));
+  options.warm_start = (Vector(2) << 0.0, kInf).finished();
+  r = solver.Solve(SimpleLCP(), options);
+  EXPECT_THAT(r.message, HasSubstr("warm_start[1]"));
+  options = {};
+  options.time_limit_seconds = 0.0;
+  EXPECT_EQ(solver.Solve(SimpleLCP(), options).status, SolveStatus::kInvalidOptions);
+}
+
+TEST(SolverBase, TypedBackendOptionsFromText) {
+  ScriptedSolver solver;
+  std::string error;
+  EXPECT_TRUE(solver.SetOption("factor", "2.5", &error));
+  EXPECT_EQ(solver.options.factor, 2.5);
+  EXPECT_FALSE(solver.SetOption("factr", "2.5", &error));
+  EXPECT_THAT(error, HasSubstr("unknown option 'factr' (known: factor)"));
+  EXPECT_FALSE(solver.SetOption("factor", "abc", &error));
+  EXPECT_THAT(error, HasSubstr("expects a number"));
+  EXPECT_FALSE(solver.SetOption("factor", "-1", &error));
+  EXPECT_THAT(error, HasSubstr("factor must be > 0"));
+  // A rejected value is not kept.
+  EXPECT_EQ(solver.options.factor, 2.5);
+  // An invalid value set directly in the typed struct is rejected at solve time: never silently used.
+  solver.options.factor = -1;
+  const SolveResult r = solver.Solve(SimpleLCP());
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+  EXPECT_THAT(solver.OptionsHelp(), HasSubstr("factor"));
+}
+
+TEST(SolverBase, DenseOnlyBackendSolvesADenseCopyOfASparseProblem) {
+  ScriptedSolver solver;
+  solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
+  Vector q(2);
+  q << -1.0, 2.0;
+  const SparseMatrix M = DenseMatrix::Identity(2, 2).sparseView();
+  const BoxMLCP p(M, q, Vector::Zero(2), Vector::Constant(2, kInf));
+  const SolveResult r = solver.Solve(p);
+  EXPECT_EQ(r.status, SolveStatus::kSolved);
+  EXPECT_EQ(r.GetDetail("densified"), 1.0);
+}
+
+TEST(SolverBase, DenseOnlyBackendRefusesHugeSparseProblem) {
+  ScriptedSolver solver;
+  const int n = Solver::kMaxDensifiedSize + 1;
+  SparseMatrix M(n, n);
+  M.setIdentity();
+  const BoxMLCP p(M, Vector::Zero(n), Vector::Zero(n), Vector::Constant(n, kInf));
+  const SolveResult r = solver.Solve(p);
+  EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
+  EXPECT_THAT(r.message, HasSubstr("too large to densify"));
+}
+
+TEST(SolverBase, NonMcpBackendRefusesMcp) {
+  ScriptedSolver solver;
+  const FunctionMCP mcp(
+      Vector::Zero(1), Vector::Constant(1, kInf), [](const Vector& z, Vector* F) { *F = z; },
+      [](const Vector&, DenseMatrix* J) { J->setIdentity(1, 1); });
+  const SolveResult r = solver.Solve(mcp);
+  EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
+  EXPECT_EQ(r.residual_abs, 0.0);  // z = Π(0) = 0 happens to solve it; the status still says "not applicable"
+}
+
+TEST(SolverBase, ResultIsReusedWithoutStaleState) {
+  ScriptedSolver solver;
+  SolveResult r;
+  solver.z_to_report = Vector::Zero(2);
+  solver.Solve(SimpleLCP(), SolverOptions{}, &r);
+  EXPECT_FALSE(r.message.empty());
+  solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
+  solver.Solve(SimpleLCP(), SolverOptions{}, &r);
+  EXPECT_TRUE(r.solved());
+  EXPECT_TRUE(r.message.empty());
+}
+
+TEST(SolveStatusNames, RoundTripAndStayStable) {
+  for (int v = 0; v <= 13; ++v) {
+    const auto status = static_cast<SolveStatus>(v);
+    const auto name = ToString(status);
+    ASSERT_NE(name, "unknown") << v;
+    EXPECT_EQ(SolveStatusFromString(name), status);
+  }
+  // Scripts depend on these exact strings.
+  EXPECT_EQ(ToString(SolveStatus::kSolved), "solved");
+  EXPECT_EQ(ToString(SolveStatus::kRayTermination), "ray_termination");
+  EXPECT_EQ(static_cast<int>(SolveStatus::kSizeLimit), 7);
+  EXPECT_FALSE(SolveStatusFromString("nope").has_value());
+}
+
+}  // namespace
+}  // namespace smcbench
+
+namespace smcbench {
+namespace {
+
+TEST(SolverBase, MeasureTimeOffLeavesSolveSecondsZero) {
+  ScriptedSolver solver;
+  solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
+  SolverOptions options;
+  options.measure_time = false;
+  const SolveResult r = solver.Solve(SimpleLCP(), options);
+  EXPECT_TRUE(r.solved());
+  EXPECT_EQ(r.solve_seconds, 0.0);
+}
+
+}  // namespace
+}  // namespace smcbench

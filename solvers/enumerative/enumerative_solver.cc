@@ -1,6 +1,855 @@
-// PLACEHOLDER: replaced by the real backend.
+// Exhaustive active-set enumeration for the box-MLCP (see enumerative_solver.h for the method and references).
 #include "solvers/enumerative/enumerative_solver.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+
 namespace smcbench {
-const SolverInfo& EnumerativeSolver::info() const { static const SolverInfo kInfo{"enumerative", "placeholder", "", true}; return kInfo; }
-void EnumerativeSolver::DoSolve(const BoxMLCP&, const SolverOptions&, SolveResult* result) { result->status = SolveStatus::kNotApplicable; }
+namespace {
+
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+constexpr int kMaxGuidedSteps = 100000;  // history costs guided_steps · n ints
+// kInfeasible needs every candidate to miss its sign-test threshold τ by more than this factor.
+constexpr double kCertifyMargin = 100.0;
+
+// The state of one row in a candidate active set.
+enum RowState : int {
+  kLower = 0,  // z_i = l_i, needs w_i ≥ 0
+  kUpper = 1,  // z_i = u_i, needs w_i ≤ 0
+  kFree = 2,   // z_i from the free-block solve, needs l_i ≤ z_i ≤ u_i (and w_i = 0 by construction)
+  kFixed = 3,  // l_i = u_i: z_i = l_i, any w_i
+};
+
+constexpr char kStateChar[] = {'L', 'U', 'F', 'X'};
+
+// Raw views of the search workspace; the same code runs on stack arrays (m ≤ 4) and on the heap workspace.
+struct Buffers {
+  int ld = 0;              // leading dimension of the k×k column-major blocks (= n)
+  double* A = nullptr;     // n×n: the free block M_FF, factored in place
+  double* T = nullptr;     // n×n: transposed R factor for the least-norm solve
+  double* z = nullptr;     // candidate z
+  double* w = nullptr;     // candidate w = M z + q
+  double* y = nullptr;     // natural-map point z − D⁻¹ w that defines the current guess
+  double* rhs = nullptr;   // right-hand side, overwritten by z_F
+  double* xref = nullptr;  // Π_[l,u](0) on the free rows: the centre of the least-norm solve
+  double* tau = nullptr;   // Householder scalars (QR with column pivoting)
+  double* tau2 = nullptr;  // Householder scalars (QR of Rᵀ)
+  double* v = nullptr;     // least-norm work vector
+  double* margin = nullptr;  // confidence of the guessed state, per row
+  double* start = nullptr;   // the starting point, restored when nothing is found
+  double* best = nullptr;    // the candidate with the smallest merit value so far
+  int* piv = nullptr;        // LU row swaps
+  int* jpvt = nullptr;       // QR column permutation
+  int* free_idx = nullptr;   // rows of the free block
+  int* state = nullptr;      // RowState per row
+  int* choice = nullptr;     // 3 per row: the row's states, most likely first
+  int* radix = nullptr;      // number of states per branching position
+  int* order = nullptr;      // branching rows, least confident first
+  int* comb = nullptr;       // enumeration: positions changed from the guess
+  int* offset = nullptr;     // enumeration: choice index per position
+  int* history = nullptr;    // guided phase: the sets already tried, n ints each
+};
+
+// Stack storage for the fixed-size path.
+template <int N>
+struct FixedStorage {
+  static constexpr int kHistory = 32;  // guided steps held on the stack
+  std::array<double, N * N> A, T;
+  std::array<double, N> z, w, y, rhs, xref, tau, tau2, v, margin, start, best;
+  std::array<int, N> piv, jpvt, free_idx, state, radix, order, comb, offset;
+  std::array<int, 3 * N> choice;
+  std::array<int, kHistory * N> history;
+  Buffers View() {
+    Buffers b;
+    b.ld = N;
+    b.history = history.data(), b.y = y.data();
+    b.A = A.data(), b.T = T.data(), b.z = z.data(), b.w = w.data(), b.rhs = rhs.data(), b.xref = xref.data();
+    b.tau = tau.data(), b.tau2 = tau2.data(), b.v = v.data(), b.margin = margin.data(), b.start = start.data();
+    b.best = best.data(), b.piv = piv.data(), b.jpvt = jpvt.data(), b.free_idx = free_idx.data();
+    b.state = state.data(), b.choice = choice.data(), b.radix = radix.data(), b.order = order.data();
+    b.comb = comb.data(), b.offset = offset.data();
+    return b;
+  }
+};
+template <>
+struct FixedStorage<0> {};
+
+constexpr int kRealBlocks = 2;    // A, T (n×n each)
+constexpr int kRealVectors = 11;  // z … best
+constexpr int kIntVectors = 8;    // piv … offset; then choice (3n) and history (guided_steps · n)
+
+// ---------------------------------------------------------------------------------------------------------
+// Dense kernels on a k×k column-major block with leading dimension ld (no allocation, any k ≤ ld).
+
+// LU with partial pivoting in place (P A = L U). False if a pivot is ≤ small (numerically singular) or NaN.
+// K > 0 fixes k at compile time (fully unrolled small blocks), K = 0 reads it at run time.
+template <int K = 0>
+bool LuFactor(double* a, int ld, int k_runtime, int* piv, double small) {
+  const int k = K > 0 ? K : k_runtime;
+  for (int j = 0; j < k; ++j) {
+    double* cj = a + static_cast<std::ptrdiff_t>(j) * ld;
+    int p = j;
+    double pmax = std::abs(cj[j]);
+    for (int i = j + 1; i < k; ++i) {
+      const double v = std::abs(cj[i]);
+      if (v > pmax) pmax = v, p = i;
+    }
+    piv[j] = p;
+    if (!(pmax > small)) return false;
+    if (p != j) {
+      for (std::ptrdiff_t c = 0; c < k; ++c) std::swap(a[j + c * ld], a[p + c * ld]);
+    }
+    const double inv = 1.0 / cj[j];
+    for (int i = j + 1; i < k; ++i) cj[i] *= inv;
+    for (int c = j + 1; c < k; ++c) {
+      double* cc = a + static_cast<std::ptrdiff_t>(c) * ld;
+      const double f = cc[j];
+      if (f == 0.0) continue;
+      for (int i = j + 1; i < k; ++i) cc[i] -= cj[i] * f;
+    }
+  }
+  return true;
+}
+
+// Solves A x = b from LuFactor's output; b is overwritten by x.
+template <int K = 0>
+void LuSolve(const double* a, int ld, int k_runtime, const int* piv, double* b) {
+  const int k = K > 0 ? K : k_runtime;
+  for (int j = 0; j < k; ++j) {
+    if (piv[j] != j) std::swap(b[j], b[piv[j]]);
+  }
+  for (int j = 0; j < k; ++j) {
+    const double bj = b[j];
+    if (bj == 0.0) continue;
+    const double* cj = a + static_cast<std::ptrdiff_t>(j) * ld;
+    for (int i = j + 1; i < k; ++i) b[i] -= cj[i] * bj;
+  }
+  for (int j = k - 1; j >= 0; --j) {
+    const double* cj = a + static_cast<std::ptrdiff_t>(j) * ld;
+    b[j] /= cj[j];
+    const double bj = b[j];
+    for (int i = 0; i < j; ++i) b[i] -= cj[i] * bj;
+  }
+}
+
+// ‖x‖₂ without overflow or harmful underflow.
+double StableNorm(const double* x, int len) {
+  double scale = 0.0;
+  for (int i = 0; i < len; ++i) scale = std::max(scale, std::abs(x[i]));
+  if (scale == 0.0 || !std::isfinite(scale)) return scale;
+  double s = 0.0;
+  for (int i = 0; i < len; ++i) {
+    const double t = x[i] / scale;
+    s += t * t;
+  }
+  return scale * std::sqrt(s);
+}
+
+// Householder reflector H = I − τ v vᵀ zeroing column s below row s of the m×ncols matrix a (v stored below
+// the diagonal with v_s = 1 implicit), applied to columns s+1 … ncols−1. norm = ‖a(s:m, s)‖₂.
+void Householder(double* a, int ld, int m, int ncols, int s, double norm, double* tau) {
+  double* cs = a + static_cast<std::ptrdiff_t>(s) * ld;
+  const double alpha = cs[s];
+  if (norm == 0.0) {
+    *tau = 0.0;
+    return;
+  }
+  const double beta = -std::copysign(norm, alpha);
+  const double denom = alpha - beta;
+  for (int i = s + 1; i < m; ++i) cs[i] /= denom;
+  *tau = (beta - alpha) / beta;
+  cs[s] = beta;
+  for (int c = s + 1; c < ncols; ++c) {
+    double* cc = a + static_cast<std::ptrdiff_t>(c) * ld;
+    double dot = cc[s];
+    for (int i = s + 1; i < m; ++i) dot += cs[i] * cc[i];
+    dot *= *tau;
+    cc[s] -= dot;
+    for (int i = s + 1; i < m; ++i) cc[i] -= dot * cs[i];
+  }
+}
+
+// Householder QR with column pivoting (Businger–Golub) of the k×k block: A P = Q R. Stops when the largest
+// remaining column norm is ≤ rank_tol · |R_00|; returns that numerical rank r.
+int QrColumnPivoting(double* a, int ld, int k, int* jpvt, double* tau, double rank_tol) {
+  for (int j = 0; j < k; ++j) jpvt[j] = j;
+  double rmax = 0.0;
+  for (int s = 0; s < k; ++s) {
+    int p = s;
+    double best = -1.0;
+    // Norms recomputed from scratch each step: this path is rare, and it avoids norm-downdating cancellation.
+    for (int c = s; c < k; ++c) {
+      const double nc = StableNorm(a + s + static_cast<std::ptrdiff_t>(c) * ld, k - s);
+      if (nc > best) best = nc, p = c;
+    }
+    if (s == 0) rmax = best;
+    if (!(best > rank_tol * rmax) || rmax == 0.0) return s;
+    if (p != s) {
+      double* cs = a + static_cast<std::ptrdiff_t>(s) * ld;
+      double* cp = a + static_cast<std::ptrdiff_t>(p) * ld;
+      for (int i = 0; i < k; ++i) std::swap(cs[i], cp[i]);
+      std::swap(jpvt[s], jpvt[p]);
+    }
+    Householder(a, ld, k, k, s, best, &tau[s]);
+  }
+  return k;
+}
+
+// Least-norm solution, about the centre xref, of the k×k system A x = b with A possibly rank deficient:
+// x = xref + argmin{‖d‖ : d minimizes ‖A d − (b − A xref)‖ after cutting A to its numerical rank}. Uses
+// A P = Q [R1; 0] (column-pivoted QR) and then R1ᵀ = Q2 [S; 0] so that the cut system is [Sᵀ 0] Q2ᵀ Pᵀ d = c1
+// (a complete orthogonal decomposition, Golub & Van Loan §5.5). b is overwritten by x. Returns the rank.
+int LeastNormSolve(double* a, double* t, int ld, int k, const double* xref, double* b, double* tau, double* tau2,
+                   double* v, int* jpvt, double rank_tol) {
+  for (int c = 0; c < k; ++c) {
+    const double xc = xref[c];
+    if (xc == 0.0) continue;
+    const double* ac = a + static_cast<std::ptrdiff_t>(c) * ld;
+    for (int i = 0; i < k; ++i) b[i] -= ac[i] * xc;
+  }
+  const int r = QrColumnPivoting(a, ld, k, jpvt, tau, rank_tol);
+  for (int s = 0; s < r; ++s) {  // b := Qᵀ b
+    const double* cs = a + static_cast<std::ptrdiff_t>(s) * ld;
+    double dot = b[s];
+    for (int i = s + 1; i < k; ++i) dot += cs[i] * b[i];
+    dot *= tau[s];
+    b[s] -= dot;
+    for (int i = s + 1; i < k; ++i) b[i] -= dot * cs[i];
+  }
+  for (int j = 0; j < r; ++j) {  // t := R1ᵀ (k×r)
+    double* tj = t + static_cast<std::ptrdiff_t>(j) * ld;
+    for (int i = 0; i < k; ++i) tj[i] = i >= j ? a[j + static_cast<std::ptrdiff_t>(i) * ld] : 0.0;
+  }
+  for (int s = 0; s < r; ++s) {
+    Householder(t, ld, k, r, s, StableNorm(t + s + static_cast<std::ptrdiff_t>(s) * ld, k - s), &tau2[s]);
+  }
+  for (int j = 0; j < r; ++j) {  // Sᵀ y = c1
+    const double* tj = t + static_cast<std::ptrdiff_t>(j) * ld;
+    double s = b[j];
+    for (int i = 0; i < j; ++i) s -= tj[i] * v[i];
+    v[j] = s / tj[j];
+  }
+  for (int i = r; i < k; ++i) v[i] = 0.0;
+  for (int s = r - 1; s >= 0; --s) {  // v := Q2 [y; 0]
+    const double* ts = t + static_cast<std::ptrdiff_t>(s) * ld;
+    double dot = v[s];
+    for (int i = s + 1; i < k; ++i) dot += ts[i] * v[i];
+    dot *= tau2[s];
+    v[s] -= dot;
+    for (int i = s + 1; i < k; ++i) v[i] -= dot * ts[i];
+  }
+  for (int i = 0; i < k; ++i) b[jpvt[i]] = xref[jpvt[i]] + v[i];
+  return r;
+}
+
+// Solves the k×k free block A x = b in place (b becomes x): closed forms for k ≤ 2, LU with partial pivoting
+// above. False, with A and b clobbered, if a pivot is ≤ small (numerically singular) or NaN.
+inline bool SolveBlock(double* a, int ld, int k, double* b, int* piv, double small) {
+  if (k == 1) {
+    if (!(std::abs(a[0]) > small)) return false;
+    b[0] /= a[0];
+    return true;
+  }
+  if (k == 2) {  // 2×2 elimination with partial pivoting
+    double a00 = a[0], a10 = a[1], a01 = a[ld], a11 = a[ld + 1], r0 = b[0], r1 = b[1];
+    if (std::abs(a10) > std::abs(a00)) std::swap(a00, a10), std::swap(a01, a11), std::swap(r0, r1);
+    if (!(std::abs(a00) > small)) return false;
+    const double m = a10 / a00;
+    const double u11 = a11 - m * a01;
+    if (!(std::abs(u11) > small)) return false;
+    b[1] = (r1 - m * r0) / u11;
+    b[0] = (r0 - a01 * b[1]) / a00;
+    return true;
+  }
+  if (k == 3) {
+    if (!LuFactor<3>(a, ld, k, piv, small)) return false;
+    LuSolve<3>(a, ld, k, piv, b);
+    return true;
+  }
+  if (k == 4) {
+    if (!LuFactor<4>(a, ld, k, piv, small)) return false;
+    LuSolve<4>(a, ld, k, piv, b);
+    return true;
+  }
+  if (!LuFactor(a, ld, k, piv, small)) return false;
+  LuSolve(a, ld, k, piv, b);
+  return true;
+}
+
+// The first active set tried for row i: the state of the Jacobi-scaled natural map y = z0 − (M z0 + q)_i / d_i
+// (d_i = M_ii where positive, else 1) projected on [l_i, u_i]. At a solution z0 = z* it is z*'s active set,
+// and from the cold start Π(0) of a 1×1 problem with M > 0 it gives the exact answer Π(−q/M).
+inline int GuessState(double y, double l, double u) {
+  if (l == u) return kFixed;
+  if (l > -kInf && y <= l) return kLower;
+  if (u < kInf && y >= u) return kUpper;
+  return kFree;
+}
+
+inline double JacobiScale(double m_ii) { return m_ii > 0.0 ? m_ii : 1.0; }
+
+// The fixed-size fast path for m ≤ 4 (the paper's one-step relay problems have m = 1, 2): examines only the
+// guessed active set, with the row count known at compile time and everything on the stack. True, with
+// result->z set, if that set solves the problem to tolerance; otherwise the full search takes over.
+template <int N>
+bool SolveGuessedSet(const BoxMLCP& problem, const SolverOptions& options, double rank_tol, SolveResult* result) {
+  const double* M = problem.dense_matrix().data();
+  const double* q = problem.q().data();
+  const double* l = problem.l().data();
+  const double* u = problem.u().data();
+  double* zr = result->z.data();
+  double z0[N], z[N], w[N], rhs[N], a[N * N];
+  int free_idx[N], piv[N];
+  bool is_free[N];
+  for (int i = 0; i < N; ++i) z0[i] = zr[i], w[i] = q[i];
+  for (int j = 0; j < N; ++j) {
+    for (int i = 0; i < N; ++i) w[i] += M[i + j * N] * z0[j];
+  }
+  int k = 0;
+  for (int i = 0; i < N; ++i) {
+    const double y = z0[i] - w[i] / JacobiScale(M[i + i * N]);
+    const int s = GuessState(y, l[i], u[i]);
+    is_free[i] = s == kFree;
+    if (is_free[i]) free_idx[k++] = i;
+    z[i] = s == kFree ? 0.0 : s == kUpper ? u[i] : l[i];
+  }
+  double amax = 0.0;
+  for (int c = 0; c < k; ++c) {
+    const int i = free_idx[c];
+    double r = -q[i];
+    for (int j = 0; j < N; ++j) {
+      if (!is_free[j]) r -= M[i + j * N] * z[j];
+    }
+    rhs[c] = r;
+    for (int b = 0; b < k; ++b) {
+      a[b + c * N] = M[free_idx[b] + free_idx[c] * N];
+      amax = std::max(amax, std::abs(a[b + c * N]));
+    }
+  }
+  if (k > 0 && !SolveBlock(a, N, k, rhs, piv, rank_tol * amax)) return false;
+  for (int c = 0; c < k; ++c) {
+    const int i = free_idx[c];
+    if (!std::isfinite(rhs[c])) return false;
+    z[i] = std::min(std::max(rhs[c], l[i]), u[i]);
+  }
+  double merit = 0.0;
+  for (int i = 0; i < N; ++i) {
+    double wi = q[i];
+    for (int j = 0; j < N; ++j) wi += M[i + j * N] * z[j];
+    merit = std::max(merit, std::abs(z[i] - std::min(std::max(z[i] - wi, l[i]), u[i])));
+  }
+  const double tol_abs = options.tolerance * problem.residual_scale();
+  if (!(merit <= tol_abs)) return false;
+  for (int i = 0; i < N; ++i) zr[i] = z[i];
+  // Near the threshold, confirm with the very computation the base class will make.
+  if (merit > 0.5 * tol_abs && !(problem.NaturalResidual(result->z, &result->w).rel <= options.tolerance)) {
+    for (int i = 0; i < N; ++i) zr[i] = z0[i];
+    return false;
+  }
+  return true;
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Nearest-first order: all state vectors by increasing number of rows changed from the guess (Hamming
+// distance), positions taken least-confident first. Position p has radix[p] ≥ 2 states, 0 being the guess.
+class NearestFirst {
+ public:
+  NearestFirst(int nb, const int* radix, int* comb, int* offset) : nb_(nb), radix_(radix), comb_(comb), off_(offset) {
+    for (int p = 0; p < nb_; ++p) off_[p] = 0;
+  }
+  // Advances offset[] to the next state vector; false once all have been produced.
+  bool Next() {
+    for (int j = d_ - 1; j >= 0; --j) {  // odometer over the changed positions, last one fastest
+      const int p = comb_[j];
+      if (off_[p] + 1 < radix_[p]) {
+        ++off_[p];
+        for (int jj = j + 1; jj < d_; ++jj) off_[comb_[jj]] = 1;
+        return true;
+      }
+    }
+    for (int j = 0; j < d_; ++j) off_[comb_[j]] = 0;
+    int j = d_ - 1;  // next d-subset in lexicographic order, else the first (d+1)-subset
+    while (j >= 0 && comb_[j] == nb_ - d_ + j) --j;
+    if (j >= 0) {
+      ++comb_[j];
+      for (int jj = j + 1; jj < d_; ++jj) comb_[jj] = comb_[jj - 1] + 1;
+    } else {
+      if (++d_ > nb_) return false;
+      for (int jj = 0; jj < d_; ++jj) comb_[jj] = jj;
+    }
+    for (int jj = 0; jj < d_; ++jj) off_[comb_[jj]] = 1;
+    return true;
+  }
+
+ private:
+  int nb_;
+  const int* radix_;
+  int* comb_;
+  int* off_;
+  int d_ = 0;
+};
+
+// An active-set count for messages: exact below 2^53, else in scientific notation.
+std::string CountText(double count) {
+  if (count < 9007199254740992.0) return std::to_string(static_cast<long long>(count));
+  std::ostringstream s;
+  s.precision(3);
+  s << count;
+  return s.str();
+}
+
+// One verbosity-2 line: the active set as a string of L/U/F/X and what became of it.
+void Trace(long long index, const int* state, int n, const char* what, double value) {
+  char pattern[65];
+  const int shown = std::min(n, 64);
+  for (int i = 0; i < shown; ++i) pattern[i] = kStateChar[state[i]];
+  pattern[shown] = '\0';
+  std::fprintf(stderr, "enum: set %lld %s%s: %s %.3g\n", index, pattern, n > shown ? "..." : "", what, value);
+}
+
+}  // namespace
+
+// ---------------------------------------------------------------------------------------------------------
+
+bool EnumerativeOptions::IsValid(std::string* why) const {
+  // Checked on every Solve(): the happy path must not construct a stream (that alone costs ~0.5 µs).
+  const bool ok = size_limit >= 1 && max_candidates >= 1 && feasibility_scale >= 0.0 &&
+                  std::isfinite(feasibility_scale) && rank_tolerance > 0.0 && rank_tolerance < 1.0 &&
+                  guided_steps >= 0 && guided_steps <= kMaxGuidedSteps;
+  if (ok) return true;
+  std::ostringstream s;
+  if (size_limit < 1) {
+    s << "size_limit must be >= 1, got " << size_limit;
+  } else if (max_candidates < 1) {
+    s << "max_candidates must be >= 1, got " << max_candidates;
+  } else if (!(feasibility_scale >= 0.0) || !std::isfinite(feasibility_scale)) {
+    s << "feasibility_scale must be a finite number >= 0, got " << feasibility_scale;
+  } else if (!(rank_tolerance > 0.0 && rank_tolerance < 1.0)) {
+    s << "rank_tolerance must be in (0, 1), got " << rank_tolerance;
+  } else {
+    s << "guided_steps must be in [0, " << kMaxGuidedSteps << "], got " << guided_steps;
+  }
+  if (why) *why = s.str();
+  return false;
+}
+
+const SolverInfo& EnumerativeSolver::info() const {
+  static const SolverInfo kInfo{
+      "enum",
+      "exhaustive active-set enumeration (lower/upper/free per row) after guided block-principal-pivoting "
+      "steps from the natural-map guess, nearest-first; LU block solves with a rank-revealing least-norm "
+      "fallback for singular blocks; proves infeasibility",
+      "Murty 1988, Linear Complementarity, Linear and Nonlinear Programming, ch. 1 (total enumeration); "
+      "Judice 1994, Algorithms for linear complementarity problems (enumerative methods); "
+      "Judice & Pires 1994 (block principal pivoting)",
+      /*dense=*/true,
+      /*sparse=*/false,
+      /*symmetric_only=*/false,
+      /*exact=*/true,
+      /*mcp=*/false,
+      /*default_size_limit=*/EnumerativeOptions{}.size_limit};
+  return kInfo;
+}
+
+void EnumerativeSolver::BindOptions(OptionBinder* binder) {
+  binder->Add("size_limit", &options_.size_limit,
+              "largest number of rows with a choice of state (LCP: n); larger problems get size_limit");
+  binder->Add("max_candidates", &options_.max_candidates,
+              "largest number of active sets (2^n LCP, 3^n box) the full search may need");
+  binder->Add("feasibility_scale", &options_.feasibility_scale,
+              "roundoff allowance kappa in tau = max(kappa n eps (|M||z| + |q|), tol (1 + |q|))");
+  binder->Add("rank_tolerance", &options_.rank_tolerance,
+              "relative pivot / R-diagonal below which a free block is treated as singular");
+  binder->Add("solve_singular_blocks", &options_.solve_singular_blocks,
+              "try least-norm solutions of consistent singular free blocks");
+  binder->Add("guided_steps", &options_.guided_steps,
+              "block principal pivoting steps before the exhaustive search (0: none)");
+}
+
+bool EnumerativeSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }
+
+void EnumerativeSolver::Reserve(int n, int guided_steps) {
+  if (n == workspace_n_ && guided_steps <= workspace_history_) return;
+  const std::size_t un = static_cast<std::size_t>(n);
+  real_work_.assign(kRealBlocks * un * un + kRealVectors * un, 0.0);
+  int_work_.assign((kIntVectors + 3 + static_cast<std::size_t>(std::max(guided_steps, 1))) * un, 0);
+  workspace_n_ = n;
+  workspace_history_ = std::max(guided_steps, 1);
+}
+
+void EnumerativeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  const auto fast = [&](auto solve_guess) {
+    if (!solve_guess(problem, options, options_.rank_tolerance, result)) return false;
+    result->status = SolveStatus::kSolved;
+    result->iterations = 1;
+    double total = 1.0;
+    for (int i = 0; i < problem.size(); ++i) {
+      const double li = problem.l()[i], ui = problem.u()[i];
+      total *= li == ui ? 1.0 : 1.0 + (li > -kInf) + (ui < kInf);
+    }
+    result->SetDetail("active_sets_total", total);
+    result->SetDetail("guided_sets", 1.0);
+    result->SetDetail("singular_blocks", 0.0);
+    return true;
+  };
+  switch (problem.size()) {
+    case 1: if (!fast(SolveGuessedSet<1>)) Search<1>(problem, options, result); return;
+    case 2: if (!fast(SolveGuessedSet<2>)) Search<2>(problem, options, result); return;
+    case 3: if (!fast(SolveGuessedSet<3>)) Search<3>(problem, options, result); return;
+    case 4: if (!fast(SolveGuessedSet<4>)) Search<4>(problem, options, result); return;
+    default: Search<0>(problem, options, result); return;
+  }
+}
+
+template <int N>
+void EnumerativeSolver::Search(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  const int n = N > 0 ? N : problem.size();
+  const int guided_max = options_.guided_steps;
+  FixedStorage<N> storage;
+  Buffers b;
+  if constexpr (N > 0) {
+    b = storage.View();
+    if (guided_max > FixedStorage<N>::kHistory) {  // a larger history than the stack holds: use the heap
+      Reserve(n, guided_max);
+      b.history = int_work_.data() + (kIntVectors + 3) * static_cast<std::size_t>(n);
+    }
+  } else {
+    Reserve(n, guided_max);
+    const std::size_t un = static_cast<std::size_t>(n);
+    double* r = real_work_.data();
+    double** reals[] = {&b.z, &b.w, &b.y, &b.rhs, &b.xref, &b.tau, &b.tau2, &b.v, &b.margin, &b.start, &b.best};
+    b.ld = n;
+    b.A = r, r += un * un;
+    b.T = r, r += un * un;
+    for (double** p : reals) *p = r, r += un;
+    int* k = int_work_.data();
+    int** ints[] = {&b.piv, &b.jpvt, &b.free_idx, &b.state, &b.radix, &b.order, &b.comb, &b.offset};
+    for (int** p : ints) *p = k, k += un;
+    b.choice = k, k += 3 * un;
+    b.history = k;
+  }
+  const double* M = problem.dense_matrix().data();
+  const double* q = problem.q().data();
+  const double* l = problem.l().data();
+  const double* u = problem.u().data();
+  const auto col = [&](int j) { return M + static_cast<std::ptrdiff_t>(j) * n; };
+  const auto affine = [&](const double* z, double* w) {  // w = M z + q, column by column
+    for (int i = 0; i < n; ++i) w[i] = q[i];
+    for (int j = 0; j < n; ++j) {
+      const double zj = z[j];
+      if (zj == 0.0) continue;
+      const double* mj = col(j);
+      for (int i = 0; i < n; ++i) w[i] += mj[i] * zj;
+    }
+  };
+
+  // The size of the full search depends only on the bounds: refuse before any work.
+  int nb = 0;          // rows with a choice of state
+  double total = 1.0;  // active sets in the full search
+  for (int i = 0; i < n; ++i) {
+    const int count = l[i] == u[i] ? 1 : 1 + (l[i] > -kInf) + (u[i] < kInf);
+    nb += count > 1;
+    total *= count;
+  }
+  if (nb > options_.size_limit || total > static_cast<double>(options_.max_candidates)) {
+    std::ostringstream s;
+    s << "enum: " << nb << " of the " << n << " rows have a choice of state, so the full search may need "
+      << CountText(total) << " active sets; limits are size_limit = " << options_.size_limit
+      << " rows and max_candidates = " << options_.max_candidates
+      << " sets (raise them with the options size_limit=N / max_candidates=N; the work grows as 2^n to 3^n)";
+    result->status = SolveStatus::kSizeLimit;
+    result->message = s.str();
+    result->iterations = 0;
+    return;
+  }
+
+  // Problem scales: the merit tolerance and the roundoff allowance of the sign tests (header, feasibility_scale).
+  const double tol_abs = options.tolerance * problem.residual_scale();
+  const double q_norm = problem.residual_scale() - 1.0;
+  for (int i = 0; i < n; ++i) b.w[i] = 0.0;
+  for (int j = 0; j < n; ++j) {
+    const double* mj = col(j);
+    for (int i = 0; i < n; ++i) b.w[i] += std::abs(mj[i]);
+  }
+  double m_norm = 0.0;
+  for (int i = 0; i < n; ++i) m_norm = std::max(m_norm, b.w[i]);
+  const double roundoff = options_.feasibility_scale * n * kEps;
+
+  // First guess: the natural-map active set at the starting point (GuessState).
+  const double* z0 = result->z.data();
+  for (int i = 0; i < n; ++i) b.start[i] = z0[i], b.xref[i] = std::min(std::max(0.0, l[i]), u[i]);
+  affine(z0, b.w);
+  for (int i = 0; i < n; ++i) {
+    b.y[i] = z0[i] - b.w[i] / JacobiScale(col(i)[i]);
+    b.state[i] = GuessState(b.y[i], l[i], u[i]);
+  }
+
+  const double small_rel = options_.rank_tolerance;
+  const bool verbose = options.verbosity >= 2;
+  const long long budget = options.max_iterations > 0 ? options.max_iterations : -1;
+  long long examined = 0, guided = 0, exhaustive = 0, singular = 0, singular_skipped = 0, nonfinite = 0,
+            near_misses = 0;
+  double best_merit = kInf;  // smallest merit value among the candidates that reached the merit test
+  // The closest miss of any candidate (bound violation of z_F, or merit value) relative to its threshold τ.
+  double closest = kInf, closest_tau = 1.0;
+  const auto record_miss = [&](double miss, double tau) {
+    if (miss * closest_tau < closest * tau) closest = miss, closest_tau = tau;
+  };
+  SolveStatus stop = SolveStatus::kNotRun;  // kSolved, or why the search stopped early
+
+  // Examines the active set in b.state. Leaves z_F (unclipped) in b.rhs and z_B in b.z.
+  enum class Outcome { kSolution, kRejected, kBroken };
+  const auto examine = [&]() -> Outcome {
+    // Free block: M_FF z_F = −(q_F + M_FB z_B).
+    int k = 0;
+    for (int i = 0; i < n; ++i) {
+      const int s = b.state[i];
+      if (s == kFree) {
+        b.free_idx[k++] = i;
+        b.z[i] = 0.0;
+      } else {
+        b.z[i] = s == kUpper ? u[i] : l[i];
+      }
+    }
+    const auto build_rhs = [&]() {
+      for (int a = 0; a < k; ++a) b.rhs[a] = -q[b.free_idx[a]];
+      for (int j = 0; j < n; ++j) {
+        const double zj = b.z[j];
+        if (zj == 0.0 || b.state[j] == kFree) continue;
+        const double* mj = col(j);
+        for (int a = 0; a < k; ++a) b.rhs[a] -= mj[b.free_idx[a]] * zj;
+      }
+    };
+    const auto gather = [&]() {
+      double amax = 0.0;
+      for (int c = 0; c < k; ++c) {
+        const double* mj = col(b.free_idx[c]);
+        double* ac = b.A + static_cast<std::ptrdiff_t>(c) * b.ld;
+        for (int a = 0; a < k; ++a) {
+          ac[a] = mj[b.free_idx[a]];
+          amax = std::max(amax, std::abs(ac[a]));
+        }
+      }
+      return amax;
+    };
+    if (k > 0) {
+      build_rhs();
+      const double small = small_rel * gather();
+      if (!SolveBlock(b.A, b.ld, k, b.rhs, b.piv, small)) {
+        // Numerically singular M_FF: the system may still be consistent, with a whole affine set of
+        // solutions. Take the least-norm one about Π(0); the merit test below rejects it if inconsistent.
+        ++singular;
+        if (!options_.solve_singular_blocks) {
+          ++singular_skipped;
+          if (verbose) Trace(examined, b.state, n, "singular block skipped", 0.0);
+          return Outcome::kBroken;
+        }
+        build_rhs();
+        gather();
+        for (int a = 0; a < k; ++a) b.w[a] = b.xref[b.free_idx[a]];  // w is scratch until the merit test
+        LeastNormSolve(b.A, b.T, b.ld, k, b.w, b.rhs, b.tau, b.tau2, b.v, b.jpvt, small_rel);
+      }
+    }
+    // z_F within its bounds up to τ, then clipped onto them.
+    double zmax = 0.0;
+    for (int i = 0; i < n; ++i) zmax = std::max(zmax, b.state[i] == kFree ? 0.0 : std::abs(b.z[i]));
+    for (int a = 0; a < k; ++a) {
+      if (!std::isfinite(b.rhs[a])) {
+        ++nonfinite;
+        if (verbose) Trace(examined, b.state, n, "block solution overflowed", 0.0);
+        return Outcome::kBroken;
+      }
+      zmax = std::max(zmax, std::abs(b.rhs[a]));
+    }
+    const double tau = std::max(roundoff * (m_norm * zmax + q_norm), tol_abs);
+    double violation = 0.0;
+    for (int a = 0; a < k; ++a) {
+      const int i = b.free_idx[a];
+      violation = std::max(violation, std::max(l[i] - b.rhs[a], b.rhs[a] - u[i]));
+    }
+    if (violation > tau) {
+      record_miss(violation, tau);
+      if (verbose) Trace(examined, b.state, n, "z_F outside its bounds by", violation);
+      return Outcome::kRejected;
+    }
+    for (int a = 0; a < k; ++a) {
+      const int i = b.free_idx[a];
+      b.z[i] = std::min(std::max(b.rhs[a], l[i]), u[i]);
+    }
+    // The merit function decides: r = ‖z − Π(z − (M z + q))‖∞. On bound rows it is the sign violation of
+    // w, on free rows the equation residual, so it is also the sign test (at threshold τ).
+    affine(b.z, b.w);
+    double merit = 0.0;
+    for (int i = 0; i < n; ++i) {
+      merit = std::max(merit, std::abs(b.z[i] - std::min(std::max(b.z[i] - b.w[i], l[i]), u[i])));
+    }
+    if (merit <= tol_abs) {
+      for (int i = 0; i < n; ++i) result->z[i] = b.z[i];
+      // Near the threshold, confirm with the very computation the base class will make.
+      if (merit <= 0.5 * tol_abs || problem.NaturalResidual(result->z, &result->w).rel <= options.tolerance) {
+        if (verbose) Trace(examined, b.state, n, "solves; merit", merit);
+        return Outcome::kSolution;
+      }
+    }
+    if (merit <= tau) ++near_misses;  // passes the sign tests at roundoff level only: ill-conditioned
+    if (verbose) Trace(examined, b.state, n, merit <= tau ? "near-solution; merit" : "sign test fails; merit", merit);
+    record_miss(merit, tau);
+    if (merit < best_merit) {
+      best_merit = merit;
+      for (int i = 0; i < n; ++i) b.best[i] = b.z[i];
+    }
+    return Outcome::kRejected;
+  };
+  // Budget and clock, checked after each examined set that did not solve.
+  const auto out_of_budget = [&]() {
+    if (budget > 0 && examined >= budget) {
+      stop = SolveStatus::kIterationLimit;
+    } else if ((examined & 15) == 0 && TimeLimitReached()) {
+      stop = SolveStatus::kTimeLimit;
+    }
+    return stop != SolveStatus::kNotRun;
+  };
+
+  // Phase 1, guided: block principal pivoting (Júdice & Pires 1994), i.e. the primal-dual active-set step
+  // (Hintermüller, Ito & Kunisch 2002): the next set is the natural-map active set at the last candidate,
+  // y = z − D⁻¹(M z + q) with z_F unclipped. It usually ends in a few sets; it stops at a repeated set.
+  for (int step = 0; step < guided_max; ++step) {
+    int* seen = b.history + static_cast<std::ptrdiff_t>(step) * n;
+    for (int i = 0; i < n; ++i) seen[i] = b.state[i];
+    ++examined, ++guided;
+    const Outcome outcome = examine();
+    if (outcome == Outcome::kSolution) {
+      stop = SolveStatus::kSolved;
+      break;
+    }
+    if (outcome == Outcome::kBroken || out_of_budget()) break;
+    for (int a = 0, i = 0; i < n; ++i) {  // z with z_F unclipped, then y and the next set
+      if (b.state[i] == kFree) b.z[i] = b.rhs[a++];
+    }
+    affine(b.z, b.w);
+    for (int i = 0; i < n; ++i) {
+      b.y[i] = b.z[i] - b.w[i] / JacobiScale(col(i)[i]);
+      b.state[i] = GuessState(b.y[i], l[i], u[i]);
+    }
+    bool repeated = false;
+    for (int s = 0; s <= step && !repeated; ++s) {
+      const int* old = b.history + static_cast<std::ptrdiff_t>(s) * n;
+      repeated = std::equal(old, old + n, b.state);
+    }
+    if (repeated) break;
+  }
+
+  // Phase 2, exhaustive: every active set, nearest-first around the last guess (Hamming distance from it),
+  // least confident rows (y nearest to a switch of state) first.
+  if (stop == SolveStatus::kNotRun) {
+    nb = 0;
+    for (int i = 0; i < n; ++i) {
+      const double y = b.y[i];
+      const int guess = GuessState(y, l[i], u[i]);
+      const bool has_l = l[i] > -kInf, has_u = u[i] < kInf;
+      int* ch = b.choice + 3 * i;
+      int count = 0;
+      double margin = 0.0;
+      ch[count++] = guess;
+      if (guess == kLower) {
+        ch[count++] = kFree;
+        if (has_u) ch[count++] = kUpper;
+        margin = l[i] - y;
+      } else if (guess == kUpper) {
+        ch[count++] = kFree;
+        if (has_l) ch[count++] = kLower;
+        margin = y - u[i];
+      } else if (guess == kFree) {
+        const double dl = y - l[i], du = u[i] - y;  // +∞ for an absent bound
+        if (has_l && (!has_u || dl <= du)) {
+          ch[count++] = kLower;
+          if (has_u) ch[count++] = kUpper;
+        } else if (has_u) {
+          ch[count++] = kUpper;
+          if (has_l) ch[count++] = kLower;
+        }
+        margin = std::min(dl, du);
+      }
+      b.state[i] = guess;
+      if (count > 1) {
+        b.order[nb++] = i;
+        b.margin[i] = margin;
+        b.radix[i] = count;
+      }
+    }
+    std::sort(b.order, b.order + nb, [&](int a, int c) {
+      return b.margin[a] < b.margin[c] || (b.margin[a] == b.margin[c] && a < c);
+    });
+    for (int p = 0; p < nb; ++p) b.comb[p] = b.radix[b.order[p]];
+    for (int p = 0; p < nb; ++p) b.radix[p] = b.comb[p];  // now per position
+    NearestFirst order(nb, b.radix, b.comb, b.offset);
+    while (true) {
+      for (int p = 0; p < nb; ++p) {
+        const int i = b.order[p];
+        b.state[i] = b.choice[3 * i + b.offset[p]];
+      }
+      ++examined, ++exhaustive;
+      if (examine() == Outcome::kSolution) {
+        stop = SolveStatus::kSolved;
+        break;
+      }
+      if (!order.Next() || out_of_budget()) break;
+    }
+  }
+
+  result->iterations = examined > std::numeric_limits<int>::max() ? std::numeric_limits<int>::max()
+                                                                  : static_cast<int>(examined);
+  result->SetDetail("active_sets_total", total);
+  result->SetDetail("guided_sets", static_cast<double>(guided));
+  result->SetDetail("singular_blocks", static_cast<double>(singular));
+  if (stop == SolveStatus::kSolved) {
+    result->status = SolveStatus::kSolved;
+    if (options.verbosity >= 1) {
+      std::fprintf(stderr, "enum: solved after %lld active sets (%lld guided) of %s\n", examined, guided,
+                   CountText(total).c_str());
+    }
+    return;
+  }
+
+  // No solution. Return the best candidate by merit value if there was one, else the starting point.
+  const bool have_best = std::isfinite(best_merit);
+  for (int i = 0; i < n; ++i) result->z[i] = have_best ? b.best[i] : b.start[i];
+  std::ostringstream s;
+  s.precision(3);
+  if (stop == SolveStatus::kIterationLimit || stop == SolveStatus::kTimeLimit) {
+    result->status = stop;
+    s << "enum: " << (stop == SolveStatus::kTimeLimit ? "time limit" : "iteration limit (max_iterations)")
+      << " reached after " << examined << " active sets (" << guided << " guided, " << exhaustive << " of the "
+      << CountText(total) << " of the full search) without a solution";
+  } else if (near_misses > 0 || nonfinite > 0 || closest <= kCertifyMargin * closest_tau) {
+    // Infeasibility is only claimed when every candidate misses clearly; otherwise it is too close to call.
+    result->status = SolveStatus::kNumericalFailure;
+    s << "enum: all " << exhaustive << " active sets examined and none meets the tolerance, but infeasibility "
+      << "is not certain: ";
+    if (near_misses > 0) s << near_misses << " pass the sign tests at roundoff level (ill-conditioned blocks); ";
+    if (nonfinite > 0) s << nonfinite << " block solves overflowed; ";
+    s << "the closest candidate misses by " << closest << " against a test threshold of " << closest_tau;
+  } else {
+    result->status = SolveStatus::kInfeasible;
+    s << "enum: no solution exists: all " << exhaustive << " active sets examined (after " << guided
+      << " guided), none satisfies the sign conditions";
+    if (singular > 0) {
+      s << " (" << singular << " singular free blocks";
+      if (singular_skipped > 0) {
+        s << ", " << singular_skipped << " of them skipped because solve_singular_blocks is off";
+      } else {
+        s << ", each tried with its least-norm solution";
+      }
+      s << ")";
+    }
+  }
+  if (have_best) s << "; best candidate's natural residual " << best_merit << " (absolute)";
+  result->message = s.str();
+  if (options.verbosity >= 1) std::fprintf(stderr, "%s\n", result->message.c_str());
+}
+
 }  // namespace smcbench

@@ -1,6 +1,1156 @@
-// PLACEHOLDER: replaced by the real backend.
+// Ipopt backend for the box-MLCP: find z in [l,u], w, v >= 0 with M z + q = w - v, (z-l)'w = 0, (u-z)'v = 0.
+// Ipopt (Wächter & Biegler 2006, Math. Prog. 106:25-57) is a primal-dual interior-point filter line-search
+// method; we give it exact first and second derivatives through its C++ TNLP interface.
+//
+// Formulation 1 — convex QP (M symmetric positive semidefinite; detail formulation = 1):
+//     min 1/2 z'Mz + q'z   s.t.  l <= z <= u.
+//   With bound multipliers w (lower) and v (upper) its KKT conditions are M z + q = w - v, w, v >= 0,
+//   (z-l)'w = 0, (u-z)'v = 0: exactly the box-MLCP. For PSD M a KKT point is a global minimizer, so the MLCP has
+//   a solution iff the QP has a minimizer; Ipopt's "diverging iterates" means the QP is unbounded below.
+//   Hessian = (M + M')/2 (constant; lower triangle, exact zeros of a dense M dropped from the structure).
+//   With formulation = kQp the same QP is used for symmetric indefinite M (detail formulation = 3): every KKT
+//   point of it, which is what Ipopt converges to, still solves the MLCP.
+//   Symmetry: |M_ij - M_ji| <= symmetry_tolerance * max|M|. PSD: Cholesky of (M+M')/2 + delta I succeeds with
+//   delta = psd_tolerance * ||M||_inf, i.e. lambda_min > -delta. The test is cached for repeated solves with
+//   the same M (compared entry by entry, O(nnz), against the O(n^3) factorization).
+//
+// Formulation 2 — complementarity-gap NLP (any other M; detail formulation = 2):
+//     variables  z (n), w_i for rows with finite l_i < u_i, v_i for rows with finite u_i > l_i,
+//                y_i for rows with l_i = u_i (a free multiplier);  multipliers on infinite bounds are fixed
+//                to zero, i.e. not created.
+//     min  G = sum_i (z_i - l_i) w_i + sum_i (u_i - z_i) v_i      (finite bounds only)
+//     s.t. M z + q - w + v - y = 0,   l <= z <= u,   w, v >= 0.
+//   G >= 0 on the feasible set, and G = 0 exactly at solutions of the MLCP. This is a nonconvex bilinear
+//   program; since the constraints are linear the Hessian of the Lagrangian is that of G, constant, with
+//   entries +1 (w_i, z_i) and -1 (v_i, z_i). A stationary point with G > 0 is a failure (kStalled, "complementarity
+//   gap G > 0"). For an LCP with row-sufficient M (P-matrices included) every KKT point of
+//   min z'(Mz+q) s.t. z, Mz+q >= 0 solves the LCP (Cottle, Pang & Stone 1992, §3.5), so for those problems a
+//   stationary point is a solution. If Ipopt reports the (linear) constraints infeasible — its infeasibility
+//   measure is convex for linear constraints, so the local certificate is global — the MLCP has no solution.
+//
+// Polish (after OSQP's solution polishing, Stellato et al. 2020, Math. Prog. Comp. 12, §4): interior-point
+// iterates are accurate only to about Ipopt's tolerance, while our merit function asks for 1e-10 relative.
+//   1. Active set from the natural map at z, w = Mz+q, p = z - w: i in L if p_i <= l_i (or l_i = u_i),
+//      i in U if p_i >= u_i, else i in F.
+//   2. z_L = l_L, z_U = u_U, and z_F solves M_FF z_F = -(q + M_{F,L+U} z_{L+U}), computed as a correction
+//      M_FF d = -(Mz+q)_F from the snapped point plus one step of iterative refinement. Dense: partial-pivoting
+//      LU, or the minimum-norm complete orthogonal decomposition when M_FF is numerically singular (PSD
+//      singular M: any solution of the consistent system will do, the nearest stays inside the box best).
+//      Sparse: SparseLU, falling back to SparseQR.
+//   3. Verify: the natural residual at the polished point is zero iff l_F <= z_F <= u_F, w_L >= 0, w_U <= 0.
+//      If not, re-identify the active set at the polished point and repeat (polish_rounds times at most).
+//   The polished z is kept only if its natural residual is smaller than that of Ipopt's z; both are reported.
+//   With early_polish the same step is tried at Ipopt iterates whose residual is below early_polish_threshold
+//   and whose active set changed since the last try; Ipopt is stopped as soon as a polished point is a
+//   solution. Independently, Ipopt is stopped once an iterate itself meets the merit function.
+//
+// Status: solved iff the merit function holds at the returned z (whatever Ipopt said; detail ipopt_status keeps
+// Ipopt's raw ApplicationReturnStatus). Otherwise Ipopt's status is mapped: iteration limit -> kIterationLimit,
+// infeasible -> kInfeasible, restoration failure / step computation error / invalid number -> kNumericalFailure,
+// CPU or wall time -> kTimeLimit, diverging -> kDiverged, tiny step -> kStalled, converged with G > 0 -> kStalled,
+// converged otherwise -> kInaccurate, invalid option -> kInvalidOptions.
+//
+// Details: formulation (0 none needed, 1 convex QP, 2 gap NLP, 3 QP forced on symmetric non-PSD M),
+// symmetric_psd (1/0), ipopt_status, ipopt_residual and polished_residual (relative natural residuals, NaN if
+// not computed), polish_accepted (1/0), objective (QP objective or gap G at Ipopt's point), early_stop (0 none,
+// 1 merit met at an Ipopt iterate, 2 early polish succeeded, 3 polished warm start).
+//
+// Allocation: Ipopt allocates internally on every solve (accepted for this backend); our own buffers are
+// members reused across solves, resized only when sizes change.
 #include "solvers/ipopt/ipopt_qp_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <limits>
+#include <sstream>
+#include <vector>
+
+#include <Eigen/Cholesky>
+#include <Eigen/LU>
+#include <Eigen/OrderingMethods>
+#include <Eigen/QR>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+#include <Eigen/SparseQR>
+
+#include <IpIpoptApplication.hpp>
+#include <IpTNLP.hpp>
+
 namespace smcbench {
-const SolverInfo& IpoptQpSolver::info() const { static const SolverInfo kInfo{"ipopt", "placeholder", "", true}; return kInfo; }
-void IpoptQpSolver::DoSolve(const BoxMLCP&, const SolverOptions&, SolveResult* result) { result->status = SolveStatus::kNotApplicable; }
+namespace {
+
+using Ipopt::Index;
+using Ipopt::Number;
+using ConstMap = Eigen::Map<const Vector>;
+using MutMap = Eigen::Map<Vector>;
+
+constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+// Beyond Ipopt's default nlp_lower/upper_bound_inf (-+1e19): "no bound".
+constexpr double kIpoptInf = 2e19;
+
+double IpoptBound(double b) { return std::isfinite(b) ? b : (b > 0 ? kIpoptInf : -kIpoptInf); }
+
+enum Formulation : int { kNone = 0, kConvexQp = 1, kGapNlp = 2, kForcedQp = 3 };
+enum EarlyStop : int { kNoEarlyStop = 0, kMeritAtIterate = 1, kEarlyPolish = 2, kWarmPolish = 3 };
+enum StopReason { kNotStopped, kStopMerit, kStopPolished, kStopTime };
+enum ActiveState : signed char { kFree = 0, kAtLower = 1, kAtUpper = 2 };
+enum MultiplierKind : signed char { kLowerMult = 0, kUpperMult = 1, kFixedMult = 2 };
+
+const char* LinearSolverName(int code) {
+  switch (code) {
+    case IpoptOptions::kMa27: return "ma27";
+    case IpoptOptions::kMa57: return "ma57";
+    case IpoptOptions::kMa77: return "ma77";
+    case IpoptOptions::kMa86: return "ma86";
+    case IpoptOptions::kMa97: return "ma97";
+    case IpoptOptions::kPardiso: return "pardiso";
+    default: return "mumps";
+  }
+}
+
+const char* IpoptStatusName(Ipopt::ApplicationReturnStatus s) {
+  switch (s) {
+    case Ipopt::Solve_Succeeded: return "Solve_Succeeded";
+    case Ipopt::Solved_To_Acceptable_Level: return "Solved_To_Acceptable_Level";
+    case Ipopt::Infeasible_Problem_Detected: return "Infeasible_Problem_Detected";
+    case Ipopt::Search_Direction_Becomes_Too_Small: return "Search_Direction_Becomes_Too_Small";
+    case Ipopt::Diverging_Iterates: return "Diverging_Iterates";
+    case Ipopt::User_Requested_Stop: return "User_Requested_Stop";
+    case Ipopt::Feasible_Point_Found: return "Feasible_Point_Found";
+    case Ipopt::Maximum_Iterations_Exceeded: return "Maximum_Iterations_Exceeded";
+    case Ipopt::Restoration_Failed: return "Restoration_Failed";
+    case Ipopt::Error_In_Step_Computation: return "Error_In_Step_Computation";
+    case Ipopt::Maximum_CpuTime_Exceeded: return "Maximum_CpuTime_Exceeded";
+    case Ipopt::Not_Enough_Degrees_Of_Freedom: return "Not_Enough_Degrees_Of_Freedom";
+    case Ipopt::Invalid_Problem_Definition: return "Invalid_Problem_Definition";
+    case Ipopt::Invalid_Option: return "Invalid_Option";
+    case Ipopt::Invalid_Number_Detected: return "Invalid_Number_Detected";
+    case Ipopt::Unrecoverable_Exception: return "Unrecoverable_Exception";
+    case Ipopt::NonIpopt_Exception_Thrown: return "NonIpopt_Exception_Thrown";
+    case Ipopt::Insufficient_Memory: return "Insufficient_Memory";
+    case Ipopt::Internal_Error: return "Internal_Error";
+  }
+  return "unknown";
+}
+
+// y = M x for dense or sparse M; x, y may be Eigen maps over Ipopt's arrays.
+template <typename In, typename Out>
+void MultiplyM(const BoxMLCP& p, const In& x, Out& y) {
+  if (p.is_sparse()) {
+    y.noalias() = p.sparse_matrix() * x;
+  } else {
+    y.noalias() = p.dense_matrix() * x;
+  }
+}
+
+template <typename In, typename Out>
+void MultiplyMt(const BoxMLCP& p, const In& x, Out& y) {
+  if (p.is_sparse()) {
+    y.noalias() = p.sparse_matrix().transpose() * x;
+  } else {
+    y.noalias() = p.dense_matrix().transpose() * x;
+  }
+}
+
+class QpTnlp;
+class GapTnlp;
+
+// Everything one IpoptQpSolver owns: the Ipopt application, both TNLPs, the per-solve state they share, the
+// matrix-class cache and the polish workspace. The TNLPs are thin adapters over this object.
+class Session {
+ public:
+  Session();
+  virtual ~Session() = default;
+  Session(const Session&) = delete;
+  Session& operator=(const Session&) = delete;
+
+  void Solve(const BoxMLCP& problem, const SolverOptions& options, const IpoptOptions& ipopt, SolveResult* result);
+
+  // Called by the TNLPs.
+  bool OnIteration(Ipopt::AlgorithmMode mode, Index iter);
+  void RecordGradientPoint(const Number* x, Index count);
+  void RecordSolution(const Number* x, Number objective);
+
+  // Per-solve problem data, read by the TNLPs.
+  const BoxMLCP* problem_ = nullptr;
+  int n_ = 0;
+  bool exact_symmetric_ = false;
+  Vector start_;    // starting z
+  Vector product_;  // M x scratch for the TNLP evaluations
+  Vector product_t_;
+  // Lower triangle of the Hessian (QP: (M+M')/2; gap: the +-1 couplings), triplets.
+  std::vector<Index> hess_row_, hess_col_;
+  std::vector<Number> hess_val_;
+  // Gap NLP: multiplier k sits in row mult_row_[k], with kind mult_kind_[k]; Jacobian triplets of the rows.
+  std::vector<int> mult_row_;
+  std::vector<signed char> mult_kind_;
+  std::vector<Index> jac_row_, jac_col_;
+  std::vector<Number> jac_val_;
+
+ protected:
+  virtual bool TimeUp() const = 0;
+
+ private:
+  void Classify(const BoxMLCP& p, const IpoptOptions& o);
+  bool SameMatrixAsCache(const BoxMLCP& p) const;
+  void SetupQp(const BoxMLCP& p);
+  void SetupGap(const BoxMLCP& p);
+  void ConfigureOutput(int verbosity, int print_level);
+  bool SetIpoptOptions(const SolverOptions& options, const IpoptOptions& o, bool convex_qp);
+  // Relative natural residual at z; *w receives M z + q. +inf when the residual cannot certify anything at
+  // the magnitude of z (see Resolvable).
+  double RelResidual(const Vector& z, Vector* w) const;
+  // False once eps*||z||_inf exceeds tolerance*scale: then z - Pi(z - w) rounds to 0 whatever w is (a diverging
+  // QP iterate at |z| = 1e16 has residual exactly 0), so a small residual proves nothing.
+  bool Resolvable(const Vector& z) const;
+  void ActiveSet(const Vector& z, const Vector& w, std::vector<signed char>* state) const;
+  // Polish from z_in (see the file comment). Returns the smallest relative residual found and writes that
+  // point to *z_out; returns +inf (z_out untouched) if no candidate could be computed.
+  double Polish(const Vector& z_in, Vector* z_out);
+  bool SolveFreeBlock(int k);
+
+  // Ipopt.
+  Ipopt::SmartPtr<Ipopt::IpoptApplication> app_;
+  bool initialized_ = false;
+  Ipopt::SmartPtr<Ipopt::Journal> journal_;
+  QpTnlp* qp_ = nullptr;  // owned by qp_holder_
+  GapTnlp* gap_ = nullptr;
+  Ipopt::SmartPtr<Ipopt::TNLP> qp_holder_, gap_holder_;
+
+  // Per-solve options and Ipopt outcome.
+  const IpoptOptions* ipopt_options_ = nullptr;
+  double target_ = 0.0;  // SolverOptions::tolerance
+  Vector last_x_;        // x of the last gradient evaluation: the current iterate when the callback runs
+  bool have_last_x_ = false;
+  Vector ipopt_x_;       // Ipopt's final x (z part)
+  bool have_ipopt_x_ = false;
+  double objective_ = kNaN;
+  int iterations_ = 0;
+  StopReason stop_ = kNotStopped;
+  Vector iter_z_, iter_w_;   // the iterate examined in the callback
+  Vector early_z_;           // point that met the merit function during the iterations
+  Vector early_ipopt_z_;     // the Ipopt iterate it came from
+  double early_ipopt_residual_ = kInf;
+  double early_polished_residual_ = kNaN;
+
+  // Matrix-class cache.
+  bool cache_valid_ = false;
+  bool cache_sparse_ = false;
+  double cache_sym_tol_ = -1.0, cache_psd_tol_ = -1.0;
+  DenseMatrix cached_dense_;
+  SparseMatrix cached_sparse_;
+  bool symmetric_ = false;
+  bool psd_ = false;
+  Eigen::LLT<DenseMatrix, Eigen::Lower> llt_;
+
+  // Polish workspace.
+  Vector pol_z_, pol_r_, pol_w_, pol_rhs_, pol_delta_, pol_best_;
+  std::vector<signed char> state_, prev_state_, tried_state_;
+  std::vector<int> free_idx_, pos_;
+  DenseMatrix block_;
+  Eigen::PartialPivLU<DenseMatrix> lu_;
+  Eigen::CompleteOrthogonalDecomposition<DenseMatrix> cod_;
+  bool use_cod_ = false;
+  SparseMatrix sparse_block_;
+  std::vector<Eigen::Triplet<double, int>> triplets_;
+  Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> slu_;
+  Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>> sqr_;
+  bool use_sqr_ = false;
+};
+
+// Formulation 1: min 1/2 z'Mz + q'z on the box, no constraints.
+class QpTnlp final : public Ipopt::TNLP {
+ public:
+  explicit QpTnlp(Session* s) : s_(s) {}
+
+  bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& style) override {
+    n = s_->n_;
+    m = 0;
+    nnz_jac_g = 0;
+    nnz_h_lag = static_cast<Index>(s_->hess_row_.size());
+    style = C_STYLE;
+    return true;
+  }
+
+  bool get_bounds_info(Index n, Number* x_l, Number* x_u, Index, Number*, Number*) override {
+    const BoxMLCP& p = *s_->problem_;
+    for (Index i = 0; i < n; ++i) {
+      x_l[i] = IpoptBound(p.l()[i]);
+      x_u[i] = IpoptBound(p.u()[i]);
+    }
+    return true;
+  }
+
+  bool get_starting_point(Index n, bool init_x, Number* x, bool init_z, Number* z_l, Number* z_u, Index,
+                          bool, Number*) override {
+    if (init_x) MutMap(x, n) = s_->start_;
+    if (init_z) {
+      std::fill(z_l, z_l + n, 1.0);
+      std::fill(z_u, z_u + n, 1.0);
+    }
+    return true;
+  }
+
+  // x'Mx = x'((M+M')/2)x, so the objective needs only M.
+  bool eval_f(Index n, const Number* x, bool, Number& f) override {
+    const ConstMap xm(x, n);
+    MultiplyM(*s_->problem_, xm, s_->product_);
+    f = 0.5 * xm.dot(s_->product_) + xm.dot(s_->problem_->q());
+    return std::isfinite(f);
+  }
+
+  bool eval_grad_f(Index n, const Number* x, bool, Number* grad) override {
+    const ConstMap xm(x, n);
+    MutMap g(grad, n);
+    MultiplyM(*s_->problem_, xm, g);
+    if (!s_->exact_symmetric_) {
+      MultiplyMt(*s_->problem_, xm, s_->product_t_);
+      g = 0.5 * (g + s_->product_t_);
+    }
+    g += s_->problem_->q();
+    s_->RecordGradientPoint(x, n);
+    return true;
+  }
+
+  bool eval_g(Index, const Number*, bool, Index, Number*) override { return true; }
+  bool eval_jac_g(Index, const Number*, bool, Index, Index, Index*, Index*, Number*) override { return true; }
+
+  bool eval_h(Index, const Number*, bool, Number obj_factor, Index, const Number*, bool, Index nele, Index* row,
+              Index* col, Number* values) override {
+    if (values == nullptr) {
+      std::copy(s_->hess_row_.begin(), s_->hess_row_.end(), row);
+      std::copy(s_->hess_col_.begin(), s_->hess_col_.end(), col);
+    } else {
+      for (Index k = 0; k < nele; ++k) values[k] = obj_factor * s_->hess_val_[k];
+    }
+    return true;
+  }
+
+  void finalize_solution(Ipopt::SolverReturn, Index, const Number* x, const Number*, const Number*, Index,
+                         const Number*, const Number*, Number obj, const Ipopt::IpoptData*,
+                         Ipopt::IpoptCalculatedQuantities*) override {
+    s_->RecordSolution(x, obj);
+  }
+
+  bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iter, Number, Number, Number, Number, Number, Number,
+                             Number, Number, Index, const Ipopt::IpoptData*,
+                             Ipopt::IpoptCalculatedQuantities*) override {
+    return s_->OnIteration(mode, iter);
+  }
+
+ private:
+  Session* s_;
+};
+
+// Formulation 2: the complementarity-gap NLP in x = (z, multipliers).
+class GapTnlp final : public Ipopt::TNLP {
+ public:
+  explicit GapTnlp(Session* s) : s_(s) {}
+
+  bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& style) override {
+    n = s_->n_ + static_cast<Index>(s_->mult_row_.size());
+    m = s_->n_;
+    nnz_jac_g = static_cast<Index>(s_->jac_row_.size());
+    nnz_h_lag = static_cast<Index>(s_->hess_row_.size());
+    style = C_STYLE;
+    return true;
+  }
+
+  bool get_bounds_info(Index, Number* x_l, Number* x_u, Index m, Number* g_l, Number* g_u) override {
+    const BoxMLCP& p = *s_->problem_;
+    for (Index i = 0; i < m; ++i) {
+      x_l[i] = IpoptBound(p.l()[i]);
+      x_u[i] = IpoptBound(p.u()[i]);
+      g_l[i] = g_u[i] = -p.q()[i];
+    }
+    const int count = static_cast<int>(s_->mult_row_.size());
+    for (int k = 0; k < count; ++k) {
+      const bool free = s_->mult_kind_[k] == kFixedMult;
+      x_l[m + k] = free ? -kIpoptInf : 0.0;
+      x_u[m + k] = kIpoptInf;
+    }
+    return true;
+  }
+
+  // z from the start; multipliers from the sign split of M z + q (Ipopt pushes them into the interior).
+  bool get_starting_point(Index n, bool init_x, Number* x, bool init_z, Number* z_l, Number* z_u, Index m,
+                          bool init_lambda, Number* lambda) override {
+    if (init_x) {
+      const BoxMLCP& p = *s_->problem_;
+      MutMap(x, m) = s_->start_;
+      p.Affine(s_->start_, &s_->product_);
+      const int count = static_cast<int>(s_->mult_row_.size());
+      for (int k = 0; k < count; ++k) {
+        const double r = s_->product_[s_->mult_row_[k]];
+        switch (s_->mult_kind_[k]) {
+          case kLowerMult: x[m + k] = std::max(r, 0.0); break;
+          case kUpperMult: x[m + k] = std::max(-r, 0.0); break;
+          default: x[m + k] = r; break;
+        }
+      }
+    }
+    if (init_z) {
+      std::fill(z_l, z_l + n, 1.0);
+      std::fill(z_u, z_u + n, 1.0);
+    }
+    if (init_lambda) std::fill(lambda, lambda + m, 0.0);
+    return true;
+  }
+
+  bool eval_f(Index, const Number* x, bool, Number& f) override {
+    const BoxMLCP& p = *s_->problem_;
+    const int n = s_->n_;
+    const int count = static_cast<int>(s_->mult_row_.size());
+    double gap = 0.0;
+    for (int k = 0; k < count; ++k) {
+      const int i = s_->mult_row_[k];
+      if (s_->mult_kind_[k] == kLowerMult) gap += (x[i] - p.l()[i]) * x[n + k];
+      if (s_->mult_kind_[k] == kUpperMult) gap += (p.u()[i] - x[i]) * x[n + k];
+    }
+    f = gap;
+    return std::isfinite(f);
+  }
+
+  bool eval_grad_f(Index nx, const Number* x, bool, Number* grad) override {
+    const BoxMLCP& p = *s_->problem_;
+    const int n = s_->n_;
+    const int count = static_cast<int>(s_->mult_row_.size());
+    std::fill(grad, grad + n, 0.0);
+    for (int k = 0; k < count; ++k) {
+      const int i = s_->mult_row_[k];
+      switch (s_->mult_kind_[k]) {
+        case kLowerMult:
+          grad[i] += x[n + k];
+          grad[n + k] = x[i] - p.l()[i];
+          break;
+        case kUpperMult:
+          grad[i] -= x[n + k];
+          grad[n + k] = p.u()[i] - x[i];
+          break;
+        default: grad[n + k] = 0.0; break;
+      }
+    }
+    s_->RecordGradientPoint(x, nx);
+    return true;
+  }
+
+  // g = M z - w + v - y (bounds -q).
+  bool eval_g(Index, const Number* x, bool, Index m, Number* g) override {
+    MutMap gm(g, m);
+    MultiplyM(*s_->problem_, ConstMap(x, m), gm);
+    const int count = static_cast<int>(s_->mult_row_.size());
+    for (int k = 0; k < count; ++k) {
+      g[s_->mult_row_[k]] += (s_->mult_kind_[k] == kUpperMult ? 1.0 : -1.0) * x[m + k];
+    }
+    return true;
+  }
+
+  bool eval_jac_g(Index, const Number*, bool, Index, Index, Index* row, Index* col, Number* values) override {
+    if (values == nullptr) {
+      std::copy(s_->jac_row_.begin(), s_->jac_row_.end(), row);
+      std::copy(s_->jac_col_.begin(), s_->jac_col_.end(), col);
+    } else {
+      std::copy(s_->jac_val_.begin(), s_->jac_val_.end(), values);
+    }
+    return true;
+  }
+
+  bool eval_h(Index, const Number*, bool, Number obj_factor, Index, const Number*, bool, Index nele, Index* row,
+              Index* col, Number* values) override {
+    if (values == nullptr) {
+      std::copy(s_->hess_row_.begin(), s_->hess_row_.end(), row);
+      std::copy(s_->hess_col_.begin(), s_->hess_col_.end(), col);
+    } else {
+      for (Index k = 0; k < nele; ++k) values[k] = obj_factor * s_->hess_val_[k];
+    }
+    return true;
+  }
+
+  void finalize_solution(Ipopt::SolverReturn, Index, const Number* x, const Number*, const Number*, Index,
+                         const Number*, const Number*, Number obj, const Ipopt::IpoptData*,
+                         Ipopt::IpoptCalculatedQuantities*) override {
+    s_->RecordSolution(x, obj);
+  }
+
+  bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iter, Number, Number, Number, Number, Number, Number,
+                             Number, Number, Index, const Ipopt::IpoptData*,
+                             Ipopt::IpoptCalculatedQuantities*) override {
+    return s_->OnIteration(mode, iter);
+  }
+
+ private:
+  Session* s_;
+};
+
+Session::Session() {
+  // No console journal: Ipopt prints nothing unless Solve() adds the stderr journal (verbosity > 0).
+  app_ = new Ipopt::IpoptApplication(/*create_console_out=*/false);
+  qp_ = new QpTnlp(this);
+  qp_holder_ = qp_;
+  gap_ = new GapTnlp(this);
+  gap_holder_ = gap_;
+}
+
+void Session::RecordGradientPoint(const Number* x, Index count) {
+  if (last_x_.size() != count) last_x_.resize(count);
+  last_x_ = ConstMap(x, count);
+  have_last_x_ = true;
+}
+
+void Session::RecordSolution(const Number* x, Number objective) {
+  ipopt_x_ = ConstMap(x, n_);
+  have_ipopt_x_ = true;
+  objective_ = objective;
+}
+
+bool Session::Resolvable(const Vector& z) const {
+  return std::numeric_limits<double>::epsilon() * z.cwiseAbs().maxCoeff() <= target_ * problem_->residual_scale();
+}
+
+double Session::RelResidual(const Vector& z, Vector* w) const {
+  problem_->Affine(z, w);
+  if (!Resolvable(z)) return kInf;
+  return NaturalResidualNorm(z, *w, problem_->l(), problem_->u()) / problem_->residual_scale();
+}
+
+bool Session::OnIteration(Ipopt::AlgorithmMode mode, Index iter) {
+  iterations_ = std::max(iterations_, static_cast<int>(iter));
+  if (TimeUp()) {
+    stop_ = kStopTime;
+    return false;
+  }
+  if (mode != Ipopt::RegularMode || !have_last_x_) return true;
+  iter_z_ = last_x_.head(n_);
+  const double res = RelResidual(iter_z_, &iter_w_);
+  if (res <= target_) {
+    early_z_ = iter_z_;
+    early_ipopt_z_ = iter_z_;
+    early_ipopt_residual_ = res;
+    stop_ = kStopMerit;
+    return false;
+  }
+  const IpoptOptions& o = *ipopt_options_;
+  if (o.polish && o.early_polish && res <= o.early_polish_threshold) {
+    ActiveSet(iter_z_, iter_w_, &state_);
+    if (state_ != tried_state_) {
+      tried_state_ = state_;
+      const double polished = Polish(iter_z_, &early_z_);
+      if (polished <= target_) {
+        early_ipopt_z_ = iter_z_;
+        early_ipopt_residual_ = res;
+        early_polished_residual_ = polished;
+        stop_ = kStopPolished;
+        return false;
+      }
+    }
+  }
+  return true;
+}
+
+bool Session::SameMatrixAsCache(const BoxMLCP& p) const {
+  if (!cache_valid_ || cache_sparse_ != p.is_sparse()) return false;
+  if (!p.is_sparse()) {
+    const DenseMatrix& M = p.dense_matrix();
+    return cached_dense_.rows() == M.rows() && cached_dense_ == M;
+  }
+  const SparseMatrix& M = p.sparse_matrix();
+  const SparseMatrix& C = cached_sparse_;
+  if (C.rows() != M.rows() || C.nonZeros() != M.nonZeros()) return false;
+  const int nnz = static_cast<int>(M.nonZeros());
+  return std::equal(M.outerIndexPtr(), M.outerIndexPtr() + M.outerSize() + 1, C.outerIndexPtr()) &&
+         std::equal(M.innerIndexPtr(), M.innerIndexPtr() + nnz, C.innerIndexPtr()) &&
+         std::equal(M.valuePtr(), M.valuePtr() + nnz, C.valuePtr());
+}
+
+void Session::Classify(const BoxMLCP& p, const IpoptOptions& o) {
+  if (cache_sym_tol_ == o.symmetry_tolerance && cache_psd_tol_ == o.psd_tolerance && SameMatrixAsCache(p)) return;
+  const int n = p.size();
+  double max_abs = 0.0, max_asym = 0.0;
+  if (!p.is_sparse()) {
+    const DenseMatrix& M = p.dense_matrix();
+    max_abs = M.cwiseAbs().maxCoeff();
+    for (int j = 0; j < n; ++j) {
+      for (int i = j + 1; i < n; ++i) max_asym = std::max(max_asym, std::abs(M(i, j) - M(j, i)));
+    }
+  } else {
+    const SparseMatrix& M = p.sparse_matrix();
+    for (int j = 0; j < M.outerSize(); ++j) {
+      for (SparseMatrix::InnerIterator it(M, j); it; ++it) {
+        max_abs = std::max(max_abs, std::abs(it.value()));
+        if (it.row() != j) max_asym = std::max(max_asym, std::abs(it.value() - M.coeff(j, it.row())));
+      }
+    }
+  }
+  exact_symmetric_ = max_asym == 0.0;
+  symmetric_ = max_asym <= o.symmetry_tolerance * max_abs;
+  psd_ = false;
+  if (symmetric_) {
+    const double norm = p.MatrixInfNorm();
+    const double delta = o.psd_tolerance * norm;
+    if (norm == 0.0) {
+      psd_ = true;  // M = 0
+    } else if (!p.is_sparse()) {
+      const DenseMatrix& M = p.dense_matrix();
+      // Evaluated straight into the factorization's own storage (no n x n temporary).
+      llt_.compute(0.5 * (M + M.transpose()) + delta * DenseMatrix::Identity(n, n));
+      psd_ = llt_.info() == Eigen::Success;
+    } else {
+      const SparseMatrix& M = p.sparse_matrix();
+      SparseMatrix S = 0.5 * (M + SparseMatrix(M.transpose()));
+      SparseMatrix shift(n, n);
+      shift.setIdentity();
+      S += delta * shift;
+      Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower> llt(S);
+      psd_ = llt.info() == Eigen::Success;
+    }
+  }
+  cache_sparse_ = p.is_sparse();
+  if (cache_sparse_) {
+    cached_sparse_ = p.sparse_matrix();
+  } else {
+    cached_dense_ = p.dense_matrix();
+  }
+  cache_sym_tol_ = o.symmetry_tolerance;
+  cache_psd_tol_ = o.psd_tolerance;
+  cache_valid_ = true;
+}
+
+void Session::SetupQp(const BoxMLCP& p) {
+  hess_row_.clear();
+  hess_col_.clear();
+  hess_val_.clear();
+  const int n = p.size();
+  if (!p.is_sparse()) {
+    const DenseMatrix& M = p.dense_matrix();
+    for (int j = 0; j < n; ++j) {
+      for (int i = j; i < n; ++i) {
+        const double value = exact_symmetric_ ? M(i, j) : 0.5 * (M(i, j) + M(j, i));
+        if (value == 0.0) continue;
+        hess_row_.push_back(i);
+        hess_col_.push_back(j);
+        hess_val_.push_back(value);
+      }
+    }
+    return;
+  }
+  const SparseMatrix& M = p.sparse_matrix();
+  const auto add_lower = [&](const SparseMatrix& S) {
+    for (int j = 0; j < S.outerSize(); ++j) {
+      for (SparseMatrix::InnerIterator it(S, j); it; ++it) {
+        if (it.row() < j || it.value() == 0.0) continue;
+        hess_row_.push_back(static_cast<Index>(it.row()));
+        hess_col_.push_back(j);
+        hess_val_.push_back(it.value());
+      }
+    }
+  };
+  if (exact_symmetric_) {
+    add_lower(M);
+  } else {
+    add_lower(SparseMatrix(0.5 * (M + SparseMatrix(M.transpose()))));
+  }
+}
+
+void Session::SetupGap(const BoxMLCP& p) {
+  const int n = p.size();
+  mult_row_.clear();
+  mult_kind_.clear();
+  for (int i = 0; i < n; ++i) {
+    const double l = p.l()[i], u = p.u()[i];
+    if (l == u) {
+      mult_row_.push_back(i);
+      mult_kind_.push_back(kFixedMult);
+      continue;
+    }
+    if (std::isfinite(l)) {
+      mult_row_.push_back(i);
+      mult_kind_.push_back(kLowerMult);
+    }
+    if (std::isfinite(u)) {
+      mult_row_.push_back(i);
+      mult_kind_.push_back(kUpperMult);
+    }
+  }
+  jac_row_.clear();
+  jac_col_.clear();
+  jac_val_.clear();
+  const auto add = [&](Index row, Index col, double value) {
+    jac_row_.push_back(row);
+    jac_col_.push_back(col);
+    jac_val_.push_back(value);
+  };
+  if (!p.is_sparse()) {
+    const DenseMatrix& M = p.dense_matrix();
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        if (M(i, j) != 0.0) add(i, j, M(i, j));
+      }
+    }
+  } else {
+    const SparseMatrix& M = p.sparse_matrix();
+    for (int j = 0; j < M.outerSize(); ++j) {
+      for (SparseMatrix::InnerIterator it(M, j); it; ++it) {
+        if (it.value() != 0.0) add(static_cast<Index>(it.row()), j, it.value());
+      }
+    }
+  }
+  hess_row_.clear();
+  hess_col_.clear();
+  hess_val_.clear();
+  const int count = static_cast<int>(mult_row_.size());
+  for (int k = 0; k < count; ++k) {
+    const bool upper = mult_kind_[k] == kUpperMult;
+    add(mult_row_[k], n + k, upper ? 1.0 : -1.0);
+    if (mult_kind_[k] == kFixedMult) continue;
+    // d2G / (d mult_k d z_i) = +1 for (z_i - l_i) w_i, -1 for (u_i - z_i) v_i; row n+k > column i (lower).
+    hess_row_.push_back(n + k);
+    hess_col_.push_back(mult_row_[k]);
+    hess_val_.push_back(upper ? -1.0 : 1.0);
+  }
+}
+
+void Session::ConfigureOutput(int verbosity, int print_level) {
+  if (verbosity > 0) {
+    if (Ipopt::IsNull(journal_)) {
+      journal_ = app_->Jnlst()->AddFileJournal("smcbench_stderr", "stderr", Ipopt::J_NONE);
+    }
+    const int level = verbosity >= 2 ? print_level : std::min(print_level, static_cast<int>(Ipopt::J_SUMMARY));
+    if (Ipopt::IsValid(journal_)) journal_->SetAllPrintLevels(static_cast<Ipopt::EJournalLevel>(level));
+  } else if (Ipopt::IsValid(journal_)) {
+    // Even J_NONE lets J_INSUPPRESSIBLE messages through: remove the journal to be completely silent.
+    app_->Jnlst()->DeleteAllJournals();
+    journal_ = nullptr;
+  }
+}
+
+bool Session::SetIpoptOptions(const SolverOptions& options, const IpoptOptions& o, bool convex_qp) {
+  Ipopt::OptionsList& list = *app_->Options();
+  list.clear();  // every solve starts from Ipopt's defaults plus exactly what is set here
+  bool ok = true;
+  ok &= list.SetStringValue("sb", "yes");  // no banner
+  ok &= list.SetIntegerValue("print_level", options.verbosity > 0 ? o.print_level : 0);
+  ok &= list.SetNumericValue("tol", o.tol);
+  ok &= list.SetIntegerValue("max_iter", std::max(1, options.max_iterations > 0 ? options.max_iterations
+                                                                                 : o.max_iter));
+  const bool mehrotra = convex_qp && o.mehrotra;
+  // mehrotra_algorithm chooses its own mu strategy; Ipopt asks not to set it as well.
+  if (mehrotra) {
+    ok &= list.SetStringValue("mehrotra_algorithm", "yes");
+  } else {
+    ok &= list.SetStringValue("mu_strategy", o.mu_strategy == IpoptOptions::kAdaptive ? "adaptive" : "monotone");
+  }
+  ok &= list.SetStringValue("linear_solver", LinearSolverName(o.linear_solver));
+  // Both formulations have a constant Hessian and linear (or no) constraints.
+  ok &= list.SetStringValue("hessian_constant", "yes");
+  ok &= list.SetStringValue("jac_c_constant", "yes");
+  ok &= list.SetStringValue("jac_d_constant", "yes");
+  // The box has a nonempty interior except for fixed rows, which Ipopt turns into parameters; relaxing the
+  // bounds would only leave z outside [l,u] by up to 1e-8 relative, above our merit tolerance.
+  ok &= list.SetNumericValue("bound_relax_factor", 0.0);
+  if (std::isfinite(options.time_limit_seconds)) {
+    ok &= list.SetNumericValue("max_cpu_time", std::max(options.time_limit_seconds, 1e-6));
+  }
+  return ok;
+}
+
+void Session::ActiveSet(const Vector& z, const Vector& w, std::vector<signed char>* state) const {
+  const Vector& l = problem_->l();
+  const Vector& u = problem_->u();
+  state->resize(n_);
+  for (int i = 0; i < n_; ++i) {
+    const double p = z[i] - w[i];
+    if (l[i] == u[i] || p <= l[i]) {
+      (*state)[i] = kAtLower;
+    } else if (p >= u[i]) {
+      (*state)[i] = kAtUpper;
+    } else {
+      (*state)[i] = kFree;
+    }
+  }
+}
+
+// Factorizes M_FF (F = free_idx_, k = |F|) into lu_/cod_ or slu_/sqr_. False if no factorization is usable.
+bool Session::SolveFreeBlock(int k) {
+  if (!problem_->is_sparse()) {
+    const DenseMatrix& M = problem_->dense_matrix();
+    if (block_.rows() != k) block_.resize(k, k);
+    for (int b = 0; b < k; ++b) {
+      for (int a = 0; a < k; ++a) block_(a, b) = M(free_idx_[a], free_idx_[b]);
+    }
+    lu_.compute(block_);
+    // Partial-pivoting LU of a singular block returns garbage, not an error: check its condition estimate.
+    use_cod_ = !(lu_.rcond() > 1e3 * std::numeric_limits<double>::epsilon());
+    if (use_cod_) cod_.compute(block_);
+    return true;
+  }
+  const SparseMatrix& M = problem_->sparse_matrix();
+  pos_.assign(n_, -1);
+  for (int a = 0; a < k; ++a) pos_[free_idx_[a]] = a;
+  triplets_.clear();
+  for (int b = 0; b < k; ++b) {
+    for (SparseMatrix::InnerIterator it(M, free_idx_[b]); it; ++it) {
+      const int a = pos_[it.row()];
+      if (a >= 0) triplets_.emplace_back(a, b, it.value());
+    }
+  }
+  sparse_block_.resize(k, k);
+  sparse_block_.setFromTriplets(triplets_.begin(), triplets_.end());
+  sparse_block_.makeCompressed();
+  slu_.analyzePattern(sparse_block_);
+  slu_.factorize(sparse_block_);
+  use_sqr_ = slu_.info() != Eigen::Success;
+  if (use_sqr_) {
+    sqr_.compute(sparse_block_);
+    if (sqr_.info() != Eigen::Success) return false;
+  }
+  return true;
+}
+
+double Session::Polish(const Vector& z_in, Vector* z_out) {
+  const Vector& l = problem_->l();
+  const Vector& u = problem_->u();
+  const int rounds = ipopt_options_->polish_rounds;
+  pol_z_ = z_in;
+  problem_->Affine(pol_z_, &pol_w_);
+  double best = kInf;
+  for (int round = 0; round < rounds; ++round) {
+    ActiveSet(pol_z_, pol_w_, &state_);
+    if (round > 0 && state_ == prev_state_) break;  // the same active set gives the same point
+    prev_state_ = state_;
+    free_idx_.clear();
+    for (int i = 0; i < n_; ++i) {
+      if (state_[i] == kAtLower) {
+        pol_z_[i] = l[i];
+      } else if (state_[i] == kAtUpper) {
+        pol_z_[i] = u[i];
+      } else {
+        free_idx_.push_back(i);
+      }
+    }
+    problem_->Affine(pol_z_, &pol_r_);
+    const int k = static_cast<int>(free_idx_.size());
+    if (k > 0) {
+      if (!SolveFreeBlock(k)) break;
+      if (pol_rhs_.size() != k) pol_rhs_.resize(k);
+      if (pol_delta_.size() != k) pol_delta_.resize(k);
+      bool finite = true;
+      // Correction from the snapped point, then one step of iterative refinement with the same factors.
+      for (int step = 0; step < 2 && finite; ++step) {
+        for (int a = 0; a < k; ++a) pol_rhs_[a] = -pol_r_[free_idx_[a]];
+        if (problem_->is_sparse()) {
+          pol_delta_ = use_sqr_ ? Vector(sqr_.solve(pol_rhs_)) : Vector(slu_.solve(pol_rhs_));
+        } else if (use_cod_) {
+          pol_delta_.noalias() = cod_.solve(pol_rhs_);
+        } else {
+          pol_delta_.noalias() = lu_.solve(pol_rhs_);
+        }
+        finite = pol_delta_.allFinite();
+        if (!finite) break;
+        for (int a = 0; a < k; ++a) pol_z_[free_idx_[a]] += pol_delta_[a];
+        problem_->Affine(pol_z_, &pol_r_);
+      }
+      if (!finite) break;
+    }
+    const double res = Resolvable(pol_z_) ? NaturalResidualNorm(pol_z_, pol_r_, l, u) / problem_->residual_scale()
+                                          : kInf;
+    if (res < best) {
+      best = res;
+      *z_out = pol_z_;
+    }
+    if (res <= target_) break;
+    pol_w_ = pol_r_;
+  }
+  return best;
+}
+
+void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptOptions& o, SolveResult* result) {
+  problem_ = &p;
+  n_ = p.size();
+  ipopt_options_ = &o;
+  target_ = options.tolerance;
+  stop_ = kNotStopped;
+  have_last_x_ = have_ipopt_x_ = false;
+  objective_ = kNaN;
+  iterations_ = 0;
+  early_ipopt_residual_ = kInf;
+  early_polished_residual_ = kNaN;
+  tried_state_.clear();
+  if (product_.size() != n_) product_.resize(n_);
+  if (product_t_.size() != n_) product_t_.resize(n_);
+  start_ = result->z;
+
+  // The starting point may already be a solution (re-solve from a previous result, or all rows fixed).
+  const double start_residual = RelResidual(start_, &iter_w_);
+  if (start_residual <= target_) {
+    result->status = SolveStatus::kSolved;
+    result->SetDetail("formulation", kNone);
+    return;
+  }
+  if (o.polish && o.polish_warm_start && options.warm_start.size() == n_) {
+    const double polished = Polish(start_, &pol_best_);
+    if (polished <= target_) {
+      result->z = pol_best_;
+      result->status = SolveStatus::kSolved;
+      result->SetDetail("formulation", kNone);
+      result->SetDetail("polished_residual", polished);
+      result->SetDetail("polish_accepted", 1.0);
+      result->SetDetail("early_stop", kWarmPolish);
+      return;
+    }
+  }
+
+  Classify(p, o);
+  int formulation;
+  if (o.formulation == IpoptOptions::kGap) {
+    formulation = kGapNlp;
+  } else if (o.formulation == IpoptOptions::kQp) {
+    if (!symmetric_) {
+      result->status = SolveStatus::kNotApplicable;
+      result->message = "formulation=qp needs a symmetric M (the QP's KKT system uses (M+M')/2)";
+      return;
+    }
+    formulation = psd_ ? kConvexQp : kForcedQp;
+  } else {
+    formulation = (symmetric_ && psd_) ? kConvexQp : kGapNlp;
+  }
+  result->SetDetail("formulation", formulation);
+  result->SetDetail("symmetric_psd", (symmetric_ && psd_) ? 1.0 : 0.0);
+  const bool gap = formulation == kGapNlp;
+  if (gap) {
+    SetupGap(p);
+  } else {
+    SetupQp(p);
+  }
+
+  ConfigureOutput(options.verbosity, o.print_level);
+  Ipopt::ApplicationReturnStatus status = Ipopt::Internal_Error;
+  bool options_ok = true;
+  try {
+    if (!initialized_) {
+      std::istringstream no_options;  // never read an ipopt.opt from the working directory
+      status = app_->Initialize(no_options);
+      initialized_ = status == Ipopt::Solve_Succeeded;
+    }
+    if (initialized_) {
+      options_ok = SetIpoptOptions(options, o, formulation == kConvexQp);
+      status = options_ok ? app_->OptimizeTNLP(gap ? gap_holder_ : qp_holder_) : Ipopt::Invalid_Option;
+    }
+  } catch (const std::exception&) {
+    status = Ipopt::NonIpopt_Exception_Thrown;
+  } catch (...) {
+    status = Ipopt::Unrecoverable_Exception;
+  }
+  result->SetDetail("ipopt_status", static_cast<double>(status));
+  result->iterations = iterations_;
+
+  // Ipopt's point: the iterate that met the merit function or fed a successful early polish, else its final x.
+  const Vector* ipopt_z = nullptr;
+  double ipopt_residual = kInf;
+  if (stop_ == kStopMerit || stop_ == kStopPolished) {
+    ipopt_z = &early_ipopt_z_;
+    ipopt_residual = early_ipopt_residual_;
+  } else if (have_ipopt_x_) {
+    ipopt_z = &ipopt_x_;
+  } else if (have_last_x_) {
+    ipopt_x_ = last_x_.head(n_);
+    ipopt_z = &ipopt_x_;
+  }
+  if (ipopt_z != nullptr && stop_ != kStopMerit && stop_ != kStopPolished) {
+    ipopt_residual = RelResidual(*ipopt_z, &iter_w_);
+  }
+  if (ipopt_z != nullptr) result->SetDetail("ipopt_residual", ipopt_residual);
+  // Ipopt's objective at its final point (finalize_solution runs on early stops too): QP value or gap G.
+  result->SetDetail("objective", objective_);
+
+  double polished_residual = kNaN;
+  bool accepted = false;
+  if (stop_ == kStopPolished) {
+    polished_residual = early_polished_residual_;
+    accepted = true;
+    result->z = early_z_;
+    result->SetDetail("early_stop", kEarlyPolish);
+  } else if (ipopt_z != nullptr) {
+    result->z = *ipopt_z;
+    if (stop_ == kStopMerit) result->SetDetail("early_stop", kMeritAtIterate);
+    if (o.polish && ipopt_residual > target_) {
+      polished_residual = Polish(*ipopt_z, &pol_best_);
+      if (polished_residual < ipopt_residual) {
+        accepted = true;
+        result->z = pol_best_;
+      }
+    }
+  }
+  if (o.polish) {
+    result->SetDetail("polished_residual", polished_residual);
+    result->SetDetail("polish_accepted", accepted ? 1.0 : 0.0);
+  }
+  const double final_residual = accepted ? polished_residual : ipopt_residual;
+
+  if (options.verbosity > 0) {
+    std::fprintf(stderr, "ipopt: formulation %d, Ipopt %s (%d) after %d iterations, residual %.3e, polished %.3e%s\n",
+                 formulation, IpoptStatusName(status), static_cast<int>(status), iterations_, ipopt_residual,
+                 polished_residual, accepted ? " (kept)" : "");
+  }
+
+  if (final_residual <= target_) {
+    result->status = SolveStatus::kSolved;
+    return;
+  }
+  std::ostringstream msg;
+  msg.precision(3);
+  const double scaled_gap = objective_ / p.residual_scale();
+  switch (status) {
+    case Ipopt::Solve_Succeeded:
+    case Ipopt::Solved_To_Acceptable_Level:
+    case Ipopt::Feasible_Point_Found:
+      if (gap && scaled_gap > target_) {
+        result->status = SolveStatus::kStalled;
+        msg << "Ipopt converged to a stationary point of the gap program with complementarity gap G = "
+            << objective_ << " > 0 (a local minimizer of a nonconvex bilinear program, not a solution)";
+      } else {
+        result->status = SolveStatus::kInaccurate;
+        msg << "Ipopt converged (" << IpoptStatusName(status) << ") but not to the requested accuracy";
+      }
+      break;
+    case Ipopt::Infeasible_Problem_Detected:
+      result->status = SolveStatus::kInfeasible;
+      msg << "Ipopt found M z + q = w - v, l <= z <= u, w, v >= 0 infeasible (linear constraints: a global "
+             "certificate), so the MLCP has no solution";
+      break;
+    case Ipopt::Search_Direction_Becomes_Too_Small:
+      result->status = SolveStatus::kStalled;
+      msg << "Ipopt's search direction became too small";
+      break;
+    case Ipopt::Diverging_Iterates:
+      result->status = SolveStatus::kDiverged;
+      msg << (gap ? "Ipopt's iterates diverged"
+                  : "Ipopt's iterates diverged: the QP looks unbounded below, so the MLCP has no solution");
+      break;
+    case Ipopt::User_Requested_Stop:
+    case Ipopt::Maximum_CpuTime_Exceeded:
+      if (stop_ == kStopTime || status == Ipopt::Maximum_CpuTime_Exceeded) {
+        result->status = SolveStatus::kTimeLimit;
+        msg << "time limit reached";
+      } else {
+        result->status = SolveStatus::kNumericalFailure;
+        msg << "Ipopt stopped unexpectedly";
+      }
+      break;
+    case Ipopt::Maximum_Iterations_Exceeded:
+      result->status = SolveStatus::kIterationLimit;
+      msg << "Ipopt reached its iteration limit";
+      break;
+    case Ipopt::Invalid_Option:
+      result->status = SolveStatus::kInvalidOptions;
+      msg << "Ipopt rejected an option (linear_solver '" << LinearSolverName(o.linear_solver)
+          << "' not available?)";
+      break;
+    case Ipopt::Restoration_Failed:
+      result->status = SolveStatus::kNumericalFailure;
+      msg << "Ipopt's restoration phase failed";
+      break;
+    case Ipopt::Error_In_Step_Computation:
+      result->status = SolveStatus::kNumericalFailure;
+      msg << "Ipopt could not compute a step (KKT system too ill-conditioned)";
+      break;
+    case Ipopt::Invalid_Number_Detected:
+      result->status = SolveStatus::kNumericalFailure;
+      msg << "NaN or Inf appeared in Ipopt's evaluations";
+      break;
+    default:
+      result->status = SolveStatus::kNumericalFailure;
+      msg << "Ipopt failed (" << IpoptStatusName(status) << ")";
+      break;
+  }
+  msg << "; Ipopt status " << static_cast<int>(status) << ", " << iterations_ << " iterations, relative natural "
+      << "residual " << ipopt_residual;
+  if (o.polish) msg << " (polished " << polished_residual << (accepted ? ", kept" : ", rejected") << ")";
+  msg << " > tolerance " << target_;
+  if (!Resolvable(result->z)) {
+    msg << "; ||z||_inf = " << result->z.cwiseAbs().maxCoeff()
+        << " is too large for the natural residual to certify a solution";
+  }
+  result->message = msg.str();
+}
+
+}  // namespace
+
+bool IpoptOptions::IsValid(std::string* why) const {
+  std::ostringstream s;
+  if (formulation < kAuto || formulation > kGap) {
+    s << "formulation must be 0 (auto), 1 (qp) or 2 (gap), got " << formulation;
+  } else if (!(tol > 0.0) || !std::isfinite(tol)) {
+    s << "tol must be a positive finite number, got " << tol;
+  } else if (max_iter < 1) {
+    s << "max_iter must be >= 1, got " << max_iter;
+  } else if (mu_strategy != kMonotone && mu_strategy != kAdaptive) {
+    s << "mu_strategy must be 0 (monotone) or 1 (adaptive), got " << mu_strategy;
+  } else if (linear_solver < kMumps || linear_solver > kPardiso) {
+    s << "linear_solver must be 0 (mumps), 1 (ma27), 2 (ma57), 3 (ma77), 4 (ma86), 5 (ma97) or 6 (pardiso), got "
+      << linear_solver;
+  } else if (print_level < 0 || print_level > 12) {
+    s << "print_level must be in 0..12, got " << print_level;
+  } else if (!(symmetry_tolerance >= 0.0) || !std::isfinite(symmetry_tolerance)) {
+    s << "symmetry_tolerance must be a finite number >= 0, got " << symmetry_tolerance;
+  } else if (!(psd_tolerance >= 0.0) || !std::isfinite(psd_tolerance)) {
+    s << "psd_tolerance must be a finite number >= 0, got " << psd_tolerance;
+  } else if (polish_rounds < 1 || polish_rounds > 100) {
+    s << "polish_rounds must be in 1..100, got " << polish_rounds;
+  } else if (!(early_polish_threshold > 0.0)) {
+    s << "early_polish_threshold must be positive, got " << early_polish_threshold;
+  }
+  if (s.tellp() == 0) return true;
+  if (why) *why = s.str();
+  return false;
+}
+
+struct IpoptQpSolver::Impl final : Session {
+  explicit Impl(const IpoptQpSolver* owner) : owner_(owner) {}
+  bool TimeUp() const override { return owner_->Expired(); }
+  const IpoptQpSolver* owner_;
+};
+
+IpoptQpSolver::IpoptQpSolver() : impl_(std::make_unique<Impl>(this)) {}
+IpoptQpSolver::~IpoptQpSolver() = default;
+
+const SolverInfo& IpoptQpSolver::info() const {
+  static const SolverInfo kInfo{
+      "ipopt",
+      "Ipopt interior point on the convex QP (symmetric PSD M) or the complementarity-gap NLP, then active-set "
+      "polish",
+      "Wächter & Biegler, Math. Prog. 106 (2006) 25-57; polish after Stellato et al., OSQP (2020)",
+      /*dense=*/true,
+      /*sparse=*/true,
+      /*symmetric_only=*/false,
+      /*exact=*/false,
+      /*mcp=*/false,
+      /*default_size_limit=*/0};
+  return kInfo;
+}
+
+void IpoptQpSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  impl_->Solve(problem, options, options_, result);
+}
+
+void IpoptQpSolver::BindOptions(OptionBinder* binder) {
+  binder->Add("formulation", &options_.formulation, "0 auto (QP if M symmetric PSD, else gap NLP), 1 qp, 2 gap");
+  binder->Add("tol", &options_.tol, "Ipopt tol (scaled NLP error)");
+  binder->Add("max_iter", &options_.max_iter, "Ipopt max_iter when max_iterations <= 0");
+  binder->Add("mu_strategy", &options_.mu_strategy, "0 monotone, 1 adaptive");
+  binder->Add("mehrotra", &options_.mehrotra, "Mehrotra predictor-corrector for the convex QP");
+  binder->Add("linear_solver", &options_.linear_solver, "0 mumps, 1 ma27, 2 ma57, 3 ma77, 4 ma86, 5 ma97, 6 pardiso");
+  binder->Add("print_level", &options_.print_level, "Ipopt print_level (0..12) when verbosity >= 2");
+  binder->Add("symmetry_tolerance", &options_.symmetry_tolerance, "relative asymmetry still called symmetric");
+  binder->Add("psd_tolerance", &options_.psd_tolerance, "PSD if lambda_min > -psd_tolerance*||M||_inf");
+  binder->Add("polish", &options_.polish, "active-set polish of Ipopt's solution");
+  binder->Add("polish_rounds", &options_.polish_rounds, "active-set re-identifications in one polish");
+  binder->Add("early_polish", &options_.early_polish, "try the polish at Ipopt iterates and stop when it solves");
+  binder->Add("early_polish_threshold", &options_.early_polish_threshold,
+              "relative residual below which iterates are polished");
+  binder->Add("polish_warm_start", &options_.polish_warm_start, "polish the warm start before running Ipopt");
+}
+
+bool IpoptQpSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }
+
 }  // namespace smcbench

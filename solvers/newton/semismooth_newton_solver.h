@@ -1,11 +1,101 @@
-// PLACEHOLDER: replaced by the real backend.
+// Semismooth (generalized) Newton method on Billups' box Fischer–Burmeister reformulation, for box-MLCPs and
+// nonlinear MCPs: De Luca–Facchinei–Kanzow 1996 (Math. Prog. 75) globalized by an Armijo (optionally
+// Grippo–Lampariello–Lucidi non-monotone) line search on Psi = ½‖Phi‖², with a gradient-step fallback and a
+// proximal-perturbation safeguard against non-solution stationary points of Psi (Billups 1995, ch. 3).
+// Dense Jacobians use a reduced LU on the rows that are not trivially active; sparse ones use UMFPACK.
 #pragma once
+
+#include <memory>
+#include <string>
+
 #include "solvers/core/solver.h"
+
 namespace smcbench {
+
+struct NewtonOptions {
+  // Values of linear_solver (an int so the text option binder can set it).
+  static constexpr int kAutoLinearSolver = 0;    // dense LU for dense data and small sparse data, else UMFPACK
+  static constexpr int kDenseLinearSolver = 1;   // always dense (sparse data are copied to a dense matrix)
+  static constexpr int kSparseLinearSolver = 2;  // always UMFPACK (dense data converted per solve / MCP iteration)
+  static constexpr int kMaxNonmonotoneMemory = 32;
+
+  // Armijo constant σ in Psi(z + t d) ≤ Psi_ref + σ t ∇Psiᵀd (DFK 1996 use 1e-4).
+  double armijo_sigma = 1e-4;
+  // Backtracking factor β: t ∈ {1, β, β², ...}.
+  double backtrack_factor = 0.5;
+  // Trial step lengths per line search before it is declared failed.
+  int max_backtracks = 40;
+  // Grippo–Lampariello–Lucidi memory: Psi_ref = max of the last M merit values. 1 = monotone Armijo (default:
+  // on strongly nonsymmetric random problems M = 3..10 needed more iterations and at M = 10 cycled at n ≥ 256).
+  int nonmonotone_memory = 1;
+  // DFK 1996 sufficient-descent test for the Newton direction: ∇Psiᵀd ≤ −ρ‖d‖^p; if it fails, the
+  // regularized step and then −∇Psi are tried.
+  double descent_rho = 1e-8;
+  double descent_power = 2.1;
+  // Use −∇Psi when neither the Newton nor the regularized step is accepted. If false, such an iteration ends
+  // the solve (kSingular if no direction passed its descent test, kStalled if the line search failed).
+  bool gradient_fallback = true;
+  // kAutoLinearSolver, kDenseLinearSolver or kSparseLinearSolver.
+  int linear_solver = kAutoLinearSolver;
+  // kAutoLinearSolver: sparse data with at most this many unknowns are factorized densely.
+  int dense_max_size = 64;
+  // Dense only: rows with |Db_i| ≤ threshold·|Da_i| are treated as trivially active (Db_i := 0), so their
+  // step is −Phi_i/Da_i and they drop out of the LU. 0 = drop only exact zeros (an exact Newton step).
+  double reduction_threshold = 1e-10;
+  // Dense LCP with (numerically) symmetric M: the reduced matrix M_RR + diag(Da/Db) + λI is symmetric, so try
+  // Cholesky first (half the flops of LU) and fall back to LU when it is not positive definite.
+  bool use_cholesky = true;
+  // Reformulate with s_i·F_i, s_i = 1/max(1, max_j |∂F_i/∂z_j|) at the starting point: the FB function is not
+  // scale invariant, and rows much larger than the box make the line search crawl. Solutions are unchanged.
+  bool row_scaling = true;
+  // When the Newton system is singular, or its direction fails the descent test or the line search, retry once
+  // with ∇F + μI, μ = regularization·min(1, ‖Phi‖₂), before falling back to −∇Psi. 0 disables the retry.
+  double regularization = 1.0;
+  // Proximal-perturbation safeguard (Billups 1995): when the line search fails or Psi stagnates at a
+  // non-solution, solve F(z) + λ(z − z̄) = 0-type perturbed problems and restart Newton from their solutions.
+  bool proximal_safeguard = true;
+  int max_proximal_rounds = 30;
+  // Initial λ = proximal_lambda · max(1, ‖∇F(z)‖∞). Halved after each successful round, ×10 after a failure.
+  double proximal_lambda = 1.0;
+  // Stagnation: Psi did not fall below stagnation_ratio × its value stagnation_window iterations earlier.
+  int stagnation_window = 10;
+  double stagnation_ratio = 0.9;
+  // Newton iterations allowed to one perturbed problem (the unperturbed run after it uses the global budget).
+  int proximal_inner_iterations = 50;
+
+  // True if every field is usable; otherwise *why names the field and the accepted range.
+  bool IsValid(std::string* why) const;
+};
+
+// Solves a box-MLCP (F = Mz + q) or a nonlinear MCP. iterations = Newton iterations (each takes one step along
+// a Newton, regularized or gradient direction), summed over proximal rounds; default budget 200
+// (options.max_iterations ≤ 0). A failure returns the iterate with the smallest natural residual seen.
+// Details: "backtracks", "gradient_steps", "proximal_rounds", "regularized_steps",
+// "factorizations", "max_system_size".
 class SemismoothNewtonSolver final : public Solver {
  public:
+  SemismoothNewtonSolver();
+  explicit SemismoothNewtonSolver(const NewtonOptions& options);
+  ~SemismoothNewtonSolver() override;
+  SemismoothNewtonSolver(const SemismoothNewtonSolver&) = delete;
+  SemismoothNewtonSolver& operator=(const SemismoothNewtonSolver&) = delete;
+
   const SolverInfo& info() const override;
+  NewtonOptions& options() { return options_; }
+  const NewtonOptions& options() const { return options_; }
+
+  static constexpr int kDefaultMaxIterations = 200;
+
  protected:
-  void DoSolve(const BoxMLCP&, const SolverOptions&, SolveResult* result) override;
+  void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
+  void DoSolveMCP(const MCP& problem, const SolverOptions& options, SolveResult* result) override;
+  void BindOptions(OptionBinder* binder) override;
+  bool ValidateBackendOptions(std::string* why) const override;
+
+ private:
+  struct Workspace;  // vectors, dense LU buffer and UMFPACK state, reused across solves
+  NewtonOptions options_;
+  std::unique_ptr<Workspace> ws_;
 };
+
 }  // namespace smcbench

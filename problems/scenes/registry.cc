@@ -1,0 +1,71 @@
+#include "problems/scenes/registry.h"
+
+#include <cstdlib>
+#include <filesystem>
+
+#include "problems/scenes/linear_scene.h"
+
+#ifndef SMCBENCH_SCENES_DIR
+#error "SMCBENCH_SCENES_DIR must be defined (problems/scenes/CMakeLists.txt)"
+#endif
+
+namespace smcbench {
+namespace {
+
+using Factory = std::unique_ptr<Scene> (*)();
+
+struct Entry {
+  std::string_view name;
+  std::string_view file;  // a JSON file in ScenesDirectory(), or empty for a C++ scene
+  Factory make;           // the C++ scene, or null for a file
+};
+
+// The registry, in the order of SCENES.md. Nonlinear scenes (S9 hypomonotone, S10 arctan) are C++ scenes:
+//   {"hypomonotone", "", &MakeHypomonotoneScene},
+constexpr Entry kScenes[] = {
+    {"sign", "sign.json", nullptr},                      // S1
+    {"galias-yu-2007", "galias-yu-2007.json", nullptr},  // S2
+    {"multi-surface", "multi-surface.json", nullptr},    // S3
+    {"filippov", "filippov.json", nullptr},              // S4
+    {"zoh-siso", "zoh-siso.json", nullptr},              // S5
+    {"zoh-mimo", "zoh-mimo.json", nullptr},              // S6
+    {"lyapunov", "lyapunov.json", nullptr},              // S7
+    {"observer", "observer.json", nullptr},              // S8
+    {"parasitic", "parasitic.json", nullptr},            // S11
+};
+
+}  // namespace
+
+std::vector<std::string_view> SceneNames() {
+  std::vector<std::string_view> names;
+  for (const Entry& e : kScenes) names.push_back(e.name);
+  return names;
+}
+
+std::string ScenesDirectory() {
+  if (const char* dir = std::getenv("SMCBENCH_SCENES_DIR"); dir && *dir) return dir;
+  return SMCBENCH_SCENES_DIR;
+}
+
+std::unique_ptr<Scene> LoadScene(std::string_view name_or_path) {
+  for (const Entry& e : kScenes) {
+    if (e.name != name_or_path) continue;
+    if (e.make) return e.make();
+    auto scene = LinearScene::FromFile((std::filesystem::path(ScenesDirectory()) / e.file).string());
+    if (scene->info().name != e.name) {
+      throw InvalidInputError("scene file for '" + std::string(e.name) + "' declares the name '" +
+                              scene->info().name + "'");
+    }
+    return scene;
+  }
+  const std::string path(name_or_path);
+  std::error_code ec;
+  const bool looks_like_path = path.find('/') != std::string::npos ||
+                               (path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0);
+  if (looks_like_path || std::filesystem::is_regular_file(path, ec)) return LinearScene::FromFile(path);
+  std::string known;
+  for (const Entry& e : kScenes) known += (known.empty() ? "" : ", ") + std::string(e.name);
+  throw InvalidInputError("unknown scene '" + path + "' (known: " + known + "; or give the path of a scene file)");
+}
+
+}  // namespace smcbench

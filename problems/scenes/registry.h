@@ -1,0 +1,25 @@
+// The scenes of SCENES.md by name. An explicit list (no static registration): a linear scene is a JSON file in
+// this folder; a scene that needs code is a factory function. Adding one is one line in registry.cc.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "problems/scenes/scene.h"
+
+namespace smcbench {
+
+// Registered names in the order of SCENES.md (S1 sign, S2 galias-yu-2007, ...).
+std::vector<std::string_view> SceneNames();
+
+// The folder holding the scene files: $SMCBENCH_SCENES_DIR if set, else this source folder (compile definition).
+std::string ScenesDirectory();
+
+// A registered name, or a path to a scene file (anything that is not a registered name and names an existing file,
+// or ends in .json). Throws InvalidInputError: unknown name (listing the known ones), unreadable or malformed file
+// (naming the field).
+std::unique_ptr<Scene> LoadScene(std::string_view name_or_path);
+
+}  // namespace smcbench

@@ -1,0 +1,76 @@
+// A scene: one sliding-mode system of the report (SCENES.md S1–S11) with its numerical settings, runnable on any
+// backend. Linear scenes are data (JSON files, linear_scene.h); scenes that need code (nonlinear g, h) implement
+// this interface in C++ and are added to the registry (registry.cc) by one line.
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "problems/scenes/expression.h"
+#include "problems/stepper/discretization.h"
+#include "problems/stepper/linear_stepper.h"
+#include "problems/stepper/metrics.h"
+#include "problems/stepper/trajectory.h"
+#include "solvers/core/solver.h"
+
+namespace smcbench {
+
+// Everything a run needs besides the scene and the backend. A scene's defaults() gives its own values (those of
+// SCENES.md); a caller overrides fields one by one.
+struct SimulationSettings {
+  Method method = Method::kImplicit;
+  double h = 0.0;       // time step, > 0
+  double T = 0.0;       // horizon, >= 0; N = round(T/h) steps (NumSteps)
+  double theta = 1.0;   // θ of the θ-method on f, in [0, 1] (unused by ZOH)
+  double gamma = 1.0;   // γ of the θ/γ scheme `eq:toto1`, in [0, 1]; no effect when g(x) = B is constant
+  Vector x0;            // initial state, size n
+  // Scene parameters by name (τ, α, k, ...). Start from the scene's; a name the scene does not declare is an error.
+  SceneParameters parameters;
+  // Backend options, warm start, failure policy and whether to record the history.
+  StepperOptions stepper;
+  // Name of the backend the scene suggests (a scene file's "simulation.solver"); callers may ignore it.
+  std::string solver;
+
+  // Throws InvalidInputError naming the field: h ≤ 0 or non-finite, T < 0 or non-finite, θ or γ outside [0, 1],
+  // x0 not of size n or not finite, invalid stepper options.
+  void Validate(int n) const;
+};
+
+struct SceneInfo {
+  std::string name;         // the registry name ("sign", "observer", ...) or the file's "name"
+  std::string description;  // one line
+  std::string reference;    // where in the report (section, equation label)
+  std::string source;       // the file it was read from, or "built-in"
+  int n = 0;                // state dimension
+  int m = 0;                // number of sliding surfaces
+};
+
+class Scene {
+ public:
+  virtual ~Scene() = default;
+
+  virtual const SceneInfo& info() const = 0;
+  // The scene's own settings (record on, warm start on, stop at the first failed step).
+  virtual const SimulationSettings& defaults() const = 0;
+  // Whether Run accepts this method (a sign system cannot be run with ZOH, which needs the open-loop plant).
+  virtual bool Supports(Method method) const = 0;
+
+  // Runs the scene into *out (storage reused). solver may be null for explicit-sign methods. Throws
+  // InvalidInputError for invalid settings (naming the field) or an unsupported method; a one-step problem the
+  // backend does not solve is a status in *out, never an exception.
+  virtual void Run(const SimulationSettings& settings, Solver* solver, Trajectory* out) const = 0;
+  Trajectory Run(const SimulationSettings& settings, Solver* solver) const {
+    Trajectory out;
+    Run(settings, solver, &out);
+    return out;
+  }
+
+  // The exact solution of the continuous system from settings.x0 with settings.parameters, if the scene has one
+  // (S1: x(t) = x0 − sgn(x0) t before t* = |x0|, 0 after; s = sgn(x0) then 0).
+  virtual std::optional<ExactSolution> Exact(const SimulationSettings& settings) const {
+    (void)settings;
+    return std::nullopt;
+  }
+};
+
+}  // namespace smcbench

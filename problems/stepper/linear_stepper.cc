@@ -1,0 +1,449 @@
+#include "problems/stepper/linear_stepper.h"
+
+#include <algorithm>
+#include <cmath>
+#include <type_traits>
+#include <utility>
+
+#include "problems/stepper/discretization_detail.h"
+#include "problems/stepper/validation.h"
+
+namespace smcbench {
+
+using stepper_detail::Fail;
+using stepper_detail::Num;
+
+bool StepperOptions::IsValid(std::string* why) const {
+  std::string solver_why;
+  if (!solver.IsValid(&solver_why)) {
+    if (why) *why = "solver options: " + solver_why;
+    return false;
+  }
+  if (!std::isfinite(t0)) {
+    if (why) *why = "t0 must be finite, got " + Num(t0);
+    return false;
+  }
+  return true;
+}
+
+namespace {
+
+constexpr const char* kRunOwner = "LinearStepper::Run";
+
+// Shared argument checks of both paths.
+void CheckRunArguments(const char* owner, int n, SignTreatment sign, const Vector& x0, std::int64_t num_steps,
+                       const Solver* solver, const StepperOptions& options) {
+  stepper_detail::CheckSize(owner, "x0", x0, n);
+  ValidateFinite(owner, "x0", x0);
+  if (num_steps < 0) Fail(owner, "num_steps must be >= 0, got " + std::to_string(num_steps));
+  if (sign == SignTreatment::kImplicit && solver == nullptr) {
+    Fail(owner, "solver is null but the implicit scheme solves a box-MLCP at every step");
+  }
+  std::string why;
+  if (!options.IsValid(&why)) Fail(owner, "options: " + why);
+}
+
+// Sizes *out for a run and resets its counters. Allocates only when the sizes grow.
+void PrepareTrajectory(const OneStepData& d, std::int64_t num_steps, const StepperOptions& options,
+                       Trajectory* out) {
+  out->n = d.n();
+  out->m = d.m();
+  out->h = d.h;
+  out->t0 = options.t0;
+  out->description = d.description;
+  out->num_steps = num_steps;
+  out->steps_taken = 0;
+  out->recorded = options.record;
+  const Eigen::Index columns = options.record ? static_cast<Eigen::Index>(num_steps + 1) : 0;
+  out->t.resize(columns);
+  out->x.resize(d.n(), columns);
+  out->s.resize(d.m(), columns);
+  out->y.resize(d.m(), columns);
+  out->iterations.resize(columns);
+  out->residual.resize(columns);
+  out->status.resize(columns);
+  out->max_residual = 0.0;
+  out->total_iterations = 0;
+  out->max_iterations = 0;
+  out->failed_steps = 0;
+  out->first_failed_step = -1;
+  out->first_failure_status = SolveStatus::kNotRun;
+  out->first_failure_residual = 0.0;
+  out->first_failure_message.clear();
+  out->stopped_early = false;
+}
+
+// Trims the history after an early stop and stores the final state.
+template <typename X, typename S, typename Y>
+void FinishTrajectory(std::int64_t steps_taken, const X& x, const S& s, const Y& y, Trajectory* out) {
+  out->steps_taken = steps_taken;
+  if (out->recorded && steps_taken < out->num_steps) {
+    const Eigen::Index columns = static_cast<Eigen::Index>(steps_taken + 1);
+    out->t.resize(columns);
+    out->x.conservativeResize(Eigen::NoChange, columns);
+    out->s.conservativeResize(Eigen::NoChange, columns);
+    out->y.conservativeResize(Eigen::NoChange, columns);
+    out->iterations.resize(columns);
+    out->residual.resize(columns);
+    out->status.resize(columns);
+  }
+  out->x_final = x;
+  out->s_final = s;
+  out->y_final = y;
+}
+
+// Per-run counters, kept in locals during the loop (stores through *out would force the compiler to reload the
+// state every step) and written to *out once at the end.
+struct Counters {
+  double max_residual = 0.0;
+  std::int64_t total_iterations = 0;
+  int max_iterations = 0;
+
+  void Add(int iterations, double residual) {
+    total_iterations += iterations;
+    if (iterations > max_iterations) max_iterations = iterations;
+    // A NaN residual must not hide behind max(): treat it as +∞.
+    max_residual = std::isnan(residual) ? kInf : std::max(max_residual, residual);
+  }
+  void Store(Trajectory* out) const {
+    out->max_residual = max_residual;
+    out->total_iterations = total_iterations;
+    out->max_iterations = max_iterations;
+  }
+};
+
+// Bookkeeping of a failed step k (backend status != kSolved, or a non-finite state); returns true if the run must
+// stop after it. Off the hot path: only failed steps get here.
+bool HandleFailure(std::int64_t k, SolveStatus status, double residual, bool state_finite, bool state_has_nan,
+                   const std::string* message, FailurePolicy policy, Trajectory* out) {
+  if (!state_finite) status = state_has_nan ? SolveStatus::kNumericalFailure : SolveStatus::kDiverged;
+  if (out->recorded) out->status[k] = status;
+  ++out->failed_steps;
+  if (out->first_failed_step < 0) {
+    out->first_failed_step = k;
+    out->first_failure_status = status;
+    out->first_failure_residual = residual;
+    if (!state_finite) {
+      out->first_failure_message = std::string("state x_") + std::to_string(k) + " is not finite (" +
+                                   (state_has_nan ? "NaN" : "overflow") + ")";
+      if (message && !message->empty()) out->first_failure_message += "; backend: " + *message;
+    } else {
+      out->first_failure_message = message ? *message : std::string();
+    }
+  }
+  if (!state_finite || policy == FailurePolicy::kStop) {
+    out->stopped_early = true;
+    return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------------------------
+// The pre-factored kernel. N, M are the compile-time sizes (Eigen::Dynamic for the general fallback); the same
+// code serves both, with every temporary a member so the dynamic case does not allocate either.
+
+class LinearStepper::Kernel {
+ public:
+  virtual ~Kernel() = default;
+  virtual bool fixed_size() const = 0;
+  virtual void Run(const OneStepData& d, BoxMLCP* problem, const Vector& x0, std::int64_t num_steps,
+                   Solver* solver, const StepperOptions& options, Trajectory* out) = 0;
+};
+
+namespace {
+
+template <int N, int M>
+class KernelImpl final : public LinearStepper::Kernel {
+ public:
+  using VecN = Eigen::Matrix<double, N, 1>;
+  using VecM = Eigen::Matrix<double, M, 1>;
+  using MatNN = Eigen::Matrix<double, N, N>;
+  using MatNM = Eigen::Matrix<double, N, M>;
+  using MatMN = Eigen::Matrix<double, M, N>;
+
+  explicit KernelImpl(const OneStepData& d) {
+    const int n = d.n(), m = d.m();
+    R_ = d.R;
+    S_ = d.S;
+    C_ = d.C;
+    D_ = d.D;
+    p_ = d.p;
+    CR_ = d.C * d.R;      // q = −(C R x_k + C p_k + D), `eq:TDS3`
+    c0_ = d.C * d.p + d.D;
+    if (d.has_forcing()) {
+      P_ = d.P;
+      CP_ = d.C * d.P;
+    } else {
+      P_.setZero(n, n);
+      CP_.setZero(m, n);
+    }
+    x_.resize(n), xn_.resize(n), g_prev_.resize(n), g_next_.resize(n), gbar_.resize(n);
+    s_.resize(m), q_.resize(m), y_.resize(m);
+    q_dyn_.resize(m);
+  }
+
+  bool fixed_size() const override { return N != Eigen::Dynamic && M != Eigen::Dynamic; }
+
+  void Run(const OneStepData& d, BoxMLCP* problem, const Vector& x0, std::int64_t num_steps, Solver* solver,
+           const StepperOptions& options, Trajectory* out) override {
+    // Fixed sizes: the matrices and the state are copied into locals the compiler keeps in registers. Dynamic
+    // sizes: references to the member buffers (a local copy would allocate).
+    constexpr bool kFixed = N != Eigen::Dynamic && M != Eigen::Dynamic;
+    using CMatNN = std::conditional_t<kFixed, const MatNN, const MatNN&>;
+    using CMatNM = std::conditional_t<kFixed, const MatNM, const MatNM&>;
+    using CMatMN = std::conditional_t<kFixed, const MatMN, const MatMN&>;
+    using CVecN = std::conditional_t<kFixed, const VecN, const VecN&>;
+    using CVecM = std::conditional_t<kFixed, const VecM, const VecM&>;
+    using WVecN = std::conditional_t<kFixed, VecN, VecN&>;
+    using WVecM = std::conditional_t<kFixed, VecM, VecM&>;
+    CMatNN R = R_, P = P_;
+    CMatNM S = S_;
+    CMatMN C = C_, CR = CR_, CP = CP_;
+    CVecN p = p_;
+    CVecM D = D_, c0 = c0_;
+    WVecN x = x_, xn = xn_, g_prev = g_prev_, g_next = g_next_, gbar = gbar_;
+    WVecM s = s_, q = q_, y = y_;
+
+    const bool implicit = d.sign == SignTreatment::kImplicit;
+    const bool forced = d.has_forcing();
+    const bool record = options.record;
+    const bool warm = options.warm_start;
+    const double h = d.h;
+    const double t0 = options.t0;
+    const double theta = d.forcing_theta;
+    const int m = d.m();
+
+    // The backend's options: copied once; per step only warm_start's values change (same size: no allocation).
+    solver_options_ = options.solver;
+    solver_options_.measure_time = false;
+    solver_options_.warm_start.resize(warm ? m : 0);
+
+    x = x0;
+    s.setZero();
+    y = D;
+    y.noalias() += C * x;
+    if (record) Record(0, t0, x, s, y, 0, 0.0, SolveStatus::kNotRun, out);
+    if (forced) d.forcing(t0, g_prev);
+
+    Counters counters;
+    std::int64_t k = 0;
+    while (k < num_steps) {
+      const double t_next = t0 + static_cast<double>(k + 1) * h;
+      if (forced) {
+        // θ-weighted forcing: ḡ = θ g(t_{k+1}) + (1 − θ) g(t_k); g(t_{k+1}) is reused as g(t_k) next step.
+        d.forcing(t_next, g_next);
+        gbar = theta * g_next + (1.0 - theta) * g_prev;
+        g_prev = g_next;
+      }
+      SolveStatus status = SolveStatus::kNotRun;
+      int iterations = 0;
+      double residual = 0.0;
+      if (implicit) {
+        q = -c0;
+        q.noalias() -= CR * x;
+        if (forced) q.noalias() -= CP * gbar;
+        if (!q.allFinite()) {
+          // Only when C R x_k overflows; set_q would throw, and this must be a status.
+          status = SolveStatus::kNumericalFailure;
+          residual = kInf;
+        } else {
+          q_dyn_ = q;
+          problem->set_q(q_dyn_);
+          if (warm) solver_options_.warm_start = s;
+          solver->Solve(*problem, solver_options_, &result_);
+          s = result_.z;
+          status = result_.status;
+          iterations = result_.iterations;
+          residual = result_.residual_rel;
+        }
+        counters.Add(iterations, residual);
+      } else {
+        // Explicit sign: s_{k+1} = sgn(y_k), sgn(0) := 0 (the classical implementation that chatters).
+        // Branch-free: the sign alternates every step once the scheme chatters.
+        s = (y.array() > 0.0).template cast<double>() - (y.array() < 0.0).template cast<double>();
+      }
+      // x_{k+1} = R x_k + p_k − S s_{k+1}, `eq:TDS1`.
+      xn = p;
+      xn.noalias() += R * x;
+      if (forced) xn.noalias() += P * gbar;
+      xn.noalias() -= S * s;
+      x = xn;
+      y = D;
+      y.noalias() += C * x;
+      ++k;
+      if (record) Record(k, t_next, x, s, y, iterations, residual, status, out);
+      const bool finite = x.allFinite();
+      if (!finite || (implicit && status != SolveStatus::kSolved)) {
+        const bool has_nan = !finite && x.hasNaN();
+        if (HandleFailure(k, status, residual, finite, has_nan, implicit ? &result_.message : nullptr,
+                          options.on_failure, out)) {
+          break;
+        }
+      }
+    }
+    counters.Store(out);
+    FinishTrajectory(k, x, s, y, out);
+  }
+
+ private:
+  template <typename X, typename S, typename Y>
+  static void Record(std::int64_t k, double t, const X& x, const S& s, const Y& y, int iterations, double residual,
+                     SolveStatus status, Trajectory* out) {
+    const auto c = static_cast<Eigen::Index>(k);
+    out->t[c] = t;
+    out->x.col(c) = x;
+    out->s.col(c) = s;
+    out->y.col(c) = y;
+    out->iterations[c] = iterations;
+    out->residual[c] = residual;
+    out->status[c] = status;
+  }
+
+  MatNN R_, P_;
+  MatNM S_;
+  MatMN C_, CR_, CP_;
+  VecN p_;
+  VecM D_, c0_;
+  VecN x_, xn_, g_prev_, g_next_, gbar_;
+  VecM s_, q_, y_;
+  Vector q_dyn_;  // the BoxMLCP API takes a dynamic vector
+  SolverOptions solver_options_;
+  SolveResult result_;
+};
+
+// Fixed-size kernels for n ≤ 4, m ≤ 2 (every linear scene of SCENES.md); the dynamic kernel otherwise.
+template <int N>
+std::unique_ptr<LinearStepper::Kernel> MakeForM(const OneStepData& d) {
+  if (d.m() == 1) return std::make_unique<KernelImpl<N, 1>>(d);
+  if (d.m() == 2) return std::make_unique<KernelImpl<N, 2>>(d);
+  return std::make_unique<KernelImpl<Eigen::Dynamic, Eigen::Dynamic>>(d);
+}
+
+std::unique_ptr<LinearStepper::Kernel> MakeKernel(const OneStepData& d) {
+  switch (d.n()) {
+    case 1: return MakeForM<1>(d);
+    case 2: return MakeForM<2>(d);
+    case 3: return MakeForM<3>(d);
+    case 4: return MakeForM<4>(d);
+    default: return std::make_unique<KernelImpl<Eigen::Dynamic, Eigen::Dynamic>>(d);
+  }
+}
+
+}  // namespace
+
+LinearStepper::LinearStepper(OneStepData data) : data_(std::move(data)) {
+  data_.Validate();
+  // M = C S and the box [−1, 1]^m are constant (`eq:TDS3`); q is replaced in place every step.
+  problem_ = std::make_unique<BoxMLCP>(BoxMLCP::Relay(data_.OneStepMatrix(), Vector::Zero(data_.m()), -1.0, 1.0,
+                                                      "one-step " + data_.description));
+  kernel_ = MakeKernel(data_);
+}
+
+LinearStepper::~LinearStepper() = default;
+LinearStepper::LinearStepper(LinearStepper&&) noexcept = default;
+LinearStepper& LinearStepper::operator=(LinearStepper&&) noexcept = default;
+
+bool LinearStepper::uses_fixed_size_kernel() const { return kernel_->fixed_size(); }
+
+void LinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* solver, const StepperOptions& options,
+                        Trajectory* out) {
+  CheckRunArguments(kRunOwner, data_.n(), data_.sign, x0, num_steps, solver, options);
+  PrepareTrajectory(data_, num_steps, options, out);
+  kernel_->Run(data_, problem_.get(), x0, num_steps, solver, options, out);
+}
+
+Trajectory LinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* solver,
+                              const StepperOptions& options) {
+  Trajectory out;
+  Run(x0, num_steps, solver, options, &out);
+  return out;
+}
+
+// ------------------------------------------------------------------------------------------------------------
+
+void SimulateRebuildingEachStep(const LinearModel& model, Method method, double h, double theta, const Vector& x0,
+                                std::int64_t num_steps, Solver* solver, const StepperOptions& options,
+                                Trajectory* out) {
+  constexpr const char* kOwner = "SimulateRebuildingEachStep";
+  const OneStepData first = Discretize(model, method, h, theta);  // validates everything once
+  CheckRunArguments(kOwner, first.n(), first.sign, x0, num_steps, solver, options);
+  PrepareTrajectory(first, num_steps, options, out);
+  // A ZOH plant run with a θ-method is its closed loop; form it once (a model change, not a discretization).
+  LinearModel effective = model;
+  if (const auto* zsys = std::get_if<ZohSmcSystem>(&model)) {
+    if (method == Method::kImplicit || method == Method::kExplicit) effective = ClosedLoop(*zsys);
+  }
+
+  const bool implicit = first.sign == SignTreatment::kImplicit;
+  const int n = first.n(), m = first.m();
+  SolverOptions solver_options = options.solver;
+  solver_options.measure_time = false;
+  SolveResult result;
+  Vector x = x0, s = Vector::Zero(m), y = first.C * x + first.D;
+  Vector g_prev(n), g_next(n), gbar(n);
+  if (first.has_forcing()) first.forcing(options.t0, g_prev);
+  const auto record = [&](std::int64_t k, double t, int iterations, double residual, SolveStatus status) {
+    const auto c = static_cast<Eigen::Index>(k);
+    out->t[c] = t;
+    out->x.col(c) = x;
+    out->s.col(c) = s;
+    out->y.col(c) = y;
+    out->iterations[c] = iterations;
+    out->residual[c] = residual;
+    out->status[c] = status;
+  };
+  if (options.record) record(0, options.t0, 0, 0.0, SolveStatus::kNotRun);
+
+  Counters counters;
+  std::int64_t k = 0;
+  while (k < num_steps) {
+    const double t_next = options.t0 + static_cast<double>(k + 1) * h;
+    // Re-discretize as a general simulator would (time-varying E would need it; here it is the baseline).
+    const OneStepData d = stepper_detail::DiscretizeUnchecked(effective, method, h, theta);
+    Vector p = d.p;
+    if (d.has_forcing()) {
+      d.forcing(t_next, g_next);
+      gbar = d.forcing_theta * g_next + (1.0 - d.forcing_theta) * g_prev;
+      g_prev = g_next;
+      p += d.P * gbar;
+    }
+    SolveStatus status = SolveStatus::kNotRun;
+    int iterations = 0;
+    double residual = 0.0;
+    if (implicit) {
+      Vector q = -(d.C * (d.R * x) + d.C * p + d.D);  // `eq:TDS3`
+      if (!q.allFinite()) {
+        status = SolveStatus::kNumericalFailure;
+        residual = kInf;
+      } else {
+        const BoxMLCP problem = BoxMLCP::Relay(d.C * d.S, std::move(q));
+        if (options.warm_start) solver_options.warm_start = s;
+        solver->Solve(problem, solver_options, &result);
+        s = result.z;
+        status = result.status;
+        iterations = result.iterations;
+        residual = result.residual_rel;
+      }
+      counters.Add(iterations, residual);
+    } else {
+      for (int i = 0; i < m; ++i) s[i] = y[i] > 0.0 ? 1.0 : (y[i] < 0.0 ? -1.0 : 0.0);
+    }
+    x = d.R * x + p - d.S * s;
+    y = d.C * x + d.D;
+    ++k;
+    if (options.record) record(k, t_next, iterations, residual, status);
+    const bool finite = x.allFinite();
+    if (!finite || (implicit && status != SolveStatus::kSolved)) {
+      if (HandleFailure(k, status, residual, finite, !finite && x.hasNaN(), implicit ? &result.message : nullptr,
+                        options.on_failure, out)) {
+        break;
+      }
+    }
+  }
+  counters.Store(out);
+  FinishTrajectory(k, x, s, y, out);
+}
+
+}  // namespace smcbench

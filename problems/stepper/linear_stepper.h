@@ -1,0 +1,80 @@
+// The time loop for the linear sliding-mode systems (class (2), ZOH-SMC): each implicit step is the box-MLCP
+// `eq:TDS3` (z = s_{k+1}, M = C S, q = −(C R x_k + C p_k + D), l = −1, u = 1) solved by whichever backend the
+// caller passes. Two paths:
+//   LinearStepper: M, C R, C p + D (and the BoxMLCP itself) are built once; a step is a few small mat-vecs, an
+//     in-place q update (BoxMLCP::set_q) and the solve, warm-started from s_k. Fixed-size Eigen kernels serve
+//     n ≤ 4, m ≤ 2 (every linear scene of SCENES.md); larger systems use a dynamic kernel with preallocated
+//     buffers. Neither allocates per step.
+//   SimulateRebuildingEachStep: what a general simulator does: every step re-discretizes (LU of I − hθE or the
+//     matrix exponential), rebuilds M = C S and a fresh BoxMLCP, then solves. Same trajectory up to rounding;
+//     benchmarks compare the two to show what precomputation buys.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <string>
+
+#include "problems/stepper/discretization.h"
+#include "problems/stepper/trajectory.h"
+#include "solvers/core/solver.h"
+
+namespace smcbench {
+
+// What to do when a one-step problem is not solved (status != kSolved).
+//   kStop: record that step (its x_k computed from the backend's returned z), then stop; the trajectory ends at
+//     first_failed_step and stopped_early is set.
+//   kContinue: record the status and go on; failed_steps counts them.
+// A non-finite state (NaN → kNumericalFailure, ±∞ → kDiverged) always stops the run: nothing sensible follows.
+enum class FailurePolicy { kStop, kContinue };
+
+struct StepperOptions {
+  // Passed to the backend at every step. The stepper overrides two fields: warm_start (s_k when warm_start below
+  // is on, else empty) and measure_time (false: the clock costs as much as a small solve).
+  SolverOptions solver;
+  bool warm_start = true;
+  FailurePolicy on_failure = FailurePolicy::kStop;
+  // false: keep only x_final/s_final/y_final and the counters (benchmarks; no O(N) memory).
+  bool record = true;
+  double t0 = 0.0;
+
+  // True if usable; otherwise *why names the field.
+  bool IsValid(std::string* why) const;
+};
+
+class LinearStepper {
+ public:
+  // Validates data and builds everything constant: M = C S, C R, C p + D, C P, the BoxMLCP. InvalidInputError
+  // naming the field on bad data.
+  explicit LinearStepper(OneStepData data);
+  ~LinearStepper();
+  LinearStepper(LinearStepper&&) noexcept;
+  LinearStepper& operator=(LinearStepper&&) noexcept;
+
+  const OneStepData& data() const { return data_; }
+  // The one-step problem: M = C S (constant) and the q of the last step run.
+  const BoxMLCP& problem() const { return *problem_; }
+  // True when a fixed-size kernel serves this (n, m).
+  bool uses_fixed_size_kernel() const;
+
+  // Runs num_steps steps from x0 (at t = options.t0) into *out (storage reused across runs). solver may be null
+  // only for an explicit-sign scheme. Throws InvalidInputError for bad arguments (x0 size/NaN, num_steps < 0,
+  // null solver, invalid options); a step the backend does not solve is a status in *out, never an exception.
+  void Run(const Vector& x0, std::int64_t num_steps, Solver* solver, const StepperOptions& options, Trajectory* out);
+  Trajectory Run(const Vector& x0, std::int64_t num_steps, Solver* solver, const StepperOptions& options = {});
+
+  class Kernel;  // implementation detail (fixed-size or dynamic)
+
+ private:
+  OneStepData data_;
+  std::unique_ptr<BoxMLCP> problem_;
+  std::unique_ptr<Kernel> kernel_;
+};
+
+// The generic, rebuild-every-step path (see the file comment). Discretize(model, method, h, theta) is validated
+// once; then each step recomputes the discretization without re-validating, builds M = C S, q and a new
+// BoxMLCP, and solves. Arguments and failure handling as LinearStepper::Run.
+void SimulateRebuildingEachStep(const LinearModel& model, Method method, double h, double theta, const Vector& x0,
+                                std::int64_t num_steps, Solver* solver, const StepperOptions& options,
+                                Trajectory* out);
+
+}  // namespace smcbench

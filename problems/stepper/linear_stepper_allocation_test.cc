@@ -1,0 +1,101 @@
+// Pins down "no allocation per step": a second run of the pre-factored stepper into the same Trajectory
+// allocates nothing (fixed-size and dynamic kernels, implicit and explicit, with forcing), given a backend
+// that does not allocate. Registry backends are reported, not asserted (tests/allocation_test owns them).
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cstdio>
+#include <cstdlib>
+#include <new>
+
+#include "problems/stepper/linear_stepper.h"
+#include "problems/stepper/stepper_test_util.h"
+#include "solvers/registry/registry.h"
+
+namespace {
+std::atomic<long> g_allocations{0};
+std::atomic<bool> g_counting{false};
+}  // namespace
+
+void* operator new(std::size_t size) {
+  if (g_counting.load(std::memory_order_relaxed)) g_allocations.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size ? size : 1)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return operator new(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
+
+namespace smcbench {
+namespace {
+
+using stepper_test::Vec;
+
+template <typename Fn>
+long CountAllocations(Fn&& fn) {
+  g_allocations = 0;
+  g_counting = true;
+  fn();
+  g_counting = false;
+  return g_allocations.load();
+}
+
+struct Case {
+  const char* name;
+  LinearSignSystem system;
+  SignTreatment sign;
+  Vector x0;
+};
+
+std::vector<Case> Cases() {
+  LinearSignSystem big;  // n = 6, m = 3: dynamic kernel
+  big.E = -0.1 * DenseMatrix::Identity(6, 6);
+  big.B = DenseMatrix::Zero(6, 3);
+  big.B(0, 0) = 1, big.B(2, 1) = 1, big.B(4, 2) = 1;
+  big.C = big.B.transpose();
+  big.forcing = [](double t, Eigen::Ref<Vector> g) { g.setConstant(0.01 * t); };
+  return {
+      {"S1 implicit", stepper_test::SignScene(), SignTreatment::kImplicit, Vec({1.01})},
+      {"S2 explicit", stepper_test::GaliasYuScene(), SignTreatment::kExplicit, Vec({0.0, 2.21})},
+      {"S3 implicit", stepper_test::MultiSurfaceScene(), SignTreatment::kImplicit, Vec({1.0, -1.0})},
+      {"S7 implicit forced", stepper_test::LyapunovScene(), SignTreatment::kImplicit, Vec({1.0})},
+      {"S8 implicit", stepper_test::ObserverScene(0.001), SignTreatment::kImplicit, Vec({2.0, 0.0, 0.0, 0.0})},
+      {"n=6 m=3 implicit forced", big, SignTreatment::kImplicit, Vec({1, -1, 0.5, 0.3, -0.7, 0.2})},
+  };
+}
+
+TEST(StepperAllocation, RepeatedRunsDoNotAllocate) {
+  stepper_test::ReferenceSolver solver;
+  for (const Case& c : Cases()) {
+    for (bool record : {true, false}) {
+      SCOPED_TRACE(std::string(c.name) + (record ? " recorded" : " unrecorded"));
+      LinearStepper stepper(DiscretizeTheta(c.system, 0.05, 1.0, c.sign));
+      StepperOptions options;
+      options.record = record;
+      Trajectory tr;
+      stepper.Run(c.x0, 200, &solver, options, &tr);  // sizes everything
+      const long count = CountAllocations([&] { stepper.Run(c.x0, 200, &solver, options, &tr); });
+      EXPECT_EQ(count, 0);
+      EXPECT_TRUE(tr.ok());
+    }
+  }
+}
+
+TEST(StepperAllocation, RegistryBackendsReport) {
+  for (std::string_view name : SolverNames()) {
+    auto solver = CreateSolver(name);
+    LinearStepper stepper(DiscretizeTheta(stepper_test::MultiSurfaceScene(), 0.02, 1.0, SignTreatment::kImplicit));
+    StepperOptions options;
+    options.record = false;
+    Trajectory tr;
+    stepper.Run(Vec({1.0, -1.0}), 75, solver.get(), options, &tr);
+    const long count = CountAllocations([&] { stepper.Run(Vec({1.0, -1.0}), 75, solver.get(), options, &tr); });
+    std::printf("[ info     ] %-8s S3 75 steps: %ld allocations, status %s\n", std::string(name).c_str(), count,
+                tr.ok() ? "ok" : std::string(ToString(tr.first_failure_status)).c_str());
+  }
+}
+
+}  // namespace
+}  // namespace smcbench

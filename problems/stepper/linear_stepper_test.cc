@@ -1,0 +1,569 @@
+// The time loop against the report's claims (Lemma yahoo on S1, Lemma oups on S2/S3, the period-2 orbit of
+// the explicit Galias–Yu scheme), cross-backend agreement, the rebuild-every-step path, failure handling.
+#include "problems/stepper/linear_stepper.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <memory>
+#include <string>
+
+#include "problems/stepper/metrics.h"
+#include "problems/stepper/stepper_test_util.h"
+#include "solvers/registry/registry.h"
+
+namespace smcbench {
+namespace {
+
+using stepper_test::Vec;
+using ::testing::HasSubstr;
+
+double Clamp1(double v) { return std::min(1.0, std::max(-1.0, v)); }
+
+Trajectory RunImplicit(const LinearSignSystem& sys, double h, double theta, const Vector& x0, double T,
+                       Solver* solver, double tol = 1e-12) {
+  LinearStepper stepper(DiscretizeTheta(sys, h, theta, SignTreatment::kImplicit));
+  StepperOptions options;
+  options.solver.tolerance = tol;
+  return stepper.Run(x0, NumSteps(T, h), solver, options);
+}
+
+// ----------------------------------------------------------------------------------------------------------
+// Lemma (yahoo), S1: x' ∈ −sgn(x), x0 = 1.01. k0 = ⌈|x0|/h⌉ − 1 in exact arithmetic: 1.01/0.2 = 5.05 → 5,
+// 1.01/0.02 = 50.5 → 50, 1.01/0.01 = 101 → 100 (x_100 = h exactly in real arithmetic: the report's ε case).
+
+struct YahooCase {
+  double h;
+  std::int64_t k0;
+};
+
+void CheckLemmaYahoo(const Trajectory& tr, const YahooCase& c, bool exact_s) {
+  const double h = c.h;
+  ASSERT_TRUE(tr.ok()) << tr.first_failure_message;
+  // Arrival: the first k with x_k exactly 0.
+  std::int64_t arrival = -1;
+  for (std::int64_t k = 0; k <= tr.steps_taken; ++k) {
+    if (tr.x(0, k) == 0.0) {
+      arrival = k;
+      break;
+    }
+  }
+  EXPECT_TRUE(arrival == c.k0 + 1 || arrival == c.k0 + 2) << "h " << h << ": arrival at step " << arrival
+                                                          << ", k0 = " << c.k0;
+  ASSERT_GE(arrival, 0);
+  for (std::int64_t k = arrival; k <= tr.steps_taken; ++k) {
+    ASSERT_EQ(tr.x(0, k), 0.0) << "h " << h << ", k " << k;                // exactly 0 from arrival on
+    if (k < tr.steps_taken) {
+      EXPECT_EQ((tr.x(0, k + 1) - tr.x(0, k)) / h, 0.0);  // zero discrete derivative
+    }
+  }
+  for (std::int64_t k = 0; k < tr.steps_taken; ++k) {
+    // s_{k+1} = Π_[−1,1](x_k / h) (`eq:proj1`).
+    const double expected = Clamp1(tr.x(0, k) / h);
+    if (exact_s) {
+      ASSERT_EQ(tr.s(0, k + 1), expected) << "h " << h << ", k " << k;
+    } else {
+      ASSERT_NEAR(tr.s(0, k + 1), expected, 1e-12) << "h " << h << ", k " << k;
+    }
+  }
+  for (std::int64_t k = 1; k <= c.k0; ++k) {
+    EXPECT_EQ(tr.s(0, k), 1.0);
+    EXPECT_NEAR(tr.x(0, k), 1.01 - static_cast<double>(k) * h, 1e-12);
+  }
+}
+
+TEST(LemmaYahoo, ImplicitEulerReachesZeroExactlyAndStays) {
+  stepper_test::ReferenceSolver solver;
+  for (const YahooCase& c : {YahooCase{0.2, 5}, YahooCase{0.02, 50}, YahooCase{0.01, 100}}) {
+    SCOPED_TRACE(c.h);
+    const Trajectory tr = RunImplicit(stepper_test::SignScene(), c.h, 1.0, Vec({1.01}), 2.0, &solver);
+    CheckLemmaYahoo(tr, c, /*exact_s=*/true);
+  }
+}
+
+// The same claim with every registered backend that solves the steps. Exact zero needs s_{k+1} = x_k/h computed
+// as that one division (the reference solver above, an enumeration): then x_k − h·(x_k/h) happens to be 0.0 for
+// these three h. Iterative backends stop at residual |h s − x_k| ≤ tol·(1 + |x_k|) and a warm start is accepted
+// as soon as it meets that, so x settles at the tolerance level instead (measured with tol = 1e-12: lemke
+// 1e-17, psor 7e-14, newton 8e-13, ipopt 7e-14, enum 0). Asserted here: arrival at k0+1 or k0+2 to within
+// 2·tol and staying there, and s_{k+1} = Π(x_k/h) to within 2·tol/h (the residual divided by M = h).
+TEST(LemmaYahoo, HoldsToSolverToleranceWithEveryBackend) {
+  const double tol = 1e-12;
+  for (std::string_view name : SolverNames()) {
+    auto solver = CreateSolver(name);
+    for (const YahooCase& c : {YahooCase{0.2, 5}, YahooCase{0.02, 50}, YahooCase{0.01, 100}}) {
+      SCOPED_TRACE(std::string(name) + " h " + std::to_string(c.h));
+      const Trajectory tr = RunImplicit(stepper_test::SignScene(), c.h, 1.0, Vec({1.01}), 2.0, solver.get(), tol);
+      if (tr.first_failure_status == SolveStatus::kNotApplicable && solver->info().algorithm == "placeholder") {
+        break;
+      }
+      ASSERT_TRUE(tr.ok()) << tr.first_failure_message;
+      std::int64_t arrival = -1;
+      for (std::int64_t k = 0; k <= tr.steps_taken && arrival < 0; ++k) {
+        if (std::abs(tr.x(0, k)) <= 2 * tol) arrival = k;
+      }
+      EXPECT_TRUE(arrival == c.k0 + 1 || arrival == c.k0 + 2) << "arrival " << arrival;
+      ASSERT_GE(arrival, 0);
+      double worst = 0.0;
+      for (std::int64_t k = arrival; k <= tr.steps_taken; ++k) worst = std::max(worst, std::abs(tr.x(0, k)));
+      EXPECT_LE(worst, 2 * tol);
+      for (std::int64_t k = 0; k < tr.steps_taken; ++k) {
+        ASSERT_NEAR(tr.s(0, k + 1), Clamp1(tr.x(0, k) / c.h), 2 * tol / c.h) << "k " << k;
+      }
+      std::printf("[ info     ] %-7s h=%-5g arrival k0+%lld, max |x| after: %.3g\n", std::string(name).c_str(), c.h,
+                  static_cast<long long>(arrival - c.k0), worst);
+    }
+  }
+}
+
+TEST(LemmaYahoo, ExplicitEulerOscillatesWithAmplitudeH) {
+  for (double h : {0.2, 0.02, 0.01}) {
+    SCOPED_TRACE(h);
+    LinearStepper stepper(DiscretizeExplicitEuler(stepper_test::SignScene(), h));
+    const Trajectory tr = stepper.Run(Vec({1.01}), NumSteps(2.0, h) + 20, nullptr);
+    ASSERT_TRUE(tr.ok());
+    // After the transient the state alternates around 0: consecutive states differ by h exactly in sign,
+    // |x_{k+1} − x_k| = h, and the orbit never rests at 0.
+    const std::int64_t start = static_cast<std::int64_t>(std::ceil(1.01 / h)) + 1;
+    ASSERT_LT(start + 4, tr.steps_taken);
+    double lo = kInf, hi = -kInf;
+    for (std::int64_t k = start; k < tr.steps_taken; ++k) {
+      EXPECT_NEAR(std::abs(tr.x(0, k + 1) - tr.x(0, k)), h, 1e-12);
+      EXPECT_EQ(tr.s(0, k + 1), -tr.s(0, k));
+      EXPECT_NE(tr.x(0, k), 0.0);
+      lo = std::min(lo, tr.x(0, k));
+      hi = std::max(hi, tr.x(0, k));
+    }
+    EXPECT_NEAR(hi - lo, h, 1e-12);  // peak to peak = h
+    const TrajectoryMetrics metrics = ComputeMetrics(tr, 1e-12);
+    EXPECT_EQ(metrics.reaching_step, -1);  // never reaches the surface
+    EXPECT_GE(metrics.surfaces[0].sign_changes_total, tr.steps_taken - start - 1);
+  }
+}
+
+// ----------------------------------------------------------------------------------------------------------
+// Lemma (oups) on S2 (Galias–Yu) and S3 (multi-surface): once reached, y stays on the surface. It is not exact
+// zero: y_{k+1} = C(R x_k + p − S s_{k+1}) is evaluated in floating point, so |y| is a few ulps of the terms
+// C R x_k and C S s_{k+1} (each O(‖x_k‖)). We assert |y| ≤ 16 ε · (1 + ‖x_k‖∞ + ‖C‖‖S‖) and no sign change of s.
+
+double OnSurfaceBound(const Trajectory& tr, std::int64_t k, const OneStepData& d) {
+  const double terms = (d.C * d.R).cwiseAbs().rowwise().sum().maxCoeff() * tr.x.col(k - 1).cwiseAbs().maxCoeff() +
+                       (d.C * d.S).cwiseAbs().rowwise().sum().maxCoeff();
+  return 16.0 * 2.220446049250313e-16 * (1.0 + terms);
+}
+
+void CheckStaysOnSurface(const Trajectory& tr, const OneStepData& d, double reach_tol) {
+  const TrajectoryMetrics metrics = ComputeMetrics(tr, reach_tol);
+  for (int i = 0; i < tr.m; ++i) {
+    const SurfaceMetrics& sm = metrics.surfaces[i];
+    ASSERT_GE(sm.reaching_step, 1) << "surface " << i << " never reached";
+    for (std::int64_t k = sm.reaching_step; k <= tr.steps_taken; ++k) {
+      EXPECT_LE(std::abs(tr.y(i, k)), OnSurfaceBound(tr, k, d)) << "surface " << i << ", step " << k;
+    }
+    EXPECT_EQ(sm.sign_changes_after, 0) << "surface " << i;
+  }
+}
+
+TEST(LemmaOups, GaliasYuImplicitStaysOnTheSlidingLine) {
+  stepper_test::ReferenceSolver solver;
+  for (double h : {1.0, 0.3, 0.1, 0.05}) {
+    SCOPED_TRACE(h);
+    const OneStepData d = DiscretizeTheta(stepper_test::GaliasYuScene(), h, 1.0, SignTreatment::kImplicit);
+    LinearStepper stepper(d);
+    StepperOptions options;
+    options.solver.tolerance = 1e-12;
+    const Trajectory tr = stepper.Run(Vec({0.0, 2.21}), NumSteps(10.0, h), &solver, options);
+    ASSERT_TRUE(tr.ok()) << tr.first_failure_message;
+    CheckStaysOnSurface(tr, d, 1e-12);
+    const TrajectoryMetrics metrics = ComputeMetrics(tr, 1e-12);
+    // On the line the control is interior (|s| < 1): the sliding mode, not a switching one.
+    for (std::int64_t k = metrics.reaching_step + 1; k <= tr.steps_taken; ++k) EXPECT_LT(std::abs(tr.s(0, k)), 1.0);
+    // Sliding on x1 + x2 = 0 with x1' = x2 = −x1: monotone decay, no cycle.
+    for (std::int64_t k = metrics.reaching_step + 1; k < tr.steps_taken; ++k) {
+      EXPECT_LE(std::abs(tr.x(0, k + 1)), std::abs(tr.x(0, k)));
+    }
+  }
+}
+
+TEST(LemmaOups, MultiSurfaceReachesFirstSurfaceThenOrigin) {
+  stepper_test::ReferenceSolver solver;
+  const double h = 0.02;
+  const OneStepData d = DiscretizeTheta(stepper_test::MultiSurfaceScene(), h, 1.0, SignTreatment::kImplicit);
+  LinearStepper stepper(d);
+  StepperOptions options;
+  options.solver.tolerance = 1e-12;
+  const Trajectory tr = stepper.Run(Vec({1.0, -1.0}), NumSteps(1.5, h), &solver, options);
+  ASSERT_TRUE(tr.ok()) << tr.first_failure_message;
+  CheckStaysOnSurface(tr, d, 1e-12);
+  const TrajectoryMetrics metrics = ComputeMetrics(tr, 1e-12);
+  // The report's order: x1 + 2x2 = 0 (row 0) first, then 2x1 − x2 = 0, then the origin.
+  EXPECT_LT(metrics.surfaces[0].reaching_step, metrics.surfaces[1].reaching_step);
+  EXPECT_LE(tr.x_final.cwiseAbs().maxCoeff(), 1e-15);
+}
+
+// ----------------------------------------------------------------------------------------------------------
+// Galias–Yu: the explicit Euler scheme at h = 0.3 settles on a period-2 orbit around the sliding line; the
+// implicit one converges without any cycle.
+
+TEST(GaliasYu, ExplicitEulerHasAPeriodTwoOrbitImplicitDoesNot) {
+  const double h = 0.3;
+  LinearStepper explicit_stepper(DiscretizeExplicitEuler(stepper_test::GaliasYuScene(), h));
+  const Trajectory ex = explicit_stepper.Run(Vec({0.0, 2.21}), NumSteps(30.0, h), nullptr);
+  ASSERT_TRUE(ex.ok());
+  const std::int64_t N = ex.steps_taken;
+  // Period 2: x_{N} = x_{N−2} (to rounding), x_{N} ≠ x_{N−1}, with s alternating.
+  EXPECT_LT((ex.x.col(N) - ex.x.col(N - 2)).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_GT((ex.x.col(N) - ex.x.col(N - 1)).cwiseAbs().maxCoeff(), 1e-2);
+  EXPECT_EQ(ex.s(0, N), -ex.s(0, N - 1));
+  EXPECT_NE(ex.y(0, N), 0.0);
+
+  stepper_test::ReferenceSolver solver;
+  const Trajectory im = RunImplicit(stepper_test::GaliasYuScene(), h, 1.0, Vec({0.0, 2.21}), 30.0, &solver);
+  ASSERT_TRUE(im.ok());
+  const std::int64_t M = im.steps_taken;
+  // No cycle: the last steps move by less than the state itself shrinks (monotone approach to the origin).
+  EXPECT_LT((im.x.col(M) - im.x.col(M - 1)).cwiseAbs().maxCoeff(), 1e-3);
+  EXPECT_LT(im.x_final.cwiseAbs().maxCoeff(), 1e-3);
+  EXPECT_EQ(ComputeMetrics(im, 1e-12).surfaces[0].sign_changes_after, 0);
+}
+
+// ----------------------------------------------------------------------------------------------------------
+// S7: on the surface the implicit control cancels the disturbance exactly: s_{k+1} = α sin t_{k+1} (θ = 1).
+
+TEST(Lyapunov, ImplicitControlCancelsTheDisturbanceInsideTheBox) {
+  stepper_test::ReferenceSolver solver;
+  const double h = 0.1;
+  const Trajectory tr = RunImplicit(stepper_test::LyapunovScene(), h, 1.0, Vec({1.0}), 10.0, &solver);
+  ASSERT_TRUE(tr.ok());
+  const TrajectoryMetrics metrics = ComputeMetrics(tr, 1e-12);
+  ASSERT_GE(metrics.reaching_step, 1);
+  for (std::int64_t k = metrics.reaching_step + 1; k <= tr.steps_taken; ++k) {
+    EXPECT_NEAR(tr.s(0, k), 0.1 * std::sin(tr.t[k]), 1e-14);
+    EXPECT_LT(std::abs(tr.s(0, k)), 1.0);
+  }
+}
+
+// ----------------------------------------------------------------------------------------------------------
+// Every registered backend that solves the steps gives the same trajectory (1e-10) as the reference solver.
+
+struct CrossCase {
+  std::string name;
+  LinearModel model;
+  Method method;
+  double h, theta, T;
+  Vector x0;
+};
+
+std::vector<CrossCase> CrossCases() {
+  return {
+      {"S1 h=0.02", stepper_test::SignScene(), Method::kImplicit, 0.02, 1.0, 2.0, Vec({1.01})},
+      {"S2 h=0.3", stepper_test::GaliasYuScene(), Method::kImplicit, 0.3, 1.0, 10.0, Vec({0.0, 2.21})},
+      {"S2 h=0.05", stepper_test::GaliasYuScene(), Method::kImplicit, 0.05, 1.0, 10.0, Vec({0.0, 2.21})},
+      {"S3", stepper_test::MultiSurfaceScene(), Method::kImplicit, 0.02, 1.0, 1.5, Vec({1.0, -1.0})},
+      {"S4", stepper_test::FilippovScene(), Method::kImplicit, 0.002, 1.0, 1.5, Vec({1.0, -1.0})},
+      {"S5 zoh", stepper_test::ZohSisoScene(), Method::kZoh, 0.3, 1.0, 10.0, Vec({0.55, 0.55})},
+      {"S6 zoh", stepper_test::ZohMimoScene(), Method::kZoh, 0.3, 1.0, 10.0, Vec({0.05, -0.5, 0.02})},
+      {"S7", stepper_test::LyapunovScene(), Method::kImplicit, 0.1, 1.0, 10.0, Vec({1.0})},
+      {"S8", stepper_test::ObserverScene(0.001), Method::kImplicit, 0.1, 1.0, 10.0, Vec({2.0, 0.0, 0.0, 0.0})},
+  };
+}
+
+// Distance between two approximate solutions of the same one-step problem. With M's symmetric part ≥ μI, the
+// natural residual bounds the error: ‖z − z*‖ ≤ (1 + ‖M‖)/μ · r(z) (strongly monotone affine VI; Facchinei–Pang
+// 2003, Prop. 6.3.1 style). Backends stop at r ≤ tol·(1 + ‖q‖), so s can only be compared to that scale: at
+// S4's h = 0.002, M = hB and (1 + ‖M‖)/μ ≈ 500. The state x = … − S s is compared at 1e-10 directly.
+double SComparisonTolerance(const LinearStepper& stepper) {
+  const DenseMatrix& M = stepper.problem().dense_matrix();
+  const DenseMatrix sym = 0.5 * (M + M.transpose());
+  const double mu = Eigen::SelfAdjointEigenSolver<DenseMatrix>(sym).eigenvalues().minCoeff();
+  EXPECT_GT(mu, 0.0) << "the comparison assumes a strongly monotone one-step problem";
+  return 1e-10 * (1.0 + M.cwiseAbs().rowwise().sum().maxCoeff()) / mu;
+}
+
+double MaxDifference(const DenseMatrix& a, const DenseMatrix& b) {
+  if (a.rows() != b.rows() || a.cols() != b.cols()) return kInf;
+  return (a - b).cwiseAbs().maxCoeff();
+}
+
+TEST(CrossBackend, EverySolvingBackendGivesTheSameTrajectory) {
+  StepperOptions options;
+  options.solver.tolerance = 1e-12;
+  for (const CrossCase& c : CrossCases()) {
+    SCOPED_TRACE(c.name);
+    LinearStepper stepper(Discretize(c.model, c.method, c.h, c.theta));
+    stepper_test::ReferenceSolver reference;
+    const Trajectory ref = stepper.Run(c.x0, NumSteps(c.T, c.h), &reference, options);
+    ASSERT_TRUE(ref.ok()) << ref.first_failure_message;
+    const double s_tol = SComparisonTolerance(stepper);
+    for (std::string_view name : SolverNames()) {
+      auto solver = CreateSolver(name);
+      const Trajectory tr = stepper.Run(c.x0, NumSteps(c.T, c.h), solver.get(), options);
+      if (tr.first_failure_status == SolveStatus::kNotApplicable && solver->info().algorithm == "placeholder") {
+        std::printf("[ skipped  ] %s on %s: placeholder backend\n", std::string(name).c_str(), c.name.c_str());
+        continue;
+      }
+      if (!tr.ok()) {
+        // A backend that cannot solve some step is reported, not compared; the trajectory claim is about
+        // backends that solve every step.
+        std::printf("[ note     ] %s on %s: step %lld %s (residual %.3g): %s\n", std::string(name).c_str(),
+                    c.name.c_str(), static_cast<long long>(tr.first_failed_step),
+                    std::string(ToString(tr.first_failure_status)).c_str(), tr.first_failure_residual,
+                    tr.first_failure_message.c_str());
+        continue;
+      }
+      EXPECT_LE(MaxDifference(tr.x, ref.x), 1e-10) << name;
+      EXPECT_LE(MaxDifference(tr.y, ref.y), 1e-10) << name;
+      EXPECT_LE(MaxDifference(tr.s, ref.s), s_tol) << name;
+      EXPECT_LE(tr.max_residual, 1e-12) << name;
+    }
+  }
+}
+
+// ----------------------------------------------------------------------------------------------------------
+// The rebuild-every-step path computes the same trajectory; the dynamic kernel matches the fixed-size ones.
+
+TEST(RebuildEveryStep, MatchesThePrefactoredPath) {
+  StepperOptions options;
+  options.solver.tolerance = 1e-12;
+  for (const CrossCase& c : CrossCases()) {
+    SCOPED_TRACE(c.name);
+    for (Method method : {c.method, c.method == Method::kZoh ? Method::kZohExplicit : Method::kExplicit}) {
+      const double theta = method == Method::kExplicit ? 0.0 : c.theta;
+      if (c.name == "S8" && method == Method::kExplicit) continue;  // explicit S8 at h = 0.1 blows up (τ = 0.001)
+      stepper_test::ReferenceSolver reference;
+      LinearStepper stepper(Discretize(c.model, method, c.h, theta));
+      EXPECT_TRUE(stepper.uses_fixed_size_kernel());
+      const std::int64_t N = NumSteps(c.T, c.h);
+      const Trajectory fast = stepper.Run(c.x0, N, &reference, options);
+      Trajectory slow;
+      SimulateRebuildingEachStep(c.model, method, c.h, theta, c.x0, N, &reference, options, &slow);
+      ASSERT_TRUE(fast.ok());
+      ASSERT_TRUE(slow.ok());
+      const double scale = 1.0 + fast.x.cwiseAbs().maxCoeff();
+      EXPECT_LE(MaxDifference(fast.x, slow.x), 1e-12 * scale) << ToString(method);
+      EXPECT_LE(MaxDifference(fast.s, slow.s), 1e-10) << ToString(method);
+      EXPECT_EQ(fast.t, slow.t);
+    }
+  }
+}
+
+TEST(DynamicKernel, MatchesRebuildPathForLargeSystems) {
+  // n = 6, m = 3: served by the dynamic kernel. Three copies of S3-like blocks with a weak coupling.
+  LinearSignSystem s;
+  s.E = -0.1 * DenseMatrix::Identity(6, 6);
+  s.E(0, 5) = 0.2;
+  s.E(3, 1) = -0.3;
+  s.B = DenseMatrix::Zero(6, 3);
+  s.B(0, 0) = 1, s.B(1, 0) = 2, s.B(2, 1) = 1, s.B(3, 1) = -1, s.B(4, 2) = 2, s.B(5, 2) = 1;
+  s.C = s.B.transpose();
+  s.D = Vec({0.1, -0.2, 0.0});
+  s.forcing = [](double t, Eigen::Ref<Vector> g) { g.setConstant(0.05 * std::cos(t)); };
+  const Vector x0 = Vec({1, -1, 0.5, 0.3, -0.7, 0.2});
+  StepperOptions options;
+  options.solver.tolerance = 1e-12;
+  stepper_test::ReferenceSolver reference;
+  LinearStepper stepper(DiscretizeTheta(s, 0.05, 0.5, SignTreatment::kImplicit));
+  EXPECT_FALSE(stepper.uses_fixed_size_kernel());
+  const Trajectory fast = stepper.Run(x0, 100, &reference, options);
+  Trajectory slow;
+  SimulateRebuildingEachStep(s, Method::kImplicit, 0.05, 0.5, x0, 100, &reference, options, &slow);
+  ASSERT_TRUE(fast.ok());
+  ASSERT_TRUE(slow.ok());
+  EXPECT_LE(MaxDifference(fast.x, slow.x), 1e-12);
+  EXPECT_LE(MaxDifference(fast.s, slow.s), 1e-10);
+  EXPECT_LE(MaxDifference(fast.y, slow.y), 1e-12);
+  EXPECT_LE(fast.max_residual, 1e-12);
+}
+
+// ----------------------------------------------------------------------------------------------------------
+// Trajectory layout and bookkeeping.
+
+TEST(LinearStepper, TrajectoryLayout) {
+  stepper_test::ReferenceSolver solver;
+  const double h = 0.3;
+  LinearStepper stepper(DiscretizeTheta(stepper_test::GaliasYuScene(), h, 1.0, SignTreatment::kImplicit));
+  StepperOptions options;
+  options.t0 = 1.0;
+  const Trajectory tr = stepper.Run(Vec({0.0, 2.21}), 5, &solver, options);
+  ASSERT_EQ(tr.steps_taken, 5);
+  EXPECT_EQ(tr.x.cols(), 6);
+  EXPECT_EQ(tr.s.cols(), 6);
+  EXPECT_EQ(tr.t.size(), 6u);
+  EXPECT_EQ(tr.t[0], 1.0);
+  EXPECT_DOUBLE_EQ(tr.t[5], 2.5);
+  EXPECT_EQ(tr.s(0, 0), 0.0);             // no step produced x_0
+  EXPECT_EQ(tr.status[0], SolveStatus::kNotRun);
+  EXPECT_EQ(tr.iterations[0], 0);
+  const OneStepData& d = stepper.data();
+  for (int k = 0; k < 5; ++k) {
+    // Row k+1 holds the s_{k+1} that produced x_{k+1} = R x_k + p − S s_{k+1}, and y = C x + D.
+    const Vector x_next = d.R * tr.x.col(k) + d.p - d.S * tr.s.col(k + 1);
+    EXPECT_LT((tr.x.col(k + 1) - x_next).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_LT((tr.y.col(k + 1) - (d.C * tr.x.col(k + 1) + d.D)).cwiseAbs().maxCoeff(), 1e-15);
+    EXPECT_EQ(tr.status[k + 1], SolveStatus::kSolved);
+    EXPECT_GT(tr.iterations[k + 1], 0);
+    // Independent check of the one-step problem: s_{k+1} ∈ Sgn(y_{k+1}).
+    const double s = tr.s(0, k + 1), y = tr.y(0, k + 1);
+    if (std::abs(s) < 1.0 - 1e-12) {
+      EXPECT_LT(std::abs(y), 1e-12);
+    } else if (s == 1.0) {
+      EXPECT_GE(y, -1e-12);
+    } else {
+      EXPECT_EQ(s, -1.0);
+      EXPECT_LE(y, 1e-12);
+    }
+  }
+  EXPECT_EQ(tr.x_final, Vector(tr.x.col(5)));
+  EXPECT_EQ(tr.s_final, Vector(tr.s.col(5)));
+  EXPECT_EQ(tr.total_iterations, 5 * 3);  // the reference solver reports 3^m per solve
+  // The problem's M is C S, built once.
+  EXPECT_EQ(stepper.problem().dense_matrix(), d.C * d.S);
+}
+
+TEST(LinearStepper, UnrecordedRunKeepsFinalStateAndCounters) {
+  stepper_test::ReferenceSolver solver;
+  LinearStepper stepper(DiscretizeTheta(stepper_test::MultiSurfaceScene(), 0.02, 1.0, SignTreatment::kImplicit));
+  const Trajectory full = stepper.Run(Vec({1.0, -1.0}), 75, &solver);
+  StepperOptions options;
+  options.record = false;
+  const Trajectory bare = stepper.Run(Vec({1.0, -1.0}), 75, &solver, options);
+  EXPECT_FALSE(bare.recorded);
+  EXPECT_EQ(bare.x.cols(), 0);
+  EXPECT_EQ(bare.x_final, full.x_final);
+  EXPECT_EQ(bare.s_final, full.s_final);
+  EXPECT_EQ(bare.y_final, full.y_final);
+  EXPECT_EQ(bare.total_iterations, full.total_iterations);
+  EXPECT_EQ(bare.max_residual, full.max_residual);
+  EXPECT_THAT([&] { ComputeMetrics(bare, 1e-9); },
+              ::testing::ThrowsMessage<InvalidInputError>(HasSubstr("not recorded")));
+}
+
+TEST(LinearStepper, ColdStartGivesTheSameTrajectory) {
+  stepper_test::ReferenceSolver solver;
+  LinearStepper stepper(DiscretizeTheta(stepper_test::GaliasYuScene(), 0.1, 1.0, SignTreatment::kImplicit));
+  StepperOptions options;
+  const Trajectory warm = stepper.Run(Vec({0.0, 2.21}), 100, &solver, options);
+  options.warm_start = false;
+  const Trajectory cold = stepper.Run(Vec({0.0, 2.21}), 100, &solver, options);
+  EXPECT_EQ(warm.x, cold.x);
+}
+
+TEST(LinearStepper, ZeroStepsReturnsTheInitialState) {
+  LinearStepper stepper(DiscretizeExplicitEuler(stepper_test::SignScene(), 0.1));
+  const Trajectory tr = stepper.Run(Vec({0.5}), 0, nullptr);
+  EXPECT_TRUE(tr.ok());
+  EXPECT_EQ(tr.steps_taken, 0);
+  EXPECT_EQ(tr.x.cols(), 1);
+  EXPECT_EQ(tr.x_final[0], 0.5);
+  EXPECT_EQ(tr.y_final[0], 0.5);
+}
+
+// ----------------------------------------------------------------------------------------------------------
+// Failures: a status in the trajectory, never an exception.
+
+// Fails (kIterationLimit, z = Π(0)) on the calls listed, otherwise delegates to the reference solver.
+class FailingSolver final : public Solver {
+ public:
+  explicit FailingSolver(std::vector<int> failing_calls) : failing_(std::move(failing_calls)) {}
+  const SolverInfo& info() const override { return reference_.info(); }
+
+ protected:
+  void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override {
+    ++calls_;
+    if (std::find(failing_.begin(), failing_.end(), calls_) != failing_.end()) {
+      result->z.setZero();
+      result->iterations = 7;
+      result->status = SolveStatus::kIterationLimit;
+      result->message = "test: budget exhausted";
+      return;
+    }
+    SolveResult inner;
+    reference_.Solve(problem, options, &inner);
+    result->z = inner.z;
+    result->iterations = inner.iterations;
+    result->status = inner.status;
+  }
+
+ private:
+  std::vector<int> failing_;
+  int calls_ = 0;
+  stepper_test::ReferenceSolver reference_;
+};
+
+TEST(LinearStepper, StopsOnTheFirstFailedStepByDefault) {
+  FailingSolver solver({3});
+  LinearStepper stepper(DiscretizeTheta(stepper_test::SignScene(), 0.2, 1.0, SignTreatment::kImplicit));
+  const Trajectory tr = stepper.Run(Vec({1.01}), 10, &solver);
+  EXPECT_FALSE(tr.ok());
+  EXPECT_TRUE(tr.stopped_early);
+  EXPECT_EQ(tr.steps_taken, 3);
+  EXPECT_EQ(tr.first_failed_step, 3);
+  EXPECT_EQ(tr.first_failure_status, SolveStatus::kIterationLimit);
+  EXPECT_EQ(tr.first_failure_message, "test: budget exhausted");
+  EXPECT_GT(tr.first_failure_residual, 0.0);
+  EXPECT_EQ(tr.failed_steps, 1);
+  EXPECT_EQ(tr.x.cols(), 4);
+  EXPECT_EQ(tr.status.size(), 4u);
+  EXPECT_EQ(tr.status[3], SolveStatus::kIterationLimit);
+  EXPECT_EQ(tr.iterations[3], 7);
+}
+
+TEST(LinearStepper, ContinuesPastFailuresWhenAsked) {
+  FailingSolver solver({3, 5});
+  LinearStepper stepper(DiscretizeTheta(stepper_test::SignScene(), 0.2, 1.0, SignTreatment::kImplicit));
+  StepperOptions options;
+  options.on_failure = FailurePolicy::kContinue;
+  const Trajectory tr = stepper.Run(Vec({1.01}), 10, &solver, options);
+  EXPECT_FALSE(tr.ok());
+  EXPECT_FALSE(tr.stopped_early);
+  EXPECT_EQ(tr.steps_taken, 10);
+  EXPECT_EQ(tr.failed_steps, 2);
+  EXPECT_EQ(tr.first_failed_step, 3);
+  EXPECT_EQ(tr.status[5], SolveStatus::kIterationLimit);
+  EXPECT_EQ(tr.status[4], SolveStatus::kSolved);
+  EXPECT_EQ(ComputeMetrics(tr, 1e-12).failed_steps, 2);
+}
+
+TEST(LinearStepper, OverflowStopsWithDiverged) {
+  // S8 with θ = 0 at h = 0.1, τ = 0.001: h/τ = 100, the explicit f blows up.
+  LinearStepper stepper(DiscretizeTheta(stepper_test::ObserverScene(0.001), 0.1, 0.0, SignTreatment::kExplicit));
+  StepperOptions options;
+  options.on_failure = FailurePolicy::kContinue;  // overflow stops regardless
+  const Trajectory tr = stepper.Run(Vec({2.0, 0.0, 0.0, 0.0}), 100000, nullptr, options);
+  EXPECT_FALSE(tr.ok());
+  EXPECT_TRUE(tr.stopped_early);
+  EXPECT_LT(tr.steps_taken, 100000);
+  EXPECT_TRUE(tr.first_failure_status == SolveStatus::kDiverged ||
+              tr.first_failure_status == SolveStatus::kNumericalFailure);
+  EXPECT_THAT(tr.first_failure_message, HasSubstr("is not finite"));
+}
+
+TEST(LinearStepper, RejectsBadRunArguments) {
+  stepper_test::ReferenceSolver solver;
+  LinearStepper stepper(DiscretizeTheta(stepper_test::GaliasYuScene(), 0.1, 1.0, SignTreatment::kImplicit));
+  const auto expect = [](auto fn, const std::string& fragment) {
+    EXPECT_THAT(fn, ::testing::ThrowsMessage<InvalidInputError>(HasSubstr(fragment)));
+  };
+  expect([&] { stepper.Run(Vec({1.0}), 10, &solver); }, "LinearStepper::Run: x0 has size 1 but must have size 2");
+  expect([&] { stepper.Run(Vec({1.0, NAN}), 10, &solver); }, "x0[1] is NaN");
+  expect([&] { stepper.Run(Vec({1.0, 0.0}), -1, &solver); }, "num_steps must be >= 0");
+  expect([&] { stepper.Run(Vec({1.0, 0.0}), 10, nullptr); }, "solver is null");
+  StepperOptions bad;
+  bad.solver.tolerance = 0.0;
+  expect([&] { stepper.Run(Vec({1.0, 0.0}), 10, &solver, bad); }, "tolerance must be");
+  bad = StepperOptions{};
+  bad.t0 = NAN;
+  expect([&] { stepper.Run(Vec({1.0, 0.0}), 10, &solver, bad); }, "t0 must be finite");
+  Trajectory out;
+  expect([&] { SimulateRebuildingEachStep(stepper_test::GaliasYuScene(), Method::kImplicit, -0.1, 1.0,
+                                          Vec({1.0, 0.0}), 10, &solver, {}, &out); },
+         "h must be");
+  expect([&] { SimulateRebuildingEachStep(stepper_test::GaliasYuScene(), Method::kImplicit, 0.1, 2.0,
+                                          Vec({1.0, 0.0}), 10, &solver, {}, &out); },
+         "theta must lie in [0, 1]");
+}
+
+}  // namespace
+}  // namespace smcbench

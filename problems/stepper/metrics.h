@@ -1,0 +1,63 @@
+// Sliding-surface accuracy metrics of a recorded run (issue 3's JSON summary) and error norms against an exact
+// solution (the report's `eq:trivial-conv1`, with its "∞-norm" read as the max, not the sum it prints).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "problems/stepper/trajectory.h"
+
+namespace smcbench {
+
+// One sliding surface y_i = C_i x + D_i. "After reaching" means the recorded steps k ≥ reaching_step.
+struct SurfaceMetrics {
+  // First k such that |y_i,j| ≤ tol for every recorded j ≥ k; −1 if |y_i| > tol at the last step (never reached).
+  std::int64_t reaching_step = -1;
+  double max_abs_y_after = 0.0;        // max_{j ≥ reaching_step} |y_i,j| (0 if never reached)
+  // Sign changes of s_i: a nonzero s_i,j whose sign differs from the last nonzero s_i before it (so 1, 0, −1
+  // counts once); rows j ≥ 1 only (row 0 holds no step's s).
+  std::int64_t sign_changes_after = 0; // among rows j > reaching_step
+  double total_variation_after = 0.0;  // Σ_{j > reaching_step} |s_i,j − s_i,j−1|
+  std::int64_t sign_changes_total = 0; // over rows 1..N
+  double total_variation_total = 0.0;  // Σ_{j=2..N} |s_i,j − s_i,j−1|
+};
+
+struct TrajectoryMetrics {
+  double tolerance = 0.0;
+  std::vector<SurfaceMetrics> surfaces;  // one per row of C
+  // All surfaces at once: max over i of reaching_step, −1 if any surface is never reached.
+  std::int64_t reaching_step = -1;
+  double max_residual = 0.0;             // max relative natural residual of the one-step problems
+  std::int64_t total_iterations = 0;
+  int max_iterations = 0;
+  std::int64_t failed_steps = 0;
+};
+
+// Throws InvalidInputError if the trajectory was not recorded or tol < 0 / NaN.
+TrajectoryMetrics ComputeMetrics(const Trajectory& trajectory, double tol);
+
+// Discrete error norms of e_k = ‖f_k − f(t_k)‖∞ (∞-norm over components):
+//   l1 = h Σ_k e_k,  l2 = (h Σ_k e_k²)^½,  max = max_k e_k.
+struct ErrorNorms {
+  double l1 = 0.0;
+  double l2 = 0.0;
+  double max = 0.0;
+};
+
+// The exact solution, either part optional (null: not compared). Each callback writes into a pre-sized vector.
+struct ExactSolution {
+  std::function<void(double t, Eigen::Ref<Vector> x)> x;
+  std::function<void(double t, Eigen::Ref<Vector> s)> s;
+};
+
+struct SolutionErrors {
+  std::optional<ErrorNorms> x;  // over rows k = 0..N
+  std::optional<ErrorNorms> s;  // over rows k = 1..N: s_k (the value on (t_{k−1}, t_k]) against s(t_k)
+};
+
+// Throws InvalidInputError if the trajectory was not recorded.
+SolutionErrors ComputeErrors(const Trajectory& trajectory, const ExactSolution& exact);
+
+}  // namespace smcbench

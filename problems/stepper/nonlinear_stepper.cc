@@ -1,0 +1,543 @@
+#include "problems/stepper/nonlinear_stepper.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+#include <utility>
+
+#include "problems/stepper/validation.h"
+
+namespace smcbench {
+
+using stepper_detail::Fail;
+using stepper_detail::Num;
+
+// ------------------------------------------------------------------------------------------------------------
+// Scheme and options
+
+void NonlinearScheme::Validate() const {
+  constexpr const char* kOwner = "NonlinearScheme";
+  stepper_detail::CheckStep(kOwner, h);
+  if (!(theta >= 0.0 && theta <= 1.0)) Fail(kOwner, "theta must be in [0, 1], got " + Num(theta));
+  if (!(gamma >= 0.0 && gamma <= 1.0)) Fail(kOwner, "gamma must be in [0, 1], got " + Num(gamma));
+  if (!(rho >= 0.0) || !std::isfinite(rho)) Fail(kOwner, "rho must be finite and >= 0, got " + Num(rho));
+}
+
+std::string NonlinearScheme::Description() const {
+  return "theta=" + Num(theta) + ", gamma=" + Num(gamma) + ", rho=" + Num(rho) +
+         (sign == SignTreatment::kImplicit ? ", implicit sign" : ", explicit sign");
+}
+
+std::string_view ToString(NonlinearAlgorithm algorithm) {
+  switch (algorithm) {
+    case NonlinearAlgorithm::kMcp: return "mcp";
+    case NonlinearAlgorithm::kNewtonMlcp: return "newton-mlcp";
+  }
+  return "unknown";
+}
+
+std::optional<NonlinearAlgorithm> NonlinearAlgorithmFromString(std::string_view name) {
+  if (name == "mcp") return NonlinearAlgorithm::kMcp;
+  if (name == "newton-mlcp") return NonlinearAlgorithm::kNewtonMlcp;
+  return std::nullopt;
+}
+
+bool NonlinearStepperOptions::IsValid(std::string* why) const {
+  if (!stepper.IsValid(why)) return false;
+  if (!(newton_tolerance > 0.0) || !std::isfinite(newton_tolerance)) {
+    if (why) *why = "newton_tolerance must be a positive finite number, got " + Num(newton_tolerance);
+    return false;
+  }
+  if (newton_max_iterations < 1) {
+    if (why) *why = "newton_max_iterations must be >= 1, got " + std::to_string(newton_max_iterations);
+    return false;
+  }
+  if (algorithm != NonlinearAlgorithm::kMcp && algorithm != NonlinearAlgorithm::kNewtonMlcp) {
+    if (why) *why = "algorithm is not one of mcp, newton-mlcp";
+    return false;
+  }
+  return true;
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// OneStepMCP
+
+namespace {
+
+// The bounds of `eq:MCP3`: x free, s ∈ [−1, 1]. Each validates system and scheme first (the MCP base is
+// constructed before any member, and the two calls may run in either order).
+Vector OneStepBound(const NonlinearSignSystem& system, const NonlinearScheme& scheme, bool upper) {
+  system.Validate();
+  scheme.Validate();
+  Vector b(system.n + system.m);
+  b.head(system.n).setConstant(upper ? kInf : -kInf);
+  b.tail(system.m).setConstant(upper ? 1.0 : -1.0);
+  return b;
+}
+
+}  // namespace
+
+OneStepMCP::OneStepMCP(NonlinearSignSystem system, const NonlinearScheme& scheme)
+    : MCP(OneStepBound(system, scheme, false), OneStepBound(system, scheme, true), "one-step eq:MCP3"),
+      system_(std::move(system)),
+      scheme_(scheme) {
+  const int n = system_.n, m = system_.m;
+  x_k_ = Vector::Zero(n);
+  x_.resize(n), s_.resize(m), x_theta_.resize(n), x_gamma_.resize(n), f_.resize(n), y_.resize(m);
+  zero_ = Vector::Zero(n + m);
+  F0_.resize(n + m);
+  G_.resize(n, m), Jf_.resize(n, n), Jg_.resize(n, n), H_.resize(m, n);
+}
+
+void OneStepMCP::SetStep(double t_k, const Vector& x_k) {
+  t_k_ = t_k;
+  x_k_ = x_k;
+}
+
+void OneStepMCP::Blend(const Eigen::Ref<const Vector>& x) const {
+  const double theta = scheme_.theta, gamma = scheme_.gamma;
+  x_theta_ = theta * x + (1.0 - theta) * x_k_;
+  x_gamma_ = gamma * x + (1.0 - gamma) * x_k_;
+}
+
+void OneStepMCP::Evaluate(const Vector& z, Vector* F) const {
+  const int n = system_.n, m = system_.m;
+  const double h = scheme_.h;
+  // t_{k+θ} = θ t_{k+1} + (1 − θ) t_k.
+  const double t_theta = t_k_ + scheme_.theta * h;
+  x_ = z.head(n);
+  s_ = z.tail(m);
+  Blend(x_);
+  // R(x, s) = (1 + hρ)(x − x_k) − h f(x_{k+θ}, t_{k+θ}) + h g(x_{k+γ}) s   (`eq:NL3` with the ρ-shift of `neuf`).
+  auto R = F->head(n);
+  R = (1.0 + h * scheme_.rho) * (x_ - x_k_);
+  if (system_.f) {
+    system_.f(t_theta, x_theta_, f_);
+    R.noalias() -= h * f_;
+  }
+  system_.g(x_gamma_, G_);
+  R.noalias() += (h * G_) * s_;
+  system_.h(x_, y_);
+  F->tail(m) = -y_;
+}
+
+void OneStepMCP::JacobianDense(const Vector& z, DenseMatrix* J) const {
+  const int n = system_.n, m = system_.m;
+  const double h = scheme_.h;
+  const double t_theta = t_k_ + scheme_.theta * h;
+  if (J->rows() != n + m || J->cols() != n + m) J->resize(n + m, n + m);
+  x_ = z.head(n);
+  s_ = z.tail(m);
+  Blend(x_);
+  // `eq:JacMCLP`: [[(1 + hρ) I − hθ ∇f + hγ ∇g·s, h g], [−∇h, 0]].
+  auto Jxx = J->topLeftCorner(n, n);
+  Jxx.setIdentity();
+  Jxx *= 1.0 + h * scheme_.rho;
+  if (system_.f) {
+    system_.f_jacobian(t_theta, x_theta_, Jf_);
+    Jxx.noalias() -= (h * scheme_.theta) * Jf_;
+  }
+  if (system_.g_jacobian_s) {
+    system_.g_jacobian_s(x_gamma_, s_, Jg_);
+    Jxx.noalias() += (h * scheme_.gamma) * Jg_;
+  }
+  system_.g(x_gamma_, G_);
+  J->topRightCorner(n, m) = h * G_;
+  system_.h_jacobian(x_, H_);
+  J->bottomLeftCorner(m, n) = -H_;
+  J->bottomRightCorner(m, m).setZero();
+}
+
+double OneStepMCP::ResidualScale() const {
+  // Same rule as Solver::Solve(const MCP&): Π_[l,u](0) = (0, 0) here (x free, 0 ∈ [−1, 1]).
+  Evaluate(zero_, &F0_);
+  const double scale = 1.0 + F0_.cwiseAbs().maxCoeff();
+  return std::isfinite(scale) ? scale : 1.0;
+}
+
+void OneStepMCP::Linearize(const Vector& x, const Vector& s, DenseMatrix* M, DenseMatrix* G, Vector* r, Vector* y,
+                           DenseMatrix* H) const {
+  const double h = scheme_.h;
+  const double t_theta = t_k_ + scheme_.theta * h;
+  Blend(x);
+  // M_α = (1 + hρ) I − hθ ∇f(x_{k+θ}, t_{k+θ}) + hγ ∇g(x_{k+γ})·s^α   (`eq:NL9`).
+  M->setIdentity();
+  *M *= 1.0 + h * scheme_.rho;
+  // r_α = (1 + hρ)(x_k − x^α) + h f(x^α_{k+θ}, t_{k+θ}) = −R(x^α, 0).
+  *r = (1.0 + h * scheme_.rho) * (x_k_ - x);
+  if (system_.f) {
+    system_.f(t_theta, x_theta_, f_);
+    r->noalias() += h * f_;
+    system_.f_jacobian(t_theta, x_theta_, Jf_);
+    M->noalias() -= (h * scheme_.theta) * Jf_;
+  }
+  if (system_.g_jacobian_s) {
+    system_.g_jacobian_s(x_gamma_, s, Jg_);
+    M->noalias() += (h * scheme_.gamma) * Jg_;
+  }
+  system_.g(x_gamma_, *G);
+  system_.h(x, *y);
+  system_.h_jacobian(x, *H);
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// The stepper
+
+struct NonlinearStepper::Workspace {
+  Workspace(NonlinearSignSystem system, const NonlinearScheme& scheme)
+      : mcp(std::move(system), scheme), lu(mcp.n()) {
+    const int n = mcp.n(), m = mcp.m();
+    x.resize(n), xn.resize(n), xa.resize(n), r.resize(n), v.resize(n);
+    s.resize(m), sn.resize(m), sa.resize(m), y.resize(m), b.resize(m), q.resize(m);
+    l = Vector::Constant(m, -1.0);
+    u = Vector::Constant(m, 1.0);
+    z.resize(n + m), F.resize(n + m);
+    Mx.resize(n, n), G.resize(n, m), V.resize(n, m), H.resize(m, n), W.resize(m, m);
+  }
+
+  // What one step produced. message is written only on failure (allocation off the hot path).
+  struct Step {
+    SolveStatus status = SolveStatus::kNotRun;
+    int backend_iterations = 0;
+    int newton_iterations = 0;
+    double residual = 0.0;
+  };
+
+  void StepMcp(std::int64_t k, Solver* solver, const NonlinearStepperOptions& options, Step* step);
+  void StepNewton(std::int64_t k, Solver* solver, bool implicit, const NonlinearStepperOptions& options,
+                  Step* step);
+
+  OneStepMCP mcp;
+  Eigen::PartialPivLU<DenseMatrix> lu;
+  Vector x, xn, xa, r, v;       // n
+  Vector s, sn, sa, y, b, q;    // m
+  Vector l, u;                  // the relay box of the MLCP
+  Vector z, F;                  // n + m
+  DenseMatrix Mx, G, V, H, W;
+  SolverOptions solver_options;
+  SolveResult result;
+  std::string message;
+  NewtonStats stats;
+};
+
+namespace {
+
+constexpr const char* kRunOwner = "NonlinearStepper::Run";
+
+void CheckFiniteOutput(const char* what, const DenseMatrix& A) {
+  stepper_detail::CheckFinite(kRunOwner, what, A);
+}
+
+}  // namespace
+
+// Algorithm 1: the MCP `eq:MCP3` solved by the backend, warm-started from (x_k, s_k).
+void NonlinearStepper::Workspace::StepMcp(std::int64_t k, Solver* solver, const NonlinearStepperOptions& options,
+                                          Step* step) {
+  const int n = mcp.n(), m = mcp.m();
+  if (options.stepper.warm_start) {
+    solver_options.warm_start.head(n) = x;
+    solver_options.warm_start.tail(m) = s;
+  }
+  solver->Solve(mcp, solver_options, &result);
+  xn = result.z.head(n);
+  sn = result.z.tail(m);
+  step->status = result.status;
+  step->backend_iterations = result.iterations;
+  step->newton_iterations = 0;
+  step->residual = result.residual_rel;
+  if (!result.solved()) {
+    message = "step " + std::to_string(k) + ": MCP backend '" + std::string(result.solver) + "' returned " +
+              std::string(ToString(result.status)) + " (relative residual " + Num(result.residual_rel) + ")";
+    if (!result.message.empty()) message += ": " + result.message;
+  }
+}
+
+// Algorithm 2 (implicit) or Newton's method on the smooth step equation (explicit sign, s fixed to sgn(y_k)).
+void NonlinearStepper::Workspace::StepNewton(std::int64_t k, Solver* solver, bool implicit,
+                                             const NonlinearStepperOptions& options, Step* step) {
+  const int n = mcp.n(), m = mcp.m();
+  const double h = mcp.scheme().h;
+  const double tol = options.newton_tolerance;
+  const int budget = options.newton_max_iterations;
+  step->backend_iterations = 0;
+  step->newton_iterations = 0;
+
+  z.head(n) = x;
+  if (implicit) {
+    z.tail(m) = s;  // s^0 = s_k (`Algo:EulerSliding-MCLP`)
+  } else {
+    // Explicit sign: s_{k+1} = sgn(y_k), sgn(0) := 0.
+    for (int i = 0; i < m; ++i) z[n + i] = y[i] > 0.0 ? 1.0 : (y[i] < 0.0 ? -1.0 : 0.0);
+  }
+  const double scale = mcp.ResidualScale();
+  // The merit: the natural residual of OneStepMCP (implicit), or ‖R‖∞ of the x rows (explicit: s is not a
+  // complementarity variable there).
+  const auto merit = [&]() {
+    if (implicit) return mcp.NaturalResidual(z, &F, scale).rel;
+    mcp.Evaluate(z, &F);
+    const double a = F.head(n).cwiseAbs().maxCoeff();
+    return std::isnan(a) ? kInf : a / scale;
+  };
+  double res = merit();
+  const auto finish = [&](SolveStatus status) {
+    xn = z.head(n);
+    sn = z.tail(m);
+    step->status = status;
+    step->residual = res;
+  };
+  if (res <= tol) return finish(SolveStatus::kSolved);  // (x_k, s_k) already solves the step: nothing to do
+
+  for (int it = 1; it <= budget; ++it) {
+    xa = z.head(n);
+    sa = z.tail(m);
+    mcp.Linearize(xa, sa, &Mx, &G, &r, &y, &H);
+    step->newton_iterations = it;
+    if (!Mx.allFinite() || !G.allFinite() || !r.allFinite() || !y.allFinite() || !H.allFinite()) {
+      res = kInf;
+      message = "step " + std::to_string(k) + ", Newton iteration " + std::to_string(it) +
+                ": f, g, h or a Jacobian is not finite at the iterate";
+      return finish(SolveStatus::kNumericalFailure);
+    }
+    lu.compute(Mx);
+    // Rank test on the pivots of the partial-pivoting LU (no allocation, unlike rcond()).
+    const auto pivots = lu.matrixLU().diagonal().cwiseAbs();
+    const double largest = std::max(pivots.maxCoeff(), Mx.cwiseAbs().maxCoeff());
+    if (!(pivots.minCoeff() > n * std::numeric_limits<double>::epsilon() * largest)) {
+      message = "step " + std::to_string(k) + ", Newton iteration " + std::to_string(it) +
+                ": M = (1+h*rho) I - h*theta*grad f + h*gamma*grad g.s is singular (smallest pivot " +
+                Num(pivots.minCoeff()) + ", largest " + Num(largest) + ")";
+      return finish(SolveStatus::kSingular);
+    }
+    V = lu.solve(G);  // M_α⁻¹ g
+    v = lu.solve(r);  // M_α⁻¹ r_α
+    if (implicit) {
+      // `eq:NL15`: W = h ∇h M⁻¹ g, b = h(x^α) + ∇h M⁻¹ r_α; the box-MLCP has M = W, q = −b on [−1, 1]ᵐ.
+      W.noalias() = h * (H * V);
+      b = y;
+      b.noalias() += H * v;
+      q = -b;
+      if (!W.allFinite() || !q.allFinite()) {
+        res = kInf;
+        message = "step " + std::to_string(k) + ", Newton iteration " + std::to_string(it) +
+                  ": the MLCP data W, b are not finite";
+        return finish(SolveStatus::kNumericalFailure);
+      }
+      // BoxMLCP has no in-place update of M (only set_q), and M changes every Newton iteration: a fresh problem
+      // is built here, copying W, q and the bounds (4 small allocations per iteration). See the report.
+      const BoxMLCP mlcp(W, q, l, u);
+      if (options.stepper.warm_start) solver_options.warm_start = sa;
+      solver->Solve(mlcp, solver_options, &result);
+      step->backend_iterations += result.iterations;
+      sn = result.z;
+      if (!result.solved()) {
+        z.tail(m) = sn;
+        z.head(n) = xa + v;
+        z.head(n).noalias() -= h * (V * sn);
+        res = mcp.NaturalResidual(z, &F, scale).rel;
+        message = "step " + std::to_string(k) + ", Newton iteration " + std::to_string(it) + ": MLCP backend '" +
+                  std::string(result.solver) + "' returned " + std::string(ToString(result.status)) +
+                  " (MLCP relative residual " + Num(result.residual_rel) + ")";
+        if (!result.message.empty()) message += ": " + result.message;
+        return finish(result.status);
+      }
+    } else {
+      sn = sa;
+    }
+    // `eq:NL11`: x^{α+1} = x^α + M_α⁻¹ (r_α − h g s^{α+1}).
+    z.head(n) = xa + v;
+    z.head(n).noalias() -= h * (V * sn);
+    z.tail(m) = sn;
+    res = merit();
+    if (!z.allFinite() || !std::isfinite(res)) {
+      res = kInf;
+      message = "step " + std::to_string(k) + ", Newton iteration " + std::to_string(it) +
+                ": the Newton iterate or its residual is not finite";
+      return finish(SolveStatus::kNumericalFailure);
+    }
+    if (res <= tol) return finish(SolveStatus::kSolved);
+  }
+  message = "step " + std::to_string(k) + ": Newton did not converge in " + std::to_string(budget) +
+            " iteration(s): relative residual " + Num(res) + " > newton_tolerance " + Num(tol);
+  finish(SolveStatus::kIterationLimit);
+}
+
+NonlinearStepper::NonlinearStepper(NonlinearSignSystem system, const NonlinearScheme& scheme)
+    : ws_(std::make_unique<Workspace>(std::move(system), scheme)) {}
+
+NonlinearStepper::~NonlinearStepper() = default;
+NonlinearStepper::NonlinearStepper(NonlinearStepper&&) noexcept = default;
+NonlinearStepper& NonlinearStepper::operator=(NonlinearStepper&&) noexcept = default;
+
+const NonlinearScheme& NonlinearStepper::scheme() const { return ws_->mcp.scheme(); }
+const NonlinearSignSystem& NonlinearStepper::system() const { return ws_->mcp.system(); }
+const OneStepMCP& NonlinearStepper::problem() const { return ws_->mcp; }
+const NewtonStats& NonlinearStepper::newton_stats() const { return ws_->stats; }
+
+void NonlinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* solver,
+                           const NonlinearStepperOptions& options, Trajectory* out) {
+  Workspace& w = *ws_;
+  const NonlinearSignSystem& sys = w.mcp.system();
+  const NonlinearScheme& scheme = w.mcp.scheme();
+  const int n = sys.n, m = sys.m;
+  const bool implicit = scheme.sign == SignTreatment::kImplicit;
+  const bool use_mcp = implicit && options.algorithm == NonlinearAlgorithm::kMcp;
+
+  // ---- arguments
+  stepper_detail::CheckSize(kRunOwner, "x0", x0, n);
+  ValidateFinite(kRunOwner, "x0", x0);
+  if (num_steps < 0) Fail(kRunOwner, "num_steps must be >= 0, got " + std::to_string(num_steps));
+  if (implicit && solver == nullptr) {
+    Fail(kRunOwner, "solver is null but the implicit scheme solves a one-step problem at every step");
+  }
+  std::string why;
+  if (!options.IsValid(&why)) Fail(kRunOwner, "options: " + why);
+  const double t0 = options.stepper.t0;
+  // The callables at x0: a NaN here is a modelling error, better reported now than as a failed step 1.
+  {
+    Vector fx(n), y0(m);
+    DenseMatrix J(n, n), G0(n, m), H0(m, n);
+    if (sys.f) {
+      sys.f(t0, x0, fx);
+      CheckFiniteOutput("f(t0, x0)", fx);
+      sys.f_jacobian(t0, x0, J);
+      CheckFiniteOutput("f_jacobian(t0, x0)", J);
+    }
+    sys.g(x0, G0);
+    CheckFiniteOutput("g(x0)", G0);
+    if (sys.g_jacobian_s) {
+      sys.g_jacobian_s(x0, Vector::Ones(m), J);
+      CheckFiniteOutput("g_jacobian_s(x0, 1)", J);
+    }
+    sys.h(x0, y0);
+    CheckFiniteOutput("h(x0)", y0);
+    sys.h_jacobian(x0, H0);
+    CheckFiniteOutput("h_jacobian(x0)", H0);
+  }
+
+  // ---- trajectory and per-run state
+  const bool record = options.stepper.record;
+  out->n = n;
+  out->m = m;
+  out->h = scheme.h;
+  out->t0 = t0;
+  out->description = scheme.Description() + (implicit ? ", " + std::string(ToString(options.algorithm)) : "");
+  out->num_steps = num_steps;
+  out->steps_taken = 0;
+  out->recorded = record;
+  const Eigen::Index columns = record ? static_cast<Eigen::Index>(num_steps + 1) : 0;
+  out->t.resize(columns);
+  out->x.resize(n, columns);
+  out->s.resize(m, columns);
+  out->y.resize(m, columns);
+  out->iterations.resize(columns);
+  out->residual.resize(columns);
+  out->status.resize(columns);
+  out->failed_steps = 0;
+  out->first_failed_step = -1;
+  out->first_failure_status = SolveStatus::kNotRun;
+  out->first_failure_residual = 0.0;
+  out->first_failure_message.clear();
+  out->stopped_early = false;
+  NewtonStats& stats = w.stats;
+  stats.iterations.assign(columns, 0);
+  stats.total_iterations = 0;
+  stats.max_iterations = 0;
+
+  w.solver_options = options.stepper.solver;
+  w.solver_options.measure_time = false;
+  w.solver_options.warm_start.resize(options.stepper.warm_start ? (use_mcp ? n + m : m) : 0);
+
+  const auto record_row = [&](std::int64_t k, double t, int iterations, double residual, SolveStatus status) {
+    const auto c = static_cast<Eigen::Index>(k);
+    out->t[c] = t;
+    out->x.col(c) = w.x;
+    out->s.col(c) = w.s;
+    out->y.col(c) = w.y;
+    out->iterations[c] = iterations;
+    out->residual[c] = residual;
+    out->status[c] = status;
+  };
+
+  w.x = x0;
+  w.s.setZero();
+  sys.h(w.x, w.y);
+  if (record) record_row(0, t0, 0, 0.0, SolveStatus::kNotRun);
+
+  double max_residual = 0.0;
+  std::int64_t total_iterations = 0;
+  int max_iterations = 0;
+  Workspace::Step step;
+  std::int64_t k = 0;
+  while (k < num_steps) {
+    const double t_k = t0 + static_cast<double>(k) * scheme.h;
+    const double t_next = t0 + static_cast<double>(k + 1) * scheme.h;
+    w.mcp.SetStep(t_k, w.x);
+    if (use_mcp) {
+      w.StepMcp(k + 1, solver, options, &step);
+    } else {
+      w.StepNewton(k + 1, solver, implicit, options, &step);
+    }
+    w.x = w.xn;
+    w.s = w.sn;
+    sys.h(w.x, w.y);
+    ++k;
+    total_iterations += step.backend_iterations;
+    max_iterations = std::max(max_iterations, step.backend_iterations);
+    max_residual = std::isnan(step.residual) ? kInf : std::max(max_residual, step.residual);
+    stats.total_iterations += step.newton_iterations;
+    stats.max_iterations = std::max(stats.max_iterations, step.newton_iterations);
+    if (record) {
+      record_row(k, t_next, step.backend_iterations, step.residual, step.status);
+      stats.iterations[static_cast<std::size_t>(k)] = step.newton_iterations;
+    }
+    const bool finite = w.x.allFinite() && w.s.allFinite();
+    if (!finite || step.status != SolveStatus::kSolved) {
+      // Off the hot path: only failed steps get here.
+      SolveStatus status = step.status;
+      if (!finite) status = w.x.hasNaN() || w.s.hasNaN() ? SolveStatus::kNumericalFailure : SolveStatus::kDiverged;
+      if (record) out->status[static_cast<Eigen::Index>(k)] = status;
+      ++out->failed_steps;
+      if (out->first_failed_step < 0) {
+        out->first_failed_step = k;
+        out->first_failure_status = status;
+        out->first_failure_residual = step.residual;
+        out->first_failure_message =
+            finite ? w.message
+                   : "step " + std::to_string(k) + ": state x_" + std::to_string(k) + " is not finite" +
+                         (step.status != SolveStatus::kSolved ? "; " + w.message : std::string());
+      }
+      if (!finite || options.stepper.on_failure == FailurePolicy::kStop) {
+        out->stopped_early = true;
+        break;
+      }
+    }
+  }
+  out->max_residual = max_residual;
+  out->total_iterations = total_iterations;
+  out->max_iterations = max_iterations;
+  out->steps_taken = k;
+  if (record && k < num_steps) {
+    const Eigen::Index c = static_cast<Eigen::Index>(k + 1);
+    out->t.resize(c);
+    out->x.conservativeResize(Eigen::NoChange, c);
+    out->s.conservativeResize(Eigen::NoChange, c);
+    out->y.conservativeResize(Eigen::NoChange, c);
+    out->iterations.resize(c);
+    out->residual.resize(c);
+    out->status.resize(c);
+    stats.iterations.resize(c);
+  }
+  out->x_final = w.x;
+  out->s_final = w.s;
+  out->y_final = w.y;
+}
+
+Trajectory NonlinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* solver,
+                                 const NonlinearStepperOptions& options) {
+  Trajectory out;
+  Run(x0, num_steps, solver, options, &out);
+  return out;
+}
+
+}  // namespace smcbench

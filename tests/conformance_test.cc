@@ -1,0 +1,134 @@
+// One conformance suite run over every registered backend: seeded problems with a known solution (SPD,
+// nonsymmetric P-matrix, diagonally dominant; LCP, relay, box and mixed bounds with infinite entries;
+// degenerate rows). The test recomputes the merit function itself and never trusts a backend's status alone.
+#include <gtest/gtest.h>
+
+#include <map>
+#include <set>
+#include <string>
+
+#include "problems/generators/random_problems.h"
+#include "solvers/registry/registry.h"
+
+namespace smcbench {
+namespace {
+
+constexpr double kTol = 1e-10;
+
+// The independent check: natural residual recomputed here from M, q, l, u.
+double IndependentResidual(const BoxMLCP& p, const Vector& z) {
+  const DenseMatrix M = p.ToDense();
+  const Vector w = M * z + p.q();
+  double r = 0;
+  for (int i = 0; i < p.size(); ++i) {
+    const double proj = std::min(std::max(z[i] - w[i], p.l()[i]), p.u()[i]);
+    r = std::max(r, std::abs(z[i] - proj));
+  }
+  return r / (1.0 + p.q().cwiseAbs().maxCoeff());
+}
+
+struct Family {
+  MatrixFamily matrix;
+  BoundKind bounds;
+  double degenerate;
+};
+
+// Which backends must solve which matrix class. Everything else may fail — with an honest status.
+bool MustSolve(const std::string& solver, const Family& f, int n) {
+  if (solver == "enum") return n <= 10;  // its default size limit is above this; keeps the suite fast
+  if (solver == "psor") return f.matrix != MatrixFamily::kNonsymmetricPMatrix;  // PSOR needs SPD or H-matrix
+  return true;  // lemke, newton, ipopt: every family here (PD / P-matrices)
+}
+
+class Conformance : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Conformance, SolvesGeneratedProblemsWithKnownSolution) {
+  const std::string name = GetParam();
+  auto solver = CreateSolver(name);
+  auto reference = CreateSolver("enum");
+  const Family families[] = {
+      {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 0.0},
+      {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 0.0},
+      {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kMixed, 0.0},
+      {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 0.0},
+      {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kBox, 0.0},
+      {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kMixed, 0.0},
+      {MatrixFamily::kDiagonallyDominant, BoundKind::kRelay, 0.0},
+      {MatrixFamily::kDiagonallyDominant, BoundKind::kMixed, 0.0},
+      // Degenerate: z* at a bound with w* = 0 on a third of the rows.
+      {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 0.34},
+      {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 0.34},
+      {MatrixFamily::kDiagonallyDominant, BoundKind::kBox, 0.5},
+  };
+  int checked = 0;
+  for (const Family& f : families) {
+    for (int n : {1, 2, 3, 5, 8, 10, 30}) {
+      for (std::uint64_t seed : {1u, 2u}) {
+        GeneratorOptions g;
+        g.family = f.matrix;
+        g.bounds = f.bounds;
+        g.degenerate_fraction = f.degenerate;
+        g.size = n;
+        g.seed = seed;
+        const GeneratedProblem gen = GenerateProblem(g);
+        const BoxMLCP& p = gen.problem;
+        SolverOptions options;
+        options.tolerance = kTol;
+        options.time_limit_seconds = 20;
+        const SolveResult r = solver->Solve(p, options);
+        const std::string where = name + " on " + p.name();
+        // The invariant for every backend and every problem: "solved" is true.
+        if (r.solved()) {
+          EXPECT_LE(IndependentResidual(p, r.z), kTol) << where;
+          ++checked;
+        }
+        if (MustSolve(name, f, n)) {
+          EXPECT_TRUE(r.solved()) << where << ": " << ToString(r.status) << " " << r.message << " (residual "
+                                  << r.residual_rel << ")";
+        }
+        // P-matrices (and PD matrices) have a unique solution: it must be z*, and the enumerative one.
+        if (r.solved()) {
+          const double scale = 1.0 + gen.z_star.cwiseAbs().maxCoeff();
+          EXPECT_LE((r.z - gen.z_star).cwiseAbs().maxCoeff(), 1e-6 * scale) << where;
+          if (n <= 10 && name != "enum") {
+            const SolveResult e = reference->Solve(p, options);
+            ASSERT_TRUE(e.solved()) << "enum on " << p.name();
+            EXPECT_LE((r.z - e.z).cwiseAbs().maxCoeff(), 1e-6 * scale) << where << " vs enum";
+          }
+        }
+      }
+    }
+  }
+  EXPECT_GT(checked, 0) << name << " solved nothing";
+}
+
+std::vector<std::string> AllSolvers() {
+  std::vector<std::string> names;
+  for (auto n : SolverNames()) names.emplace_back(n);
+  return names;
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryBackend, Conformance, ::testing::ValuesIn(AllSolvers()),
+                         [](const auto& info) { return info.param; });
+
+TEST(Registry, CreatesEveryListedBackendAndRejectsUnknownNames) {
+  std::set<std::string> seen;
+  for (auto name : SolverNames()) {
+    auto solver = CreateSolver(name);
+    ASSERT_NE(solver, nullptr);
+    EXPECT_EQ(solver->info().name, name);
+    EXPECT_FALSE(solver->info().reference.empty()) << name;
+    EXPECT_FALSE(solver->info().algorithm.empty()) << name;
+    seen.emplace(name);
+  }
+  EXPECT_EQ(seen, (std::set<std::string>{"lemke", "psor", "newton", "enum", "ipopt"}));
+  try {
+    CreateSolver("simplex");
+    FAIL() << "no error";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("known: lemke"), std::string::npos) << e.what();
+  }
+}
+
+}  // namespace
+}  // namespace smcbench

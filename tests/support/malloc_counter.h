@@ -1,0 +1,24 @@
+// Counts heap allocations at the malloc level (so Eigen's aligned_malloc, std::vector and operator new are all
+// seen) by interposing glibc's malloc family in the test executable. Used to pin "hot paths do not allocate".
+#pragma once
+
+namespace smcbench::test_support {
+
+// False under AddressSanitizer (it owns malloc): tests must then GTEST_SKIP.
+bool CanCountMallocs();
+
+// Number of malloc/calloc/realloc/aligned allocations made while fn runs on this thread's program.
+template <typename Fn>
+long CountMallocs(Fn&& fn);
+
+void StartCountingMallocs();
+long StopCountingMallocs();
+
+template <typename Fn>
+long CountMallocs(Fn&& fn) {
+  StartCountingMallocs();
+  fn();
+  return StopCountingMallocs();
+}
+
+}  // namespace smcbench::test_support

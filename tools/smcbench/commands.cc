@@ -1,0 +1,371 @@
+#include "tools/smcbench/commands.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <optional>
+#include <sstream>
+
+#include "problems/io/siconos_format.h"
+#include "solvers/registry/registry.h"
+#include "tools/smcbench/simulate.h"
+#include "tools/smcbench/solve_report.h"
+
+namespace smcbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Common solve settings shared by `solve` and `collection`.
+struct SolveSettings {
+  std::vector<std::string> solvers{"all"};
+  double tolerance = 1e-10;
+  int max_iterations = 0;
+  double time_limit = 30.0;
+  int repeat = 1;
+  std::vector<std::string> sets;  // "backend.option=value"
+};
+
+void AddSolveFlags(CLI::App* app, SolveSettings* s) {
+  app->add_option("--solver", s->solvers, "backend name(s) from `smcbench list`, or all")->expected(1, -1);
+  app->add_option("--tol", s->tolerance, "tolerance on the relative natural residual")->check(CLI::PositiveNumber);
+  app->add_option("--max-iter", s->max_iterations, "iteration/pivot budget (0: backend default)");
+  app->add_option("--time-limit", s->time_limit, "seconds per solve")->check(CLI::PositiveNumber);
+  app->add_option("--repeat", s->repeat, "cold solves per backend; the median time is reported")
+      ->check(CLI::Range(1, 1000000));
+  app->add_option("--set", s->sets, "typed backend option, e.g. --set psor.omega=1.2 (see `smcbench list`)");
+}
+
+std::vector<std::string> ResolveSolverNames(const std::vector<std::string>& requested) {
+  std::vector<std::string> names;
+  for (const std::string& name : requested) {
+    if (name == "all") {
+      for (auto known : SolverNames()) names.emplace_back(known);
+    } else {
+      CreateSolver(name);  // throws InvalidInputError listing the known names
+      names.push_back(name);
+    }
+  }
+  return names;
+}
+
+// Creates the backends and applies --set options; throws InvalidInputError on any bad name or value.
+std::vector<std::unique_ptr<Solver>> MakeSolvers(const SolveSettings& s) {
+  std::vector<std::unique_ptr<Solver>> solvers;
+  for (const std::string& name : ResolveSolverNames(s.solvers)) solvers.push_back(CreateSolver(name));
+  for (const std::string& set : s.sets) {
+    const auto dot = set.find('.');
+    const auto eq = set.find('=');
+    if (dot == std::string::npos || eq == std::string::npos || eq < dot) {
+      throw InvalidInputError("--set expects BACKEND.OPTION=VALUE, got '" + set + "'");
+    }
+    const std::string backend = set.substr(0, dot);
+    CreateSolver(backend);  // reject unknown backends even if not selected
+    for (auto& solver : solvers) {
+      if (solver->info().name != backend) continue;
+      std::string error;
+      if (!solver->SetOption(set.substr(dot + 1, eq - dot - 1), set.substr(eq + 1), &error)) {
+        throw InvalidInputError(backend + ": " + error);
+      }
+    }
+  }
+  return solvers;
+}
+
+SolverOptions MakeOptions(const SolveSettings& s) {
+  SolverOptions options;
+  options.tolerance = s.tolerance;
+  options.max_iterations = s.max_iterations;
+  options.time_limit_seconds = s.time_limit;
+  return options;
+}
+
+int RunList(std::ostream& out) {
+  for (auto name : SolverNames()) {
+    auto solver = CreateSolver(name);
+    const SolverInfo& info = solver->info();
+    out << info.name << "\n  algorithm:  " << info.algorithm << "\n  reference:  " << info.reference
+        << "\n  accepts:    " << (info.dense ? "dense" : "") << (info.dense && info.sparse ? " + " : "")
+        << (info.sparse ? "sparse" : "") << " M" << (info.symmetric_only ? ", symmetric only" : "")
+        << (info.mcp ? "; nonlinear MCP" : "") << "\n  kind:       "
+        << (info.exact ? "exact (finite termination)" : "iterative") << "\n  size limit: "
+        << (info.default_size_limit > 0 ? std::to_string(info.default_size_limit) + " (default)" : "none")
+        << "\n  options:\n"
+        << solver->OptionsHelp();
+  }
+  return 0;
+}
+
+int RunSolve(const std::string& path, const SolveSettings& s, bool json, std::ostream& out) {
+  const BoxMLCP problem = ReadSiconosFile(path);
+  auto solvers = MakeSolvers(s);
+  const SolverOptions options = MakeOptions(s);
+  nlohmann::json array = nlohmann::json::array();
+  if (!json) out << problem.name() << " (n = " << problem.size() << ")\n";
+  for (auto& solver : solvers) {
+    const SolveRecord record = TimedSolve(*solver, problem, options, s.repeat);
+    if (json) {
+      array.push_back(RecordToJson(record));
+    } else {
+      out << "  " << FormatRecordLine(record) << "\n";
+    }
+  }
+  if (json) out << array.dump(2) << "\n";
+  return 0;
+}
+
+std::vector<fs::path> CollectionFiles(const fs::path& dir) {
+  if (!fs::is_directory(dir)) throw InvalidInputError("collection: '" + dir.string() + "' is not a directory");
+  std::vector<fs::path> files;
+  for (const char* sub : {"lcp", "relay", "mlcp"}) {
+    if (!fs::is_directory(dir / sub)) continue;
+    std::vector<fs::path> found;
+    for (const auto& entry : fs::directory_iterator(dir / sub)) {
+      const fs::path& p = entry.path();
+      // The `_block` LCP files duplicate their dense twins in another storage: solving both adds nothing.
+      if (p.extension() == ".dat" && p.stem().string().find("_block") == std::string::npos) found.push_back(p);
+    }
+    std::sort(found.begin(), found.end());
+    files.insert(files.end(), found.begin(), found.end());
+  }
+  if (files.empty()) throw InvalidInputError("collection: no .dat files under " + dir.string() + "/{lcp,relay,mlcp}");
+  return files;
+}
+
+std::string Cell(const SolveRecord& r) {
+  if (!r.error.empty()) return "error";
+  char buffer[96];
+  std::snprintf(buffer, sizeof buffer, "%s / %.1e / %s", std::string(ToString(r.result.status)).c_str(),
+                r.result.residual_rel, FormatDuration(r.time_ns_median).c_str());
+  return buffer;
+}
+
+int RunCollection(const std::string& dir, const SolveSettings& s, const std::string& markdown_path,
+                  const std::string& json_path, const std::string& command_line, std::ostream& out,
+                  std::ostream& err) {
+  const auto files = CollectionFiles(dir);
+  auto solvers = MakeSolvers(s);
+  const SolverOptions options = MakeOptions(s);
+  std::ostringstream table;
+  table << "| file | n |";
+  for (auto& solver : solvers) table << " " << solver->info().name << " |";
+  table << "\n|---|---:|";
+  for (size_t i = 0; i < solvers.size(); ++i) table << "---|";
+  table << "\n";
+  nlohmann::json all = nlohmann::json::array();
+  std::map<std::string, std::map<std::string, int>> tally;  // solver → status → count
+  int unreadable = 0;
+  for (const fs::path& file : files) {
+    const std::string label = file.parent_path().filename().string() + "/" + file.filename().string();
+    std::optional<BoxMLCP> problem;
+    try {
+      problem.emplace(ReadSiconosFile(file.string()));
+    } catch (const InvalidInputError& e) {
+      ++unreadable;
+      table << "| " << label << " | – | rejected by the reader: " << e.what() << " |\n";
+      err << "  " << label << ": " << e.what() << "\n";
+      continue;
+    }
+    table << "| " << label << " | " << problem->size() << " |";
+    for (auto& solver : solvers) {
+      SolveRecord record = TimedSolve(*solver, *problem, options, s.repeat);
+      record.problem = label;
+      ++tally[record.solver][std::string(ToString(record.result.status))];
+      table << " " << Cell(record) << " |";
+      all.push_back(RecordToJson(record));
+    }
+    table << "\n";
+    err << "  done " << label << "\n";
+  }
+  std::ostringstream summary;
+  summary << "\n| backend | solved | other statuses |\n|---|---:|---|\n";
+  for (auto& solver : solvers) {
+    const auto& counts = tally[std::string(solver->info().name)];
+    std::string others;
+    for (const auto& [status, count] : counts) {
+      if (status != "solved") others += (others.empty() ? "" : ", ") + status + " " + std::to_string(count);
+    }
+    const auto it = counts.find("solved");
+    summary << "| " << solver->info().name << " | " << (it == counts.end() ? 0 : it->second) << " / "
+            << files.size() - unreadable << " | " << (others.empty() ? "–" : others) << " |\n";
+  }
+  std::ostringstream doc;
+  doc << "Cells: status / relative natural residual / median wall time per cold solve (" << s.repeat
+      << " repetition" << (s.repeat > 1 ? "s" : "") << "), tolerance " << s.tolerance
+      << ". \"solved\" always means the merit function confirmed it.\n\n"
+      << table.str() << summary.str();
+  out << doc.str();
+  if (!markdown_path.empty()) {
+    std::ofstream md(markdown_path);
+    if (!md) throw InvalidInputError("cannot write " + markdown_path);
+    md << "# Siconos collection: every backend on every file\n\nGenerated by `" << command_line << "`.\n\n"
+       << doc.str();
+  }
+  if (!json_path.empty()) {
+    std::ofstream js(json_path);
+    if (!js) throw InvalidInputError("cannot write " + json_path);
+    js << all.dump(1) << "\n";
+  }
+  return 0;
+}
+
+// The per-size goals (ns per cold solve at tolerance 1e-10); 0 = no goal stated for that size.
+double GoalNs(int m) {
+  if (m <= 2) return 50;
+  if (m == 4) return 150;
+  if (m == 16) return 1000;
+  if (m == 256) return 1e6;
+  if (m == 1024) return 1e7;
+  return 0;
+}
+
+// Google Benchmark JSON (names "solve/<backend>/<family-bounds>/<m>/", run with repetitions and
+// --benchmark_report_aggregates_only) → markdown: one row per problem class and size, one column per backend,
+// cell = median time (± coefficient of variation), the best backend in bold, and the goal.
+int RunBenchTable(const std::string& path, std::ostream& out) {
+  std::ifstream in(path);
+  if (!in) throw InvalidInputError("bench-table: cannot read '" + path + "'");
+  nlohmann::json doc;
+  try {
+    doc = nlohmann::json::parse(in);
+  } catch (const nlohmann::json::exception& e) {
+    throw InvalidInputError("bench-table: '" + path + "' is not JSON: " + e.what());
+  }
+  if (!doc.contains("benchmarks")) throw InvalidInputError("bench-table: '" + path + "' has no \"benchmarks\"");
+  struct Cell {
+    double median = -1, cv = -1;
+    std::string error;
+  };
+  std::map<std::pair<std::string, int>, std::map<std::string, Cell>> rows;  // (class, m) → backend → cell
+  std::vector<std::string> backends;
+  for (const auto& b : doc["benchmarks"]) {
+    const std::string name = b.value("run_name", b.value("name", ""));
+    std::vector<std::string> parts;
+    std::stringstream ss(name);
+    for (std::string part; std::getline(ss, part, '/');) parts.push_back(part);
+    if (parts.size() < 4 || parts[0] != "solve") continue;
+    const std::string backend = parts[1], klass = parts[2];
+    const int m = std::atoi(parts[3].c_str());
+    if (m <= 0) continue;
+    if (std::find(backends.begin(), backends.end(), backend) == backends.end()) backends.push_back(backend);
+    Cell& cell = rows[{klass, m}][backend];
+    if (b.value("error_occurred", false)) {
+      cell.error = b.value("error_message", "error");
+      continue;
+    }
+    const std::string aggregate = b.value("aggregate_name", "");
+    const double t = b.value("real_time", 0.0);
+    if (aggregate == "median" || (aggregate.empty() && cell.median < 0)) cell.median = t;
+    if (aggregate == "cv") cell.cv = t;
+  }
+  out << "| problem | m |";
+  for (const auto& name : backends) out << " " << name << " |";
+  out << " goal |\n|---|---:|";
+  for (size_t i = 0; i < backends.size(); ++i) out << "---:|";
+  out << "---:|\n";
+  for (const auto& [key, cells] : rows) {
+    double best = -1;
+    for (const auto& [name, c] : cells) {
+      if (c.error.empty() && c.median >= 0 && (best < 0 || c.median < best)) best = c.median;
+    }
+    out << "| " << key.first << " | " << key.second << " |";
+    for (const auto& name : backends) {
+      const auto it = cells.find(name);
+      if (it == cells.end()) {
+        out << " – |";
+      } else if (!it->second.error.empty()) {
+        out << " fails: " << it->second.error.substr(0, it->second.error.find(':')) << " |";
+      } else {
+        const bool is_best = it->second.median == best;
+        out << " " << (is_best ? "**" : "") << FormatDuration(it->second.median) << (is_best ? "**" : "");
+        if (it->second.cv >= 0) out << " ±" << static_cast<int>(std::lround(100 * it->second.cv)) << "%";
+        out << " |";
+      }
+    }
+    const double goal = GoalNs(key.second);
+    out << " " << (goal > 0 ? "≤ " + FormatDuration(goal) : "–") << " |\n";
+  }
+  return 0;
+}
+
+int RunConvert(const std::string& input, const std::string& output) {
+  WriteSiconosRelayFile(ReadSiconosFile(input), output);
+  return 0;
+}
+
+}  // namespace
+
+int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& err) {
+  CLI::App app{"smcbench: complementarity solvers benchmarked on implicit-Euler sliding-mode problems"};
+  app.require_subcommand(1);
+  app.set_help_all_flag("--help-all");
+
+  auto* list = app.add_subcommand("list", "list the backends with their capabilities, references and options");
+
+  auto* solve = app.add_subcommand("solve", "solve one Siconos LCP/Relay/MLCP file with one or all backends");
+  std::string solve_file;
+  bool solve_json = false;
+  SolveSettings solve_settings;
+  solve->add_option("FILE", solve_file, "problem file (Siconos LCP, Relay or MLCP format)")->required();
+  AddSolveFlags(solve, &solve_settings);
+  solve->add_flag("--json", solve_json, "print one JSON array, one object per backend");
+
+  auto* collection = app.add_subcommand("collection", "solve every file of a Siconos collection with every backend");
+  std::string collection_dir, markdown_path, json_path;
+  SolveSettings collection_settings;
+  collection_settings.repeat = 3;
+  collection->add_option("DIR", collection_dir, "folder holding lcp/, relay/, mlcp/")->required();
+  AddSolveFlags(collection, &collection_settings);
+  collection->add_option("--markdown", markdown_path, "also write the table to this markdown file");
+  collection->add_option("--json", json_path, "also write every record as JSON to this file");
+
+  auto* convert = app.add_subcommand("convert", "write a problem file in Siconos relay format");
+  std::string convert_in, convert_out;
+  convert->add_option("INPUT", convert_in, "problem file")->required();
+  convert->add_option("OUTPUT", convert_out, "relay file to write")->required();
+
+  auto* bench_table = app.add_subcommand(
+      "bench-table", "turn backend_benchmark JSON output into the README's markdown table (median ± CV vs goal)");
+  std::string bench_json;
+  bench_table->add_option("FILE", bench_json, "Google Benchmark JSON (--benchmark_out)")->required();
+
+  SimulateCommand simulate(&app);
+  ScenesCommand scenes(&app);
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    std::ostringstream o, e2;
+    const int code = app.exit(e, o, e2);
+    out << o.str();
+    err << e2.str();
+    return code == 0 ? 0 : 2;
+  }
+  std::string command_line = "smcbench";
+  for (int i = 1; i < argc; ++i) command_line += std::string(" ") + argv[i];
+  try {
+    if (list->parsed()) return RunList(out);
+    if (solve->parsed()) return RunSolve(solve_file, solve_settings, solve_json, out);
+    if (collection->parsed()) {
+      return RunCollection(collection_dir, collection_settings, markdown_path, json_path, command_line, out, err);
+    }
+    if (convert->parsed()) return RunConvert(convert_in, convert_out);
+    if (bench_table->parsed()) return RunBenchTable(bench_json, out);
+    if (simulate.parsed()) return simulate.Run(out, err);
+    if (scenes.parsed()) return scenes.Run(out, err);
+  } catch (const InvalidInputError& e) {
+    err << "smcbench: " << e.what() << "\n";
+    return 1;
+  } catch (const std::exception& e) {
+    err << "smcbench: internal error: " << e.what() << "\n";
+    return 1;
+  }
+  return 2;
+}
+
+}  // namespace smcbench

@@ -1,0 +1,513 @@
+#include "tools/smcbench/simulate.h"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <atomic>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <ostream>
+#include <sstream>
+
+#include "problems/scenes/linear_scene.h"
+#include "problems/scenes/registry.h"
+#include "solvers/registry/registry.h"
+
+namespace smcbench {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// The backend used when neither --solver nor the scene names one: Lemke's method is exact (finite termination) on
+// the one-step problems of every linear scene and handles m = 2 and the nearly singular S11 steps.
+constexpr const char* kDefaultSolver = "lemke";
+
+std::string Num(double value) {
+  char buffer[32];
+  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, result.ptr);
+}
+
+std::string VectorText(const Vector& v) {
+  std::string text = "[";
+  for (Eigen::Index i = 0; i < v.size(); ++i) text += (i ? ", " : "") + Num(v[i]);
+  return text + "]";
+}
+
+json VectorJson(const Vector& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+
+// A double from the whole of text (no locale, no trailing characters); nullopt otherwise.
+std::optional<double> ParseDouble(std::string_view text) {
+  while (!text.empty() && text.front() == ' ') text.remove_prefix(1);
+  while (!text.empty() && text.back() == ' ') text.remove_suffix(1);
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  double value = 0.0;
+  const auto result = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (text.empty() || result.ec != std::errc() || result.ptr != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+Vector ParseVector(const std::string& text, const char* option) {
+  std::vector<double> values;
+  std::stringstream ss(text);
+  for (std::string item; std::getline(ss, item, ',');) {
+    const auto v = ParseDouble(item);
+    if (!v) throw InvalidInputError(std::string(option) + ": '" + item + "' is not a number (expected v1,v2,...)");
+    values.push_back(*v);
+  }
+  if (values.empty() || (!text.empty() && text.back() == ',')) {
+    throw InvalidInputError(std::string(option) + ": expected comma-separated numbers v1,v2,..., got '" + text + "'");
+  }
+  return Eigen::Map<const Vector>(values.data(), static_cast<Eigen::Index>(values.size()));
+}
+
+std::string FormatSeconds(double seconds) {
+  char buffer[48];
+  if (seconds < 1e-3) {
+    std::snprintf(buffer, sizeof buffer, "%.1f us", seconds * 1e6);
+  } else if (seconds < 1.0) {
+    std::snprintf(buffer, sizeof buffer, "%.2f ms", seconds * 1e3);
+  } else {
+    std::snprintf(buffer, sizeof buffer, "%.2f s", seconds);
+  }
+  return buffer;
+}
+
+std::string FormatRate(double per_second) {
+  char buffer[48];
+  if (per_second >= 1e6) {
+    std::snprintf(buffer, sizeof buffer, "%.1f M", per_second / 1e6);
+  } else if (per_second >= 1e3) {
+    std::snprintf(buffer, sizeof buffer, "%.1f k", per_second / 1e3);
+  } else {
+    std::snprintf(buffer, sizeof buffer, "%.0f ", per_second);
+  }
+  return buffer;
+}
+
+// gnuplot single-quoted string: a quote is written twice.
+std::string GnuplotQuote(const std::string& text) {
+  if (text.find('\n') != std::string::npos) throw InvalidInputError("--plot: path contains a newline");
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+// POSIX shell single-quoted word.
+std::string ShellQuote(const std::string& text) {
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return out + "'";
+}
+
+// A fresh path in the temporary folder (the caller removes it).
+fs::path TempPath(const std::string& stem, const std::string& extension) {
+  static std::atomic<int> counter{0};
+  return fs::temp_directory_path() /
+         ("smcbench-" + stem + "-" + std::to_string(::getpid()) + "-" + std::to_string(counter++) + extension);
+}
+
+// Removes a file when it goes out of scope.
+struct TempFile {
+  fs::path path;
+  ~TempFile() {
+    std::error_code ec;
+    if (!path.empty()) fs::remove(path, ec);
+  }
+};
+
+bool IsZoh(Method m) { return m == Method::kZoh || m == Method::kZohExplicit; }
+bool IsImplicit(Method m) { return m == Method::kImplicit || m == Method::kZoh; }
+
+}  // namespace
+
+// ------------------------------------------------------------------------------------------------------------
+// Summary
+
+json SimulationSummary(const Scene& scene, const SimulationSettings& settings, std::string_view solver,
+                       const Trajectory& tr, double reach_tol, double wall_seconds) {
+  json j;
+  j["scene"] = scene.info().name;
+  j["source"] = scene.info().source;
+  j["method"] = std::string(ToString(settings.method));
+  j["discretization"] = tr.description;
+  j["solver"] = solver.empty() ? json(nullptr) : json(std::string(solver));
+  j["h"] = settings.h;
+  j["T"] = settings.T;
+  if (!IsZoh(settings.method)) j["theta"] = settings.theta;
+  j["gamma"] = settings.gamma;
+  j["x0"] = VectorJson(settings.x0);
+  j["parameters"] = json::object();
+  for (const auto& [name, value] : settings.parameters) j["parameters"][name] = value;
+  j["n"] = tr.n;
+  j["m"] = tr.m;
+
+  j["steps"] = tr.steps_taken;
+  j["steps_requested"] = tr.num_steps;
+  j["completed"] = tr.steps_taken == tr.num_steps && !tr.stopped_early;
+  j["x_final"] = VectorJson(tr.x_final);
+  j["s_final"] = VectorJson(tr.s_final);
+  j["y_final"] = VectorJson(tr.y_final);
+
+  // The one-step problems: only implicit methods solve any.
+  j["max_residual"] = tr.max_residual;
+  j["total_iterations"] = tr.total_iterations;
+  j["max_iterations"] = tr.max_iterations;
+  j["failed_steps"] = tr.failed_steps;
+  if (tr.first_failed_step >= 0) {
+    j["first_failure"] = {{"step", tr.first_failed_step},
+                          {"status", std::string(ToString(tr.first_failure_status))},
+                          {"residual", tr.first_failure_residual},
+                          {"message", tr.first_failure_message}};
+  } else {
+    j["first_failure"] = nullptr;
+  }
+  j["wall_seconds"] = wall_seconds;
+  j["steps_per_second"] = wall_seconds > 0.0 ? static_cast<double>(tr.steps_taken) / wall_seconds : 0.0;
+
+  // Sliding-surface accuracy (needs the recorded history).
+  const TrajectoryMetrics metrics = ComputeMetrics(tr, reach_tol);
+  j["reaching_tolerance"] = reach_tol;
+  j["reaching_step"] = metrics.reaching_step;
+  j["reaching_time"] = metrics.reaching_step >= 0 ? json(tr.time(metrics.reaching_step)) : json(nullptr);
+  double max_y = 0.0, tv_after = 0.0, tv_total = 0.0;
+  std::int64_t changes_after = 0, changes_total = 0;
+  json surfaces = json::array();
+  for (const SurfaceMetrics& s : metrics.surfaces) {
+    max_y = std::max(max_y, s.max_abs_y_after);
+    changes_after += s.sign_changes_after;
+    tv_after += s.total_variation_after;
+    changes_total += s.sign_changes_total;
+    tv_total += s.total_variation_total;
+    surfaces.push_back({{"reaching_step", s.reaching_step},
+                        {"max_abs_y_after_reaching", s.max_abs_y_after},
+                        {"sign_changes_after_reaching", s.sign_changes_after},
+                        {"total_variation_after_reaching", s.total_variation_after},
+                        {"sign_changes_total", s.sign_changes_total},
+                        {"total_variation_total", s.total_variation_total}});
+  }
+  // Summed over the surfaces (max for |y|); "after reaching" is per surface, from its own reaching step. A surface
+  // never reached contributes nothing after reaching.
+  j["max_abs_y_after_reaching"] = max_y;
+  j["sign_changes_after_reaching"] = changes_after;
+  j["total_variation_after_reaching"] = tv_after;
+  j["sign_changes_total"] = changes_total;
+  j["total_variation_total"] = tv_total;
+  j["surfaces"] = surfaces;
+
+  // Errors against the exact solution, for scenes that have one.
+  try {
+    if (const auto exact = scene.Exact(settings)) {
+      const SolutionErrors e = ComputeErrors(tr, *exact);
+      json errors = json::object();
+      if (e.x) errors["x"] = {{"l1", e.x->l1}, {"l2", e.x->l2}, {"max", e.x->max}};
+      if (e.s) errors["s"] = {{"l1", e.s->l1}, {"l2", e.s->l2}, {"max", e.s->max}};
+      j["errors"] = errors;
+    }
+  } catch (const InvalidInputError& e) {
+    j["errors"] = nullptr;
+    j["exact_solution_unavailable"] = e.what();
+  }
+  return j;
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// Plot
+
+bool GnuplotAvailable() {
+  const char* path = std::getenv("PATH");
+  if (!path) return false;
+  std::stringstream ss(path);
+  for (std::string dir; std::getline(ss, dir, ':');) {
+    if (dir.empty()) dir = ".";
+    const std::string candidate = dir + "/gnuplot";
+    if (::access(candidate.c_str(), X_OK) == 0 && fs::is_regular_file(candidate)) return true;
+  }
+  return false;
+}
+
+void PlotTrajectory(const Trajectory& tr, const std::string& data_csv, const std::string& title,
+                    const std::string& png_path) {
+  if (!GnuplotAvailable()) {
+    throw InvalidInputError("--plot needs gnuplot (Debian package gnuplot-nox), which is not on PATH");
+  }
+  const int n = tr.n, m = tr.m;
+  const std::int64_t rows = tr.steps_taken + 1;
+  // Beyond ~100k points a PNG shows nothing more; thin the data instead of making gnuplot crawl.
+  const std::int64_t stride = std::max<std::int64_t>(1, rows / 100000);
+  const std::string every = "every " + std::to_string(stride);
+  const std::string data = GnuplotQuote(data_csv);
+  std::ostringstream g;
+  g << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,"
+    << (n >= 2 ? 900 : 1000) << " noenhanced font ',10' } else { set terminal png size 1200,"
+    << (n >= 2 ? 900 : 1000) << " noenhanced }\n"
+    << "set output " << GnuplotQuote(png_path) << "\n"
+    << "set datafile separator ','\nset datafile columnheaders\nset grid\nset key top right\n"
+    << "set multiplot layout " << (n >= 2 ? "2,2" : "3,1") << " title " << GnuplotQuote(title) << "\n"
+    << "set xlabel 't'\n"
+    << "set title 'state x'\n"
+    << "plot for [i=2:" << 1 + n << "] " << data << " " << every << " using 1:i with lines lw 1.5 title sprintf('x%d', i-1)\n"
+    // Row k holds the s_k that produced x_k, i.e. s on (t_{k-1}, t_k]: a step drawn vertically first (fsteps).
+    << "set title 'multiplier s (s_k acts on (t_k-1, t_k])'\nset yrange [-1.1:1.1]\n"
+    << "plot for [i=" << 2 + n << ":" << 1 + n + m << "] " << data << " " << every
+    << "::1 using 1:i with fsteps lw 1.5 title sprintf('s%d', i-" << 1 + n << ")\n"
+    << "set autoscale y\n"
+    << "set title 'sliding variable y = Cx + D'\n"
+    << "plot for [i=" << 2 + n + m << ":" << 1 + n + 2 * m << "] " << data << " " << every
+    << " using 1:i with lines lw 1.5 title sprintf('y%d', i-" << 1 + n + m << ")\n";
+  if (n >= 2) {
+    g << "set title 'phase portrait'\nset xlabel 'x1'\nset ylabel 'x2'\n"
+      << "plot " << data << " " << every << " using 2:3 with linespoints pt 7 ps 0.4 lw 1 title 'x_k', "
+      << data << " every ::0::0 using 2:3 with points pt 6 ps 2.5 lw 2 title 'x0'\n";
+  }
+  g << "unset multiplot\n";
+  TempFile script{TempPath("plot", ".gp")};
+  TempFile log{TempPath("plot", ".log")};
+  {
+    std::ofstream out(script.path);
+    out << g.str();
+    if (!out) throw InvalidInputError("--plot: cannot write the gnuplot script " + script.path.string());
+  }
+  const std::string command = "gnuplot " + ShellQuote(script.path.string()) + " 2> " + ShellQuote(log.path.string());
+  const int rc = std::system(command.c_str());
+  std::error_code ec;
+  if (rc != 0 || !fs::is_regular_file(png_path, ec) || fs::file_size(png_path, ec) == 0) {
+    std::ifstream in(log.path);
+    std::string line, last;
+    while (std::getline(in, line)) {
+      if (!line.empty()) last = line;
+    }
+    throw InvalidInputError("--plot: gnuplot failed to write '" + png_path + "' (exit status " + std::to_string(rc) +
+                            (last.empty() ? ")" : "): " + last));
+  }
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// simulate
+
+struct SimulateCommand::Flags {
+  std::string scene, method, x0, solver, out, summary, plot, on_failure = "stop";
+  double h = 0.0, T = 0.0, theta = 0.0, gamma = 0.0, tol = 1e-10, reach_tol = 0.0;
+  int max_iter = 0;
+  bool no_warm_start = false;
+  std::vector<std::string> params, sets;
+  CLI::Option *method_opt = nullptr, *h_opt = nullptr, *T_opt = nullptr, *theta_opt = nullptr,
+              *gamma_opt = nullptr, *x0_opt = nullptr, *reach_opt = nullptr, *solver_opt = nullptr;
+};
+
+SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
+  Flags& f = *flags_;
+  command_ = app->add_subcommand("simulate", "run a scene of SCENES.md (see `smcbench scenes`) or a scene file");
+  command_->add_option("SCENE", f.scene, "registered scene name or path to a scene JSON file")->required();
+  f.method_opt = command_->add_option("--method", f.method,
+                                      "implicit | explicit | zoh | zoh-explicit (default: the scene's); explicit "
+                                      "without --theta is the classical explicit Euler scheme (theta = 0)");
+  f.h_opt = command_->add_option("--h", f.h, "time step (default: the scene's)");
+  f.T_opt = command_->add_option("--T", f.T, "horizon; N = round(T/h) steps (default: the scene's)");
+  f.x0_opt = command_->add_option("--x0", f.x0, "initial state v1,v2,... (default: the scene's)");
+  f.theta_opt = command_->add_option("--theta", f.theta, "theta of the theta-method on f, in [0, 1]");
+  f.gamma_opt = command_->add_option("--gamma", f.gamma, "gamma of the theta/gamma scheme, in [0, 1] (nonlinear g)");
+  command_->add_option("--param", f.params, "scene parameter NAME=VALUE, e.g. --param tau=0.5 (repeatable)");
+  f.solver_opt = command_->add_option("--solver", f.solver,
+                                      std::string("backend for the one-step problems (default: the scene's, else ") +
+                                          kDefaultSolver + ")");
+  command_->add_option("--tol", f.tol, "tolerance on each step's relative natural residual (default 1e-10)");
+  command_->add_option("--max-iter", f.max_iter, "backend iteration budget (0: its default)");
+  command_->add_option("--set", f.sets, "typed backend option BACKEND.OPTION=VALUE (see `smcbench list`)");
+  command_->add_option("--on-failure", f.on_failure, "stop | continue when a step's problem is not solved");
+  command_->add_flag("--no-warm-start", f.no_warm_start, "cold-start every step instead of starting from s_k");
+  f.reach_opt = command_->add_option("--reach-tol", f.reach_tol,
+                                     "|y| bound defining 'on the surface' for the reaching step (default 10*tol)");
+  command_->add_option("--out", f.out, "write the trajectory CSV t,x1..xn,s1..sm,y1..ym,iterations,residual");
+  command_->add_option("--summary", f.summary, "write the JSON summary (steps, x_final, reaching_step, ...)");
+  command_->add_option("--plot", f.plot, "write a PNG (gnuplot): x, s, y against t and the phase portrait");
+}
+
+SimulateCommand::~SimulateCommand() = default;
+
+bool SimulateCommand::parsed() const { return command_->parsed(); }
+
+int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
+  const Flags& f = *flags_;
+  // Fail before simulating, not after.
+  if (!f.plot.empty() && !GnuplotAvailable()) {
+    throw InvalidInputError("--plot needs gnuplot (Debian package gnuplot-nox), which is not on PATH");
+  }
+  const std::unique_ptr<Scene> scene = LoadScene(f.scene);
+  const SceneInfo& info = scene->info();
+  const std::string prefix = "simulate " + info.name + ": ";
+  const auto fail = [&](const std::string& what) { throw InvalidInputError(prefix + what); };
+
+  SimulationSettings s = scene->defaults();
+  if (f.method_opt->count()) {
+    const auto method = MethodFromString(f.method);
+    if (!method) fail("--method: unknown method '" + f.method + "' (known: implicit, explicit, zoh, zoh-explicit)");
+    s.method = *method;
+    // "explicit" means the classical explicit Euler scheme unless a θ is asked for.
+    if (s.method == Method::kExplicit && !f.theta_opt->count()) s.theta = 0.0;
+  }
+  if (f.h_opt->count()) s.h = f.h;
+  if (f.T_opt->count()) s.T = f.T;
+  if (f.theta_opt->count()) s.theta = f.theta;
+  if (f.gamma_opt->count()) s.gamma = f.gamma;
+  if (f.x0_opt->count()) s.x0 = ParseVector(f.x0, "--x0");
+  for (const std::string& p : f.params) {
+    const auto eq = p.find('=');
+    const auto value = eq == std::string::npos ? std::nullopt : ParseDouble(std::string_view(p).substr(eq + 1));
+    if (!value) fail("--param expects NAME=VALUE with a number, got '" + p + "'");
+    const std::string name = p.substr(0, eq);
+    if (!scene->defaults().parameters.count(name)) {
+      std::string known;
+      for (const auto& [k, v] : scene->defaults().parameters) known += (known.empty() ? "" : ", ") + k;
+      fail("--param: the scene has no parameter '" + name + "' (parameters: " + (known.empty() ? "none" : known) + ")");
+    }
+    s.parameters[name] = *value;
+  }
+  s.stepper.solver.tolerance = f.tol;
+  s.stepper.solver.max_iterations = f.max_iter;
+  s.stepper.warm_start = !f.no_warm_start;
+  if (f.on_failure == "stop") {
+    s.stepper.on_failure = FailurePolicy::kStop;
+  } else if (f.on_failure == "continue") {
+    s.stepper.on_failure = FailurePolicy::kContinue;
+  } else {
+    fail("--on-failure: expected stop or continue, got '" + f.on_failure + "'");
+  }
+  const double reach_tol = f.reach_opt->count() ? f.reach_tol : 10.0 * f.tol;
+  if (!(reach_tol >= 0.0) || !std::isfinite(reach_tol)) fail("--reach-tol must be finite and >= 0");
+  const bool record = !f.out.empty() || !f.summary.empty() || !f.plot.empty();
+  s.stepper.record = record;
+  try {
+    s.Validate(info.n);
+  } catch (const InvalidInputError& e) {
+    fail(e.what());
+  }
+  if (!scene->Supports(s.method)) {
+    fail("method '" + std::string(ToString(s.method)) + "' needs a ZOH plant (system type zoh); this scene runs " +
+         "implicit or explicit");
+  }
+
+  // The backend: only implicit methods solve a one-step problem.
+  std::unique_ptr<Solver> solver;
+  std::string solver_name;
+  if (IsImplicit(s.method)) {
+    solver_name = f.solver_opt->count() ? f.solver : (s.solver.empty() ? kDefaultSolver : s.solver);
+    solver = CreateSolver(solver_name);  // unknown name: error listing the known ones
+    for (const std::string& set : f.sets) {
+      const auto dot = set.find('.'), eq = set.find('=');
+      if (dot == std::string::npos || eq == std::string::npos || eq < dot) {
+        fail("--set expects BACKEND.OPTION=VALUE, got '" + set + "'");
+      }
+      if (set.substr(0, dot) != solver_name) {
+        fail("--set " + set + " names backend '" + set.substr(0, dot) + "' but the run uses '" + solver_name + "'");
+      }
+      std::string error;
+      if (!solver->SetOption(set.substr(dot + 1, eq - dot - 1), set.substr(eq + 1), &error)) {
+        fail(solver_name + ": " + error);
+      }
+    }
+  } else if (f.solver_opt->count()) {
+    err << "note: --solver is ignored: method " << ToString(s.method) << " solves no one-step problem\n";
+  }
+  if (f.gamma_opt->count() && dynamic_cast<const LinearScene*>(scene.get())) {
+    err << "note: --gamma has no effect on a linear scene (g(x) = B is constant)\n";
+  }
+
+  Trajectory tr;
+  const auto start = std::chrono::steady_clock::now();
+  try {
+    scene->Run(s, solver.get(), &tr);
+  } catch (const InvalidInputError& e) {
+    fail(e.what());
+  }
+  const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  if (!f.out.empty()) WriteTrajectoryCsvFile(tr, f.out);
+  if (!f.summary.empty()) {
+    const json summary = SimulationSummary(*scene, s, solver_name, tr, reach_tol, wall);
+    std::ofstream js(f.summary);
+    js << summary.dump(2) << "\n";
+    if (!js) fail("cannot write the summary '" + f.summary + "'");
+  }
+  if (!f.plot.empty()) {
+    TempFile temp;
+    std::string data = f.out;
+    if (data.empty()) {
+      temp.path = TempPath("trajectory", ".csv");
+      data = temp.path.string();
+      WriteTrajectoryCsvFile(tr, data);
+    }
+    std::string title = info.name + ": " + tr.description + ", h = " + Num(s.h);
+    if (!solver_name.empty()) title += ", " + solver_name;
+    PlotTrajectory(tr, data, title, f.plot);
+  }
+
+  // A short report on out; the files hold the details.
+  out << info.name << ": " << ToString(s.method) << " (" << tr.description << "), h = " << Num(s.h)
+      << ", T = " << Num(s.T) << ", " << tr.steps_taken << " of " << tr.num_steps << " steps"
+      << (solver_name.empty() ? "" : ", backend " + solver_name) << "\n";
+  out << "  x_final = " << VectorText(tr.x_final) << ", s_final = " << VectorText(tr.s_final) << "\n";
+  if (tr.recorded) {
+    const TrajectoryMetrics metrics = ComputeMetrics(tr, reach_tol);
+    if (metrics.reaching_step >= 0) {
+      double max_y = 0.0;
+      std::int64_t changes = 0;
+      for (const auto& sm : metrics.surfaces) max_y = std::max(max_y, sm.max_abs_y_after), changes += sm.sign_changes_after;
+      out << "  surfaces reached at step " << metrics.reaching_step << " (t = " << Num(tr.time(metrics.reaching_step))
+          << "): max |y| after " << Num(max_y) << ", sign changes of s after " << changes << "\n";
+    } else {
+      out << "  not every surface is reached (|y| <= " << Num(reach_tol) << " to the end)\n";
+    }
+  }
+  if (IsImplicit(s.method)) {
+    out << "  max one-step residual " << Num(tr.max_residual) << ", " << tr.total_iterations
+        << " backend iterations, " << tr.failed_steps << " failed steps\n";
+  }
+  out << "  wall " << FormatSeconds(wall) << " (" << FormatRate(wall > 0 ? tr.steps_taken / wall : 0.0)
+      << "steps/s" << (record ? ", recording" : "") << ")\n";
+  if (tr.first_failed_step >= 0) {
+    err << "warning: step " << tr.first_failed_step << ": " << ToString(tr.first_failure_status) << " (residual "
+        << Num(tr.first_failure_residual) << ")" << (tr.first_failure_message.empty() ? "" : ": ")
+        << tr.first_failure_message << (tr.stopped_early ? "; the run stopped there" : "") << "\n";
+  }
+  return 0;
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// scenes
+
+ScenesCommand::ScenesCommand(CLI::App* app) {
+  command_ = app->add_subcommand("scenes", "list the registered scenes (SCENES.md) with one-line descriptions");
+}
+
+bool ScenesCommand::parsed() const { return command_->parsed(); }
+
+int ScenesCommand::Run(std::ostream& out, std::ostream& err) const {
+  int status = 0;
+  std::size_t width = 0;
+  for (auto name : SceneNames()) width = std::max(width, name.size());
+  for (auto name : SceneNames()) {
+    out << name << std::string(width + 2 - name.size(), ' ');
+    try {
+      const auto scene = LoadScene(name);
+      const SceneInfo& info = scene->info();
+      const SimulationSettings& d = scene->defaults();
+      out << info.description << "  [n=" << info.n << " m=" << info.m << "; " << ToString(d.method)
+          << " h=" << Num(d.h) << " T=" << Num(d.T) << "]\n";
+    } catch (const InvalidInputError& e) {
+      out << "(cannot load)\n";
+      err << "smcbench: scene " << name << ": " << e.what() << "\n";
+      status = 1;
+    }
+  }
+  return status;
+}
+
+}  // namespace smcbench

@@ -1,0 +1,256 @@
+// End-to-end tests of `smcbench simulate` and `smcbench scenes`, run in-process: the CSV and summary formats
+// scripts rely on, the paper's S1 and S2 claims through the command line, one-line errors with exit status 1.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "problems/scenes/registry.h"
+#include "tools/smcbench/commands.h"
+#include "tools/smcbench/simulate.h"
+
+namespace smcbench {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+namespace fs = std::filesystem;
+
+struct CliRun {
+  int code;
+  std::string out, err;
+};
+
+CliRun RunSmcbench(std::vector<std::string> args) {
+  args.insert(args.begin(), "smcbench");
+  std::vector<const char*> argv;
+  for (const auto& a : args) argv.push_back(a.c_str());
+  std::ostringstream out, err;
+  const int code = RunCli(static_cast<int>(argv.size()), argv.data(), out, err);
+  return {code, out.str(), err.str()};
+}
+
+std::vector<std::string> ReadLines(const std::string& path) {
+  std::ifstream in(path);
+  std::vector<std::string> lines;
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+std::vector<double> SplitNumbers(const std::string& line) {
+  std::vector<double> values;
+  std::stringstream ss(line);
+  for (std::string item; std::getline(ss, item, ',');) values.push_back(std::stod(item));
+  return values;
+}
+
+nlohmann::json ReadJson(const std::string& path) {
+  std::ifstream in(path);
+  return nlohmann::json::parse(in);
+}
+
+class Simulate : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(testing::TempDir()) / ("simulate_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+
+  // Expects exit 1 and a one-line error containing every part.
+  static void ExpectOneLineError(const CliRun& r, std::initializer_list<const char*> parts) {
+    EXPECT_EQ(r.code, 1) << r.out << r.err;
+    for (const char* part : parts) EXPECT_THAT(r.err, HasSubstr(part));
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+
+  fs::path dir_;
+};
+
+// S1 with h = 0.01: CSV header and row 0, summary keys, exact arrival at k0+1 (k0 = ⌈1.01/0.01⌉ − 1 = 100) or
+// k0+2, the errors against the exact solution.
+TEST_F(Simulate, SignSceneWritesCsvAndSummary) {
+  const std::string csv = Path("sign.csv"), summary = Path("sign.json");
+  const CliRun r = RunSmcbench({"simulate", "sign", "--h", "0.01", "--out", csv, "--summary", summary});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("sign: implicit"));
+  EXPECT_EQ(r.err, "");
+
+  const auto lines = ReadLines(csv);
+  ASSERT_EQ(lines.size(), 1u + 201u);  // header + rows k = 0..200 (T = 2)
+  EXPECT_EQ(lines[0].rfind("t,x1,s1", 0), 0u) << lines[0];
+  EXPECT_EQ(lines[0], "t,x1,s1,y1,iterations,residual");
+  const auto row0 = SplitNumbers(lines[1]);
+  ASSERT_GE(row0.size(), 3u);
+  EXPECT_EQ(row0[0], 0.0);
+  EXPECT_EQ(row0[1], 1.01);
+  EXPECT_EQ(row0[2], 0.0);  // no step produced x_0
+  const auto row1 = SplitNumbers(lines[2]);
+  EXPECT_DOUBLE_EQ(row1[0], 0.01);
+  EXPECT_EQ(row1[2], 1.0);  // s_1 = Π(x_0/h) = 1
+
+  const auto j = ReadJson(summary);
+  for (const char* key : {"steps", "x_final", "reaching_step", "max_abs_y_after_reaching", "sign_changes_after_reaching",
+                          "total_variation_after_reaching", "max_residual", "errors", "scene", "method", "solver",
+                          "failed_steps", "surfaces"}) {
+    EXPECT_TRUE(j.contains(key)) << key;
+  }
+  EXPECT_EQ(j["steps"], 200);
+  ASSERT_EQ(j["x_final"].size(), 1u);
+  EXPECT_EQ(j["x_final"][0].get<double>(), 0.0);
+  const int k0 = 100;
+  const auto reaching = j["reaching_step"].get<int>();
+  EXPECT_TRUE(reaching == k0 + 1 || reaching == k0 + 2) << reaching;
+  EXPECT_EQ(j["max_abs_y_after_reaching"].get<double>(), 0.0);
+  EXPECT_EQ(j["sign_changes_after_reaching"], 0);
+  EXPECT_LE(j["max_residual"].get<double>(), 1e-10);
+  EXPECT_EQ(j["failed_steps"], 0);
+  for (const char* part : {"x", "s"}) {
+    for (const char* norm : {"l1", "l2", "max"}) EXPECT_TRUE(j["errors"][part].contains(norm)) << part << norm;
+  }
+  EXPECT_LE(j["errors"]["x"]["max"].get<double>(), 0.011);
+  EXPECT_LE(j["errors"]["s"]["l1"].get<double>(), 0.02);
+}
+
+// S2 at h = 0.3: explicit Euler ends on a period-2 orbit around the sliding line; implicit Euler reaches it and
+// stays with |Cx| at rounding level and s without sign changes (Lemma oups, CB = 1).
+TEST_F(Simulate, GaliasYuExplicitChattersImplicitDoesNot) {
+  const std::string ecsv = Path("explicit.csv"), ejs = Path("explicit.json"), ijs = Path("implicit.json");
+  CliRun r = RunSmcbench({"simulate", "galias-yu-2007", "--method", "explicit", "--h", "0.3", "--T", "30", "--out",
+                          ecsv, "--summary", ejs});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto e = ReadJson(ejs);
+  EXPECT_EQ(e["theta"], 0.0);        // explicit without --theta: the classical explicit Euler scheme
+  EXPECT_TRUE(e["solver"].is_null());  // no one-step problem
+  EXPECT_EQ(e["reaching_step"], -1);
+  EXPECT_GE(e["sign_changes_total"].get<int>(), 50);
+  // The orbit: x_{k+2} = x_k, x_{k+1} ≠ x_k, on both sides of the line (s alternates).
+  const auto lines = ReadLines(ecsv);
+  const auto a = SplitNumbers(lines[lines.size() - 3]), b = SplitNumbers(lines[lines.size() - 2]),
+             c = SplitNumbers(lines[lines.size() - 1]);
+  for (int i = 1; i <= 2; ++i) EXPECT_NEAR(a[i], c[i], 1e-9) << "x" << i;
+  EXPECT_GT(std::abs(a[1] - b[1]) + std::abs(a[2] - b[2]), 1e-3);
+  EXPECT_EQ(b[3], -c[3]);  // s1 alternates
+  EXPECT_NE(b[3], 0.0);
+
+  r = RunSmcbench({"simulate", "galias-yu-2007", "--method", "implicit", "--h", "0.3", "--T", "30", "--summary", ijs});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto i = ReadJson(ijs);
+  EXPECT_GE(i["reaching_step"].get<int>(), 1);
+  EXPECT_LE(i["reaching_step"].get<int>(), 20);
+  EXPECT_LE(i["max_abs_y_after_reaching"].get<double>(), 1e-12);
+  EXPECT_EQ(i["sign_changes_after_reaching"], 0);
+  EXPECT_EQ(i["failed_steps"], 0);
+}
+
+TEST_F(Simulate, UnknownSceneListsTheKnownNames) {
+  const CliRun r = RunSmcbench({"simulate", "sine"});
+  ExpectOneLineError(r, {"unknown scene 'sine'", "sign", "galias-yu-2007", "multi-surface", "filippov", "zoh-siso",
+                         "zoh-mimo", "lyapunov", "observer", "parasitic"});
+}
+
+TEST_F(Simulate, BadSettingsAreOneLineErrorsWithExitOne) {
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--h", "0"}), {"simulate sign", "h must be", "got 0"});
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--h", "-0.5"}), {"h must be", "-0.5"});
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--T", "-1"}), {"T must be", "-1"});
+  ExpectOneLineError(RunSmcbench({"simulate", "observer", "--theta", "1.5"}), {"theta must lie in [0, 1]", "1.5"});
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--gamma", "2"}), {"gamma must lie in [0, 1]"});
+  ExpectOneLineError(RunSmcbench({"simulate", "galias-yu-2007", "--x0", "1,2,3"}), {"x0 has 3 entries", "n = 2"});
+  ExpectOneLineError(RunSmcbench({"simulate", "galias-yu-2007", "--x0", "1,abc"}), {"--x0", "'abc' is not a number"});
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--method", "rk4"}), {"unknown method 'rk4'"});
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--method", "zoh"}), {"needs a ZOH plant"});
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--solver", "simplex"}), {"unknown solver 'simplex'", "lemke"});
+  ExpectOneLineError(RunSmcbench({"simulate", "observer", "--param", "tao=1"}), {"no parameter 'tao'", "tau"});
+  ExpectOneLineError(RunSmcbench({"simulate", "observer", "--param", "tau"}), {"--param expects NAME=VALUE"});
+  ExpectOneLineError(RunSmcbench({"simulate", "observer", "--param", "tau=0"}), {"system.E", "not finite"});
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--solver", "lemke", "--set", "psor.omega=1"}),
+                     {"names backend 'psor'", "uses 'lemke'"});
+}
+
+TEST_F(Simulate, WithoutOutputFilesNothingIsRecordedOrWritten) {
+  const CliRun r = RunSmcbench({"simulate", "filippov"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("750 of 750 steps"));
+  EXPECT_THAT(r.out, Not(HasSubstr("recording")));
+  EXPECT_THAT(r.out, Not(HasSubstr("surfaces reached")));  // needs the history, which was not kept
+  EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+TEST_F(Simulate, ParametersMethodsAndScenePathsFromTheCommandLine) {
+  // S8 with τ = 0.5, θ = 1/2 (the report's comparison), any backend.
+  const std::string js = Path("observer.json");
+  CliRun r = RunSmcbench({"simulate", "observer", "--param", "tau=0.5", "--theta", "0.5", "--solver", "enum",
+                          "--summary", js});
+  ASSERT_EQ(r.code, 0) << r.err;
+  auto j = ReadJson(js);
+  EXPECT_EQ(j["parameters"]["tau"], 0.5);
+  EXPECT_EQ(j["theta"], 0.5);
+  EXPECT_EQ(j["solver"], "enum");
+  EXPECT_EQ(j["steps"], 100);
+  // S5 runs ZOH by default, and the Euler discretization of its closed loop on request.
+  r = RunSmcbench({"simulate", "zoh-siso", "--summary", js});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(ReadJson(js)["method"], "zoh");
+  EXPECT_FALSE(ReadJson(js).contains("theta"));
+  r = RunSmcbench({"simulate", "zoh-siso", "--method", "zoh-explicit", "--summary", js});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(ReadJson(js)["reaching_step"], -1);  // explicit ZOH chatters
+  // A scene file given by path, with its x0 overridden.
+  r = RunSmcbench({"simulate", ScenesDirectory() + "/sign.json", "--x0", "-0.5", "--T", "1", "--summary", js});
+  ASSERT_EQ(r.code, 0) << r.err;
+  j = ReadJson(js);
+  EXPECT_EQ(j["x0"][0], -0.5);
+  EXPECT_EQ(j["x_final"][0], 0.0);
+  EXPECT_LE(j["errors"]["x"]["max"].get<double>(), 0.011);
+  // γ has no effect on a linear scene: accepted with a note.
+  r = RunSmcbench({"simulate", "sign", "--gamma", "0.5"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("--gamma has no effect"));
+}
+
+TEST_F(Simulate, PlotWritesAPng) {
+  if (!GnuplotAvailable()) GTEST_SKIP() << "gnuplot not installed (Debian package gnuplot-nox)";
+  for (const char* scene : {"sign", "zoh-mimo"}) {
+    const std::string png = Path(std::string(scene) + ".png");
+    const CliRun r = RunSmcbench({"simulate", scene, "--plot", png});
+    ASSERT_EQ(r.code, 0) << r.err;
+    std::ifstream in(png, std::ios::binary);
+    char magic[8] = {};
+    in.read(magic, 8);
+    EXPECT_EQ(std::string(magic + 1, 3), "PNG") << scene;
+    EXPECT_GT(fs::file_size(png), 5000u) << scene;
+  }
+  // The temporary data file is gone when --out was not given.
+  for (const auto& entry : fs::directory_iterator(fs::temp_directory_path())) {
+    EXPECT_THAT(entry.path().filename().string(), Not(HasSubstr("smcbench-trajectory-" + std::to_string(::getpid()))));
+  }
+}
+
+TEST_F(Simulate, PlotWithoutGnuplotIsAClearError) {
+  const char* old = std::getenv("PATH");
+  const std::string saved = old ? old : "";
+  ::setenv("PATH", "/nonexistent", 1);
+  const CliRun r = RunSmcbench({"simulate", "sign", "--plot", Path("x.png")});
+  ::setenv("PATH", saved.c_str(), 1);
+  ExpectOneLineError(r, {"--plot needs gnuplot", "gnuplot-nox"});
+  EXPECT_FALSE(fs::exists(Path("x.png")));
+}
+
+TEST_F(Simulate, ScenesListsEveryRegisteredScene) {
+  const CliRun r = RunSmcbench({"scenes"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  for (auto name : SceneNames()) EXPECT_THAT(r.out, HasSubstr(std::string(name) + " ")) << name;
+  EXPECT_EQ(static_cast<std::size_t>(std::count(r.out.begin(), r.out.end(), '\n')), SceneNames().size());
+  EXPECT_THAT(r.out, HasSubstr("n=4 m=1"));  // observer
+}
+
+}  // namespace
+}  // namespace smcbench

@@ -1,0 +1,89 @@
+#include "tools/smcbench/solve_report.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+namespace smcbench {
+
+SolveRecord TimedSolve(Solver& solver, const BoxMLCP& problem, const SolverOptions& options, int repeat) {
+  SolveRecord record;
+  record.problem = problem.name();
+  record.solver = std::string(solver.info().name);
+  record.repeats = std::max(1, repeat);
+  std::vector<double> times(record.repeats);
+  for (int i = 0; i < record.repeats; ++i) {
+    solver.Solve(problem, options, &record.result);
+    times[i] = record.result.solve_seconds * 1e9;
+  }
+  std::sort(times.begin(), times.end());
+  const int n = record.repeats;
+  record.time_ns_median = n % 2 ? times[n / 2] : 0.5 * (times[n / 2 - 1] + times[n / 2]);
+  record.time_ns_min = times.front();
+  record.time_ns_max = times.back();
+  return record;
+}
+
+std::string FormatDuration(double ns) {
+  char buffer[32];
+  if (ns < 1e3) {
+    std::snprintf(buffer, sizeof buffer, "%.0f ns", ns);
+  } else if (ns < 1e6) {
+    std::snprintf(buffer, sizeof buffer, "%.3g us", ns / 1e3);
+  } else if (ns < 1e9) {
+    std::snprintf(buffer, sizeof buffer, "%.3g ms", ns / 1e6);
+  } else {
+    std::snprintf(buffer, sizeof buffer, "%.3g s", ns / 1e9);
+  }
+  return buffer;
+}
+
+std::string FormatRecordLine(const SolveRecord& record) {
+  char buffer[256];
+  if (!record.error.empty()) {
+    std::snprintf(buffer, sizeof buffer, "%-8s error: %s", record.solver.c_str(), record.error.c_str());
+    return buffer;
+  }
+  const SolveResult& r = record.result;
+  std::snprintf(buffer, sizeof buffer, "%-8s %-18s iters %-7d res %.2e abs / %.2e rel   %s", record.solver.c_str(),
+                std::string(ToString(r.status)).c_str(), r.iterations, r.residual_abs, r.residual_rel,
+                FormatDuration(record.time_ns_median).c_str());
+  std::string line = buffer;
+  if (!r.solved() && !r.message.empty()) line += "   (" + r.message + ")";
+  return line;
+}
+
+namespace {
+// JSON has no infinity or NaN: write them as null.
+nlohmann::json Number(double v) { return std::isfinite(v) ? nlohmann::json(v) : nlohmann::json(nullptr); }
+}  // namespace
+
+nlohmann::json RecordToJson(const SolveRecord& record) {
+  const SolveResult& r = record.result;
+  nlohmann::json j;
+  j["problem"] = record.problem;
+  j["solver"] = record.solver;
+  if (!record.error.empty()) {
+    j["status"] = "error";
+    j["message"] = record.error;
+    return j;
+  }
+  j["status"] = std::string(ToString(r.status));
+  j["message"] = r.message;
+  j["iterations"] = r.iterations;
+  j["residual_abs"] = Number(r.residual_abs);
+  j["residual_rel"] = Number(r.residual_rel);
+  j["time_ns_median"] = record.time_ns_median;
+  j["time_ns_min"] = record.time_ns_min;
+  j["time_ns_max"] = record.time_ns_max;
+  j["repeats"] = record.repeats;
+  nlohmann::json z = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < r.z.size(); ++i) z.push_back(Number(r.z[i]));
+  j["z"] = std::move(z);
+  nlohmann::json details = nlohmann::json::object();
+  for (int i = 0; i < r.num_details; ++i) details[r.details[i].name] = Number(r.details[i].value);
+  j["details"] = std::move(details);
+  return j;
+}
+
+}  // namespace smcbench
