@@ -194,6 +194,12 @@ struct NonlinearStepper::Workspace {
     u = Vector::Constant(m, 1.0);
     z.resize(n + m), F.resize(n + m);
     Mx.resize(n, n), G.resize(n, m), V.resize(n, m), H.resize(m, n), W.resize(m, m);
+    probe_f.resize(n), probe_y.resize(m), ones = Vector::Ones(m);
+    probe_J.resize(n, n), probe_G.resize(n, m), probe_H.resize(m, n);
+    const std::string text = mcp.scheme().Description();
+    description_mcp = text + ", " + std::string(ToString(NonlinearAlgorithm::kMcp));
+    description_newton = text + ", " + std::string(ToString(NonlinearAlgorithm::kNewtonMlcp));
+    description_explicit = text;
   }
 
   // What one step produced. message is written only on failure (allocation off the hot path).
@@ -219,15 +225,25 @@ struct NonlinearStepper::Workspace {
   SolveResult result;
   std::string message;
   NewtonStats stats;
+  // Run-level buffers, kept so that a repeated run allocates nothing.
+  Vector probe_f, probe_y, ones;
+  DenseMatrix probe_J, probe_G, probe_H;
+  std::string description_mcp, description_newton, description_explicit;
 };
 
 namespace {
 
 constexpr const char* kRunOwner = "NonlinearStepper::Run";
 
-void CheckFiniteOutput(const char* what, const DenseMatrix& A) {
-  stepper_detail::CheckFinite(kRunOwner, what, A);
+void CheckFiniteOutput(const char* what, const Vector& v) {
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i])) {
+      Fail(kRunOwner, std::string(what) + "[" + std::to_string(i) + "] is " + (std::isnan(v[i]) ? "NaN" : "infinite"));
+    }
+  }
 }
+
+void CheckFiniteOutput(const char* what, const DenseMatrix& A) { stepper_detail::CheckFinite(kRunOwner, what, A); }
 
 }  // namespace
 
@@ -394,26 +410,22 @@ void NonlinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* sol
   if (!options.IsValid(&why)) Fail(kRunOwner, "options: " + why);
   const double t0 = options.stepper.t0;
   // The callables at x0: a NaN here is a modelling error, better reported now than as a failed step 1.
-  {
-    Vector fx(n), y0(m);
-    DenseMatrix J(n, n), G0(n, m), H0(m, n);
-    if (sys.f) {
-      sys.f(t0, x0, fx);
-      CheckFiniteOutput("f(t0, x0)", fx);
-      sys.f_jacobian(t0, x0, J);
-      CheckFiniteOutput("f_jacobian(t0, x0)", J);
-    }
-    sys.g(x0, G0);
-    CheckFiniteOutput("g(x0)", G0);
-    if (sys.g_jacobian_s) {
-      sys.g_jacobian_s(x0, Vector::Ones(m), J);
-      CheckFiniteOutput("g_jacobian_s(x0, 1)", J);
-    }
-    sys.h(x0, y0);
-    CheckFiniteOutput("h(x0)", y0);
-    sys.h_jacobian(x0, H0);
-    CheckFiniteOutput("h_jacobian(x0)", H0);
+  if (sys.f) {
+    sys.f(t0, x0, w.probe_f);
+    CheckFiniteOutput("f(t0, x0)", w.probe_f);
+    sys.f_jacobian(t0, x0, w.probe_J);
+    CheckFiniteOutput("f_jacobian(t0, x0)", w.probe_J);
   }
+  sys.g(x0, w.probe_G);
+  CheckFiniteOutput("g(x0)", w.probe_G);
+  if (sys.g_jacobian_s) {
+    sys.g_jacobian_s(x0, w.ones, w.probe_J);
+    CheckFiniteOutput("g_jacobian_s(x0, 1)", w.probe_J);
+  }
+  sys.h(x0, w.probe_y);
+  CheckFiniteOutput("h(x0)", w.probe_y);
+  sys.h_jacobian(x0, w.probe_H);
+  CheckFiniteOutput("h_jacobian(x0)", w.probe_H);
 
   // ---- trajectory and per-run state
   const bool record = options.stepper.record;
@@ -421,7 +433,7 @@ void NonlinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* sol
   out->m = m;
   out->h = scheme.h;
   out->t0 = t0;
-  out->description = scheme.Description() + (implicit ? ", " + std::string(ToString(options.algorithm)) : "");
+  out->description = !implicit ? w.description_explicit : (use_mcp ? w.description_mcp : w.description_newton);
   out->num_steps = num_steps;
   out->steps_taken = 0;
   out->recorded = record;
@@ -444,7 +456,10 @@ void NonlinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* sol
   stats.total_iterations = 0;
   stats.max_iterations = 0;
 
+  // Copy the backend options but keep our warm-start storage (copying an empty warm_start would free it).
+  Vector warm_storage = std::move(w.solver_options.warm_start);
   w.solver_options = options.stepper.solver;
+  w.solver_options.warm_start = std::move(warm_storage);
   w.solver_options.measure_time = false;
   w.solver_options.warm_start.resize(options.stepper.warm_start ? (use_mcp ? n + m : m) : 0);
 

@@ -18,6 +18,7 @@
 #include "problems/stepper/stepper_test_util.h"
 #include "problems/stepper/trajectory.h"
 #include "solvers/registry/registry.h"
+#include "tests/support/malloc_counter.h"
 
 namespace smcbench {
 namespace {
@@ -151,7 +152,16 @@ TEST(OneStepMCP, ResidualIsTheTimeStepOfTheScheme) {
 //     zero discrete derivative. "0" means: within a few ulps of |x_k₀| + h for Algorithm 2 (the Newton iterate
 //     x_k − W s with s = x_k/W, and s from a pivoting backend, are not bit-exact), or within zero_tol for a
 //     backend that stops at its tolerance (Algorithm 1's semismooth Newton). Returns k₀.
-std::int64_t CheckLemmaYoupi(const Trajectory& tr, double h, double x0, double zero_tol = 0.0) {
+struct YoupiStats {
+  double max_closed_form_rel = 0.0;   // max |x_{k+1} − closed form| / |closed form|
+  double max_abs_x_at_rest = 0.0;     // max |x_k| after arrival
+  long rest_steps = 0, exact_zero_steps = 0;
+};
+
+std::int64_t CheckLemmaYoupi(const Trajectory& tr, double h, double x0, double zero_tol = 0.0,
+                             YoupiStats* stats = nullptr) {
+  YoupiStats local;
+  YoupiStats& st = stats ? *stats : local;
   std::int64_t k0 = -1;
   double last_nonzero = std::abs(x0);
   for (std::int64_t k = 0; k < tr.steps_taken; ++k) {
@@ -160,6 +170,7 @@ std::int64_t CheckLemmaYoupi(const Trajectory& tr, double h, double x0, double z
       const double sg = Sign(xk);
       const double closed = (xk - h * sg) / (1.0 + h * sg);
       EXPECT_NEAR(xn, closed, 1e-14 * std::abs(closed)) << "step " << k + 1 << " from x_k = " << xk;
+      st.max_closed_form_rel = std::max(st.max_closed_form_rel, std::abs(xn - closed) / std::abs(closed));
       EXPECT_NEAR(sn, sg, 1e-14) << "step " << k + 1;
       last_nonzero = std::abs(xn);
     } else {
@@ -167,6 +178,9 @@ std::int64_t CheckLemmaYoupi(const Trajectory& tr, double h, double x0, double z
         k0 = k;
         EXPECT_NEAR(sn, xk / h, 1e-12) << "s_{k0+1} = x_k0 / h";
       }
+      st.max_abs_x_at_rest = std::max(st.max_abs_x_at_rest, std::abs(xn));
+      ++st.rest_steps;
+      st.exact_zero_steps += xn == 0.0;
       EXPECT_LE(std::abs(xn), std::max(zero_tol, 4 * std::numeric_limits<double>::epsilon() * (last_nonzero + h)))
           << "x_" << k + 1 << " after arrival at step " << k0 + 1;
       if (k > k0) { EXPECT_LE(std::abs(sn), std::max(1e-12, zero_tol / h)) << "s_" << k + 1 << " at rest"; }
@@ -191,6 +205,7 @@ TEST(LemmaYoupi, ClosedFormStepsThenRestAtZeroWithAlgorithm2) {
   stepper_test::ReferenceSolver reference;
   auto lemke = CreateSolver("lemke");
   for (Solver* solver : {static_cast<Solver*>(&reference), lemke.get()}) {
+    YoupiStats stats;
     for (double h : {0.01, 0.05, 0.1, 0.3, 0.5, 0.9}) {
       for (double x0 : {1.5, 3.0, -0.5, -0.95, 0.05}) {
         SCOPED_TRACE(std::string(solver->info().name) + " h=" + std::to_string(h) + " x0=" + std::to_string(x0));
@@ -200,14 +215,19 @@ TEST(LemmaYoupi, ClosedFormStepsThenRestAtZeroWithAlgorithm2) {
         const std::int64_t N = PredictedK0(x0, h) + 20;
         const Trajectory tr = stepper.Run(Vec({x0}), N, solver, Options(NonlinearAlgorithm::kNewtonMlcp));
         ASSERT_TRUE(tr.ok()) << tr.first_failure_message;
-        EXPECT_EQ(CheckLemmaYoupi(tr, h, x0), PredictedK0(x0, h));
+        EXPECT_EQ(CheckLemmaYoupi(tr, h, x0, 0.0, &stats), PredictedK0(x0, h));
       }
     }
+    std::printf("[ info     ] Lemma youpi, Algorithm 2 with %s: closed form to %.1e relative; %ld of %ld steps at "
+                "rest exactly 0, max |x| at rest %.1e\n",
+                std::string(solver->info().name).c_str(), stats.max_closed_form_rel, stats.exact_zero_steps,
+                stats.rest_steps, stats.max_abs_x_at_rest);
   }
 }
 
 TEST(LemmaYoupi, ClosedFormStepsThenRestAtZeroWithAlgorithm1) {
   auto newton = CreateSolver("newton");
+  YoupiStats stats;
   for (double h : {0.05, 0.1, 0.5, 0.9}) {
     for (double x0 : {1.5, -0.5}) {
       SCOPED_TRACE("h=" + std::to_string(h) + " x0=" + std::to_string(x0));
@@ -218,9 +238,12 @@ TEST(LemmaYoupi, ClosedFormStepsThenRestAtZeroWithAlgorithm1) {
       const Trajectory tr = stepper.Run(Vec({x0}), N, newton.get(), Options(NonlinearAlgorithm::kMcp, 1e-14));
       ASSERT_TRUE(tr.ok()) << tr.first_failure_message;
       // The backend stops at relative natural residual 1e-14 (scale 1 + |x_k|): x_{k+1} = 0 to that tolerance.
-      EXPECT_EQ(CheckLemmaYoupi(tr, h, x0, 1e-14 * (1 + std::abs(x0))), PredictedK0(x0, h));
+      EXPECT_EQ(CheckLemmaYoupi(tr, h, x0, 1e-14 * (1 + std::abs(x0)), &stats), PredictedK0(x0, h));
     }
   }
+  std::printf("[ info     ] Lemma youpi, Algorithm 1 (newton, tol 1e-14): closed form to %.1e relative; %ld of %ld "
+              "steps at rest exactly 0, max |x| at rest %.1e\n",
+              stats.max_closed_form_rel, stats.exact_zero_steps, stats.rest_steps, stats.max_abs_x_at_rest);
 }
 
 TEST(LemmaYoupi, FailsForInitialStatesBelowMinusOne) {
@@ -395,6 +418,7 @@ TEST(Algorithms, McpAndNewtonMlcpAgreeWithEveryBackend) {
       if (name == "ipopt") {
         // IpoptQpSolver's first solve of an m ≤ 4 problem calls BoxMLCP::Affine into an unsized vector
         // (Session::iter_w_, ipopt_qp_solver.cc) and segfaults; reported, re-enable once fixed.
+        std::printf("[ skipped  ] %s ipopt: segfaults on m <= 4 problems (unsized iter_w_)\n", sc.name.c_str());
         continue;
       }
       SCOPED_TRACE(sc.name + " / " + std::string(name));
@@ -697,6 +721,43 @@ TEST(NonlinearStepper, TrajectoryLayoutCsvAndMetrics) {
   const Trajectory none = stepper.Run(scene.x0, 0, &reference, Options(NonlinearAlgorithm::kNewtonMlcp));
   EXPECT_EQ(none.steps_taken, 0);
   EXPECT_TRUE(none.x_final == scene.x0);
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// Allocation: a repeated run reuses every buffer (counted at the malloc level, so Eigen's allocations count).
+
+TEST(NonlinearStepper, RepeatedRunsDoNotAllocateExceptTheMlcpCopies) {
+  if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";
+  auto newton = CreateSolver("newton");
+  stepper_test::ReferenceSolver reference;
+  for (const Scenario& sc : Scenarios()) {
+    SCOPED_TRACE(sc.name);
+    NonlinearStepper stepper(sc.system, sc.scheme);
+    Trajectory tr;
+    // Algorithm 1 and the explicit sign: nothing per step, nothing per run after the first.
+    const NonlinearStepperOptions o1 = Options(NonlinearAlgorithm::kMcp);
+    stepper.Run(sc.x0, sc.steps, newton.get(), o1, &tr);
+    ASSERT_TRUE(tr.ok()) << tr.first_failure_message;
+    EXPECT_EQ(test_support::CountMallocs([&] { stepper.Run(sc.x0, sc.steps, newton.get(), o1, &tr); }), 0);
+    // Algorithm 2: BoxMLCP has no in-place update of M, so each Newton iteration builds a fresh problem: copies of
+    // W, q, l, u plus the outer-index array of its (unused) default-constructed SparseMatrix member = 5
+    // allocations per iteration; nothing else allocates.
+    const NonlinearStepperOptions o2 = Options(NonlinearAlgorithm::kNewtonMlcp);
+    stepper.Run(sc.x0, sc.steps, &reference, o2, &tr);
+    ASSERT_TRUE(tr.ok());
+    const long a2 = test_support::CountMallocs([&] { stepper.Run(sc.x0, sc.steps, &reference, o2, &tr); });
+    const std::int64_t iterations = stepper.newton_stats().total_iterations;
+    std::printf("[ info     ] %-28s Algorithm 2: %ld allocations over %lld Newton iterations\n", sc.name.c_str(), a2,
+                static_cast<long long>(iterations));
+    EXPECT_LE(a2, 5 * iterations);
+  }
+  NonlinearScene scene = HypomonotoneScene();
+  scene.scheme.sign = SignTreatment::kExplicit;
+  NonlinearStepper explicit_stepper(scene.system, scene.scheme);
+  Trajectory tr;
+  const NonlinearStepperOptions o = Options(NonlinearAlgorithm::kNewtonMlcp);
+  explicit_stepper.Run(scene.x0, 50, nullptr, o, &tr);
+  EXPECT_EQ(test_support::CountMallocs([&] { explicit_stepper.Run(scene.x0, 50, nullptr, o, &tr); }), 0);
 }
 
 TEST(NonlinearStepper, AlgorithmNamesRoundTrip) {

@@ -72,19 +72,23 @@ NonlinearSignSystem ToNonlinear(const AffineGainSignSystem& system) {
       } else {
         f = c;
       }
-      f.noalias() += E * x;
+      f.noalias() += E.lazyProduct(x);
     };
     out.f_jacobian = [E](double, const Vector&, Eigen::Ref<DenseMatrix> J) { J = E; };
   }
   const bool has_A = !system.A.empty();
   // A stored side by side, [A_1 ... A_m] (n × nm), so g(x) and ∇g·s are plain loops without allocation.
+  // Products are coefficient-based (lazyProduct): the systems are small and Eigen's dynamic gemv dispatch would
+  // cost more than the arithmetic.
   DenseMatrix A_all(n, has_A ? static_cast<Eigen::Index>(n) * m : 0);
   for (int i = 0; has_A && i < m; ++i) A_all.middleCols(static_cast<Eigen::Index>(i) * n, n) = system.A[i];
   const DenseMatrix B = system.B;
   out.g = [A_all, B, n, m, has_A](const Vector& x, Eigen::Ref<DenseMatrix> G) {
     G = B;
     if (has_A) {
-      for (int i = 0; i < m; ++i) G.col(i).noalias() += A_all.middleCols(static_cast<Eigen::Index>(i) * n, n) * x;
+      for (int i = 0; i < m; ++i) {
+        G.col(i).noalias() += A_all.middleCols(static_cast<Eigen::Index>(i) * n, n).lazyProduct(x);
+      }
     }
   };
   if (has_A) {
@@ -98,7 +102,7 @@ NonlinearSignSystem ToNonlinear(const AffineGainSignSystem& system) {
   const Vector D = system.D.size() ? system.D : Vector::Zero(m);
   out.h = [C, D](const Vector& x, Eigen::Ref<Vector> y) {
     y = D;
-    y.noalias() += C * x;
+    y.noalias() += C.lazyProduct(x);
   };
   out.h_jacobian = [C](const Vector&, Eigen::Ref<DenseMatrix> H) { H = C; };
   return out;

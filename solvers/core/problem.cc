@@ -166,6 +166,7 @@ void BoxMLCP::Multiply(const Vector& z, Vector* out) const {
   }
   const Eigen::Index n = dense_.rows();
   if (n <= kSmallSize) {
+    if (out->size() != n) out->resize(n);  // like Eigen's assignment below; no allocation once sized
     // The paper's one-step problems have m = 1, 2: Eigen's dynamic-size product costs more than the arithmetic.
     const double* a = dense_.data();
     for (Eigen::Index i = 0; i < n; ++i) {

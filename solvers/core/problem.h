@@ -58,7 +58,7 @@ class BoxMLCP {
 
   // Dense problems up to this size use plain loops for M z (cheaper than Eigen's dynamic-size kernels).
   static constexpr int kSmallSize = 4;
-  // out = M z + q. out must already have size(); no allocation.
+  // out = M z + q; out is resized if needed (no allocation when it already has size()).
   void Affine(const Vector& z, Vector* out) const;
   // out = M z (no q).
   void Multiply(const Vector& z, Vector* out) const;

@@ -157,6 +157,9 @@ TEST(BoxMLCP, DenseAndSparseAgree) {
   d.Affine(z, &wd);
   s.Affine(z, &ws);
   EXPECT_EQ(wd, ws);
+  Vector unsized;  // the small-size path resizes like Eigen's assignment does
+  d.Affine(z, &unsized);
+  EXPECT_EQ(unsized, wd);
   EXPECT_FALSE(d.IsSymmetric());
   EXPECT_FALSE(s.IsSymmetric());
   EXPECT_DOUBLE_EQ(d.MatrixInfNorm(), 3.5);

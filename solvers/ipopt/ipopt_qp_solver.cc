@@ -198,12 +198,8 @@ class Session {
   void SetupGap(const BoxMLCP& p);
   void ConfigureOutput(int verbosity, int print_level);
   bool SetIpoptOptions(const SolverOptions& options, const IpoptOptions& o, bool convex_qp);
-  // Relative natural residual at z; *w receives M z + q. +inf when the residual cannot certify anything at
-  // the magnitude of z (see Resolvable).
+  // Relative natural residual at z (the shared, cancellation-free merit function); *w receives M z + q.
   double RelResidual(const Vector& z, Vector* w) const;
-  // False once eps*||z||_inf exceeds tolerance*scale: then z - Pi(z - w) rounds to 0 whatever w is (a diverging
-  // QP iterate at |z| = 1e16 has residual exactly 0), so a small residual proves nothing.
-  bool Resolvable(const Vector& z) const;
   void ActiveSet(const Vector& z, const Vector& w, std::vector<signed char>* state) const;
   // Polish from z_in (see the file comment). Returns the smallest relative residual found and writes that
   // point to *z_out; returns +inf (z_out untouched) if no candidate could be computed.
@@ -504,13 +500,9 @@ void Session::RecordSolution(const Number* x, Number objective) {
   objective_ = objective;
 }
 
-bool Session::Resolvable(const Vector& z) const {
-  return std::numeric_limits<double>::epsilon() * z.cwiseAbs().maxCoeff() <= target_ * problem_->residual_scale();
-}
-
 double Session::RelResidual(const Vector& z, Vector* w) const {
+  if (w->size() != z.size()) w->resize(z.size());  // Affine writes into a pre-sized vector
   problem_->Affine(z, w);
-  if (!Resolvable(z)) return kInf;
   return NaturalResidualNorm(z, *w, problem_->l(), problem_->u()) / problem_->residual_scale();
 }
 
@@ -852,8 +844,7 @@ double Session::Polish(const Vector& z_in, Vector* z_out) {
       }
       if (!finite) break;
     }
-    const double res = Resolvable(pol_z_) ? NaturalResidualNorm(pol_z_, pol_r_, l, u) / problem_->residual_scale()
-                                          : kInf;
+    const double res = NaturalResidualNorm(pol_z_, pol_r_, l, u) / problem_->residual_scale();
     if (res < best) {
       best = res;
       *z_out = pol_z_;
@@ -1067,10 +1058,6 @@ void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptO
       << "residual " << ipopt_residual;
   if (o.polish) msg << " (polished " << polished_residual << (accepted ? ", kept" : ", rejected") << ")";
   msg << " > tolerance " << target_;
-  if (!Resolvable(result->z)) {
-    msg << "; ||z||_inf = " << result->z.cwiseAbs().maxCoeff()
-        << " is too large for the natural residual to certify a solution";
-  }
   result->message = msg.str();
 }
 
