@@ -9,6 +9,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <regex>
 #include <sstream>
 
 #include "problems/io/siconos_format.h"
@@ -230,9 +231,12 @@ double GoalNs(int m) {
 int RunBenchTable(const std::string& path, std::ostream& out) {
   std::ifstream in(path);
   if (!in) throw InvalidInputError("bench-table: cannot read '" + path + "'");
+  // Google Benchmark writes non-finite counters (e.g. the CV of a constant) as bare NaN/inf, which is not JSON.
+  const std::string raw((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string text = std::regex_replace(raw, std::regex(R"(:\s*-?(NaN|nan|inf|Infinity)\b)"), ": null");
   nlohmann::json doc;
   try {
-    doc = nlohmann::json::parse(in);
+    doc = nlohmann::json::parse(text);
   } catch (const nlohmann::json::exception& e) {
     throw InvalidInputError("bench-table: '" + path + "' is not JSON: " + e.what());
   }
@@ -259,7 +263,7 @@ int RunBenchTable(const std::string& path, std::ostream& out) {
       continue;
     }
     const std::string aggregate = b.value("aggregate_name", "");
-    const double t = b.value("real_time", 0.0);
+    const double t = b["real_time"].is_number() ? b["real_time"].get<double>() : -1.0;
     if (aggregate == "median" || (aggregate.empty() && cell.median < 0)) cell.median = t;
     if (aggregate == "cv") cell.cv = t;
   }
