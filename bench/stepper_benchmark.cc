@@ -100,8 +100,10 @@ std::string Rate(double r) {
   if (r <= 0) return "-";
   if (r >= 1e6) {
     std::snprintf(buffer, sizeof buffer, "%.1f M", r / 1e6);
-  } else {
+  } else if (r >= 1e4) {
     std::snprintf(buffer, sizeof buffer, "%.0f k", r / 1e3);
+  } else {
+    std::snprintf(buffer, sizeof buffer, "%.2f k", r / 1e3);
   }
   return buffer;
 }
