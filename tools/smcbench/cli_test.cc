@@ -11,26 +11,15 @@
 #include <string>
 #include <vector>
 
-#include "tools/smcbench/commands.h"
+#include "tools/smcbench/cli_test_runner.h"
 
 namespace smcbench {
 namespace {
 
 using ::testing::HasSubstr;
 
-struct CliRun {
-  int code;
-  std::string out, err;
-};
-
-CliRun RunSmcbench(std::vector<std::string> args) {
-  args.insert(args.begin(), "smcbench");
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  const int code = RunCli(static_cast<int>(argv.size()), argv.data(), out, err);
-  return {code, out.str(), err.str()};
-}
+using test_support::CliRun;
+using test_support::RunSmcbench;
 
 const std::string kPeer = SMCBENCH_PEER_DATA_DIR "/siconos";
 

@@ -16,7 +16,7 @@
 #include <vector>
 
 #include "problems/scenes/registry.h"
-#include "tools/smcbench/commands.h"
+#include "tools/smcbench/cli_test_runner.h"
 #include "tools/smcbench/simulate.h"
 
 namespace smcbench {
@@ -26,19 +26,8 @@ using ::testing::HasSubstr;
 using ::testing::Not;
 namespace fs = std::filesystem;
 
-struct CliRun {
-  int code;
-  std::string out, err;
-};
-
-CliRun RunSmcbench(std::vector<std::string> args) {
-  args.insert(args.begin(), "smcbench");
-  std::vector<const char*> argv;
-  for (const auto& a : args) argv.push_back(a.c_str());
-  std::ostringstream out, err;
-  const int code = RunCli(static_cast<int>(argv.size()), argv.data(), out, err);
-  return {code, out.str(), err.str()};
-}
+using test_support::CliRun;
+using test_support::RunSmcbench;
 
 std::vector<std::string> ReadLines(const std::string& path) {
   std::ifstream in(path);
