@@ -4,6 +4,7 @@
 #include <filesystem>
 
 #include "problems/scenes/linear_scene.h"
+#include "problems/scenes/nonlinear_scene.h"
 
 #ifndef SMCBENCH_SCENES_DIR
 #error "SMCBENCH_SCENES_DIR must be defined (problems/scenes/CMakeLists.txt)"
@@ -20,8 +21,7 @@ struct Entry {
   Factory make;           // the C++ scene, or null for a file
 };
 
-// The registry, in the order of SCENES.md. Nonlinear scenes (S9 hypomonotone, S10 arctan) are C++ scenes:
-//   {"hypomonotone", "", &MakeHypomonotoneScene},
+// The registry, in the order of SCENES.md. Nonlinear scenes (S9 hypomonotone, S10 arctan) are C++ scenes.
 constexpr Entry kScenes[] = {
     {"sign", "sign.json", nullptr},                      // S1
     {"galias-yu-2007", "galias-yu-2007.json", nullptr},  // S2
@@ -31,6 +31,8 @@ constexpr Entry kScenes[] = {
     {"zoh-mimo", "zoh-mimo.json", nullptr},              // S6
     {"lyapunov", "lyapunov.json", nullptr},              // S7
     {"observer", "observer.json", nullptr},              // S8
+    {"hypomonotone", "", &MakeHypomonotoneScene},        // S9
+    {"arctan", "", &MakeArctanScene},                    // S10
     {"parasitic", "parasitic.json", nullptr},            // S11
 };
 

@@ -33,6 +33,12 @@ void SimulationSettings::Validate(int n) const {
   }
   std::string why;
   if (!stepper.IsValid(&why)) Fail("stepper options: " + why);
+  if (!(newton_tolerance > 0.0) || !std::isfinite(newton_tolerance)) {
+    Fail("newton tolerance must be positive and finite, got " + Num(newton_tolerance));
+  }
+  if (newton_max_iterations < 1) {
+    Fail("newton iteration limit must be >= 1, got " + std::to_string(newton_max_iterations));
+  }
   NumSteps(T, h);  // rejects horizons of 2^40 steps or more
 }
 

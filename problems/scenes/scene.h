@@ -10,6 +10,7 @@
 #include "problems/stepper/discretization.h"
 #include "problems/stepper/linear_stepper.h"
 #include "problems/stepper/metrics.h"
+#include "problems/stepper/nonlinear_stepper.h"
 #include "problems/stepper/trajectory.h"
 #include "solvers/core/solver.h"
 
@@ -30,9 +31,14 @@ struct SimulationSettings {
   StepperOptions stepper;
   // Name of the backend the scene suggests (a scene file's "simulation.solver"); callers may ignore it.
   std::string solver;
+  // Nonlinear scenes only (S9, S10): the path each implicit step takes (Algorithm 1 "mcp" needs a backend that
+  // solves MCPs; Algorithm 2 "newton-mlcp" runs on any box-MLCP backend) and the outer Newton loop's stopping rule.
+  NonlinearAlgorithm algorithm = NonlinearAlgorithm::kNewtonMlcp;
+  double newton_tolerance = 1e-10;
+  int newton_max_iterations = 50;
 
   // Throws InvalidInputError naming the field: h ≤ 0 or non-finite, T < 0 or non-finite, θ or γ outside [0, 1],
-  // x0 not of size n or not finite, invalid stepper options.
+  // x0 not of size n or not finite, invalid stepper options, Newton tolerance not in (0, ∞) or budget < 1.
   void Validate(int n) const;
 };
 

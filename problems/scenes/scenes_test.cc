@@ -11,6 +11,7 @@
 
 #include "problems/scenes/expression.h"
 #include "problems/scenes/linear_scene.h"
+#include "problems/scenes/nonlinear_scene.h"
 #include "problems/scenes/registry.h"
 #include "problems/stepper/stepper_test_util.h"
 #include "solvers/registry/registry.h"
@@ -68,10 +69,9 @@ TEST(Expression, DefectsNameWhatAndWhere) {
 TEST(Registry, NamesAreThoseOfScenesMd) {
   std::vector<std::string> names;
   for (auto n : SceneNames()) names.emplace_back(n);
-  for (const char* name : {"sign", "galias-yu-2007", "multi-surface", "filippov", "zoh-siso", "zoh-mimo", "lyapunov",
-                           "observer", "parasitic"}) {
-    EXPECT_THAT(names, ::testing::Contains(name));
-  }
+  EXPECT_THAT(names, ::testing::ElementsAre("sign", "galias-yu-2007", "multi-surface", "filippov", "zoh-siso",
+                                            "zoh-mimo", "lyapunov", "observer", "hypomonotone", "arctan",
+                                            "parasitic"));
 }
 
 TEST(Registry, UnknownNameListsTheKnownOnes) {
@@ -162,6 +162,98 @@ TEST(Registry, ScenesDirectoryCanBeOverridden) {
   ExpectError([] { LoadScene("observer"); }, {"observer.json", "cannot be read"});
   ::unsetenv("SMCBENCH_SCENES_DIR");
   fs::remove_all(dir);
+}
+
+// ---------------------------------------------------------------------------------------------------------------
+// The nonlinear scenes (C++): S9 and S10 through the same interface
+
+// Algorithm 1 (the step's MCP, newton) and Algorithm 2 (outer Newton, each iteration a box-MLCP on any backend)
+// stop on the same merit function at 1e-10, so their trajectories agree to that order on both scenes.
+TEST(NonlinearScenes, AlgorithmOneAndTwoAgreeWithEveryBackend) {
+  const auto newton = CreateSolver("newton");
+  for (const char* name : {"hypomonotone", "arctan"}) {
+    const auto scene = LoadScene(name);
+    EXPECT_EQ(scene->info().source, "built-in");
+    SimulationSettings s = scene->defaults();
+    s.algorithm = NonlinearAlgorithm::kMcp;
+    const Trajectory mcp = scene->Run(s, newton.get());
+    ASSERT_TRUE(mcp.ok()) << name << ": " << mcp.first_failure_message;
+    s.algorithm = NonlinearAlgorithm::kNewtonMlcp;
+    for (auto backend : SolverNames()) {
+      SCOPED_TRACE(std::string(name) + " with " + std::string(backend));
+      const auto solver = CreateSolver(backend);
+      const Trajectory mlcp = scene->Run(s, solver.get());
+      ASSERT_TRUE(mlcp.ok()) << mlcp.first_failure_message;
+      EXPECT_LE((mcp.x - mlcp.x).cwiseAbs().maxCoeff(), 1e-9);
+      EXPECT_LE(std::abs(mlcp.x_final[0]), 1e-12);  // both rest exactly (to rounding) at the origin
+    }
+  }
+}
+
+TEST(NonlinearScenes, ParametersMethodsAndExactSolutions) {
+  const auto scene = LoadScene("hypomonotone");
+  EXPECT_EQ(scene->defaults().parameters.at("rho"), 0.0);
+  EXPECT_TRUE(scene->Supports(Method::kExplicit));
+  EXPECT_FALSE(scene->Supports(Method::kZoh));
+  const auto lemke = CreateSolver("lemke");
+  SimulationSettings s = scene->defaults();
+  s.parameters["rho"] = 1.0;
+  const Trajectory shifted = scene->Run(s, lemke.get());
+  EXPECT_NE(shifted.description.find("rho=1"), std::string::npos) << shifted.description;
+  ASSERT_TRUE(shifted.ok());
+  EXPECT_LE(std::abs(shifted.x_final[0]), 1e-15);
+  // The exact solution follows --x0: from x0 = 0.5, x(t) = 1.5 e^{-t} − 1 until t* = ln 1.5.
+  s.x0 = Vector::Constant(1, 0.5);
+  const auto exact = scene->Exact(s);
+  ASSERT_TRUE(exact.has_value());
+  Vector x(1);
+  exact->x(0.2, x);
+  EXPECT_NEAR(x[0], 1.5 * std::exp(-0.2) - 1.0, 1e-15);
+  // Explicit sign: the classical scheme chatters around 0 instead of resting there.
+  s = scene->defaults();
+  s.method = Method::kExplicit;
+  s.theta = s.gamma = 0.0;
+  s.T = 5.0;
+  const Trajectory explicit_run = scene->Run(s, nullptr);
+  EXPECT_GT(std::abs(explicit_run.x_final[0]), 1e-3);
+
+  ExpectError([&] {
+    SimulationSettings bad = scene->defaults();
+    bad.parameters["tau"] = 1.0;
+    scene->Run(bad, lemke.get());
+  }, {"hypomonotone", "no parameter 'tau'"});
+  ExpectError([&] {
+    SimulationSettings bad = scene->defaults();
+    bad.parameters["rho"] = -1.0;
+    scene->Run(bad, lemke.get());
+  }, {"rho"});
+  ExpectError([&] {
+    SimulationSettings bad = scene->defaults();
+    bad.method = Method::kZoh;
+    scene->Run(bad, lemke.get());
+  }, {"ZOH needs a linear plant"});
+  ExpectError([&] {
+    SimulationSettings bad = scene->defaults();
+    bad.newton_tolerance = 0.0;
+    scene->Run(bad, lemke.get());
+  }, {"newton tolerance"});
+  ExpectError([&] {
+    SimulationSettings bad = scene->defaults();
+    bad.newton_max_iterations = 0;
+    scene->Run(bad, lemke.get());
+  }, {"newton iteration limit"});
+}
+
+// A Newton budget too small for the step is reported as a status with the step, not an exception.
+TEST(NonlinearScenes, NewtonBudgetExhaustedIsAStatusWithTheStep) {
+  const auto scene = LoadScene("arctan");
+  SimulationSettings s = scene->defaults();
+  s.newton_max_iterations = 1;
+  const auto lemke = CreateSolver("lemke");
+  const Trajectory t = scene->Run(s, lemke.get());
+  EXPECT_FALSE(t.ok());
+  EXPECT_EQ(t.first_failure_status, SolveStatus::kIterationLimit);
+  EXPECT_GE(t.first_failed_step, 1);
 }
 
 // ---------------------------------------------------------------------------------------------------------------

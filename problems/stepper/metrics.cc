@@ -14,18 +14,18 @@ void RequireRecorded(const Trajectory& trajectory, const char* owner) {
   }
 }
 
-int Sign(double v) { return v > 0.0 ? 1 : (v < 0.0 ? -1 : 0); }
+int Sign(double v, double dead_zone) { return v > dead_zone ? 1 : (v < -dead_zone ? -1 : 0); }
 
 // Sign changes and total variation of s_i over rows [first, last] (pairs (j−1, j) with first < j ≤ last).
-void SignStatistics(const DenseMatrix& s, int i, Eigen::Index first, Eigen::Index last, std::int64_t* changes,
-                    double* variation) {
+void SignStatistics(const DenseMatrix& s, int i, Eigen::Index first, Eigen::Index last, double dead_zone,
+                    std::int64_t* changes, double* variation) {
   *changes = 0;
   *variation = 0.0;
   if (first > last) return;
-  int last_sign = Sign(s(i, first));
+  int last_sign = Sign(s(i, first), dead_zone);
   for (Eigen::Index j = first + 1; j <= last; ++j) {
     *variation += std::abs(s(i, j) - s(i, j - 1));
-    const int sign = Sign(s(i, j));
+    const int sign = Sign(s(i, j), dead_zone);
     if (sign == 0) continue;
     if (last_sign != 0 && sign != last_sign) ++*changes;
     last_sign = sign;
@@ -34,13 +34,15 @@ void SignStatistics(const DenseMatrix& s, int i, Eigen::Index first, Eigen::Inde
 
 }  // namespace
 
-TrajectoryMetrics ComputeMetrics(const Trajectory& trajectory, double tol) {
+TrajectoryMetrics ComputeMetrics(const Trajectory& trajectory, double tol, double sign_dead_zone) {
   RequireRecorded(trajectory, "ComputeMetrics");
   if (!(tol >= 0.0)) throw InvalidInputError("ComputeMetrics: tol must be >= 0");
+  if (!(sign_dead_zone >= 0.0)) throw InvalidInputError("ComputeMetrics: sign_dead_zone must be >= 0");
   const Trajectory& tr = trajectory;
   const Eigen::Index last = static_cast<Eigen::Index>(tr.steps_taken);
   TrajectoryMetrics out;
   out.tolerance = tol;
+  out.sign_dead_zone = sign_dead_zone;
   out.max_residual = tr.max_residual;
   out.total_iterations = tr.total_iterations;
   out.max_iterations = tr.max_iterations;
@@ -60,10 +62,10 @@ TrajectoryMetrics ComputeMetrics(const Trajectory& trajectory, double tol) {
       sm.reaching_step = j + 1;
       reaching_all = std::max(reaching_all, sm.reaching_step);
       for (Eigen::Index r = j + 1; r <= last; ++r) sm.max_abs_y_after = std::max(sm.max_abs_y_after, std::abs(tr.y(i, r)));
-      SignStatistics(tr.s, i, std::max<Eigen::Index>(j + 1, 1), last, &sm.sign_changes_after,
+      SignStatistics(tr.s, i, std::max<Eigen::Index>(j + 1, 1), last, sign_dead_zone, &sm.sign_changes_after,
                      &sm.total_variation_after);
     }
-    SignStatistics(tr.s, i, 1, last, &sm.sign_changes_total, &sm.total_variation_total);
+    SignStatistics(tr.s, i, 1, last, sign_dead_zone, &sm.sign_changes_total, &sm.total_variation_total);
   }
   out.reaching_step = all_reached ? reaching_all : -1;
   return out;

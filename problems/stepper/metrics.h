@@ -16,16 +16,22 @@ struct SurfaceMetrics {
   // First k such that |y_i,j| ≤ tol for every recorded j ≥ k; −1 if |y_i| > tol at the last step (never reached).
   std::int64_t reaching_step = -1;
   double max_abs_y_after = 0.0;        // max_{j ≥ reaching_step} |y_i,j| (0 if never reached)
-  // Sign changes of s_i: a nonzero s_i,j whose sign differs from the last nonzero s_i before it (so 1, 0, −1
-  // counts once); rows j ≥ 1 only (row 0 holds no step's s).
+  // Sign changes of s_i: an s_i,j with |s_i,j| > sign_dead_zone whose sign differs from the last such s_i before
+  // it (so 1, 0, −1 counts once, and the ±1e-12 a solver leaves on an interior s = 0 counts as 0); rows j ≥ 1 only
+  // (row 0 holds no step's s).
   std::int64_t sign_changes_after = 0; // among rows j > reaching_step
   double total_variation_after = 0.0;  // Σ_{j > reaching_step} |s_i,j − s_i,j−1|
   std::int64_t sign_changes_total = 0; // over rows 1..N
   double total_variation_total = 0.0;  // Σ_{j=2..N} |s_i,j − s_i,j−1|
 };
 
+// |s| at or below this is "zero" for sign changes: well above what a backend leaves at tolerance 1e-10 on the
+// one-step problems of the paper's scenes, far below the ±1 of a chattering scheme.
+inline constexpr double kSignDeadZone = 1e-6;
+
 struct TrajectoryMetrics {
   double tolerance = 0.0;
+  double sign_dead_zone = kSignDeadZone;
   std::vector<SurfaceMetrics> surfaces;  // one per row of C
   // All surfaces at once: max over i of reaching_step, −1 if any surface is never reached.
   std::int64_t reaching_step = -1;
@@ -35,8 +41,8 @@ struct TrajectoryMetrics {
   std::int64_t failed_steps = 0;
 };
 
-// Throws InvalidInputError if the trajectory was not recorded or tol < 0 / NaN.
-TrajectoryMetrics ComputeMetrics(const Trajectory& trajectory, double tol);
+// Throws InvalidInputError if the trajectory was not recorded, or tol or sign_dead_zone is < 0 or NaN.
+TrajectoryMetrics ComputeMetrics(const Trajectory& trajectory, double tol, double sign_dead_zone = kSignDeadZone);
 
 // Discrete error norms of e_k = ‖f_k − f(t_k)‖∞ (∞-norm over components):
 //   l1 = h Σ_k e_k,  l2 = (h Σ_k e_k²)^½,  max = max_k e_k.

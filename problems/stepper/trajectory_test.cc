@@ -101,6 +101,21 @@ TEST(Metrics, ReachingStepSignChangesAndVariation) {
   EXPECT_THAT([&] { ComputeMetrics(tr, -1.0); }, ::testing::ThrowsMessage<InvalidInputError>(HasSubstr("tol")));
 }
 
+TEST(Metrics, RoundingLevelValuesOfSAreNotSignChanges) {
+  // A backend leaves s = ±1e-12 instead of 0 on the surface: not chattering. 1e-3 is a real (small) sign.
+  const Trajectory tr = Handmade({1.0, 0.0, 0.0, 0.0, 0.0, 0.0}, {0.0, 1.0, 1e-12, -1e-12, 1e-12, -1e-3});
+  const TrajectoryMetrics m = ComputeMetrics(tr, 1e-9);
+  EXPECT_EQ(m.sign_dead_zone, kSignDeadZone);
+  // On the surface from row 1: s = 1, (1e-12, −1e-12, 1e-12 count as 0), −1e-3: one real change.
+  EXPECT_EQ(m.surfaces[0].reaching_step, 1);
+  EXPECT_EQ(m.surfaces[0].sign_changes_after, 1);
+  EXPECT_EQ(m.surfaces[0].sign_changes_total, 1);
+  // With no dead zone every rounding flip counts (1 → 1e-12 → −1e-12 → 1e-12 → −1e-3: 3 changes).
+  EXPECT_EQ(ComputeMetrics(tr, 1e-9, 0.0).surfaces[0].sign_changes_total, 3);
+  EXPECT_THAT([&] { ComputeMetrics(tr, 1e-9, -1.0); },
+              ::testing::ThrowsMessage<InvalidInputError>(HasSubstr("sign_dead_zone")));
+}
+
 TEST(Metrics, NeverReachedAndNaN) {
   EXPECT_EQ(ComputeMetrics(Handmade({1.0, 0.0, 0.1}, {0, 1, 1}), 1e-9).reaching_step, -1);
   EXPECT_EQ(ComputeMetrics(Handmade({1.0, 0.0, NAN}, {0, 1, 1}), 1e-9).surfaces[0].reaching_step, -1);

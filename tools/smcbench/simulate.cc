@@ -16,6 +16,7 @@
 #include <sstream>
 
 #include "problems/scenes/linear_scene.h"
+#include "problems/scenes/nonlinear_scene.h"
 #include "problems/scenes/registry.h"
 #include "solvers/registry/registry.h"
 
@@ -143,6 +144,11 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
   j["T"] = settings.T;
   if (!IsZoh(settings.method)) j["theta"] = settings.theta;
   j["gamma"] = settings.gamma;
+  if (dynamic_cast<const NonlinearSceneAdapter*>(&scene)) {
+    j["algorithm"] = std::string(ToString(settings.algorithm));
+    j["newton_tolerance"] = settings.newton_tolerance;
+    j["newton_max_iterations"] = settings.newton_max_iterations;
+  }
   j["x0"] = VectorJson(settings.x0);
   j["parameters"] = json::object();
   for (const auto& [name, value] : settings.parameters) j["parameters"][name] = value;
@@ -175,6 +181,7 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
   // Sliding-surface accuracy (needs the recorded history).
   const TrajectoryMetrics metrics = ComputeMetrics(tr, reach_tol);
   j["reaching_tolerance"] = reach_tol;
+  j["sign_dead_zone"] = metrics.sign_dead_zone;
   j["reaching_step"] = metrics.reaching_step;
   j["reaching_time"] = metrics.reaching_step >= 0 ? json(tr.time(metrics.reaching_step)) : json(nullptr);
   double max_y = 0.0, tv_after = 0.0, tv_total = 0.0;
@@ -293,13 +300,14 @@ void PlotTrajectory(const Trajectory& tr, const std::string& data_csv, const std
 // simulate
 
 struct SimulateCommand::Flags {
-  std::string scene, method, x0, solver, out, summary, plot, on_failure = "stop";
-  double h = 0.0, T = 0.0, theta = 0.0, gamma = 0.0, tol = 1e-10, reach_tol = 0.0;
-  int max_iter = 0;
+  std::string scene, method, x0, solver, out, summary, plot, on_failure = "stop", algorithm;
+  double h = 0.0, T = 0.0, theta = 0.0, gamma = 0.0, tol = 1e-10, reach_tol = 0.0, newton_tol = 0.0;
+  int max_iter = 0, newton_max_iter = 0;
   bool no_warm_start = false;
   std::vector<std::string> params, sets;
   CLI::Option *method_opt = nullptr, *h_opt = nullptr, *T_opt = nullptr, *theta_opt = nullptr,
-              *gamma_opt = nullptr, *x0_opt = nullptr, *reach_opt = nullptr, *solver_opt = nullptr;
+              *gamma_opt = nullptr, *x0_opt = nullptr, *reach_opt = nullptr, *solver_opt = nullptr,
+              *algorithm_opt = nullptr, *newton_tol_opt = nullptr, *newton_max_iter_opt = nullptr;
 };
 
 SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
@@ -308,7 +316,8 @@ SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>
   command_->add_option("SCENE", f.scene, "registered scene name or path to a scene JSON file")->required();
   f.method_opt = command_->add_option("--method", f.method,
                                       "implicit | explicit | zoh | zoh-explicit (default: the scene's); explicit "
-                                      "without --theta is the classical explicit Euler scheme (theta = 0)");
+                                      "without --theta/--gamma is the classical explicit Euler scheme (theta = "
+                                      "gamma = 0)");
   f.h_opt = command_->add_option("--h", f.h, "time step (default: the scene's)");
   f.T_opt = command_->add_option("--T", f.T, "horizon; N = round(T/h) steps (default: the scene's)");
   f.x0_opt = command_->add_option("--x0", f.x0, "initial state v1,v2,... (default: the scene's)");
@@ -318,6 +327,15 @@ SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>
   f.solver_opt = command_->add_option("--solver", f.solver,
                                       std::string("backend for the one-step problems (default: the scene's, else ") +
                                           kDefaultSolver + ")");
+  f.algorithm_opt = command_->add_option(
+      "--algorithm", f.algorithm,
+      "nonlinear scenes: newton-mlcp (Algorithm 2: outer Newton, each iteration a box-MLCP on any backend; "
+      "default) | mcp (Algorithm 1: the step's MCP, backend newton)");
+  f.newton_tol_opt = command_->add_option("--newton-tol", f.newton_tol,
+                                          "nonlinear scenes: Newton stopping tolerance on the step's relative "
+                                          "residual (default 1e-10)");
+  f.newton_max_iter_opt = command_->add_option("--newton-max-iter", f.newton_max_iter,
+                                               "nonlinear scenes: Newton iterations per step (default 50)");
   command_->add_option("--tol", f.tol, "tolerance on each step's relative natural residual (default 1e-10)");
   command_->add_option("--max-iter", f.max_iter, "backend iteration budget (0: its default)");
   command_->add_option("--set", f.sets, "typed backend option BACKEND.OPTION=VALUE (see `smcbench list`)");
@@ -352,6 +370,7 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
     s.method = *method;
     // "explicit" means the classical explicit Euler scheme unless a θ is asked for.
     if (s.method == Method::kExplicit && !f.theta_opt->count()) s.theta = 0.0;
+    if (s.method == Method::kExplicit && !f.gamma_opt->count()) s.gamma = 0.0;
   }
   if (f.h_opt->count()) s.h = f.h;
   if (f.T_opt->count()) s.T = f.T;
@@ -369,6 +388,18 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
       fail("--param: the scene has no parameter '" + name + "' (parameters: " + (known.empty() ? "none" : known) + ")");
     }
     s.parameters[name] = *value;
+  }
+  const bool nonlinear = dynamic_cast<const NonlinearSceneAdapter*>(scene.get()) != nullptr;
+  if (f.algorithm_opt->count()) {
+    const auto algorithm = NonlinearAlgorithmFromString(f.algorithm);
+    if (!algorithm) fail("--algorithm: unknown algorithm '" + f.algorithm + "' (known: newton-mlcp, mcp)");
+    s.algorithm = *algorithm;
+  }
+  if (f.newton_tol_opt->count()) s.newton_tolerance = f.newton_tol;
+  if (f.newton_max_iter_opt->count()) s.newton_max_iterations = f.newton_max_iter;
+  if (!nonlinear && (f.algorithm_opt->count() || f.newton_tol_opt->count() || f.newton_max_iter_opt->count())) {
+    err << "note: --algorithm, --newton-tol and --newton-max-iter apply to nonlinear scenes only; a linear scene "
+           "solves one box-MLCP per step\n";
   }
   s.stepper.solver.tolerance = f.tol;
   s.stepper.solver.max_iterations = f.max_iter;
@@ -398,8 +429,13 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
   std::unique_ptr<Solver> solver;
   std::string solver_name;
   if (IsImplicit(s.method)) {
-    solver_name = f.solver_opt->count() ? f.solver : (s.solver.empty() ? kDefaultSolver : s.solver);
+    const bool mcp = nonlinear && s.algorithm == NonlinearAlgorithm::kMcp;
+    solver_name = f.solver_opt->count() ? f.solver : (!s.solver.empty() ? s.solver : mcp ? "newton" : kDefaultSolver);
     solver = CreateSolver(solver_name);  // unknown name: error listing the known ones
+    if (mcp && !solver->info().mcp) {
+      fail("--algorithm mcp needs a backend that solves nonlinear MCPs (newton); '" + solver_name +
+           "' solves box-MLCPs only: use --algorithm newton-mlcp with it");
+    }
     for (const std::string& set : f.sets) {
       const auto dot = set.find('.'), eq = set.find('=');
       if (dot == std::string::npos || eq == std::string::npos || eq < dot) {
@@ -416,7 +452,7 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
   } else if (f.solver_opt->count()) {
     err << "note: --solver is ignored: method " << ToString(s.method) << " solves no one-step problem\n";
   }
-  if (f.gamma_opt->count() && dynamic_cast<const LinearScene*>(scene.get())) {
+  if (f.gamma_opt->count() && !nonlinear) {
     err << "note: --gamma has no effect on a linear scene (g(x) = B is constant)\n";
   }
 

@@ -145,6 +145,39 @@ TEST_F(Simulate, GaliasYuExplicitChattersImplicitDoesNot) {
   EXPECT_EQ(i["failed_steps"], 0);
 }
 
+// S9/S10 by name: --algorithm picks Algorithm 1 (mcp, default backend newton) or 2 (newton-mlcp, any backend);
+// both land on the same final state; the summary names the algorithm.
+TEST_F(Simulate, NonlinearScenesRunBothAlgorithms) {
+  const std::string a1 = Path("mcp.json"), a2 = Path("mlcp.json");
+  CliRun r = RunSmcbench({"simulate", "arctan", "--algorithm", "mcp", "--summary", a1});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("backend newton"));
+  r = RunSmcbench({"simulate", "arctan", "--algorithm", "newton-mlcp", "--solver", "psor", "--newton-tol", "1e-11",
+                   "--newton-max-iter", "20", "--summary", a2});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j1 = ReadJson(a1), j2 = ReadJson(a2);
+  EXPECT_EQ(j1["algorithm"], "mcp");
+  EXPECT_EQ(j2["algorithm"], "newton-mlcp");
+  EXPECT_EQ(j2["newton_tolerance"], 1e-11);
+  EXPECT_EQ(j2["newton_max_iterations"], 20);
+  EXPECT_EQ(j1["reaching_step"], j2["reaching_step"]);
+  EXPECT_EQ(j1["sign_changes_after_reaching"], 0);
+  EXPECT_NEAR(j1["x_final"][0].get<double>(), j2["x_final"][0].get<double>(), 1e-12);
+  // The rho-shift of S9 is a scene parameter.
+  r = RunSmcbench({"simulate", "hypomonotone", "--param", "rho=2"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("rho=2"));
+
+  ExpectOneLineError(RunSmcbench({"simulate", "arctan", "--algorithm", "mcp", "--solver", "lemke"}),
+                     {"--algorithm mcp needs a backend that solves nonlinear MCPs"});
+  ExpectOneLineError(RunSmcbench({"simulate", "arctan", "--algorithm", "newton"}), {"unknown algorithm 'newton'"});
+  ExpectOneLineError(RunSmcbench({"simulate", "arctan", "--newton-max-iter", "0"}), {"newton iteration limit"});
+  ExpectOneLineError(RunSmcbench({"simulate", "arctan", "--method", "zoh"}), {"ZOH"});
+  r = RunSmcbench({"simulate", "sign", "--algorithm", "mcp"});
+  EXPECT_EQ(r.code, 0);
+  EXPECT_THAT(r.err, HasSubstr("apply to nonlinear scenes only"));
+}
+
 TEST_F(Simulate, UnknownSceneListsTheKnownNames) {
   const CliRun r = RunSmcbench({"simulate", "sine"});
   ExpectOneLineError(r, {"unknown scene 'sine'", "sign", "galias-yu-2007", "multi-surface", "filippov", "zoh-siso",
