@@ -14,6 +14,7 @@
 
 #include "problems/io/siconos_format.h"
 #include "solvers/registry/registry.h"
+#include "tools/smcbench/paper.h"
 #include "tools/smcbench/simulate.h"
 #include "tools/smcbench/solve_report.h"
 
@@ -340,6 +341,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
   SimulateCommand simulate(&app);
   ScenesCommand scenes(&app);
+  PaperCommand paper(&app);
 
   try {
     app.parse(argc, argv);
@@ -362,6 +364,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (bench_table->parsed()) return RunBenchTable(bench_json, out);
     if (simulate.parsed()) return simulate.Run(out, err);
     if (scenes.parsed()) return scenes.Run(out, err);
+    if (paper.parsed()) return paper.Run(out, err);
   } catch (const InvalidInputError& e) {
     err << "smcbench: " << e.what() << "\n";
     return 1;

@@ -93,14 +93,6 @@ std::string FormatRate(double per_second) {
   return buffer;
 }
 
-// gnuplot single-quoted string: a quote is written twice.
-std::string GnuplotQuote(const std::string& text) {
-  if (text.find('\n') != std::string::npos) throw InvalidInputError("--plot: path contains a newline");
-  std::string out = "'";
-  for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
-  return out + "'";
-}
-
 // POSIX shell single-quoted word.
 std::string ShellQuote(const std::string& text) {
   std::string out = "'";
@@ -252,10 +244,7 @@ void PlotTrajectory(const Trajectory& tr, const std::string& data_csv, const std
   const std::string every = "every " + std::to_string(stride);
   const std::string data = GnuplotQuote(data_csv);
   std::ostringstream g;
-  g << "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,"
-    << (n >= 2 ? 900 : 1000) << " noenhanced font ',10' } else { set terminal png size 1200,"
-    << (n >= 2 ? 900 : 1000) << " noenhanced }\n"
-    << "set output " << GnuplotQuote(png_path) << "\n"
+  g << GnuplotPngPreamble(1200, n >= 2 ? 900 : 1000, png_path)
     << "set datafile separator ','\nset datafile columnheaders\nset grid\nset key top right\n"
     << "set multiplot layout " << (n >= 2 ? "2,2" : "3,1") << " title " << GnuplotQuote(title) << "\n"
     << "set xlabel 't'\n"
@@ -275,12 +264,33 @@ void PlotTrajectory(const Trajectory& tr, const std::string& data_csv, const std
       << data << " every ::0::0 using 2:3 with points pt 6 ps 2.5 lw 2 title 'x0'\n";
   }
   g << "unset multiplot\n";
+  RunGnuplot(g.str(), png_path, "--plot");
+}
+
+std::string GnuplotPngPreamble(int width, int height, const std::string& png_path) {
+  const std::string size = " size " + std::to_string(width) + "," + std::to_string(height);
+  return "if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo" + size +
+         " noenhanced font ',10' } else { set terminal png" + size + " noenhanced }\nset output " +
+         GnuplotQuote(png_path) + "\n";
+}
+
+std::string GnuplotQuote(const std::string& text) {
+  if (text.find('\n') != std::string::npos) throw InvalidInputError("gnuplot: path contains a newline: " + text);
+  std::string out = "'";
+  for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
+  return out + "'";
+}
+
+void RunGnuplot(const std::string& script_text, const std::string& png_path, const std::string& what) {
+  if (!GnuplotAvailable()) {
+    throw InvalidInputError(what + " needs gnuplot (Debian package gnuplot-nox), which is not on PATH");
+  }
   TempFile script{TempPath("plot", ".gp")};
   TempFile log{TempPath("plot", ".log")};
   {
     std::ofstream out(script.path);
-    out << g.str();
-    if (!out) throw InvalidInputError("--plot: cannot write the gnuplot script " + script.path.string());
+    out << script_text;
+    if (!out) throw InvalidInputError(what + ": cannot write the gnuplot script " + script.path.string());
   }
   const std::string command = "gnuplot " + ShellQuote(script.path.string()) + " 2> " + ShellQuote(log.path.string());
   const int rc = std::system(command.c_str());
@@ -291,7 +301,7 @@ void PlotTrajectory(const Trajectory& tr, const std::string& data_csv, const std
     while (std::getline(in, line)) {
       if (!line.empty()) last = line;
     }
-    throw InvalidInputError("--plot: gnuplot failed to write '" + png_path + "' (exit status " + std::to_string(rc) +
+    throw InvalidInputError(what + ": gnuplot failed to write '" + png_path + "' (exit status " + std::to_string(rc) +
                             (last.empty() ? ")" : "): " + last));
   }
 }

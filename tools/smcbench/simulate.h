@@ -29,6 +29,13 @@ void PlotTrajectory(const Trajectory& trajectory, const std::string& data_csv, c
                     const std::string& png_path);
 // True if an executable named gnuplot is on PATH.
 bool GnuplotAvailable();
+// Runs a gnuplot script that writes png_path; InvalidInputError starting with what ("--plot: gnuplot failed to
+// write 'x.png' (exit status 1): <its last error line>") if gnuplot is missing, fails or writes nothing.
+void RunGnuplot(const std::string& script, const std::string& png_path, const std::string& what);
+// The lines that select a PNG terminal (pngcairo when available) of this size writing png_path.
+std::string GnuplotPngPreamble(int width, int height, const std::string& png_path);
+// A gnuplot single-quoted string ('' for a quote); InvalidInputError if text holds a newline.
+std::string GnuplotQuote(const std::string& text);
 
 // The `simulate` subcommand: registers its options on construction; Run executes it if it was parsed.
 class SimulateCommand {
