@@ -14,6 +14,7 @@
 
 #include "problems/io/siconos_format.h"
 #include "solvers/registry/registry.h"
+#include "tools/smcbench/bench_command.h"
 #include "tools/smcbench/paper.h"
 #include "tools/smcbench/simulate.h"
 #include "tools/smcbench/solve_report.h"
@@ -121,24 +122,6 @@ int RunSolve(const std::string& path, const SolveSettings& s, bool json, std::os
   return 0;
 }
 
-std::vector<fs::path> CollectionFiles(const fs::path& dir) {
-  if (!fs::is_directory(dir)) throw InvalidInputError("collection: '" + dir.string() + "' is not a directory");
-  std::vector<fs::path> files;
-  for (const char* sub : {"lcp", "relay", "mlcp"}) {
-    if (!fs::is_directory(dir / sub)) continue;
-    std::vector<fs::path> found;
-    for (const auto& entry : fs::directory_iterator(dir / sub)) {
-      const fs::path& p = entry.path();
-      // The `_block` LCP files duplicate their dense twins in another storage: solving both adds nothing.
-      if (p.extension() == ".dat" && p.stem().string().find("_block") == std::string::npos) found.push_back(p);
-    }
-    std::sort(found.begin(), found.end());
-    files.insert(files.end(), found.begin(), found.end());
-  }
-  if (files.empty()) throw InvalidInputError("collection: no .dat files under " + dir.string() + "/{lcp,relay,mlcp}");
-  return files;
-}
-
 std::string Cell(const SolveRecord& r) {
   if (!r.error.empty()) return "error";
   char buffer[96];
@@ -150,7 +133,7 @@ std::string Cell(const SolveRecord& r) {
 int RunCollection(const std::string& dir, const SolveSettings& s, const std::string& markdown_path,
                   const std::string& json_path, const std::string& command_line, std::ostream& out,
                   std::ostream& err) {
-  const auto files = CollectionFiles(dir);
+  const auto files = SiconosCollectionFiles(dir);
   auto solvers = MakeSolvers(s);
   const SolverOptions options = MakeOptions(s);
   std::ostringstream table;
@@ -342,6 +325,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   SimulateCommand simulate(&app);
   ScenesCommand scenes(&app);
   PaperCommand paper(&app);
+  BenchCommand bench(&app);
 
   try {
     app.parse(argc, argv);
@@ -365,6 +349,8 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (simulate.parsed()) return simulate.Run(out, err);
     if (scenes.parsed()) return scenes.Run(out, err);
     if (paper.parsed()) return paper.Run(out, err);
+    if (bench.bench_parsed()) return bench.RunBench(command_line, out, err);
+    if (bench.report_parsed()) return bench.RunReport(out, err);
   } catch (const InvalidInputError& e) {
     err << "smcbench: " << e.what() << "\n";
     return 1;

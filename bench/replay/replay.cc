@@ -1,0 +1,142 @@
+#include "bench/replay/replay.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "solvers/registry/registry.h"
+
+namespace smcbench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Median(std::vector<double> v) {
+  if (v.empty()) return 0.0;
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+std::string JoinTags(const std::vector<std::string>& tags) {
+  std::string out;
+  for (const auto& t : tags) out += (out.empty() ? "" : ",") + t;
+  return out;
+}
+
+ReplayRecord Describe(const ProblemSet& set, const LibraryProblem& p, std::string_view solver) {
+  ReplayRecord r;
+  r.suite = set.name;
+  r.problem = p.id;
+  r.solver = std::string(solver);
+  r.size = p.size();
+  r.sparse = p.sparse();
+  r.tags = JoinTags(p.tags);
+  r.expected = p.expected;
+  return r;
+}
+
+void Fill(const LibraryProblem& p, const SolveResult& result, double tolerance, ReplayRecord* r) {
+  r->status = result.status;
+  r->message = result.message;
+  r->iterations = result.iterations;
+  r->residual_abs = result.residual_abs;
+  r->residual_rel = result.residual_rel;
+  r->tolerance = tolerance;
+  r->verdict = Judge(p, result.status, result.z, tolerance);
+}
+
+}  // namespace
+
+void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& options, const ReplayOptions& replay,
+                SolveResult* result, ReplayRecord* record) {
+  // Warm-up: sizes the workspace and tells how long one solve takes.
+  const auto t0 = Clock::now();
+  solver->Solve(problem, options, result);
+  const double first = std::chrono::duration<double>(Clock::now() - t0).count();
+  const auto pair_start = Clock::now();
+  std::int64_t count = 1;
+  if (first > 0.0) {
+    count = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(replay.min_sample_seconds / first)));
+  }
+  count = std::min<std::int64_t>(count, 1 << 20);
+  std::vector<double> samples;
+  const int wanted = std::max(1, replay.repetitions);
+  // A solve that ran into the time limit is not repeated: its time is the limit, not a measurement.
+  if (result->status == SolveStatus::kTimeLimit) {
+    samples.push_back(first);
+    count = 1;
+  }
+  while (static_cast<int>(samples.size()) < wanted) {
+    const auto s0 = Clock::now();
+    for (std::int64_t i = 0; i < count; ++i) solver->Solve(problem, options, result);
+    samples.push_back(std::chrono::duration<double>(Clock::now() - s0).count() / static_cast<double>(count));
+    if (std::chrono::duration<double>(Clock::now() - pair_start).count() > replay.max_seconds_per_pair) break;
+  }
+  record->samples = static_cast<int>(samples.size());
+  record->solves_per_sample = count;
+  record->time_median = Median(samples);
+  record->time_min = *std::min_element(samples.begin(), samples.end());
+  record->time_max = *std::max_element(samples.begin(), samples.end());
+  std::vector<double> dev;
+  for (double s : samples) dev.push_back(std::abs(s - record->time_median));
+  record->time_mad = Median(dev);
+}
+
+ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& options) {
+  std::vector<std::string> names = options.solvers;
+  if (names.empty()) {
+    for (auto n : SolverNames()) names.emplace_back(n);
+  }
+  std::vector<std::unique_ptr<Solver>> solvers;
+  for (const auto& n : names) solvers.push_back(CreateSolver(n));  // unknown: InvalidInputError listing names
+  if (!(options.tolerance > 0.0) || !(options.time_limit_seconds > 0.0) || options.repetitions < 1 ||
+      !(options.min_sample_seconds >= 0.0) || !(options.max_seconds_per_pair > 0.0)) {
+    throw InvalidInputError("bench: tolerance, time limit, repetitions and sample times must be positive");
+  }
+  SolverOptions solve_options;
+  solve_options.tolerance = options.tolerance;
+  solve_options.time_limit_seconds = options.time_limit_seconds;
+  solve_options.measure_time = false;  // timed from outside, around many solves
+
+  ReplayResults out;
+  const int sweep_problems = std::min<int>(options.tolerance_sweep_problems, static_cast<int>(set.problems.size()));
+  std::size_t iterative = 0;
+  for (const auto& s : solvers) iterative += !s->info().exact;
+  const std::size_t total = set.problems.size() * solvers.size() + sweep_problems * iterative;
+  std::size_t done = 0;
+  SolveResult result;
+  for (const LibraryProblem& p : set.problems) {
+    for (std::size_t b = 0; b < solvers.size(); ++b) {
+      ReplayRecord r = Describe(set, p, names[b]);
+      TimeSolves(solvers[b].get(), p.problem, solve_options, options, &result, &r);
+      Fill(p, result, options.tolerance, &r);
+      out.records.push_back(std::move(r));
+      if (options.progress) options.progress(++done, total, set.name + " " + p.id + " " + names[b]);
+    }
+  }
+  // Tolerance sweep: time against the residual actually reached, for the iterative backends.
+  constexpr double kSweep[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
+  for (int i = 0; i < sweep_problems; ++i) {
+    const LibraryProblem& p = set.problems[i];
+    for (std::size_t b = 0; b < solvers.size(); ++b) {
+      if (solvers[b]->info().exact) continue;
+      for (const double tol : kSweep) {
+        SolverOptions o = solve_options;
+        o.tolerance = tol;
+        ReplayRecord r = Describe(set, p, names[b]);
+        r.mode = "sweep";
+        ReplayOptions quick = options;
+        quick.repetitions = std::min(options.repetitions, 3);
+        TimeSolves(solvers[b].get(), p.problem, o, quick, &result, &r);
+        Fill(p, result, tol, &r);
+        out.sweep.push_back(std::move(r));
+      }
+      if (options.progress) options.progress(++done, total, set.name + " sweep " + p.id + " " + names[b]);
+    }
+  }
+  return out;
+}
+
+}  // namespace smcbench

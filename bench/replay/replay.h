@@ -1,0 +1,73 @@
+// The replay benchmark behind `smcbench bench`: every problem of a ProblemSet on every chosen backend, with
+// warm-up and repetitions, judged against its expected outcome; plus the measured dimensions the report plots
+// (tolerance sweep of iterative backends, warm vs cold starts along trajectories). Results are plain structs,
+// written as JSON and CSV (results_io.h).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "problems/library/problem_set.h"
+#include "solvers/core/solver.h"
+
+namespace smcbench {
+
+struct ReplayOptions {
+  std::vector<std::string> solvers;  // registry names; empty = every registered backend
+  double tolerance = 1e-10;          // on the relative natural residual
+  double time_limit_seconds = 10.0;  // per solve; a backend over it gets kTimeLimit (and is timed once)
+  int repetitions = 7;               // timing samples per problem × backend (median and spread over these)
+  // Each sample repeats the solve until it lasts at least this long (so a 100 ns solve is not timed by a
+  // 25 ns clock read); the per-solve time is the sample divided by the count.
+  double min_sample_seconds = 2e-4;
+  double max_seconds_per_pair = 2.0;  // stop sampling a problem × backend after this much time (≥ 1 sample)
+  // Tolerance sweep: on up to this many problems of the set, every iterative backend (SolverInfo::exact false)
+  // is run at tolerances 1e-2, 1e-4, …, 1e-12 (time against achieved residual). 0 disables it.
+  int tolerance_sweep_problems = 8;
+  // Called after each problem × backend with (done, total); for the progress bar.
+  std::function<void(std::size_t done, std::size_t total, const std::string& what)> progress;
+};
+
+// One problem × backend.
+struct ReplayRecord {
+  std::string suite;
+  std::string problem;  // LibraryProblem::id
+  std::string solver;
+  int size = 0;
+  bool sparse = false;
+  std::string tags;     // comma-separated LibraryProblem::tags
+  ExpectedOutcome expected = ExpectedOutcome::kUnknown;
+  SolveStatus status = SolveStatus::kNotRun;
+  std::string message;
+  Verdict verdict = Verdict::kFailed;
+  int iterations = 0;
+  double residual_abs = 0.0;
+  double residual_rel = 0.0;
+  double tolerance = 0.0;
+  // Per-solve wall time over the samples (seconds): median, min, max, and the median absolute deviation.
+  double time_median = 0.0;
+  double time_min = 0.0;
+  double time_max = 0.0;
+  double time_mad = 0.0;
+  int samples = 0;
+  std::int64_t solves_per_sample = 0;
+  std::string mode = "cold";  // "cold", or "sweep" for tolerance-sweep records
+};
+
+struct ReplayResults {
+  std::vector<ReplayRecord> records;        // mode "cold": one per problem × backend
+  std::vector<ReplayRecord> sweep;          // mode "sweep": iterative backends at each tolerance
+};
+
+// Runs set on the chosen backends. Throws InvalidInputError for an unknown backend name or invalid options; a
+// backend that fails on a problem is a record, never an exception.
+ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& options);
+
+// Times one solve configuration: repeated cold solves of problem with solver/options into *result, honouring
+// min_sample_seconds, repetitions and max_seconds (writes median/min/max/mad/samples/solves_per_sample).
+void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& options, const ReplayOptions& replay,
+                SolveResult* result, ReplayRecord* record);
+
+}  // namespace smcbench

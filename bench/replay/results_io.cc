@@ -1,0 +1,287 @@
+#include "bench/replay/results_io.h"
+
+#include <sys/utsname.h>
+#include <unistd.h>
+
+#include <IpoptConfig.h>
+#include <Eigen/Core>
+#include <array>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+#include <suitesparse/umfpack.h>
+
+#ifndef SMCBENCH_SOURCE_DIR_FOR_GIT
+#define SMCBENCH_SOURCE_DIR_FOR_GIT ""
+#endif
+#ifndef SMCBENCH_CXX_FLAGS
+#define SMCBENCH_CXX_FLAGS ""
+#endif
+#ifndef SMCBENCH_BUILD_TYPE
+#define SMCBENCH_BUILD_TYPE ""
+#endif
+
+namespace smcbench {
+namespace {
+
+namespace fs = std::filesystem;
+using json = nlohmann::json;
+
+// First line of a command's output, or "" (never throws).
+std::string CommandOutput(const std::string& command) {
+  std::array<char, 256> buffer{};
+  std::string out;
+  if (FILE* pipe = ::popen(command.c_str(), "r")) {
+    if (std::fgets(buffer.data(), buffer.size(), pipe)) out = buffer.data();
+    ::pclose(pipe);
+  }
+  while (!out.empty() && (out.back() == '\n' || out.back() == '\r')) out.pop_back();
+  return out;
+}
+
+std::string CpuModel() {
+  std::ifstream in("/proc/cpuinfo");
+  for (std::string line; std::getline(in, line);) {
+    if (line.rfind("model name", 0) == 0) {
+      const auto colon = line.find(':');
+      if (colon != std::string::npos) return line.substr(colon + 2);
+    }
+  }
+  return "";
+}
+
+json Finite(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
+double Number(const json& j) { return j.is_null() ? std::nan("") : j.get<double>(); }
+
+json RecordJson(const ReplayRecord& r) {
+  return {{"suite", r.suite},
+          {"problem", r.problem},
+          {"solver", r.solver},
+          {"size", r.size},
+          {"sparse", r.sparse},
+          {"tags", r.tags},
+          {"expected", std::string(ToString(r.expected))},
+          {"status", std::string(ToString(r.status))},
+          {"message", r.message},
+          {"verdict", std::string(ToString(r.verdict))},
+          {"iterations", r.iterations},
+          {"residual_abs", Finite(r.residual_abs)},
+          {"residual_rel", Finite(r.residual_rel)},
+          {"tolerance", r.tolerance},
+          {"time_median", r.time_median},
+          {"time_min", r.time_min},
+          {"time_max", r.time_max},
+          {"time_mad", r.time_mad},
+          {"samples", r.samples},
+          {"solves_per_sample", r.solves_per_sample},
+          {"mode", r.mode}};
+}
+
+template <typename Enum, typename Values>
+Enum EnumFromText(const std::string& text, const Values& values, const char* field) {
+  for (Enum e : values) {
+    if (ToString(e) == text) return e;
+  }
+  throw InvalidInputError(std::string("results.json: unknown ") + field + " '" + text + "'");
+}
+
+ReplayRecord RecordFromJson(const json& j) {
+  ReplayRecord r;
+  r.suite = j.at("suite").get<std::string>();
+  r.problem = j.at("problem").get<std::string>();
+  r.solver = j.at("solver").get<std::string>();
+  r.size = j.at("size").get<int>();
+  r.sparse = j.at("sparse").get<bool>();
+  r.tags = j.at("tags").get<std::string>();
+  r.expected = EnumFromText<ExpectedOutcome>(
+      j.at("expected").get<std::string>(),
+      std::array{ExpectedOutcome::kUnknown, ExpectedOutcome::kSolvable, ExpectedOutcome::kInfeasible}, "expected");
+  const std::string status = j.at("status").get<std::string>();
+  bool found = false;
+  for (int s = 0; s < 64 && !found; ++s) {
+    if (ToString(static_cast<SolveStatus>(s)) == status) r.status = static_cast<SolveStatus>(s), found = true;
+  }
+  if (!found) throw InvalidInputError("results.json: unknown status '" + status + "'");
+  r.message = j.at("message").get<std::string>();
+  r.verdict = EnumFromText<Verdict>(
+      j.at("verdict").get<std::string>(),
+      std::array{Verdict::kSolved, Verdict::kCorrectlyRefused, Verdict::kFailed, Verdict::kWronglyClaimed}, "verdict");
+  r.iterations = j.at("iterations").get<int>();
+  r.residual_abs = Number(j.at("residual_abs"));
+  r.residual_rel = Number(j.at("residual_rel"));
+  r.tolerance = j.at("tolerance").get<double>();
+  r.time_median = j.at("time_median").get<double>();
+  r.time_min = j.at("time_min").get<double>();
+  r.time_max = j.at("time_max").get<double>();
+  r.time_mad = j.at("time_mad").get<double>();
+  r.samples = j.at("samples").get<int>();
+  r.solves_per_sample = j.at("solves_per_sample").get<std::int64_t>();
+  r.mode = j.at("mode").get<std::string>();
+  return r;
+}
+
+std::string CsvField(const std::string& text) {
+  if (text.find_first_of(",\"\n") == std::string::npos) return text;
+  std::string out = "\"";
+  for (char c : text) out += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return out + "\"";
+}
+
+}  // namespace
+
+json BenchEnvironment() {
+  json env;
+  env["git_sha"] = CommandOutput(std::string("git -C '") + SMCBENCH_SOURCE_DIR_FOR_GIT + "' rev-parse HEAD 2>/dev/null");
+  env["git_dirty"] =
+      !CommandOutput(std::string("git -C '") + SMCBENCH_SOURCE_DIR_FOR_GIT + "' status --porcelain 2>/dev/null").empty();
+#if defined(__clang__)
+  env["compiler"] = std::string("clang ") + __clang_version__;
+#elif defined(__GNUC__)
+  env["compiler"] = std::string("g++ ") + __VERSION__;
+#else
+  env["compiler"] = "unknown";
+#endif
+  env["cxx_flags"] = SMCBENCH_CXX_FLAGS;
+  env["build_type"] = SMCBENCH_BUILD_TYPE;
+#ifdef NDEBUG
+  env["assertions"] = false;
+#else
+  env["assertions"] = true;
+#endif
+  struct utsname u {};
+  if (::uname(&u) == 0) env["kernel"] = std::string(u.sysname) + " " + u.release + " " + u.machine;
+  env["cpu"] = CpuModel();
+  env["cores"] = static_cast<int>(::sysconf(_SC_NPROCESSORS_ONLN));
+  env["libraries"] = {
+      {"eigen", std::to_string(EIGEN_WORLD_VERSION) + "." + std::to_string(EIGEN_MAJOR_VERSION) + "." +
+                    std::to_string(EIGEN_MINOR_VERSION)},
+      {"umfpack", std::to_string(UMFPACK_MAIN_VERSION) + "." + std::to_string(UMFPACK_SUB_VERSION) + "." +
+                      std::to_string(UMFPACK_SUBSUB_VERSION)},
+      {"ipopt", IPOPT_VERSION},
+      {"nlohmann_json", std::to_string(NLOHMANN_JSON_VERSION_MAJOR) + "." + std::to_string(NLOHMANN_JSON_VERSION_MINOR) +
+                            "." + std::to_string(NLOHMANN_JSON_VERSION_PATCH)}};
+  const std::time_t now = std::time(nullptr);
+  char date[32];
+  std::strftime(date, sizeof date, "%Y-%m-%dT%H:%M:%SZ", std::gmtime(&now));
+  env["date"] = date;
+  return env;
+}
+
+json ToJson(const BenchResults& results, const json& environment) {
+  json j;
+  j["format"] = "smcbench-bench/1";
+  j["command"] = results.command;
+  j["environment"] = environment;
+  j["suites"] = json::array();
+  for (const SuiteResults& s : results.suites) {
+    json suite = {{"suite", s.suite}, {"description", s.description}, {"problems", s.problems}};
+    suite["records"] = json::array();
+    for (const auto& r : s.replay.records) suite["records"].push_back(RecordJson(r));
+    suite["sweep"] = json::array();
+    for (const auto& r : s.replay.sweep) suite["sweep"].push_back(RecordJson(r));
+    j["suites"].push_back(suite);
+  }
+  if (results.has_stepper) {
+    json st;
+    st["reference_h_factor"] = results.stepper.reference_h_factor;
+    st["warm_start"] = json::array();
+    for (const auto& r : results.stepper.warm_start) {
+      st["warm_start"].push_back({{"scene", r.scene}, {"solver", r.solver}, {"mode", r.mode}, {"steps", r.steps},
+                                  {"seconds_per_step", r.seconds_per_step},
+                                  {"iterations_per_step", r.iterations_per_step}, {"ok", r.ok}});
+    }
+    st["work_precision"] = json::array();
+    for (const auto& r : results.stepper.work_precision) {
+      st["work_precision"].push_back({{"scene", r.scene}, {"method", r.method}, {"solver", r.solver}, {"h", r.h},
+                                      {"steps", r.steps}, {"seconds", r.seconds}, {"error", Finite(r.error)},
+                                      {"ok", r.ok}});
+    }
+    j["stepper"] = st;
+  }
+  return j;
+}
+
+BenchResults BenchResultsFromJson(const json& j) {
+  try {
+    if (j.value("format", "") != "smcbench-bench/1") {
+      throw InvalidInputError("results.json: format is not smcbench-bench/1");
+    }
+    BenchResults out;
+    out.command = j.at("command").get<std::string>();
+    for (const json& s : j.at("suites")) {
+      SuiteResults suite;
+      suite.suite = s.at("suite").get<std::string>();
+      suite.description = s.at("description").get<std::string>();
+      suite.problems = s.at("problems").get<int>();
+      for (const json& r : s.at("records")) suite.replay.records.push_back(RecordFromJson(r));
+      for (const json& r : s.at("sweep")) suite.replay.sweep.push_back(RecordFromJson(r));
+      out.suites.push_back(std::move(suite));
+    }
+    if (j.contains("stepper")) {
+      out.has_stepper = true;
+      const json& st = j.at("stepper");
+      out.stepper.reference_h_factor = st.at("reference_h_factor").get<double>();
+      for (const json& r : st.at("warm_start")) {
+        out.stepper.warm_start.push_back({r.at("scene").get<std::string>(), r.at("solver").get<std::string>(),
+                                          r.at("mode").get<std::string>(), r.at("steps").get<std::int64_t>(),
+                                          r.at("seconds_per_step").get<double>(),
+                                          r.at("iterations_per_step").get<double>(), r.at("ok").get<bool>()});
+      }
+      for (const json& r : st.at("work_precision")) {
+        out.stepper.work_precision.push_back({r.at("scene").get<std::string>(), r.at("method").get<std::string>(),
+                                              r.at("solver").get<std::string>(), r.at("h").get<double>(),
+                                              r.at("steps").get<std::int64_t>(), r.at("seconds").get<double>(),
+                                              Number(r.at("error")), r.at("ok").get<bool>()});
+      }
+    }
+    return out;
+  } catch (const json::exception& e) {
+    throw InvalidInputError(std::string("results.json: malformed: ") + e.what());
+  }
+}
+
+void WriteBenchResults(const BenchResults& results, const std::string& dir) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (!fs::is_directory(dir)) throw InvalidInputError("bench: cannot create the output folder '" + dir + "'");
+  {
+    std::ofstream out(fs::path(dir) / "results.json");
+    out << ToJson(results, BenchEnvironment()).dump(1) << "\n";
+    if (!out) throw InvalidInputError("bench: cannot write " + (fs::path(dir) / "results.json").string());
+  }
+  std::ofstream csv(fs::path(dir) / "results.csv");
+  csv << "suite,problem,solver,mode,size,sparse,expected,status,verdict,iterations,residual_abs,residual_rel,"
+         "tolerance,time_median,time_min,time_max,time_mad,samples,solves_per_sample\n";
+  for (const SuiteResults& s : results.suites) {
+    for (const auto* records : {&s.replay.records, &s.replay.sweep}) {
+      for (const ReplayRecord& r : *records) {
+        csv << CsvField(r.suite) << ',' << CsvField(r.problem) << ',' << CsvField(r.solver) << ',' << r.mode << ','
+            << r.size << ',' << (r.sparse ? 1 : 0) << ',' << ToString(r.expected) << ',' << ToString(r.status) << ','
+            << ToString(r.verdict) << ',' << r.iterations << ',' << r.residual_abs << ',' << r.residual_rel << ','
+            << r.tolerance << ',' << r.time_median << ',' << r.time_min << ',' << r.time_max << ',' << r.time_mad
+            << ',' << r.samples << ',' << r.solves_per_sample << '\n';
+      }
+    }
+  }
+  if (!csv) throw InvalidInputError("bench: cannot write " + (fs::path(dir) / "results.csv").string());
+}
+
+BenchResults ReadBenchResults(const std::string& dir, json* environment) {
+  const fs::path path = fs::path(dir) / "results.json";
+  std::ifstream in(path);
+  if (!in) throw InvalidInputError("report: cannot read '" + path.string() + "' (run `smcbench bench --out " + dir + "` first)");
+  json j;
+  try {
+    in >> j;
+  } catch (const json::exception& e) {
+    throw InvalidInputError("report: '" + path.string() + "' is not valid JSON: " + e.what());
+  }
+  if (environment) *environment = j.value("environment", json::object());
+  return BenchResultsFromJson(j);
+}
+
+}  // namespace smcbench

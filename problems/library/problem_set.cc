@@ -1,0 +1,74 @@
+#include "problems/library/problem_set.h"
+
+#include <set>
+
+namespace smcbench {
+
+std::string_view ToString(Tristate value) {
+  switch (value) {
+    case Tristate::kNo:
+      return "no";
+    case Tristate::kYes:
+      return "yes";
+    case Tristate::kUnknown:
+      break;
+  }
+  return "unknown";
+}
+
+std::string_view ToString(ExpectedOutcome value) {
+  switch (value) {
+    case ExpectedOutcome::kSolvable:
+      return "solvable";
+    case ExpectedOutcome::kInfeasible:
+      return "infeasible";
+    case ExpectedOutcome::kUnknown:
+      break;
+  }
+  return "unknown";
+}
+
+std::optional<ExpectedOutcome> ExpectedOutcomeFromString(std::string_view text) {
+  for (ExpectedOutcome e : {ExpectedOutcome::kUnknown, ExpectedOutcome::kSolvable, ExpectedOutcome::kInfeasible}) {
+    if (ToString(e) == text) return e;
+  }
+  return std::nullopt;
+}
+
+std::string_view ToString(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::kSolved:
+      return "solved";
+    case Verdict::kCorrectlyRefused:
+      return "correctly refused";
+    case Verdict::kFailed:
+      return "failed";
+    case Verdict::kWronglyClaimed:
+      return "WRONGLY CLAIMED";
+  }
+  return "?";
+}
+
+void ProblemSet::Validate() const {
+  std::set<std::string_view> ids;
+  for (const LibraryProblem& p : problems) {
+    if (p.id.empty()) throw InvalidInputError("problem set '" + name + "': a problem has an empty id");
+    if (!ids.insert(p.id).second) throw InvalidInputError("problem set '" + name + "': duplicate id '" + p.id + "'");
+    if (p.solution.size() != 0 && p.solution.size() != p.size()) {
+      throw InvalidInputError("problem set '" + name + "': problem '" + p.id + "' has a solution of size " +
+                              std::to_string(p.solution.size()) + " but n = " + std::to_string(p.size()));
+    }
+  }
+}
+
+Verdict Judge(const LibraryProblem& problem, SolveStatus status, const Vector& z, double tolerance) {
+  if (status == SolveStatus::kSolved) {
+    if (problem.expected == ExpectedOutcome::kInfeasible || z.size() != problem.size()) return Verdict::kWronglyClaimed;
+    Vector w;
+    const Residual r = problem.problem.NaturalResidual(z, &w);
+    return r.rel <= tolerance ? Verdict::kSolved : Verdict::kWronglyClaimed;
+  }
+  return problem.expected == ExpectedOutcome::kInfeasible ? Verdict::kCorrectlyRefused : Verdict::kFailed;
+}
+
+}  // namespace smcbench

@@ -1,0 +1,82 @@
+// The problem library's data model: box-MLCPs with the metadata a benchmark needs (stable id, where the problem
+// came from, matrix-class tags, seed, the outcome a correct backend must produce, a known solution). Suites,
+// generators, captured trajectories and the on-disk format (problem_set_io.h) all speak this one type.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "solvers/core/problem.h"
+#include "solvers/core/status.h"
+
+namespace smcbench {
+
+// A matrix property that may be known to hold, known not to hold, or not known (P-matrix checks are exponential).
+enum class Tristate : std::uint8_t { kUnknown = 0, kNo = 1, kYes = 2 };
+std::string_view ToString(Tristate value);  // "unknown", "no", "yes"
+
+// What a correct backend does on the problem.
+enum class ExpectedOutcome : std::uint8_t {
+  kUnknown = 0,     // not known (captured or peer problems nobody has classified): any honest answer is fine
+  kSolvable = 1,    // a solution exists; "solved" is the right answer, any other status is a failure (not wrong)
+  kInfeasible = 2,  // no solution exists; every non-solved status is a correct refusal, "solved" is wrong
+};
+std::string_view ToString(ExpectedOutcome value);  // "unknown", "solvable", "infeasible"
+std::optional<ExpectedOutcome> ExpectedOutcomeFromString(std::string_view text);
+
+struct MatrixTags {
+  Tristate symmetric = Tristate::kUnknown;
+  Tristate positive_definite = Tristate::kUnknown;  // of the symmetric part: xᵀMx > 0 for x ≠ 0
+  Tristate p_matrix = Tristate::kUnknown;           // every principal minor > 0 (unique solution for every q)
+};
+
+struct LibraryProblem {
+  // Stable across runs and machines: "<suite>/<family>/<parameters>", e.g. "families/spd-relay/m16/s3" or
+  // "paper/galias-yu-2007/implicit/h0.3/k12". Unique within a set.
+  std::string id;
+  // Where it came from: "generated:<generator>", "siconos:<relative path>", "capture:<scene>".
+  std::string source;
+  BoxMLCP problem;
+  MatrixTags matrix;
+  std::vector<std::string> tags;  // free labels: "degenerate", "murty", "h-sweep", "near-singular", ...
+  std::optional<std::uint64_t> seed;
+  ExpectedOutcome expected = ExpectedOutcome::kUnknown;
+  // A known solution (planted z*, or the z the capturing run used); empty if none.
+  Vector solution;
+  // Anything else worth keeping (capture: scene, method, h, theta, step), as text.
+  std::map<std::string, std::string> metadata;
+
+  int size() const { return problem.size(); }
+  bool sparse() const { return problem.is_sparse(); }
+};
+
+struct ProblemSet {
+  std::string name;         // "paper", "families", "hard", "siconos", "scale", or a capture's name
+  std::string description;  // one line
+  std::vector<LibraryProblem> problems;
+
+  // Throws InvalidInputError naming the id if two problems share an id, an id is empty, or a solution has the
+  // wrong size.
+  void Validate() const;
+};
+
+// How a backend's answer on one problem is judged against the expected outcome. Success always means: status
+// solved AND the merit function, recomputed here from the returned z, at or below the tolerance.
+enum class Verdict : std::uint8_t {
+  kSolved = 0,           // success where success is possible
+  kCorrectlyRefused = 1, // not solved, and the problem has no solution
+  kFailed = 2,           // not solved although the problem is solvable (or not known to be unsolvable)
+  kWronglyClaimed = 3,   // status solved but the recomputed residual is above tolerance, or the problem is
+                         // infeasible: must never happen
+};
+std::string_view ToString(Verdict verdict);
+
+// The verdict for a result: recomputes the natural residual of z (relative) against tolerance.
+Verdict Judge(const LibraryProblem& problem, SolveStatus status, const Vector& z, double tolerance);
+
+}  // namespace smcbench

@@ -1,0 +1,260 @@
+#include "tools/smcbench/bench_command.h"
+
+#include <unistd.h>
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <ostream>
+
+#include "bench/replay/replay.h"
+#include "bench/replay/results_io.h"
+#include "bench/replay/stepper_study.h"
+#include "problems/generators/random_problems.h"
+#include "problems/io/siconos_format.h"
+#include "solvers/registry/registry.h"
+#include "tools/smcbench/bench_report.h"
+
+namespace smcbench {
+
+namespace fs = std::filesystem;
+
+namespace {
+// A library problem with every optional field empty (aggregate initialization names them all).
+LibraryProblem MakeProblem(std::string id, std::string source, BoxMLCP problem) {
+  return LibraryProblem{std::move(id), std::move(source), std::move(problem), MatrixTags{}, {}, std::nullopt,
+                        ExpectedOutcome::kUnknown, Vector(), {}};
+}
+}  // namespace
+
+std::vector<fs::path> SiconosCollectionFiles(const fs::path& dir) {
+  if (!fs::is_directory(dir)) throw InvalidInputError("collection: '" + dir.string() + "' is not a directory");
+  std::vector<fs::path> files;
+  for (const char* sub : {"lcp", "relay", "mlcp"}) {
+    if (!fs::is_directory(dir / sub)) continue;
+    std::vector<fs::path> found;
+    for (const auto& entry : fs::directory_iterator(dir / sub)) {
+      const fs::path& p = entry.path();
+      // The `_block` LCP files duplicate their dense twins in another storage: solving both adds nothing.
+      if (p.extension() == ".dat" && p.stem().string().find("_block") == std::string::npos) found.push_back(p);
+    }
+    std::sort(found.begin(), found.end());
+    files.insert(files.end(), found.begin(), found.end());
+  }
+  if (files.empty()) throw InvalidInputError("collection: no .dat files under " + dir.string() + "/{lcp,relay,mlcp}");
+  return files;
+}
+
+ProblemSet SiconosSuite(const std::string& dir, std::vector<std::string>* rejected) {
+  ProblemSet set;
+  set.name = "siconos";
+  set.description = "the Siconos Numerics test collection (LCP, relay, MLCP files of " + dir + ")";
+  for (const fs::path& file : SiconosCollectionFiles(dir)) {
+    const std::string kind = file.parent_path().filename().string();
+    try {
+      BoxMLCP problem = ReadSiconosFile(file.string());
+      LibraryProblem p = MakeProblem("siconos/" + kind + "/" + file.stem().string(),
+                                     "siconos:" + kind + "/" + file.filename().string(), std::move(problem));
+      p.tags = {kind};
+      set.problems.push_back(std::move(p));
+    } catch (const InvalidInputError& e) {
+      if (rejected) rejected->push_back(file.string() + ": " + e.what());
+    }
+  }
+  return set;
+}
+
+ProblemSet TinySuite() {
+  ProblemSet set;
+  set.name = "tiny";
+  set.description = "five small generated problems (CI's end-to-end run of bench and report)";
+  const auto add = [&](MatrixFamily family, BoundKind bounds, int m, std::uint64_t seed) {
+    GeneratorOptions g;
+    g.family = family;
+    g.bounds = bounds;
+    g.size = m;
+    g.seed = seed;
+    GeneratedProblem gen = GenerateProblem(g);
+    std::string id = "tiny/" + gen.problem.name();
+    LibraryProblem p = MakeProblem(std::move(id), "generated:random_problems", std::move(gen.problem));
+    p.seed = seed;
+    p.expected = ExpectedOutcome::kSolvable;
+    p.solution = gen.z_star;
+    p.matrix.p_matrix = Tristate::kYes;
+    p.matrix.symmetric = family == MatrixFamily::kSymmetricPositiveDefinite ? Tristate::kYes : Tristate::kNo;
+    set.problems.push_back(std::move(p));
+  };
+  add(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 2, 1);
+  add(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 8, 2);
+  add(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 4, 3);
+  add(MatrixFamily::kDiagonallyDominant, BoundKind::kMixed, 6, 4);
+  // Infeasible LCP: w_1 = −x_1 − x_2 − 1 < 0 for every z ≥ 0, so no z ≥ 0 has w ≥ 0.
+  DenseMatrix M(2, 2);
+  M << -1.0, -1.0, 0.0, 1.0;
+  Vector q(2);
+  q << -1.0, 1.0;
+  LibraryProblem infeasible = MakeProblem("tiny/infeasible-lcp", "handmade", BoxMLCP::LCP(M, q, "infeasible-lcp"));
+  infeasible.expected = ExpectedOutcome::kInfeasible;
+  infeasible.tags = {"infeasible"};
+  set.problems.push_back(std::move(infeasible));
+  return set;
+}
+
+ProblemSet BuildSuite(const std::string& name, const SuiteRequest& request) {
+  if (name == "tiny") return TinySuite();
+  if (name == "siconos") return SiconosSuite(request.siconos_dir);
+  throw InvalidInputError("bench: unknown suite '" + name + "' (known: tiny, siconos)");
+}
+
+// ------------------------------------------------------------------------------------------------------------
+
+struct BenchCommand::Flags {
+  std::vector<std::string> suites, solvers;
+  std::string out = "results/bench", siconos_dir = "../shared/peer-data/siconos", report_dir;
+  int repetitions = 7;
+  double tol = 1e-10, time_limit = 10.0;
+  bool no_stepper = false, quick = false, report = false, no_plots = false, report_no_plots = false;
+};
+
+BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
+  Flags& f = *flags_;
+  bench_ = app->add_subcommand("bench", "replay problem suites on every backend: status, iterations, residual, "
+                                        "median time and spread → DIR/results.{json,csv}");
+  bench_->add_option("--suite", f.suites,
+                     "paper | families | hard | siconos | scale | tiny | all | FILE (repeatable; default: paper "
+                     "families hard siconos)");
+  bench_->add_option("--solver", f.solvers, "backend (repeatable; default: every registered backend)");
+  bench_->add_option("--out", f.out, "output folder (default results/bench)");
+  bench_->add_option("--siconos-dir", f.siconos_dir, "the Siconos collection (default ../shared/peer-data/siconos)");
+  bench_->add_option("--repetitions", f.repetitions, "timing samples per problem x backend (default 7)");
+  bench_->add_option("--tol", f.tol, "tolerance on the relative natural residual (default 1e-10)");
+  bench_->add_option("--time-limit", f.time_limit, "seconds per solve (default 10)");
+  bench_->add_flag("--no-stepper", f.no_stepper, "skip the time-stepper studies (warm/cold, work-precision)");
+  bench_->add_flag("--quick", f.quick, "smaller suites and fewer samples (CI)");
+  bench_->add_flag("--report", f.report, "also write DIR/report.md (as `smcbench report DIR`)");
+  bench_->add_flag("--no-plots", f.no_plots, "with --report: no PNG plots");
+
+  report_ = app->add_subcommand("report", "turn DIR/results.json into DIR/report.md with PNG plots");
+  report_->add_option("DIR", f.report_dir, "the folder `smcbench bench --out` wrote")->required();
+  report_->add_flag("--no-plots", f.report_no_plots, "no PNG plots (no gnuplot needed)");
+}
+
+BenchCommand::~BenchCommand() = default;
+bool BenchCommand::bench_parsed() const { return bench_->parsed(); }
+bool BenchCommand::report_parsed() const { return report_->parsed(); }
+
+namespace {
+
+// A one-line progress bar on a terminal (nothing when err is not a terminal or the run is short).
+class Progress {
+ public:
+  Progress(std::ostream& err, bool terminal) : err_(err), terminal_(terminal), start_(Clock::now()) {}
+  void Update(std::size_t done, std::size_t total, const std::string& what) {
+    if (!terminal_ || total == 0) return;
+    const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    if (elapsed < 2.0 && done < total) return;  // short runs stay quiet
+    const int width = 30, filled = static_cast<int>(width * done / total);
+    char line[160];
+    std::snprintf(line, sizeof line, "\r[%s%s] %3zu%% %.0fs %-60.60s", std::string(filled, '#').c_str(),
+                  std::string(width - filled, '.').c_str(), 100 * done / total, elapsed, what.c_str());
+    err_ << line << std::flush;
+  }
+  void Finish() {
+    if (terminal_) err_ << "\r" << std::string(110, ' ') << "\r" << std::flush;
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  std::ostream& err_;
+  bool terminal_;
+  Clock::time_point start_;
+};
+
+}  // namespace
+
+int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, std::ostream& err) const {
+  const Flags& f = *flags_;
+  std::vector<std::string> suites = f.suites;
+  if (suites.empty()) suites = {"paper", "families", "hard", "siconos"};
+  if (std::find(suites.begin(), suites.end(), "all") != suites.end()) {
+    suites = {"paper", "families", "hard", "siconos", "scale"};
+  }
+  ReplayOptions options;
+  options.solvers = f.solvers;
+  options.tolerance = f.tol;
+  options.time_limit_seconds = f.time_limit;
+  options.repetitions = f.quick ? std::min(f.repetitions, 3) : f.repetitions;
+  if (f.quick) {
+    options.max_seconds_per_pair = 0.2;
+    options.tolerance_sweep_problems = 2;
+  }
+  for (const auto& s : f.solvers) CreateSolver(s);  // fail early on an unknown name
+  const bool terminal = &err == &std::cerr && ::isatty(2);
+  Progress progress(err, terminal);
+  options.progress = [&](std::size_t done, std::size_t total, const std::string& what) {
+    progress.Update(done, total, what);
+  };
+  SuiteRequest request;
+  request.siconos_dir = f.siconos_dir;
+  request.quick = f.quick;
+
+  BenchResults results;
+  results.command = command_line;
+  for (const std::string& name : suites) {
+    const ProblemSet set = BuildSuite(name, request);
+    set.Validate();
+    err << "bench: suite " << set.name << " (" << set.problems.size() << " problems)\n";
+    SuiteResults suite;
+    suite.suite = set.name;
+    suite.description = set.description;
+    suite.problems = static_cast<int>(set.problems.size());
+    suite.replay = ReplayProblemSet(set, options);
+    progress.Finish();
+    results.suites.push_back(std::move(suite));
+  }
+  if (!f.no_stepper) {
+    StepperStudyOptions so;
+    so.solvers = f.solvers;
+    if (so.solvers.empty()) {
+      // External adapters run each solve in a child process: along 10⁴-step trajectories that is minutes; they
+      // are timed on the replay suites instead (name them with --solver to include them here).
+      for (auto n : SolverNames()) {
+        if (n.rfind("siconos-", 0) != 0) so.solvers.emplace_back(n);
+      }
+    }
+    if (f.quick) {
+      so.warm_scenes = {"sign", "galias-yu-2007"};
+      so.precision_scenes = {"galias-yu-2007"};
+      so.refinements = 3;
+      so.min_seconds = 0.002;
+    }
+    so.progress = [&](const std::string& what) { progress.Update(1, 2, what); };
+    err << "bench: time-stepper studies\n";
+    results.stepper = RunStepperStudy(so);
+    results.has_stepper = true;
+    progress.Finish();
+  }
+  WriteBenchResults(results, f.out);
+  out << "bench: wrote " << (fs::path(f.out) / "results.json").string() << " and results.csv";
+  if (f.report) {
+    WriteBenchReport(f.out, !f.no_plots);
+    out << ", report.md";
+  }
+  out << "\n";
+  int wrong = 0;
+  for (const auto& s : results.suites) {
+    for (const auto& r : s.replay.records) wrong += r.verdict == Verdict::kWronglyClaimed;
+  }
+  if (wrong) err << "bench: " << wrong << " results WRONGLY CLAIMED solved (see results.csv)\n";
+  return 0;
+}
+
+int BenchCommand::RunReport(std::ostream& out, std::ostream&) const {
+  WriteBenchReport(flags_->report_dir, !flags_->report_no_plots);
+  out << "report: wrote " << (fs::path(flags_->report_dir) / "report.md").string() << "\n";
+  return 0;
+}
+
+}  // namespace smcbench

@@ -1,0 +1,37 @@
+// `smcbench report DIR`: turns a bench run's results.json into DIR/report.md with PNG plots — per suite and
+// backend the success rate, shifted geometric mean time and worst residual, Dolan–Moré performance profiles,
+// time against achieved residual (tolerance sweep), the time-stepper's work-precision diagrams and warm/cold
+// table, and the scale family's growth exponent.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "bench/replay/results_io.h"
+
+namespace smcbench {
+
+struct BackendSummary {
+  std::string solver;
+  int problems = 0, solved = 0, correctly_refused = 0, failed = 0, wrongly_claimed = 0;
+  double success_rate = 0.0;     // (solved + correctly refused) / problems
+  double shifted_geomean = 0.0;  // seconds; see SummarizeSuite
+  double worst_residual = 0.0;   // max relative residual over the solved records
+};
+
+// Shifted geometric mean of the per-problem median times, shift 1e-6 s, a problem the backend does not get right
+// counted at 10× the slowest correct time on that problem (the time limit if nobody got it right).
+std::vector<BackendSummary> SummarizeSuite(const SuiteResults& suite, double time_limit_seconds = 10.0);
+
+// Dolan–Moré: for each backend, ρ(τ) = fraction of problems solved within τ × the best time on that problem.
+// Returns, per backend, the ratios r_p = t_p / min_s t_p (∞ for problems it does not solve), sorted.
+std::vector<std::pair<std::string, std::vector<double>>> PerformanceRatios(const SuiteResults& suite);
+
+// Least-squares slope of log(time) against log(size) over the solved records of one backend (NaN if < 2 sizes).
+double GrowthExponent(const SuiteResults& suite, const std::string& solver);
+
+// Writes dir/report.md (and PNGs when plots is true and gnuplot is on PATH). Returns the markdown.
+// InvalidInputError if results are missing or gnuplot is required but absent.
+std::string WriteBenchReport(const std::string& dir, bool plots);
+
+}  // namespace smcbench
