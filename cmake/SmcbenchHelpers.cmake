@@ -5,7 +5,13 @@ add_library(smcbench_build_flags INTERFACE)
 target_compile_options(smcbench_build_flags INTERFACE -Wall -Wextra
   $<$<BOOL:${SMCBENCH_WERROR}>:-Werror>
   $<$<BOOL:${SMCBENCH_NATIVE}>:-march=native>)
-if(SMCBENCH_SANITIZE)
+if(SMCBENCH_FUZZ)
+  # libFuzzer build (tests/fuzz): every library gets coverage instrumentation and ASan+UBSan; the fuzz targets
+  # themselves add -fsanitize=fuzzer at link time for libFuzzer's main.
+  target_compile_options(smcbench_build_flags INTERFACE -fsanitize=fuzzer-no-link,address,undefined
+    -fno-omit-frame-pointer -fno-sanitize-recover=all)
+  target_link_options(smcbench_build_flags INTERFACE -fsanitize=address,undefined)
+elseif(SMCBENCH_SANITIZE)
   target_compile_options(smcbench_build_flags INTERFACE -fsanitize=address,undefined -fno-omit-frame-pointer
     -fno-sanitize-recover=all)
   target_link_options(smcbench_build_flags INTERFACE -fsanitize=address,undefined)

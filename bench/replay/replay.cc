@@ -91,6 +91,19 @@ ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& optio
   }
   std::vector<std::unique_ptr<Solver>> solvers;
   for (const auto& n : names) solvers.push_back(CreateSolver(n));  // unknown: InvalidInputError listing names
+  for (const std::string& setting : options.settings) {
+    const auto dot = setting.find('.'), eq = setting.find('=');
+    if (dot == std::string::npos || eq == std::string::npos || eq < dot) {
+      throw InvalidInputError("bench: --set expects BACKEND.OPTION=VALUE, got '" + setting + "'");
+    }
+    for (std::size_t b = 0; b < names.size(); ++b) {
+      if (names[b] != setting.substr(0, dot)) continue;
+      std::string error;
+      if (!solvers[b]->SetOption(setting.substr(dot + 1, eq - dot - 1), setting.substr(eq + 1), &error)) {
+        throw InvalidInputError("bench: " + names[b] + ": " + error);
+      }
+    }
+  }
   if (!(options.tolerance > 0.0) || !(options.time_limit_seconds > 0.0) || options.repetitions < 1 ||
       !(options.min_sample_seconds >= 0.0) || !(options.max_seconds_per_pair > 0.0)) {
     throw InvalidInputError("bench: tolerance, time limit, repetitions and sample times must be positive");

@@ -16,6 +16,8 @@ namespace smcbench {
 
 struct ReplayOptions {
   std::vector<std::string> solvers;  // registry names; empty = every registered backend
+  // Typed backend options "BACKEND.OPTION=VALUE" (as `smcbench solve --set`), applied to that backend.
+  std::vector<std::string> settings;
   double tolerance = 1e-10;          // on the relative natural residual
   double time_limit_seconds = 10.0;  // per solve; a backend over it gets kTimeLimit (and is timed once)
   int repetitions = 7;               // timing samples per problem × backend (median and spread over these)
@@ -61,7 +63,8 @@ struct ReplayResults {
   std::vector<ReplayRecord> sweep;          // mode "sweep": iterative backends at each tolerance
 };
 
-// Runs set on the chosen backends. Throws InvalidInputError for an unknown backend name or invalid options; a
+// Runs set on the chosen backends. Throws InvalidInputError for an unknown backend name, a malformed or rejected
+// setting, or invalid options; a
 // backend that fails on a problem is a record, never an exception.
 ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& options);
 

@@ -90,10 +90,20 @@ class Parser {
     }
   }
 
+  // Every recursive path (parentheses, function arguments, unary signs, the right operand of ^) passes through
+  // here, so this bound keeps a hostile file ("((((...", "----...1") from overflowing the stack.
   double Unary() {
-    if (Accept('-')) return -Unary();
-    if (Accept('+')) return Unary();
-    return Power();
+    if (++depth_ > kMaxDepth) Fail("nested deeper than " + std::to_string(kMaxDepth) + " levels");
+    double value = 0.0;
+    if (Accept('-')) {
+      value = -Unary();
+    } else if (Accept('+')) {
+      value = Unary();
+    } else {
+      value = Power();
+    }
+    --depth_;
+    return value;
   }
 
   double Power() {
@@ -150,9 +160,12 @@ class Parser {
     return it->second;
   }
 
+  static constexpr int kMaxDepth = 200;
+
   std::string_view text_;
   const SceneParameters& parameters_;
   std::size_t pos_ = 0;
+  int depth_ = 0;
 };
 
 }  // namespace

@@ -214,6 +214,7 @@ class KernelImpl final : public LinearStepper::Kernel {
     const double t0 = options.t0;
     const double theta = d.forcing_theta;
     const int m = d.m();
+    StepObserver* const observer = options.observer;
 
     // The backend's options: copied once; per step only warm_start's values change (same size: no allocation).
     solver_options_ = options.solver;
@@ -253,6 +254,7 @@ class KernelImpl final : public LinearStepper::Kernel {
           problem->set_q(q_dyn_);
           if (warm) solver_options_.warm_start = s;
           solver->Solve(*problem, solver_options_, &result_);
+          if (observer) observer->OnStep(k + 1, 0, *problem, result_);
           s = result_.z;
           status = result_.status;
           iterations = result_.iterations;
@@ -421,6 +423,7 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
         const BoxMLCP problem = BoxMLCP::Relay(d.C * d.S, std::move(q));
         if (options.warm_start) solver_options.warm_start = s;
         solver->Solve(problem, solver_options, &result);
+        if (options.observer) options.observer->OnStep(k + 1, 0, problem, result);
         s = result.z;
         status = result.status;
         iterations = result.iterations;

@@ -27,6 +27,20 @@ namespace smcbench {
 // A non-finite state (NaN → kNumericalFailure, ±∞ → kDiverged) always stops the run: nothing sensible follows.
 enum class FailurePolicy { kStop, kContinue };
 
+// Receives every one-step box-MLCP a stepper hands to its backend, right after the solve (capture of a run's
+// problems into the problem library: problems/library/capture.h). Called only for implicit steps that reach the
+// backend: LinearStepper and SimulateRebuildingEachStep once per step, NonlinearStepper (Algorithm 2) once per
+// Newton iteration; Algorithm 1 (an MCP, not a box-MLCP) and explicit-sign steps call nothing. The references
+// are valid during the call only. An exception thrown by OnStep propagates out of Run.
+class StepObserver {
+ public:
+  virtual ~StepObserver() = default;
+  // step: k ≥ 1, the step whose solve gives x_k. newton_iteration: 0 for a linear stepper, α ≥ 1 for the inner
+  // MLCP of Algorithm 2's Newton iteration α. result: the backend's answer (result.z is the z the run used).
+  virtual void OnStep(std::int64_t step, int newton_iteration, const BoxMLCP& problem,
+                      const SolveResult& result) = 0;
+};
+
 struct StepperOptions {
   // Passed to the backend at every step. The stepper overrides two fields: warm_start (s_k when warm_start below
   // is on, else empty) and measure_time (false: the clock costs as much as a small solve).
@@ -36,6 +50,8 @@ struct StepperOptions {
   // false: keep only x_final/s_final/y_final and the counters (benchmarks; no O(N) memory).
   bool record = true;
   double t0 = 0.0;
+  // Not owned; null (the default) costs one predictable branch per step and nothing else.
+  StepObserver* observer = nullptr;
 
   // True if usable; otherwise *why names the field.
   bool IsValid(std::string* why) const;

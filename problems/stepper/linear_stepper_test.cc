@@ -13,6 +13,7 @@
 #include "problems/stepper/metrics.h"
 #include "problems/stepper/stepper_test_util.h"
 #include "solvers/registry/registry.h"
+#include "solvers/siconos/external_backends.h"
 
 namespace smcbench {
 namespace {
@@ -92,6 +93,7 @@ TEST(LemmaYahoo, ImplicitEulerReachesZeroExactlyAndStays) {
 TEST(LemmaYahoo, HoldsToSolverToleranceWithEveryBackend) {
   const double tol = 1e-12;
   for (std::string_view name : SolverNames()) {
+    if (IsExternalBackend(name)) continue;  // external adapters: solvers/siconos/siconos_solver_test.cc
     auto solver = CreateSolver(name);
     for (const YahooCase& c : {YahooCase{0.2, 5}, YahooCase{0.02, 50}, YahooCase{0.01, 100}}) {
       SCOPED_TRACE(std::string(name) + " h " + std::to_string(c.h));
@@ -298,6 +300,7 @@ TEST(CrossBackend, EverySolvingBackendGivesTheSameTrajectory) {
     ASSERT_TRUE(ref.ok()) << ref.first_failure_message;
     const double s_tol = SComparisonTolerance(stepper);
     for (std::string_view name : SolverNames()) {
+      if (IsExternalBackend(name)) continue;
       auto solver = CreateSolver(name);
       const Trajectory tr = stepper.Run(c.x0, NumSteps(c.T, c.h), solver.get(), options);
       if (tr.first_failure_status == SolveStatus::kNotApplicable && solver->info().algorithm == "placeholder") {

@@ -344,6 +344,7 @@ void NonlinearStepper::Workspace::StepNewton(std::int64_t k, Solver* solver, boo
       const BoxMLCP mlcp(W, q, l, u);
       if (options.stepper.warm_start) solver_options.warm_start = sa;
       solver->Solve(mlcp, solver_options, &result);
+      if (options.stepper.observer) options.stepper.observer->OnStep(k, it, mlcp, result);
       step->backend_iterations += result.iterations;
       sn = result.z;
       if (!result.solved()) {

@@ -9,6 +9,7 @@
 #include "solvers/lemke/lemke_solver.h"
 #include "solvers/newton/semismooth_newton_solver.h"
 #include "solvers/psor/psor_solver.h"
+#include "solvers/siconos/external_backends.h"
 
 namespace smcbench {
 namespace {
@@ -29,20 +30,30 @@ constexpr std::pair<std::string_view, Factory> kBackends[] = {
     {"ipopt", &Make<IpoptQpSolver>},
 };
 
+// Ours, then the optional external ones that were built in (siconos-*; none without Siconos).
+std::vector<std::pair<std::string_view, Factory>> AllBackends() {
+  std::vector<std::pair<std::string_view, Factory>> all(std::begin(kBackends), std::end(kBackends));
+  std::vector<ExternalBackend> external;
+  AppendExternalBackends(&external);
+  for (const ExternalBackend& e : external) all.emplace_back(e.name, e.create);
+  return all;
+}
+
 }  // namespace
 
 std::vector<std::string_view> SolverNames() {
   std::vector<std::string_view> names;
-  for (const auto& [name, factory] : kBackends) names.push_back(name);
+  for (const auto& [name, factory] : AllBackends()) names.push_back(name);
   return names;
 }
 
 std::unique_ptr<Solver> CreateSolver(std::string_view name) {
-  for (const auto& [known, factory] : kBackends) {
+  const auto all = AllBackends();
+  for (const auto& [known, factory] : all) {
     if (known == name) return factory();
   }
   std::string list;
-  for (const auto& [known, factory] : kBackends) list += (list.empty() ? "" : ", ") + std::string(known);
+  for (const auto& [known, factory] : all) list += (list.empty() ? "" : ", ") + std::string(known);
   throw InvalidInputError("unknown solver '" + std::string(name) + "' (known: " + list + ")");
 }
 

@@ -14,6 +14,10 @@
 #include "bench/replay/stepper_study.h"
 #include "problems/generators/random_problems.h"
 #include "problems/io/siconos_format.h"
+#include "problems/library/capture.h"
+#include "problems/library/problem_set_io.h"
+#include "problems/suites/families.h"
+#include "problems/suites/hard_cases.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_report.h"
 
@@ -105,13 +109,34 @@ ProblemSet TinySuite() {
 ProblemSet BuildSuite(const std::string& name, const SuiteRequest& request) {
   if (name == "tiny") return TinySuite();
   if (name == "siconos") return SiconosSuite(request.siconos_dir);
-  throw InvalidInputError("bench: unknown suite '" + name + "' (known: tiny, siconos)");
+  if (name == "paper") {
+    PaperSuiteOptions o;
+    if (request.quick) o.max_steps_per_scene = 8;
+    return CapturePaperSuite(o);
+  }
+  if (name == "families") {
+    FamiliesOptions o;
+    if (request.quick) o.seeds = 1, o.max_size = 16;
+    return FamiliesSuite(o);
+  }
+  if (name == "hard") return HardSuite(request.siconos_dir);
+  if (name == "scale") {
+    ScaleOptions o;
+    if (request.quick) o.max_size = 1000;
+    return ScaleSuite(o);
+  }
+  std::error_code ec;
+  if (fs::is_regular_file(name, ec)) return ReadProblemSetFile(name);
+  throw InvalidInputError("bench: unknown suite '" + name +
+                          "' (known: paper, families, hard, siconos, scale, tiny, all, or a problem-set file)");
 }
 
 // ------------------------------------------------------------------------------------------------------------
 
+const char* const kGenericSparsePath = "newton-sparse-path";
+
 struct BenchCommand::Flags {
-  std::vector<std::string> suites, solvers;
+  std::vector<std::string> suites, solvers, sets;
   std::string out = "results/bench", siconos_dir = "../shared/peer-data/siconos", report_dir;
   int repetitions = 7;
   double tol = 1e-10, time_limit = 10.0;
@@ -126,6 +151,7 @@ BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
                      "paper | families | hard | siconos | scale | tiny | all | FILE (repeatable; default: paper "
                      "families hard siconos)");
   bench_->add_option("--solver", f.solvers, "backend (repeatable; default: every registered backend)");
+  bench_->add_option("--set", f.sets, "typed backend option BACKEND.OPTION=VALUE (see `smcbench list`)");
   bench_->add_option("--out", f.out, "output folder (default results/bench)");
   bench_->add_option("--siconos-dir", f.siconos_dir, "the Siconos collection (default ../shared/peer-data/siconos)");
   bench_->add_option("--repetitions", f.repetitions, "timing samples per problem x backend (default 7)");
@@ -183,6 +209,7 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
   }
   ReplayOptions options;
   options.solvers = f.solvers;
+  options.settings = f.sets;
   options.tolerance = f.tol;
   options.time_limit_seconds = f.time_limit;
   options.repetitions = f.quick ? std::min(f.repetitions, 3) : f.repetitions;
@@ -211,6 +238,28 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
     suite.description = set.description;
     suite.problems = static_cast<int>(set.problems.size());
     suite.replay = ReplayProblemSet(set, options);
+    if (set.name == "paper" && (f.solvers.empty() ||
+                                std::find(f.solvers.begin(), f.solvers.end(), "newton") != f.solvers.end())) {
+      // The generic path the report compares against: the same problems with M stored sparse, solved by the
+      // semismooth Newton backend through UMFPACK (what a general sparse complementarity code does).
+      ProblemSet sparse;
+      sparse.name = set.name;
+      for (const LibraryProblem& p : set.problems) {
+        const DenseMatrix& M = p.problem.dense_matrix();
+        const SparseMatrix S = M.sparseView();
+        LibraryProblem copy = MakeProblem(p.id, p.source, BoxMLCP(S, p.problem.q(), p.problem.l(), p.problem.u()));
+        copy.expected = p.expected;
+        sparse.problems.push_back(std::move(copy));
+      }
+      ReplayOptions o = options;
+      o.solvers = {"newton"};
+      o.settings = {"newton.linear_solver=2"};  // UMFPACK even where the auto rule would factorize densely
+      o.tolerance_sweep_problems = 0;
+      for (ReplayRecord& r : ReplayProblemSet(sparse, o).records) {
+        r.solver = kGenericSparsePath;
+        suite.replay.records.push_back(std::move(r));
+      }
+    }
     progress.Finish();
     results.suites.push_back(std::move(suite));
   }

@@ -15,6 +15,7 @@
 #include "problems/io/siconos_format.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_command.h"
+#include "tools/smcbench/library_command.h"
 #include "tools/smcbench/paper.h"
 #include "tools/smcbench/simulate.h"
 #include "tools/smcbench/solve_report.h"
@@ -34,11 +35,30 @@ struct SolveSettings {
   std::vector<std::string> sets;  // "backend.option=value"
 };
 
+// CLI11's PositiveNumber prints its range with DBL_MAX in full (300 digits): a short message instead.
+CLI::Validator PositiveNumber() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        double value = 0.0;
+        std::size_t used = 0;
+        try {
+          value = std::stod(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != text.size() || !(value > 0.0) || !std::isfinite(value)) {
+          return "must be a positive finite number, got '" + text + "'";
+        }
+        return {};
+      },
+      "POSITIVE");
+}
+
 void AddSolveFlags(CLI::App* app, SolveSettings* s) {
   app->add_option("--solver", s->solvers, "backend name(s) from `smcbench list`, or all")->expected(1, -1);
-  app->add_option("--tol", s->tolerance, "tolerance on the relative natural residual")->check(CLI::PositiveNumber);
+  app->add_option("--tol", s->tolerance, "tolerance on the relative natural residual")->check(PositiveNumber());
   app->add_option("--max-iter", s->max_iterations, "iteration/pivot budget (0: backend default)");
-  app->add_option("--time-limit", s->time_limit, "seconds per solve")->check(CLI::PositiveNumber);
+  app->add_option("--time-limit", s->time_limit, "seconds per solve")->check(PositiveNumber());
   app->add_option("--repeat", s->repeat, "cold solves per backend; the median time is reported")
       ->check(CLI::Range(1, 1000000));
   app->add_option("--set", s->sets, "typed backend option, e.g. --set psor.omega=1.2 (see `smcbench list`)");
@@ -326,7 +346,22 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   ScenesCommand scenes(&app);
   PaperCommand paper(&app);
   BenchCommand bench(&app);
+  LibraryCommand library(&app);
 
+  // An unknown first word gets a message naming it and the commands (CLI11 would only say one is required).
+  if (argc >= 2 && argv[1][0] != '-') {
+    const std::string word = argv[1];
+    std::string known;
+    bool found = false;
+    for (const CLI::App* sub : app.get_subcommands([](const CLI::App*) { return true; })) {
+      found = found || sub->get_name() == word;
+      known += (known.empty() ? "" : ", ") + sub->get_name();
+    }
+    if (!found) {
+      err << "smcbench: unknown command '" << word << "' (known: " << known << ")\n";
+      return 2;
+    }
+  }
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -351,6 +386,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (paper.parsed()) return paper.Run(out, err);
     if (bench.bench_parsed()) return bench.RunBench(command_line, out, err);
     if (bench.report_parsed()) return bench.RunReport(out, err);
+    if (library.parsed()) return library.Run(out, err);
   } catch (const InvalidInputError& e) {
     err << "smcbench: " << e.what() << "\n";
     return 1;

@@ -15,6 +15,7 @@
 #include <ostream>
 #include <sstream>
 
+#include "problems/library/capture.h"
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/nonlinear_scene.h"
 #include "problems/scenes/registry.h"
@@ -310,7 +311,7 @@ void RunGnuplot(const std::string& script_text, const std::string& png_path, con
 // simulate
 
 struct SimulateCommand::Flags {
-  std::string scene, method, x0, solver, out, summary, plot, on_failure = "stop", algorithm;
+  std::string scene, method, x0, solver, out, summary, plot, on_failure = "stop", algorithm, record;
   double h = 0.0, T = 0.0, theta = 0.0, gamma = 0.0, tol = 1e-10, reach_tol = 0.0, newton_tol = 0.0;
   int max_iter = 0, newton_max_iter = 0;
   bool no_warm_start = false;
@@ -356,6 +357,9 @@ SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>
   command_->add_option("--out", f.out, "write the trajectory CSV t,x1..xn,s1..sm,y1..ym,iterations,residual");
   command_->add_option("--summary", f.summary, "write the JSON summary (steps, x_final, reaching_step, ...)");
   command_->add_option("--plot", f.plot, "write a PNG (gnuplot): x, s, y against t and the phase portrait");
+  command_->add_option("--record", f.record,
+                       "write every one-step box-MLCP of the run (M, q, l, u, the z used, scene, method, h, theta, "
+                       "step) to FILE, a problem set (problems/library/README.md; see `smcbench library FILE`)");
 }
 
 SimulateCommand::~SimulateCommand() = default;
@@ -466,6 +470,25 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
     err << "note: --gamma has no effect on a linear scene (g(x) = B is constant)\n";
   }
 
+  // --record: the run hands each one-step problem to a recorder that streams it to the file.
+  std::unique_ptr<ProblemSetWriter> record_writer;
+  std::unique_ptr<ProblemRecorder> recorder;
+  if (!f.record.empty()) {
+    if (!IsImplicit(s.method)) {
+      fail("--record: method '" + std::string(ToString(s.method)) + "' solves no one-step problem: nothing to record");
+    }
+    if (nonlinear && s.algorithm == NonlinearAlgorithm::kMcp) {
+      fail("--record captures box-MLCPs, but --algorithm mcp solves each step as a nonlinear MCP; use --algorithm "
+           "newton-mlcp (its inner problems are box-MLCPs)");
+    }
+    record_writer = std::make_unique<ProblemSetWriter>(
+        f.record, "capture", "one-step problems of smcbench simulate " + info.name + " (" + std::string(ToString(s.method)) +
+                                 ", h = " + Num(s.h) + ", backend " + solver_name + ")");
+    recorder = std::make_unique<ProblemRecorder>(MakeCaptureContext("capture", *scene, s, solver_name),
+                                                 record_writer.get());
+    s.stepper.observer = recorder.get();
+  }
+
   Trajectory tr;
   const auto start = std::chrono::steady_clock::now();
   try {
@@ -474,6 +497,7 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
     fail(e.what());
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  if (record_writer) record_writer->Close();
 
   if (!f.out.empty()) WriteTrajectoryCsvFile(tr, f.out);
   if (!f.summary.empty()) {
@@ -519,6 +543,11 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
   // One cold run, set-up (discretization, factorization) included: `stepper_benchmark` measures the loop itself.
   out << "  wall " << FormatSeconds(wall) << " for set-up + " << tr.steps_taken << " steps ("
       << FormatRate(wall > 0 ? tr.steps_taken / wall : 0.0) << "steps/s" << (record ? ", recording" : "") << ")\n";
+  if (record_writer) {
+    const std::uint64_t matrices = record_writer->matrices_written();
+    out << "  recorded " << record_writer->problems_written() << " one-step problem(s), " << matrices
+        << " distinct matri" << (matrices == 1 ? "x" : "ces") << ", to " << f.record << "\n";
+  }
   if (tr.first_failed_step >= 0) {
     err << "warning: step " << tr.first_failed_step << ": " << ToString(tr.first_failure_status) << " (residual "
         << Num(tr.first_failure_residual) << ")" << (tr.first_failure_message.empty() ? "" : ": ")

@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "problems/library/problem_set_io.h"
 #include "problems/scenes/registry.h"
 #include "tools/smcbench/cli_test_runner.h"
 #include "tools/smcbench/simulate.h"
@@ -277,6 +278,53 @@ TEST_F(Simulate, ScenesListsEveryRegisteredScene) {
   for (auto name : SceneNames()) EXPECT_THAT(r.out, HasSubstr(std::string(name) + " ")) << name;
   EXPECT_EQ(static_cast<std::size_t>(std::count(r.out.begin(), r.out.end(), '\n')), SceneNames().size());
   EXPECT_THAT(r.out, HasSubstr("n=4 m=1"));  // observer
+}
+
+
+// --record: every one-step problem of the run in a problem-set file (M stored once), with the z the run used, which
+// solves it; Algorithm 2's inner problems carry their Newton iteration; nothing to record is an error.
+TEST_F(Simulate, RecordWritesEveryOneStepProblem) {
+  const std::string file = Path("sign.smcps"), summary = Path("sign.json");
+  CliRun r = RunSmcbench({"simulate", "sign", "--record", file, "--summary", summary});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("recorded 200 one-step problem(s), 1 distinct matrix, to " + file));
+  ProblemSetFileInfo info;
+  const ProblemSet set = ReadProblemSetFile(file, &info);
+  EXPECT_EQ(info.matrices, 1u);
+  ASSERT_EQ(set.problems.size(), 200u);
+  EXPECT_EQ(set.name, "capture");
+  const LibraryProblem& p = set.problems[11];
+  EXPECT_EQ(p.id, "capture/sign/implicit/h0.01/k12");
+  EXPECT_EQ(p.source, "capture:sign");
+  EXPECT_EQ(p.metadata.at("theta"), "1");
+  EXPECT_EQ(p.metadata.at("step"), "12");
+  EXPECT_EQ(p.metadata.at("backend"), "lemke");
+  for (const LibraryProblem& q : set.problems) {
+    EXPECT_EQ(q.expected, ExpectedOutcome::kSolvable) << q.id;
+    EXPECT_EQ(Judge(q, SolveStatus::kSolved, q.solution, 1e-10), Verdict::kSolved) << q.id;
+  }
+  // The last problem's solution is the run's final s.
+  const nlohmann::json j = ReadJson(summary);
+  EXPECT_EQ(set.problems.back().solution[0], j["s_final"][0].get<double>());
+
+  const std::string nonlinear = Path("arctan.smcps");
+  r = RunSmcbench({"simulate", "arctan", "--T", "1", "--record", nonlinear});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const ProblemSet newton = ReadProblemSetFile(nonlinear);
+  ASSERT_FALSE(newton.problems.empty());
+  for (const LibraryProblem& q : newton.problems) {
+    EXPECT_EQ(q.id, "capture/arctan/implicit/h0.05/k" + q.metadata.at("step") + "/it" + q.metadata.at("iteration"));
+    EXPECT_EQ(q.metadata.at("algorithm"), "newton-mlcp");
+  }
+
+  const std::string none = Path("none.smcps");
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--method", "explicit", "--record", none}),
+                     {"--record: method 'explicit' solves no one-step problem"});
+  ExpectOneLineError(RunSmcbench({"simulate", "arctan", "--algorithm", "mcp", "--record", none}),
+                     {"--record captures box-MLCPs", "--algorithm newton-mlcp"});
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--record", Path("no/such/dir/x.smcps")}),
+                     {"cannot open", "for writing"});
+  EXPECT_FALSE(fs::exists(none));
 }
 
 }  // namespace

@@ -1,0 +1,98 @@
+// The problem library on disk: one versioned, checksummed binary file per ProblemSet (".smcps"), with a matrix
+// table so that a constant M is stored once. Byte-by-byte specification and the reasons for a format of our own
+// rather than HDF5: problems/library/README.md.
+//
+// Reading never trusts the file: every size is checked against the bytes actually present before anything is
+// allocated, the checksum is verified before any field is interpreted, and every defect is an InvalidInputError
+// "problem set '<file>': <what> at byte <offset>: ..." naming the file, the field and the offset.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <iosfwd>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "problems/library/problem_set.h"
+
+namespace smcbench {
+
+// Format version written by this build; the only one it reads.
+inline constexpr std::uint32_t kProblemSetFormatVersion = 1;
+// The customary file extension.
+inline constexpr const char* kProblemSetExtension = ".smcps";
+// Files larger than this (4 GiB) are refused before reading (10⁵ sparse rows with 10 entries each take ~15 MB).
+inline constexpr std::uint64_t kMaxProblemSetFileBytes = std::uint64_t{1} << 32;
+// Reading expands the matrix table (every problem owns its M): a small file whose problems share one large M
+// could otherwise claim any amount of memory. Beyond this many bytes of matrix data (16 GiB) a read fails.
+inline constexpr std::uint64_t kMaxExpandedMatrixBytes = std::uint64_t{1} << 34;
+
+// Writes the whole set (set.Validate() first; identical matrices are stored once, compared bit by bit). Throws
+// InvalidInputError if the set is invalid (duplicate or empty id, wrong solution size, non-finite solution,
+// out-of-range enum value) or the stream fails.
+void WriteProblemSet(const ProblemSet& set, std::ostream& out);
+// Same, to a file: written under a temporary name in the same folder and renamed at the end, so a failed write
+// never leaves a half-written file under path.
+void WriteProblemSetFile(const ProblemSet& set, const std::string& path);
+
+// Reads a whole set. name_for_errors names the source in messages. The matrix table is expanded: every
+// problem owns its copy of M in memory.
+ProblemSet ReadProblemSet(std::istream& in, const std::string& name_for_errors);
+ProblemSet ReadProblemSetFile(const std::string& path);
+ProblemSet ReadProblemSetBytes(std::string_view bytes, const std::string& name_for_errors);
+
+// What a file holds besides its problems (for listings; reads and checks the whole file like ReadProblemSet).
+struct ProblemSetFileInfo {
+  std::uint32_t version = 0;
+  std::uint64_t bytes = 0;
+  std::uint64_t matrices = 0;  // entries of the matrix table (distinct matrices)
+  std::uint64_t problems = 0;
+};
+ProblemSet ReadProblemSetFile(const std::string& path, ProblemSetFileInfo* info);
+
+// The checksum of the format (FNV-1a 64) over bytes.
+std::uint64_t ProblemSetChecksum(std::string_view bytes);
+// Rewrites the last 8 bytes of a file image with the checksum of everything before them (what a valid file
+// holds there). For tests and fuzz targets that edit a valid file and want the decoder, not the checksum, to
+// judge the edit. No-op if bytes is shorter than 8.
+void FixProblemSetChecksum(std::string* bytes);
+
+struct ProblemSetWriterOptions {
+  // Matrices kept in memory to recognize a repeated M (hash first, then a bit-by-bit comparison), most recently
+  // used first, up to this many bytes of matrix data. The last matrix written is always kept, so consecutive
+  // identical matrices (a linear stepper's constant M) are always stored once whatever the budget.
+  std::size_t dedupe_cache_bytes = std::size_t{64} << 20;
+};
+
+// Writes a set one problem at a time without holding the problems (captures of long runs). Add() validates like
+// WriteProblemSet (ids must be unique within the file: the writer keeps the ids it has written). Close() writes
+// the end record with the counts and the checksum; a file whose writer was never closed has no end record and
+// every reader rejects it as truncated. The file variant writes to "<path>.partial" and renames it to path on
+// Close(); destroying an unclosed file writer removes the partial file.
+class ProblemSetWriter {
+ public:
+  ProblemSetWriter(const std::string& path, const std::string& set_name, const std::string& description,
+                   ProblemSetWriterOptions options = {});
+  // out must outlive the writer; name_for_errors names it in messages.
+  ProblemSetWriter(std::ostream& out, const std::string& name_for_errors, const std::string& set_name,
+                   const std::string& description, ProblemSetWriterOptions options = {});
+  ~ProblemSetWriter();
+  ProblemSetWriter(const ProblemSetWriter&) = delete;
+  ProblemSetWriter& operator=(const ProblemSetWriter&) = delete;
+
+  void Add(const LibraryProblem& problem);
+  void Close();
+
+  bool closed() const;
+  std::uint64_t problems_written() const;
+  std::uint64_t matrices_written() const;  // distinct matrices stored so far
+  std::uint64_t bytes_written() const;
+
+  struct Impl;
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+}  // namespace smcbench

@@ -1,0 +1,854 @@
+// The .smcps format: bit-exact round trips (±∞ bounds, −0.0, subnormals, dense and sparse, every metadata
+// field), one shared matrix stored once, the streaming writer, one test per kind of damaged or hostile file
+// (hostile sizes must not allocate), the Siconos relay export and the matrix-class tags.
+#include "problems/library/problem_set_io.h"
+
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include "problems/io/siconos_format.h"
+#include "problems/library/matrix_tags.h"
+#include "problems/library/siconos_export.h"
+
+// ------------------------------------------------------------------------------------------------------------
+// The largest single heap request while a flag is set: hostile size fields must fail before allocating. glibc's
+// allocator is interposed as in tests/support/malloc_counter.cc (operator new, std::vector and Eigen's aligned
+// malloc all end up here); not under AddressSanitizer, which owns malloc.
+#if defined(__SANITIZE_ADDRESS__)
+#define LIBRARY_TEST_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define LIBRARY_TEST_SANITIZED 1
+#endif
+#endif
+
+namespace {
+std::atomic<bool> g_tracking{false};
+std::atomic<std::size_t> g_largest{0};
+inline void Track(std::size_t size) {
+  if (!g_tracking.load(std::memory_order_relaxed)) return;
+  std::size_t seen = g_largest.load(std::memory_order_relaxed);
+  while (size > seen && !g_largest.compare_exchange_weak(seen, size, std::memory_order_relaxed)) {
+  }
+}
+}  // namespace
+
+#ifndef LIBRARY_TEST_SANITIZED
+extern "C" {
+void* __libc_malloc(std::size_t size);
+void* __libc_calloc(std::size_t n, std::size_t size);
+void* __libc_realloc(void* p, std::size_t size);
+void* __libc_memalign(std::size_t alignment, std::size_t size);
+
+void* malloc(std::size_t size) noexcept {
+  Track(size);
+  return __libc_malloc(size);
+}
+void* calloc(std::size_t n, std::size_t size) noexcept {
+  Track(n * size);
+  return __libc_calloc(n, size);
+}
+void* realloc(void* p, std::size_t size) noexcept {
+  Track(size);
+  return __libc_realloc(p, size);
+}
+void* aligned_alloc(std::size_t alignment, std::size_t size) noexcept {
+  Track(size);
+  return __libc_memalign(alignment, size);
+}
+void* memalign(std::size_t alignment, std::size_t size) noexcept {
+  Track(size);
+  return __libc_memalign(alignment, size);
+}
+int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept {
+  Track(size);
+  *out = __libc_memalign(alignment, size);
+  return *out ? 0 : 12 /* ENOMEM */;
+}
+}
+#endif
+
+namespace smcbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr double kDenorm = std::numeric_limits<double>::denorm_min();
+constexpr double kMax = std::numeric_limits<double>::max();
+const char kFile[] = "test.smcps";
+
+bool SameBits(double a, double b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+void ExpectSameBits(const Vector& a, const Vector& b, const std::string& what) {
+  ASSERT_EQ(a.size(), b.size()) << what;
+  for (Eigen::Index i = 0; i < a.size(); ++i) EXPECT_TRUE(SameBits(a[i], b[i])) << what << "[" << i << "]";
+}
+
+void ExpectSameMatrix(const BoxMLCP& a, const BoxMLCP& b) {
+  ASSERT_EQ(a.is_sparse(), b.is_sparse());
+  ASSERT_EQ(a.size(), b.size());
+  if (!a.is_sparse()) {
+    EXPECT_EQ(std::memcmp(a.dense_matrix().data(), b.dense_matrix().data(),
+                          sizeof(double) * static_cast<std::size_t>(a.dense_matrix().size())),
+              0);
+    return;
+  }
+  const SparseMatrix &x = a.sparse_matrix(), &y = b.sparse_matrix();
+  ASSERT_EQ(x.nonZeros(), y.nonZeros());
+  for (int j = 0; j <= a.size(); ++j) EXPECT_EQ(x.outerIndexPtr()[j], y.outerIndexPtr()[j]);
+  for (int k = 0; k < x.nonZeros(); ++k) {
+    EXPECT_EQ(x.innerIndexPtr()[k], y.innerIndexPtr()[k]);
+    EXPECT_TRUE(SameBits(x.valuePtr()[k], y.valuePtr()[k])) << "value " << k;
+  }
+}
+
+void ExpectSameProblem(const LibraryProblem& a, const LibraryProblem& b) {
+  SCOPED_TRACE(a.id);
+  EXPECT_EQ(a.id, b.id);
+  EXPECT_EQ(a.source, b.source);
+  EXPECT_EQ(a.problem.name(), b.problem.name());
+  ExpectSameMatrix(a.problem, b.problem);
+  ExpectSameBits(a.problem.q(), b.problem.q(), "q");
+  ExpectSameBits(a.problem.l(), b.problem.l(), "l");
+  ExpectSameBits(a.problem.u(), b.problem.u(), "u");
+  EXPECT_EQ(a.matrix.symmetric, b.matrix.symmetric);
+  EXPECT_EQ(a.matrix.positive_definite, b.matrix.positive_definite);
+  EXPECT_EQ(a.matrix.p_matrix, b.matrix.p_matrix);
+  EXPECT_EQ(a.tags, b.tags);
+  EXPECT_EQ(a.seed, b.seed);
+  EXPECT_EQ(a.expected, b.expected);
+  ExpectSameBits(a.solution, b.solution, "solution");
+  EXPECT_EQ(a.metadata, b.metadata);
+}
+
+Vector Vec(std::initializer_list<double> values) {
+  Vector v(static_cast<Eigen::Index>(values.size()));
+  Eigen::Index i = 0;
+  for (double x : values) v[i++] = x;
+  return v;
+}
+
+DenseMatrix Dense3() {
+  DenseMatrix M(3, 3);
+  M << 4.0, -0.0, kDenorm,  //
+      1e300, 3.0, -1.0,     //
+      0.5, 1e-310, -kMax;
+  return M;
+}
+
+SparseMatrix Sparse4() {
+  // Column 1 empty; an explicitly stored −0.0; a subnormal.
+  std::vector<Eigen::Triplet<double, int>> t = {{0, 0, 2.0}, {3, 0, -0.0}, {1, 2, kDenorm}, {2, 2, 5.0},
+                                                {0, 3, -1.5}, {3, 3, 7.0}};
+  SparseMatrix S(4, 4);
+  S.setFromTriplets(t.begin(), t.end());
+  return S;
+}
+
+LibraryProblem Problem(std::string id, BoxMLCP box) {
+  return LibraryProblem{std::move(id), "", std::move(box), {}, {}, std::nullopt, ExpectedOutcome::kUnknown, {}, {}};
+}
+
+// Every field set, every special value in every vector.
+ProblemSet SampleSet() {
+  ProblemSet set;
+  set.name = "sample";
+  set.description = "every field, every special double";
+  LibraryProblem a = Problem("lib/dense/a", BoxMLCP(Dense3(), Vec({-0.0, kDenorm, -3.25}), Vec({-kInf, -0.0, -1.0}),
+                                                    Vec({kInf, kInf, kDenorm}), "named"));
+  a.source = "generated:test";
+  a.matrix = {Tristate::kYes, Tristate::kNo, Tristate::kUnknown};
+  a.tags = {"degenerate", "murty", ""};
+  a.seed = 0xffffffffffffffffULL;
+  a.expected = ExpectedOutcome::kSolvable;
+  a.solution = Vec({1.5, -0.0, kDenorm});
+  a.metadata = {{"h", "0.1"}, {"scene", "sign"}, {"empty", ""}, {"unicode", "θ → ∞"}};
+  set.problems.push_back(a);
+
+  LibraryProblem b = Problem("lib/sparse/b", BoxMLCP(Sparse4(), Vec({1, 2, 3, 4}), Vec({0, -1, -kInf, 0}),
+                                                     Vec({kInf, 1, 2, 0})));
+  b.expected = ExpectedOutcome::kInfeasible;
+  b.seed = 0;
+  b.matrix = {Tristate::kNo, Tristate::kUnknown, Tristate::kYes};
+  set.problems.push_back(b);
+
+  // Same M as a (stored once), different q; id with non-ASCII characters; named by its id (not stored twice).
+  LibraryProblem c = Problem("lib/dense/c/ü", BoxMLCP(Dense3(), Vec({1, 2, 3}), Vec({-1, -1, -1}), Vec({1, 1, 1}),
+                                                      "lib/dense/c/ü"));
+  c.source = "capture:sign";
+  set.problems.push_back(c);
+  return set;
+}
+
+std::string Serialize(const ProblemSet& set) {
+  std::ostringstream out;
+  WriteProblemSet(set, out);
+  return out.str();
+}
+
+ProblemSet Parse(const std::string& bytes) { return ReadProblemSetBytes(bytes, kFile); }
+
+// Expects an InvalidInputError naming the file and containing every needle.
+std::string ExpectRejected(const std::string& bytes, const std::vector<std::string>& needles) {
+  try {
+    Parse(bytes);
+    ADD_FAILURE() << "accepted a damaged file";
+  } catch (const InvalidInputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(kFile), std::string::npos) << "does not name the file: " << message;
+    for (const std::string& needle : needles) {
+      EXPECT_NE(message.find(needle), std::string::npos) << "'" << needle << "' missing from: " << message;
+    }
+    return message;
+  }
+  return {};
+}
+
+// The records of a file image: kind, offset of the record, offset and length of its body.
+struct Record {
+  std::uint8_t kind;
+  std::size_t at, body;
+  std::uint64_t length;
+};
+
+std::uint64_t Load(const std::string& s, std::size_t at, int bytes) {
+  std::uint64_t v = 0;
+  for (int i = 0; i < bytes; ++i) v |= static_cast<std::uint64_t>(static_cast<unsigned char>(s[at + i])) << (8 * i);
+  return v;
+}
+
+void Store(std::string* s, std::size_t at, std::uint64_t v, int bytes) {
+  for (int i = 0; i < bytes; ++i) (*s)[at + i] = static_cast<char>((v >> (8 * i)) & 0xff);
+}
+
+void StoreDouble(std::string* s, std::size_t at, double v) {
+  std::uint64_t bits;
+  std::memcpy(&bits, &v, 8);
+  Store(s, at, bits, 8);
+}
+
+std::vector<Record> Records(const std::string& s) {
+  std::vector<Record> out;
+  std::size_t pos = 16;
+  while (pos < s.size()) {
+    Record r{static_cast<std::uint8_t>(s[pos]), pos, pos + 9, Load(s, pos + 1, 8)};
+    out.push_back(r);
+    pos = r.body + r.length;
+  }
+  return out;
+}
+
+Record Nth(const std::vector<Record>& records, std::uint8_t kind, int n = 0) {
+  for (const Record& r : records) {
+    if (r.kind == kind && n-- == 0) return r;
+  }
+  throw std::logic_error("no such record");
+}
+
+constexpr std::uint8_t kSet = 1, kMatrix = 2, kProblem = 3, kEnd = 4;
+
+// A one-problem file with a 2×2 M: problem id "p", empty source and name, so its body offsets are fixed:
+// id 0, source 5, flags 9, name 10, matrix index 14, n 22, q 30, l 46, u 62, tristates 78, expected 81, tag count
+// 82, metadata 86.
+std::string SmallFile(bool sparse = false) {
+  ProblemSet set;
+  set.name = "s";
+  DenseMatrix M(2, 2);
+  M << 2, 1, 1, 3;
+  if (sparse) {
+    set.problems.push_back(Problem("p", BoxMLCP(SparseMatrix(M.sparseView()), Vec({1, -1}), Vec({-1, -1}),
+                                                Vec({1, 1}))));
+  } else {
+    set.problems.push_back(Problem("p", BoxMLCP::Relay(M, Vec({1, -1}))));
+  }
+  set.problems[0].metadata = {{"a", "1"}, {"b", "2"}};
+  return Serialize(set);
+}
+
+// Largest single allocation while fn runs (0 when allocations cannot be observed).
+template <typename Fn>
+std::size_t LargestAllocation(Fn&& fn) {
+  g_largest = 0;
+  g_tracking = true;
+  fn();
+  g_tracking = false;
+  return g_largest.load();
+}
+
+// Patches a valid file, fixes its checksum, and expects a rejection that allocated less than 1 MiB.
+void ExpectHostileRejected(std::string bytes, const std::vector<std::string>& needles) {
+  FixProblemSetChecksum(&bytes);
+  const std::size_t largest = LargestAllocation([&] { ExpectRejected(bytes, needles); });
+  EXPECT_LT(largest, std::size_t{1} << 20) << "a hostile size field made the reader allocate " << largest << " bytes";
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// Round trips
+
+TEST(ProblemSetIo, RoundTripIsBitExact) {
+  const ProblemSet set = SampleSet();
+  const ProblemSet back = Parse(Serialize(set));
+  EXPECT_EQ(back.name, set.name);
+  EXPECT_EQ(back.description, set.description);
+  ASSERT_EQ(back.problems.size(), set.problems.size());
+  for (std::size_t i = 0; i < set.problems.size(); ++i) ExpectSameProblem(set.problems[i], back.problems[i]);
+  // And the bytes are a fixed point: writing what was read gives the same file.
+  EXPECT_EQ(Serialize(back), Serialize(set));
+}
+
+TEST(ProblemSetIo, EmptySetRoundTrips) {
+  ProblemSet set;
+  const ProblemSet back = Parse(Serialize(set));
+  EXPECT_EQ(back.name, "");
+  EXPECT_TRUE(back.problems.empty());
+}
+
+TEST(ProblemSetIo, FileRoundTripAndInfo) {
+  const fs::path path = fs::temp_directory_path() / ("library-test-" + std::to_string(::getpid()) + ".smcps");
+  const ProblemSet set = SampleSet();
+  WriteProblemSetFile(set, path.string());
+  EXPECT_FALSE(fs::exists(path.string() + ".partial"));
+  ProblemSetFileInfo info;
+  const ProblemSet back = ReadProblemSetFile(path.string(), &info);
+  EXPECT_EQ(info.version, kProblemSetFormatVersion);
+  EXPECT_EQ(info.problems, 3u);
+  EXPECT_EQ(info.matrices, 2u);  // a and c share M
+  EXPECT_EQ(info.bytes, fs::file_size(path));
+  for (std::size_t i = 0; i < set.problems.size(); ++i) ExpectSameProblem(set.problems[i], back.problems[i]);
+  fs::remove(path);
+  try {
+    ReadProblemSetFile(path.string());
+    ADD_FAILURE() << "read a missing file";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
+  }
+}
+
+TEST(ProblemSetIo, SharedMatrixIsStoredOnce) {
+  constexpr int kN = 20, kCount = 50;
+  const DenseMatrix M = DenseMatrix::Identity(kN, kN) * 3.0 + DenseMatrix::Constant(kN, kN, 0.25);
+  ProblemSet shared, distinct;
+  for (int k = 0; k < kCount; ++k) {
+    const Vector q = Vector::Constant(kN, static_cast<double>(k));
+    shared.problems.push_back(Problem("p" + std::to_string(k), BoxMLCP::Relay(M, q)));
+    DenseMatrix Mk = M;
+    Mk(0, 0) += k;
+    distinct.problems.push_back(Problem("p" + std::to_string(k), BoxMLCP::Relay(Mk, q)));
+  }
+  const std::string a = Serialize(shared), b = Serialize(distinct);
+  int matrices_a = 0, matrices_b = 0;
+  for (const Record& r : Records(a)) matrices_a += r.kind == kMatrix;
+  for (const Record& r : Records(b)) matrices_b += r.kind == kMatrix;
+  EXPECT_EQ(matrices_a, 1);
+  EXPECT_EQ(matrices_b, kCount);
+  // 49 dense 20×20 matrices (8 bytes an entry plus a 9-byte body header and 9-byte record header) saved.
+  EXPECT_EQ(b.size() - a.size(), static_cast<std::size_t>((kCount - 1) * (kN * kN * 8 + 18)));
+  const ProblemSet back = Parse(a);
+  for (int k = 0; k < kCount; ++k) ExpectSameProblem(shared.problems[k], back.problems[k]);
+}
+
+TEST(ProblemSetIo, MatricesEqualInValueButNotInBitsAreNotMerged) {
+  DenseMatrix M(1, 1), N(1, 1);
+  M << 0.0;
+  N << -0.0;
+  ProblemSet set;
+  set.problems.push_back(Problem("zero", BoxMLCP::Relay(M, Vec({1}))));
+  set.problems.push_back(Problem("minus-zero", BoxMLCP::Relay(N, Vec({1}))));
+  const ProblemSet back = Parse(Serialize(set));
+  EXPECT_TRUE(std::signbit(back.problems[1].problem.dense_matrix()(0, 0)));
+  EXPECT_FALSE(std::signbit(back.problems[0].problem.dense_matrix()(0, 0)));
+}
+
+TEST(ProblemSetIo, StreamingWriterWritesTheSameBytes) {
+  const ProblemSet set = SampleSet();
+  std::ostringstream out;
+  ProblemSetWriter writer(out, "stream", set.name, set.description);
+  for (const LibraryProblem& p : set.problems) writer.Add(p);
+  writer.Close();
+  EXPECT_TRUE(writer.closed());
+  EXPECT_EQ(writer.problems_written(), 3u);
+  EXPECT_EQ(writer.matrices_written(), 2u);
+  EXPECT_EQ(writer.bytes_written(), out.str().size());
+  EXPECT_EQ(out.str(), Serialize(set));
+}
+
+TEST(ProblemSetIo, StreamingWriterDedupeCache) {
+  DenseMatrix A(2, 2), B(2, 2);
+  A << 2, 0, 0, 2;
+  B << 3, 1, 1, 3;
+  const auto count_matrices = [&](const std::vector<const DenseMatrix*>& sequence, std::size_t budget) {
+    std::ostringstream out;
+    ProblemSetWriter writer(out, "stream", "s", "", ProblemSetWriterOptions{budget});
+    int k = 0;
+    for (const DenseMatrix* M : sequence) {
+      writer.Add(Problem("p" + std::to_string(k++), BoxMLCP::Relay(*M, Vec({1, 2}))));
+    }
+    writer.Close();
+    const ProblemSet back = Parse(out.str());
+    for (std::size_t i = 0; i < sequence.size(); ++i) {
+      EXPECT_EQ(back.problems[i].problem.dense_matrix(), *sequence[i]);
+    }
+    return writer.matrices_written();
+  };
+  // Consecutive repeats are merged even with no cache budget at all.
+  EXPECT_EQ(count_matrices({&A, &A, &A, &B, &B}, 0), 2u);
+  EXPECT_EQ(count_matrices({&A, &B, &A, &B}, 0), 4u);
+  EXPECT_EQ(count_matrices({&A, &B, &A, &B}, 1 << 20), 2u);
+}
+
+TEST(ProblemSetIo, FileWriterPublishesOnlyOnClose) {
+  const fs::path path = fs::temp_directory_path() / ("library-writer-" + std::to_string(::getpid()) + ".smcps");
+  const ProblemSet set = SampleSet();
+  {
+    ProblemSetWriter writer(path.string(), "s", "d");
+    writer.Add(set.problems[0]);
+    EXPECT_FALSE(fs::exists(path));
+    EXPECT_TRUE(fs::exists(path.string() + ".partial"));
+  }  // never closed
+  EXPECT_FALSE(fs::exists(path));
+  EXPECT_FALSE(fs::exists(path.string() + ".partial"));
+  {
+    ProblemSetWriter writer(path.string(), "s", "d");
+    for (const LibraryProblem& p : set.problems) writer.Add(p);
+    writer.Close();
+  }
+  const ProblemSet back = ReadProblemSetFile(path.string());
+  ASSERT_EQ(back.problems.size(), 3u);
+  EXPECT_EQ(back.name, "s");
+  EXPECT_EQ(back.description, "d");
+  fs::remove(path);
+  EXPECT_THROW(ProblemSetWriter("/nonexistent-dir/x.smcps", "s", ""), InvalidInputError);
+}
+
+TEST(ProblemSetIo, WriterRejectsWhatTheReaderWouldRefuse) {
+  ProblemSet set = SampleSet();
+  set.problems[2].id = set.problems[0].id;
+  EXPECT_THROW(Serialize(set), InvalidInputError);
+
+  set = SampleSet();
+  set.problems[0].solution[1] = std::nan("");
+  try {
+    Serialize(set);
+    ADD_FAILURE();
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("solution[1] is not finite"), std::string::npos) << e.what();
+  }
+
+  set = SampleSet();
+  set.problems[0].expected = static_cast<ExpectedOutcome>(7);
+  EXPECT_THROW(Serialize(set), InvalidInputError);
+
+  std::ostringstream out;
+  ProblemSetWriter writer(out, "stream", "s", "");
+  writer.Add(SampleSet().problems[0]);
+  EXPECT_THROW(writer.Add(SampleSet().problems[0]), InvalidInputError);  // duplicate id
+  writer.Close();
+  EXPECT_THROW(writer.Add(SampleSet().problems[1]), InvalidInputError);  // after Close
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// Damaged files: one test per defect
+
+TEST(ProblemSetIoDefects, EmptyFile) { ExpectRejected("", {"empty file"}); }
+
+TEST(ProblemSetIoDefects, NotAProblemSetFile) {
+  ExpectRejected("15\n0\n15 15\n1 2 3\n", {"not a smcbench problem-set file", "magic"});
+}
+
+TEST(ProblemSetIoDefects, TruncatedHeader) { ExpectRejected(SmallFile().substr(0, 11), {"truncated", "header"}); }
+
+TEST(ProblemSetIoDefects, VersionMismatch) {
+  std::string bytes = SmallFile();
+  Store(&bytes, 8, 2, 4);
+  ExpectRejected(bytes, {"format version 2 is not supported", "reads version 1", "newer"});
+  Store(&bytes, 8, 0, 4);
+  ExpectRejected(bytes, {"format version 0 is not supported", "byte 8"});
+}
+
+TEST(ProblemSetIoDefects, ReservedHeaderField) {
+  std::string bytes = SmallFile();
+  Store(&bytes, 12, 1, 4);
+  ExpectRejected(bytes, {"reserved header field", "byte 12"});
+}
+
+TEST(ProblemSetIoDefects, EveryTruncationIsRejected) {
+  const std::string bytes = SmallFile();
+  for (std::size_t size = 1; size < bytes.size(); ++size) {
+    SCOPED_TRACE("truncated to " + std::to_string(size) + " bytes");
+    ExpectRejected(bytes.substr(0, size), {"truncated"});
+  }
+}
+
+TEST(ProblemSetIoDefects, EveryFlippedByteIsRejected) {
+  const std::string bytes = SmallFile(true);
+  for (std::size_t at = 0; at < bytes.size(); ++at) {
+    for (unsigned char mask : {0x01, 0x80, 0xff}) {
+      std::string damaged = bytes;
+      damaged[at] = static_cast<char>(damaged[at] ^ mask);
+      EXPECT_THROW(Parse(damaged), InvalidInputError) << "byte " << at << " xor " << int{mask};
+    }
+  }
+}
+
+TEST(ProblemSetIoDefects, ChecksumMismatch) {
+  std::string bytes = SmallFile();
+  const Record& p = Nth(Records(bytes), kProblem);
+  StoreDouble(&bytes, p.body + 30, 1.5);  // q[0]: a plausible value, only the checksum can tell
+  ExpectRejected(bytes, {"checksum mismatch", "corrupt"});
+}
+
+TEST(ProblemSetIoDefects, TrailingBytesAfterTheEndRecord) {
+  ExpectRejected(SmallFile() + "x", {"1 unexpected byte(s) after the end record"});
+}
+
+TEST(ProblemSetIoDefects, MissingEndRecord) {
+  std::string bytes = SmallFile();
+  ExpectRejected(bytes.substr(0, Nth(Records(bytes), kEnd).at), {"truncated", "without an end record"});
+}
+
+TEST(ProblemSetIoDefects, UnknownRecordKind) {
+  std::string bytes = SmallFile();
+  bytes[Nth(Records(bytes), kProblem).at] = 9;
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"unknown record kind 9"});
+}
+
+TEST(ProblemSetIoDefects, MatrixIndexOutOfRange) {
+  std::string bytes = SmallFile();
+  Store(&bytes, Nth(Records(bytes), kProblem).body + 14, 7, 8);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"problem #0 ('p') matrix index", "refers to matrix 7"});
+}
+
+TEST(ProblemSetIoDefects, SizeDisagreesWithTheMatrix) {
+  std::string bytes = SmallFile();
+  Store(&bytes, Nth(Records(bytes), kProblem).body + 22, 1, 8);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"n = 1 but matrix 0 is 2x2"});
+}
+
+TEST(ProblemSetIoDefects, NaNInQ) {
+  std::string bytes = SmallFile();
+  const std::size_t at = Nth(Records(bytes), kProblem).body + 38;
+  StoreDouble(&bytes, at, std::nan(""));
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"q[1] at byte " + std::to_string(at), "is NaN"});
+}
+
+TEST(ProblemSetIoDefects, InfinityInQ) {
+  std::string bytes = SmallFile();
+  StoreDouble(&bytes, Nth(Records(bytes), kProblem).body + 30, -kInf);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"q[0]", "is infinite"});
+}
+
+TEST(ProblemSetIoDefects, NaNBound) {
+  std::string bytes = SmallFile();
+  StoreDouble(&bytes, Nth(Records(bytes), kProblem).body + 46, std::nan(""));
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"l[0]", "is NaN"});
+}
+
+TEST(ProblemSetIoDefects, LowerBoundAboveUpperBound) {
+  std::string bytes = SmallFile();
+  StoreDouble(&bytes, Nth(Records(bytes), kProblem).body + 54, 2.0);  // l[1] = 2 > u[1] = 1
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"problem #0 ('p')", "l[1] = 2 > u[1] = 1"});
+}
+
+TEST(ProblemSetIoDefects, InvalidTristate) {
+  std::string bytes = SmallFile();
+  bytes[Nth(Records(bytes), kProblem).body + 79] = 7;
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"positive_definite", "value 7"});
+}
+
+TEST(ProblemSetIoDefects, InvalidExpectedOutcome) {
+  std::string bytes = SmallFile();
+  bytes[Nth(Records(bytes), kProblem).body + 81] = 3;
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"expected", "value 3"});
+}
+
+TEST(ProblemSetIoDefects, UnknownFlagBits) {
+  std::string bytes = SmallFile();
+  bytes[Nth(Records(bytes), kProblem).body + 9] = 0x10;
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"flags", "unknown flag bits"});
+}
+
+TEST(ProblemSetIoDefects, RepeatedMetadataKey) {
+  std::string bytes = SmallFile();
+  const Record& p = Nth(Records(bytes), kProblem);
+  // Metadata: u32 count, then "a" "1" "b" "2" as 5-byte strings: the second key's character is 6 bytes from the end.
+  ASSERT_EQ(bytes[p.body + p.length - 6], 'b');
+  bytes[p.body + p.length - 6] = 'a';
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"metadata key[1]", "key repeated"});
+}
+
+TEST(ProblemSetIoDefects, DuplicateIds) {
+  ProblemSet set = SampleSet();
+  set.problems[2].id = "lib/dense/X";  // same length as "lib/dense/a"
+  std::string bytes = Serialize(set);
+  const Record& c = Nth(Records(bytes), kProblem, 2);
+  bytes[c.body + 4 + 10] = 'a';
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"duplicate problem id 'lib/dense/a'"});
+}
+
+TEST(ProblemSetIoDefects, EndRecordCountsDisagree) {
+  std::string bytes = SmallFile();
+  Store(&bytes, Nth(Records(bytes), kEnd).body + 8, 5, 8);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"end record counts 1 matrices and 5 problems", "holds 1 and 1"});
+}
+
+TEST(ProblemSetIoDefects, TrailingBytesInsideARecord) {
+  std::string bytes = SmallFile();
+  const Record p = Nth(Records(bytes), kProblem);
+  bytes.insert(p.body + p.length, 1, '\0');
+  Store(&bytes, p.at + 1, p.length + 1, 8);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"problem #0 ('p')", "1 unexpected trailing byte(s) inside the record"});
+}
+
+TEST(ProblemSetIoDefects, RecordBeforeTheSetRecord) {
+  std::string bytes = SmallFile();
+  bytes[Nth(Records(bytes), kSet).at] = kMatrix;
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"before the set record"});
+}
+
+TEST(ProblemSetIoDefects, NonFiniteMatrixEntry) {
+  std::string bytes = SmallFile();
+  StoreDouble(&bytes, Nth(Records(bytes), kMatrix).body + 9 + 8, kInf);  // M(1,0)
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"matrix #0 M(1,0)", "is infinite"});
+}
+
+TEST(ProblemSetIoDefects, UnknownStorage) {
+  std::string bytes = SmallFile();
+  bytes[Nth(Records(bytes), kMatrix).body] = 5;
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"storage", "unknown storage 5"});
+}
+
+TEST(ProblemSetIoDefects, SparseRowIndicesOutOfOrder) {
+  std::string bytes = SmallFile(true);
+  // Column 0 holds rows 0, 1: make them 1, 1.
+  const Record& m = Nth(Records(bytes), kMatrix);
+  const std::size_t rows = m.body + 17 + 4 * 3;
+  ASSERT_EQ(Load(bytes, rows, 4), 0u);
+  Store(&bytes, rows, 1, 4);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"row index[1]", "not above the previous row index"});
+}
+
+TEST(ProblemSetIoDefects, SparseRowIndexOutOfRange) {
+  std::string bytes = SmallFile(true);
+  Store(&bytes, Nth(Records(bytes), kMatrix).body + 17 + 4 * 3 + 4, 2, 4);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"row index[1]", "is >= n = 2"});
+}
+
+TEST(ProblemSetIoDefects, SparseColumnPointersDecrease) {
+  std::string bytes = SmallFile(true);
+  Store(&bytes, Nth(Records(bytes), kMatrix).body + 17 + 4, 5, 4);  // p[1] = 5 > nnz = 4
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"column pointer[1]", "value 5"});
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// Hostile size fields: rejected before any large allocation
+
+TEST(ProblemSetIoHostile, AllocationTrackerSeesLargeAllocations) {
+#ifdef LIBRARY_TEST_SANITIZED
+  GTEST_SKIP() << "AddressSanitizer owns malloc: allocation sizes are not observed";
+#endif
+  const std::size_t largest = LargestAllocation([] {
+    std::vector<char> v(std::size_t{3} << 20);
+    v[v.size() / 2] = 1;
+    EXPECT_EQ(v[v.size() / 2], 1);
+  });
+  EXPECT_GE(largest, std::size_t{3} << 20);
+}
+
+TEST(ProblemSetIoHostile, HugeDimension) {
+  std::string bytes = SmallFile();
+  Store(&bytes, Nth(Records(bytes), kMatrix).body + 1, std::uint64_t{1} << 40, 8);
+  ExpectHostileRejected(bytes, {"matrix #0 n", "n = 1099511627776 is outside [1, 2147483647]"});
+}
+
+TEST(ProblemSetIoHostile, DenseDimensionLargerThanTheData) {
+  std::string bytes = SmallFile();
+  Store(&bytes, Nth(Records(bytes), kMatrix).body + 1, 2147483647, 8);
+  ExpectHostileRejected(bytes, {"dense 2147483647x2147483647 matrix needs more than", "corrupt size field"});
+}
+
+TEST(ProblemSetIoHostile, SparseDimensionLargerThanTheData) {
+  std::string bytes = SmallFile(true);
+  Store(&bytes, Nth(Records(bytes), kMatrix).body + 1, 2147483647, 8);
+  ExpectHostileRejected(bytes, {"column pointers", "declares 2147483648 value(s)"});
+}
+
+TEST(ProblemSetIoHostile, HugeNonZeroCount) {
+  std::string bytes = SmallFile(true);
+  const Record& m = Nth(Records(bytes), kMatrix);
+  Store(&bytes, m.body + 9, 2147483647, 8);
+  // Keep the column pointers consistent with the claim, so the size check on the entries is what fires.
+  Store(&bytes, m.body + 17 + 8, 2147483647, 4);
+  ExpectHostileRejected(bytes, {"row indices and values", "declares 2147483647 value(s)"});
+}
+
+TEST(ProblemSetIoHostile, HugeStringLength) {
+  std::string bytes = SmallFile();
+  Store(&bytes, Nth(Records(bytes), kProblem).body, 0xffffffff, 4);
+  ExpectHostileRejected(bytes, {"problem #0 id", "declares 4294967295 value(s) of 1 byte(s)"});
+}
+
+TEST(ProblemSetIoHostile, HugeTagCount) {
+  std::string bytes = SmallFile();
+  Store(&bytes, Nth(Records(bytes), kProblem).body + 82, 0xffffffff, 4);
+  ExpectHostileRejected(bytes, {"tags", "declares 4294967295"});
+}
+
+TEST(ProblemSetIoHostile, HugeRecordLength) {
+  std::string bytes = SmallFile();
+  Store(&bytes, Nth(Records(bytes), kProblem).at + 1, std::uint64_t{1} << 62, 8);
+  const std::size_t largest = LargestAllocation([&] {
+    ExpectRejected(bytes, {"problem record #2 declares 4611686018427387904 byte(s)", "truncated or corrupt"});
+  });
+  EXPECT_LT(largest, std::size_t{1} << 20);
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// Siconos relay export
+
+TEST(SiconosExport, RelayProblemRoundTripsBitExact) {
+  ProblemSet set = SampleSet();
+  const LibraryProblem& c = set.problems[2];
+  std::ostringstream out;
+  ExportSiconosRelay(c, out);
+  std::istringstream in(out.str());
+  const BoxMLCP back = ReadSiconosStream(in, SiconosKind::kRelay, "export");
+  ExpectSameMatrix(c.problem, back);
+  ExpectSameBits(c.problem.q(), back.q(), "q");
+  ExpectSameBits(c.problem.l(), back.l(), "l");
+  ExpectSameBits(c.problem.u(), back.u(), "u");
+}
+
+TEST(SiconosExport, SparseBoxProblemIsWrittenDensely) {
+  LibraryProblem p = Problem("sparse", BoxMLCP(Sparse4(), Vec({1, 2, 3, 4}), Vec({-1, -1, -2, 0}), Vec({1, 1, 2, 0})));
+  std::ostringstream out;
+  ExportSiconosRelay(p, out);
+  std::istringstream in(out.str());
+  const BoxMLCP back = ReadSiconosStream(in, SiconosKind::kRelay, "export");
+  EXPECT_FALSE(back.is_sparse());
+  EXPECT_EQ(back.dense_matrix(), p.problem.ToDense());
+}
+
+TEST(SiconosExport, InfiniteBoundsAreRefusedWithTheRow) {
+  const ProblemSet set = SampleSet();
+  std::string why;
+  EXPECT_FALSE(CanExportSiconosRelay(set.problems[0], &why));
+  EXPECT_EQ(why, "row 0 has l = -inf, u = inf (a free row)");
+  EXPECT_FALSE(CanExportSiconosRelay(set.problems[1], &why));
+  EXPECT_EQ(why, "row 0 has l = 0, u = inf (an LCP row)");
+  std::ostringstream out;
+  try {
+    ExportSiconosRelay(set.problems[1], out);
+    ADD_FAILURE();
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("problem 'lib/sparse/b': cannot be written in Siconos relay format: row 0"),
+              std::string::npos)
+        << e.what();
+  }
+  EXPECT_TRUE(out.str().empty());
+}
+
+TEST(SiconosExport, FileNamesFromIds) {
+  EXPECT_EQ(SiconosRelayFileName("paper/sign/implicit/h0.01/k12"), "paper_sign_implicit_h0.01_k12.dat");
+  EXPECT_EQ(SiconosRelayFileName("../etc/passwd"), "_._etc_passwd.dat");
+  EXPECT_EQ(SiconosRelayFileName("a b\\c:d"), "a_b_c_d.dat");
+  EXPECT_EQ(SiconosRelayFileName(""), "_.dat");
+  const std::string long_name = SiconosRelayFileName(std::string(400, 'x'));
+  EXPECT_LE(long_name.size(), 200u);
+  EXPECT_NE(long_name, SiconosRelayFileName(std::string(401, 'x')));
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// Matrix-class tags
+
+MatrixTags Classify(const DenseMatrix& M) { return ClassifyMatrix(BoxMLCP::LCP(M, Vector::Zero(M.rows()))); }
+
+TEST(MatrixTags, SymmetricPositiveDefinite) {
+  DenseMatrix M(3, 3);
+  M << 4, 1, 0, 1, 3, 1, 0, 1, 2;
+  const MatrixTags t = Classify(M);
+  EXPECT_EQ(t.symmetric, Tristate::kYes);
+  EXPECT_EQ(t.positive_definite, Tristate::kYes);
+  EXPECT_EQ(t.p_matrix, Tristate::kYes);
+  // Same verdicts through the sparse path.
+  const MatrixTags s = ClassifyMatrix(BoxMLCP(SparseMatrix(M.sparseView()), Vector::Zero(3), Vector::Zero(3),
+                                              Vector::Constant(3, kInf)));
+  EXPECT_EQ(s.positive_definite, Tristate::kYes);
+  EXPECT_EQ(s.p_matrix, Tristate::kYes);
+}
+
+TEST(MatrixTags, PMatrixWithoutPositiveDefiniteSymmetricPart) {
+  // Upper triangular, 1 on the diagonal, 3 above (Murty's construction with a larger entry): every principal
+  // minor is 1, but the symmetric part, 1 on the diagonal and 1.5 elsewhere, has the eigenvalue −0.5.
+  const int n = 6;
+  DenseMatrix M = DenseMatrix::Identity(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j < n; ++j) M(i, j) = 3;
+  }
+  const MatrixTags t = Classify(M);
+  EXPECT_EQ(t.symmetric, Tristate::kNo);
+  EXPECT_EQ(t.positive_definite, Tristate::kNo);
+  EXPECT_EQ(t.p_matrix, Tristate::kYes);
+  // Above the minors limit nothing is claimed.
+  EXPECT_EQ(ClassifyMatrix(BoxMLCP::LCP(M, Vector::Zero(n)), ClassifyOptions{500, 4}).p_matrix, Tristate::kUnknown);
+}
+
+TEST(MatrixTags, IndefiniteAndSingular) {
+  DenseMatrix M(2, 2);
+  M << 1, 3, 3, 1;  // det = −8
+  MatrixTags t = Classify(M);
+  EXPECT_EQ(t.symmetric, Tristate::kYes);
+  EXPECT_EQ(t.positive_definite, Tristate::kNo);
+  EXPECT_EQ(t.p_matrix, Tristate::kNo);
+  M << 1, 1, 1, 1;  // PSD, singular: det = 0 is not > 0, but not clearly < 0 either
+  t = Classify(M);
+  EXPECT_EQ(t.positive_definite, Tristate::kUnknown);
+  EXPECT_EQ(t.p_matrix, Tristate::kUnknown);
+  M << 0, 1, -1, 0;  // skew: zero diagonal
+  t = Classify(M);
+  EXPECT_EQ(t.positive_definite, Tristate::kNo);
+  EXPECT_EQ(t.p_matrix, Tristate::kNo);
+}
+
+TEST(MatrixTags, OneByOne) {
+  DenseMatrix M(1, 1);
+  M << 1e-9;  // the h → 0 one-step matrix: tiny but positive
+  EXPECT_EQ(Classify(M).p_matrix, Tristate::kYes);
+  EXPECT_EQ(Classify(M).positive_definite, Tristate::kYes);
+  M << -2;
+  EXPECT_EQ(Classify(M).p_matrix, Tristate::kNo);
+  EXPECT_EQ(Classify(M).positive_definite, Tristate::kNo);
+}
+
+}  // namespace
+}  // namespace smcbench

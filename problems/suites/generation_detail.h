@@ -1,0 +1,83 @@
+// Helpers shared by the suite generators (families.cc, hard_cases.cc): a reproducible RNG, number formatting for
+// ids and metadata, the planted (z*, w*) of one row, and LibraryProblem construction. Not a public API.
+#pragma once
+
+#include <algorithm>
+#include <charconv>
+#include <cstdint>
+#include <cstdio>
+#include <random>
+#include <string>
+#include <utility>
+
+#include "problems/library/problem_set.h"
+
+namespace smcbench::suites_detail {
+
+// std::mt19937_64 (fully specified by the standard) read through our own bit manipulation, never a
+// std::*_distribution (their algorithms differ between standard libraries): the same seed gives the same
+// numbers on every platform, as in problems/generators/random_problems.cc.
+class Random {
+ public:
+  explicit Random(std::uint64_t seed) : engine_(seed) {}
+  // Uniform in [0, 1): the top 53 bits scaled by 2⁻⁵³ (exact).
+  double Uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
+  double Uniform(double a, double b) { return a + (b - a) * Uniform(); }
+  // Uniform integer in [0, k) for small k.
+  int Index(int k) { return std::min(k - 1, static_cast<int>(Uniform() * k)); }
+  bool Coin() { return Index(2) == 1; }
+
+ private:
+  std::mt19937_64 engine_;
+};
+
+// Shortest text that reads back to the same double ("0.001", "1e-08", "inf").
+inline std::string NumberText(double value) {
+  char buffer[64];
+  const auto r = std::to_chars(buffer, buffer + sizeof(buffer), value);
+  return std::string(buffer, r.ptr);
+}
+
+// A step size for ids: "0.1", "0.01", "0.001", "1e-04", ... ("%g", stable and short).
+inline std::string StepText(double h) {
+  char buffer[32];
+  std::snprintf(buffer, sizeof(buffer), "%g", h);
+  return buffer;
+}
+
+// The state of a planted row: strictly inside its bounds with w = 0, at l with w > 0, at u with w < 0.
+enum class RowState { kInside, kAtLower, kAtUpper };
+
+struct PlantedRow {
+  double z;
+  double w;
+};
+
+// z*, w* of a row of bounds [l, u] in the given state (the bound must be finite for kAtLower / kAtUpper):
+// |w| ∈ [0.1, 1.1] at a bound; inside, z at least 10% of a finite box (or 0.1) away from each finite bound.
+inline PlantedRow PlantRow(double l, double u, RowState state, Random& rng) {
+  switch (state) {
+    case RowState::kAtLower:
+      return {l, rng.Uniform(0.1, 1.1)};
+    case RowState::kAtUpper:
+      return {u, -rng.Uniform(0.1, 1.1)};
+    case RowState::kInside:
+      break;
+  }
+  const bool has_l = l > -kInf;
+  const bool has_u = u < kInf;
+  if (has_l && has_u) return {l + (u - l) * rng.Uniform(0.1, 0.9), 0.0};
+  if (has_l) return {l + rng.Uniform(0.1, 2.0), 0.0};
+  if (has_u) return {u - rng.Uniform(0.1, 2.0), 0.0};
+  return {rng.Uniform(-2.0, 2.0), 0.0};
+}
+
+// A LibraryProblem with every field set (the aggregate has no default for BoxMLCP); the problem is named by its id.
+inline LibraryProblem MakeProblem(std::string id, std::string source, BoxMLCP problem, MatrixTags matrix,
+                                  ExpectedOutcome expected) {
+  problem.set_name(id);
+  return LibraryProblem{std::move(id), std::move(source), std::move(problem), matrix, {},
+                        std::nullopt,  expected,          Vector(),           {}};
+}
+
+}  // namespace smcbench::suites_detail

@@ -1,0 +1,711 @@
+// The Siconos Numerics adapters (see siconos_solver.h): the registry entries, the in-process Siconos call
+// (SiconosSession, also what the worker process runs) and the worker protocol.
+#include "solvers/siconos/siconos_solver.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+// Siconos Numerics C API (include directories: /usr/include/siconos and /usr/include/siconos/numerics).
+#include "LCP_Solvers.h"
+#include "LinearComplementarityProblem.h"
+#include "MLCP_Solvers.h"
+#include "MixedLinearComplementarityProblem.h"
+#include "NonSmoothDrivers.h"
+#include "NumericsMatrix.h"
+#include "NumericsVerbose.h"
+#include "RelayProblem.h"
+#include "Relay_Solvers.h"
+#include "SolverOptions.h"
+#include "lcp_cst.h"
+#include "mlcp_cst.h"
+#include "relay_cst.h"
+#include "solvers/siconos/external_backends.h"
+
+namespace smcbench {
+// Method table and wire format, shared by the backend and its worker (named, not anonymous: SiconosSession and
+// SiconosSolver::Outcome use them).
+namespace siconos_detail {
+
+enum class Family { kRelay, kLcp, kMlcp };
+// What an info ≠ 0 means depends on the algorithm behind the method (for direct-* methods: their fallback).
+enum class Algorithm { kLemke, kPgs, kEnum, kAvi, kNewton };
+
+struct Spec {
+  SiconosMethod method;
+  int siconos_id;
+  Family family;
+  Algorithm algorithm;
+  bool direct;  // keeps an active-set cache between solves (mlcp_direct_*)
+  SolverInfo info;
+};
+
+[[maybe_unused]] constexpr std::string_view kSiconosRef =
+    "Siconos Numerics 4.4 (INRIA, Acary et al.; Debian libsiconos-numerics-dev)";
+
+const Spec& SpecOf(SiconosMethod method) {
+  static const Spec kSpecs[kNumSiconosMethods] = {
+      {SiconosMethod::kRelayLemke, SICONOS_RELAY_LEMKE, Family::kRelay, Algorithm::kLemke, false,
+       {"siconos-relay-lemke",
+        "Siconos relay_lexicolemke: Siconos' own relay -> LCP doubling (2n unknowns), then lexicographic Lemke; "
+        "needs finite bounds on every row",
+        "Siconos Numerics 4.4 relay_lexicolemke; Cottle, Pang & Stone 1992, The Linear Complementarity Problem, "
+        "ch. 4",
+        true, false, false, true, false, 0}},
+      {SiconosMethod::kRelayPgs, SICONOS_RELAY_PGS, Family::kRelay, Algorithm::kPgs, false,
+       {"siconos-relay-pgs",
+        "Siconos relay_pgs: projected Gauss-Seidel sweeps on the box problem; needs finite bounds on every row",
+        "Siconos Numerics 4.4 relay_pgs; Cottle, Pang & Stone 1992, sec. 5.2", true, false, false, false, false,
+        0}},
+      {SiconosMethod::kRelayEnum, SICONOS_RELAY_ENUM, Family::kRelay, Algorithm::kEnum, false,
+       {"siconos-relay-enum",
+        "Siconos relay_enum: relay -> LCP (2n unknowns), enumeration of complementary bases; needs finite bounds",
+        "Siconos Numerics 4.4 relay_enum / lcp_enum; Murty 1988, Linear Complementarity, ch. 1", true, false,
+        false, true, false, 8}},
+      {SiconosMethod::kRelayAvi, SICONOS_RELAY_AVI_CAOFERRIS, Family::kRelay, Algorithm::kAvi, false,
+       {"siconos-relay-avi",
+        "Siconos relay_avi_caoferris (its default relay solver): the relay as an affine variational inequality "
+        "over the box, solved by Cao & Ferris' pivotal method; needs finite bounds",
+        "Siconos Numerics 4.4 relay_avi_caoferris; Cao & Ferris 1996, A pivotal method for affine variational "
+        "inequalities, Math. Oper. Res. 21(1)",
+        true, false, false, true, false, 0}},
+      {SiconosMethod::kLcpLemke, SICONOS_LCP_LEMKE, Family::kLcp, Algorithm::kLemke, false,
+       {"siconos-lcp-lemke",
+        "Siconos lcp_lexicolemke on the box -> LCP rewriting (shifted / negated one-sided rows, doubled box "
+        "rows); no free rows",
+        "Siconos Numerics 4.4 lcp_lexicolemke; Cottle, Pang & Stone 1992, ch. 4", true, false, false, true, false,
+        0}},
+      {SiconosMethod::kLcpNewtonFb, SICONOS_LCP_NEWTON_FB_FBLSA, Family::kLcp, Algorithm::kNewton, false,
+       {"siconos-lcp-newton-fb",
+        "Siconos lcp_newton_FB: nonsmooth Newton on the Fischer-Burmeister reformulation with a line search on "
+        "its merit function, on the box -> LCP rewriting; no free rows",
+        "Siconos Numerics 4.4 lcp_newton_FB; De Luca, Facchinei & Kanzow 1996, Math. Program. 75; Facchinei & "
+        "Pang 2003, ch. 9",
+        true, false, false, false, false, 0}},
+      {SiconosMethod::kLcpNewtonMin, SICONOS_LCP_NEWTON_MIN_FBLSA, Family::kLcp, Algorithm::kNewton, false,
+       {"siconos-lcp-newton-min",
+        "Siconos lcp_newton_minFB: nonsmooth Newton on the min reformulation, line search on the "
+        "Fischer-Burmeister merit function, on the box -> LCP rewriting; no free rows",
+        "Siconos Numerics 4.4 lcp_newton_minFB; Facchinei & Pang 2003, Finite-Dimensional Variational "
+        "Inequalities and Complementarity Problems, ch. 9",
+        true, false, false, false, false, 0}},
+      {SiconosMethod::kMlcpEnum, SICONOS_MLCP_ENUM, Family::kMlcp, Algorithm::kEnum, false,
+       {"siconos-mlcp-enum",
+        "Siconos mlcp_enum: enumeration of the complementarity configurations of the standard MLCP (free rows "
+        "as equalities, the rest as the box -> LCP rewriting)",
+        "Siconos Numerics 4.4 mlcp_enum; Murty 1988, ch. 1", true, false, false, true, false, 16}},
+      {SiconosMethod::kMlcpLemke, SICONOS_MLCP_LCP_LEMKE, Family::kMlcp, Algorithm::kLemke, false,
+       {"siconos-mlcp-lemke",
+        "Siconos mlcp_lcp_lemke: eliminates the equality block by its Schur complement (needs it invertible), "
+        "then lexicographic Lemke; needs at least one free and one sign-constrained row",
+        "Siconos Numerics 4.4 mlcp_lcp_lemke; Cottle, Pang & Stone 1992, sec. 1.5 and ch. 4", true, false,
+        false, true, false, 0}},
+      {SiconosMethod::kMlcpFb, SICONOS_MLCP_FB, Family::kMlcp, Algorithm::kNewton, false,
+       {"siconos-mlcp-fb",
+        "Siconos mlcp_FB: nonsmooth Newton with line search on the Fischer-Burmeister reformulation of the "
+        "standard MLCP",
+        "Siconos Numerics 4.4 mlcp_FB (NonSmoothNewton); De Luca, Facchinei & Kanzow 1996", true, false, false,
+        false, false, 0}},
+      {SiconosMethod::kMlcpDirectEnum, SICONOS_MLCP_DIRECT_ENUM, Family::kMlcp, Algorithm::kEnum, true,
+       {"siconos-mlcp-direct-enum",
+        "Siconos mlcp_direct_enum: solves with the last active sets that worked (up to 3, cached per worker "
+        "process) and falls back to mlcp_enum",
+        "Siconos Numerics 4.4 mlcp_direct_enum; Murty 1988, ch. 1", true, false, false, true, false, 16}},
+      {SiconosMethod::kMlcpDirectFb, SICONOS_MLCP_DIRECT_FB, Family::kMlcp, Algorithm::kNewton, true,
+       {"siconos-mlcp-direct-fb",
+        "Siconos mlcp_direct_FB: solves with the last active sets that worked (up to 3, cached per worker "
+        "process) and falls back to mlcp_FB",
+        "Siconos Numerics 4.4 mlcp_direct_FB; De Luca, Facchinei & Kanzow 1996", true, false, false, false,
+        false, 0}},
+  };
+  return kSpecs[static_cast<int>(method)];
+}
+
+// Fixed-size messages between the backend and its worker; the arrays follow them on the socket.
+constexpr std::int32_t kMagic = 0x53494331;  // "SIC1"
+constexpr int kMaxWireSize = 1 << 15;        // largest N the worker accepts
+
+struct Request {
+  std::int32_t magic = kMagic;
+  std::int32_t method = 0;
+  std::int32_t size = 0;           // N, unknowns of the rewritten problem
+  std::int32_t num_equalities = 0;  // MLCP: free rows first
+  std::int32_t max_iterations = 0;  // ≤ 0: Siconos' default
+  std::int32_t verbose = 0;
+  std::int32_t keep_cache = 1;  // direct-* may keep their active sets from earlier solves
+  std::int32_t has_bounds = 0;  // relay: lower and upper bounds follow q
+  double tolerance = 1e-10;
+};
+
+struct Response {
+  std::int32_t magic = kMagic;
+  std::int32_t info = -1;            // what Siconos' driver returns (after its accuracy check, if it makes one)
+  std::int32_t algorithm_info = -1;  // what the algorithm itself returned, before that check
+  std::int32_t iterations = 0;
+  std::int32_t budget = 0;  // iteration budget Siconos used
+  std::int32_t padding = 0;
+  double error = NAN;  // Siconos' own error measure, if it set one
+};
+
+// Silences this process's stdout/stderr for the lifetime of the object (in-process calls only; the worker's
+// output goes to /dev/null for good). dev_null is an open descriptor of /dev/null, or −1 to do nothing. The
+// current stdout/stderr are duplicated per call, so a redirection made by the caller in the meantime (a test
+// capturing stdout) is restored as it was. No allocation.
+class QuietStdio {
+ public:
+  explicit QuietStdio(int dev_null) {
+    if (dev_null < 0) return;
+    std::fflush(stdout);
+    std::fflush(stderr);
+    saved_out_ = dup(STDOUT_FILENO);
+    saved_err_ = dup(STDERR_FILENO);
+    dup2(dev_null, STDOUT_FILENO);
+    dup2(dev_null, STDERR_FILENO);
+  }
+  ~QuietStdio() {
+    if (saved_out_ < 0) return;
+    std::fflush(stdout);
+    std::fflush(stderr);
+    dup2(saved_out_, STDOUT_FILENO);
+    dup2(saved_err_, STDERR_FILENO);
+    close(saved_out_);
+    close(saved_err_);
+  }
+  QuietStdio(const QuietStdio&) = delete;
+  QuietStdio& operator=(const QuietStdio&) = delete;
+
+ private:
+  int saved_out_ = -1;
+  int saved_err_ = -1;
+};
+
+bool AllFinite(const Vector& v) {
+  for (Eigen::Index i = 0; i < v.size(); ++i) {
+    if (!std::isfinite(v[i])) return false;
+  }
+  return true;
+}
+
+}  // namespace siconos_detail
+
+using namespace siconos_detail;  // NOLINT: this file's own helpers
+
+// Siconos' structs for one method, reused across solves of one size. In the worker this is the whole state.
+class SiconosSession {
+ public:
+  SiconosSession() = default;
+  ~SiconosSession() { Release(); }
+  SiconosSession(const SiconosSession&) = delete;
+  SiconosSession& operator=(const SiconosSession&) = delete;
+
+  // Solves the rewritten problem: M is N×N column-major, lb/ub only for relay methods; x is the start point on
+  // entry and Siconos' answer on return.
+  Response Solve(const Request& r, const double* M, const double* q, const double* lb, const double* ub,
+                 double* x);
+
+ private:
+  void Release();
+  void PrepareMlcp(const Request& r, const Spec& spec, const double* M, const double* q);
+
+  int method_ = -1;
+  int size_ = -1;
+  int num_equalities_ = -1;
+  int default_budget_ = 0;
+  bool driver_checks_ = false;  // Siconos' default filterOn for this solver (relay and LCP drivers)
+  ::SolverOptions* options_ = nullptr;  // Siconos' options (not smcbench::SolverOptions)
+  NumericsMatrix* matrix_ = nullptr;
+  bool mlcp_initialised_ = false;
+  MixedLinearComplementarityProblem mlcp_{};
+  std::vector<double> q_, lb_, ub_, w_, last_M_;
+  std::vector<double> A_, B_, C_, D_, a_, b_;  // the MLCP's ABCD storage (mlcp_lcp_lemke reads it)
+};
+
+void SiconosSession::Release() {
+  if (mlcp_initialised_) mlcp_driver_reset(&mlcp_, options_);
+  mlcp_initialised_ = false;
+  if (options_) solver_options_delete(options_);
+  options_ = nullptr;
+  if (matrix_) NM_free(matrix_);
+  matrix_ = nullptr;
+  method_ = -1;
+  size_ = -1;
+  num_equalities_ = -1;
+}
+
+void SiconosSession::PrepareMlcp(const Request& r, const Spec& spec, const double* M, const double* q) {
+  const int N = r.size, n = r.num_equalities, m = N - n;
+  // The direct solvers' cache describes M: it survives only while M (and the split) stays the same.
+  const bool same_matrix = last_M_.size() == static_cast<std::size_t>(N) * N &&
+                           std::memcmp(last_M_.data(), M, sizeof(double) * N * N) == 0;
+  const bool reuse = spec.direct && r.keep_cache && mlcp_initialised_ && method_ == r.method && size_ == N &&
+                     num_equalities_ == n && same_matrix;
+  if (!reuse) {
+    Release();
+    options_ = solver_options_create(spec.siconos_id);
+    default_budget_ = options_->iparam[SICONOS_IPARAM_MAX_ITER];
+    matrix_ = NM_create(NM_DENSE, N, N);
+    last_M_.assign(M, M + static_cast<std::size_t>(N) * N);
+    method_ = r.method;
+    size_ = N;
+    num_equalities_ = n;
+  }
+  std::memcpy(matrix_->matrix0, M, sizeof(double) * N * N);
+  q_.assign(q, q + N);
+  A_.resize(static_cast<std::size_t>(n) * n);
+  B_.resize(static_cast<std::size_t>(m) * m);
+  C_.resize(static_cast<std::size_t>(n) * m);
+  D_.resize(static_cast<std::size_t>(m) * n);
+  a_.assign(q, q + n);
+  b_.assign(q + n, q + N);
+  for (int j = 0; j < N; ++j) {
+    for (int i = 0; i < N; ++i) {
+      const double v = M[static_cast<std::size_t>(j) * N + i];
+      if (i < n && j < n) A_[static_cast<std::size_t>(j) * n + i] = v;
+      else if (i < n) C_[static_cast<std::size_t>(j - n) * n + i] = v;
+      else if (j < n) D_[static_cast<std::size_t>(j) * m + (i - n)] = v;
+      else B_[static_cast<std::size_t>(j - n) * m + (i - n)] = v;
+    }
+  }
+  mlcp_ = MixedLinearComplementarityProblem{};
+  mlcp_.isStorageType1 = 1;
+  mlcp_.isStorageType2 = 1;
+  mlcp_.n = n;
+  mlcp_.m = m;
+  mlcp_.M = matrix_;
+  mlcp_.q = q_.data();
+  mlcp_.A = A_.data();
+  mlcp_.B = B_.data();
+  mlcp_.C = C_.data();
+  mlcp_.D = D_.data();
+  mlcp_.a = a_.data();
+  mlcp_.b = b_.data();
+  int budget = r.max_iterations > 0 ? r.max_iterations : default_budget_;
+  if (spec.algorithm == Algorithm::kEnum && r.max_iterations <= 0) {
+    // Enumeration's budget counts configurations; without one of ours, let it finish the full search (its
+    // default, 10^4 for mlcp_direct_enum, would end an m = 16 search a sixth of the way and report info 1).
+    budget = std::max(budget, m >= 30 ? std::numeric_limits<int>::max() : (1 << m));
+  }
+  options_->iparam[SICONOS_IPARAM_MAX_ITER] = budget;
+  options_->dparam[SICONOS_DPARAM_TOL] = r.tolerance;
+  if (!reuse) {
+    mlcp_driver_init(&mlcp_, options_);
+    mlcp_initialised_ = true;
+  }
+}
+
+Response SiconosSession::Solve(const Request& r, const double* M, const double* q, const double* lb,
+                               const double* ub, double* x) {
+  const Spec& spec = SpecOf(static_cast<SiconosMethod>(r.method));
+  const int N = r.size;
+  numerics_set_verbose(r.verbose);
+  w_.assign(N, 0.0);
+  Response out;
+  if (spec.family == Family::kMlcp) {
+    PrepareMlcp(r, spec, M, q);
+  } else {
+    if (method_ != r.method || size_ != N) {
+      Release();
+      options_ = solver_options_create(spec.siconos_id);
+      default_budget_ = options_->iparam[SICONOS_IPARAM_MAX_ITER];
+      driver_checks_ = options_->filterOn;
+      // The driver's final accuracy check (filterOn) overwrites the algorithm's info, so a Lemke run that found
+      // its basis and one that ended on a ray look alike. It is replayed below, exactly as the 4.4 drivers do it,
+      // to report both verdicts.
+      options_->filterOn = false;
+      matrix_ = NM_create(NM_DENSE, N, N);
+      method_ = r.method;
+      size_ = N;
+      num_equalities_ = 0;
+    }
+    std::memcpy(matrix_->matrix0, M, sizeof(double) * N * N);
+    q_.assign(q, q + N);
+    // Enumeration has no iteration budget of its own: leave its iparam[0] alone unless asked.
+    if (r.max_iterations > 0 || spec.algorithm != Algorithm::kEnum) {
+      options_->iparam[SICONOS_IPARAM_MAX_ITER] = r.max_iterations > 0 ? r.max_iterations : default_budget_;
+    }
+    options_->dparam[SICONOS_DPARAM_TOL] = r.tolerance;
+  }
+  options_->iparam[SICONOS_IPARAM_ITER_DONE] = 0;
+  options_->dparam[SICONOS_DPARAM_RESIDU] = NAN;
+  switch (spec.family) {
+    case Family::kRelay: {
+      lb_.assign(lb, lb + N);
+      ub_.assign(ub, ub + N);
+      RelayProblem problem{};
+      problem.size = N;
+      problem.M = matrix_;
+      problem.q = q_.data();
+      problem.lb = lb_.data();
+      problem.ub = ub_.data();
+      out.algorithm_info = out.info = relay_driver(&problem, x, w_.data(), options_);
+      // relay_driver: info = relay_compute_error(...) whatever the solver said.
+      if (driver_checks_) {
+        out.info = relay_compute_error(&problem, x, w_.data(), r.tolerance, &options_->dparam[SICONOS_DPARAM_RESIDU]);
+      }
+      break;
+    }
+    case Family::kLcp: {
+      LinearComplementarityProblem problem{};
+      problem.size = N;
+      problem.M = matrix_;
+      problem.q = q_.data();
+      out.algorithm_info = out.info = linearComplementarity_driver(&problem, x, w_.data(), options_);
+      // lcp_driver_DenseMatrix: returns early (no check) for q ≥ 0 and for n = 1; otherwise the check's verdict
+      // replaces info only when the solver reported success (info ≤ 0).
+      const bool shortcut = N == 1 || std::all_of(q_.begin(), q_.end(), [](double v) { return v >= 0.0; });
+      if (driver_checks_ && !shortcut) {
+        const int check =
+            lcp_compute_error(&problem, x, w_.data(), r.tolerance, &options_->dparam[SICONOS_DPARAM_RESIDU]);
+        if (out.info <= 0) out.info = check;
+      }
+      break;
+    }
+    case Family::kMlcp:  // mlcp_driver makes no final check of its own
+      out.algorithm_info = out.info = mlcp_driver(&mlcp_, x, w_.data(), options_);
+      break;
+  }
+  out.iterations = options_->iparam[SICONOS_IPARAM_ITER_DONE];
+  out.budget = options_->iparam[SICONOS_IPARAM_MAX_ITER];
+  out.error = options_->dparam[SICONOS_DPARAM_RESIDU];
+  if (spec.family == Family::kMlcp && !(spec.direct && r.keep_cache)) {
+    // Non-caching MLCP solvers keep pointers to this problem in file-static variables: drop them now.
+    mlcp_driver_reset(&mlcp_, options_);
+    mlcp_initialised_ = false;
+    Release();
+  }
+  return out;
+}
+
+namespace {
+
+// The worker's main loop: read a request, solve it, answer; ends when the backend closes the socket.
+void ServeSiconos(int fd, void*) {
+  SiconosSession session;
+  std::vector<double> payload;  // M (N×N), q, [lb, ub,] x: one block, read with one call
+  for (;;) {
+    Request r;
+    ChildProcess::WaitReadable(fd, std::chrono::microseconds(100));
+    if (!ChildProcess::ReadAll(fd, &r, sizeof r) || r.magic != kMagic) return;
+    if (r.size <= 0 || r.size > kMaxWireSize || r.method < 0 || r.method >= kNumSiconosMethods) return;
+    const std::size_t N = static_cast<std::size_t>(r.size);
+    payload.resize(N * N + (r.has_bounds ? 4 : 2) * N);
+    if (!ChildProcess::ReadAll(fd, payload.data(), sizeof(double) * payload.size())) return;
+    const double* M = payload.data();
+    const double* q = M + N * N;
+    const double* lb = r.has_bounds ? q + N : nullptr;
+    const double* ub = r.has_bounds ? q + 2 * N : nullptr;
+    double* x = payload.data() + payload.size() - N;
+    const Response out = session.Solve(r, M, q, lb, ub, x);
+    std::fflush(nullptr);
+    if (!ChildProcess::WriteAll(fd, {{&out, sizeof out}, {x, sizeof(double) * N}})) return;
+  }
+}
+
+}  // namespace
+
+struct SiconosSolver::Outcome {
+  Request request;
+  Response response;
+};
+
+bool SiconosOptions::IsValid(std::string* why) const {
+  if (!(default_time_limit > 0.0)) {
+    *why = "default_time_limit must be positive (seconds), got " + std::to_string(default_time_limit);
+    return false;
+  }
+  if (max_enumerated < 1 || max_enumerated > 30) {
+    *why = "max_enumerated must be in [1, 30], got " + std::to_string(max_enumerated);
+    return false;
+  }
+  if (max_size < 1 || max_size > kMaxWireSize) {
+    *why = "max_size must be in [1, " + std::to_string(kMaxWireSize) + "], got " + std::to_string(max_size);
+    return false;
+  }
+  return true;
+}
+
+SiconosSolver::SiconosSolver(SiconosMethod method) : SiconosSolver(method, SiconosOptions{}) {}
+
+SiconosSolver::SiconosSolver(SiconosMethod method, const SiconosOptions& options)
+    : method_(method), options_(options) {}
+
+SiconosSolver::~SiconosSolver() {
+  if (dev_null_ >= 0) close(dev_null_);
+}
+
+const SolverInfo& SiconosSolver::info() const { return SpecOf(method_).info; }
+
+int SiconosSolver::SiconosId(SiconosMethod method) { return SpecOf(method).siconos_id; }
+
+void SiconosSolver::BindOptions(OptionBinder* binder) {
+  binder->Add("isolate", &options_.isolate,
+              "run Siconos in this backend's own worker process (crash/hang containment, silent); 0 = in process");
+  binder->Add("default_time_limit", &options_.default_time_limit,
+              "seconds a solve may take when no time limit is given (isolate only); then the worker is killed");
+  binder->Add("max_enumerated", &options_.max_enumerated,
+              "enum methods: largest number of complementarity variables (2^k bases; a relay row counts 2)");
+  binder->Add("max_size", &options_.max_size,
+              "largest rewritten problem (unknowns; relay rows count 2 in LCP/MLCP form) sent to Siconos");
+  binder->Add("quiet", &options_.quiet,
+              "in process: send stdout/stderr to /dev/null around each Siconos call (~1 us); 0 = bare call");
+  binder->Add("allow_known_crashes", &options_.allow_known_crashes,
+              "pass problems on which Siconos is known to crash instead of refusing them (isolation demo)");
+}
+
+bool SiconosSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }
+
+void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  using Clock = std::chrono::steady_clock;
+  const Clock::time_point start = Clock::now();
+  const Spec& spec = SpecOf(method_);
+  result->SetDetail("siconos_id", spec.siconos_id);
+  result->SetDetail("isolated", options_.isolate ? 1.0 : 0.0);
+
+  // What the method can express.
+  const StandardForm::RowCounts rows = StandardForm::Count(problem.l(), problem.u());
+  if (rows.fixed == problem.size()) {  // every row fixed: z = l is the solution, nothing to ask Siconos
+    result->z = problem.l();
+    result->iterations = 0;
+    result->status = SolveStatus::kSolved;
+    return;
+  }
+  if (spec.family == Family::kRelay && rows.unbounded() > 0) {
+    result->status = SolveStatus::kNotApplicable;
+    result->message = "Siconos' relay solvers need finite bounds on every row; this problem has " +
+                      std::to_string(rows.free) + " free, " + std::to_string(rows.lower) + " lower-bounded and " +
+                      std::to_string(rows.upper) + " upper-bounded rows (siconos-lcp-* / siconos-mlcp-* take them)";
+    return;
+  }
+  if (spec.family == Family::kLcp && rows.free > 0) {
+    result->status = SolveStatus::kNotApplicable;
+    result->message = "an LCP has no free rows and this problem has " + std::to_string(rows.free) +
+                      " (l = -inf, u = +inf); siconos-mlcp-* keep them as equalities";
+    return;
+  }
+  const int complementarity = spec.family == Family::kRelay ? 2 * rows.box : rows.lower + rows.upper + 2 * rows.box;
+  if (method_ == SiconosMethod::kMlcpLemke && !options_.allow_known_crashes &&
+      (rows.free == 0 || complementarity == 0)) {
+    result->status = SolveStatus::kNotApplicable;
+    result->message = rows.free == 0
+                          ? "Siconos' mlcp_lcp_lemke aborts (DGETRF on an empty equality block) on an MLCP without "
+                            "free rows; siconos-lcp-lemke solves this problem"
+                          : "Siconos' mlcp_lcp_lemke aborts (NM_gemm assertion) on an MLCP without "
+                            "complementarity rows";
+    return;
+  }
+  const int standard_size = spec.family == Family::kRelay ? rows.box : rows.free + complementarity;
+  if (standard_size > options_.max_size) {
+    result->status = SolveStatus::kSizeLimit;
+    result->message = "the rewritten problem has " + std::to_string(standard_size) +
+                      " unknowns, above max_size = " + std::to_string(options_.max_size) +
+                      " (Siconos' dense methods: O(N^2) memory, O(N^3) time)";
+    return;
+  }
+  if (spec.algorithm == Algorithm::kEnum && complementarity > options_.max_enumerated) {
+    result->status = SolveStatus::kSizeLimit;
+    result->message = "enumeration over " + std::to_string(complementarity) +
+                      " complementarity variables exceeds max_enumerated = " + std::to_string(options_.max_enumerated);
+    return;
+  }
+
+  form_.Build(problem, spec.family == Family::kRelay ? StandardForm::Kind::kBox : StandardForm::Kind::kMixed);
+  const int N = form_.size();
+  result->SetDetail("standard_size", N);
+  form_.FromBox(problem, result->z, &x_);
+
+  Outcome outcome;
+  Request& r = outcome.request;
+  r.method = static_cast<std::int32_t>(method_);
+  r.size = N;
+  r.num_equalities = form_.num_equalities();
+  r.max_iterations = options.max_iterations;
+  r.verbose = options.verbosity >= 2 ? 1 : 0;
+  r.keep_cache = options_.isolate ? 1 : 0;
+  r.has_bounds = spec.family == Family::kRelay ? 1 : 0;
+  // Our test is ‖r‖∞ ≤ tol·(1 + ‖q‖∞) on the box-MLCP; Siconos' is ‖r_s‖₂ ≤ tol_s·(‖q_s‖₂ or 1 + ‖q_s‖₂) on the
+  // rewritten problem. This tol_s makes Siconos' test imply ‖r_s‖∞ ≤ tol·(1 + ‖q‖∞) whichever normalisation the
+  // driver uses, so a Siconos "success" is not routinely a hair above our tolerance; the floor 10·N·ε keeps it
+  // reachable in floating point (else Siconos' final check would reject every answer of a badly scaled problem).
+  r.tolerance = std::max(options.tolerance * problem.residual_scale() /
+                             ((1.0 + form_.q().norm()) * std::sqrt(static_cast<double>(N))),
+                         10.0 * N * std::numeric_limits<double>::epsilon());
+  if (options_.isolate) {
+    const double limit =
+        std::isfinite(options.time_limit_seconds) ? options.time_limit_seconds : options_.default_time_limit;
+    const Clock::time_point deadline =
+        start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit));
+    if (!RunIsolated(options.verbosity >= 2, limit, deadline, &outcome, result)) {
+      form_.ToBox(problem, x_, &result->z);  // the start point: Siconos' answer never arrived
+      return;
+    }
+  } else {
+    RunInProcess(options, &outcome);
+  }
+
+  const Response& out = outcome.response;
+  form_.ToBox(problem, x_, &result->z);
+  result->iterations = out.iterations;
+  result->SetDetail("siconos_info", out.info);
+  if (out.algorithm_info != out.info) result->SetDetail("siconos_algorithm_info", out.algorithm_info);
+  if (std::isfinite(out.error)) result->SetDetail("siconos_error", out.error);
+
+  // Siconos' verdict is a claim; ours below never upgrades it, and the base class checks every "solved".
+  // Siconos' verdict (info, after its driver's check) decides "solved or not"; the algorithm's own code (algo)
+  // says which failure it was. Neither ever upgrades a result, and the base class checks every "solved".
+  const int algo = out.algorithm_info;
+  const bool at_budget = out.budget > 0 && out.iterations >= out.budget;
+  const auto code = [&] {  // built on failure paths only: a solved call allocates nothing
+    return "(info " + std::to_string(out.info) +
+           (algo != out.info ? ", algorithm info " + std::to_string(algo) : std::string()) + ")";
+  };
+  if (!AllFinite(x_)) {
+    result->status = SolveStatus::kNumericalFailure;
+    result->message = "Siconos returned a non-finite solution " + code();
+  } else if (out.info == 0) {
+    result->status = SolveStatus::kSolved;
+  } else if (algo == 0) {
+    // The algorithm ended as if successful and Siconos' own final check rejected the answer.
+    result->status = SolveStatus::kInaccurate;
+    char text[160];
+    std::snprintf(text, sizeof text, "the Siconos solver finished but Siconos' accuracy check rejected its answer "
+                  "(error %.3g > %.3g) ", out.error, r.tolerance);
+    result->message = text + code();
+  } else if (method_ == SiconosMethod::kMlcpLemke && algo == 1 && out.iterations == 0) {
+    // Lemke counts its first pivot as iteration 1: info 1 before any pivot is mlcp_to_lcp giving up.
+    result->status = SolveStatus::kSingular;
+    result->message =
+        "Siconos' mlcp_lcp_lemke could not eliminate the equality rows (LU of their block failed) " + code();
+  } else if (spec.algorithm == Algorithm::kLemke && algo == 1) {
+    result->status = at_budget ? SolveStatus::kIterationLimit : SolveStatus::kRayTermination;
+    result->message = at_budget
+                          ? "Siconos' Lemke used its budget of " + std::to_string(out.budget) + " pivots " + code()
+                          : "Siconos' Lemke ended on a secondary ray after " + std::to_string(out.iterations) +
+                                " pivots " + code();
+  } else if (spec.algorithm == Algorithm::kEnum && algo == 1) {
+    // Siconos enumerates 2^m configurations unless our budget stops it earlier.
+    const bool complete = options.max_iterations <= 0 || complementarity >= 31 ||
+                          options.max_iterations >= (1 << complementarity);
+    result->status = complete ? SolveStatus::kInfeasible : SolveStatus::kIterationLimit;
+    result->message = complete ? "Siconos' enumeration found no complementary solution " + code()
+                               : "Siconos' enumeration stopped at its budget of " +
+                                     std::to_string(options.max_iterations) + " configurations " + code();
+  } else if (spec.algorithm == Algorithm::kPgs && algo == 2) {
+    result->status = SolveStatus::kNotApplicable;
+    result->message = "Siconos' PGS needs nonzero diagonal entries " + code();
+  } else if (algo == 1 && at_budget) {
+    result->status = SolveStatus::kIterationLimit;
+    result->message = "Siconos used its budget of " + std::to_string(out.budget) + " iterations " + code();
+  } else if (spec.algorithm == Algorithm::kNewton && algo == 2) {
+    result->status = SolveStatus::kSingular;
+    result->message = "Siconos' Newton direction failed in LAPACK " + code();
+  } else if (algo == 1) {
+    result->status = SolveStatus::kStalled;
+    result->message = "Siconos stopped after " + std::to_string(out.iterations) +
+                      " iterations without meeting its tolerance " + code();
+  } else {
+    result->status = SolveStatus::kNumericalFailure;
+    result->message = "Siconos failed " + code();
+  }
+}
+
+void SiconosSolver::RunInProcess(const SolverOptions& options, Outcome* outcome) {
+  if (!session_) session_ = std::make_unique<SiconosSession>();
+  const bool silence = options_.quiet && options.verbosity < 2;
+  if (silence && dev_null_ < 0) dev_null_ = open("/dev/null", O_WRONLY | O_CLOEXEC);
+  const QuietStdio quiet(silence ? dev_null_ : -1);
+  const bool relay = outcome->request.has_bounds != 0;
+  outcome->response = session_->Solve(outcome->request, form_.M().data(), form_.q().data(),
+                                      relay ? form_.lower().data() : nullptr,
+                                      relay ? form_.upper().data() : nullptr, x_.data());
+}
+
+bool SiconosSolver::RunIsolated(bool keep_output, double limit_seconds,
+                                std::chrono::steady_clock::time_point deadline, Outcome* outcome,
+                                SolveResult* result) {
+  const Request& r = outcome->request;
+  const std::size_t N = static_cast<std::size_t>(r.size);
+  for (int attempt = 0; attempt < 2; ++attempt) {
+    if (worker_.running() && worker_keeps_output_ != keep_output) worker_.Stop();
+    if (!worker_.running()) {
+      std::string error;
+      if (!worker_.Start(&ServeSiconos, nullptr, keep_output, &error)) {
+        result->status = SolveStatus::kNumericalFailure;
+        result->message = "could not start the Siconos worker process: " + error;
+        return false;
+      }
+      worker_keeps_output_ = keep_output;
+    }
+    using Io = ChildProcess::Io;
+    const std::size_t bounds = r.has_bounds ? sizeof(double) * N : 0;  // relay only
+    Io io = worker_.Write({{&r, sizeof r},
+                           {form_.M().data(), sizeof(double) * N * N},
+                           {form_.q().data(), sizeof(double) * N},
+                           {form_.lower().data(), bounds},
+                           {form_.upper().data(), bounds},
+                           {x_.data(), sizeof(double) * N}});
+    if (io == Io::kClosed && attempt == 0) {  // the worker died while idle: start a fresh one, once
+      int signal = 0;
+      worker_.Reap(&signal);
+      continue;
+    }
+    if (io == Io::kOk) io = worker_.Read(&outcome->response, sizeof outcome->response, deadline);
+    if (io == Io::kOk) io = worker_.Read(x_.data(), sizeof(double) * N, deadline);
+    if (io == Io::kOk && outcome->response.magic == kMagic) return true;
+    if (io == Io::kTimeout) {
+      worker_.Stop();
+      result->status = SolveStatus::kTimeLimit;
+      char text[160];
+      std::snprintf(text, sizeof text,
+                    "Siconos did not return within the time limit (%.3g s); its worker process was killed",
+                    limit_seconds);
+      result->message = text;
+      return false;
+    }
+    int signal = 0;
+    const std::string how = worker_.Reap(&signal);
+    result->status = SolveStatus::kNumericalFailure;
+    result->message = "the Siconos worker process died during the solve: " + how;
+    if (signal != 0) result->SetDetail("siconos_signal", signal);
+    return false;
+  }
+  result->status = SolveStatus::kNumericalFailure;
+  result->message = "the Siconos worker process keeps dying before it reads a request";
+  return false;
+}
+
+namespace {
+
+template <SiconosMethod kMethod>
+std::unique_ptr<Solver> MakeSiconos() {
+  return std::make_unique<SiconosSolver>(kMethod);
+}
+
+}  // namespace
+
+void AppendExternalBackends(std::vector<ExternalBackend>* backends) {
+  using M = SiconosMethod;
+  const ExternalBackend list[] = {
+      {SpecOf(M::kRelayAvi).info.name, &MakeSiconos<M::kRelayAvi>},
+      {SpecOf(M::kRelayLemke).info.name, &MakeSiconos<M::kRelayLemke>},
+      {SpecOf(M::kRelayPgs).info.name, &MakeSiconos<M::kRelayPgs>},
+      {SpecOf(M::kRelayEnum).info.name, &MakeSiconos<M::kRelayEnum>},
+      {SpecOf(M::kLcpLemke).info.name, &MakeSiconos<M::kLcpLemke>},
+      {SpecOf(M::kLcpNewtonFb).info.name, &MakeSiconos<M::kLcpNewtonFb>},
+      {SpecOf(M::kLcpNewtonMin).info.name, &MakeSiconos<M::kLcpNewtonMin>},
+      {SpecOf(M::kMlcpEnum).info.name, &MakeSiconos<M::kMlcpEnum>},
+      {SpecOf(M::kMlcpLemke).info.name, &MakeSiconos<M::kMlcpLemke>},
+      {SpecOf(M::kMlcpFb).info.name, &MakeSiconos<M::kMlcpFb>},
+      {SpecOf(M::kMlcpDirectEnum).info.name, &MakeSiconos<M::kMlcpDirectEnum>},
+      {SpecOf(M::kMlcpDirectFb).info.name, &MakeSiconos<M::kMlcpDirectFb>},
+  };
+  backends->insert(backends->end(), std::begin(list), std::end(list));
+}
+
+}  // namespace smcbench

@@ -1,0 +1,131 @@
+// Siconos Numerics (INRIA; Debian 12 libsiconos-numerics-dev 4.4) solvers as smcbench backends named
+// "siconos-<solver>", so that every suite and report can put the reference library next to our backends and
+// judge both by the same merit function. See solvers/siconos/README.md for each adapter.
+//
+// Three families, by the problem shape Siconos accepts (the rewriting is standard_form.h, exact both ways):
+//   siconos-relay-*  RelayProblem(M, q, lb, ub): every row needs finite bounds (fixed rows are eliminated).
+//                    lemke (relay_lexicolemke), pgs (relay_pgs), enum (relay_enum), avi (relay_avi_caoferris:
+//                    Cao & Ferris' pivotal AVI method, the relay solver Siconos recommends).
+//   siconos-lcp-*    LinearComplementarityProblem on the box → LCP rewriting (no free rows allowed):
+//                    lemke (lcp_lexicolemke), newton-fb (lcp_newton_FB), newton-min (lcp_newton_minFB).
+//   siconos-mlcp-*   MixedLinearComplementarityProblem (free rows as equalities, the rest as the LCP above):
+//                    enum (mlcp_enum), lemke (mlcp_lcp_lemke: Schur complement on the equality block, then
+//                    Lemke), fb (mlcp_FB), direct-enum / direct-fb (mlcp_direct_*: try the last few active sets
+//                    first, fall back to enum / FB).
+// Anything a family cannot express is kNotApplicable with the reason.
+//
+// Trust. Siconos reports success on wrong answers in known cases (its dense LCP driver "solves" every 1×1 LCP as
+// z = −q/M, info 0, even for M ≤ 0: a negative z, or z = inf for M = 0; NaN passes its error test, since
+// NaN > tol is false). So: a non-finite z is kNumericalFailure whatever Siconos said; info ≠ 0 is never
+// kSolved; info = 0 is only a claim, which the base class checks with our merit function (kInaccurate if it
+// fails). Siconos' own code is recorded as detail "siconos_info".
+//
+// Isolation (option isolate, default on). Each backend instance runs Siconos in its own worker process
+// (child_process.h), started at its first solve: a crash (Siconos aborts on some inputs) becomes
+// kNumericalFailure naming the signal, a solve that outlasts the time limit (options.time_limit_seconds, else
+// default_time_limit) is killed and reported as kTimeLimit, console output is discarded, and Siconos' file-static
+// state (the "direct" solvers' active-set cache) belongs to that instance alone. Per solve the parent sends the
+// rewritten problem over a socket and allocates nothing. isolate = false calls Siconos in this process (to measure
+// the call itself): no time limit, no protection, stdout/stderr silenced around the call, and the direct solvers
+// re-initialise their cache on every solve because it would otherwise be shared between instances. Siconos' MLCP
+// solvers keep file-static state, so in-process instances must not run concurrently on different threads.
+//
+// Options mapped from ours: tolerance → Siconos' dparam[TOL] = max(tol·(1 + ‖q‖∞)/((1 + ‖q_s‖₂)·√N), 10·N·ε)
+// (Siconos tests a 2-norm relative to its own rewritten q_s, we test the ∞-norm relative to 1 + ‖q‖∞; N = size of
+// the rewritten problem: Siconos' test then implies a residual of the rewritten problem within our threshold; the
+// floor keeps it reachable), max_iterations > 0 → iparam[MAX_ITER] (else Siconos' default),
+// verbosity ≥ 2 → Siconos verbose and its output kept. Warm starts reach the methods that use a start point
+// (pgs, newton-*, fb). iterations = Siconos' iparam[ITER_DONE]. The relay and LCP drivers end with an accuracy
+// check (filterOn) whose verdict replaces the algorithm's info; the adapter replays it exactly as the 4.4 drivers
+// do (checked against them on 10,500 runs), so detail siconos_info is what Siconos returns and
+// siconos_algorithm_info (when different) what the algorithm said: "Lemke found a basis that Siconos' check
+// rejects" is kInaccurate, not a ray.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "solvers/core/solver.h"
+#include "solvers/siconos/child_process.h"
+#include "solvers/siconos/standard_form.h"
+
+namespace smcbench {
+
+enum class SiconosMethod : int {
+  kRelayLemke = 0,
+  kRelayPgs = 1,
+  kRelayEnum = 2,
+  kRelayAvi = 3,
+  kLcpLemke = 4,
+  kLcpNewtonFb = 5,
+  kLcpNewtonMin = 6,
+  kMlcpEnum = 7,
+  kMlcpLemke = 8,
+  kMlcpFb = 9,
+  kMlcpDirectEnum = 10,
+  kMlcpDirectFb = 11,
+};
+inline constexpr int kNumSiconosMethods = 12;
+
+struct SiconosOptions {
+  // Run Siconos in this backend's own worker process (crash and hang containment, silent, no shared state).
+  bool isolate = true;
+  // Seconds a solve may take when SolverOptions::time_limit_seconds is infinite (isolate only; > 0).
+  double default_time_limit = 60.0;
+  // Enumerative methods: largest number of complementarity variables they may enumerate (2^k candidate
+  // bases; a relay row counts 2, Siconos enumerates the doubled LCP). Larger problems get kSizeLimit.
+  int max_enumerated = 16;
+  // Largest rewritten problem (unknowns N; a relay row counts 2 in the LCP and MLCP forms) sent to Siconos, whose
+  // methods here are dense, O(N^2) memory per copy and O(N^3) time. Larger problems get kSizeLimit.
+  int max_size = 2048;
+  // Pass problems on which Siconos is known to crash (siconos-mlcp-lemke without equality or without
+  // complementarity rows) instead of refusing them with kNotApplicable. For demonstrating the isolation.
+  bool allow_known_crashes = false;
+  // In process (isolate = false): redirect stdout/stderr to /dev/null around each Siconos call (some of its
+  // messages are unconditional printf). Costs a few system calls (~1 µs) per solve; false measures the bare call.
+  bool quiet = true;
+
+  bool IsValid(std::string* why) const;
+};
+
+class SiconosSession;  // Siconos' problem and option structs (siconos_solver.cc), kept out of this header
+
+class SiconosSolver final : public Solver {
+ public:
+  explicit SiconosSolver(SiconosMethod method);
+  SiconosSolver(SiconosMethod method, const SiconosOptions& options);
+  ~SiconosSolver() override;
+
+  const SolverInfo& info() const override;
+  SiconosMethod method() const { return method_; }
+  const SiconosOptions& options() const { return options_; }
+  void set_options(const SiconosOptions& options) { options_ = options; }
+  // Process id of the running worker, or −1 (none yet, or killed after a timeout or crash).
+  int worker_pid() const { return worker_.running() ? static_cast<int>(worker_.pid()) : -1; }
+
+  // Siconos' own solver id (SICONOS_RELAY_LEMKE, ...) for a method.
+  static int SiconosId(SiconosMethod method);
+
+ protected:
+  void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
+  void BindOptions(OptionBinder* binder) override;
+  bool ValidateBackendOptions(std::string* why) const override;
+
+ private:
+  struct Outcome;
+  bool RunIsolated(bool keep_output, double limit_seconds, std::chrono::steady_clock::time_point deadline,
+                   Outcome* outcome, SolveResult* result);
+  void RunInProcess(const SolverOptions& options, Outcome* outcome);
+
+  SiconosMethod method_;
+  SiconosOptions options_;
+  StandardForm form_;
+  Vector x_;  // unknowns of the rewritten problem: start point in, Siconos' answer out
+  std::unique_ptr<SiconosSession> session_;  // in-process Siconos state, created on first in-process solve
+  ChildProcess worker_;
+  bool worker_keeps_output_ = false;
+  int dev_null_ = -1;  // /dev/null, opened on the first quiet in-process solve
+};
+
+}  // namespace smcbench

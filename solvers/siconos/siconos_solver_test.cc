@@ -1,0 +1,471 @@
+// The Siconos adapters: known solutions, Siconos' wrong successes caught by our merit function, crash and hang
+// containment, in-process mode, the direct solvers' cache, option mapping. Built only with Siconos.
+#include "solvers/siconos/siconos_solver.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <set>
+#include <string>
+
+#include "problems/generators/random_problems.h"
+#include "problems/io/siconos_format.h"
+#include "solvers/registry/registry.h"
+#include "tests/support/malloc_counter.h"
+
+// Siconos 4.4 leaks a few bytes per call in some solvers (mlcp_to_lcp's NM_new, lcp_enum's enum_init, ...). Isolated
+// workers leave with _exit, but the in-process tests call Siconos here: tell LeakSanitizer (ASan builds only)
+// that those leaks are Siconos', so our own leaks still fail the run.
+extern "C" const char* __lsan_default_suppressions() { return "leak:libsiconos_numerics.so\n"; }
+
+namespace smcbench {
+namespace {
+
+constexpr double kTol = 1e-10;
+
+std::vector<std::string> SiconosNames() {
+  std::vector<std::string> names;
+  for (auto name : SolverNames()) {
+    if (name.substr(0, 8) == "siconos-") names.emplace_back(name);
+  }
+  return names;
+}
+
+// A backend by registry name with typed options set from text ({"isolate", "0"}, ...).
+std::unique_ptr<Solver> Make(const std::string& name,
+                             std::initializer_list<std::pair<const char*, const char*>> set = {}) {
+  auto solver = CreateSolver(name);
+  for (const auto& [key, value] : set) {
+    std::string error;
+    EXPECT_TRUE(solver->SetOption(key, value, &error)) << error;
+  }
+  return solver;
+}
+
+// Our merit function, recomputed here from M, q, l, u.
+double IndependentResidual(const BoxMLCP& p, const Vector& z) {
+  const Vector w = p.ToDense() * z + p.q();
+  double r = 0.0;
+  for (int i = 0; i < p.size(); ++i) {
+    r = std::max(r, std::abs(z[i] - std::min(std::max(z[i] - w[i], p.l()[i]), p.u()[i])));
+  }
+  return r / (1.0 + p.q().cwiseAbs().maxCoeff());
+}
+
+TEST(SiconosRegistry, ListsAllTwelveAdapters) {
+  const std::vector<std::string> names = SiconosNames();
+  const std::set<std::string> expected = {
+      "siconos-relay-avi",    "siconos-relay-lemke",  "siconos-relay-pgs",     "siconos-relay-enum",
+      "siconos-lcp-lemke",    "siconos-lcp-newton-fb", "siconos-lcp-newton-min", "siconos-mlcp-enum",
+      "siconos-mlcp-lemke",   "siconos-mlcp-fb",      "siconos-mlcp-direct-enum", "siconos-mlcp-direct-fb"};
+  EXPECT_EQ(std::set<std::string>(names.begin(), names.end()), expected);
+  EXPECT_EQ(names.front(), "siconos-relay-avi");  // Siconos' recommended relay solver first
+  EXPECT_EQ(SiconosSolver::SiconosId(SiconosMethod::kRelayAvi), 306);
+  EXPECT_EQ(SiconosSolver::SiconosId(SiconosMethod::kLcpNewtonMin), 218);
+}
+
+// Which problem shapes a method can express (independently of the adapter's own check).
+bool Expressible(const std::string& name, const BoxMLCP& p) {
+  int free = 0, one_sided = 0, box = 0;
+  for (int i = 0; i < p.size(); ++i) {
+    const bool lo = std::isfinite(p.l()[i]), up = std::isfinite(p.u()[i]);
+    if (p.l()[i] == p.u()[i]) continue;
+    if (!lo && !up) ++free;
+    else if (lo && up) ++box;
+    else ++one_sided;
+  }
+  if (name.find("-relay-") != std::string::npos) return free == 0 && one_sided == 0;
+  if (name.find("-lcp-") != std::string::npos) return free == 0;
+  if (name == "siconos-mlcp-lemke") return free > 0 && one_sided + box > 0;
+  return true;
+}
+
+class SiconosAdapter : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(SiconosAdapter, SolvesGeneratedProblemsWithKnownSolution) {
+  const std::string name = GetParam();
+  auto solver = Make(name);
+  struct Family {
+    MatrixFamily matrix;
+    BoundKind bounds;
+    double degenerate;
+  };
+  const Family families[] = {
+      {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 0.0},
+      {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 0.0},
+      {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kMixed, 0.0},
+      {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 0.0},
+      {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kBox, 0.0},
+      {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kMixed, 0.0},
+      {MatrixFamily::kDiagonallyDominant, BoundKind::kRelay, 0.0},
+      {MatrixFamily::kDiagonallyDominant, BoundKind::kMixed, 0.0},
+      {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 0.34},
+      {MatrixFamily::kDiagonallyDominant, BoundKind::kBox, 0.5},
+  };
+  int solved = 0;
+  for (const Family& f : families) {
+    for (int n : {1, 2, 3, 5, 8}) {
+      for (std::uint64_t seed : {1u, 2u}) {
+        GeneratorOptions g;
+        g.family = f.matrix;
+        g.bounds = f.bounds;
+        g.degenerate_fraction = f.degenerate;
+        g.size = n;
+        g.seed = seed;
+        const GeneratedProblem gen = GenerateProblem(g);
+        const BoxMLCP& p = gen.problem;
+        SolverOptions options;
+        options.tolerance = kTol;
+        options.time_limit_seconds = 20;
+        const SolveResult r = solver->Solve(p, options);
+        const std::string where = name + " on " + p.name() + ": " + std::string(ToString(r.status)) + " " + r.message;
+        if (!Expressible(name, p)) {
+          EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << where;
+          EXPECT_FALSE(r.message.empty()) << where;
+          continue;
+        }
+        if (r.status == SolveStatus::kSizeLimit) {
+          EXPECT_NE(name.find("enum"), std::string::npos) << where;
+          continue;
+        }
+        // PGS converges for symmetric positive definite and diagonally dominant M only.
+        const bool must_solve = !(name == "siconos-relay-pgs" && f.matrix == MatrixFamily::kNonsymmetricPMatrix);
+        if (must_solve) {
+          EXPECT_TRUE(r.solved()) << where << " (residual " << r.residual_rel << ")";
+        }
+        if (r.solved()) {
+          ++solved;
+          EXPECT_LE(IndependentResidual(p, r.z), kTol) << where;
+          EXPECT_EQ(r.GetDetail("siconos_info"), 0.0) << where;
+          const double scale = 1.0 + gen.z_star.cwiseAbs().maxCoeff();
+          EXPECT_LE((r.z - gen.z_star).cwiseAbs().maxCoeff(), 1e-6 * scale) << where;  // P-matrix: unique
+        }
+      }
+    }
+  }
+  EXPECT_GT(solved, 15) << name;
+}
+
+INSTANTIATE_TEST_SUITE_P(Every, SiconosAdapter, ::testing::ValuesIn(SiconosNames()), [](const auto& info) {
+  std::string s = info.param.substr(8);
+  for (char& c : s) c = c == '-' ? '_' : c;
+  return s;
+});
+
+// --- Siconos' wrong successes: info = 0 with a wrong answer must never come out as "solved". ---
+
+TEST(SiconosWrongSuccess, OneByOneLcpShortcutGivesANegativeZWithInfoZero) {
+  // Siconos' dense LCP driver answers every 1×1 LCP with z = −q/M and info 0 without looking at the sign. Here
+  // M = −1, q = −1 (no solution: z ≥ 0 forces w = −z − 1 < 0), and Siconos returns z = −1, "success".
+  const BoxMLCP p = BoxMLCP::LCP(DenseMatrix::Constant(1, 1, -1.0), Vector::Constant(1, -1.0), "lcp-1x1-negative");
+  for (const char* name : {"siconos-lcp-lemke", "siconos-lcp-newton-fb", "siconos-lcp-newton-min"}) {
+    SCOPED_TRACE(name);
+    const SolveResult r = Make(name)->Solve(p);
+    EXPECT_EQ(r.GetDetail("siconos_info"), 0.0) << "Siconos 4.4 reports success here";
+    EXPECT_DOUBLE_EQ(r.z[0], -1.0);
+    EXPECT_EQ(r.status, SolveStatus::kInaccurate) << r.message;
+    EXPECT_FALSE(r.solved());
+    EXPECT_GE(r.residual_rel, 0.5);
+  }
+}
+
+TEST(SiconosWrongSuccess, InfiniteZWithInfoZeroIsANumericalFailure) {
+  // Same shortcut with M = 0: z = −q/0 = +inf, info 0.
+  const BoxMLCP p = BoxMLCP::LCP(DenseMatrix::Zero(1, 1), Vector::Constant(1, -1.0), "lcp-1x1-zero");
+  for (const char* name : {"siconos-lcp-lemke", "siconos-lcp-newton-fb", "siconos-lcp-newton-min"}) {
+    SCOPED_TRACE(name);
+    const SolveResult r = Make(name)->Solve(p);
+    EXPECT_EQ(r.GetDetail("siconos_info"), 0.0);
+    EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
+    EXPECT_NE(r.message.find("non-finite"), std::string::npos) << r.message;
+  }
+}
+
+TEST(SiconosWrongSuccess, NanSolutionWithInfoZeroOnATriviallySolvableProblem) {
+  // LCP(M = 1, q = 1e300): z = 0, w = q is the solution (q ≥ 0). mlcp_FB's Fischer-Burmeister function
+  // overflows (√(z² + w²)), its iterate becomes NaN, and NaN passes its error test (NaN > tol is false): info 0.
+  const BoxMLCP p = BoxMLCP::LCP(DenseMatrix::Ones(1, 1), Vector::Constant(1, 1e300), "lcp-1x1-huge-q");
+  const SolveResult exact = CreateSolver("enum")->Solve(p);
+  ASSERT_TRUE(exact.solved());
+  EXPECT_EQ(exact.z[0], 0.0);
+  for (const char* name : {"siconos-mlcp-fb", "siconos-mlcp-direct-fb"}) {
+    SCOPED_TRACE(name);
+    const SolveResult r = Make(name)->Solve(p);
+    EXPECT_EQ(r.GetDetail("siconos_info"), 0.0) << "Siconos 4.4 reports success here";
+    EXPECT_TRUE(std::isnan(r.z[0])) << r.z[0];
+    EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
+    EXPECT_NE(r.message.find("non-finite"), std::string::npos) << r.message;
+  }
+  // The LCP driver checks q ≥ 0 first and answers z = 0.
+  EXPECT_TRUE(Make("siconos-lcp-newton-fb")->Solve(p).solved());
+}
+
+TEST(SiconosWrongSuccess, FischerBurmeisterClaimsToSolveAnInfeasibleProblem) {
+  // M = 0, q₀ < 0: w₀ = q₀ < 0 whatever z is, so the LCP has no solution (our enumeration proves it). mlcp_FB
+  // stops at z₀ ≈ 5e4 and reports info 0.
+  Vector q(2);
+  q << -0.10830937736990198, 0.45657036778101801;
+  const BoxMLCP p = BoxMLCP::LCP(DenseMatrix::Zero(2, 2), q, "lcp-zero-matrix-infeasible");
+  EXPECT_EQ(CreateSolver("enum")->Solve(p).status, SolveStatus::kInfeasible);
+  for (const char* name : {"siconos-mlcp-fb", "siconos-mlcp-direct-fb"}) {
+    SCOPED_TRACE(name);
+    const SolveResult r = Make(name)->Solve(p);
+    EXPECT_EQ(r.GetDetail("siconos_info"), 0.0) << "Siconos 4.4 reports success here";
+    EXPECT_GT(r.z[0], 1e3);
+    EXPECT_EQ(r.status, SolveStatus::kInaccurate) << r.message;
+  }
+}
+
+TEST(SiconosWrongSuccess, GarbageOnAnInfeasibleRankOneProblemIsNotSolved) {
+  // PSD rank-one M with no solution: Lemke should end on a ray; roundoff lets Siconos' Lemke, Newton-min and FB
+  // "converge" to z ≈ 1e16–1e17 with info 0 (on this platform; the assertion on our status holds either way).
+  DenseMatrix M(2, 2);
+  M << 0.085539803760835892, -0.07062712443348379, -0.07062712443348379, 0.058314264078621017;
+  Vector q(2);
+  q << -0.46590793837776256, -0.86838083521912068;
+  const BoxMLCP p = BoxMLCP::LCP(M, q, "lcp-rank-one-infeasible");
+  EXPECT_EQ(CreateSolver("enum")->Solve(p).status, SolveStatus::kInfeasible);
+  int zero_info = 0;
+  for (const char* name : {"siconos-lcp-lemke", "siconos-lcp-newton-min", "siconos-mlcp-fb"}) {
+    const SolveResult r = Make(name)->Solve(p);
+    EXPECT_FALSE(r.solved()) << name;
+    zero_info += r.GetDetail("siconos_info") == 0.0;
+    std::printf("[ info     ] %s: siconos_info %g, status %s, |z| %.2g\n", name, r.GetDetail("siconos_info"),
+                std::string(ToString(r.status)).c_str(), r.z.cwiseAbs().maxCoeff());
+  }
+  EXPECT_GE(zero_info, 1) << "expected at least one wrong success from Siconos 4.4 on this problem";
+}
+
+TEST(SiconosWrongSuccess, PgsStoppedByItsBudgetIsNotSolved) {
+  // An interior relay solution (z* = (0.5, −0.25)) and one PGS sweep: the iterate is not the solution.
+  DenseMatrix M(2, 2);
+  M << 2, 1.8, 1.8, 2;
+  const Vector z_star = (Vector(2) << 0.5, -0.25).finished();
+  const Vector q = -M * z_star;
+  const BoxMLCP p = BoxMLCP::Relay(M, q);
+  SolverOptions options;
+  options.max_iterations = 1;
+  const SolveResult r = Make("siconos-relay-pgs")->Solve(p, options);
+  EXPECT_EQ(r.status, SolveStatus::kIterationLimit) << r.message;
+  EXPECT_EQ(r.GetDetail("siconos_info"), 1.0);
+  EXPECT_EQ(r.iterations, 1);
+  EXPECT_GT((r.z - z_star).cwiseAbs().maxCoeff(), 1e-3);
+  options.max_iterations = 0;  // Siconos' default budget: converges
+  const SolveResult full = Make("siconos-relay-pgs")->Solve(p, options);
+  EXPECT_TRUE(full.solved()) << full.message;
+  EXPECT_LE((full.z - z_star).cwiseAbs().maxCoeff(), 1e-8);
+}
+
+TEST(SiconosWrongSuccess, LemkeBasisRejectedBySiconosOwnCheckIsInaccurateNotARay) {
+  // On lcp_CPS_3.dat lcp_lexicolemke ends as if it had found a complementary basis (algorithm info 0) whose answer
+  // has residual 0.5; the driver's final check turns it into info 1. Both codes are kept, the status says what
+  // happened (an inaccurate answer), not a secondary ray.
+  const BoxMLCP p = ReadSiconosFile(SMCBENCH_PEER_DATA_DIR "/siconos/lcp/lcp_CPS_3.dat");
+  const SolveResult r = Make("siconos-lcp-lemke")->Solve(p);
+  EXPECT_EQ(r.status, SolveStatus::kInaccurate) << r.message;
+  EXPECT_EQ(r.GetDetail("siconos_info"), 1.0);
+  EXPECT_EQ(r.GetDetail("siconos_algorithm_info"), 0.0);
+  EXPECT_NE(r.message.find("accuracy check rejected"), std::string::npos) << r.message;
+  EXPECT_GT(r.residual_rel, 0.1);
+}
+
+// --- Isolation ---
+
+TEST(SiconosIsolation, AHangIsKilledAtTheTimeLimitAndTheNextSolveWorks) {
+  // Enumeration of an infeasible 22-variable LCP visits 4 million configurations: far beyond 0.3 s.
+  auto solver = Make("siconos-mlcp-enum", {{"max_enumerated", "22"}});
+  const BoxMLCP hard = BoxMLCP::LCP(DenseMatrix::Zero(22, 22), Vector::Constant(22, -1.0), "lcp-22-infeasible");
+  SolverOptions options;
+  options.time_limit_seconds = 0.3;
+  const auto start = std::chrono::steady_clock::now();
+  const SolveResult r = solver->Solve(hard, options);
+  const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.status, SolveStatus::kTimeLimit) << r.message;
+  EXPECT_NE(r.message.find("killed"), std::string::npos) << r.message;
+  EXPECT_LT(seconds, 5.0);
+  auto* siconos = dynamic_cast<SiconosSolver*>(solver.get());
+  ASSERT_NE(siconos, nullptr);
+  EXPECT_EQ(siconos->worker_pid(), -1);
+  const BoxMLCP easy = BoxMLCP::LCP(DenseMatrix::Identity(2, 2), Vector::Constant(2, -1.0));
+  const SolveResult e = solver->Solve(easy, options);
+  EXPECT_TRUE(e.solved()) << e.message;
+  EXPECT_GT(siconos->worker_pid(), 0);
+}
+
+TEST(SiconosIsolation, ACrashIsAStatusNamingTheSignal) {
+  // mlcp_lcp_lemke on an MLCP without equality rows: LAPACK rejects the empty block, then an assertion aborts.
+  auto solver = Make("siconos-mlcp-lemke", {{"allow_known_crashes", "1"}});
+  const BoxMLCP lcp = BoxMLCP::LCP(DenseMatrix::Identity(2, 2) * 2.0, Vector::Constant(2, -1.0));
+  const SolveResult r = solver->Solve(lcp);
+  EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
+  EXPECT_NE(r.message.find("worker process died"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("SIGABRT"), std::string::npos) << r.message;
+  EXPECT_EQ(r.GetDetail("siconos_signal"), 6.0);
+  // Refused up front by default, and the next (valid) problem is solved by a fresh worker.
+  EXPECT_EQ(Make("siconos-mlcp-lemke")->Solve(lcp).status, SolveStatus::kNotApplicable);
+  GeneratorOptions g;
+  g.bounds = BoundKind::kMixed;
+  g.size = 6;
+  const GeneratedProblem gen = GenerateProblem(g);
+  const SolveResult next = solver->Solve(gen.problem);
+  EXPECT_TRUE(next.solved()) << next.message;
+}
+
+TEST(SiconosIsolation, InProcessGivesTheSameAnswersAndStaysSilent) {
+  for (const std::string& name : SiconosNames()) {
+    SCOPED_TRACE(name);
+    auto isolated = Make(name);
+    auto in_process = Make(name, {{"isolate", "0"}});
+    for (BoundKind bounds : {BoundKind::kRelay, BoundKind::kLCP, BoundKind::kMixed}) {
+      GeneratorOptions g;
+      g.bounds = bounds;
+      g.size = 5;
+      g.family = MatrixFamily::kDiagonallyDominant;
+      const GeneratedProblem gen = GenerateProblem(g);
+      const SolveResult a = isolated->Solve(gen.problem);
+      const SolveResult b = in_process->Solve(gen.problem);
+      EXPECT_EQ(a.status, b.status);
+      EXPECT_EQ(a.GetDetail("isolated"), 1.0);
+      EXPECT_EQ(b.GetDetail("isolated"), 0.0);
+      if (a.solved()) {
+        EXPECT_LE((a.z - b.z).cwiseAbs().maxCoeff(), 1e-12);
+      }
+    }
+  }
+  // relay_pgs prints "No convergence ..." with printf whatever the verbosity: not in our output.
+  DenseMatrix M(2, 2);
+  M << 2, 1.8, 1.8, 2;
+  const BoxMLCP p = BoxMLCP::Relay(M, Vector::Constant(2, 0.1));
+  SolverOptions options;
+  options.max_iterations = 1;
+  auto pgs = Make("siconos-relay-pgs", {{"isolate", "0"}});
+  ::testing::internal::CaptureStdout();
+  const SolveResult r = pgs->Solve(p, options);
+  const std::string printed = ::testing::internal::GetCapturedStdout();
+  EXPECT_EQ(r.status, SolveStatus::kIterationLimit);
+  EXPECT_EQ(printed, "");
+}
+
+TEST(SiconosIsolation, RepeatedIsolatedSolvesDoNotAllocateInThisProcess) {
+  if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";
+  for (const char* name : {"siconos-relay-avi", "siconos-lcp-lemke", "siconos-mlcp-direct-enum"}) {
+    auto solver = Make(name);
+    GeneratorOptions g;
+    g.bounds = BoundKind::kRelay;
+    g.size = 4;
+    const GeneratedProblem gen = GenerateProblem(g);
+    SolverOptions options;
+    SolveResult result;
+    solver->Solve(gen.problem, options, &result);  // starts the worker, sizes the workspace
+    ASSERT_TRUE(result.solved()) << name << ": " << result.message;
+    const long count = test_support::CountMallocs([&] {
+      for (int k = 0; k < 10; ++k) solver->Solve(gen.problem, options, &result);
+    });
+    EXPECT_EQ(count, 0) << name;
+    EXPECT_TRUE(result.solved());
+  }
+}
+
+// --- Behaviour of individual adapters ---
+
+TEST(SiconosDirect, CacheIsDroppedWhenTheMatrixChanges) {
+  // The direct solvers reuse the active sets of earlier solves; with a new M of the same size, reusing them
+  // would solve the old problem. Every answer must be the current problem's solution.
+  for (const char* name : {"siconos-mlcp-direct-enum", "siconos-mlcp-direct-fb"}) {
+    SCOPED_TRACE(name);
+    auto solver = Make(name);
+    for (std::uint64_t seed : {1u, 1u, 2u, 2u, 3u, 1u}) {
+      GeneratorOptions g;
+      g.bounds = BoundKind::kMixed;
+      g.size = 6;
+      g.seed = seed;
+      const GeneratedProblem gen = GenerateProblem(g);
+      SolverOptions options;
+      options.tolerance = kTol;
+      const SolveResult r = solver->Solve(gen.problem, options);
+      ASSERT_TRUE(r.solved()) << "seed " << seed << ": " << r.message;
+      EXPECT_LE((r.z - gen.z_star).cwiseAbs().maxCoeff(), 1e-8);
+    }
+  }
+}
+
+TEST(SiconosAdapters, WarmStartReachesTheIterativeMethods) {
+  GeneratorOptions g;
+  g.bounds = BoundKind::kRelay;
+  g.size = 8;
+  const GeneratedProblem gen = GenerateProblem(g);
+  SolverOptions options;
+  options.warm_start = gen.z_star;
+  for (const char* name : {"siconos-relay-pgs", "siconos-lcp-newton-fb", "siconos-mlcp-fb"}) {
+    const SolveResult r = Make(name)->Solve(gen.problem, options);
+    EXPECT_TRUE(r.solved()) << name << ": " << r.message;
+    EXPECT_LE(r.iterations, 1) << name;
+  }
+}
+
+TEST(SiconosAdapters, FixedRowsAreEliminatedAndAllFixedNeedsNoSiconosCall) {
+  const BoxMLCP fixed(DenseMatrix::Identity(3, 3), Vector::Ones(3), Vector::Constant(3, 0.5), Vector::Constant(3, 0.5));
+  for (const std::string& name : SiconosNames()) {
+    const SolveResult r = Make(name)->Solve(fixed);
+    EXPECT_TRUE(r.solved()) << name << ": " << r.message;
+    EXPECT_EQ(r.z, Vector::Constant(3, 0.5));
+    EXPECT_TRUE(std::isnan(r.GetDetail("siconos_info"))) << name;
+  }
+  // A relay problem with one fixed row: the relay solvers see a 2-row problem.
+  DenseMatrix M(3, 3);
+  M << 3, 1, 0, 1, 3, 1, 0, 1, 3;
+  const BoxMLCP p(M, Vector::Constant(3, 0.2), (Vector(3) << -1, 0.25, -1).finished(),
+                  (Vector(3) << 1, 0.25, 1).finished());
+  for (const char* name : {"siconos-relay-avi", "siconos-relay-lemke", "siconos-relay-enum", "siconos-relay-pgs"}) {
+    const SolveResult r = Make(name)->Solve(p);
+    EXPECT_TRUE(r.solved()) << name << ": " << r.message;
+    EXPECT_EQ(r.GetDetail("standard_size"), 2.0) << name;
+    EXPECT_EQ(r.z[1], 0.25);
+  }
+}
+
+TEST(SiconosAdapters, NotApplicableAndSizeLimitSayWhy) {
+  GeneratorOptions g;
+  g.bounds = BoundKind::kMixed;
+  g.size = 8;
+  const GeneratedProblem mixed = GenerateProblem(g);
+  SolveResult r = Make("siconos-relay-avi")->Solve(mixed.problem);
+  EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
+  EXPECT_NE(r.message.find("finite bounds"), std::string::npos) << r.message;
+  r = Make("siconos-lcp-lemke")->Solve(mixed.problem);
+  EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
+  EXPECT_NE(r.message.find("free rows"), std::string::npos) << r.message;
+  g.bounds = BoundKind::kRelay;
+  g.size = 9;  // relay_enum enumerates 2 × 9 = 18 > 16 variables
+  r = Make("siconos-relay-enum")->Solve(GenerateProblem(g).problem);
+  EXPECT_EQ(r.status, SolveStatus::kSizeLimit);
+  EXPECT_NE(r.message.find("max_enumerated"), std::string::npos) << r.message;
+}
+
+TEST(SiconosAdapters, OptionsAreValidatedAndMapped) {
+  auto solver = Make("siconos-mlcp-enum");
+  std::string error;
+  EXPECT_FALSE(solver->SetOption("max_enumerated", "0", &error));
+  EXPECT_NE(error.find("max_enumerated"), std::string::npos) << error;
+  EXPECT_FALSE(solver->SetOption("default_time_limit", "-1", &error));
+  EXPECT_FALSE(solver->SetOption("omega", "1", &error));
+  EXPECT_NE(error.find("known: isolate"), std::string::npos) << error;
+  EXPECT_NE(solver->OptionsHelp().find("isolate"), std::string::npos);
+  // The tolerance reaches Siconos (scaled by 1/sqrt(N)): a loose one lets PGS stop early, a tight one not.
+  DenseMatrix M(2, 2);
+  M << 2, 1.8, 1.8, 2;  // Gauss-Seidel contracts by about 0.8 per sweep here
+  const BoxMLCP p = BoxMLCP::Relay(M, -M * (Vector(2) << 0.5, -0.25).finished());
+  SolverOptions loose, tight;
+  loose.tolerance = 1e-3;
+  tight.tolerance = 1e-12;
+  auto pgs = Make("siconos-relay-pgs");
+  const SolveResult a = pgs->Solve(p, loose);
+  const SolveResult b = pgs->Solve(p, tight);
+  EXPECT_TRUE(a.solved()) << a.message;
+  EXPECT_TRUE(b.solved()) << b.message;
+  EXPECT_LT(a.iterations, b.iterations);
+  EXPECT_LE(b.residual_rel, 1e-12);
+}
+
+}  // namespace
+}  // namespace smcbench

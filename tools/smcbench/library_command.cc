@@ -1,0 +1,190 @@
+#include "tools/smcbench/library_command.h"
+
+#include <CLI/CLI.hpp>
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <ostream>
+#include <set>
+#include <sstream>
+
+#include "problems/library/siconos_export.h"
+
+namespace smcbench {
+namespace {
+
+namespace fs = std::filesystem;
+
+// "relay/box" (every bound finite), "lcp" (l = 0, u = +∞ everywhere), "free" (no bound anywhere), else "mixed".
+std::string BoundKind(const BoxMLCP& p) {
+  bool finite = true, lcp = true, free = true;
+  for (int i = 0; i < p.size(); ++i) {
+    const double l = p.l()[i], u = p.u()[i];
+    finite = finite && std::isfinite(l) && std::isfinite(u);
+    lcp = lcp && l == 0.0 && u == kInf;
+    free = free && l == -kInf && u == kInf;
+  }
+  if (finite) return "relay/box";
+  if (lcp) return "lcp";
+  if (free) return "free";
+  return "mixed";
+}
+
+// "a 3, b 1" from counts, largest first (ties by name).
+std::string Counts(const std::map<std::string, std::size_t>& counts) {
+  std::vector<std::pair<std::string, std::size_t>> v(counts.begin(), counts.end());
+  std::stable_sort(v.begin(), v.end(), [](const auto& a, const auto& b) { return a.second > b.second; });
+  std::string s;
+  for (const auto& [name, count] : v) s += (s.empty() ? "" : ", ") + name + " " + std::to_string(count);
+  return s.empty() ? "none" : s;
+}
+
+std::string CsvQuote(const std::string& text) {
+  if (text.find_first_of(",\"\n\r") == std::string::npos) return text;
+  std::string s = "\"";
+  for (char c : text) s += c == '"' ? std::string("\"\"") : std::string(1, c);
+  return s + "\"";
+}
+
+std::string TagLetter(Tristate t) { return t == Tristate::kYes ? "y" : t == Tristate::kNo ? "n" : "?"; }
+
+}  // namespace
+
+std::string ProblemSetSummary(const ProblemSet& set, const ProblemSetFileInfo* info) {
+  std::ostringstream o;
+  o << "set " << (set.name.empty() ? "(unnamed)" : set.name);
+  if (!set.description.empty()) o << ": " << set.description;
+  o << "\n";
+  if (info) {
+    o << "file: " << info->bytes << " bytes, format version " << info->version << ", " << info->matrices
+      << " distinct matri" << (info->matrices == 1 ? "x" : "ces") << " for " << info->problems << " problem"
+      << (info->problems == 1 ? "" : "s") << "\n";
+  }
+  const std::size_t total = set.problems.size();
+  o << "problems: " << total;
+  if (total == 0) {
+    o << "\n";
+    return o.str();
+  }
+  std::size_t sparse = 0, seeded = 0, with_solution = 0;
+  std::map<int, std::size_t> sizes;
+  std::map<std::string, std::size_t> bounds, expected, sources, labels;
+  std::size_t tag_counts[3][3] = {};  // [symmetric, pd, p][unknown, no, yes]
+  for (const LibraryProblem& p : set.problems) {
+    sparse += p.sparse();
+    seeded += p.seed.has_value();
+    with_solution += p.solution.size() != 0;
+    ++sizes[p.size()];
+    ++bounds[BoundKind(p.problem)];
+    ++expected[std::string(ToString(p.expected))];
+    ++sources[p.source.substr(0, p.source.find(':'))];
+    for (const std::string& t : p.tags) ++labels[t];
+    const Tristate t3[3] = {p.matrix.symmetric, p.matrix.positive_definite, p.matrix.p_matrix};
+    for (int k = 0; k < 3; ++k) ++tag_counts[k][static_cast<int>(t3[k])];
+  }
+  o << " (dense " << total - sparse << ", sparse " << sparse << ")\n";
+  o << "sizes: ";
+  if (sizes.size() <= 8) {
+    std::string s;
+    for (const auto& [n, count] : sizes) {
+      s += (s.empty() ? "" : ", ") + ("n=" + std::to_string(n)) + " x" + std::to_string(count);
+    }
+    o << s << "\n";
+  } else {
+    o << sizes.size() << " distinct, n = " << sizes.begin()->first << " ... " << sizes.rbegin()->first << "\n";
+  }
+  o << "bounds: " << Counts(bounds) << "\n";
+  o << "expected: " << Counts(expected) << "\n";
+  o << "matrix tags (yes / no / unknown):\n";
+  const char* names[3] = {"symmetric", "positive definite", "P-matrix"};
+  for (int k = 0; k < 3; ++k) {
+    o << "  " << names[k] << std::string(19 - std::string(names[k]).size(), ' ') << tag_counts[k][2] << " / "
+      << tag_counts[k][1] << " / " << tag_counts[k][0] << "\n";
+  }
+  o << "sources: " << Counts(sources) << "\n";
+  o << "labels: " << Counts(labels) << "\n";
+  o << "seeded: " << seeded << ", with a known solution: " << with_solution << "\n";
+  return o.str();
+}
+
+std::size_t ExportProblemSetRelay(const ProblemSet& set, const std::string& dir, std::string* skipped) {
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec || !fs::is_directory(dir)) {
+    throw InvalidInputError("--export-relay: cannot create the folder '" + dir + "'" +
+                            (ec ? ": " + ec.message() : std::string()));
+  }
+  std::set<std::string> used;
+  std::string index = "file,id,n,expected\n";
+  std::size_t written = 0;
+  for (const LibraryProblem& p : set.problems) {
+    std::string why;
+    if (!CanExportSiconosRelay(p, &why)) {
+      if (skipped) *skipped += p.id + ": " + why + "\n";
+      continue;
+    }
+    std::string name = SiconosRelayFileName(p.id);
+    const std::string stem = name.substr(0, name.size() - 4);
+    for (int k = 2; used.count(name) || name == "index.csv"; ++k) name = stem + "-" + std::to_string(k) + ".dat";
+    used.insert(name);
+    ExportSiconosRelayFile(p, (fs::path(dir) / name).string());
+    index += CsvQuote(name) + "," + CsvQuote(p.id) + "," + std::to_string(p.size()) + "," +
+             std::string(ToString(p.expected)) + "\n";
+    ++written;
+  }
+  const std::string index_path = (fs::path(dir) / "index.csv").string();
+  std::ofstream out(index_path, std::ios::binary | std::ios::trunc);
+  out << index;
+  out.close();
+  if (!out) throw InvalidInputError("--export-relay: cannot write '" + index_path + "'");
+  return written;
+}
+
+struct LibraryCommand::Flags {
+  std::string file, export_dir;
+  bool list = false;
+};
+
+LibraryCommand::LibraryCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
+  command_ = app->add_subcommand("library", "summarize a problem-set file (.smcps, see problems/library/README.md) "
+                                            "and export it to Siconos relay files");
+  command_->add_option("FILE", flags_->file, "problem-set file (written by simulate --record, bench, ...)")
+      ->required();
+  command_->add_flag("--list", flags_->list, "also print one line per problem: id, n, storage, expected, tags");
+  command_->add_option("--export-relay", flags_->export_dir,
+                       "write every problem with finite bounds to DIR/<id>.dat in Siconos relay format, plus "
+                       "DIR/index.csv; problems with infinite bounds are listed and make the exit status 1");
+}
+
+LibraryCommand::~LibraryCommand() = default;
+
+bool LibraryCommand::parsed() const { return command_->parsed(); }
+
+int LibraryCommand::Run(std::ostream& out, std::ostream& err) const {
+  const Flags& f = *flags_;
+  ProblemSetFileInfo info;
+  const ProblemSet set = ReadProblemSetFile(f.file, &info);
+  out << ProblemSetSummary(set, &info);
+  if (f.list) {
+    out << "\nid | n | storage | expected | symmetric/pd/P\n";
+    for (const LibraryProblem& p : set.problems) {
+      out << p.id << " | " << p.size() << " | " << (p.sparse() ? "sparse" : "dense") << " | "
+          << ToString(p.expected) << " | " << TagLetter(p.matrix.symmetric) << TagLetter(p.matrix.positive_definite)
+          << TagLetter(p.matrix.p_matrix) << "\n";
+    }
+  }
+  if (f.export_dir.empty()) return 0;
+  std::string skipped;
+  const std::size_t written = ExportProblemSetRelay(set, f.export_dir, &skipped);
+  out << "exported " << written << " of " << set.problems.size() << " problem(s) to " << f.export_dir
+      << " (Siconos relay format, index.csv)\n";
+  if (skipped.empty()) return 0;
+  const std::size_t count = static_cast<std::size_t>(std::count(skipped.begin(), skipped.end(), '\n'));
+  err << skipped << "smcbench: --export-relay: " << count << " problem(s) cannot be written in Siconos relay format "
+      << "(it needs finite bounds on every row); the other " << written << " were written\n";
+  return 1;
+}
+
+}  // namespace smcbench

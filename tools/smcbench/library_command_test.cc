@@ -1,0 +1,165 @@
+// End-to-end tests of `smcbench library`, run in-process: the summary of a problem-set file, --list, the Siconos
+// relay export (bit-exact files, colliding names, an index, infinite bounds refused with exit status 1), and
+// one-line errors for damaged or missing files.
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include "problems/io/siconos_format.h"
+#include "problems/library/problem_set_io.h"
+#include "tools/smcbench/cli_test_runner.h"
+
+namespace smcbench {
+namespace {
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+namespace fs = std::filesystem;
+
+using test_support::CliRun;
+using test_support::RunSmcbench;
+
+LibraryProblem Problem(std::string id, BoxMLCP box, ExpectedOutcome expected) {
+  return LibraryProblem{std::move(id), "generated:test", std::move(box), {}, {"handmade"},
+                        std::uint64_t{7},  expected,   {}, {}};
+}
+
+// Two relay problems whose ids sanitize to the same file name, a sparse box problem and an LCP.
+ProblemSet MixedSet() {
+  ProblemSet set;
+  set.name = "mixed";
+  set.description = "relay, sparse box and LCP rows";
+  DenseMatrix M(2, 2);
+  M << 2, -1, -1, 2;
+  Vector q(2);
+  q << 0.5, -1.0 / 3.0;
+  set.problems.push_back(Problem("a/b", BoxMLCP::Relay(M, q), ExpectedOutcome::kSolvable));
+  set.problems.push_back(Problem("a_b", BoxMLCP::Relay(M, -q, -2.0, 0.5), ExpectedOutcome::kSolvable));
+  set.problems.push_back(Problem("sparse/box", BoxMLCP(SparseMatrix(M.sparseView()), q, Vector::Constant(2, -1e-300),
+                                                       Vector::Constant(2, 3.0)),
+                                 ExpectedOutcome::kUnknown));
+  set.problems.push_back(Problem("lcp/one", BoxMLCP::LCP(M, q), ExpectedOutcome::kInfeasible));
+  set.problems[0].matrix = {Tristate::kYes, Tristate::kYes, Tristate::kYes};
+  return set;
+}
+
+class LibraryCommandTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(testing::TempDir()) / ("library_command_test_" + std::to_string(::getpid()));
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string Path(const std::string& name) const { return (dir_ / name).string(); }
+
+  fs::path dir_;
+};
+
+TEST_F(LibraryCommandTest, SummaryAndList) {
+  const std::string file = Path("mixed.smcps");
+  WriteProblemSetFile(MixedSet(), file);
+  CliRun r = RunSmcbench({"library", file});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(r.err, "");
+  EXPECT_THAT(r.out, HasSubstr("set mixed: relay, sparse box and LCP rows\n"));
+  EXPECT_THAT(r.out, HasSubstr("format version 1, 2 distinct matrices for 4 problems"));
+  EXPECT_THAT(r.out, HasSubstr("problems: 4 (dense 3, sparse 1)\n"));
+  EXPECT_THAT(r.out, HasSubstr("sizes: n=2 x4\n"));
+  EXPECT_THAT(r.out, HasSubstr("bounds: relay/box 3, lcp 1\n"));
+  EXPECT_THAT(r.out, HasSubstr("expected: solvable 2, infeasible 1, unknown 1\n"));
+  EXPECT_THAT(r.out, HasSubstr("  P-matrix           1 / 0 / 3\n"));
+  EXPECT_THAT(r.out, HasSubstr("sources: generated 4\n"));
+  EXPECT_THAT(r.out, HasSubstr("labels: handmade 4\n"));
+  EXPECT_THAT(r.out, HasSubstr("seeded: 4, with a known solution: 0\n"));
+  EXPECT_THAT(r.out, Not(HasSubstr("a/b |")));
+
+  r = RunSmcbench({"library", file, "--list"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("a/b | 2 | dense | solvable | yyy\n"));
+  EXPECT_THAT(r.out, HasSubstr("sparse/box | 2 | sparse | unknown | ???\n"));
+}
+
+TEST_F(LibraryCommandTest, ExportRelayWritesBitExactFilesAndRefusesInfiniteBounds) {
+  const std::string file = Path("mixed.smcps"), out = Path("relay");
+  const ProblemSet set = MixedSet();
+  WriteProblemSetFile(set, file);
+  const CliRun r = RunSmcbench({"library", file, "--export-relay", out});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.out, HasSubstr("exported 3 of 4 problem(s) to " + out));
+  EXPECT_THAT(r.err, HasSubstr("lcp/one: row 0 has l = 0, u = inf (an LCP row)\n"));
+  EXPECT_THAT(r.err, HasSubstr("1 problem(s) cannot be written in Siconos relay format"));
+  // Colliding names get a suffix; the index maps files back to ids.
+  const std::vector<std::pair<std::string, int>> files = {{"a_b.dat", 0}, {"a_b-2.dat", 1}, {"sparse_box.dat", 2}};
+  for (const auto& [name, index] : files) {
+    SCOPED_TRACE(name);
+    const BoxMLCP back = ReadSiconosFile((fs::path(out) / name).string(), SiconosKind::kRelay);
+    const BoxMLCP& original = set.problems[static_cast<std::size_t>(index)].problem;
+    const DenseMatrix M = original.ToDense();
+    EXPECT_EQ(std::memcmp(back.dense_matrix().data(), M.data(), sizeof(double) * 4), 0);
+    EXPECT_EQ(std::memcmp(back.q().data(), original.q().data(), sizeof(double) * 2), 0);
+    EXPECT_EQ(std::memcmp(back.l().data(), original.l().data(), sizeof(double) * 2), 0);
+    EXPECT_EQ(std::memcmp(back.u().data(), original.u().data(), sizeof(double) * 2), 0);
+  }
+  EXPECT_FALSE(fs::exists(fs::path(out) / "lcp_one.dat"));
+  std::ifstream in(fs::path(out) / "index.csv");
+  const std::string index((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  EXPECT_EQ(index,
+            "file,id,n,expected\na_b.dat,a/b,2,solvable\na_b-2.dat,a_b,2,solvable\nsparse_box.dat,sparse/box,2,unknown\n");
+}
+
+TEST_F(LibraryCommandTest, RecordedRunExportsEveryStep) {
+  const std::string file = Path("lyapunov.smcps"), out = Path("steps");
+  CliRun r = RunSmcbench({"simulate", "lyapunov", "--record", file});
+  ASSERT_EQ(r.code, 0) << r.err;
+  r = RunSmcbench({"library", file, "--export-relay", out});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("set capture: one-step problems of smcbench simulate lyapunov"));
+  EXPECT_THAT(r.out, HasSubstr("1 distinct matrix for 100 problems"));
+  EXPECT_THAT(r.out, HasSubstr("expected: solvable 100\n"));
+  EXPECT_THAT(r.out, HasSubstr("exported 100 of 100 problem(s)"));
+  EXPECT_TRUE(fs::exists(fs::path(out) / "capture_lyapunov_implicit_h0.1_k100.dat"));
+  // Every exported file is a relay problem the Siconos reader accepts.
+  int files = 0;
+  for (const auto& entry : fs::directory_iterator(out)) {
+    if (entry.path().extension() != ".dat") continue;
+    EXPECT_NO_THROW(ReadSiconosFile(entry.path().string(), SiconosKind::kRelay)) << entry.path();
+    ++files;
+  }
+  EXPECT_EQ(files, 100);
+}
+
+TEST_F(LibraryCommandTest, DamagedOrMissingFilesAreOneLineErrors) {
+  const std::string file = Path("mixed.smcps");
+  WriteProblemSetFile(MixedSet(), file);
+  {
+    std::fstream f(file, std::ios::in | std::ios::out | std::ios::binary);
+    f.seekp(100);
+    f.put('\x7f');
+  }
+  CliRun r = RunSmcbench({"library", file});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("problem set '" + file + "'"));
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+
+  r = RunSmcbench({"library", Path("missing.smcps")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("cannot open"));
+
+  std::ofstream(Path("text.smcps")) << "not a problem set\n";
+  r = RunSmcbench({"library", Path("text.smcps")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("not a smcbench problem-set file"));
+
+  EXPECT_EQ(RunSmcbench({"library"}).code, 2);  // FILE is required
+}
+
+}  // namespace
+}  // namespace smcbench
