@@ -417,12 +417,6 @@ TEST(Algorithms, McpAndNewtonMlcpAgreeWithEveryBackend) {
     }
     for (std::string_view name : SolverNames()) {
       if (IsExternalBackend(name)) continue;
-      if (name == "ipopt") {
-        // IpoptQpSolver's first solve of an m ≤ 4 problem calls BoxMLCP::Affine into an unsized vector
-        // (Session::iter_w_, ipopt_qp_solver.cc) and segfaults; reported, re-enable once fixed.
-        std::printf("[ skipped  ] %s ipopt: segfaults on m <= 4 problems (unsized iter_w_)\n", sc.name.c_str());
-        continue;
-      }
       SCOPED_TRACE(sc.name + " / " + std::string(name));
       auto solver = CreateSolver(name);
       const Trajectory a2 = stepper.Run(sc.x0, sc.steps, solver.get(), Options(NonlinearAlgorithm::kNewtonMlcp));
