@@ -236,6 +236,34 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
       }
     }
 
+    // Ours against the external adapters (siconos-*), per size: best of each side per problem.
+    {
+      std::map<std::string, double> ours, theirs;
+      std::map<std::string, int> sizes;
+      for (const auto& r : suite.replay.records) {
+        if (r.verdict != Verdict::kSolved || r.solver == "newton-sparse-path") continue;
+        auto& side = r.solver.rfind("siconos-", 0) == 0 ? theirs : ours;
+        auto [it, inserted] = side.emplace(r.problem, r.time_median);
+        if (!inserted) it->second = std::min(it->second, r.time_median);
+        sizes[r.problem] = r.size;
+      }
+      std::map<int, std::vector<double>> by_size;
+      for (const auto& [problem, t] : theirs) {
+        if (ours.count(problem)) by_size[sizes.at(problem)].push_back(t / ours.at(problem));
+      }
+      if (!by_size.empty()) {
+        md << "Our best backend against Siconos' best (`siconos-*`, each solve in its worker process: ≈ 7 µs of "
+              "IPC per solve, see `solvers/siconos/README.md`), on the problems both solve — Siconos time / our "
+              "time:\n\n| m | problems | median ratio | min | max |\n|---|---|---|---|---|\n";
+        for (auto& [m, ratios] : by_size) {
+          std::sort(ratios.begin(), ratios.end());
+          md << "| " << m << " | " << ratios.size() << " | " << G(ratios[ratios.size() / 2]) << "× | "
+             << G(ratios.front()) << "× | " << G(ratios.back()) << "× |\n";
+        }
+        md << "\n";
+      }
+    }
+
     // Performance profile.
     const auto ratios = PerformanceRatios(suite);
     if (plots && !ratios.empty()) {
