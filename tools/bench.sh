@@ -11,7 +11,7 @@ cmake --preset release >/dev/null
 cmake --build --preset release -j "$(nproc)" --target smcbench
 smcbench=./build/release/tools/smcbench
 "$smcbench" bench --out results/bench --report "$@"
-"$smcbench" collection ../shared/peer-data/siconos --markdown results/siconos-collection.md \
+"$smcbench" collection ../shared/peer-data/siconos --time-limit 10 --markdown results/siconos-collection.md \
   --json results/siconos-collection.json >/dev/null
 "$smcbench" paper --out results/paper
 echo "report: results/bench/report.md, results/siconos-collection.md, results/paper/README.md"
