@@ -3,7 +3,8 @@
 // the problems the report is about. Cold start, tolerance 1e-10; a solve that is not "solved" is reported as an
 // error (never as a fast time), except on problems whose expected outcome is "infeasible", where the refusal is
 // the right answer and is timed.
-// Suites: SMCBENCH_SUITES (comma-separated, default "paper,families,hard"; "siconos" reads
+// Suites: SMCBENCH_SUITES (comma-separated: paper, families, hard, siconos, scale; default "paper,families,hard";
+// "siconos" reads
 // SMCBENCH_SICONOS_DIR, default ../shared/peer-data/siconos).
 #include <benchmark/benchmark.h>
 
@@ -18,6 +19,7 @@
 #include "problems/suites/families.h"
 #include "problems/suites/hard_cases.h"
 #include "solvers/registry/registry.h"
+#include "tools/smcbench/bench_command.h"
 
 namespace smcbench {
 namespace {
@@ -62,6 +64,8 @@ void RegisterAll() {
       Sets().push_back(std::make_unique<ProblemSet>(FamiliesSuite()));
     } else if (name == "hard") {
       Sets().push_back(std::make_unique<ProblemSet>(HardSuite(siconos_dir)));
+    } else if (name == "siconos") {
+      Sets().push_back(std::make_unique<ProblemSet>(SiconosSuite(siconos_dir)));
     } else if (name == "scale") {
       Sets().push_back(std::make_unique<ProblemSet>(ScaleSuite()));
     } else {

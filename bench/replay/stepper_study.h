@@ -14,7 +14,8 @@ struct StepperStudyOptions {
   std::vector<std::string> solvers;  // empty: every registered backend
   std::vector<std::string> warm_scenes{"sign", "galias-yu-2007", "multi-surface", "filippov", "zoh-siso",
                                        "zoh-mimo", "lyapunov", "observer"};
-  std::vector<std::string> precision_scenes{"galias-yu-2007", "lyapunov", "filippov"};
+  std::vector<std::string> precision_scenes{"sign",     "galias-yu-2007", "multi-surface", "filippov",
+                                            "zoh-siso", "zoh-mimo",       "lyapunov",      "observer"};
   int refinements = 6;              // work-precision: h = h_scene / 2^i, i = 0..refinements-1
   double min_seconds = 0.02;        // each timing repeats the run until it lasts this long
   std::function<void(const std::string& what)> progress;
