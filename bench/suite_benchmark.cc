@@ -4,8 +4,7 @@
 // error (never as a fast time), except on problems whose expected outcome is "infeasible", where the refusal is
 // the right answer and is timed.
 // Suites: SMCBENCH_SUITES (comma-separated: paper, families, hard, siconos, scale; default "paper,families,hard";
-// "siconos" reads
-// SMCBENCH_SICONOS_DIR, default ../shared/peer-data/siconos).
+// "siconos" reads SMCBENCH_SICONOS_DIR, default ../shared/peer-data/siconos).
 #include <benchmark/benchmark.h>
 
 #include <cstdio>
