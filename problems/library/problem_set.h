@@ -9,6 +9,7 @@
 #include <string>
 #include <string_view>
 #include <utility>
+#include <utility>
 #include <vector>
 
 #include "solvers/core/problem.h"
@@ -54,6 +55,13 @@ struct LibraryProblem {
   int size() const { return problem.size(); }
   bool sparse() const { return problem.is_sparse(); }
 };
+
+// A library problem with no tags, seed, solution or metadata and an unknown expected outcome (aggregate
+// initialization would have to name every field).
+inline LibraryProblem MakeLibraryProblem(std::string id, std::string source, BoxMLCP problem) {
+  return LibraryProblem{std::move(id), std::move(source), std::move(problem), MatrixTags{}, {}, std::nullopt,
+                        ExpectedOutcome::kUnknown, Vector(), {}};
+}
 
 struct ProblemSet {
   std::string name;         // "paper", "families", "hard", "siconos", "scale", or a capture's name

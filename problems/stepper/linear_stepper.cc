@@ -293,14 +293,7 @@ class KernelImpl final : public LinearStepper::Kernel {
   template <typename X, typename S, typename Y>
   static void Record(std::int64_t k, double t, const X& x, const S& s, const Y& y, int iterations, double residual,
                      SolveStatus status, Trajectory* out) {
-    const auto c = static_cast<Eigen::Index>(k);
-    out->t[c] = t;
-    out->x.col(c) = x;
-    out->s.col(c) = s;
-    out->y.col(c) = y;
-    out->iterations[c] = iterations;
-    out->residual[c] = residual;
-    out->status[c] = status;
+    out->SetRow(k, t, x, s, y, iterations, residual, status);
   }
 
   MatNN R_, P_;
@@ -387,14 +380,7 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
   Vector g_prev(n), g_next(n), gbar(n);
   if (first.has_forcing()) first.forcing(options.t0, g_prev);
   const auto record = [&](std::int64_t k, double t, int iterations, double residual, SolveStatus status) {
-    const auto c = static_cast<Eigen::Index>(k);
-    out->t[c] = t;
-    out->x.col(c) = x;
-    out->s.col(c) = s;
-    out->y.col(c) = y;
-    out->iterations[c] = iterations;
-    out->residual[c] = residual;
-    out->status[c] = status;
+    out->SetRow(k, t, x, s, y, iterations, residual, status);
   };
   if (options.record) record(0, options.t0, 0, 0.0, SolveStatus::kNotRun);
 

@@ -465,14 +465,7 @@ void NonlinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* sol
   w.solver_options.warm_start.resize(options.stepper.warm_start ? (use_mcp ? n + m : m) : 0);
 
   const auto record_row = [&](std::int64_t k, double t, int iterations, double residual, SolveStatus status) {
-    const auto c = static_cast<Eigen::Index>(k);
-    out->t[c] = t;
-    out->x.col(c) = w.x;
-    out->s.col(c) = w.s;
-    out->y.col(c) = w.y;
-    out->iterations[c] = iterations;
-    out->residual[c] = residual;
-    out->status[c] = status;
+    out->SetRow(k, t, w.x, w.s, w.y, iterations, residual, status);
   };
 
   w.x = x0;

@@ -47,6 +47,20 @@ struct Trajectory {
   bool stopped_early = false;        // true when the run stopped at first_failed_step
 
   bool ok() const { return failed_steps == 0 && steps_taken == num_steps; }
+  // Writes recorded row k (storage already sized by the stepper). Templated so fixed-size kernels write their
+  // fixed-size vectors without a conversion.
+  template <typename X, typename S, typename Y>
+  void SetRow(std::int64_t k, double t_k, const X& x_k, const S& s_k, const Y& y_k, int iterations_k,
+              double residual_k, SolveStatus status_k) {
+    const auto c = static_cast<Eigen::Index>(k);
+    t[c] = t_k;
+    x.col(c) = x_k;
+    s.col(c) = s_k;
+    y.col(c) = y_k;
+    iterations[c] = iterations_k;
+    residual[c] = residual_k;
+    status[c] = status_k;
+  }
   double time(std::int64_t k) const { return t0 + static_cast<double>(k) * h; }
 };
 

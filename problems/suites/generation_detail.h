@@ -76,8 +76,10 @@ inline PlantedRow PlantRow(double l, double u, RowState state, Random& rng) {
 inline LibraryProblem MakeProblem(std::string id, std::string source, BoxMLCP problem, MatrixTags matrix,
                                   ExpectedOutcome expected) {
   problem.set_name(id);
-  return LibraryProblem{std::move(id), std::move(source), std::move(problem), matrix, {},
-                        std::nullopt,  expected,          Vector(),           {}};
+  LibraryProblem p = MakeLibraryProblem(std::move(id), std::move(source), std::move(problem));
+  p.matrix = matrix;
+  p.expected = expected;
+  return p;
 }
 
 }  // namespace smcbench::suites_detail

@@ -1,12 +1,13 @@
 #include "solvers/core/result.h"
 
+#include <cstring>
 #include <limits>
 
 namespace smcbench {
 
 void SolveResult::SetDetail(const char* name, double value) {
   for (int i = 0; i < num_details; ++i) {
-    if (std::string_view(details[i].name) == name) {
+    if (details[i].name == name || std::strcmp(details[i].name, name) == 0) {
       details[i].value = value;
       return;
     }

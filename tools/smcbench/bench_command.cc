@@ -25,13 +25,6 @@ namespace smcbench {
 
 namespace fs = std::filesystem;
 
-namespace {
-// A library problem with every optional field empty (aggregate initialization names them all).
-LibraryProblem MakeProblem(std::string id, std::string source, BoxMLCP problem) {
-  return LibraryProblem{std::move(id), std::move(source), std::move(problem), MatrixTags{}, {}, std::nullopt,
-                        ExpectedOutcome::kUnknown, Vector(), {}};
-}
-}  // namespace
 
 std::vector<fs::path> SiconosCollectionFiles(const fs::path& dir) {
   if (!fs::is_directory(dir)) throw InvalidInputError("collection: '" + dir.string() + "' is not a directory");
@@ -59,7 +52,7 @@ ProblemSet SiconosSuite(const std::string& dir, std::vector<std::string>* reject
     const std::string kind = file.parent_path().filename().string();
     try {
       BoxMLCP problem = ReadSiconosFile(file.string());
-      LibraryProblem p = MakeProblem("siconos/" + kind + "/" + file.stem().string(),
+      LibraryProblem p = MakeLibraryProblem("siconos/" + kind + "/" + file.stem().string(),
                                      "siconos:" + kind + "/" + file.filename().string(), std::move(problem));
       p.tags = {kind};
       set.problems.push_back(std::move(p));
@@ -82,7 +75,7 @@ ProblemSet TinySuite() {
     g.seed = seed;
     GeneratedProblem gen = GenerateProblem(g);
     std::string id = "tiny/" + gen.problem.name();
-    LibraryProblem p = MakeProblem(std::move(id), "generated:random_problems", std::move(gen.problem));
+    LibraryProblem p = MakeLibraryProblem(std::move(id), "generated:random_problems", std::move(gen.problem));
     p.seed = seed;
     p.expected = ExpectedOutcome::kSolvable;
     p.solution = gen.z_star;
@@ -99,7 +92,8 @@ ProblemSet TinySuite() {
   M << -1.0, -1.0, 0.0, 1.0;
   Vector q(2);
   q << -1.0, 1.0;
-  LibraryProblem infeasible = MakeProblem("tiny/infeasible-lcp", "handmade", BoxMLCP::LCP(M, q, "infeasible-lcp"));
+  LibraryProblem infeasible =
+      MakeLibraryProblem("tiny/infeasible-lcp", "handmade", BoxMLCP::LCP(M, q, "infeasible-lcp"));
   infeasible.expected = ExpectedOutcome::kInfeasible;
   infeasible.tags = {"infeasible"};
   set.problems.push_back(std::move(infeasible));
@@ -247,7 +241,8 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
       for (const LibraryProblem& p : set.problems) {
         const DenseMatrix& M = p.problem.dense_matrix();
         const SparseMatrix S = M.sparseView();
-        LibraryProblem copy = MakeProblem(p.id, p.source, BoxMLCP(S, p.problem.q(), p.problem.l(), p.problem.u()));
+        LibraryProblem copy =
+            MakeLibraryProblem(p.id, p.source, BoxMLCP(S, p.problem.q(), p.problem.l(), p.problem.u()));
         copy.expected = p.expected;
         sparse.problems.push_back(std::move(copy));
       }
