@@ -1,8 +1,10 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets of tests/fuzz with clang (ASan + UBSan) in build/fuzz and runs each one for N seconds
-# (default 60) from a corpus seeded with the real files; exits non-zero if any target finds a crash, hang, leak or
-# sanitizer report. Usage: tools/fuzz.sh [seconds-per-target] [target ...]   (see tests/fuzz/README.md)
-# Environment: SMCBENCH_FUZZ_JOBS (build parallelism, default nproc), SMCBENCH_FUZZ_ARGS (extra libFuzzer flags).
+# Builds the libFuzzer targets of tests/fuzz in the `asan` preset (clang, ASan + UBSan, build/asan: the same build as
+# the sanitizer tests) and runs each one for N seconds (default 60) from a corpus seeded with the real files, nproc
+# targets at a time; exits non-zero if any target finds a crash, hang, leak or sanitizer report.
+# Usage: tools/fuzz.sh [seconds-per-target] [target ...]   (see tests/fuzz/README.md)
+# Environment: SMCBENCH_FUZZ_JOBS (build parallelism and targets run at once, default nproc),
+#              SMCBENCH_FUZZ_ARGS (extra libFuzzer flags).
 set -euo pipefail
 
 root=$(cd "$(dirname "$0")/.." && pwd)
@@ -12,7 +14,7 @@ if ! [[ "$seconds" =~ ^[0-9]+$ ]] || (( seconds < 1 )); then
   echo "usage: tools/fuzz.sh [seconds-per-target] [target ...]" >&2
   exit 2
 fi
-build="$root/build/fuzz"
+build="$root/build/asan"
 jobs=${SMCBENCH_FUZZ_JOBS:-$(nproc)}
 # Seeds larger than this are skipped: every mutation of a 3 MB MLCP would re-parse it under ASan (libFuzzer would
 # also truncate it to its 1 MB default maximum length).
@@ -31,10 +33,9 @@ if ! command -v clang++ >/dev/null || [[ -z "$clang_rt" ]]; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq clang libclang-rt-14-dev >/dev/null
 fi
 
-mkdir -p "$build"
-CC=clang CXX=clang++ cmake -S "$root" -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSMCBENCH_FUZZ=ON \
-  -DSMCBENCH_WERROR=ON -DSMCBENCH_BUILD_BENCHMARKS=OFF -DSMCBENCH_BUILD_TESTS=OFF >"$build/configure.log" 2>&1 ||
-  { cat "$build/configure.log" >&2; exit 2; }
+mkdir -p "$root/build"
+(cd "$root" && cmake --preset asan >"$root/build/fuzz-configure.log" 2>&1) ||
+  { cat "$root/build/fuzz-configure.log" >&2; exit 2; }
 manifest="$build/tests/fuzz/fuzz-targets.tsv"
 
 # The targets: all of the manifest (written by tests/fuzz/CMakeLists.txt), or those named on the command line.
@@ -55,15 +56,12 @@ done
 
 cmake --build "$build" --target "${targets[@]}" -j "$jobs" || { echo "fuzz.sh: build failed" >&2; exit 2; }
 
-status=0
-summary=()
-for t in "${targets[@]}"; do
-  corpus="$build/corpus/$t"
-  findings="$build/findings/$t"
-  log="$build/logs/$t.log"
+# One target: seeds copied (never linked) so libFuzzer can add to the corpus without touching the originals, then
+# libFuzzer for $seconds; its one-line summary goes to $build/logs/<target>.summary, exit status 1 on a finding.
+fuzz_one() {
+  local t=$1 corpus="$build/corpus/$1" findings="$build/findings/$1" log="$build/logs/$1.log"
   mkdir -p "$corpus" "$findings" "$(dirname "$log")"
-  # Seeds: copied (never linked) so libFuzzer can add to the corpus without touching the originals.
-  copied=0
+  local copied=0 pattern matched f
   IFS='|' read -r -a patterns <<<"${seeds[$t]}"
   for pattern in "${patterns[@]}"; do
     [[ -z "$pattern" ]] && continue
@@ -77,26 +75,41 @@ for t in "${targets[@]}"; do
     done < <(compgen -G "$pattern" | tr '\n' '\0')
     (( matched )) || echo "fuzz.sh: warning: $t: no seed matches $pattern (starting without it)" >&2
   done
-  args=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
-        -artifact_prefix="$findings/")
-  [[ -n "${dict[$t]}" ]] && args+=(-dict="${dict[$t]}")
+  local args=(-max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -print_final_stats=1
+              -artifact_prefix="$findings/")
+  [[ -n "${dict[$t]}" && "${dict[$t]}" != "-" ]] && args+=(-dict="${dict[$t]}")
   # shellcheck disable=SC2206  # SMCBENCH_FUZZ_ARGS is a list of flags on purpose
-  extra=(${SMCBENCH_FUZZ_ARGS:-})
+  local extra=(${SMCBENCH_FUZZ_ARGS:-})
   echo "fuzz.sh: $t for ${seconds}s ($copied seeds, log $log)" >&2
-  rc=0
+  local rc=0
   "${binary[$t]}" "${args[@]}" "${extra[@]}" "$corpus" >"$log" 2>&1 || rc=$?
+  local runs rate size
   runs=$(sed -n 's/^stat::number_of_executed_units: *//p' "$log" | tail -n1)
   rate=$(sed -n 's/^stat::average_exec_per_sec: *//p' "$log" | tail -n1)
   size=$(find "$corpus" -type f | wc -l)
   if (( rc != 0 )); then
-    status=1
-    summary+=("$t: FINDING (exit $rc), ${runs:-?} runs, ${rate:-?} exec/s; see $log and $findings/")
+    echo "$t: FINDING (exit $rc), ${runs:-?} runs, ${rate:-?} exec/s; see $log and $findings/" >"$build/logs/$t.summary"
     grep -m4 -E 'ERROR: |runtime error:|FINDING|SUMMARY: |Test unit written to' "$log" >&2 || true
-  else
-    summary+=("$t: ok, ${runs:-?} runs, ${rate:-?} exec/s, corpus $size files")
+    return 1
   fi
+  echo "$t: ok, ${runs:-?} runs, ${rate:-?} exec/s, corpus $size files" >"$build/logs/$t.summary"
+}
+
+status=0
+running=0
+for t in "${targets[@]}"; do
+  if (( running >= jobs )); then
+    wait -n || status=1
+    running=$((running - 1))
+  fi
+  fuzz_one "$t" &
+  running=$((running + 1))
+done
+while (( running > 0 )); do
+  wait -n || status=1
+  running=$((running - 1))
 done
 
-echo "fuzz.sh: ${seconds}s per target" >&2
-printf '  %s\n' "${summary[@]}" >&2
+echo "fuzz.sh: ${seconds}s per target, $jobs at a time" >&2
+for t in "${targets[@]}"; do echo "  $(cat "$build/logs/$t.summary" 2>/dev/null || echo "$t: no summary")" >&2; done
 exit "$status"

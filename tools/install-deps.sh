@@ -1,10 +1,18 @@
 #!/usr/bin/env bash
-# Installs smcbench's build dependencies from Debian 12 packages (as root), skipping what is already there.
+# Installs smcbench's dependencies from Debian 12 packages (as root), skipping what is already there.
+#   tools/install-deps.sh        what the build and the main job need
+#   tools/install-deps.sh test   also what the test gates need: valgrind (perf gate), clang and its sanitizer and
+#                                libFuzzer runtimes (the asan preset and the fuzz targets)
 set -euo pipefail
 # libsiconos-numerics-dev is optional for the build (without it the siconos-* backends are not built) but is
 # installed so that the default report compares against Siconos.
 packages=(cmake make g++ pkg-config libeigen3-dev libsuitesparse-dev coinor-libipopt-dev libbenchmark-dev
           libgtest-dev libgmock-dev nlohmann-json3-dev libcli11-dev gnuplot-nox libsiconos-numerics-dev)
+case "${1:-}" in
+  "") ;;
+  test) packages+=(valgrind clang libclang-rt-14-dev) ;;
+  *) echo "install-deps: unknown argument '$1' (none, or 'test')" >&2; exit 2 ;;
+esac
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

@@ -1,5 +1,6 @@
 #include "problems/library/problem_set.h"
 
+#include <cstdio>
 #include <set>
 
 namespace smcbench {
@@ -49,13 +50,33 @@ std::string_view ToString(Verdict verdict) {
   return "?";
 }
 
+std::string QuoteForMessage(std::string_view text, std::size_t max_bytes) {
+  std::string out;
+  for (std::size_t i = 0; i < text.size() && i < max_bytes; ++i) {
+    const auto c = static_cast<unsigned char>(text[i]);
+    if (c >= 0x20 && c < 0x7f) {
+      out += static_cast<char>(c);
+    } else {
+      char escaped[8];
+      std::snprintf(escaped, sizeof escaped, "\\x%02x", c);
+      out += escaped;
+    }
+  }
+  if (text.size() > max_bytes) out += "...";
+  return out;
+}
+
 void ProblemSet::Validate() const {
   std::set<std::string_view> ids;
+  const std::string set_name = QuoteForMessage(name);
   for (const LibraryProblem& p : problems) {
-    if (p.id.empty()) throw InvalidInputError("problem set '" + name + "': a problem has an empty id");
-    if (!ids.insert(p.id).second) throw InvalidInputError("problem set '" + name + "': duplicate id '" + p.id + "'");
+    if (p.id.empty()) throw InvalidInputError("problem set '" + set_name + "': a problem has an empty id");
+    if (!ids.insert(p.id).second) {
+      throw InvalidInputError("problem set '" + set_name + "': duplicate id '" + QuoteForMessage(p.id) + "'");
+    }
     if (p.solution.size() != 0 && p.solution.size() != p.size()) {
-      throw InvalidInputError("problem set '" + name + "': problem '" + p.id + "' has a solution of size " +
+      throw InvalidInputError("problem set '" + set_name + "': problem '" + QuoteForMessage(p.id) +
+                              "' has a solution of size " +
                               std::to_string(p.solution.size()) + " but n = " + std::to_string(p.size()));
     }
   }

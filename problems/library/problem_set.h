@@ -9,7 +9,6 @@
 #include <string>
 #include <string_view>
 #include <utility>
-#include <utility>
 #include <vector>
 
 #include "solvers/core/problem.h"
@@ -62,6 +61,10 @@ inline LibraryProblem MakeLibraryProblem(std::string id, std::string source, Box
   return LibraryProblem{std::move(id), std::move(source), std::move(problem), MatrixTags{}, {}, std::nullopt,
                         ExpectedOutcome::kUnknown, Vector(), {}};
 }
+
+// A name or id taken from a file, made safe to quote in a one-line error message: control and non-ASCII bytes as
+// \xNN, cut to max_bytes of input with "..." after (ids come from files, and a message must stay one line).
+std::string QuoteForMessage(std::string_view text, std::size_t max_bytes = 200);
 
 struct ProblemSet {
   std::string name;         // "paper", "families", "hard", "siconos", "scale", or a capture's name

@@ -687,7 +687,7 @@ Tristate DecodeTristate(Decoder& d, const char* field) {
 
 LibraryProblem DecodeProblem(Decoder& d, const std::vector<TableMatrix>& table) {
   std::string id = d.Str("id");
-  d.set_where(d.where() + " ('" + id.substr(0, 200) + "')");
+  d.set_where(d.where() + " ('" + QuoteForMessage(id) + "')");
   std::string source = d.Str("source");
   const std::size_t flags_at = d.pos();
   const std::uint8_t flags = d.U8("flags");
@@ -887,7 +887,7 @@ Decoded Decode(std::string_view data, const std::string& file) {
                          "(each problem owns a copy of its shared M), above the limit of " +
                          std::to_string(kMaxExpandedMatrixBytes));
         }
-        if (!ids.insert(p.id).second) fail(body, "duplicate problem id '" + p.id.substr(0, 200) + "'");
+        if (!ids.insert(p.id).second) fail(body, "duplicate problem id '" + QuoteForMessage(p.id) + "'");
         if (p.id.empty()) fail(body, "problem #" + std::to_string(out.set.problems.size()) + " has an empty id");
         out.set.problems.push_back(std::move(p));
         break;

@@ -5,7 +5,6 @@
 
 #include <gtest/gtest.h>
 
-#include <atomic>
 #include <cmath>
 #include <cstring>
 #include <filesystem>
@@ -13,6 +12,7 @@
 #include <limits>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <unistd.h>
@@ -20,64 +20,7 @@
 #include "problems/io/siconos_format.h"
 #include "problems/library/matrix_tags.h"
 #include "problems/library/siconos_export.h"
-
-// ------------------------------------------------------------------------------------------------------------
-// The largest single heap request while a flag is set: hostile size fields must fail before allocating. glibc's
-// allocator is interposed as in tests/support/malloc_counter.cc (operator new, std::vector and Eigen's aligned
-// malloc all end up here); not under AddressSanitizer, which owns malloc.
-#if defined(__SANITIZE_ADDRESS__)
-#define LIBRARY_TEST_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define LIBRARY_TEST_SANITIZED 1
-#endif
-#endif
-
-namespace {
-std::atomic<bool> g_tracking{false};
-std::atomic<std::size_t> g_largest{0};
-inline void Track(std::size_t size) {
-  if (!g_tracking.load(std::memory_order_relaxed)) return;
-  std::size_t seen = g_largest.load(std::memory_order_relaxed);
-  while (size > seen && !g_largest.compare_exchange_weak(seen, size, std::memory_order_relaxed)) {
-  }
-}
-}  // namespace
-
-#ifndef LIBRARY_TEST_SANITIZED
-extern "C" {
-void* __libc_malloc(std::size_t size);
-void* __libc_calloc(std::size_t n, std::size_t size);
-void* __libc_realloc(void* p, std::size_t size);
-void* __libc_memalign(std::size_t alignment, std::size_t size);
-
-void* malloc(std::size_t size) noexcept {
-  Track(size);
-  return __libc_malloc(size);
-}
-void* calloc(std::size_t n, std::size_t size) noexcept {
-  Track(n * size);
-  return __libc_calloc(n, size);
-}
-void* realloc(void* p, std::size_t size) noexcept {
-  Track(size);
-  return __libc_realloc(p, size);
-}
-void* aligned_alloc(std::size_t alignment, std::size_t size) noexcept {
-  Track(size);
-  return __libc_memalign(alignment, size);
-}
-void* memalign(std::size_t alignment, std::size_t size) noexcept {
-  Track(size);
-  return __libc_memalign(alignment, size);
-}
-int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept {
-  Track(size);
-  *out = __libc_memalign(alignment, size);
-  return *out ? 0 : 12 /* ENOMEM */;
-}
-}
-#endif
+#include "tests/support/malloc_counter.h"
 
 namespace smcbench {
 namespace {
@@ -276,14 +219,10 @@ std::string SmallFile(bool sparse = false) {
   return Serialize(set);
 }
 
-// Largest single allocation while fn runs (0 when allocations cannot be observed).
+// Largest single allocation while fn runs (tests/support/malloc_counter.h; 0 under AddressSanitizer).
 template <typename Fn>
 std::size_t LargestAllocation(Fn&& fn) {
-  g_largest = 0;
-  g_tracking = true;
-  fn();
-  g_tracking = false;
-  return g_largest.load();
+  return test_support::LargestMalloc(std::forward<Fn>(fn));
 }
 
 // Patches a valid file, fixes its checksum, and expects a rejection that allocated less than 1 MiB.
@@ -608,6 +547,25 @@ TEST(ProblemSetIoDefects, DuplicateIds) {
   ExpectRejected(bytes, {"duplicate problem id 'lib/dense/a'"});
 }
 
+// Found by library_fuzzer: an id holding a newline (ids come from the file) made the error message span two lines.
+TEST(ProblemSetIoFuzzRegression, IdWithANewlineGivesAOneLineError) {
+  ProblemSet set = SampleSet();
+  set.problems[1].id = "x\ny";
+  set.problems[2].id = "x\nz";
+  std::string bytes = Serialize(set);
+  const Record& c = Nth(Records(bytes), kProblem, 2);
+  bytes[c.body + 4 + 2] = 'y';
+  FixProblemSetChecksum(&bytes);
+  const std::string message = ExpectRejected(bytes, {"duplicate problem id 'x\\x0ay'"});
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+TEST(ProblemSetQuote, EscapesControlAndNonAsciiBytesAndCuts) {
+  EXPECT_EQ(QuoteForMessage("paper/sign/k1"), "paper/sign/k1");
+  EXPECT_EQ(QuoteForMessage(std::string("a\r\n\x00\xff", 5)), "a\\x0d\\x0a\\x00\\xff");
+  EXPECT_EQ(QuoteForMessage(std::string(300, 'i'), 4), "iiii...");
+}
+
 TEST(ProblemSetIoDefects, EndRecordCountsDisagree) {
   std::string bytes = SmallFile();
   Store(&bytes, Nth(Records(bytes), kEnd).body + 8, 5, 8);
@@ -674,9 +632,7 @@ TEST(ProblemSetIoDefects, SparseColumnPointersDecrease) {
 // Hostile size fields: rejected before any large allocation
 
 TEST(ProblemSetIoHostile, AllocationTrackerSeesLargeAllocations) {
-#ifdef LIBRARY_TEST_SANITIZED
-  GTEST_SKIP() << "AddressSanitizer owns malloc: allocation sizes are not observed";
-#endif
+if (!test_support::CanCountMallocs()) GTEST_SKIP() << "AddressSanitizer owns malloc: allocation sizes are not observed";
   const std::size_t largest = LargestAllocation([] {
     std::vector<char> v(std::size_t{3} << 20);
     v[v.size() / 2] = 1;

@@ -11,14 +11,13 @@
 #include <typeinfo>
 
 #include "problems/scenes/linear_scene.h"
+#include "tests/fuzz/fuzz_checks.h"
 
 namespace {
 
-[[noreturn]] void Finding(const char* what) {
-  std::fprintf(stderr, "FINDING: %s\n", what);
-  std::abort();
-}
+using smcbench::fuzz::Finding;
 
+// Only non-empty: a scene error may quote the offending lines of the file.
 void CheckMessage(const smcbench::InvalidInputError& e) {
   const std::string message = e.what();
   if (message.empty()) Finding("InvalidInputError with an empty message");

@@ -14,8 +14,13 @@
 namespace {
 std::atomic<bool> g_counting{false};
 std::atomic<long> g_count{0};
-inline void Count() {
-  if (g_counting.load(std::memory_order_relaxed)) g_count.fetch_add(1, std::memory_order_relaxed);
+std::atomic<std::size_t> g_largest{0};
+[[maybe_unused]] inline void Count(std::size_t size) {  // unused in sanitized builds (the allocator is ASan's)
+  if (!g_counting.load(std::memory_order_relaxed)) return;
+  g_count.fetch_add(1, std::memory_order_relaxed);
+  std::size_t seen = g_largest.load(std::memory_order_relaxed);
+  while (size > seen && !g_largest.compare_exchange_weak(seen, size, std::memory_order_relaxed)) {
+  }
 }
 }  // namespace
 
@@ -28,27 +33,27 @@ void* __libc_realloc(void* p, std::size_t size);
 void* __libc_memalign(std::size_t alignment, std::size_t size);
 
 void* malloc(std::size_t size) noexcept {
-  Count();
+  Count(size);
   return __libc_malloc(size);
 }
 void* calloc(std::size_t n, std::size_t size) noexcept {
-  Count();
+  Count(n * size);
   return __libc_calloc(n, size);
 }
 void* realloc(void* p, std::size_t size) noexcept {
-  Count();
+  Count(size);
   return __libc_realloc(p, size);
 }
 void* aligned_alloc(std::size_t alignment, std::size_t size) noexcept {
-  Count();
+  Count(size);
   return __libc_memalign(alignment, size);
 }
 void* memalign(std::size_t alignment, std::size_t size) noexcept {
-  Count();
+  Count(size);
   return __libc_memalign(alignment, size);
 }
 int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept {
-  Count();
+  Count(size);
   *out = __libc_memalign(alignment, size);
   return *out ? 0 : 12 /* ENOMEM */;
 }
@@ -67,6 +72,7 @@ bool CanCountMallocs() {
 
 void StartCountingMallocs() {
   g_count = 0;
+  g_largest = 0;
   g_counting = true;
 }
 
@@ -74,5 +80,7 @@ long StopCountingMallocs() {
   g_counting = false;
   return g_count.load();
 }
+
+unsigned long LargestMallocRequest() { return g_largest.load(); }
 
 }  // namespace smcbench::test_support

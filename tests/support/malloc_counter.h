@@ -1,5 +1,6 @@
 // Counts heap allocations at the malloc level (so Eigen's aligned_malloc, std::vector and operator new are all
-// seen) by interposing glibc's malloc family in the test executable. Used to pin "hot paths do not allocate".
+// seen) by interposing glibc's malloc family in the test executable, and records the largest single request. Used
+// to pin "hot paths do not allocate" and "a hostile size field is refused before allocating".
 #pragma once
 
 namespace smcbench::test_support {
@@ -13,6 +14,17 @@ long CountMallocs(Fn&& fn);
 
 void StartCountingMallocs();
 long StopCountingMallocs();
+// The largest single request (bytes) since the last StartCountingMallocs, while counting was on.
+unsigned long LargestMallocRequest();
+
+// Largest single allocation while fn runs (0 when allocations cannot be observed).
+template <typename Fn>
+unsigned long LargestMalloc(Fn&& fn) {
+  StartCountingMallocs();
+  fn();
+  StopCountingMallocs();
+  return LargestMallocRequest();
+}
 
 template <typename Fn>
 long CountMallocs(Fn&& fn) {

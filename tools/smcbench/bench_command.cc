@@ -20,6 +20,7 @@
 #include "problems/suites/hard_cases.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_report.h"
+#include "tools/smcbench/history_report.h"
 
 namespace smcbench {
 
@@ -131,7 +132,7 @@ const char* const kGenericSparsePath = "newton-sparse-path";
 
 struct BenchCommand::Flags {
   std::vector<std::string> suites, solvers, sets;
-  std::string out = "results/bench", siconos_dir = "../shared/peer-data/siconos", report_dir;
+  std::string out = "results/bench", siconos_dir = "../shared/peer-data/siconos", report_dir, history;
   int repetitions = 7;
   double tol = 1e-10, time_limit = 10.0;
   bool no_stepper = false, quick = false, report = false, no_plots = false, report_no_plots = false;
@@ -156,8 +157,12 @@ BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
   bench_->add_flag("--report", f.report, "also write DIR/report.md (as `smcbench report DIR`)");
   bench_->add_flag("--no-plots", f.no_plots, "with --report: no PNG plots");
 
-  report_ = app->add_subcommand("report", "turn DIR/results.json into DIR/report.md with PNG plots");
-  report_->add_option("DIR", f.report_dir, "the folder `smcbench bench --out` wrote")->required();
+  report_ = app->add_subcommand("report", "turn DIR/results.json into DIR/report.md with PNG plots; with --history, "
+                                          "plot the perf gate's history");
+  report_->add_option("DIR", f.report_dir, "the folder `smcbench bench --out` wrote (with --history: where "
+                                           "history.md goes; default the history file's folder)");
+  report_->add_option("--history", f.history, "the perf gate's history CSV (tools/perf-check --history appends to "
+                                              "results/history.csv) → DIR/history.{md,png}");
   report_->add_flag("--no-plots", f.report_no_plots, "no PNG plots (no gnuplot needed)");
 }
 
@@ -296,8 +301,21 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
 }
 
 int BenchCommand::RunReport(std::ostream& out, std::ostream&) const {
-  WriteBenchReport(flags_->report_dir, !flags_->report_no_plots);
-  out << "report: wrote " << (fs::path(flags_->report_dir) / "report.md").string() << "\n";
+  const Flags& f = *flags_;
+  if (f.history.empty() && f.report_dir.empty()) {
+    throw InvalidInputError("report: give DIR (a `smcbench bench --out` folder) or --history FILE");
+  }
+  if (!f.history.empty()) {
+    const std::string dir = !f.report_dir.empty() ? f.report_dir
+                            : fs::path(f.history).has_parent_path() ? fs::path(f.history).parent_path().string()
+                                                                     : std::string(".");
+    WritePerfHistoryReport(f.history, dir, !f.report_no_plots);
+    out << "report: wrote " << (fs::path(dir) / "history.md").string() << "\n";
+    // The bench report too when DIR is a bench folder.
+    if (f.report_dir.empty() || !fs::exists(fs::path(f.report_dir) / "results.json")) return 0;
+  }
+  WriteBenchReport(f.report_dir, !f.report_no_plots);
+  out << "report: wrote " << (fs::path(f.report_dir) / "report.md").string() << "\n";
   return 0;
 }
 

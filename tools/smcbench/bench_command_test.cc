@@ -75,6 +75,42 @@ TEST(Bench, TinySuiteEndToEndWithReport) {
   fs::remove_all(dir);
 }
 
+TEST(Report, PerfHistoryTableAndPlot) {
+  const fs::path dir = fs::temp_directory_path() / ("smcbench-history-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  const fs::path csv = dir / "history.csv";
+  std::ofstream(csv) << "date,git_sha,id,unit,instructions,baseline_instructions,ratio,ns\n"
+                        "2026-11-01T00:00:00Z,aaaaaaaaaa,solve/p/psor,solve,1000,1000,1,50\n"
+                        "2026-11-01T00:00:00Z,aaaaaaaaaa,step/s2/enum,step,400,400,1,20\n"
+                        "2026-11-02T00:00:00Z,bbbbbbbbbb,solve/p/psor,solve,1100,1000,1.1,55\n"
+                        "2026-11-02T00:00:00Z,bbbbbbbbbb,step/s2/enum,step,300,400,0.75,-\n";
+  const fs::path out = dir / "report";
+  std::vector<std::string> args = {"report", "--history", csv.string(), out.string()};
+  if (!GnuplotAvailable()) args.push_back("--no-plots");
+  const CliRun r = RunSmcbench(args);
+  ASSERT_EQ(r.code, 0) << r.err;
+  const std::string md = ReadText(out / "history.md");
+  EXPECT_THAT(md, HasSubstr("from the 2 runs"));
+  EXPECT_THAT(md, HasSubstr("| solve/p/psor | 1000 | 1100 | 1.100 | 1000 | 1100 |"));
+  EXPECT_THAT(md, HasSubstr("| step/s2/enum | 400 | 300 | 0.750 | 400 | 300 |"));
+  EXPECT_THAT(md, HasSubstr("| aaaaaaaa | bbbbbbbb |"));
+  if (GnuplotAvailable()) {
+    EXPECT_GT(fs::file_size(out / "history.png"), 1000u);
+  }
+
+  // Without DIR the report goes next to the history; a malformed history is a one-line error.
+  EXPECT_EQ(RunSmcbench({"report", "--history", csv.string(), "--no-plots"}).code, 0);
+  EXPECT_TRUE(fs::is_regular_file(dir / "history.md"));
+  std::ofstream(csv, std::ios::app) << "broken line\n";
+  const CliRun bad = RunSmcbench({"report", "--history", csv.string(), "--no-plots"});
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_THAT(bad.err, HasSubstr(":6: expected 8 fields"));
+  const CliRun neither = RunSmcbench({"report"});
+  EXPECT_EQ(neither.code, 1);
+  EXPECT_THAT(neither.err, HasSubstr("give DIR"));
+  fs::remove_all(dir);
+}
+
 TEST(Bench, BadInputIsAOneLineError) {
   CliRun r = RunSmcbench({"bench", "--suite", "nope", "--out", "/tmp/unused-bench"});
   EXPECT_EQ(r.code, 1);
