@@ -43,7 +43,9 @@ CallgrindDump ParseCallgrindDump(std::string_view text, const std::string& where
       }
     }
   }
-  if (!has_totals && !has_summary) throw InvalidInputError(where + ": no 'totals:' or 'summary:' line (not a callgrind dump?)");
+  if (!has_totals && !has_summary) {
+    throw InvalidInputError(where + ": no 'totals:' or 'summary:' line (not a callgrind dump?)");
+  }
   if (!ir_first) throw InvalidInputError(where + ": the first event is not Ir (run callgrind with its default events)");
   if (!has_totals) dump.instructions = summary;
   return dump;

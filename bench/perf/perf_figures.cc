@@ -81,7 +81,9 @@ BoxMLCP PaperProblem(const std::string& scene_name, std::int64_t k) {
                       &trajectory);
   if (problems.empty()) throw InvalidInputError("perf: scene '" + scene_name + "' captured no problem");
   const std::size_t index = k <= 0 ? problems.size() - 1 : static_cast<std::size_t>(k - 1);
-  if (index >= problems.size()) throw InvalidInputError("perf: scene '" + scene_name + "' has no step " + std::to_string(k));
+  if (index >= problems.size()) {
+    throw InvalidInputError("perf: scene '" + scene_name + "' has no step " + std::to_string(k));
+  }
   return std::move(problems[index].problem);
 }
 

@@ -2,7 +2,6 @@
 
 #include <cmath>
 #include <cstdio>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -32,14 +31,6 @@ std::string Number(double value, const char* format) {
   return buffer;
 }
 
-// 12345678 → "12.35 M"; instruction counts span 10² (a tiny solve) to 10⁸ (Ipopt).
-std::string Instructions(double value) {
-  if (value < 0.0) return "-";
-  if (value >= 1e6) return Number(value / 1e6, "%.2f M");
-  if (value >= 1e4) return Number(value / 1e3, "%.1f k");
-  return Number(value, "%.0f");
-}
-
 std::string Nanoseconds(double value) {
   if (value < 0.0) return "-";
   if (value >= 1e6) return Number(value / 1e6, "%.2f ms");
@@ -53,6 +44,14 @@ std::string EnvironmentText(const json& env, const char* key) {
 }
 
 }  // namespace
+
+// Instruction counts span 10² (a tiny solve) to 10⁸ (Ipopt).
+std::string FormatInstructions(double value) {
+  if (value < 0.0) return "-";
+  if (value >= 1e6) return Number(value / 1e6, "%.2f M");
+  if (value >= 1e4) return Number(value / 1e3, "%.1f k");
+  return Number(value, "%.0f");
+}
 
 const PerfFigure* PerfRun::Find(const std::string& id) const {
   for (const PerfFigure& f : figures) {
@@ -227,9 +226,9 @@ std::string FormatComparison(const PerfComparison& c) {
   s << "| figure | baseline | now | ratio | verdict | wall-clock baseline | now |\n";
   s << "|---|---:|---:|---:|---|---:|---:|\n";
   for (const PerfRow& r : c.rows) {
-    s << "| " << r.id << " | " << Instructions(r.baseline_instructions) << " | " << Instructions(r.instructions)
-      << " | " << Number(r.ratio, "%.3f") << " | " << ToString(r.verdict) << " | " << Nanoseconds(r.baseline_ns)
-      << " | " << Nanoseconds(r.ns) << " |\n";
+    s << "| " << r.id << " | " << FormatInstructions(r.baseline_instructions) << " | "
+      << FormatInstructions(r.instructions) << " | " << Number(r.ratio, "%.3f") << " | " << ToString(r.verdict)
+      << " | " << Nanoseconds(r.baseline_ns) << " | " << Nanoseconds(r.ns) << " |\n";
   }
   if (improved > 0 && !c.failed()) {
     s << "\nSome figures improved beyond the threshold: run tools/perf-update (in its own commit) to lock them in.\n";

@@ -69,6 +69,9 @@ struct PerfComparison {
 // threshold in (0, 1): 0.05 fails on a regression of more than 5 %. Throws InvalidInputError on a bad threshold.
 PerfComparison ComparePerfRuns(const PerfRun& baseline, const PerfRun& current, double threshold);
 
+// 12345678 → "12.35 M", 12345 → "12.3 k", 123 → "123"; "-" when not measured (< 0).
+std::string FormatInstructions(double value);
+
 // Markdown: a one-line verdict, then the table of every figure (baseline, now, ratio, verdict, wall-clock).
 std::string FormatComparison(const PerfComparison& comparison);
 

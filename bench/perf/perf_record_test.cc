@@ -121,7 +121,8 @@ TEST(PerfCompare, NewFigureIsInformation) {
 
 TEST(PerfCompare, OtherCompilerIsNotComparable) {
   const PerfComparison c =
-      ComparePerfRuns(MakeRun({Figure("solve/a/psor", 1000)}), MakeRun({Figure("solve/a/psor", 1000)}, "clang 14"), 0.05);
+      ComparePerfRuns(MakeRun({Figure("solve/a/psor", 1000)}), MakeRun({Figure("solve/a/psor", 1000)}, "clang 14"),
+                      0.05);
   EXPECT_TRUE(c.failed());
   ASSERT_EQ(c.incomparable.size(), 1u);
   EXPECT_THAT(c.incomparable[0], HasSubstr("compiler"));

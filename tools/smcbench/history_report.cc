@@ -20,19 +20,6 @@ namespace fs = std::filesystem;
 
 constexpr int kRunsShown = 6;  // columns of the table: the last runs
 
-std::string Count(double value) {
-  if (value < 0.0) return "-";
-  char buffer[32];
-  if (value >= 1e6) {
-    std::snprintf(buffer, sizeof buffer, "%.2f M", value / 1e6);
-  } else if (value >= 1e4) {
-    std::snprintf(buffer, sizeof buffer, "%.1f k", value / 1e3);
-  } else {
-    std::snprintf(buffer, sizeof buffer, "%.0f", value);
-  }
-  return buffer;
-}
-
 std::string Backend(const std::string& id) { return id.substr(id.rfind('/') + 1); }
 
 }  // namespace
@@ -75,10 +62,11 @@ std::string WritePerfHistoryReport(const std::string& history_csv, const std::st
     const double first = v.begin()->second, last = v.rbegin()->second;
     char ratio[32] = "-";
     if (first > 0.0 && last >= 0.0) std::snprintf(ratio, sizeof ratio, "%.3f", last / first);
-    md << "| " << id << " | " << Count(first) << " | " << Count(last) << " | " << ratio << " |";
+    md << "| " << id << " | " << FormatInstructions(first) << " | " << FormatInstructions(last) << " | " << ratio
+       << " |";
     for (int k = first_shown; k < n; ++k) {
       const auto it = v.find(k);
-      md << " " << (it == v.end() ? std::string("-") : Count(it->second)) << " |";
+      md << " " << (it == v.end() ? std::string("-") : FormatInstructions(it->second)) << " |";
     }
     md << "\n";
   }
