@@ -181,7 +181,6 @@ class KernelImpl final : public LinearStepper::Kernel {
     }
     x_.resize(n), xn_.resize(n), g_prev_.resize(n), g_next_.resize(n), gbar_.resize(n);
     s_.resize(m), q_.resize(m), y_.resize(m);
-    q_dyn_.resize(m);
   }
 
   bool fixed_size() const override { return N != Eigen::Dynamic && M != Eigen::Dynamic; }
@@ -209,11 +208,12 @@ class KernelImpl final : public LinearStepper::Kernel {
     const bool implicit = d.sign == SignTreatment::kImplicit;
     const bool forced = d.has_forcing();
     const bool record = options.record;
+    const bool need_y = record || !implicit;
     const bool warm = options.warm_start;
     const double h = d.h;
     const double t0 = options.t0;
     const double theta = d.forcing_theta;
-    const int m = d.m();
+    const int m = M != Eigen::Dynamic ? M : d.m();  // a compile-time constant for the fixed kernels
     StepObserver* const observer = options.observer;
 
     // The backend's options: copied once; per step only warm_start's values change (same size: no allocation).
@@ -250,12 +250,16 @@ class KernelImpl final : public LinearStepper::Kernel {
           status = SolveStatus::kNumericalFailure;
           residual = kInf;
         } else {
-          q_dyn_ = q;
-          problem->set_q(q_dyn_);
-          if (warm) solver_options_.warm_start = s;
+          problem->set_q(q);  // the fixed-size overload for the fixed kernels: unrolled, inlined
+          // Plain loops (unrolled for fixed m): Eigen's fixed ↔ dynamic assignments are out-of-line calls.
+          if (warm) {
+            double* ws = solver_options_.warm_start.data();
+            for (int i = 0; i < m; ++i) ws[i] = s[i];
+          }
           solver->Solve(*problem, solver_options_, &result_);
           if (observer) observer->OnStep(k + 1, 0, *problem, result_);
-          s = result_.z;
+          const double* z = result_.z.data();
+          for (int i = 0; i < m; ++i) s[i] = z[i];
           status = result_.status;
           iterations = result_.iterations;
           residual = result_.residual_rel;
@@ -272,8 +276,11 @@ class KernelImpl final : public LinearStepper::Kernel {
       if (forced) xn.noalias() += P * gbar;
       xn.noalias() -= S * s;
       x = xn;
-      y = D;
-      y.noalias() += C * x;
+      // y_k feeds the explicit sign and the record; an unrecorded implicit run needs only y_final (below).
+      if (need_y) {
+        y = D;
+        y.noalias() += C * x;
+      }
       ++k;
       if (record) Record(k, t_next, x, s, y, iterations, residual, status, out);
       const bool finite = x.allFinite();
@@ -284,6 +291,10 @@ class KernelImpl final : public LinearStepper::Kernel {
           break;
         }
       }
+    }
+    if (!need_y) {
+      y = D;
+      y.noalias() += C * x;
     }
     counters.Store(out);
     FinishTrajectory(k, x, s, y, out);
@@ -303,7 +314,6 @@ class KernelImpl final : public LinearStepper::Kernel {
   VecM D_, c0_;
   VecN x_, xn_, g_prev_, g_next_, gbar_;
   VecM s_, q_, y_;
-  Vector q_dyn_;  // the BoxMLCP API takes a dynamic vector
   SolverOptions solver_options_;
   SolveResult result_;
 };

@@ -8,8 +8,7 @@
 
 namespace smcbench {
 
-bool SolverOptions::IsValid(std::string* why) const {
-  // Fast path first: this runs on every solve, so no message is built unless something is wrong.
+bool SolverOptions::Explain(std::string* why) const {
   bool warm_start_finite = true;
   for (Eigen::Index i = 0; i < warm_start.size(); ++i) warm_start_finite = warm_start_finite && std::isfinite(warm_start[i]);
   if (tolerance > 0.0 && std::isfinite(tolerance) && time_limit_seconds > 0.0 && verbosity >= 0 &&

@@ -2,8 +2,10 @@
 // option struct (for the CLI) and rejects unknown names.
 #pragma once
 
+#include <cstring>
 #include <string>
 #include <string_view>
+#include <type_traits>
 #include <variant>
 #include <vector>
 
@@ -25,8 +27,41 @@ struct SolverOptions {
   // so time-steppers and benchmarks that time many solves externally turn it off.
   bool measure_time = true;
 
-  // True if every field is usable; otherwise *why explains which one and why.
-  bool IsValid(std::string* why) const;
+  // True if every field is usable; otherwise *why explains which one and why. Inline: runs on every solve.
+  bool IsValid(std::string* why) const {
+    double probe = 0.0;  // x − x is 0 exactly for finite x, NaN for NaN and ±∞
+    for (Eigen::Index i = 0; i < warm_start.size(); ++i) probe += warm_start[i] - warm_start[i];
+    return (ScalarsValid() && probe == 0.0) || Explain(why);
+  }
+  // IsValid without the warm start's finiteness (Solver::Solve checks that while copying it).
+  bool ScalarsValid() const {
+    return tolerance > 0.0 && tolerance < kInf && time_limit_seconds > 0.0 && verbosity >= 0;
+  }
+  // The slow half of IsValid: builds the message. Returns IsValid's result.
+  bool Explain(std::string* why) const;
+};
+
+// Remembers the last value of a backend's options struct that passed its IsValid, byte for byte, so validating
+// an unchanged value again (every solve of a time-stepper) costs one fixed-size memcmp instead of every field
+// test. A changed value (SetOption, mutable_options(), set_options()) differs in its bytes and is validated
+// afresh; equal bytes mean equal fields, hence the same verdict. Not thread-safe, like the Solver that owns it.
+template <typename Options>
+class OptionsCheckCache {
+  static_assert(std::is_trivially_copyable_v<Options>, "compared and copied bytewise");
+
+ public:
+  bool Check(const Options& options, std::string* why) const {
+    if (valid_ && std::memcmp(&options, &last_, sizeof(Options)) == 0) return true;
+    valid_ = false;
+    if (!options.IsValid(why)) return false;
+    std::memcpy(static_cast<void*>(&last_), &options, sizeof(Options));
+    valid_ = true;
+    return true;
+  }
+
+ private:
+  mutable Options last_{};
+  mutable bool valid_ = false;
 };
 
 // Binds option names to fields of a typed options struct, so "omega=1.5" can be parsed and checked.

@@ -1,5 +1,6 @@
 #include "solvers/core/problem.h"
 
+#include <atomic>
 #include <cmath>
 #include <sstream>
 
@@ -85,9 +86,19 @@ double NaturalResidualNorm(const Vector& z, const Vector& w, const Vector& l, co
   return r;
 }
 
+
 void ProjectZeroOntoBox(const Vector& l, const Vector& u, Vector* z) {
   z->resize(l.size());
   for (Eigen::Index i = 0; i < l.size(); ++i) (*z)[i] = std::min(std::max(0.0, l[i]), u[i]);
+}
+
+std::uint64_t BoxMLCP::NextMatrixId() {
+  static std::atomic<std::uint64_t> next{1};  // 0 is never an id: caches may use it as "empty"
+  return next.fetch_add(1, std::memory_order_relaxed);
+}
+
+void BoxMLCP::ThrowWrongStorage(const char* accessor, const char* kind) {
+  throw std::logic_error(std::string("BoxMLCP::") + accessor + "() called on a " + kind + " problem");
 }
 
 BoxMLCP::BoxMLCP(DenseMatrix M, Vector q, Vector l, Vector u, std::string name)
@@ -115,7 +126,15 @@ BoxMLCP BoxMLCP::Relay(DenseMatrix M, Vector q, double lower, double upper, std:
 }
 
 void BoxMLCP::Validate() {
+  ValidateMatrix();
+  ValidateFinite("BoxMLCP", "q", q_);
+  ValidateBounds("BoxMLCP", l_, u_);
+  q_inf_norm_ = q_.size() ? q_.cwiseAbs().maxCoeff() : 0.0;
+}
+
+void BoxMLCP::ValidateMatrix() {
   constexpr const char* kOwner = "BoxMLCP";
+  matrix_id_ = NextMatrixId();
   if (is_sparse_) {
     CheckSizes(kOwner, sparse_.rows(), sparse_.cols(), q_, l_, u_);
     for (int k = 0; k < sparse_.outerSize(); ++k) {
@@ -132,31 +151,50 @@ void BoxMLCP::Validate() {
       }
     }
   }
-  ValidateFinite(kOwner, "q", q_);
-  ValidateBounds(kOwner, l_, u_);
-  q_inf_norm_ = q_.size() ? q_.cwiseAbs().maxCoeff() : 0.0;
 }
 
-void BoxMLCP::set_q(const Eigen::Ref<const Vector>& q) {
-  if (q.size() != q_.size()) {
-    Fail("BoxMLCP", "set_q: q has size " + std::to_string(q.size()) + " but the problem has " +
+void BoxMLCP::RejectQ(const double* in, Eigen::Index size) const {
+  if (size != q_.size()) {
+    Fail("BoxMLCP", "set_q: q has size " + std::to_string(size) + " but the problem has " +
                         std::to_string(q_.size()) + " unknowns");
   }
-  for (Eigen::Index i = 0; i < q.size(); ++i) {
-    if (!std::isfinite(q[i])) CheckFiniteValue("BoxMLCP", q[i], At("q", i));
+  for (Eigen::Index i = 0; i < size; ++i) {
+    if (!std::isfinite(in[i])) CheckFiniteValue("BoxMLCP", in[i], At("q", i));
   }
-  q_ = q;
-  q_inf_norm_ = q_.cwiseAbs().maxCoeff();
+  throw std::logic_error("BoxMLCP::RejectQ: q is valid");  // unreachable: set_q calls it only for a bad q
 }
 
-const DenseMatrix& BoxMLCP::dense_matrix() const {
-  if (is_sparse_) throw std::logic_error("BoxMLCP::dense_matrix() called on a sparse problem");
-  return dense_;
+void BoxMLCP::set_M(DenseMatrix M) {
+  if (is_sparse_) Fail("BoxMLCP", "set_M: the problem stores M sparse; pass a sparse matrix");
+  if (M.rows() != size() || M.cols() != size()) {
+    Fail("BoxMLCP", "set_M: M is " + std::to_string(M.rows()) + "x" + std::to_string(M.cols()) +
+                        " but the problem has " + std::to_string(size()) + " unknowns");
+  }
+  DenseMatrix previous = std::move(dense_);
+  dense_ = std::move(M);
+  try {
+    ValidateMatrix();
+  } catch (...) {
+    dense_ = std::move(previous);  // a rejected M is never kept (its id stays fresh: harmless)
+    throw;
+  }
 }
 
-const SparseMatrix& BoxMLCP::sparse_matrix() const {
-  if (!is_sparse_) throw std::logic_error("BoxMLCP::sparse_matrix() called on a dense problem");
-  return sparse_;
+void BoxMLCP::set_M(SparseMatrix M) {
+  if (!is_sparse_) Fail("BoxMLCP", "set_M: the problem stores M dense; pass a dense matrix");
+  if (M.rows() != size() || M.cols() != size()) {
+    Fail("BoxMLCP", "set_M: M is " + std::to_string(M.rows()) + "x" + std::to_string(M.cols()) +
+                        " but the problem has " + std::to_string(size()) + " unknowns");
+  }
+  SparseMatrix previous = std::move(sparse_);
+  sparse_ = std::move(M);
+  sparse_.makeCompressed();
+  try {
+    ValidateMatrix();
+  } catch (...) {
+    sparse_ = std::move(previous);
+    throw;
+  }
 }
 
 void BoxMLCP::Multiply(const Vector& z, Vector* out) const {
@@ -184,7 +222,7 @@ void BoxMLCP::Affine(const Vector& z, Vector* out) const {
   *out += q_;
 }
 
-Residual BoxMLCP::NaturalResidual(const Vector& z, Vector* w) const {
+Residual BoxMLCP::NaturalResidualGeneric(const Vector& z, Vector* w) const {
   if (w->size() != size()) w->resize(size());
   Affine(z, w);
   Residual r;

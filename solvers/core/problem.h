@@ -2,6 +2,9 @@
 // nonlinear MCP. Each owns its validation and the one merit function by which every backend is judged.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
 #include <functional>
 #include <stdexcept>
 #include <string>
@@ -45,8 +48,19 @@ class BoxMLCP {
 
   int size() const { return static_cast<int>(q_.size()); }
   bool is_sparse() const { return is_sparse_; }
-  const DenseMatrix& dense_matrix() const;    // throws std::logic_error if sparse
-  const SparseMatrix& sparse_matrix() const;  // throws std::logic_error if dense
+  // Inline checks: backends read M on every solve; the throw is out of line.
+  const DenseMatrix& dense_matrix() const {  // throws std::logic_error if sparse
+    if (is_sparse_) ThrowWrongStorage("dense_matrix", "sparse");
+    return dense_;
+  }
+  const SparseMatrix& sparse_matrix() const {  // throws std::logic_error if dense
+    if (!is_sparse_) ThrowWrongStorage("sparse_matrix", "dense");
+    return sparse_;
+  }
+  // Identifies the current M: a fresh process-wide number at construction and at every set_M, kept by copies
+  // (which hold the same M). Backends key per-matrix caches (factorizations, diagonals) on it; two problems with
+  // the same id have the same M.
+  std::uint64_t matrix_id() const { return matrix_id_; }
   const Vector& q() const { return q_; }
   const Vector& l() const { return l_; }
   const Vector& u() const { return u_; }
@@ -54,7 +68,15 @@ class BoxMLCP {
   void set_name(std::string name) { name_ = std::move(name); }
   // Replaces q in place (time-steppers: M fixed, q changes every step). Validates size and finiteness like the
   // constructor and recomputes the relative scale; no allocation.
-  void set_q(const Eigen::Ref<const Vector>& q);
+  void set_q(const Eigen::Ref<const Vector>& q) { SetQ<Eigen::Dynamic>(q.data(), q.size()); }
+  // The same for a fixed-size vector (the stepper's kernels): loops of compile-time length, inlined.
+  template <int N, int Options>
+  void set_q(const Eigen::Matrix<double, N, 1, Options, N, 1>& q) {
+    SetQ<N>(q.data(), q.size());
+  }
+  // Replaces M (same size and storage kind; validated like the constructor) and gives it a new matrix_id().
+  void set_M(DenseMatrix M);
+  void set_M(SparseMatrix M);
 
   // Dense problems up to this size use plain loops for M z (cheaper than Eigen's dynamic-size kernels).
   static constexpr int kSmallSize = 4;
@@ -62,8 +84,27 @@ class BoxMLCP {
   void Affine(const Vector& z, Vector* out) const;
   // out = M z (no q).
   void Multiply(const Vector& z, Vector* out) const;
-  // The merit function. w receives M z + q (pre-sized by the caller or resized here once).
-  Residual NaturalResidual(const Vector& z, Vector* w) const;
+  // The merit function. w receives M z + q (pre-sized by the caller or resized here once). Dense m ≤ kSmallSize
+  // inline (it runs after every solve, and for the paper's m = 1, 2 a call costs more than the arithmetic).
+  Residual NaturalResidual(const Vector& z, Vector* w) const {
+    if (is_sparse_ || size() > kSmallSize || w->size() != size()) return NaturalResidualGeneric(z, w);
+    const double* a = dense_.data();
+    double abs = 0.0;
+    switch (size()) {
+      case 1: abs = SmallDenseResidual<1>(a, z.data(), w->data()); break;
+      case 2: abs = SmallDenseResidual<2>(a, z.data(), w->data()); break;
+      case 3: abs = SmallDenseResidual<3>(a, z.data(), w->data()); break;
+      default: abs = SmallDenseResidual<4>(a, z.data(), w->data()); break;
+    }
+    return {abs, abs / residual_scale()};
+  }
+  // NaturalResidual when the caller knows M is dense, size() == N and w->size() == N (Solver::Solve dispatches
+  // on the size once, so the loops are unrolled and nothing is tested again).
+  template <int N>
+  Residual NaturalResidualFixed(const Vector& z, Vector* w) const {
+    const double abs = SmallDenseResidual<N>(dense_.data(), z.data(), w->data());
+    return {abs, abs / residual_scale()};
+  }
   // Scale used for the relative residual: 1 + ‖q‖∞.
   double residual_scale() const { return 1.0 + q_inf_norm_; }
 
@@ -75,8 +116,51 @@ class BoxMLCP {
 
  private:
   void Validate();
+  void ValidateMatrix();
+  // set_q's body, one pass with plain loops (time-steppers call it every step): x − x is 0 exactly for finite x,
+  // so one test covers NaN and ±∞; the failure (message naming the index) is out of line, before q_ is touched.
+  template <int N>
+  void SetQ(const double* in, Eigen::Index size) {
+    const Eigen::Index n = N != Eigen::Dynamic ? N : q_.size();
+    double probe = 0.0, norm = 0.0;
+    if (size == q_.size()) {
+      for (Eigen::Index i = 0; i < n; ++i) {
+        probe += in[i] - in[i];
+        norm = std::max(norm, std::abs(in[i]));
+      }
+    }
+    if (size != q_.size() || !(probe == 0.0)) RejectQ(in, size);
+    double* out = q_.data();
+    for (Eigen::Index i = 0; i < n; ++i) out[i] = in[i];
+    q_inf_norm_ = norm;
+  }
+  [[noreturn]] void RejectQ(const double* in, Eigen::Index size) const;
+  Residual NaturalResidualGeneric(const Vector& z, Vector* w) const;
+  // NaturalResidualNorm(M z + q) for dense n×n M, n = N fixed at compile time: one pass, no calls; the same
+  // operations in the same order as Multiply + Affine + NaturalResidualNorm, so the same bits.
+  template <int N>
+  double SmallDenseResidual(const double* a, const double* z, double* w) const {
+    const double *q = q_.data(), *l = l_.data(), *u = u_.data();
+    double r = 0.0;
+    bool nan = false;
+    for (int i = 0; i < N; ++i) {
+      double sum = 0.0;
+      for (int j = 0; j < N; ++j) sum += a[i + j * N] * z[j];
+      const double wi = sum + q[i];
+      w[i] = wi;
+      const double above_lower = z[i] - l[i];
+      const double above_upper = z[i] - u[i];
+      const double e = wi > above_lower ? above_lower : (wi < above_upper ? above_upper : wi);
+      nan = nan || std::isnan(e) || std::isnan(wi) || std::isnan(z[i]);
+      r = std::max(r, std::abs(e));
+    }
+    return nan ? kInf : r;
+  }
+  [[noreturn]] static void ThrowWrongStorage(const char* accessor, const char* kind);
+  static std::uint64_t NextMatrixId();
 
   bool is_sparse_ = false;
+  std::uint64_t matrix_id_ = 0;
   DenseMatrix dense_;
   SparseMatrix sparse_;
   Vector q_, l_, u_;

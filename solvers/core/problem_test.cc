@@ -180,6 +180,71 @@ TEST(BoxMLCP, SetQReplacesInPlaceAndValidates) {
   EXPECT_DOUBLE_EQ(p.residual_scale(), 5.0);  // unchanged after a rejected update
 }
 
+TEST(BoxMLCP, SetQFixedSizeOverloadMatchesTheDynamicOne) {
+  BoxMLCP p = BoxMLCP::Relay(Identity(2), Vector::Zero(2));
+  Eigen::Vector2d q(3.0, -4.0);
+  p.set_q(q);
+  EXPECT_EQ(p.q(), Vector(q));
+  EXPECT_DOUBLE_EQ(p.residual_scale(), 5.0);
+  q[0] = -kInf;
+  EXPECT_THAT(ErrorOf([&] { p.set_q(q); }), HasSubstr("q[0] is infinite"));
+  EXPECT_THAT(ErrorOf([&] { p.set_q(Eigen::Vector3d::Zero().eval()); }), HasSubstr("set_q: q has size 3"));
+  EXPECT_DOUBLE_EQ(p.q()[0], 3.0);  // unchanged after a rejected update
+  EXPECT_DOUBLE_EQ(p.residual_scale(), 5.0);
+}
+
+TEST(BoxMLCP, MatrixIdIsNewForEveryMatrixAndSharedByCopies) {
+  BoxMLCP a = BoxMLCP::LCP(Identity(2), Vector::Zero(2));
+  const BoxMLCP b = BoxMLCP::LCP(Identity(2), Vector::Zero(2));
+  EXPECT_NE(a.matrix_id(), 0u);
+  EXPECT_NE(a.matrix_id(), b.matrix_id());  // equal contents, but ids are never compared by value
+  const BoxMLCP copy = a;
+  EXPECT_EQ(copy.matrix_id(), a.matrix_id());
+  const auto before = a.matrix_id();
+  a.set_q((Vector(2) << 1.0, 2.0).finished());
+  EXPECT_EQ(a.matrix_id(), before);  // q does not touch M
+  a.set_M(2.0 * Identity(2));
+  EXPECT_NE(a.matrix_id(), before);
+  EXPECT_EQ(a.dense_matrix(), 2.0 * Identity(2));
+  EXPECT_EQ(copy.dense_matrix(), Identity(2));
+}
+
+TEST(BoxMLCP, SetMValidatesAndKeepsTheOldMatrixOnError) {
+  BoxMLCP d = BoxMLCP::LCP(Identity(2), Vector::Zero(2));
+  DenseMatrix bad = Identity(2);
+  bad(1, 0) = std::nan("");
+  EXPECT_THAT(ErrorOf([&] { d.set_M(bad); }), HasSubstr("M(1,0) is NaN"));
+  EXPECT_EQ(d.dense_matrix(), Identity(2));
+  EXPECT_THAT(ErrorOf([&] { d.set_M(Identity(3)); }), HasSubstr("set_M: M is 3x3"));
+  EXPECT_THAT(ErrorOf([&] { d.set_M(SparseMatrix(2, 2)); }), HasSubstr("stores M dense"));
+  BoxMLCP s(SparseMatrix(Identity(2).sparseView()), Vector::Zero(2), Vector::Zero(2), Vector::Constant(2, kInf));
+  const auto before = s.matrix_id();
+  s.set_M(SparseMatrix((3.0 * Identity(2)).sparseView()));
+  EXPECT_NE(s.matrix_id(), before);
+  EXPECT_EQ(s.ToDense(), 3.0 * Identity(2));
+  EXPECT_THAT(ErrorOf([&] { s.set_M(Identity(2)); }), HasSubstr("stores M sparse"));
+}
+
+TEST(BoxMLCP, SmallDenseMeritFunctionMatchesTheGenericFormula) {
+  // The inline m ≤ 4 path against NaturalResidualNorm(M z + q) on random data, NaN and infinite bounds.
+  for (int n = 1; n <= 5; ++n) {
+    DenseMatrix M = DenseMatrix::Random(n, n);
+    Vector q = Vector::Random(n), l = -Vector::Ones(n), u = Vector::Ones(n);
+    u[0] = kInf;
+    const BoxMLCP p(M, q, l, u);
+    for (int trial = 0; trial < 3; ++trial) {
+      Vector z = 2.0 * Vector::Random(n), w;
+      if (trial == 2) z[n - 1] = std::nan("");
+      const Residual r = p.NaturalResidual(z, &w);
+      const Vector w_ref = M * z + q;
+      EXPECT_TRUE(w.isApprox(w_ref) || trial == 2) << n;
+      const double ref = NaturalResidualNorm(z, w_ref, l, u);
+      EXPECT_EQ(r.abs, ref) << n << " " << trial;
+      EXPECT_EQ(r.rel, ref / p.residual_scale());
+    }
+  }
+}
+
 TEST(MCPValidation, BoundsAreChecked) {
   Vector l(1), u(1);
   l << 1.0;

@@ -1,18 +1,29 @@
 #include "solvers/core/result.h"
 
-#include <cstring>
 #include <limits>
 
 namespace smcbench {
 
-void SolveResult::SetDetail(const char* name, double value) {
+namespace {
+// strcmp(a, b) == 0 inline: names of one backend usually differ in the first character, and a libc call here
+// (per detail, per solve) cost more than the rest of SetDetail.
+bool SameText(const char* a, const char* b) {
+  while (*a != '\0' && *a == *b) ++a, ++b;
+  return *a == *b;
+}
+}  // namespace
+
+void SolveResult::SetDetailByText(const char* name, double value) {
   for (int i = 0; i < num_details; ++i) {
-    if (details[i].name == name || std::strcmp(details[i].name, name) == 0) {
+    if (SameText(details[i].name, name)) {
       details[i].value = value;
       return;
     }
   }
-  if (num_details < kMaxDetails) details[num_details++] = {name, value};
+  if (num_details < kMaxDetails) {
+    details[num_details++] = {name, value};
+    distinct_prefix_ = num_details;  // older names after the new one may repeat it
+  }
 }
 
 double SolveResult::GetDetail(std::string_view name) const {
@@ -20,16 +31,6 @@ double SolveResult::GetDetail(std::string_view name) const {
     if (details[i].name == name) return details[i].value;
   }
   return std::numeric_limits<double>::quiet_NaN();
-}
-
-void SolveResult::Reset() {
-  status = SolveStatus::kNotRun;
-  message.clear();
-  iterations = 0;
-  residual_abs = kInf;
-  residual_rel = kInf;
-  solve_seconds = 0.0;
-  num_details = 0;
 }
 
 }  // namespace smcbench

@@ -36,12 +36,43 @@ struct SolveResult {
   int num_details = 0;
 
   bool solved() const { return status == SolveStatus::kSolved; }
-  // Adds or overwrites a detail; silently ignores overflow past kMaxDetails.
-  void SetDetail(const char* name, double value);
+  // Adds or overwrites a detail (names compare by text); silently ignores overflow past kMaxDetails. Set details
+  // only through it: it keeps names unique. Inline and usually without comparing text: backends set the same
+  // literals in the same order on every solve into a result reused across solves (see distinct_prefix_).
+  void SetDetail(const char* name, double value) {
+    for (int i = 0; i < num_details; ++i) {
+      if (details[i].name == name) {
+        details[i].value = value;
+        return;
+      }
+    }
+    if (num_details < distinct_prefix_ && details[num_details].name == name) {
+      details[num_details++].value = value;  // the slot this literal held before the last Reset
+      return;
+    }
+    SetDetailByText(name, value);
+  }
   // Value of a detail, or NaN if absent.
   double GetDetail(std::string_view name) const;
-  // Returns to the "not run" state, keeping vector storage.
-  void Reset();
+  // Returns to the "not run" state, keeping vector storage. Inline: runs at the start of every solve.
+  void Reset() {
+    status = SolveStatus::kNotRun;
+    message.clear();
+    iterations = 0;
+    residual_abs = kInf;
+    residual_rel = kInf;
+    solve_seconds = 0.0;
+    num_details = 0;
+  }
+
+ private:
+  // details[0 .. distinct_prefix_) have pairwise different names (≥ num_details always). Reset keeps the names
+  // in the array, so re-adding the literal found in slot num_details cannot duplicate a name: slots before it are
+  // unchanged since they were known distinct. Appending a new name shrinks it to the new num_details.
+  int distinct_prefix_ = 0;
+  // SetDetail's slow half: the same name under another pointer (a literal from another translation unit), else
+  // a new entry.
+  void SetDetailByText(const char* name, double value);
 };
 
 }  // namespace smcbench

@@ -5,30 +5,49 @@
 
 namespace smcbench {
 
-bool Solver::Prepare(int n, const Vector& l, const Vector& u, const SolverOptions& options, SolveResult* result) {
+bool Solver::RejectOptions(int n, const SolverOptions& options, SolveResult* result) {
+  std::string why;
+  if (options.IsValid(&why) && ValidateBackendOptions(&why)) {
+    why = "warm_start has size " + std::to_string(options.warm_start.size()) + " but the problem has " +
+          std::to_string(n) + " unknowns";
+  }
+  result->status = SolveStatus::kInvalidOptions;
+  result->message = std::move(why);
+  result->z.setZero();
+  return false;
+}
+
+// Inlined into the Solve()s: a call boundary costs as much as the work for the paper's m = 1, 2 problems. Every
+// check of SolverOptions::IsValid and ValidateBackendOptions runs on every call; only the messages are built
+// out of line (RejectOptions), and the warm start's finiteness is tested while it is copied.
+template <int N>
+[[gnu::always_inline]] inline bool Solver::Prepare(int n_runtime, const Vector& l, const Vector& u,
+                                                   const SolverOptions& options, std::string_view name,
+                                                   SolveResult* result) {
+  const int n = N > 0 ? N : n_runtime;
   result->Reset();
-  result->solver = info().name;
+  result->solver = name;
   if (result->z.size() != n) result->z.resize(n);
   if (result->w.size() != n) result->w.resize(n);
-  std::string why;
-  if (!options.IsValid(&why) || !ValidateBackendOptions(&why)) {
-    result->status = SolveStatus::kInvalidOptions;
-    result->message = std::move(why);
-    result->z.setZero();
-    return false;
-  }
-  if (options.warm_start.size() != 0 && options.warm_start.size() != n) {
-    result->status = SolveStatus::kInvalidOptions;
-    result->message = "warm_start has size " + std::to_string(options.warm_start.size()) +
-                      " but the problem has " + std::to_string(n) + " unknowns";
-    result->z.setZero();
-    return false;
-  }
-  if (options.warm_start.size() == n) {
-    result->z = options.warm_start;
+  const Eigen::Index warm_size = options.warm_start.size();
+  double* z = result->z.data();
+  bool ok = options.ScalarsValid();
+  if (warm_size == n) {
+    // Plain loop: Eigen's dynamic-size assignment is an out-of-line call costing more than n ≤ 4 copies.
+    const double* ws = options.warm_start.data();
+    double probe = 0.0;  // x − x is 0 exactly for finite x, NaN for NaN and ±∞
+    for (int i = 0; i < n; ++i) {
+      z[i] = ws[i];
+      probe += ws[i] - ws[i];
+    }
+    ok = ok && probe == 0.0;
+  } else if (warm_size == 0) {
+    for (int i = 0; i < n; ++i) z[i] = std::min(std::max(0.0, l[i]), u[i]);
   } else {
-    for (int i = 0; i < n; ++i) result->z[i] = std::min(std::max(0.0, l[i]), u[i]);
+    ok = false;
   }
+  std::string why;  // written only on failure
+  if (!ok || !ValidateBackendOptions(&why)) return RejectOptions(n, options, result);
   has_deadline_ = options.time_limit_seconds < kInf;
   if (has_deadline_) {
     deadline_ = std::chrono::steady_clock::now() +
@@ -38,16 +57,21 @@ bool Solver::Prepare(int n, const Vector& l, const Vector& u, const SolverOption
   return true;
 }
 
+namespace {
+// Finish's rare branch, out of line so the common path does not set up a stream.
+[[gnu::noinline]] void Downgrade(double tolerance, SolveResult* result) {
+  std::ostringstream s;
+  s << "backend reported success but the natural residual is " << result->residual_rel << " (relative) > "
+    << tolerance;
+  result->status = SolveStatus::kInaccurate;
+  result->message = s.str();
+}
+}  // namespace
+
 void Solver::Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result) {
   using Clock = std::chrono::steady_clock;
-  if (result->status == SolveStatus::kSolved && !(result->residual_rel <= tolerance)) {
-    // The rule: the merit function, not the backend, decides what "solved" means.
-    std::ostringstream s;
-    s << "backend reported success but the natural residual is " << result->residual_rel << " (relative) > "
-      << tolerance;
-    result->status = SolveStatus::kInaccurate;
-    result->message = s.str();
-  }
+  // The rule: the merit function, not the backend, decides what "solved" means.
+  if (result->status == SolveStatus::kSolved && !(result->residual_rel <= tolerance)) Downgrade(tolerance, result);
   if (result->status == SolveStatus::kNotRun) {
     result->status = SolveStatus::kNumericalFailure;
     result->message = "backend returned without setting a status";
@@ -62,9 +86,25 @@ std::chrono::steady_clock::time_point StartClock(const SolverOptions& options) {
 }  // namespace
 
 void Solver::Solve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  // One size dispatch for the whole shared path: the paper's one-step problems have m = 1, 2.
+  if (!problem.is_sparse()) {
+    switch (problem.size()) {
+      case 1: return SolveBox<1>(problem, options, result);
+      case 2: return SolveBox<2>(problem, options, result);
+      case 3: return SolveBox<3>(problem, options, result);
+      case 4: return SolveBox<4>(problem, options, result);
+      default: break;
+    }
+  }
+  SolveBox<0>(problem, options, result);
+}
+
+template <int N>
+void Solver::SolveBox(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  static_assert(N <= BoxMLCP::kSmallSize);
   const auto start = StartClock(options);
   const SolverInfo& solver_info = info();
-  if (Prepare(problem.size(), problem.l(), problem.u(), options, result)) {
+  if (Prepare<N>(problem.size(), problem.l(), problem.u(), options, solver_info.name, result)) {
     if (problem.is_sparse() && !solver_info.sparse) {
       // A dense-only backend gets a dense copy (allocates per solve; sparse inputs are not its hot path),
       // unless the copy would be unreasonably large.
@@ -84,7 +124,10 @@ void Solver::Solve(const BoxMLCP& problem, const SolverOptions& options, SolveRe
       DoSolve(problem, options, result);
     }
   }
-  const Residual r = problem.NaturalResidual(result->z, &result->w);
+  // The fixed-size merit function needs z and w of size N; a backend that resized them gets the generic one.
+  const bool fixed = N > 0 && result->z.size() == N && result->w.size() == N;
+  const Residual r = fixed ? problem.template NaturalResidualFixed<(N > 0 ? N : 1)>(result->z, &result->w)
+                           : problem.NaturalResidual(result->z, &result->w);
   result->residual_abs = r.abs;
   result->residual_rel = r.rel;
   Finish(options.tolerance, start, result);
@@ -93,7 +136,7 @@ void Solver::Solve(const BoxMLCP& problem, const SolverOptions& options, SolveRe
 void Solver::Solve(const MCP& problem, const SolverOptions& options, SolveResult* result) {
   const auto start = StartClock(options);
   const int n = problem.size();
-  if (Prepare(n, problem.l(), problem.u(), options, result)) {
+  if (Prepare<0>(n, problem.l(), problem.u(), options, info().name, result)) {
     if (!info().mcp) {
       result->status = SolveStatus::kNotApplicable;
       result->message = "backend does not solve nonlinear MCPs";

@@ -68,7 +68,14 @@ class Solver {
   }
 
  private:
-  bool Prepare(int n, const Vector& l, const Vector& u, const SolverOptions& options, SolveResult* result);
+  // N > 0: n = N known at compile time (dense problems up to BoxMLCP::kSmallSize), 0: read at run time.
+  template <int N>
+  void SolveBox(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
+  template <int N>
+  bool Prepare(int n, const Vector& l, const Vector& u, const SolverOptions& options, std::string_view name,
+               SolveResult* result);
+  // Prepare's failure path: re-checks in the documented order and sets kInvalidOptions with the message.
+  bool RejectOptions(int n, const SolverOptions& options, SolveResult* result);
   // start == time_point{} means "not timed" (options.measure_time off).
   void Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result);
 

@@ -127,6 +127,69 @@ TEST(SolverBase, InvalidCommonOptionsAreAStatusNotACrash) {
   EXPECT_EQ(solver.Solve(SimpleLCP(), options).status, SolveStatus::kInvalidOptions);
 }
 
+TEST(SolverBase, OptionsAreValidatedOnEverySolveNotOnlyTheFirst) {
+  // The same options object reused across solves (as a time-stepper does) and then made invalid.
+  ScriptedSolver solver;
+  solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
+  SolverOptions options;
+  SolveResult r;
+  const BoxMLCP p = SimpleLCP();
+  solver.Solve(p, options, &r);
+  EXPECT_TRUE(r.solved());
+  options.tolerance = -1.0;
+  solver.Solve(p, options, &r);
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+  EXPECT_THAT(r.message, HasSubstr("tolerance"));
+  options.tolerance = 1e-10;
+  solver.Solve(p, options, &r);
+  EXPECT_TRUE(r.solved());
+  solver.options.factor = -1.0;  // backend options changed directly between solves
+  solver.Solve(p, options, &r);
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+  EXPECT_THAT(r.message, HasSubstr("factor must be > 0"));
+  solver.options.factor = 1.0;
+  options.warm_start = (Vector(2) << 0.0, std::nan("")).finished();
+  solver.Solve(p, options, &r);
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+  EXPECT_THAT(r.message, HasSubstr("warm_start[1] is not finite"));
+  EXPECT_EQ(r.z, Vector::Zero(2));
+  options.warm_start = Vector::Zero(1);
+  solver.Solve(p, options, &r);
+  EXPECT_THAT(r.message, HasSubstr("warm_start has size 1 but the problem has 2"));
+  // Both wrong: the invalid value is reported first, as IsValid orders it.
+  options.warm_start = (Vector(1) << kInf).finished();
+  solver.Solve(p, options, &r);
+  EXPECT_THAT(r.message, HasSubstr("warm_start[0] is not finite"));
+}
+
+TEST(SolveResultDetails, NamesStayUniqueWhenReusedInAnotherOrder) {
+  static const char kAlpha[] = "alpha";
+  const std::string alpha_copy = "alpha";  // same text, another pointer
+  SolveResult r;
+  r.SetDetail(kAlpha, 1.0);
+  r.SetDetail("beta", 2.0);
+  r.Reset();
+  r.SetDetail("beta", 3.0);  // slot 0 held "alpha": appended by text
+  r.SetDetail(kAlpha, 4.0);
+  r.SetDetail(alpha_copy.c_str(), 5.0);  // overwrites, never duplicates
+  EXPECT_EQ(r.num_details, 2);
+  EXPECT_EQ(r.GetDetail("alpha"), 5.0);
+  EXPECT_EQ(r.GetDetail("beta"), 3.0);
+  r.Reset();
+  r.SetDetail("beta", 6.0);  // the same literals in the same order: reuses the slots
+  r.SetDetail(kAlpha, 7.0);
+  r.SetDetail(alpha_copy.c_str(), 8.0);
+  EXPECT_EQ(r.num_details, 2);
+  EXPECT_EQ(r.GetDetail("alpha"), 8.0);
+  r.Reset();
+  r.SetDetail(alpha_copy.c_str(), 9.0);  // a new pointer at slot 0, then the old literals
+  r.SetDetail("beta", 10.0);
+  r.SetDetail(kAlpha, 11.0);
+  EXPECT_EQ(r.num_details, 2);
+  EXPECT_EQ(r.GetDetail("alpha"), 11.0);
+  EXPECT_EQ(r.GetDetail("beta"), 10.0);
+}
+
 TEST(SolverBase, TypedBackendOptionsFromText) {
   ScriptedSolver solver;
   std::string error;

@@ -246,37 +246,50 @@ int LeastNormSolve(double* a, double* t, int ld, int k, const double* xref, doub
   return r;
 }
 
-// Solves the k×k free block A x = b in place (b becomes x): closed forms for k ≤ 2, LU with partial pivoting
-// above. False, with A and b clobbered, if a pivot is ≤ small (numerically singular) or NaN.
-inline bool SolveBlock(double* a, int ld, int k, double* b, int* piv, double small) {
-  if (k == 1) {
-    if (!(std::abs(a[0]) > small)) return false;
-    b[0] /= a[0];
-    return true;
-  }
+// Factors the k×k free block A in place for SolveFactored: closed forms for k ≤ 2 (k = 2: a holds a00, m below
+// it, a01, u11 after the row swap recorded in piv[0]), LU with partial pivoting above. False if a pivot is ≤ small
+// (numerically singular) or NaN. Split from the solve so the fast path can keep factors per active set.
+inline bool FactorBlock(double* a, int ld, int k, int* piv, double small) {
+  if (k == 1) return std::abs(a[0]) > small;
   if (k == 2) {  // 2×2 elimination with partial pivoting
-    double a00 = a[0], a10 = a[1], a01 = a[ld], a11 = a[ld + 1], r0 = b[0], r1 = b[1];
-    if (std::abs(a10) > std::abs(a00)) std::swap(a00, a10), std::swap(a01, a11), std::swap(r0, r1);
+    double a00 = a[0], a10 = a[1], a01 = a[ld], a11 = a[ld + 1];
+    piv[0] = std::abs(a10) > std::abs(a00) ? 1 : 0;
+    if (piv[0] == 1) std::swap(a00, a10), std::swap(a01, a11);
     if (!(std::abs(a00) > small)) return false;
     const double m = a10 / a00;
     const double u11 = a11 - m * a01;
     if (!(std::abs(u11) > small)) return false;
-    b[1] = (r1 - m * r0) / u11;
-    b[0] = (r0 - a01 * b[1]) / a00;
+    a[0] = a00, a[1] = m, a[ld] = a01, a[ld + 1] = u11;
     return true;
   }
-  if (k == 3) {
-    if (!LuFactor<3>(a, ld, k, piv, small)) return false;
+  if (k == 3) return LuFactor<3>(a, ld, k, piv, small);
+  if (k == 4) return LuFactor<4>(a, ld, k, piv, small);
+  return LuFactor(a, ld, k, piv, small);
+}
+
+// Solves A x = b (b becomes x) from FactorBlock's output.
+inline void SolveFactored(const double* a, int ld, int k, const int* piv, double* b) {
+  if (k == 1) {
+    b[0] /= a[0];
+  } else if (k == 2) {
+    double r0 = b[0], r1 = b[1];
+    if (piv[0] == 1) std::swap(r0, r1);
+    b[1] = (r1 - a[1] * r0) / a[ld + 1];
+    b[0] = (r0 - a[ld] * b[1]) / a[0];
+  } else if (k == 3) {
     LuSolve<3>(a, ld, k, piv, b);
-    return true;
-  }
-  if (k == 4) {
-    if (!LuFactor<4>(a, ld, k, piv, small)) return false;
+  } else if (k == 4) {
     LuSolve<4>(a, ld, k, piv, b);
-    return true;
+  } else {
+    LuSolve(a, ld, k, piv, b);
   }
-  if (!LuFactor(a, ld, k, piv, small)) return false;
-  LuSolve(a, ld, k, piv, b);
+}
+
+// Solves the k×k free block A x = b in place (b becomes x). False, with A and b clobbered, if a pivot is ≤ small
+// (numerically singular) or NaN.
+inline bool SolveBlock(double* a, int ld, int k, double* b, int* piv, double small) {
+  if (!FactorBlock(a, ld, k, piv, small)) return false;
+  SolveFactored(a, ld, k, piv, b);
   return true;
 }
 
@@ -294,30 +307,33 @@ inline double JacobiScale(double m_ii) { return m_ii > 0.0 ? m_ii : 1.0; }
 
 // The fixed-size fast path for m ≤ 4 (the paper's one-step relay problems have m = 1, 2): examines only the
 // guessed active set, with the row count known at compile time and everything on the stack. True, with
-// result->z set, if that set solves the problem to tolerance; otherwise the full search takes over.
+// result->z set, if that set solves the problem to tolerance; otherwise the full search takes over. cache holds
+// the free blocks' factors for this M (DoSolve checked its key): a time-stepper's M is constant while the
+// guessed set repeats, so each block is gathered and factored once.
 template <int N>
-bool SolveGuessedSet(const BoxMLCP& problem, const SolverOptions& options, double rank_tol, SolveResult* result) {
+bool SolveGuessedSet(const BoxMLCP& problem, const SolverOptions& options, double rank_tol, SolveResult* result,
+                     EnumerativeSolver::BlockCache* cache) {
   const double* M = problem.dense_matrix().data();
   const double* q = problem.q().data();
   const double* l = problem.l().data();
   const double* u = problem.u().data();
   double* zr = result->z.data();
-  double z0[N], z[N], w[N], rhs[N], a[N * N];
-  int free_idx[N], piv[N];
+  double z0[N], z[N], w[N], rhs[N];
+  int free_idx[N];
   bool is_free[N];
   for (int i = 0; i < N; ++i) z0[i] = zr[i], w[i] = q[i];
   for (int j = 0; j < N; ++j) {
     for (int i = 0; i < N; ++i) w[i] += M[i + j * N] * z0[j];
   }
   int k = 0;
+  unsigned free_mask = 0;
   for (int i = 0; i < N; ++i) {
     const double y = z0[i] - w[i] / JacobiScale(M[i + i * N]);
     const int s = GuessState(y, l[i], u[i]);
     is_free[i] = s == kFree;
-    if (is_free[i]) free_idx[k++] = i;
+    if (is_free[i]) free_idx[k++] = i, free_mask |= 1u << i;
     z[i] = s == kFree ? 0.0 : s == kUpper ? u[i] : l[i];
   }
-  double amax = 0.0;
   for (int c = 0; c < k; ++c) {
     const int i = free_idx[c];
     double r = -q[i];
@@ -325,12 +341,23 @@ bool SolveGuessedSet(const BoxMLCP& problem, const SolverOptions& options, doubl
       if (!is_free[j]) r -= M[i + j * N] * z[j];
     }
     rhs[c] = r;
-    for (int b = 0; b < k; ++b) {
-      a[b + c * N] = M[free_idx[b] + free_idx[c] * N];
-      amax = std::max(amax, std::abs(a[b + c * N]));
-    }
   }
-  if (k > 0 && !SolveBlock(a, N, k, rhs, piv, rank_tol * amax)) return false;
+  if (k > 0) {
+    EnumerativeSolver::BlockCache::Entry& e = cache->entries[free_mask];
+    if (e.state == EnumerativeSolver::BlockCache::kUnknown) {
+      double amax = 0.0;
+      for (int c = 0; c < k; ++c) {
+        for (int b = 0; b < k; ++b) {
+          e.a[b + c * N] = M[free_idx[b] + free_idx[c] * N];
+          amax = std::max(amax, std::abs(e.a[b + c * N]));
+        }
+      }
+      e.state = FactorBlock(e.a, N, k, e.piv, rank_tol * amax) ? EnumerativeSolver::BlockCache::kFactored
+                                                                 : EnumerativeSolver::BlockCache::kSingular;
+    }
+    if (e.state == EnumerativeSolver::BlockCache::kSingular) return false;
+    SolveFactored(e.a, N, k, e.piv, rhs);
+  }
   for (int c = 0; c < k; ++c) {
     const int i = free_idx[c];
     if (!std::isfinite(rhs[c])) return false;
@@ -470,7 +497,9 @@ void EnumerativeSolver::BindOptions(OptionBinder* binder) {
               "block principal pivoting steps before the exhaustive search (0: none)");
 }
 
-bool EnumerativeSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }
+bool EnumerativeSolver::ValidateBackendOptions(std::string* why) const {
+  return options_check_.Check(options_, why);
+}
 
 void EnumerativeSolver::Reserve(int n, int guided_steps) {
   if (n == workspace_n_ && guided_steps <= workspace_history_) return;
@@ -481,26 +510,38 @@ void EnumerativeSolver::Reserve(int n, int guided_steps) {
   workspace_history_ = std::max(guided_steps, 1);
 }
 
+template <int N>
+bool EnumerativeSolver::SolveFast(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  // The block factors depend on M, the rank tolerance and n only: keep them while those stay the same.
+  if (block_cache_.matrix_id != problem.matrix_id() || block_cache_.n != N ||
+      block_cache_.rank_tolerance != options_.rank_tolerance) {
+    for (auto& e : block_cache_.entries) e.state = BlockCache::kUnknown;
+    block_cache_.matrix_id = problem.matrix_id();
+    block_cache_.n = N;
+    block_cache_.rank_tolerance = options_.rank_tolerance;
+  }
+  if (!SolveGuessedSet<N>(problem, options, options_.rank_tolerance, result, &block_cache_)) return false;
+  result->status = SolveStatus::kSolved;
+  result->iterations = 1;
+  double total = 1.0;
+  const double* l = problem.l().data();
+  const double* u = problem.u().data();
+  for (int i = 0; i < N; ++i) {  // states per row: 1 fixed or free, 2 one finite bound, 3 two (no int→double)
+    const bool lower = l[i] > -kInf, upper = u[i] < kInf;
+    total *= l[i] == u[i] ? 1.0 : lower ? (upper ? 3.0 : 2.0) : (upper ? 2.0 : 1.0);
+  }
+  result->SetDetail("active_sets_total", total);
+  result->SetDetail("guided_sets", 1.0);
+  result->SetDetail("singular_blocks", 0.0);
+  return true;
+}
+
 void EnumerativeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
-  const auto fast = [&](auto solve_guess) {
-    if (!solve_guess(problem, options, options_.rank_tolerance, result)) return false;
-    result->status = SolveStatus::kSolved;
-    result->iterations = 1;
-    double total = 1.0;
-    for (int i = 0; i < problem.size(); ++i) {
-      const double li = problem.l()[i], ui = problem.u()[i];
-      total *= li == ui ? 1.0 : 1.0 + (li > -kInf) + (ui < kInf);
-    }
-    result->SetDetail("active_sets_total", total);
-    result->SetDetail("guided_sets", 1.0);
-    result->SetDetail("singular_blocks", 0.0);
-    return true;
-  };
   switch (problem.size()) {
-    case 1: if (!fast(SolveGuessedSet<1>)) Search<1>(problem, options, result); return;
-    case 2: if (!fast(SolveGuessedSet<2>)) Search<2>(problem, options, result); return;
-    case 3: if (!fast(SolveGuessedSet<3>)) Search<3>(problem, options, result); return;
-    case 4: if (!fast(SolveGuessedSet<4>)) Search<4>(problem, options, result); return;
+    case 1: if (!SolveFast<1>(problem, options, result)) Search<1>(problem, options, result); return;
+    case 2: if (!SolveFast<2>(problem, options, result)) Search<2>(problem, options, result); return;
+    case 3: if (!SolveFast<3>(problem, options, result)) Search<3>(problem, options, result); return;
+    case 4: if (!SolveFast<4>(problem, options, result)) Search<4>(problem, options, result); return;
     default: Search<0>(problem, options, result); return;
   }
 }

@@ -74,6 +74,22 @@ class EnumerativeSolver final : public Solver {
   EnumerativeSolver() = default;
   explicit EnumerativeSolver(const EnumerativeOptions& options) : options_(options) {}
 
+  // The fast path's factors of the free blocks M_FF, one per free set (bitmask of rows), for the M identified
+  // by matrix_id (BoxMLCP::matrix_id()). Fixed size: m ≤ 4, no allocation.
+  struct BlockCache {
+    static constexpr int kMaxRows = 4;
+    enum State : signed char { kUnknown, kFactored, kSingular };
+    struct Entry {
+      State state = kUnknown;
+      double a[kMaxRows * kMaxRows];  // FactorBlock's output, leading dimension n
+      int piv[kMaxRows];
+    };
+    std::uint64_t matrix_id = 0;  // 0: empty
+    int n = 0;
+    double rank_tolerance = 0.0;
+    Entry entries[1 << kMaxRows];
+  };
+
   const SolverInfo& info() const override;
   const EnumerativeOptions& options() const { return options_; }
   EnumerativeOptions& mutable_options() { return options_; }
@@ -87,15 +103,20 @@ class EnumerativeSolver final : public Solver {
   // The search, with the row count fixed at compile time (N = 1..4) or read at run time (N = 0).
   template <int N>
   void Search(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
+  // The fixed-size fast path (N = 1..4): only the guessed active set; false if it does not solve the problem.
+  template <int N>
+  bool SolveFast(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
   // Sizes the workspace for n rows and that many guided steps; allocates only when they grow or n changes.
   void Reserve(int n, int guided_steps);
 
   EnumerativeOptions options_;
+  OptionsCheckCache<EnumerativeOptions> options_check_;  // validated on every solve: a memcmp when unchanged
   // Workspace for the run-time-size path (the fixed-size path keeps its buffers on the stack).
   int workspace_n_ = -1;
   int workspace_history_ = 0;
   std::vector<double> real_work_;
   std::vector<int> int_work_;
+  BlockCache block_cache_;  // keyed on the problem's matrix_id(): rebuilt when M changes
 };
 
 }  // namespace smcbench

@@ -388,6 +388,51 @@ TEST(Enumerative, RelayTwoByTwoMatchesCaseAnalysis) {
   EXPECT_EQ(checked, 300);
 }
 
+TEST(Enumerative, BlockCacheFollowsTheMatrix) {
+  // One problem object whose M changes between solves (set_M), a copy, and another problem of the same size:
+  // the fast path's per-M factors must never be reused for another M. Each answer is checked against the case
+  // analysis, and from a warm start at the previous answer so the same free set is guessed again.
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unif(-3.0, 3.0);
+  EnumerativeSolver solver;
+  BoxMLCP p = BoxMLCP::Relay(RandomPMatrix(2, rng, true), Vec({0.1, -0.2}));
+  SolveResult r;
+  SolverOptions options;
+  for (int trial = 0; trial < 200; ++trial) {
+    if (trial % 3 == 1) p.set_M(RandomPMatrix(2, rng, trial % 2 == 0));
+    p.set_q(Vec({0.2 * unif(rng), 0.2 * unif(rng)}));  // small q: mostly both rows free, the 2×2 block
+    const BoxMLCP copy = p;
+    const BoxMLCP other = BoxMLCP::Relay(RandomPMatrix(2, rng, true), p.q());
+    for (const BoxMLCP* problem : {static_cast<const BoxMLCP*>(&p), &copy, &other}) {
+      const std::vector<Vector> all = AllSolutions2x2(*problem);
+      ASSERT_EQ(all.size(), 1u);
+      options.warm_start = r.z.size() == 2 ? r.z : Vector();
+      solver.Solve(*problem, options, &r);
+      ExpectSolved(*problem, r, "trial " + std::to_string(trial));
+      EXPECT_LT((r.z - all[0]).cwiseAbs().maxCoeff(), 1e-12) << "trial " << trial;
+    }
+  }
+}
+
+TEST(Enumerative, BlockCacheFollowsTheRankTolerance) {
+  // A nearly singular free block: factored under the default rank tolerance, treated as singular (least-norm
+  // solve in the full search) under a looser one set between two solves of the same problem.
+  const BoxMLCP p = BoxMLCP::Relay(Mat({{1.0, 1.0}, {1.0, 1.0 + 1e-9}}), Vec({-0.1, -0.1}));
+  EnumerativeSolver solver;
+  SolveResult r;
+  solver.Solve(p, SolverOptions{}, &r);
+  ASSERT_TRUE(r.solved()) << r.message;
+  EXPECT_EQ(r.GetDetail("singular_blocks"), 0.0);
+  solver.mutable_options().rank_tolerance = 1e-6;
+  solver.Solve(p, SolverOptions{}, &r);
+  EXPECT_TRUE(r.solved()) << r.message;
+  EXPECT_GE(r.GetDetail("singular_blocks"), 1.0);
+  solver.mutable_options().rank_tolerance = 2.0;  // invalid, set directly between solves: still caught
+  solver.Solve(p, SolverOptions{}, &r);
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+  EXPECT_NE(r.message.find("rank_tolerance"), std::string::npos) << r.message;
+}
+
 TEST(Enumerative, MixedBoundsFreeUpperOnlyBoxFixed) {
   // Free row 0 (l = −∞, u = ∞), upper-only row 1, LCP row 2, box row 3, fixed row 4; z* planted with row 1 at
   // its upper bound, row 2 at 0, row 3 interior.

@@ -181,7 +181,9 @@ void PsorSolver::BindOptions(OptionBinder* binder) {
   binder->Add("min_diagonal", &options_.min_diagonal, "rows need M_ii > min_diagonal * max|M_jk|, in [0,1)");
 }
 
-bool PsorSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }
+bool PsorSolver::ValidateBackendOptions(std::string* why) const {
+  return options_check_.Check(options_, why);
+}
 
 void PsorSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
   const int n = problem.size();
@@ -252,9 +254,6 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
     z[i] = Clamp(z[i], l[i], u[i]);
     z0_norm = std::max(z0_norm, std::abs(z[i]));
   }
-  const double q_norm = scale - 1.0;
-  const double divergence_limit =
-      opt.divergence_threshold * (1.0 + z0_norm + (min_diagonal < kInf ? q_norm / min_diagonal : 0.0));
 
   int refreshes = 0;
   const auto refresh = [&]() {
@@ -294,6 +293,11 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
     return finish(SolveStatus::kNumericalFailure);
   }
   if (rel <= tolerance) return finish(SolveStatus::kSolved);  // the (warm) start already solves it
+
+  // Only needed once sweeping (time-steppers' warm starts usually return above): no division before that.
+  const double q_norm = scale - 1.0;
+  const double divergence_limit =
+      opt.divergence_threshold * (1.0 + z0_norm + (min_diagonal < kInf ? q_norm / min_diagonal : 0.0));
 
   double window_best = rel;  // best residual when the current stall window opened
   int window_start = 0;

@@ -83,6 +83,7 @@ class PsorSolver final : public Solver {
   void Iterate(const Columns& columns, const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
 
   PsorOptions options_;
+  OptionsCheckCache<PsorOptions> options_check_;  // validated on every solve: a memcmp when unchanged
   Vector step_;  // ω / M_ii per row (0 for fixed rows l_i = u_i); sized once per n
   Vector w_;     // M z + q, updated incrementally
 };

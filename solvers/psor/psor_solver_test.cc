@@ -181,6 +181,29 @@ TEST(PsorSolver, InfoDescribesAnIterativeDenseAndSparseBackend) {
   EXPECT_FALSE(solver.info().symmetric_only);
 }
 
+TEST(PsorSolver, OptionsChangedBetweenSolvesAreValidatedAgain) {
+  // ValidateBackendOptions remembers the last valid value; a changed one is checked afresh, whichever way it came.
+  const Planted p = SpdLcp(2, 5);
+  PsorSolver solver;
+  SolveResult r;
+  solver.Solve(p.problem, Tight(), &r);
+  ASSERT_TRUE(r.solved()) << r.message;
+  PsorOptions o = solver.options();
+  o.omega = 2.5;
+  solver.set_options(o);
+  solver.Solve(p.problem, Tight(), &r);
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+  EXPECT_NE(r.message.find("omega"), std::string::npos) << r.message;
+  o.omega = 1.0;
+  solver.set_options(o);
+  solver.Solve(p.problem, Tight(), &r);
+  EXPECT_TRUE(r.solved()) << r.message;
+  o.stall_factor = std::nan("");
+  solver.set_options(o);
+  solver.Solve(p.problem, Tight(), &r);
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+}
+
 TEST(PsorSolver, SolvesRandomSpdLcpOfEverySize) {
   // 1..4 run the fixed-size kernels, the rest the dynamic one.
   for (int n : {1, 2, 3, 4, 5, 16, 64, 200}) {
