@@ -3,6 +3,9 @@
 // rebuilds the one-step problem at every step (SimulateRebuildingEachStep), plus the explicit scheme (no solve) as
 // the floor of the per-step bookkeeping. One benchmark iteration is one whole run of the scene (N steps); the
 // counter steps/s is the rate, s/step its inverse. A run whose steps are not all solved is reported as an error.
+// Long runs (`.../prefactored-long`, 1000× the scene's horizon, psor and enum) show the steady state once the state
+// has decayed to the origin, where IEEE arithmetic spends most of its time on subnormal numbers; `-long-flush` is the
+// same run with StepperOptions::flush_subnormals.
 // After the run a table on stderr gives, per scene and backend, prefactored vs rebuild steps/s, their ratio and
 // the goal (≥ 20 M steps/s for S1–S8; the reference, Siconos 4.4, runs 140–200 k steps/s).
 #include <benchmark/benchmark.h>
@@ -30,6 +33,7 @@ struct Case {
   std::shared_ptr<const LinearScene> scene;
   SimulationSettings settings;  // the scene's, with record off
   std::string backend;          // "explicit": the explicit-sign scheme, no backend
+  double horizon_factor = 1.0;  // the run covers horizon_factor × the scene's T
 };
 
 void ReportFailure(benchmark::State& state, const Trajectory& tr) {
@@ -39,7 +43,7 @@ void ReportFailure(benchmark::State& state, const Trajectory& tr) {
 }
 
 void StepperBenchmark(benchmark::State& state, Case c, Path path) {
-  const std::int64_t steps = NumSteps(c.settings.T, c.settings.h);
+  const std::int64_t steps = NumSteps(c.horizon_factor * c.settings.T, c.settings.h);
   std::unique_ptr<Solver> solver;
   if (c.backend != "explicit") solver = CreateSolver(c.backend);
   Trajectory tr;
@@ -135,6 +139,17 @@ void RegisterAll() {
       for (Path path : {Path::kPrefactored, Path::kRebuild}) {
         benchmark::RegisterBenchmark(Name(std::string(name), backend, path).c_str(), StepperBenchmark, c, path)
             ->Unit(benchmark::kMicrosecond);
+      }
+      if (backend == "psor" || backend == "enum") {
+        Case long_run = c;
+        long_run.horizon_factor = 1000.0;
+        for (bool flush : {false, true}) {
+          long_run.settings.stepper.flush_subnormals = flush;
+          const std::string long_name = Name(std::string(name), backend, Path::kPrefactored) + "-long" +
+                                        (flush ? "-flush" : "");
+          benchmark::RegisterBenchmark(long_name.c_str(), StepperBenchmark, long_run, Path::kPrefactored)
+              ->Unit(benchmark::kMillisecond);
+        }
       }
     }
   }

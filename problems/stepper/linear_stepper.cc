@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "problems/stepper/discretization_detail.h"
+#include "problems/stepper/float_mode.h"
 #include "problems/stepper/validation.h"
 
 namespace smcbench {
@@ -356,6 +357,7 @@ void LinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* solver
                         Trajectory* out) {
   CheckRunArguments(kRunOwner, data_.n(), data_.sign, x0, num_steps, solver, options);
   PrepareTrajectory(data_, num_steps, options, out);
+  const ScopedFlushSubnormals flush(options.flush_subnormals);
   kernel_->Run(data_, problem_.get(), x0, num_steps, solver, options, out);
 }
 
@@ -375,6 +377,7 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
   const OneStepData first = Discretize(model, method, h, theta);  // validates everything once
   CheckRunArguments(kOwner, first.n(), first.sign, x0, num_steps, solver, options);
   PrepareTrajectory(first, num_steps, options, out);
+  const ScopedFlushSubnormals flush(options.flush_subnormals);
   // A ZOH plant run with a θ-method is its closed loop; form it once (a model change, not a discretization).
   LinearModel effective = model;
   if (const auto* zsys = std::get_if<ZohSmcSystem>(&model)) {

@@ -10,6 +10,7 @@
 #include <memory>
 #include <string>
 
+#include "problems/stepper/float_mode.h"
 #include "problems/stepper/metrics.h"
 #include "problems/stepper/stepper_test_util.h"
 #include "solvers/registry/registry.h"
@@ -566,6 +567,57 @@ TEST(LinearStepper, RejectsBadRunArguments) {
   expect([&] { SimulateRebuildingEachStep(stepper_test::GaliasYuScene(), Method::kImplicit, 0.1, 2.0,
                                           Vec({1.0, 0.0}), 10, &solver, {}, &out); },
          "theta must lie in [0, 1]");
+}
+
+}  // namespace
+}  // namespace smcbench
+
+namespace smcbench {
+namespace {
+
+// A state sliding to the origin decays by 1/(1 + h) per step and underflows into the subnormal range, where it
+// stays for good (the smallest subnormal divided by 1.3 rounds back to itself) and every step costs 5–15× more.
+// flush_subnormals keeps the run out of that range (subnormal results become zeros); the steps before the underflow region are bit-identical, and
+// the thread's floating-point mode is restored after the run.
+TEST(LinearStepperFloatMode, FlushSubnormalsZeroesTheUnderflowOnly) {
+  if (!ScopedFlushSubnormals::supported()) GTEST_SKIP() << "no flush-to-zero control on this architecture";
+  stepper_test::ReferenceSolver solver;
+  const OneStepData d = DiscretizeTheta(stepper_test::GaliasYuScene(), 0.3, 1.0, SignTreatment::kImplicit);
+  LinearStepper stepper(d);
+  StepperOptions options;
+  options.solver.tolerance = 1e-12;
+  const std::int64_t steps = 4000;  // 2.21 · 1.3⁻ᵏ < 2.2e-308 from k ≈ 2700 on
+  const Vector x0 = Vec({0.0, 2.21});
+  const Trajectory ieee = stepper.Run(x0, steps, &solver, options);
+  options.flush_subnormals = true;
+#ifdef SMCBENCH_HAS_MXCSR
+  const unsigned mode_before = _mm_getcsr();
+#endif
+  const Trajectory flushed = stepper.Run(x0, steps, &solver, options);
+#ifdef SMCBENCH_HAS_MXCSR
+  EXPECT_EQ(_mm_getcsr(), mode_before);
+#endif
+  ASSERT_TRUE(ieee.ok()) << ieee.first_failure_message;
+  ASSERT_TRUE(flushed.ok()) << flushed.first_failure_message;
+  const auto subnormal = [](double v) { return std::fpclassify(v) == FP_SUBNORMAL; };
+  std::int64_t first_subnormal = -1;
+  for (std::int64_t k = 0; k <= steps && first_subnormal < 0; ++k) {
+    for (int i = 0; i < 2; ++i) {
+      if (subnormal(ieee.x(i, k))) first_subnormal = k;
+    }
+  }
+  ASSERT_GT(first_subnormal, 1000) << "the IEEE run must underflow into subnormals";
+  EXPECT_TRUE(subnormal(ieee.x_final[0]) || subnormal(ieee.x_final[1])) << "and stay there";
+  // Bit-identical while the state is far above the underflow threshold (a step's intermediate products, such as
+  // h·x·1e-17 in the merit function, underflow a little before x itself does).
+  for (std::int64_t k = 0; k <= steps && std::max(std::abs(ieee.x(0, k)), std::abs(ieee.x(1, k))) > 1e-250; ++k) {
+    for (int i = 0; i < 2; ++i) ASSERT_EQ(ieee.x(i, k), flushed.x(i, k)) << "step " << k;
+    ASSERT_EQ(ieee.s(0, k), flushed.s(0, k)) << "step " << k;
+  }
+  for (std::int64_t k = 0; k <= steps; ++k) {
+    for (int i = 0; i < 2; ++i) ASSERT_FALSE(subnormal(flushed.x(i, k))) << "step " << k;
+  }
+  EXPECT_LT(flushed.x_final.cwiseAbs().maxCoeff(), 1e-300);  // at the origin to within the normal range
 }
 
 }  // namespace

@@ -314,7 +314,7 @@ struct SimulateCommand::Flags {
   std::string scene, method, x0, solver, out, summary, plot, on_failure = "stop", algorithm, record;
   double h = 0.0, T = 0.0, theta = 0.0, gamma = 0.0, tol = 1e-10, reach_tol = 0.0, newton_tol = 0.0;
   int max_iter = 0, newton_max_iter = 0;
-  bool no_warm_start = false;
+  bool no_warm_start = false, flush_subnormals = false;
   std::vector<std::string> params, sets;
   CLI::Option *method_opt = nullptr, *h_opt = nullptr, *T_opt = nullptr, *theta_opt = nullptr,
               *gamma_opt = nullptr, *x0_opt = nullptr, *reach_opt = nullptr, *solver_opt = nullptr,
@@ -352,6 +352,9 @@ SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>
   command_->add_option("--set", f.sets, "typed backend option BACKEND.OPTION=VALUE (see `smcbench list`)");
   command_->add_option("--on-failure", f.on_failure, "stop | continue when a step's problem is not solved");
   command_->add_flag("--no-warm-start", f.no_warm_start, "cold-start every step instead of starting from s_k");
+  command_->add_flag("--flush-subnormals", f.flush_subnormals,
+                     "flush subnormal results to zero during the run (linear scenes; faster when the state decays "
+                     "to the origin over many steps)");
   f.reach_opt = command_->add_option("--reach-tol", f.reach_tol,
                                      "|y| bound defining 'on the surface' for the reaching step (default 10*tol)");
   command_->add_option("--out", f.out, "write the trajectory CSV t,x1..xn,s1..sm,y1..ym,iterations,residual");
@@ -418,6 +421,7 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
   s.stepper.solver.tolerance = f.tol;
   s.stepper.solver.max_iterations = f.max_iter;
   s.stepper.warm_start = !f.no_warm_start;
+  s.stepper.flush_subnormals = f.flush_subnormals;
   if (f.on_failure == "stop") {
     s.stepper.on_failure = FailurePolicy::kStop;
   } else if (f.on_failure == "continue") {
