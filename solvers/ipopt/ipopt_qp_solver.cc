@@ -59,6 +59,8 @@
 // members reused across solves, resized only when sizes change.
 #include "solvers/ipopt/ipopt_qp_solver.h"
 
+#include <dlfcn.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -96,6 +98,14 @@ enum EarlyStop : int { kNoEarlyStop = 0, kMeritAtIterate = 1, kEarlyPolish = 2, 
 enum StopReason { kNotStopped, kStopMerit, kStopPolished, kStopTime };
 enum ActiveState : signed char { kFree = 0, kAtLower = 1, kAtUpper = 2 };
 enum MultiplierKind : signed char { kLowerMult = 0, kUpperMult = 1, kFixedMult = 2 };
+
+// True if dlopen finds the library (then closed again): Ipopt's run-time loaded linear solvers.
+bool RuntimeLibraryLoadable(const char* name) {
+  void* handle = ::dlopen(name, RTLD_LAZY | RTLD_LOCAL);
+  if (!handle) return false;
+  ::dlclose(handle);
+  return true;
+}
 
 const char* LinearSolverName(int code) {
   switch (code) {
@@ -1076,6 +1086,12 @@ bool IpoptOptions::IsValid(std::string* why) const {
   } else if (linear_solver < kMumps || linear_solver > kPardiso) {
     s << "linear_solver must be 0 (mumps), 1 (ma27), 2 (ma57), 3 (ma77), 4 (ma86), 5 (ma97) or 6 (pardiso), got "
       << linear_solver;
+  } else if (const char* library = linear_solver == kPardiso ? "libpardiso.so" : "libhsl.so";
+             linear_solver != kMumps && !RuntimeLibraryLoadable(library)) {
+    // Checked here, not left to Ipopt: Ipopt 3.11 loads these at run time and, for some of them (ma97), calls
+    // exit() when the library is missing, which would end the whole program.
+    s << "linear_solver " << linear_solver << " (" << LinearSolverName(linear_solver) << ") needs " << library
+      << ", which cannot be loaded here (Debian's Ipopt ships MUMPS only: use 0)";
   } else if (print_level < 0 || print_level > 12) {
     s << "print_level must be in 0..12, got " << print_level;
   } else if (!(symmetry_tolerance >= 0.0) || !std::isfinite(symmetry_tolerance)) {

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <dlfcn.h>
+
 #include <cmath>
 #include <random>
 #include <string>
@@ -413,6 +415,7 @@ TEST(IpoptQpSolverTest, InvalidOptions) {
   r = solver.Solve(p);
   if (r.status != SolveStatus::kSolved) {
     EXPECT_EQ(r.status, SolveStatus::kInvalidOptions) << r.message;
+    EXPECT_NE(r.message.find("libhsl.so"), std::string::npos) << r.message;
   }
 
   // The instance is usable again once the options are fixed.
@@ -537,6 +540,24 @@ TEST(IpoptQpSolverTest, ForcedQpOnSymmetricIndefiniteRelay) {
   // formulation=qp is refused for nonsymmetric M.
   const BoxMLCP q = BoxMLCP::LCP(NonsymmetricP(4, &rng), Vector::Constant(4, -1.0));
   EXPECT_EQ(solver.Solve(q).status, SolveStatus::kNotApplicable);
+}
+
+// Found by solver_option_fuzzer: linear_solver = 5 (ma97) without libhsl.so made Ipopt 3.11 call exit() from its
+// MA97 interface, ending the whole program. Every HSL/Pardiso code is now checked for its library first.
+TEST(IpoptFuzzRegression, Ma97WithoutHslIsAnInvalidOptionNotAProcessExit) {
+  if (void* hsl = ::dlopen("libhsl.so", RTLD_LAZY | RTLD_LOCAL)) {
+    ::dlclose(hsl);
+    GTEST_SKIP() << "libhsl.so is installed here: ma97 is a real choice";
+  }
+  IpoptQpSolver solver;
+  std::string error;
+  EXPECT_FALSE(solver.SetOption("linear_solver", "5", &error));
+  EXPECT_NE(error.find("libhsl.so"), std::string::npos) << error;
+  solver.options().linear_solver = IpoptOptions::kMa97;  // set directly: Solve must still refuse it
+  const BoxMLCP p = BoxMLCP::LCP((DenseMatrix(2, 2) << 2, 1, 1, 2).finished(), (Vector(2) << -1, -1).finished());
+  const SolveResult r = solver.Solve(p);
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+  EXPECT_NE(r.message.find("ma97"), std::string::npos) << r.message;
 }
 
 }  // namespace
