@@ -9,10 +9,11 @@
 #include "problems/generators/random_problems.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
-#include <random>
 #include <vector>
+
+#include "problems/generators/seeded_random.h"
+#include "solvers/core/number_text.h"
 
 namespace smcbench {
 namespace {
@@ -30,18 +31,7 @@ constexpr int kPowerIterations = 60;
 constexpr int kMaxDenseSize = 8192;
 constexpr int kMaxSparseSize = 4'000'000;
 
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : engine_(seed) {}
-  // Uniform in [0, 1): the top 53 bits scaled by 2⁻⁵³ (exact).
-  double Uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
-  double Uniform(double a, double b) { return a + (b - a) * Uniform(); }
-  // Uniform integer in [0, k) for small k (bias < k·2⁻⁵³, irrelevant here).
-  int Index(int k) { return std::min(k - 1, static_cast<int>(Uniform() * k)); }
-
- private:
-  std::mt19937_64 engine_;
-};
+using Random = SeededRandom;
 
 // M while it is built: dense column-major n×n, or banded with entries (i, j), |i − j| ≤ h, stored row by row.
 class WorkMatrix {
@@ -259,12 +249,6 @@ double Interior(const RowBounds& b, Random& rng) {
   return rng.Uniform(-2.0, 2.0);
 }
 
-std::string FractionText(double f) {
-  char buffer[40];
-  const auto r = std::to_chars(buffer, buffer + sizeof(buffer), f);
-  return std::string(buffer, r.ptr);
-}
-
 void Validate(const GeneratorOptions& o) {
   const std::string owner = "GeneratorOptions: ";
   if (o.size <= 0) throw InvalidInputError(owner + "size = " + std::to_string(o.size) + " must be positive");
@@ -274,7 +258,7 @@ void Validate(const GeneratorOptions& o) {
                             (o.sparse ? "sparse" : "dense") + " limit " + std::to_string(limit));
   }
   if (!(o.degenerate_fraction >= 0.0 && o.degenerate_fraction <= 1.0)) {
-    throw InvalidInputError(owner + "degenerate_fraction = " + FractionText(o.degenerate_fraction) +
+    throw InvalidInputError(owner + "degenerate_fraction = " + NumberText(o.degenerate_fraction) +
                             " must lie in [0, 1]");
   }
   if (ToString(o.family).rfind("invalid", 0) == 0) {
@@ -406,7 +390,7 @@ GeneratedProblem GenerateProblem(const GeneratorOptions& options) {
   std::string name = ToString(options.family) + "-" + ToString(options.bounds) + "-n" + std::to_string(n) + "-s" +
                      std::to_string(options.seed);
   if (options.sparse) name += "-sparse";
-  if (options.degenerate_fraction > 0.0) name += "-deg" + FractionText(options.degenerate_fraction);
+  if (options.degenerate_fraction > 0.0) name += "-deg" + NumberText(options.degenerate_fraction);
 
   if (banded) {
     std::vector<Eigen::Triplet<double, int>> entries;

@@ -4,6 +4,7 @@
 // calls, but unlike them we check everything: a corrupt or hostile file is an InvalidInputError, never a crash,
 // a giant allocation or a silently wrong problem.
 #include "problems/io/siconos_format.h"
+#include "solvers/core/number_text.h"
 
 #include <algorithm>
 #include <cctype>
@@ -79,12 +80,6 @@ std::string Quote(std::string_view token) {
   }
   if (shown < token.size()) s += "...";
   return s + "'";
-}
-
-std::string ToText(double v) {
-  char buffer[40];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), v);
-  return std::string(buffer, result.ptr);
 }
 
 bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f'; }
@@ -423,7 +418,7 @@ Vector ReadBoundVector(Parser& p, const char* name, std::int64_t n, double forbi
   for (std::int64_t i = 0; i < n; ++i) {
     const double x = p.ReadDouble(Field{name, i});
     if (std::isnan(x)) p.Fail(Field{name, i}, "is NaN");
-    if (x == forbidden_infinity) p.Fail(Field{name, i}, "is " + ToText(x) + " (no feasible point)");
+    if (x == forbidden_infinity) p.Fail(Field{name, i}, "is " + NumberText(x) + " (no feasible point)");
     v[static_cast<Eigen::Index>(i)] = x;
   }
   return v;
@@ -458,8 +453,8 @@ BoxMLCP ParseRelay(Parser& p, const std::string& source, const std::string& name
   for (std::int64_t i = 0; i < n; ++i) {
     const auto k = static_cast<Eigen::Index>(i);
     if (lb[k] > ub[k]) {
-      p.Fail(Field{"lb", i}, "lb[" + std::to_string(i) + "] = " + ToText(lb[k]) + " > ub[" + std::to_string(i) +
-                                 "] = " + ToText(ub[k]));
+      p.Fail(Field{"lb", i}, "lb[" + std::to_string(i) + "] = " + NumberText(lb[k]) + " > ub[" + std::to_string(i) +
+                                 "] = " + NumberText(ub[k]));
     }
   }
   p.CheckEnd(0, "ub");
@@ -559,16 +554,16 @@ BoxMLCP ParseMLCP(Parser& p, const std::string& source, const std::string& name)
         const Eigen::Index bi = top ? i : i - n;
         const Eigen::Index bj = left ? j : j - n;
         p.Fail(Field{"M", i, j}, "the storages disagree: type 1 has M(" + std::to_string(i) + "," +
-                                     std::to_string(j) + ") = " + ToText(D1(i, j)) + " but type 2 has " + block +
+                                     std::to_string(j) + ") = " + NumberText(D1(i, j)) + " but type 2 has " + block +
                                      "(" + std::to_string(bi) + "," + std::to_string(bj) + ") = " +
-                                     ToText(M2(i, j)));
+                                     NumberText(M2(i, j)));
       }
     }
     for (Eigen::Index i = 0; i < N; ++i) {
       if (Agree(q1[i], q2[i])) continue;
       const std::string other = i < n ? "a[" + std::to_string(i) + "]" : "b[" + std::to_string(i - n) + "]";
-      p.Fail(Field{"q", i}, "the storages disagree: type 1 has q[" + std::to_string(i) + "] = " + ToText(q1[i]) +
-                                " but type 2 has " + other + " = " + ToText(q2[i]));
+      p.Fail(Field{"q", i}, "the storages disagree: type 1 has q[" + std::to_string(i) + "] = " + NumberText(q1[i]) +
+                                " but type 2 has " + other + " = " + NumberText(q2[i]));
     }
   }
   // Older Siconos tools appended a reference solution (printed with %f) that Siconos' reader never reads; we
@@ -662,16 +657,10 @@ BoxMLCP ReadSiconosFile(const std::string& path) {
 
 namespace {
 
-void AppendNumber(std::string* out, double v) {
-  char buffer[40];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), v);
-  out->append(buffer, result.ptr);
-}
-
 void AppendVector(std::string* out, const Vector& v) {
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (i) out->push_back(' ');
-    AppendNumber(out, v[i]);
+    AppendNumberText(out, v[i]);
   }
   out->push_back('\n');
 }
@@ -690,7 +679,7 @@ void WriteSiconosRelay(const BoxMLCP& problem, std::ostream& out) {
   for (Eigen::Index j = 0; j < n; ++j) {
     for (Eigen::Index i = 0; i < n; ++i) {
       if (i) text.push_back(' ');
-      AppendNumber(&text, M(i, j));
+      AppendNumberText(&text, M(i, j));
     }
     text.push_back('\n');
   }

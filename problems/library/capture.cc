@@ -1,7 +1,6 @@
 #include "problems/library/capture.h"
 
 #include <algorithm>
-#include <charconv>
 #include <cmath>
 #include <cstring>
 #include <set>
@@ -11,16 +10,11 @@
 #include "problems/scenes/nonlinear_scene.h"
 #include "problems/scenes/registry.h"
 #include "problems/stepper/metrics.h"
+#include "solvers/core/number_text.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {
 namespace {
-
-std::string Num(double v) {
-  char buffer[32];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, r.ptr);
-}
 
 // M of a and b identical bit by bit (the recorder's classification cache).
 bool SameMatrix(const BoxMLCP& a, const BoxMLCP& b) {
@@ -49,14 +43,14 @@ CaptureContext MakeCaptureContext(const std::string& set, const Scene& scene, co
   if (settings.method == Method::kImplicit || settings.method == Method::kExplicit) c.theta = settings.theta;
   c.backend = std::string(backend);
   if (dynamic_cast<const NonlinearSceneAdapter*>(&scene)) {
-    c.metadata["gamma"] = Num(settings.gamma);
+    c.metadata["gamma"] = NumberText(settings.gamma);
     c.metadata["algorithm"] = std::string(ToString(settings.algorithm));
   }
   return c;
 }
 
 std::string CaptureId(const CaptureContext& context, std::int64_t step, int newton_iteration) {
-  std::string id = context.set + "/" + context.scene + "/" + context.method + "/h" + Num(context.h) + "/k" +
+  std::string id = context.set + "/" + context.scene + "/" + context.method + "/h" + NumberText(context.h) + "/k" +
                    std::to_string(step);
   if (newton_iteration > 0) id += "/it" + std::to_string(newton_iteration);
   return id;
@@ -79,8 +73,8 @@ void ProblemRecorder::OnStep(std::int64_t step, int newton_iteration, const BoxM
   std::map<std::string, std::string> metadata = context_.metadata;
   metadata["scene"] = context_.scene;
   metadata["method"] = context_.method;
-  metadata["h"] = Num(context_.h);
-  if (context_.theta) metadata["theta"] = Num(*context_.theta);
+  metadata["h"] = NumberText(context_.h);
+  if (context_.theta) metadata["theta"] = NumberText(*context_.theta);
   metadata["step"] = std::to_string(step);
   if (newton_iteration > 0) metadata["iteration"] = std::to_string(newton_iteration);
   if (!context_.backend.empty()) metadata["backend"] = context_.backend;

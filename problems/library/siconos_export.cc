@@ -1,19 +1,13 @@
 #include "problems/library/siconos_export.h"
 
-#include <charconv>
 #include <cmath>
 #include <ostream>
 
 #include "problems/io/siconos_format.h"
+#include "solvers/core/number_text.h"
 
 namespace smcbench {
 namespace {
-
-std::string Num(double v) {
-  char buffer[32];
-  const auto r = std::to_chars(buffer, buffer + sizeof buffer, v);
-  return std::string(buffer, r.ptr);
-}
 
 }  // namespace
 
@@ -36,7 +30,7 @@ bool CanExportSiconosRelay(const LibraryProblem& problem, std::string* why) {
       } else if (!std::isfinite(u[i])) {
         kind = l[i] == 0.0 ? "an LCP row" : "a lower-bounded row";
       }
-      *why = "row " + std::to_string(i) + " has l = " + Num(l[i]) + ", u = " + Num(u[i]) + " (" + kind + ")";
+      *why = "row " + std::to_string(i) + " has l = " + NumberText(l[i]) + ", u = " + NumberText(u[i]) + " (" + kind + ")";
     }
     return false;
   }

@@ -1,6 +1,5 @@
 #include "problems/scenes/linear_scene.h"
 
-#include <charconv>
 #include <cmath>
 #include <fstream>
 #include <initializer_list>
@@ -9,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "solvers/core/number_text.h"
+
 namespace smcbench {
 
 using json = nlohmann::json;
@@ -16,13 +17,6 @@ using json = nlohmann::json;
 namespace {
 
 constexpr std::string_view kFormat = "smcbench-scene/1";
-
-std::string Num(double value) {
-  if (std::isnan(value)) return "nan";
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
-}
 
 // A number or an expression over the scene parameters, with the field it came from for error messages.
 struct Scalar {
@@ -41,8 +35,8 @@ struct Scalar {
     }
     if (!std::isfinite(v)) {
       std::string with;
-      for (const auto& [name, p] : parameters) with += (with.empty() ? " with " : ", ") + name + " = " + Num(p);
-      throw InvalidInputError(field + " = '" + expression + "' is not finite (" + Num(v) + ")" + with);
+      for (const auto& [name, p] : parameters) with += (with.empty() ? " with " : ", ") + name + " = " + NumberText(p);
+      throw InvalidInputError(field + " = '" + expression + "' is not finite (" + NumberText(v) + ")" + with);
     }
     return v;
   }
@@ -149,7 +143,7 @@ class Reader {
   double Number(const json& node, const std::string& field) const {
     if (!node.is_number()) Fail(field, std::string("expected a number, got ") + node.type_name());
     const double v = node.get<double>();
-    if (!std::isfinite(v)) Fail(field, "is not finite (" + Num(v) + ")");
+    if (!std::isfinite(v)) Fail(field, "is not finite (" + NumberText(v) + ")");
     return v;
   }
 
@@ -159,7 +153,7 @@ class Reader {
     s.field = field;
     if (node.is_number()) {
       s.value = node.get<double>();
-      if (!std::isfinite(s.value)) Fail(field, "is not finite (" + Num(s.value) + ")");
+      if (!std::isfinite(s.value)) Fail(field, "is not finite (" + NumberText(s.value) + ")");
       return s;
     }
     if (!node.is_string()) {
@@ -363,13 +357,13 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
     r.Fail("simulation.method", "'" + method + "' needs a system of type 'zoh' (F, G, C, alpha)");
   }
   d.h = r.Number(r.Require(sim, "simulation", "h"), "simulation.h");
-  if (!(d.h > 0.0)) r.Fail("simulation.h", "must be > 0, got " + Num(d.h));
+  if (!(d.h > 0.0)) r.Fail("simulation.h", "must be > 0, got " + NumberText(d.h));
   d.T = r.Number(r.Require(sim, "simulation", "T"), "simulation.T");
-  if (!(d.T >= 0.0)) r.Fail("simulation.T", "must be >= 0, got " + Num(d.T));
+  if (!(d.T >= 0.0)) r.Fail("simulation.T", "must be >= 0, got " + NumberText(d.T));
   if (const json* theta = r.Optional(sim, "theta")) d.theta = r.Number(*theta, "simulation.theta");
-  if (!(d.theta >= 0.0 && d.theta <= 1.0)) r.Fail("simulation.theta", "must lie in [0, 1], got " + Num(d.theta));
+  if (!(d.theta >= 0.0 && d.theta <= 1.0)) r.Fail("simulation.theta", "must lie in [0, 1], got " + NumberText(d.theta));
   if (const json* gamma = r.Optional(sim, "gamma")) d.gamma = r.Number(*gamma, "simulation.gamma");
-  if (!(d.gamma >= 0.0 && d.gamma <= 1.0)) r.Fail("simulation.gamma", "must lie in [0, 1], got " + Num(d.gamma));
+  if (!(d.gamma >= 0.0 && d.gamma <= 1.0)) r.Fail("simulation.gamma", "must lie in [0, 1], got " + NumberText(d.gamma));
   const std::vector<double> x0 = r.NumberVector(r.Require(sim, "simulation", "x0"), "simulation.x0");
   if (static_cast<int>(x0.size()) != n) {
     r.FailSentence("simulation.x0 has " + std::to_string(x0.size()) + " entries but the state has n = " +
@@ -450,7 +444,7 @@ LinearModel LinearScene::ModelWithoutName(const SceneParameters& overrides) cons
       throw InvalidInputError("no parameter '" + name +
                               "' (parameters: " + (known.empty() ? "none" : known) + ")");
     }
-    if (!std::isfinite(value)) throw InvalidInputError("parameter " + name + " is not finite (" + Num(value) + ")");
+    if (!std::isfinite(value)) throw InvalidInputError("parameter " + name + " is not finite (" + NumberText(value) + ")");
     it->second = value;
   }
   if (s.type == "zoh") {
@@ -522,11 +516,11 @@ std::optional<ExactSolution> LinearScene::Exact(const SimulationSettings& settin
                             "no forcing): " + why);
   };
   if (!sys || sys->n() != 1 || sys->m() != 1) return fail("the system is not scalar");
-  if (sys->E(0, 0) != 0.0) return fail("E = " + Num(sys->E(0, 0)));
-  if (sys->D.size() && sys->D[0] != 0.0) return fail("D = " + Num(sys->D[0]));
+  if (sys->E(0, 0) != 0.0) return fail("E = " + NumberText(sys->E(0, 0)));
+  if (sys->D.size() && sys->D[0] != 0.0) return fail("D = " + NumberText(sys->D[0]));
   if (sys->g.size() || sys->forcing) return fail("the system has a forcing");
   const double b = sys->B(0, 0), c = sys->C(0, 0);
-  if (!(b * c > 0.0)) return fail("b c = " + Num(b * c));
+  if (!(b * c > 0.0)) return fail("b c = " + NumberText(b * c));
   if (settings.x0.size() != 1) return fail("x0 has " + std::to_string(settings.x0.size()) + " entries");
   const double x0 = settings.x0[0];
   const double rate = std::abs(b);

@@ -5,11 +5,11 @@
 
 #include "problems/stepper/discretization_detail.h"
 #include "problems/stepper/validation.h"
+#include "solvers/core/number_text.h"
 
 namespace smcbench {
 
 using stepper_detail::Fail;
-using stepper_detail::Num;
 
 std::string_view ToString(Method method) {
   switch (method) {
@@ -47,7 +47,7 @@ void OneStepData::Validate() const {
     stepper_detail::CheckShape(kOwner, "P", P, n(), n());
     stepper_detail::CheckFinite(kOwner, "P", P);
     if (!(forcing_theta >= 0.0 && forcing_theta <= 1.0)) {
-      Fail(kOwner, "forcing_theta must lie in [0, 1], got " + Num(forcing_theta));
+      Fail(kOwner, "forcing_theta must lie in [0, 1], got " + NumberText(forcing_theta));
     }
   }
 }
@@ -120,11 +120,11 @@ OneStepData DiscretizeTheta(const LinearSignSystem& system, double h, double the
   constexpr const char* kOwner = "DiscretizeTheta";
   system.Validate();
   stepper_detail::CheckStep(kOwner, h);
-  if (!(theta >= 0.0 && theta <= 1.0)) Fail(kOwner, "theta must lie in [0, 1], got " + Num(theta));
+  if (!(theta >= 0.0 && theta <= 1.0)) Fail(kOwner, "theta must lie in [0, 1], got " + NumberText(theta));
   const int n = system.n();
   stepper_detail::CheckInvertible(kOwner, "I - h*theta*E", DenseMatrix::Identity(n, n) - (h * theta) * system.E);
   OneStepData d = stepper_detail::DiscretizeThetaUnchecked(system, h, theta, sign);
-  d.description = "theta=" + Num(theta) + (sign == SignTreatment::kImplicit ? ", implicit sign" : ", explicit sign");
+  d.description = "theta=" + NumberText(theta) + (sign == SignTreatment::kImplicit ? ", implicit sign" : ", explicit sign");
   d.Validate();
   return d;
 }
@@ -141,7 +141,7 @@ OneStepData DiscretizeZoh(const ZohSmcSystem& system, double h, SignTreatment si
   stepper_detail::CheckStep(kOwner, h);
   OneStepData d = stepper_detail::DiscretizeZohUnchecked(system, h, sign);
   if (!d.R.allFinite() || !d.S.allFinite()) {
-    Fail(kOwner, "exp(h*[[F, G(CG)^-1], [0, 0]]) overflowed (h*||F|| too large), h = " + Num(h));
+    Fail(kOwner, "exp(h*[[F, G(CG)^-1], [0, 0]]) overflowed (h*||F|| too large), h = " + NumberText(h));
   }
   d.description = sign == SignTreatment::kImplicit ? "zoh, implicit sign" : "zoh, explicit sign";
   d.Validate();
@@ -165,11 +165,11 @@ OneStepData Discretize(const LinearModel& model, Method method, double h, double
 
 std::int64_t NumSteps(double T, double h) {
   constexpr const char* kOwner = "NumSteps";
-  if (!(T >= 0.0) || !std::isfinite(T)) Fail(kOwner, "T must be a finite horizon >= 0, got " + Num(T));
+  if (!(T >= 0.0) || !std::isfinite(T)) Fail(kOwner, "T must be a finite horizon >= 0, got " + NumberText(T));
   stepper_detail::CheckStep(kOwner, h);
   const double steps = std::round(T / h);
   if (!(steps < 1099511627776.0)) {  // 2^40: far beyond any run we could store or time
-    Fail(kOwner, "T/h = " + Num(T / h) + " steps is too many");
+    Fail(kOwner, "T/h = " + NumberText(T / h) + " steps is too many");
   }
   return static_cast<std::int64_t>(steps);
 }

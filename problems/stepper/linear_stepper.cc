@@ -8,11 +8,11 @@
 #include "problems/stepper/discretization_detail.h"
 #include "problems/stepper/float_mode.h"
 #include "problems/stepper/validation.h"
+#include "solvers/core/number_text.h"
 
 namespace smcbench {
 
 using stepper_detail::Fail;
-using stepper_detail::Num;
 
 bool StepperOptions::IsValid(std::string* why) const {
   std::string solver_why;
@@ -21,7 +21,7 @@ bool StepperOptions::IsValid(std::string* why) const {
     return false;
   }
   if (!std::isfinite(t0)) {
-    if (why) *why = "t0 must be finite, got " + Num(t0);
+    if (why) *why = "t0 must be finite, got " + NumberText(t0);
     return false;
   }
   return true;

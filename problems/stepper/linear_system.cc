@@ -4,6 +4,7 @@
 #include <string>
 
 #include "problems/stepper/validation.h"
+#include "solvers/core/number_text.h"
 
 namespace smcbench {
 
@@ -34,7 +35,7 @@ void ZohSmcSystem::Validate() const {
   stepper_detail::CheckFinite(kOwner, "G", G);
   stepper_detail::CheckFinite(kOwner, "C", C);
   if (!(alpha > 0.0) || !std::isfinite(alpha)) {
-    stepper_detail::Fail(kOwner, "alpha must be a positive finite number, got " + stepper_detail::Num(alpha));
+    stepper_detail::Fail(kOwner, "alpha must be a positive finite number, got " + NumberText(alpha));
   }
   // The equivalent control needs (CG)⁻¹ (report, Example ECB-SMC).
   stepper_detail::CheckInvertible(kOwner, "CG", C * G);

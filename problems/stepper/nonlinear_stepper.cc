@@ -7,11 +7,11 @@
 #include <utility>
 
 #include "problems/stepper/validation.h"
+#include "solvers/core/number_text.h"
 
 namespace smcbench {
 
 using stepper_detail::Fail;
-using stepper_detail::Num;
 
 // ------------------------------------------------------------------------------------------------------------
 // Scheme and options
@@ -19,13 +19,13 @@ using stepper_detail::Num;
 void NonlinearScheme::Validate() const {
   constexpr const char* kOwner = "NonlinearScheme";
   stepper_detail::CheckStep(kOwner, h);
-  if (!(theta >= 0.0 && theta <= 1.0)) Fail(kOwner, "theta must be in [0, 1], got " + Num(theta));
-  if (!(gamma >= 0.0 && gamma <= 1.0)) Fail(kOwner, "gamma must be in [0, 1], got " + Num(gamma));
-  if (!(rho >= 0.0) || !std::isfinite(rho)) Fail(kOwner, "rho must be finite and >= 0, got " + Num(rho));
+  if (!(theta >= 0.0 && theta <= 1.0)) Fail(kOwner, "theta must be in [0, 1], got " + NumberText(theta));
+  if (!(gamma >= 0.0 && gamma <= 1.0)) Fail(kOwner, "gamma must be in [0, 1], got " + NumberText(gamma));
+  if (!(rho >= 0.0) || !std::isfinite(rho)) Fail(kOwner, "rho must be finite and >= 0, got " + NumberText(rho));
 }
 
 std::string NonlinearScheme::Description() const {
-  return "theta=" + Num(theta) + ", gamma=" + Num(gamma) + ", rho=" + Num(rho) +
+  return "theta=" + NumberText(theta) + ", gamma=" + NumberText(gamma) + ", rho=" + NumberText(rho) +
          (sign == SignTreatment::kImplicit ? ", implicit sign" : ", explicit sign");
 }
 
@@ -46,7 +46,7 @@ std::optional<NonlinearAlgorithm> NonlinearAlgorithmFromString(std::string_view 
 bool NonlinearStepperOptions::IsValid(std::string* why) const {
   if (!stepper.IsValid(why)) return false;
   if (!(newton_tolerance > 0.0) || !std::isfinite(newton_tolerance)) {
-    if (why) *why = "newton_tolerance must be a positive finite number, got " + Num(newton_tolerance);
+    if (why) *why = "newton_tolerance must be a positive finite number, got " + NumberText(newton_tolerance);
     return false;
   }
   if (newton_max_iterations < 1) {
@@ -264,7 +264,7 @@ void NonlinearStepper::Workspace::StepMcp(std::int64_t k, Solver* solver, const 
   step->residual = result.residual_rel;
   if (!result.solved()) {
     message = "step " + std::to_string(k) + ": MCP backend '" + std::string(result.solver) + "' returned " +
-              std::string(ToString(result.status)) + " (relative residual " + Num(result.residual_rel) + ")";
+              std::string(ToString(result.status)) + " (relative residual " + NumberText(result.residual_rel) + ")";
     if (!result.message.empty()) message += ": " + result.message;
   }
 }
@@ -322,7 +322,7 @@ void NonlinearStepper::Workspace::StepNewton(std::int64_t k, Solver* solver, boo
     if (!(pivots.minCoeff() > n * std::numeric_limits<double>::epsilon() * largest)) {
       message = "step " + std::to_string(k) + ", Newton iteration " + std::to_string(it) +
                 ": M = (1+h*rho) I - h*theta*grad f + h*gamma*grad g.s is singular (smallest pivot " +
-                Num(pivots.minCoeff()) + ", largest " + Num(largest) + ")";
+                NumberText(pivots.minCoeff()) + ", largest " + NumberText(largest) + ")";
       return finish(SolveStatus::kSingular);
     }
     V = lu.solve(G);  // M_α⁻¹ g
@@ -354,7 +354,7 @@ void NonlinearStepper::Workspace::StepNewton(std::int64_t k, Solver* solver, boo
         res = mcp.NaturalResidual(z, &F, scale).rel;
         message = "step " + std::to_string(k) + ", Newton iteration " + std::to_string(it) + ": MLCP backend '" +
                   std::string(result.solver) + "' returned " + std::string(ToString(result.status)) +
-                  " (MLCP relative residual " + Num(result.residual_rel) + ")";
+                  " (MLCP relative residual " + NumberText(result.residual_rel) + ")";
         if (!result.message.empty()) message += ": " + result.message;
         return finish(result.status);
       }
@@ -375,7 +375,7 @@ void NonlinearStepper::Workspace::StepNewton(std::int64_t k, Solver* solver, boo
     if (res <= tol) return finish(SolveStatus::kSolved);
   }
   message = "step " + std::to_string(k) + ": Newton did not converge in " + std::to_string(budget) +
-            " iteration(s): relative residual " + Num(res) + " > newton_tolerance " + Num(tol);
+            " iteration(s): relative residual " + NumberText(res) + " > newton_tolerance " + NumberText(tol);
   finish(SolveStatus::kIterationLimit);
 }
 

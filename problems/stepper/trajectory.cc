@@ -4,17 +4,14 @@
 #include <fstream>
 #include <ostream>
 
+#include "solvers/core/number_text.h"
 #include "solvers/core/problem.h"
 
 namespace smcbench {
 namespace {
 
-// Appends value in shortest round-trip form (std::to_chars: no locale, no allocation).
-void Append(double value, std::string* line) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  line->append(buffer, result.ptr);
-}
+// Appends value in shortest round-trip form (no locale, no allocation).
+void Append(double value, std::string* line) { AppendNumberText(line, value); }
 
 void Append(long long value, std::string* line) {
   char buffer[24];

@@ -1,18 +1,13 @@
 #include "problems/stepper/validation.h"
 
-#include <charconv>
 #include <cmath>
 #include <limits>
+
+#include "solvers/core/number_text.h"
 
 namespace smcbench::stepper_detail {
 
 void Fail(const char* owner, const std::string& what) { throw InvalidInputError(std::string(owner) + ": " + what); }
-
-std::string Num(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
-}
 
 namespace {
 std::string Dims(Eigen::Index rows, Eigen::Index cols) { return std::to_string(rows) + "x" + std::to_string(cols); }
@@ -52,12 +47,12 @@ void CheckInvertible(const char* owner, const char* field, const DenseMatrix& A)
   const double rcond = A.partialPivLu().rcond();
   if (!(rcond > 10.0 * std::numeric_limits<double>::epsilon())) {
     Fail(owner, std::string(field) + " is singular to working precision (reciprocal condition number " +
-                    Num(rcond) + ")");
+                    NumberText(rcond) + ")");
   }
 }
 
 void CheckStep(const char* owner, double h) {
-  if (!(h > 0.0) || !std::isfinite(h)) Fail(owner, "h must be a positive finite time step, got " + Num(h));
+  if (!(h > 0.0) || !std::isfinite(h)) Fail(owner, "h must be a positive finite time step, got " + NumberText(h));
 }
 
 }  // namespace smcbench::stepper_detail

@@ -10,8 +10,6 @@
 namespace smcbench::stepper_detail {
 
 [[noreturn]] void Fail(const char* owner, const std::string& what);
-// Shortest round-trip text of a double ("0.1", "nan").
-std::string Num(double value);
 void CheckShape(const char* owner, const char* field, const DenseMatrix& A, Eigen::Index rows, Eigen::Index cols);
 void CheckSize(const char* owner, const char* field, const Vector& v, Eigen::Index size);
 void CheckFinite(const char* owner, const char* field, const DenseMatrix& A);

@@ -21,7 +21,6 @@ namespace smcbench {
 namespace {
 
 using suites_detail::MakeProblem;
-using suites_detail::NumberText;
 using suites_detail::PlantedRow;
 using suites_detail::PlantRow;
 using suites_detail::Random;

@@ -3,40 +3,19 @@
 #pragma once
 
 #include <algorithm>
-#include <charconv>
 #include <cstdint>
 #include <cstdio>
-#include <random>
 #include <string>
 #include <utility>
 
+#include "problems/generators/seeded_random.h"
 #include "problems/library/problem_set.h"
+#include "solvers/core/number_text.h"
 
 namespace smcbench::suites_detail {
 
-// std::mt19937_64 (fully specified by the standard) read through our own bit manipulation, never a
-// std::*_distribution (their algorithms differ between standard libraries): the same seed gives the same
-// numbers on every platform, as in problems/generators/random_problems.cc.
-class Random {
- public:
-  explicit Random(std::uint64_t seed) : engine_(seed) {}
-  // Uniform in [0, 1): the top 53 bits scaled by 2⁻⁵³ (exact).
-  double Uniform() { return static_cast<double>(engine_() >> 11) * 0x1.0p-53; }
-  double Uniform(double a, double b) { return a + (b - a) * Uniform(); }
-  // Uniform integer in [0, k) for small k.
-  int Index(int k) { return std::min(k - 1, static_cast<int>(Uniform() * k)); }
-  bool Coin() { return Index(2) == 1; }
-
- private:
-  std::mt19937_64 engine_;
-};
-
-// Shortest text that reads back to the same double ("0.001", "1e-08", "inf").
-inline std::string NumberText(double value) {
-  char buffer[64];
-  const auto r = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, r.ptr);
-}
+// The reproducible RNG of problems/generators (same seed, same numbers on every platform).
+using Random = SeededRandom;
 
 // A step size for ids: "0.1", "0.01", "0.001", "1e-04", ... ("%g", stable and short).
 inline std::string StepText(double h) {

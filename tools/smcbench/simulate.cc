@@ -19,6 +19,7 @@
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/nonlinear_scene.h"
 #include "problems/scenes/registry.h"
+#include "solvers/core/number_text.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {
@@ -31,15 +32,9 @@ using json = nlohmann::json;
 // the one-step problems of every linear scene and handles m = 2 and the nearly singular S11 steps.
 constexpr const char* kDefaultSolver = "lemke";
 
-std::string Num(double value) {
-  char buffer[32];
-  const auto result = std::to_chars(buffer, buffer + sizeof(buffer), value);
-  return std::string(buffer, result.ptr);
-}
-
 std::string VectorText(const Vector& v) {
   std::string text = "[";
-  for (Eigen::Index i = 0; i < v.size(); ++i) text += (i ? ", " : "") + Num(v[i]);
+  for (Eigen::Index i = 0; i < v.size(); ++i) text += (i ? ", " : "") + NumberText(v[i]);
   return text + "]";
 }
 
@@ -487,7 +482,7 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
     }
     record_writer = std::make_unique<ProblemSetWriter>(
         f.record, "capture", "one-step problems of smcbench simulate " + info.name + " (" + std::string(ToString(s.method)) +
-                                 ", h = " + Num(s.h) + ", backend " + solver_name + ")");
+                                 ", h = " + NumberText(s.h) + ", backend " + solver_name + ")");
     recorder = std::make_unique<ProblemRecorder>(MakeCaptureContext("capture", *scene, s, solver_name),
                                                  record_writer.get());
     s.stepper.observer = recorder.get();
@@ -518,14 +513,14 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
       data = temp.path.string();
       WriteTrajectoryCsvFile(tr, data);
     }
-    std::string title = info.name + ": " + tr.description + ", h = " + Num(s.h);
+    std::string title = info.name + ": " + tr.description + ", h = " + NumberText(s.h);
     if (!solver_name.empty()) title += ", " + solver_name;
     PlotTrajectory(tr, data, title, f.plot);
   }
 
   // A short report on out; the files hold the details.
-  out << info.name << ": " << ToString(s.method) << " (" << tr.description << "), h = " << Num(s.h)
-      << ", T = " << Num(s.T) << ", " << tr.steps_taken << " of " << tr.num_steps << " steps"
+  out << info.name << ": " << ToString(s.method) << " (" << tr.description << "), h = " << NumberText(s.h)
+      << ", T = " << NumberText(s.T) << ", " << tr.steps_taken << " of " << tr.num_steps << " steps"
       << (solver_name.empty() ? "" : ", backend " + solver_name) << "\n";
   out << "  x_final = " << VectorText(tr.x_final) << ", s_final = " << VectorText(tr.s_final) << "\n";
   if (tr.recorded) {
@@ -534,14 +529,14 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
       double max_y = 0.0;
       std::int64_t changes = 0;
       for (const auto& sm : metrics.surfaces) max_y = std::max(max_y, sm.max_abs_y_after), changes += sm.sign_changes_after;
-      out << "  surfaces reached at step " << metrics.reaching_step << " (t = " << Num(tr.time(metrics.reaching_step))
-          << "): max |y| after " << Num(max_y) << ", sign changes of s after " << changes << "\n";
+      out << "  surfaces reached at step " << metrics.reaching_step << " (t = " << NumberText(tr.time(metrics.reaching_step))
+          << "): max |y| after " << NumberText(max_y) << ", sign changes of s after " << changes << "\n";
     } else {
-      out << "  not every surface is reached (|y| <= " << Num(reach_tol) << " to the end)\n";
+      out << "  not every surface is reached (|y| <= " << NumberText(reach_tol) << " to the end)\n";
     }
   }
   if (IsImplicit(s.method)) {
-    out << "  max one-step residual " << Num(tr.max_residual) << ", " << tr.total_iterations
+    out << "  max one-step residual " << NumberText(tr.max_residual) << ", " << tr.total_iterations
         << " backend iterations, " << tr.failed_steps << " failed steps\n";
   }
   // One cold run, set-up (discretization, factorization) included: `stepper_benchmark` measures the loop itself.
@@ -554,7 +549,7 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
   }
   if (tr.first_failed_step >= 0) {
     err << "warning: step " << tr.first_failed_step << ": " << ToString(tr.first_failure_status) << " (residual "
-        << Num(tr.first_failure_residual) << ")" << (tr.first_failure_message.empty() ? "" : ": ")
+        << NumberText(tr.first_failure_residual) << ")" << (tr.first_failure_message.empty() ? "" : ": ")
         << tr.first_failure_message << (tr.stopped_early ? "; the run stopped there" : "") << "\n";
   }
   return 0;
@@ -580,7 +575,7 @@ int ScenesCommand::Run(std::ostream& out, std::ostream& err) const {
       const SceneInfo& info = scene->info();
       const SimulationSettings& d = scene->defaults();
       out << info.description << "  [n=" << info.n << " m=" << info.m << "; " << ToString(d.method)
-          << " h=" << Num(d.h) << " T=" << Num(d.T) << "]\n";
+          << " h=" << NumberText(d.h) << " T=" << NumberText(d.T) << "]\n";
     } catch (const InvalidInputError& e) {
       out << "(cannot load)\n";
       err << "smcbench: scene " << name << ": " << e.what() << "\n";
