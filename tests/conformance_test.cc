@@ -3,6 +3,7 @@
 // degenerate rows). The test recomputes the merit function itself and never trusts a backend's status alone.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <map>
 #include <set>
 #include <string>
@@ -101,6 +102,70 @@ TEST_P(Conformance, SolvesGeneratedProblemsWithKnownSolution) {
     }
   }
   EXPECT_GT(checked, 0) << name << " solved nothing";
+}
+
+// Solver::SolveRepeated (the time-stepper's path) is Solve without the per-call re-checks: over a sequence of
+// one-step problems (q replaced in place, warm start = the previous answer) two instances of the backend, one
+// driven by each, must return the same bits: status, z, w, residuals, iterations, details.
+void SolveRepeatedBySize(Solver* solver, const BoxMLCP& p, const SolverOptions& o, SolveResult* r) {
+  switch (p.size()) {
+    case 1: return solver->SolveRepeated<1>(p, o, r);
+    case 2: return solver->SolveRepeated<2>(p, o, r);
+    case 3: return solver->SolveRepeated<3>(p, o, r);
+    default: return solver->SolveRepeated<4>(p, o, r);
+  }
+}
+
+TEST_P(Conformance, RepeatedSolvesGiveTheBitsOfSolve) {
+  const std::string name = GetParam();
+  auto plain = CreateSolver(name);
+  auto repeated = CreateSolver(name);
+  int compared = 0;
+  for (BoundKind bounds : {BoundKind::kRelay, BoundKind::kLCP, BoundKind::kBox}) {
+    for (int n : {1, 2, 3, 4}) {
+      GeneratorOptions g;
+      g.family = MatrixFamily::kSymmetricPositiveDefinite;
+      g.bounds = bounds;
+      g.size = n;
+      g.seed = 7;
+      BoxMLCP p_plain = GenerateProblem(g).problem;
+      BoxMLCP p_repeated = p_plain;
+      const Vector q0 = p_plain.q();
+      SolverOptions o_plain, o_repeated;
+      o_plain.tolerance = o_repeated.tolerance = kTol;
+      ASSERT_TRUE(repeated->BeginRepeatedSolves(p_repeated, o_repeated)) << name << " on " << p_plain.name();
+      SolveResult a, b;
+      for (int k = 0; k < 12; ++k) {
+        // A slowly turning right side, as along a trajectory.
+        Vector q = q0;
+        for (int i = 0; i < n; ++i) q[i] *= std::cos(0.4 * k + i);
+        p_plain.set_q(q);
+        p_repeated.set_q(q);
+        plain->Solve(p_plain, o_plain, &a);
+        SolveRepeatedBySize(repeated.get(), p_repeated, o_repeated, &b);
+        const std::string where = name + " on " + p_plain.name() + ", step " + std::to_string(k);
+        ASSERT_EQ(a.status, b.status) << where;
+        EXPECT_EQ(a.message, b.message) << where;
+        EXPECT_EQ(a.solver, b.solver) << where;
+        EXPECT_EQ(a.z, b.z) << where;
+        EXPECT_EQ(a.w, b.w) << where;
+        EXPECT_EQ(a.residual_abs, b.residual_abs) << where;
+        EXPECT_EQ(a.residual_rel, b.residual_rel) << where;
+        EXPECT_EQ(a.iterations, b.iterations) << where;
+        ASSERT_EQ(a.num_details, b.num_details) << where;
+        for (int d = 0; d < a.num_details; ++d) {
+          EXPECT_STREQ(a.details[d].name, b.details[d].name) << where;
+          EXPECT_EQ(a.details[d].value, b.details[d].value) << where << " " << a.details[d].name;
+        }
+        if (a.solved()) {
+          o_plain.warm_start = a.z;
+          o_repeated.warm_start = b.z;  // same size: the values change, the options object stays
+        }
+        ++compared;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 3 * 4 * 12);
 }
 
 // smcbench's own backends: external adapters (siconos-*) take only the shapes their library expresses and are

@@ -229,6 +229,11 @@ class KernelImpl final : public LinearStepper::Kernel {
     if (record) Record(0, t0, x, s, y, 0, 0.0, SolveStatus::kNotRun, out);
     if (forced) d.forcing(t0, g_prev);
 
+    // The fixed kernels solve through Solver::SolveRepeated: the checks that cannot change during the run are
+    // made once, here (the generic Solve reports a refusal step by step, as the dynamic kernel does).
+    bool repeated = false;
+    if constexpr (kFixed) repeated = implicit && solver->BeginRepeatedSolves(*problem, solver_options_);
+
     Counters counters;
     std::int64_t k = 0;
     while (k < num_steps) {
@@ -257,7 +262,15 @@ class KernelImpl final : public LinearStepper::Kernel {
             double* ws = solver_options_.warm_start.data();
             for (int i = 0; i < m; ++i) ws[i] = s[i];
           }
-          solver->Solve(*problem, solver_options_, &result_);
+          if constexpr (kFixed) {
+            if (repeated) {
+              solver->SolveRepeated<M>(*problem, solver_options_, &result_);
+            } else {
+              solver->Solve(*problem, solver_options_, &result_);
+            }
+          } else {
+            solver->Solve(*problem, solver_options_, &result_);
+          }
           if (observer) observer->OnStep(k + 1, 0, *problem, result_);
           const double* z = result_.z.data();
           for (int i = 0; i < m; ++i) s[i] = z[i];

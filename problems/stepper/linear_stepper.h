@@ -2,7 +2,8 @@
 // `eq:TDS3` (z = s_{k+1}, M = C S, q = −(C R x_k + C p_k + D), l = −1, u = 1) solved by whichever backend the
 // caller passes. Two paths:
 //   LinearStepper: M, C R, C p + D (and the BoxMLCP itself) are built once; a step is a few small mat-vecs, an
-//     in-place q update (BoxMLCP::set_q) and the solve, warm-started from s_k. Fixed-size Eigen kernels serve
+//     in-place q update (BoxMLCP::set_q) and the solve, warm-started from s_k (fixed kernels: Solver::SolveRepeated,
+//     whose checks that cannot change during the run are made once before the loop). Fixed-size Eigen kernels serve
 //     n ≤ 4, m ≤ 2 (every linear scene of SCENES.md); larger systems use a dynamic kernel with preallocated
 //     buffers. Neither allocates per step.
 //   SimulateRebuildingEachStep: what a general simulator does: every step re-discretizes (LU of I − hθE or the

@@ -71,7 +71,7 @@ class BoxMLCP {
   void set_q(const Eigen::Ref<const Vector>& q) { SetQ<Eigen::Dynamic>(q.data(), q.size()); }
   // The same for a fixed-size vector (the stepper's kernels): loops of compile-time length, inlined.
   template <int N, int Options>
-  void set_q(const Eigen::Matrix<double, N, 1, Options, N, 1>& q) {
+  [[gnu::always_inline]] inline void set_q(const Eigen::Matrix<double, N, 1, Options, N, 1>& q) {
     SetQ<N>(q.data(), q.size());
   }
   // Replaces M (same size and storage kind; validated like the constructor) and gives it a new matrix_id().
@@ -120,7 +120,7 @@ class BoxMLCP {
   // set_q's body, one pass with plain loops (time-steppers call it every step): x − x is 0 exactly for finite x,
   // so one test covers NaN and ±∞; the failure (message naming the index) is out of line, before q_ is touched.
   template <int N>
-  void SetQ(const double* in, Eigen::Index size) {
+  [[gnu::always_inline]] inline void SetQ(const double* in, Eigen::Index size) {
     const Eigen::Index n = N != Eigen::Dynamic ? N : q_.size();
     double probe = 0.0, norm = 0.0;
     if (size == q_.size()) {

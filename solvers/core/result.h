@@ -40,15 +40,17 @@ struct SolveResult {
   // only through it: it keeps names unique. Inline and usually without comparing text: backends set the same
   // literals in the same order on every solve into a result reused across solves (see distinct_prefix_).
   void SetDetail(const char* name, double value) {
+    // First the slot this literal held before the last Reset (a backend repeating its sequence of details): no
+    // earlier slot can hold the same text, as slots below distinct_prefix_ are pairwise distinct.
+    if (num_details < distinct_prefix_ && details[num_details].name == name) {
+      details[num_details++].value = value;
+      return;
+    }
     for (int i = 0; i < num_details; ++i) {
       if (details[i].name == name) {
         details[i].value = value;
         return;
       }
-    }
-    if (num_details < distinct_prefix_ && details[num_details].name == name) {
-      details[num_details++].value = value;  // the slot this literal held before the last Reset
-      return;
     }
     SetDetailByText(name, value);
   }

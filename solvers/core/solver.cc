@@ -26,6 +26,7 @@ template <int N>
                                                    SolveResult* result) {
   const int n = N > 0 ? N : n_runtime;
   result->Reset();
+  merit_memo_.n = 0;
   result->solver = name;
   if (result->z.size() != n) result->z.resize(n);
   if (result->w.size() != n) result->w.resize(n);
@@ -48,12 +49,7 @@ template <int N>
   }
   std::string why;  // written only on failure
   if (!ok || !ValidateBackendOptions(&why)) return RejectOptions(n, options, result);
-  has_deadline_ = options.time_limit_seconds < kInf;
-  if (has_deadline_) {
-    deadline_ = std::chrono::steady_clock::now() +
-                std::chrono::duration_cast<std::chrono::steady_clock::duration>(
-                    std::chrono::duration<double>(options.time_limit_seconds));
-  }
+  StartDeadline(options.time_limit_seconds);
   return true;
 }
 
@@ -126,12 +122,77 @@ void Solver::SolveBox(const BoxMLCP& problem, const SolverOptions& options, Solv
   }
   // The fixed-size merit function needs z and w of size N; a backend that resized them gets the generic one.
   const bool fixed = N > 0 && result->z.size() == N && result->w.size() == N;
-  const Residual r = fixed ? problem.template NaturalResidualFixed<(N > 0 ? N : 1)>(result->z, &result->w)
-                           : problem.NaturalResidual(result->z, &result->w);
+  constexpr int kFixedN = N > 0 ? N : 1;
+  const Residual r = !fixed ? problem.NaturalResidual(result->z, &result->w)
+                     : merit_memo_.Matches<kFixedN>(result->z.data(), result->w.data())
+                         ? merit_memo_.r  // the backend's FixedSizeMerit of this very z and w
+                         : problem.template NaturalResidualFixed<kFixedN>(result->z, &result->w);
   result->residual_abs = r.abs;
   result->residual_rel = r.rel;
   Finish(options.tolerance, start, result);
 }
+
+bool Solver::BeginRepeatedSolves(const BoxMLCP& problem, const SolverOptions& options) {
+  repeated_ = {};
+  const int n = problem.size();
+  if (problem.is_sparse() || n > BoxMLCP::kSmallSize) return false;
+  std::string why;
+  if (!options.IsValid(&why) || !ValidateBackendOptions(&why)) return false;
+  const SolverInfo& solver_info = info();
+  if (!solver_info.dense || (solver_info.symmetric_only && !problem.IsSymmetric())) return false;
+  repeated_ = {problem.matrix_id(), n, &options, solver_info.name};
+  return true;
+}
+
+template <int N>
+void Solver::SolveRepeated(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  static_assert(N >= 1 && N <= BoxMLCP::kSmallSize);
+  const Eigen::Index warm_size = options.warm_start.size();
+  if (repeated_.matrix_id != problem.matrix_id() || repeated_.n != N || repeated_.options != &options ||
+      (warm_size != N && warm_size != 0)) {
+    return Solve(problem, options, result);
+  }
+  const auto start = StartClock(options);
+  result->Reset();
+  result->solver = repeated_.name;
+  merit_memo_.n = 0;
+  if (result->z.size() != N) result->z.resize(N);
+  if (result->w.size() != N) result->w.resize(N);
+  double* z = result->z.data();
+  bool ok = true;
+  if (warm_size == N) {
+    const double* ws = options.warm_start.data();
+    double probe = 0.0;  // as in Prepare
+    for (int i = 0; i < N; ++i) {
+      z[i] = ws[i];
+      probe += ws[i] - ws[i];
+    }
+    ok = probe == 0.0;
+  } else {
+    const double* l = problem.l().data();
+    const double* u = problem.u().data();
+    for (int i = 0; i < N; ++i) z[i] = std::min(std::max(0.0, l[i]), u[i]);
+  }
+  if (ok) {
+    StartDeadline(options.time_limit_seconds);
+    DoSolve(problem, options, result);
+  } else {
+    RejectOptions(N, options, result);  // a non-finite warm start: kInvalidOptions, z = 0
+  }
+  const bool fixed = result->z.size() == N && result->w.size() == N;
+  const Residual r = !fixed ? problem.NaturalResidual(result->z, &result->w)
+                     : merit_memo_.Matches<N>(result->z.data(), result->w.data())
+                         ? merit_memo_.r
+                         : problem.template NaturalResidualFixed<N>(result->z, &result->w);
+  result->residual_abs = r.abs;
+  result->residual_rel = r.rel;
+  Finish(options.tolerance, start, result);
+}
+
+template void Solver::SolveRepeated<1>(const BoxMLCP&, const SolverOptions&, SolveResult*);
+template void Solver::SolveRepeated<2>(const BoxMLCP&, const SolverOptions&, SolveResult*);
+template void Solver::SolveRepeated<3>(const BoxMLCP&, const SolverOptions&, SolveResult*);
+template void Solver::SolveRepeated<4>(const BoxMLCP&, const SolverOptions&, SolveResult*);
 
 void Solver::Solve(const MCP& problem, const SolverOptions& options, SolveResult* result) {
   const auto start = StartClock(options);
@@ -178,6 +239,7 @@ void Solver::BindOptions(OptionBinder*) {}
 bool Solver::ValidateBackendOptions(std::string*) const { return true; }
 
 bool Solver::SetOption(std::string_view name, std::string_view value, std::string* error) {
+  repeated_ = {};  // BeginRepeatedSolves checked the old values
   OptionBinder binder;
   BindOptions(&binder);
   const std::string previous = binder.ValueText(name);

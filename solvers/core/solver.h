@@ -4,6 +4,8 @@
 #pragma once
 
 #include <chrono>
+#include <cstdint>
+#include <cstring>
 #include <string>
 #include <string_view>
 
@@ -44,6 +46,20 @@ class Solver {
   SolveResult Solve(const BoxMLCP& problem, const SolverOptions& options = {});
   SolveResult Solve(const MCP& problem, const SolverOptions& options = {});
 
+  // Repeated solves of one small dense problem with the same options: a time-stepper's one-step problems (M, l, u
+  // fixed, q replaced in place between calls, warm start = the previous step's solution). BeginRepeatedSolves runs
+  // once every check of Solve that cannot change between those calls (SolverOptions::IsValid, the backend's
+  // options, the problem's size and storage, the backend's capability); false means the calls would only repeat a
+  // refusal (or the problem is sparse or has more than BoxMLCP::kSmallSize rows): use Solve, which reports it.
+  // SolveRepeated<N> (N = problem.size()) then does the per-call part of Solve only, with the same guarantees: the
+  // warm start's size and finiteness, DoSolve, timing, the merit function and the rule that "solved" requires it.
+  // Between the two, change neither the options object (warm_start's values aside) nor the backend's options:
+  // SetOption ends the repeated solves, and a call with another problem (matrix_id), size or options object goes
+  // through Solve.
+  bool BeginRepeatedSolves(const BoxMLCP& problem, const SolverOptions& options);
+  template <int N>
+  void SolveRepeated(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
+
   // Typed backend options set from text ("omega", "1.5"); false with *error on unknown name or bad value,
   // in which case the option keeps its previous value.
   bool SetOption(std::string_view name, std::string_view value, std::string* error);
@@ -66,6 +82,20 @@ class Solver {
   static int IterationBudget(const SolverOptions& options, int fallback) {
     return options.max_iterations > 0 ? options.max_iterations : fallback;
   }
+  // For a dense backend with N = problem.size() ≤ BoxMLCP::kSmallSize rows whose acceptance test is the merit
+  // function itself: the merit function at result->z, with result->w = M z + q, computed exactly as Solve does
+  // after DoSolve (same function, same bits). Solve reuses this value, instead of computing it a second time,
+  // when z and w are bit-identical on return; any other return is evaluated afresh.
+  template <int N>
+  Residual FixedSizeMerit(const BoxMLCP& problem, SolveResult* result) {
+    static_assert(N >= 1 && N <= BoxMLCP::kSmallSize);
+    const Residual r = problem.template NaturalResidualFixed<N>(result->z, &result->w);
+    merit_memo_.n = N;
+    std::memcpy(merit_memo_.z, result->z.data(), N * sizeof(double));
+    std::memcpy(merit_memo_.w, result->w.data(), N * sizeof(double));
+    merit_memo_.r = r;
+    return r;
+  }
 
  private:
   // N > 0: n = N known at compile time (dense problems up to BoxMLCP::kSmallSize), 0: read at run time.
@@ -76,9 +106,39 @@ class Solver {
                SolveResult* result);
   // Prepare's failure path: re-checks in the documented order and sets kInvalidOptions with the message.
   bool RejectOptions(int n, const SolverOptions& options, SolveResult* result);
+  // Arms TimeLimitReached for this solve (cheap when there is no limit).
+  void StartDeadline(double time_limit_seconds) {
+    has_deadline_ = time_limit_seconds < kInf;
+    if (has_deadline_) {
+      deadline_ = std::chrono::steady_clock::now() + std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                                                         std::chrono::duration<double>(time_limit_seconds));
+    }
+  }
   // start == time_point{} means "not timed" (options.measure_time off).
   void Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result);
 
+  // FixedSizeMerit's last value within the current Solve (n = 0: none; Prepare clears it).
+  struct MeritMemo {
+    int n = 0;
+    double z[BoxMLCP::kSmallSize] = {};
+    double w[BoxMLCP::kSmallSize] = {};
+    Residual r;
+    template <int N>
+    bool Matches(const double* z_now, const double* w_now) const {
+      return n == N && std::memcmp(z, z_now, N * sizeof(double)) == 0 &&
+             std::memcmp(w, w_now, N * sizeof(double)) == 0;
+    }
+  };
+
+  MeritMemo merit_memo_;
+  // What BeginRepeatedSolves checked (matrix_id 0: nothing).
+  struct RepeatedSolves {
+    std::uint64_t matrix_id = 0;
+    int n = 0;
+    const SolverOptions* options = nullptr;
+    std::string_view name;
+  };
+  RepeatedSolves repeated_;
   std::chrono::steady_clock::time_point deadline_{};
   bool has_deadline_ = false;
   Vector scale_point_;  // Π(0) for the MCP relative scale, kept to avoid allocating per solve

@@ -285,5 +285,118 @@ TEST(SolverBase, MeasureTimeOffLeavesSolveSecondsZero) {
   EXPECT_EQ(r.solve_seconds, 0.0);
 }
 
+// A backend that evaluates the merit function itself (Solver::FixedSizeMerit), then optionally changes z or w
+// afterwards: Solve may reuse the value only when z and w are exactly what it was computed from.
+class MeritCallingSolver final : public Solver {
+ public:
+  const SolverInfo& info() const override {
+    static const SolverInfo kInfo{"merit-calling", "evaluates the merit function itself", "none"};
+    return kInfo;
+  }
+  Vector answer;
+  enum class Then { kNothing, kChangeZ, kScribbleOnW } then = Then::kNothing;
+  Residual seen;
+
+ protected:
+  void DoSolve(const BoxMLCP& problem, const SolverOptions&, SolveResult* result) override {
+    result->z = answer;
+    seen = FixedSizeMerit<2>(problem, result);
+    if (then == Then::kChangeZ) result->z[0] += 0.5;
+    if (then == Then::kScribbleOnW) result->w.setConstant(123.0);
+    result->status = SolveStatus::kSolved;
+  }
+};
+
+TEST(SolverBase, FixedSizeMeritIsReusedOnlyForTheSameZAndW) {
+  MeritCallingSolver solver;
+  solver.answer = (Vector(2) << 1.0, 0.0).finished();  // SimpleLCP's solution
+  SolveResult r = solver.Solve(SimpleLCP());
+  EXPECT_EQ(r.status, SolveStatus::kSolved);
+  EXPECT_EQ(r.residual_abs, solver.seen.abs);
+  EXPECT_EQ(r.residual_abs, 0.0);
+  EXPECT_EQ(r.w, (Vector(2) << 0.0, 2.0).finished());
+
+  solver.then = MeritCallingSolver::Then::kChangeZ;  // z = (1.5, 0): w = (0.5, 2), residual 0.5
+  r = solver.Solve(SimpleLCP());
+  EXPECT_EQ(solver.seen.abs, 0.0);
+  EXPECT_DOUBLE_EQ(r.residual_abs, 0.5);
+  EXPECT_EQ(r.w, (Vector(2) << 0.5, 2.0).finished());
+  EXPECT_EQ(r.status, SolveStatus::kInaccurate);
+
+  solver.then = MeritCallingSolver::Then::kScribbleOnW;
+  r = solver.Solve(SimpleLCP());
+  EXPECT_EQ(r.w, (Vector(2) << 0.0, 2.0).finished()) << "w recomputed, not the backend's scribble";
+  EXPECT_EQ(r.status, SolveStatus::kSolved);
+}
+
+// Solver::BeginRepeatedSolves / SolveRepeated: what is checked once, what is still checked per call.
+TEST(RepeatedSolves, BeginRefusesWhatSolveWouldRefuse) {
+  ScriptedSolver solver;
+  const BoxMLCP p = SimpleLCP();
+  SolverOptions options;
+  EXPECT_TRUE(solver.BeginRepeatedSolves(p, options));
+  SolverOptions bad = options;
+  bad.tolerance = -1.0;
+  EXPECT_FALSE(solver.BeginRepeatedSolves(p, bad));
+  solver.options.factor = -1.0;  // the backend's own options
+  EXPECT_FALSE(solver.BeginRepeatedSolves(p, options));
+  solver.options.factor = 1.0;
+  SparseMatrix sparse(2, 2);
+  sparse.setIdentity();
+  const BoxMLCP sparse_problem(sparse, p.q(), p.l(), p.u());
+  EXPECT_FALSE(solver.BeginRepeatedSolves(sparse_problem, options)) << "sparse: Solve's path";
+  const BoxMLCP large = BoxMLCP::LCP(DenseMatrix::Identity(5, 5), Vector::Ones(5));
+  EXPECT_FALSE(solver.BeginRepeatedSolves(large, options)) << "n > BoxMLCP::kSmallSize: Solve's path";
+}
+
+TEST(RepeatedSolves, NonFiniteWarmStartIsStillRefusedPerCall) {
+  ScriptedSolver solver;
+  solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
+  const BoxMLCP p = SimpleLCP();
+  SolverOptions options;
+  options.warm_start = Vector::Zero(2);
+  ASSERT_TRUE(solver.BeginRepeatedSolves(p, options));
+  SolveResult r;
+  solver.SolveRepeated<2>(p, options, &r);
+  EXPECT_EQ(r.status, SolveStatus::kSolved);
+  EXPECT_EQ(r.solver, "scripted");
+  EXPECT_EQ(r.GetDetail("answer"), 42.0);
+  options.warm_start[1] = std::nan("");
+  solver.SolveRepeated<2>(p, options, &r);
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+  EXPECT_THAT(r.message, HasSubstr("warm_start"));
+  EXPECT_EQ(r.z, Vector::Zero(2));
+  EXPECT_DOUBLE_EQ(r.residual_abs, 1.0) << "the merit function at the returned z, as Solve reports it";
+}
+
+TEST(RepeatedSolves, AnotherProblemOrOptionsObjectGoesThroughSolve) {
+  ScriptedSolver solver;
+  const BoxMLCP p = SimpleLCP();
+  SolverOptions options;
+  ASSERT_TRUE(solver.BeginRepeatedSolves(p, options));
+  // Another problem (another matrix_id): judged by its own merit function. Options Solve refuses: refused.
+  solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();  // solves p, not other (whose solution is (0, 1))
+  DenseMatrix M(2, 2);
+  M << 1.0, 2.0, 0.0, 1.0;
+  const BoxMLCP other = BoxMLCP::LCP(M, (Vector(2) << 1.0, -1.0).finished());
+  SolveResult r;
+  solver.SolveRepeated<2>(p, options, &r);
+  EXPECT_EQ(r.status, SolveStatus::kSolved);
+  solver.SolveRepeated<2>(other, options, &r);
+  EXPECT_EQ(r.status, SolveStatus::kInaccurate);
+  EXPECT_DOUBLE_EQ(r.residual_abs, 1.0);
+  SolverOptions refused = options;
+  refused.tolerance = 0.0;
+  solver.SolveRepeated<2>(p, refused, &r);
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+  // SetOption ends the repeated solves: the new value is checked on the next call.
+  std::string error;
+  ASSERT_TRUE(solver.SetOption("factor", "2", &error)) << error;
+  solver.options.factor = -3.0;
+  solver.SolveRepeated<2>(p, options, &r);
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+  EXPECT_THAT(r.message, HasSubstr("factor"));
+}
+
 }  // namespace
 }  // namespace smcbench

@@ -305,78 +305,119 @@ inline int GuessState(double y, double l, double u) {
 
 inline double JacobiScale(double m_ii) { return m_ii > 0.0 ? m_ii : 1.0; }
 
-// The fixed-size fast path for m ≤ 4 (the paper's one-step relay problems have m = 1, 2): examines only the
-// guessed active set, with the row count known at compile time and everything on the stack. True, with
-// result->z set, if that set solves the problem to tolerance; otherwise the full search takes over. cache holds
-// the free blocks' factors for this M (DoSolve checked its key): a time-stepper's M is constant while the
-// guessed set repeats, so each block is gathered and factored once.
+// The inverse of the 2×2 block [[a00, a01], [a10, a11]] if its ∞-norm condition number is at most
+// BlockCache::kInverseConditionLimit: then x = A⁻¹ b is within about κ ε of the LU solution, far below the solve
+// tolerance, and the merit function checks the result anyway. False (inv unset) otherwise.
+inline bool WellConditionedInverse(double a00, double a10, double a01, double a11, double inv[4]) {
+  const double det = a00 * a11 - a01 * a10;
+  if (!std::isfinite(det) || det == 0.0) return false;
+  const double i00 = a11 / det, i10 = -a10 / det, i01 = -a01 / det, i11 = a00 / det;
+  const double norm = std::max(std::abs(a00) + std::abs(a01), std::abs(a10) + std::abs(a11));
+  const double inv_norm = std::max(std::abs(i00) + std::abs(i01), std::abs(i10) + std::abs(i11));
+  if (!(norm * inv_norm <= EnumerativeSolver::BlockCache::kInverseConditionLimit)) return false;
+  inv[0] = i00, inv[1] = i10, inv[2] = i01, inv[3] = i11;
+  return true;
+}
+
+// Fills a fast-path cache entry for the free set free_mask of the n×n (column-major) M: gathers and factors M_FF
+// (FactorBlock; kSingular below rank_tol · max|M_FF|) and, for a well-conditioned 2×2 block, its scattered
+// inverse. Out of line: runs once per free set and matrix.
+[[gnu::noinline]] void FillBlockEntry(const double* M, int n, unsigned free_mask, double rank_tol,
+                                      EnumerativeSolver::BlockCache::Entry* e) {
+  int idx[EnumerativeSolver::BlockCache::kMaxRows];
+  int k = 0;
+  for (int i = 0; i < n; ++i) {
+    if (free_mask >> i & 1u) idx[k++] = i;
+  }
+  e->k = k;
+  double amax = 0.0;
+  for (int c = 0; c < k; ++c) {
+    for (int r = 0; r < k; ++r) {
+      e->a[r + c * n] = M[idx[r] + idx[c] * n];
+      amax = std::max(amax, std::abs(e->a[r + c * n]));
+    }
+  }
+  double inv[4];
+  e->has_inverse = k == 2 && WellConditionedInverse(e->a[0], e->a[1], e->a[n], e->a[n + 1], inv);
+  if (e->has_inverse) {
+    std::fill(e->inverse, e->inverse + n * n, 0.0);
+    for (int c = 0; c < 2; ++c) {
+      for (int r = 0; r < 2; ++r) e->inverse[idx[r] + idx[c] * n] = inv[r + 2 * c];
+    }
+  }
+  e->state = k == 0 || FactorBlock(e->a, n, k, e->piv, rank_tol * amax) ? EnumerativeSolver::BlockCache::kFactored
+                                                                        : EnumerativeSolver::BlockCache::kSingular;
+}
+
+// The fixed-size fast path for m ≤ 4 (the paper's one-step relay problems have m = 1, 2): forms the candidate of
+// the guessed active set at z0 (GuessState's natural-map set) into z. True if the set's free block is nonsingular
+// and the candidate finite; the caller then tests it with the merit function. cache holds the free blocks' factors
+// for this M (SolveFast checked its key): a time-stepper's M is constant while the guessed set repeats, so each
+// block is gathered and factored once. Written for the time-stepper's critical path: every index is a compile-time
+// constant, so z0, w, the right side and z stay in registers (a local array written element by element and read
+// back as a vector stalls store forwarding), the guess compares without dividing, and a free block of one row is
+// divided, of two rows multiplied by its cached inverse, larger ones solved from their LU factors.
 template <int N>
-bool SolveGuessedSet(const BoxMLCP& problem, const SolverOptions& options, double rank_tol, SolveResult* result,
+bool SolveGuessedSet(const BoxMLCP& problem, double rank_tol, const double* z0, double* z,
                      EnumerativeSolver::BlockCache* cache) {
   const double* M = problem.dense_matrix().data();
   const double* q = problem.q().data();
   const double* l = problem.l().data();
   const double* u = problem.u().data();
-  double* zr = result->z.data();
-  double z0[N], z[N], w[N], rhs[N];
-  int free_idx[N];
-  bool is_free[N];
-  for (int i = 0; i < N; ++i) z0[i] = zr[i], w[i] = q[i];
+  double w[N], r[N];
+  for (int i = 0; i < N; ++i) w[i] = q[i];
   for (int j = 0; j < N; ++j) {
     for (int i = 0; i < N; ++i) w[i] += M[i + j * N] * z0[j];
   }
-  int k = 0;
   unsigned free_mask = 0;
   for (int i = 0; i < N; ++i) {
-    const double y = z0[i] - w[i] / JacobiScale(M[i + i * N]);
-    const int s = GuessState(y, l[i], u[i]);
-    is_free[i] = s == kFree;
-    if (is_free[i]) free_idx[k++] = i, free_mask |= 1u << i;
-    z[i] = s == kFree ? 0.0 : s == kUpper ? u[i] : l[i];
-  }
-  for (int c = 0; c < k; ++c) {
-    const int i = free_idx[c];
-    double r = -q[i];
-    for (int j = 0; j < N; ++j) {
-      if (!is_free[j]) r -= M[i + j * N] * z[j];
+    // GuessState(y = z0 − w / d): with d > 0, y ≤ l ⇔ (z0 − l) d ≤ w and y ≥ u ⇔ (z0 − u) d ≥ w (up to rounding
+    // at a tie, where either set is a fair guess). The row's kind and d come from the cache (M, l, u fixed).
+    const double d = cache->jacobi_scale[i];
+    if (cache->fixed_rows >> i & 1u) {
+      z[i] = l[i];
+    } else if ((cache->lower_rows >> i & 1u) && (z0[i] - l[i]) * d <= w[i]) {
+      z[i] = l[i];
+    } else if ((cache->upper_rows >> i & 1u) && (z0[i] - u[i]) * d >= w[i]) {
+      z[i] = u[i];
+    } else {
+      z[i] = 0.0;
+      free_mask |= 1u << i;
     }
-    rhs[c] = r;
   }
-  if (k > 0) {
-    EnumerativeSolver::BlockCache::Entry& e = cache->entries[free_mask];
-    if (e.state == EnumerativeSolver::BlockCache::kUnknown) {
-      double amax = 0.0;
-      for (int c = 0; c < k; ++c) {
-        for (int b = 0; b < k; ++b) {
-          e.a[b + c * N] = M[free_idx[b] + free_idx[c] * N];
-          amax = std::max(amax, std::abs(e.a[b + c * N]));
-        }
-      }
-      e.state = FactorBlock(e.a, N, k, e.piv, rank_tol * amax) ? EnumerativeSolver::BlockCache::kFactored
-                                                                 : EnumerativeSolver::BlockCache::kSingular;
+  // r = q + M z_B; the free rows then solve M_FF z_F = −r_F.
+  for (int i = 0; i < N; ++i) r[i] = q[i];
+  for (int j = 0; j < N; ++j) {
+    if (free_mask >> j & 1u) continue;  // z_j = 0
+    for (int i = 0; i < N; ++i) r[i] += M[i + j * N] * z[j];
+  }
+  EnumerativeSolver::BlockCache::Entry& e = cache->entries[free_mask];
+  if (e.state == EnumerativeSolver::BlockCache::kUnknown) FillBlockEntry(M, N, free_mask, rank_tol, &e);
+  if (e.state == EnumerativeSolver::BlockCache::kSingular) return false;
+  if (e.k == 1) {
+    for (int i = 0; i < N; ++i) {
+      if (free_mask == 1u << i) z[i] = -r[i] / e.a[0];
     }
-    if (e.state == EnumerativeSolver::BlockCache::kSingular) return false;
+  } else if (e.has_inverse) {
+    for (int i = 0; i < N; ++i) {
+      double sum = 0.0;
+      for (int j = 0; j < N; ++j) sum += e.inverse[i + j * N] * r[j];
+      z[i] -= sum;  // the inverse is zero outside the free rows and columns
+    }
+  } else if (e.k > 1) {
+    double rhs[N];
+    int idx[N];
+    int k = 0;
+    for (int i = 0; i < N; ++i) {
+      if (free_mask >> i & 1u) idx[k] = i, rhs[k++] = -r[i];
+    }
     SolveFactored(e.a, N, k, e.piv, rhs);
+    for (int c = 0; c < k; ++c) z[idx[c]] = rhs[c];
   }
-  for (int c = 0; c < k; ++c) {
-    const int i = free_idx[c];
-    if (!std::isfinite(rhs[c])) return false;
-    z[i] = std::min(std::max(rhs[c], l[i]), u[i]);
-  }
-  double merit = 0.0;
-  for (int i = 0; i < N; ++i) {
-    double wi = q[i];
-    for (int j = 0; j < N; ++j) wi += M[i + j * N] * z[j];
-    merit = std::max(merit, std::abs(z[i] - std::min(std::max(z[i] - wi, l[i]), u[i])));
-  }
-  const double tol_abs = options.tolerance * problem.residual_scale();
-  if (!(merit <= tol_abs)) return false;
-  for (int i = 0; i < N; ++i) zr[i] = z[i];
-  // Near the threshold, confirm with the very computation the base class will make.
-  if (merit > 0.5 * tol_abs && !(problem.NaturalResidual(result->z, &result->w).rel <= options.tolerance)) {
-    for (int i = 0; i < N; ++i) zr[i] = z0[i];
-    return false;
-  }
+  double probe = 0.0;  // x − x is 0 exactly for finite x, NaN for NaN and ±∞
+  for (int i = 0; i < N; ++i) probe += z[i] - z[i];
+  if (!(probe == 0.0)) return false;
+  for (int i = 0; i < N; ++i) z[i] = std::min(std::max(z[i], l[i]), u[i]);  // bound rows stay where they are
   return true;
 }
 
@@ -511,26 +552,46 @@ void EnumerativeSolver::Reserve(int n, int guided_steps) {
 }
 
 template <int N>
-bool EnumerativeSolver::SolveFast(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
-  // The block factors depend on M, the rank tolerance and n only: keep them while those stay the same.
+[[gnu::always_inline]] inline bool EnumerativeSolver::SolveFast(const BoxMLCP& problem, const SolverOptions& options,
+                                                                SolveResult* result) {
+  // The block factors depend on M, the rank tolerance and n only, the size of the search on l and u, which never
+  // change after construction (so matrix_id identifies them too): keep both while those stay the same.
   if (block_cache_.matrix_id != problem.matrix_id() || block_cache_.n != N ||
       block_cache_.rank_tolerance != options_.rank_tolerance) {
     for (auto& e : block_cache_.entries) e.state = BlockCache::kUnknown;
     block_cache_.matrix_id = problem.matrix_id();
     block_cache_.n = N;
     block_cache_.rank_tolerance = options_.rank_tolerance;
+    double total = 1.0;
+    const double* l = problem.l().data();
+    const double* u = problem.u().data();
+    const double* M = problem.dense_matrix().data();
+    block_cache_.fixed_rows = block_cache_.lower_rows = block_cache_.upper_rows = 0;
+    for (int i = 0; i < N; ++i) {  // states per row: 1 fixed or free, 2 one finite bound, 3 two
+      const bool lower = l[i] > -kInf, upper = u[i] < kInf, fixed = l[i] == u[i];
+      total *= fixed ? 1.0 : lower ? (upper ? 3.0 : 2.0) : (upper ? 2.0 : 1.0);
+      block_cache_.fixed_rows |= static_cast<unsigned>(fixed) << i;
+      block_cache_.lower_rows |= static_cast<unsigned>(lower) << i;
+      block_cache_.upper_rows |= static_cast<unsigned>(upper) << i;
+      block_cache_.jacobi_scale[i] = JacobiScale(M[i + i * N]);
+    }
+    block_cache_.active_sets_total = total;
   }
-  if (!SolveGuessedSet<N>(problem, options, options_.rank_tolerance, result, &block_cache_)) return false;
+  double* zr = result->z.data();
+  double z0[N], z[N];
+  for (int i = 0; i < N; ++i) z0[i] = zr[i];
+  if (!SolveGuessedSet<N>(problem, options_.rank_tolerance, z0, z, &block_cache_)) return false;
+  for (int i = 0; i < N; ++i) zr[i] = z[i];
+  // Accepted by the merit function Solve applies afterwards (and reuses): rel = abs / scale ≤ tolerance, tested
+  // without the division and 4 ulps on the safe side, so that Solve's own test can never disagree.
+  const Residual merit = FixedSizeMerit<N>(problem, result);
+  if (!(merit.abs <= options.tolerance * problem.residual_scale() * (1.0 - 4.0 * kEps))) {
+    for (int i = 0; i < N; ++i) zr[i] = z0[i];  // the search starts from the caller's point
+    return false;
+  }
   result->status = SolveStatus::kSolved;
   result->iterations = 1;
-  double total = 1.0;
-  const double* l = problem.l().data();
-  const double* u = problem.u().data();
-  for (int i = 0; i < N; ++i) {  // states per row: 1 fixed or free, 2 one finite bound, 3 two (no int→double)
-    const bool lower = l[i] > -kInf, upper = u[i] < kInf;
-    total *= l[i] == u[i] ? 1.0 : lower ? (upper ? 3.0 : 2.0) : (upper ? 2.0 : 1.0);
-  }
-  result->SetDetail("active_sets_total", total);
+  result->SetDetail("active_sets_total", block_cache_.active_sets_total);
   result->SetDetail("guided_sets", 1.0);
   result->SetDetail("singular_blocks", 0.0);
   return true;

@@ -67,8 +67,8 @@ struct EnumerativeOptions {
 // examined, none solves, but some came too close to call, or a block solve overflowed); kSizeLimit (before any
 // work); kIterationLimit (options.max_iterations sets examined; ≤ 0 means no budget beyond the full search);
 // kTimeLimit. Details: active_sets_total (size of the full search), guided_sets, singular_blocks.
-// Problems with m ≤ 4 rows first try the guessed set on a fixed-size fast path (stack arrays, loops unrolled at
-// compile time, closed-form 1×1 / 2×2 solves): measured ≈ 13–20 ns at m = 1, 25–35 ns at m = 2 inside DoSolve.
+// Problems with m ≤ 4 rows first try the guessed set on a fixed-size fast path (loops unrolled at compile time,
+// values in registers, cached factors or inverses of the free blocks, division-free guess and acceptance tests).
 class EnumerativeSolver final : public Solver {
  public:
   EnumerativeSolver() = default;
@@ -83,10 +83,21 @@ class EnumerativeSolver final : public Solver {
       State state = kUnknown;
       double a[kMaxRows * kMaxRows];  // FactorBlock's output, leading dimension n
       int piv[kMaxRows];
+      int k = 0;  // rows in the free set
+      // 2×2 blocks with κ∞ ≤ kInverseConditionLimit also keep their inverse, scattered into an n×n matrix that is
+      // zero outside the free rows and columns: the solve is then a mat-vec with compile-time indices, kept in
+      // registers, instead of two chained divisions on the critical path of a time step.
+      bool has_inverse = false;
+      double inverse[kMaxRows * kMaxRows];
     };
+    static constexpr double kInverseConditionLimit = 1e4;
     std::uint64_t matrix_id = 0;  // 0: empty
     int n = 0;
     double rank_tolerance = 0.0;
+    double active_sets_total = 0.0;  // the detail: size of the full search for this M, l, u
+    // Per row, for the guess: fixed (l = u), finite lower / upper bound (bit i = row i), Jacobi scale d_i.
+    unsigned fixed_rows = 0, lower_rows = 0, upper_rows = 0;
+    double jacobi_scale[kMaxRows];
     Entry entries[1 << kMaxRows];
   };
 

@@ -716,5 +716,29 @@ TEST(Enumerative, ReusesTheWorkspaceAcrossSizes) {
   }
 }
 
+// The fast path's 2×2 free blocks: a well-conditioned one is solved with its cached inverse, one with κ∞ above
+// BlockCache::kInverseConditionLimit from its LU factors; both to the solve tolerance, in one set, warm or cold.
+TEST(EnumerativeSolver, TwoByTwoFreeBlocksWellAndIllConditioned) {
+  for (double eps : {1.0, 1e-7}) {
+    SCOPED_TRACE(eps);
+    DenseMatrix M(2, 2);
+    M << 1.0, 1.0, 1.0, 1.0 + eps;  // κ∞ ≈ 4 / eps
+    const Vector z_star = (Vector(2) << 0.3, -0.2).finished();  // inside the box: both rows free
+    const Vector q = -(M * z_star);
+    const BoxMLCP p = BoxMLCP::Relay(M, q);
+    EnumerativeSolver solver;
+    SolverOptions options;
+    for (bool warm : {false, true}) {
+      if (warm) options.warm_start = (Vector(2) << 0.1, 0.1).finished();
+      const SolveResult r = solver.Solve(p, options);
+      ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
+      EXPECT_EQ(r.iterations, 1);
+      EXPECT_LE(r.residual_rel, options.tolerance);
+      const Vector reference = M.fullPivLu().solve(-q);
+      EXPECT_LE((r.z - reference).cwiseAbs().maxCoeff(), 1e-9 / eps) << r.z.transpose();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace smcbench
