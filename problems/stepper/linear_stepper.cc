@@ -262,14 +262,10 @@ class KernelImpl final : public LinearStepper::Kernel {
             double* ws = solver_options_.warm_start.data();
             for (int i = 0; i < m; ++i) ws[i] = s[i];
           }
-          if constexpr (kFixed) {
-            if (repeated) {
-              solver->SolveRepeated<M>(*problem, solver_options_, &result_);
-            } else {
-              solver->Solve(*problem, solver_options_, &result_);
-            }
-          } else {
+          if (!repeated) {
             solver->Solve(*problem, solver_options_, &result_);
+          } else if constexpr (kFixed) {
+            solver->SolveRepeated<M>(*problem, solver_options_, &result_);
           }
           if (observer) observer->OnStep(k + 1, 0, *problem, result_);
           const double* z = result_.z.data();

@@ -18,9 +18,10 @@ bool Solver::RejectOptions(int n, const SolverOptions& options, SolveResult* res
 }
 
 // Inlined into the Solve()s: a call boundary costs as much as the work for the paper's m = 1, 2 problems. Every
-// check of SolverOptions::IsValid and ValidateBackendOptions runs on every call; only the messages are built
-// out of line (RejectOptions), and the warm start's finiteness is tested while it is copied.
-template <int N>
+// check of SolverOptions::IsValid and ValidateBackendOptions runs on every call (kCheckOptions; SolveRepeated made
+// them in BeginRepeatedSolves); only the messages are built out of line (RejectOptions), and the warm start's
+// size and finiteness are tested while it is copied.
+template <int N, bool kCheckOptions>
 [[gnu::always_inline]] inline bool Solver::Prepare(int n_runtime, const Vector& l, const Vector& u,
                                                    const SolverOptions& options, std::string_view name,
                                                    SolveResult* result) {
@@ -32,7 +33,7 @@ template <int N>
   if (result->w.size() != n) result->w.resize(n);
   const Eigen::Index warm_size = options.warm_start.size();
   double* z = result->z.data();
-  bool ok = options.ScalarsValid();
+  bool ok = !kCheckOptions || options.ScalarsValid();
   if (warm_size == n) {
     // Plain loop: Eigen's dynamic-size assignment is an out-of-line call costing more than n ≤ 4 copies.
     const double* ws = options.warm_start.data();
@@ -48,9 +49,27 @@ template <int N>
     ok = false;
   }
   std::string why;  // written only on failure
-  if (!ok || !ValidateBackendOptions(&why)) return RejectOptions(n, options, result);
+  if (!ok || (kCheckOptions && !ValidateBackendOptions(&why))) return RejectOptions(n, options, result);
   StartDeadline(options.time_limit_seconds);
   return true;
+}
+
+// After DoSolve (or a refusal): the merit function at the returned z, then Finish. The fixed-size merit function
+// needs z and w of size N; a backend that resized them gets the generic one. A backend's FixedSizeMerit of this
+// very z and w is reused.
+template <int N>
+[[gnu::always_inline]] inline void Solver::Conclude(const BoxMLCP& problem, double tolerance,
+                                                    std::chrono::steady_clock::time_point start,
+                                                    SolveResult* result) {
+  const bool fixed = N > 0 && result->z.size() == N && result->w.size() == N;
+  constexpr int kFixedN = N > 0 ? N : 1;
+  const Residual r = !fixed ? problem.NaturalResidual(result->z, &result->w)
+                     : merit_memo_.Matches<kFixedN>(result->z.data(), result->w.data())
+                         ? merit_memo_.r
+                         : problem.template NaturalResidualFixed<kFixedN>(result->z, &result->w);
+  result->residual_abs = r.abs;
+  result->residual_rel = r.rel;
+  Finish(tolerance, start, result);
 }
 
 namespace {
@@ -100,7 +119,7 @@ void Solver::SolveBox(const BoxMLCP& problem, const SolverOptions& options, Solv
   static_assert(N <= BoxMLCP::kSmallSize);
   const auto start = StartClock(options);
   const SolverInfo& solver_info = info();
-  if (Prepare<N>(problem.size(), problem.l(), problem.u(), options, solver_info.name, result)) {
+  if (Prepare<N, true>(problem.size(), problem.l(), problem.u(), options, solver_info.name, result)) {
     if (problem.is_sparse() && !solver_info.sparse) {
       // A dense-only backend gets a dense copy (allocates per solve; sparse inputs are not its hot path),
       // unless the copy would be unreasonably large.
@@ -120,16 +139,7 @@ void Solver::SolveBox(const BoxMLCP& problem, const SolverOptions& options, Solv
       DoSolve(problem, options, result);
     }
   }
-  // The fixed-size merit function needs z and w of size N; a backend that resized them gets the generic one.
-  const bool fixed = N > 0 && result->z.size() == N && result->w.size() == N;
-  constexpr int kFixedN = N > 0 ? N : 1;
-  const Residual r = !fixed ? problem.NaturalResidual(result->z, &result->w)
-                     : merit_memo_.Matches<kFixedN>(result->z.data(), result->w.data())
-                         ? merit_memo_.r  // the backend's FixedSizeMerit of this very z and w
-                         : problem.template NaturalResidualFixed<kFixedN>(result->z, &result->w);
-  result->residual_abs = r.abs;
-  result->residual_rel = r.rel;
-  Finish(options.tolerance, start, result);
+  Conclude<N>(problem, options.tolerance, start, result);
 }
 
 bool Solver::BeginRepeatedSolves(const BoxMLCP& problem, const SolverOptions& options) {
@@ -147,46 +157,14 @@ bool Solver::BeginRepeatedSolves(const BoxMLCP& problem, const SolverOptions& op
 template <int N>
 void Solver::SolveRepeated(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
   static_assert(N >= 1 && N <= BoxMLCP::kSmallSize);
-  const Eigen::Index warm_size = options.warm_start.size();
-  if (repeated_.matrix_id != problem.matrix_id() || repeated_.n != N || repeated_.options != &options ||
-      (warm_size != N && warm_size != 0)) {
+  if (repeated_.matrix_id != problem.matrix_id() || repeated_.n != N || repeated_.options != &options) {
     return Solve(problem, options, result);
   }
   const auto start = StartClock(options);
-  result->Reset();
-  result->solver = repeated_.name;
-  merit_memo_.n = 0;
-  if (result->z.size() != N) result->z.resize(N);
-  if (result->w.size() != N) result->w.resize(N);
-  double* z = result->z.data();
-  bool ok = true;
-  if (warm_size == N) {
-    const double* ws = options.warm_start.data();
-    double probe = 0.0;  // as in Prepare
-    for (int i = 0; i < N; ++i) {
-      z[i] = ws[i];
-      probe += ws[i] - ws[i];
-    }
-    ok = probe == 0.0;
-  } else {
-    const double* l = problem.l().data();
-    const double* u = problem.u().data();
-    for (int i = 0; i < N; ++i) z[i] = std::min(std::max(0.0, l[i]), u[i]);
-  }
-  if (ok) {
-    StartDeadline(options.time_limit_seconds);
+  if (Prepare<N, false>(N, problem.l(), problem.u(), options, repeated_.name, result)) {
     DoSolve(problem, options, result);
-  } else {
-    RejectOptions(N, options, result);  // a non-finite warm start: kInvalidOptions, z = 0
   }
-  const bool fixed = result->z.size() == N && result->w.size() == N;
-  const Residual r = !fixed ? problem.NaturalResidual(result->z, &result->w)
-                     : merit_memo_.Matches<N>(result->z.data(), result->w.data())
-                         ? merit_memo_.r
-                         : problem.template NaturalResidualFixed<N>(result->z, &result->w);
-  result->residual_abs = r.abs;
-  result->residual_rel = r.rel;
-  Finish(options.tolerance, start, result);
+  Conclude<N>(problem, options.tolerance, start, result);
 }
 
 template void Solver::SolveRepeated<1>(const BoxMLCP&, const SolverOptions&, SolveResult*);
@@ -197,7 +175,7 @@ template void Solver::SolveRepeated<4>(const BoxMLCP&, const SolverOptions&, Sol
 void Solver::Solve(const MCP& problem, const SolverOptions& options, SolveResult* result) {
   const auto start = StartClock(options);
   const int n = problem.size();
-  if (Prepare<0>(n, problem.l(), problem.u(), options, info().name, result)) {
+  if (Prepare<0, true>(n, problem.l(), problem.u(), options, info().name, result)) {
     if (!info().mcp) {
       result->status = SolveStatus::kNotApplicable;
       result->message = "backend does not solve nonlinear MCPs";

@@ -101,9 +101,12 @@ class Solver {
   // N > 0: n = N known at compile time (dense problems up to BoxMLCP::kSmallSize), 0: read at run time.
   template <int N>
   void SolveBox(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
-  template <int N>
+  template <int N, bool kCheckOptions>
   bool Prepare(int n, const Vector& l, const Vector& u, const SolverOptions& options, std::string_view name,
                SolveResult* result);
+  template <int N>
+  void Conclude(const BoxMLCP& problem, double tolerance, std::chrono::steady_clock::time_point start,
+                SolveResult* result);
   // Prepare's failure path: re-checks in the documented order and sets kInvalidOptions with the message.
   bool RejectOptions(int n, const SolverOptions& options, SolveResult* result);
   // Arms TimeLimitReached for this solve (cheap when there is no limit).

@@ -372,13 +372,13 @@ bool SolveGuessedSet(const BoxMLCP& problem, double rank_tol, const double* z0, 
   unsigned free_mask = 0;
   for (int i = 0; i < N; ++i) {
     // GuessState(y = z0 − w / d): with d > 0, y ≤ l ⇔ (z0 − l) d ≤ w and y ≥ u ⇔ (z0 − u) d ≥ w (up to rounding
-    // at a tie, where either set is a fair guess). The row's kind and d come from the cache (M, l, u fixed).
-    const double d = cache->jacobi_scale[i];
-    if (cache->fixed_rows >> i & 1u) {
+    // at a tie, where either set is a fair guess).
+    const double d = JacobiScale(M[i + i * N]);
+    if (l[i] == u[i]) {
       z[i] = l[i];
-    } else if ((cache->lower_rows >> i & 1u) && (z0[i] - l[i]) * d <= w[i]) {
+    } else if (l[i] > -kInf && (z0[i] - l[i]) * d <= w[i]) {
       z[i] = l[i];
-    } else if ((cache->upper_rows >> i & 1u) && (z0[i] - u[i]) * d >= w[i]) {
+    } else if (u[i] < kInf && (z0[i] - u[i]) * d >= w[i]) {
       z[i] = u[i];
     } else {
       z[i] = 0.0;
@@ -565,15 +565,9 @@ template <int N>
     double total = 1.0;
     const double* l = problem.l().data();
     const double* u = problem.u().data();
-    const double* M = problem.dense_matrix().data();
-    block_cache_.fixed_rows = block_cache_.lower_rows = block_cache_.upper_rows = 0;
     for (int i = 0; i < N; ++i) {  // states per row: 1 fixed or free, 2 one finite bound, 3 two
-      const bool lower = l[i] > -kInf, upper = u[i] < kInf, fixed = l[i] == u[i];
-      total *= fixed ? 1.0 : lower ? (upper ? 3.0 : 2.0) : (upper ? 2.0 : 1.0);
-      block_cache_.fixed_rows |= static_cast<unsigned>(fixed) << i;
-      block_cache_.lower_rows |= static_cast<unsigned>(lower) << i;
-      block_cache_.upper_rows |= static_cast<unsigned>(upper) << i;
-      block_cache_.jacobi_scale[i] = JacobiScale(M[i + i * N]);
+      const bool lower = l[i] > -kInf, upper = u[i] < kInf;
+      total *= l[i] == u[i] ? 1.0 : lower ? (upper ? 3.0 : 2.0) : (upper ? 2.0 : 1.0);
     }
     block_cache_.active_sets_total = total;
   }

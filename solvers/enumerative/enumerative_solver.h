@@ -95,9 +95,6 @@ class EnumerativeSolver final : public Solver {
     int n = 0;
     double rank_tolerance = 0.0;
     double active_sets_total = 0.0;  // the detail: size of the full search for this M, l, u
-    // Per row, for the guess: fixed (l = u), finite lower / upper bound (bit i = row i), Jacobi scale d_i.
-    unsigned fixed_rows = 0, lower_rows = 0, upper_rows = 0;
-    double jacobi_scale[kMaxRows];
     Entry entries[1 << kMaxRows];
   };
 
