@@ -36,7 +36,7 @@ void SolveBenchmark(benchmark::State& state, const LibraryProblem* problem, std:
   options.measure_time = false;
   SolveResult result;
   solver->Solve(problem->problem, options, &result);  // warm-up sizes the workspace
-  const Verdict verdict = Judge(*problem, result.status, result.z, options.tolerance);
+  const Verdict verdict = Judge(*problem, result.status, result.z, options.tolerance).verdict;
   if (verdict != Verdict::kSolved && verdict != Verdict::kCorrectlyRefused) {
     state.SkipWithError((std::string(ToString(verdict)) + ": " + std::string(ToString(result.status))).c_str());
     return;

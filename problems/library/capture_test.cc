@@ -68,7 +68,7 @@ TEST(Capture, LinearRunGivesOneSolvedProblemPerStep) {
     EXPECT_EQ(p.matrix.p_matrix, Tristate::kYes);
     // The solution is the s_k the run used, and it solves the captured problem.
     EXPECT_TRUE(SameBits(p.solution, tr.s.col(k)));
-    EXPECT_EQ(Judge(p, SolveStatus::kSolved, p.solution, kTol), Verdict::kSolved);
+    EXPECT_EQ(Judge(p, SolveStatus::kSolved, p.solution, kTol).verdict, Verdict::kSolved);
   }
 }
 
@@ -138,7 +138,7 @@ TEST(Capture, AlgorithmTwoGivesOneProblemPerNewtonIteration) {
       EXPECT_EQ(p.metadata.at("iteration"), std::to_string(i + 1));
       EXPECT_EQ(p.id, CaptureId(context, k, static_cast<int>(i + 1)));
       EXPECT_EQ(p.tags.back(), "newton-mlcp");
-      EXPECT_EQ(Judge(p, SolveStatus::kSolved, p.solution, kTol), Verdict::kSolved);
+      EXPECT_EQ(Judge(p, SolveStatus::kSolved, p.solution, kTol).verdict, Verdict::kSolved);
     }
     EXPECT_TRUE(SameBits(list.back()->solution, tr.s.col(k)));
   }
@@ -174,7 +174,7 @@ TEST(Capture, StreamsToAWriterWithTheConstantMatrixStoredOnce) {
   for (std::int64_t k = 1; k <= tr.steps_taken; ++k) {
     const LibraryProblem& p = back.problems[static_cast<std::size_t>(k - 1)];
     EXPECT_TRUE(SameBits(p.solution, tr.s.col(k))) << p.id;
-    EXPECT_EQ(Judge(p, SolveStatus::kSolved, p.solution, kTol), Verdict::kSolved) << p.id;
+    EXPECT_EQ(Judge(p, SolveStatus::kSolved, p.solution, kTol).verdict, Verdict::kSolved) << p.id;
   }
 }
 
@@ -214,7 +214,7 @@ TEST(Capture, PaperSuite) {
     EXPECT_EQ(p.id.rfind("paper/" + scene + "/", 0), 0u);
     EXPECT_NE(std::find(p.tags.begin(), p.tags.end(), "paper"), p.tags.end());
     EXPECT_EQ(p.expected, ExpectedOutcome::kSolvable);  // lemke solves every step of every scene
-    EXPECT_EQ(Judge(p, SolveStatus::kSolved, p.solution, kTol), Verdict::kSolved);
+    EXPECT_EQ(Judge(p, SolveStatus::kSolved, p.solution, kTol).verdict, Verdict::kSolved);
     const bool nonlinear = scene == "hypomonotone" || scene == "arctan";
     EXPECT_EQ(p.metadata.count("iteration"), nonlinear ? 1u : 0u);
   }

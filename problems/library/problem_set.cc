@@ -17,39 +17,6 @@ std::string_view ToString(Tristate value) {
   return "unknown";
 }
 
-std::string_view ToString(ExpectedOutcome value) {
-  switch (value) {
-    case ExpectedOutcome::kSolvable:
-      return "solvable";
-    case ExpectedOutcome::kInfeasible:
-      return "infeasible";
-    case ExpectedOutcome::kUnknown:
-      break;
-  }
-  return "unknown";
-}
-
-std::optional<ExpectedOutcome> ExpectedOutcomeFromString(std::string_view text) {
-  for (ExpectedOutcome e : {ExpectedOutcome::kUnknown, ExpectedOutcome::kSolvable, ExpectedOutcome::kInfeasible}) {
-    if (ToString(e) == text) return e;
-  }
-  return std::nullopt;
-}
-
-std::string_view ToString(Verdict verdict) {
-  switch (verdict) {
-    case Verdict::kSolved:
-      return "solved";
-    case Verdict::kCorrectlyRefused:
-      return "correctly refused";
-    case Verdict::kFailed:
-      return "failed";
-    case Verdict::kWronglyClaimed:
-      return "WRONGLY CLAIMED";
-  }
-  return "?";
-}
-
 std::string QuoteForMessage(std::string_view text, std::size_t max_bytes) {
   std::string out;
   for (std::size_t i = 0; i < text.size() && i < max_bytes; ++i) {
@@ -80,16 +47,6 @@ void ProblemSet::Validate() const {
                               std::to_string(p.solution.size()) + " but n = " + std::to_string(p.size()));
     }
   }
-}
-
-Verdict Judge(const LibraryProblem& problem, SolveStatus status, const Vector& z, double tolerance) {
-  if (status == SolveStatus::kSolved) {
-    if (problem.expected == ExpectedOutcome::kInfeasible || z.size() != problem.size()) return Verdict::kWronglyClaimed;
-    Vector w;
-    const Residual r = problem.problem.NaturalResidual(z, &w);
-    return r.rel <= tolerance ? Verdict::kSolved : Verdict::kWronglyClaimed;
-  }
-  return problem.expected == ExpectedOutcome::kInfeasible ? Verdict::kCorrectlyRefused : Verdict::kFailed;
 }
 
 }  // namespace smcbench

@@ -13,21 +13,13 @@
 
 #include "solvers/core/problem.h"
 #include "solvers/core/status.h"
+#include "solvers/core/verdict.h"
 
 namespace smcbench {
 
 // A matrix property that may be known to hold, known not to hold, or not known (P-matrix checks are exponential).
 enum class Tristate : std::uint8_t { kUnknown = 0, kNo = 1, kYes = 2 };
 std::string_view ToString(Tristate value);  // "unknown", "no", "yes"
-
-// What a correct backend does on the problem.
-enum class ExpectedOutcome : std::uint8_t {
-  kUnknown = 0,     // not known (captured or peer problems nobody has classified): any honest answer is fine
-  kSolvable = 1,    // a solution exists; "solved" is the right answer, any other status is a failure (not wrong)
-  kInfeasible = 2,  // no solution exists; every non-solved status is a correct refusal, "solved" is wrong
-};
-std::string_view ToString(ExpectedOutcome value);  // "unknown", "solvable", "infeasible"
-std::optional<ExpectedOutcome> ExpectedOutcomeFromString(std::string_view text);
 
 struct MatrixTags {
   Tristate symmetric = Tristate::kUnknown;
@@ -50,6 +42,8 @@ struct LibraryProblem {
   Vector solution;
   // Anything else worth keeping (capture: scene, method, h, theta, step), as text.
   std::map<std::string, std::string> metadata;
+  // The certified reference solution (solvers/reference/certify.h), when one was computed.
+  ReferenceSolution reference;
 
   int size() const { return problem.size(); }
   bool sparse() const { return problem.is_sparse(); }
@@ -59,7 +53,7 @@ struct LibraryProblem {
 // initialization would have to name every field).
 inline LibraryProblem MakeLibraryProblem(std::string id, std::string source, BoxMLCP problem) {
   return LibraryProblem{std::move(id), std::move(source), std::move(problem), MatrixTags{}, {}, std::nullopt,
-                        ExpectedOutcome::kUnknown, Vector(), {}};
+                        ExpectedOutcome::kUnknown, Vector(), {}, ReferenceSolution{}};
 }
 
 // A name or id taken from a file, made safe to quote in a one-line error message: control and non-ASCII bytes as
@@ -76,18 +70,9 @@ struct ProblemSet {
   void Validate() const;
 };
 
-// How a backend's answer on one problem is judged against the expected outcome. Success always means: status
-// solved AND the merit function, recomputed here from the returned z, at or below the tolerance.
-enum class Verdict : std::uint8_t {
-  kSolved = 0,           // success where success is possible
-  kCorrectlyRefused = 1, // not solved, and the problem has no solution
-  kFailed = 2,           // not solved although the problem is solvable (or not known to be unsolvable)
-  kWronglyClaimed = 3,   // status solved but the recomputed residual is above tolerance, or the problem is
-                         // infeasible: must never happen
-};
-std::string_view ToString(Verdict verdict);
-
-// The verdict for a result: recomputes the natural residual of z (relative) against tolerance.
-Verdict Judge(const LibraryProblem& problem, SolveStatus status, const Vector& z, double tolerance);
+// The verdict (solvers/core/verdict.h) for a result on a library problem: its expected outcome and reference.
+inline Judgement Judge(const LibraryProblem& problem, SolveStatus status, const Vector& z, double tolerance) {
+  return Judge(problem.problem, problem.expected, &problem.reference, status, z, tolerance);
+}
 
 }  // namespace smcbench

@@ -514,7 +514,7 @@ TEST(HardSuite, NoBackendWronglyClaimsSuccess) {
     const auto start = std::chrono::steady_clock::now();
     for (const LibraryProblem& p : set.problems) {
       const SolveResult r = solver->Solve(p.problem, options);
-      const Verdict v = Judge(p, r.status, r.z, options.tolerance);
+      const Verdict v = Judge(p, r.status, r.z, options.tolerance).verdict;
       ++counts[static_cast<int>(v)];
       EXPECT_NE(v, Verdict::kWronglyClaimed)
           << name << " on " << p.id << ": status " << ToString(r.status) << ", residual " << r.residual_rel;

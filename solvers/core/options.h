@@ -14,7 +14,8 @@
 namespace smcbench {
 
 struct SolverOptions {
-  // Solved means: relative natural residual ‖z − Π(z − F(z))‖∞ / scale ≤ tolerance.
+  // Solved means: the relative natural residual ‖z − Π(z − F(z))‖∞ / (1 + ‖q‖∞) and the residual of the
+  // row-equilibrated problem (Residual::scaled) are both ≤ tolerance.
   double tolerance = 1e-10;
   // Iteration (or pivot) budget; ≤ 0 means "the backend's default" (documented per backend).
   int max_iterations = 0;
@@ -26,6 +27,9 @@ struct SolverOptions {
   // Stamp SolveResult::solve_seconds. Reading the clock twice costs ~40 ns, comparable to a whole m ≤ 2 solve,
   // so time-steppers and benchmarks that time many solves externally turn it off.
   bool measure_time = true;
+  // Exact polish of the backend's answer (polish.h): identify the active set, solve the reduced system, keep the
+  // result when its merit is not worse. Off to time or study a raw algorithm.
+  bool polish = true;
 
   // True if every field is usable; otherwise *why explains which one and why. Inline: runs on every solve.
   bool IsValid(std::string* why) const {

@@ -86,6 +86,20 @@ double NaturalResidualNorm(const Vector& z, const Vector& w, const Vector& l, co
   return r;
 }
 
+double ScaledNaturalResidualNorm(const Vector& z, const Vector& w, const Vector& l, const Vector& u,
+                                 const Vector& inv_row_scale) {
+  double r = 0.0, z_norm = 0.0;
+  for (Eigen::Index i = 0; i < z.size(); ++i) {
+    const double above_lower = z[i] - l[i];
+    const double above_upper = z[i] - u[i];
+    const double wi = w[i] * inv_row_scale[i];
+    const double e = wi > above_lower ? above_lower : (wi < above_upper ? above_upper : wi);
+    if (std::isnan(e) || std::isnan(wi) || std::isnan(z[i])) return kInf;
+    r = std::max(r, std::abs(e));
+    z_norm = std::max(z_norm, std::abs(z[i]));
+  }
+  return r / (1.0 + z_norm);
+}
 
 void ProjectZeroOntoBox(const Vector& l, const Vector& u, Vector* z) {
   z->resize(l.size());
@@ -132,6 +146,40 @@ void BoxMLCP::Validate() {
   q_inf_norm_ = q_.size() ? q_.cwiseAbs().maxCoeff() : 0.0;
 }
 
+void BoxMLCP::ComputeRowScales() {
+  const Eigen::Index n = q_.size();
+  row_scale_.setZero(n);
+  if (is_sparse_) {
+    for (int k = 0; k < sparse_.outerSize(); ++k) {
+      for (SparseMatrix::InnerIterator it(sparse_, k); it; ++it) {
+        row_scale_[it.row()] = std::max(row_scale_[it.row()], std::abs(it.value()));
+      }
+    }
+  } else {
+    row_scale_ = dense_.cwiseAbs().rowwise().maxCoeff();
+  }
+  // A zero row takes the matrix's scale, so scaling (M, q) together still leaves the equilibrated problem alone.
+  const double matrix_scale = n ? row_scale_.maxCoeff() : 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    if (!(row_scale_[i] > 0.0)) row_scale_[i] = matrix_scale > 0.0 ? matrix_scale : 1.0;
+  }
+  inv_row_scale_ = row_scale_.cwiseInverse();
+}
+
+BoxMLCP BoxMLCP::Equilibrated() const {
+  const Vector scaled_q = q_.cwiseQuotient(row_scale_);
+  if (is_sparse_) {
+    SparseMatrix m = sparse_;
+    for (int k = 0; k < m.outerSize(); ++k) {
+      for (SparseMatrix::InnerIterator it(m, k); it; ++it) it.valueRef() /= row_scale_[it.row()];
+    }
+    return BoxMLCP(std::move(m), scaled_q, l_, u_, name_);
+  }
+  DenseMatrix m = dense_;
+  for (Eigen::Index j = 0; j < m.cols(); ++j) m.col(j).array() /= row_scale_.array();
+  return BoxMLCP(std::move(m), scaled_q, l_, u_, name_);
+}
+
 void BoxMLCP::ValidateMatrix() {
   constexpr const char* kOwner = "BoxMLCP";
   matrix_id_ = NextMatrixId();
@@ -151,6 +199,7 @@ void BoxMLCP::ValidateMatrix() {
       }
     }
   }
+  ComputeRowScales();
 }
 
 void BoxMLCP::RejectQ(const double* in, Eigen::Index size) const {
@@ -228,6 +277,7 @@ Residual BoxMLCP::NaturalResidualGeneric(const Vector& z, Vector* w) const {
   Residual r;
   r.abs = NaturalResidualNorm(z, *w, l_, u_);
   r.rel = r.abs / residual_scale();
+  r.scaled = ScaledNaturalResidualNorm(z, *w, l_, u_, inv_row_scale_);
   return r;
 }
 
@@ -273,6 +323,7 @@ Residual MCP::NaturalResidual(const Vector& z, Vector* F, double scale) const {
   Residual r;
   r.abs = NaturalResidualNorm(z, *F, l_, u_);
   r.rel = r.abs / scale;
+  r.scaled = r.rel;
   return r;
 }
 

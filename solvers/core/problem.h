@@ -21,14 +21,21 @@ class InvalidInputError : public std::invalid_argument {
 };
 
 // Natural-map residual r(z) = ‖z − Π_[l,u](z − F(z))‖∞, absolute and relative to the problem's scale
-// (1 + ‖q‖∞ for a box-MLCP). It is zero exactly at a solution.
+// (1 + ‖q‖∞ for a box-MLCP), and the same residual of the row-equilibrated problem: rows of M and q divided by
+// the row scales d_i (BoxMLCP::row_scale), in units of z, relative to 1 + ‖z‖∞. All are zero exactly at a
+// solution; "solved" requires rel and scaled ≤ tolerance (docs/verdict.md). The scaled one sees an error in z
+// whatever the size of M: with W = O(h) the unscaled one lets through errors of order rel/h.
 struct Residual {
   double abs = kInf;
   double rel = kInf;
+  double scaled = kInf;
 };
 
 // ‖z − Π_[l,u](z − w)‖∞ for a given w = F(z). Returns +∞ if any entry is NaN, so a NaN never passes a test.
 double NaturalResidualNorm(const Vector& z, const Vector& w, const Vector& l, const Vector& u);
+// ‖z − Π_[l,u](z − D⁻¹w)‖∞ / (1 + ‖z‖∞) with D⁻¹ = diag(inv_row_scale): Residual::scaled. +∞ on NaN.
+double ScaledNaturalResidualNorm(const Vector& z, const Vector& w, const Vector& l, const Vector& u,
+                                 const Vector& inv_row_scale);
 
 // Π_[l,u](0): the cold-start point used when no warm start is given.
 void ProjectZeroOntoBox(const Vector& l, const Vector& u, Vector* z);
@@ -89,24 +96,43 @@ class BoxMLCP {
   Residual NaturalResidual(const Vector& z, Vector* w) const {
     if (is_sparse_ || size() > kSmallSize || w->size() != size()) return NaturalResidualGeneric(z, w);
     const double* a = dense_.data();
-    double abs = 0.0;
     switch (size()) {
-      case 1: abs = SmallDenseResidual<1>(a, z.data(), w->data()); break;
-      case 2: abs = SmallDenseResidual<2>(a, z.data(), w->data()); break;
-      case 3: abs = SmallDenseResidual<3>(a, z.data(), w->data()); break;
-      default: abs = SmallDenseResidual<4>(a, z.data(), w->data()); break;
+      case 1: return SmallDenseResidual<1>(a, z.data(), w->data());
+      case 2: return SmallDenseResidual<2>(a, z.data(), w->data());
+      case 3: return SmallDenseResidual<3>(a, z.data(), w->data());
+      default: return SmallDenseResidual<4>(a, z.data(), w->data());
     }
-    return {abs, abs / residual_scale()};
   }
   // NaturalResidual when the caller knows M is dense, size() == N and w->size() == N (Solver::Solve dispatches
   // on the size once, so the loops are unrolled and nothing is tested again).
   template <int N>
   Residual NaturalResidualFixed(const Vector& z, Vector* w) const {
-    const double abs = SmallDenseResidual<N>(dense_.data(), z.data(), w->data());
-    return {abs, abs / residual_scale()};
+    return SmallDenseResidual<N>(dense_.data(), z.data(), w->data());
   }
   // Scale used for the relative residual: 1 + ‖q‖∞.
   double residual_scale() const { return 1.0 + q_inf_norm_; }
+
+  // Row scales d_i = max_j |M_ij| (a zero row: the largest |M_ij| of M; M = 0: 1), computed with M. Why this
+  // scale: a positive row scaling leaves the solution set unchanged, and after it |Δ(w_i/d_i)| ≤ n‖Δz‖∞, so the
+  // equilibrated residual is in units of z and invariant under row scaling and under scaling (M, q) together.
+  const Vector& row_scale() const { return row_scale_; }
+  const Vector& inv_row_scale() const { return inv_row_scale_; }
+  // The row-equilibrated problem (D⁻¹M, D⁻¹q, l, u), computed by division so that a 1×1 problem keeps the bits of
+  // q/M; a fresh matrix_id. Allocates (a copy of M). Its own row scales are 1.
+  BoxMLCP Equilibrated() const;
+  // For an Equilibrated() copy of `original` (same M, l, u): q ← D⁻¹ original.q(). `original` is valid, so
+  // nothing is checked again; no allocation.
+  void AssignEquilibratedQ(const BoxMLCP& original) {
+    const Eigen::Index n = q_.size();
+    const double *in = original.q_.data(), *d = original.row_scale_.data();
+    double* out = q_.data();
+    double norm = 0.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      out[i] = in[i] / d[i];
+      norm = std::max(norm, std::abs(out[i]));
+    }
+    q_inf_norm_ = norm;
+  }
 
   // Matrix-class queries (not cached; O(nnz)). Symmetric within rel_tol·max|M_ij|.
   bool IsSymmetric(double rel_tol = 1e-12) const;
@@ -136,12 +162,13 @@ class BoxMLCP {
   }
   [[noreturn]] void RejectQ(const double* in, Eigen::Index size) const;
   Residual NaturalResidualGeneric(const Vector& z, Vector* w) const;
-  // NaturalResidualNorm(M z + q) for dense n×n M, n = N fixed at compile time: one pass, no calls; the same
-  // operations in the same order as Multiply + Affine + NaturalResidualNorm, so the same bits.
+  // The Residual of M z + q for dense n×n M, n = N fixed at compile time: one pass, no calls; the same
+  // operations in the same order as Multiply + Affine + NaturalResidualNorm (+ ScaledNaturalResidualNorm), so
+  // the same bits.
   template <int N>
-  double SmallDenseResidual(const double* a, const double* z, double* w) const {
-    const double *q = q_.data(), *l = l_.data(), *u = u_.data();
-    double r = 0.0;
+  Residual SmallDenseResidual(const double* a, const double* z, double* w) const {
+    const double *q = q_.data(), *l = l_.data(), *u = u_.data(), *inv_d = inv_row_scale_.data();
+    double r = 0.0, rs = 0.0, z_norm = 0.0;
     bool nan = false;
     for (int i = 0; i < N; ++i) {
       double sum = 0.0;
@@ -151,11 +178,17 @@ class BoxMLCP {
       const double above_lower = z[i] - l[i];
       const double above_upper = z[i] - u[i];
       const double e = wi > above_lower ? above_lower : (wi < above_upper ? above_upper : wi);
+      const double ws = wi * inv_d[i];
+      const double es = ws > above_lower ? above_lower : (ws < above_upper ? above_upper : ws);
       nan = nan || std::isnan(e) || std::isnan(wi) || std::isnan(z[i]);
       r = std::max(r, std::abs(e));
+      rs = std::max(rs, std::abs(es));
+      z_norm = std::max(z_norm, std::abs(z[i]));
     }
-    return nan ? kInf : r;
+    if (nan) return {kInf, kInf, kInf};
+    return {r, r / residual_scale(), rs / (1.0 + z_norm)};
   }
+  void ComputeRowScales();
   [[noreturn]] static void ThrowWrongStorage(const char* accessor, const char* kind);
   static std::uint64_t NextMatrixId();
 
@@ -164,6 +197,7 @@ class BoxMLCP {
   DenseMatrix dense_;
   SparseMatrix sparse_;
   Vector q_, l_, u_;
+  Vector row_scale_, inv_row_scale_;  // per M (ComputeRowScales)
   double q_inf_norm_ = 0.0;
   std::string name_;
 };
@@ -189,7 +223,7 @@ class MCP {
   virtual void JacobianDense(const Vector& z, DenseMatrix* J) const;
   virtual void JacobianSparse(const Vector& z, SparseMatrix* J) const;
 
-  // The merit function; F receives F(z).
+  // The merit function; F receives F(z). No row scale for a nonlinear F: Residual::scaled equals rel.
   Residual NaturalResidual(const Vector& z, Vector* F, double scale) const;
 
  private:

@@ -24,6 +24,7 @@ struct SolveResult {
   // The merit function at z, computed by the base class (never by the backend).
   double residual_abs = kInf;
   double residual_rel = kInf;
+  double residual_scaled = kInf;  // of the row-equilibrated problem, relative to 1 + ‖z‖∞ (Residual::scaled)
   double solve_seconds = 0.0;  // wall time of the whole Solve() call (0 when options.measure_time is off)
 
   // Backend-specific numbers (line-search backtracks, Ipopt objective, ...). Fixed capacity: no allocation.
@@ -63,6 +64,7 @@ struct SolveResult {
     iterations = 0;
     residual_abs = kInf;
     residual_rel = kInf;
+    residual_scaled = kInf;
     solve_seconds = 0.0;
     num_details = 0;
   }

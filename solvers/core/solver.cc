@@ -3,6 +3,8 @@
 #include <cstdio>
 #include <sstream>
 
+#include "solvers/core/polish.h"
+
 namespace smcbench {
 
 bool Solver::RejectOptions(int n, const SolverOptions& options, SolveResult* result) {
@@ -27,7 +29,6 @@ template <int N, bool kCheckOptions>
                                                    SolveResult* result) {
   const int n = N > 0 ? N : n_runtime;
   result->Reset();
-  merit_memo_.n = 0;
   result->solver = name;
   if (result->z.size() != n) result->z.resize(n);
   if (result->w.size() != n) result->w.resize(n);
@@ -54,30 +55,90 @@ template <int N, bool kCheckOptions>
   return true;
 }
 
-// After DoSolve (or a refusal): the merit function at the returned z, then Finish. The fixed-size merit function
-// needs z and w of size N; a backend that resized them gets the generic one. A backend's FixedSizeMerit of this
-// very z and w is reused.
+const BoxMLCP& Solver::EquilibratedFor(const BoxMLCP& problem) {
+  // matrix_id names M, and copies keep it along with l and u (which have no setters): one id, one (M, l, u).
+  if (equilibrated_source_ != problem.matrix_id()) {
+    equilibrated_.reset();  // a throw below (out of memory) must not leave a stale copy under a new id
+    equilibrated_source_ = 0;
+    equilibrated_.emplace(problem.Equilibrated());
+    equilibrated_source_ = problem.matrix_id();
+  } else {
+    equilibrated_->AssignEquilibratedQ(problem);
+  }
+  return *equilibrated_;
+}
+
+namespace {
+// Statuses after which the returned z is an attempt worth polishing (not a refusal before any work).
+bool Polishable(SolveStatus status) {
+  return status != SolveStatus::kNotRun && status != SolveStatus::kNotApplicable &&
+         status != SolveStatus::kSizeLimit && status != SolveStatus::kInvalidOptions;
+}
+}  // namespace
+
 template <int N>
-[[gnu::always_inline]] inline void Solver::Conclude(const BoxMLCP& problem, double tolerance,
+[[gnu::always_inline]] inline void Solver::Polish(const BoxMLCP& problem, double tolerance, Residual* r,
+                                                  SolveResult* result) {
+  const int n = problem.size();
+  if (polish_z_.size() != n) polish_z_.resize(n);
+  if (polish_w_.size() != n) polish_w_.resize(n);
+  const BoxMLCP& equilibrated = *equilibrated_;
+  Residual candidate;
+  if constexpr (N > 0) {
+    if (!PolishSmallDense<N>(equilibrated, result->z.data(), polish_z_.data())) return;
+    candidate = problem.template NaturalResidualFixed<N>(polish_z_, &polish_w_);
+  } else {
+    if (!PolishGeneric(equilibrated, result->z, &polish_z_)) return;
+    candidate = problem.NaturalResidual(polish_z_, &polish_w_);
+  }
+  // Not worse in units of z, and not pushing the unscaled test over the line.
+  if (!(candidate.scaled <= r->scaled) || !(candidate.rel <= std::max(r->rel, tolerance))) return;
+  result->z.swap(polish_z_);
+  result->w.swap(polish_w_);
+  *r = candidate;
+  result->SetDetail("polished", 1.0);
+  // A verified answer outranks what the backend said it found (an iteration limit, a false "no solution").
+  if (result->status != SolveStatus::kSolved && r->rel <= tolerance && r->scaled <= tolerance) {
+    result->status = SolveStatus::kSolved;
+    result->message.clear();
+  }
+}
+
+// After DoSolve (or a refusal): the merit function at the returned z, the polish, then Finish. The fixed-size
+// merit function needs z and w of size N; a backend that resized them gets the generic one.
+template <int N>
+[[gnu::always_inline]] inline void Solver::Conclude(const BoxMLCP& problem, const SolverOptions& options,
                                                     std::chrono::steady_clock::time_point start,
                                                     SolveResult* result) {
   const bool fixed = N > 0 && result->z.size() == N && result->w.size() == N;
   constexpr int kFixedN = N > 0 ? N : 1;
-  const Residual r = !fixed ? problem.NaturalResidual(result->z, &result->w)
-                     : merit_memo_.Matches<kFixedN>(result->z.data(), result->w.data())
-                         ? merit_memo_.r
-                         : problem.template NaturalResidualFixed<kFixedN>(result->z, &result->w);
+  Residual r = fixed ? problem.template NaturalResidualFixed<kFixedN>(result->z, &result->w)
+                     : problem.NaturalResidual(result->z, &result->w);
+  // A zero residual cannot be improved; an infinite one is a z with NaN/Inf (nothing to start from).
+  if (options.polish && r.abs > 0.0 && r.abs < kInf && Polishable(result->status) && equilibrated_ &&
+      equilibrated_source_ == problem.matrix_id() && result->z.size() == problem.size()) {
+    if (fixed) {
+      Polish<kFixedN>(problem, options.tolerance, &r, result);
+    } else {
+      Polish<0>(problem, options.tolerance, &r, result);
+    }
+  }
   result->residual_abs = r.abs;
   result->residual_rel = r.rel;
-  Finish(tolerance, start, result);
+  result->residual_scaled = r.scaled;
+  Finish(options.tolerance, start, result);
 }
 
 namespace {
 // Finish's rare branch, out of line so the common path does not set up a stream.
 [[gnu::noinline]] void Downgrade(double tolerance, SolveResult* result) {
   std::ostringstream s;
-  s << "backend reported success but the natural residual is " << result->residual_rel << " (relative) > "
-    << tolerance;
+  s << "backend reported success but the natural residual is ";
+  if (!(result->residual_rel <= tolerance)) {
+    s << result->residual_rel << " (relative) > " << tolerance;
+  } else {
+    s << result->residual_scaled << " in the row-equilibrated problem (units of z) > " << tolerance;
+  }
   result->status = SolveStatus::kInaccurate;
   result->message = s.str();
 }
@@ -86,7 +147,10 @@ namespace {
 void Solver::Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result) {
   using Clock = std::chrono::steady_clock;
   // The rule: the merit function, not the backend, decides what "solved" means.
-  if (result->status == SolveStatus::kSolved && !(result->residual_rel <= tolerance)) Downgrade(tolerance, result);
+  if (result->status == SolveStatus::kSolved &&
+      !(result->residual_rel <= tolerance && result->residual_scaled <= tolerance)) {
+    Downgrade(tolerance, result);
+  }
   if (result->status == SolveStatus::kNotRun) {
     result->status = SolveStatus::kNumericalFailure;
     result->message = "backend returned without setting a status";
@@ -120,6 +184,8 @@ void Solver::SolveBox(const BoxMLCP& problem, const SolverOptions& options, Solv
   const auto start = StartClock(options);
   const SolverInfo& solver_info = info();
   if (Prepare<N, true>(problem.size(), problem.l(), problem.u(), options, solver_info.name, result)) {
+    const BoxMLCP& equilibrated = EquilibratedFor(problem);
+    const BoxMLCP& given = solver_info.equilibrate ? equilibrated : problem;
     if (problem.is_sparse() && !solver_info.sparse) {
       // A dense-only backend gets a dense copy (allocates per solve; sparse inputs are not its hot path),
       // unless the copy would be unreasonably large.
@@ -128,7 +194,7 @@ void Solver::SolveBox(const BoxMLCP& problem, const SolverOptions& options, Solv
         result->message = "backend accepts dense M only and n = " + std::to_string(problem.size()) + " > " +
                           std::to_string(kMaxDensifiedSize) + " is too large to densify";
       } else {
-        const BoxMLCP dense(problem.ToDense(), problem.q(), problem.l(), problem.u(), problem.name());
+        const BoxMLCP dense(given.ToDense(), given.q(), given.l(), given.u(), given.name());
         DoSolve(dense, options, result);
         result->SetDetail("densified", 1.0);
       }
@@ -136,10 +202,10 @@ void Solver::SolveBox(const BoxMLCP& problem, const SolverOptions& options, Solv
       result->status = SolveStatus::kNotApplicable;
       result->message = "backend requires symmetric M";
     } else {
-      DoSolve(problem, options, result);
+      DoSolve(given, options, result);
     }
   }
-  Conclude<N>(problem, options.tolerance, start, result);
+  Conclude<N>(problem, options, start, result);
 }
 
 bool Solver::BeginRepeatedSolves(const BoxMLCP& problem, const SolverOptions& options) {
@@ -162,9 +228,10 @@ void Solver::SolveRepeated(const BoxMLCP& problem, const SolverOptions& options,
   }
   const auto start = StartClock(options);
   if (Prepare<N, false>(N, problem.l(), problem.u(), options, repeated_.name, result)) {
-    DoSolve(problem, options, result);
+    const BoxMLCP& equilibrated = EquilibratedFor(problem);
+    DoSolve(info().equilibrate ? equilibrated : problem, options, result);
   }
-  Conclude<N>(problem, options.tolerance, start, result);
+  Conclude<N>(problem, options, start, result);
 }
 
 template void Solver::SolveRepeated<1>(const BoxMLCP&, const SolverOptions&, SolveResult*);
@@ -192,6 +259,7 @@ void Solver::Solve(const MCP& problem, const SolverOptions& options, SolveResult
   const Residual r = problem.NaturalResidual(result->z, &F, std::isfinite(scale) ? scale : 1.0);
   result->residual_abs = r.abs;
   result->residual_rel = r.rel;
+  result->residual_scaled = r.scaled;
   Finish(options.tolerance, start, result);
 }
 

@@ -1,11 +1,12 @@
 // The one interface every backend implements. Solve() does all shared work once (Drake style): option and
-// capability checks, cold/warm start, timing, the merit function and the rule that "solved" requires it;
-// a backend implements only its algorithm in DoSolve().
+// capability checks, cold/warm start, row equilibration, timing, the exact polish, the merit function and the
+// rule that "solved" requires it; a backend implements only its algorithm in DoSolve().
 #pragma once
 
 #include <chrono>
 #include <cstdint>
 #include <cstring>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -26,6 +27,9 @@ struct SolverInfo {
   bool exact = false;           // finite termination (pivoting / enumeration) rather than iterative
   bool mcp = false;             // also solves nonlinear MCPs
   int default_size_limit = 0;   // refuses larger problems with kSizeLimit; 0 = none
+  // DoSolve receives the row-equilibrated problem (BoxMLCP::Equilibrated), so the backend's pivot tolerances,
+  // stopping and sign tests are in units of z. External codes (siconos-*) get the problem as the user wrote it.
+  bool equilibrate = true;
 };
 
 // Not thread-safe: a Solver owns its workspace. Use one instance per thread.
@@ -39,7 +43,8 @@ class Solver {
 
   // Solves problem into *result, reusing its storage. Never throws for a valid problem: every outcome,
   // including invalid options, is a status with a message. Guarantees on return: result->w = F(z),
-  // result->residual_* is the merit function at z, and status == kSolved ⇒ residual_rel ≤ tolerance.
+  // result->residual_* is the merit function at z, and status == kSolved ⇒ residual_rel ≤ tolerance and
+  // residual_scaled ≤ tolerance. With options.polish, the exact polish (polish.h) ran on the backend's answer.
   void Solve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
   void Solve(const MCP& problem, const SolverOptions& options, SolveResult* result);
   // Convenience forms that allocate a fresh result.
@@ -83,18 +88,11 @@ class Solver {
     return options.max_iterations > 0 ? options.max_iterations : fallback;
   }
   // For a dense backend with N = problem.size() ≤ BoxMLCP::kSmallSize rows whose acceptance test is the merit
-  // function itself: the merit function at result->z, with result->w = M z + q, computed exactly as Solve does
-  // after DoSolve (same function, same bits). Solve reuses this value, instead of computing it a second time,
-  // when z and w are bit-identical on return; any other return is evaluated afresh.
+  // function itself: the merit function of the problem it was given at result->z, with result->w = M z + q.
   template <int N>
   Residual FixedSizeMerit(const BoxMLCP& problem, SolveResult* result) {
     static_assert(N >= 1 && N <= BoxMLCP::kSmallSize);
-    const Residual r = problem.template NaturalResidualFixed<N>(result->z, &result->w);
-    merit_memo_.n = N;
-    std::memcpy(merit_memo_.z, result->z.data(), N * sizeof(double));
-    std::memcpy(merit_memo_.w, result->w.data(), N * sizeof(double));
-    merit_memo_.r = r;
-    return r;
+    return problem.template NaturalResidualFixed<N>(result->z, &result->w);
   }
 
  private:
@@ -104,9 +102,16 @@ class Solver {
   template <int N, bool kCheckOptions>
   bool Prepare(int n, const Vector& l, const Vector& u, const SolverOptions& options, std::string_view name,
                SolveResult* result);
+  // The problem DoSolve receives: the equilibrated copy (made once per matrix_id, its q refreshed per call), or
+  // the problem itself for a backend with info().equilibrate false.
+  const BoxMLCP& EquilibratedFor(const BoxMLCP& problem);
   template <int N>
-  void Conclude(const BoxMLCP& problem, double tolerance, std::chrono::steady_clock::time_point start,
+  void Conclude(const BoxMLCP& problem, const SolverOptions& options, std::chrono::steady_clock::time_point start,
                 SolveResult* result);
+  // The exact polish of result->z (polish.h) on the equilibrated problem; kept when its scaled residual is not
+  // larger and its relative one not pushed above the tolerance. Updates *r.
+  template <int N>
+  void Polish(const BoxMLCP& problem, double tolerance, Residual* r, SolveResult* result);
   // Prepare's failure path: re-checks in the documented order and sets kInvalidOptions with the message.
   bool RejectOptions(int n, const SolverOptions& options, SolveResult* result);
   // Arms TimeLimitReached for this solve (cheap when there is no limit).
@@ -120,20 +125,10 @@ class Solver {
   // start == time_point{} means "not timed" (options.measure_time off).
   void Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result);
 
-  // FixedSizeMerit's last value within the current Solve (n = 0: none; Prepare clears it).
-  struct MeritMemo {
-    int n = 0;
-    double z[BoxMLCP::kSmallSize] = {};
-    double w[BoxMLCP::kSmallSize] = {};
-    Residual r;
-    template <int N>
-    bool Matches(const double* z_now, const double* w_now) const {
-      return n == N && std::memcmp(z, z_now, N * sizeof(double)) == 0 &&
-             std::memcmp(w, w_now, N * sizeof(double)) == 0;
-    }
-  };
-
-  MeritMemo merit_memo_;
+  // EquilibratedFor's copy and the matrix_id of the problem it was made from (0: none).
+  std::optional<BoxMLCP> equilibrated_;
+  std::uint64_t equilibrated_source_ = 0;
+  Vector polish_z_, polish_w_;  // the polished candidate, kept to avoid allocating per solve
   // What BeginRepeatedSolves checked (matrix_id 0: nothing).
   struct RepeatedSolves {
     std::uint64_t matrix_id = 0;

@@ -49,10 +49,17 @@ BoxMLCP SimpleLCP() {
   return BoxMLCP::LCP(DenseMatrix::Identity(2, 2), q, "simple");
 }
 
+// The raw rule, with the polish off (it would turn this z into the solution: see PolishReplacesANearbyAnswer).
+SolverOptions NoPolish() {
+  SolverOptions o;
+  o.polish = false;
+  return o;
+}
+
 TEST(SolverBase, WrongClaimOfSuccessBecomesInaccurate) {
   ScriptedSolver solver;
   solver.z_to_report = Vector::Zero(2);  // not a solution: residual 1
-  const SolveResult r = solver.Solve(SimpleLCP());
+  const SolveResult r = solver.Solve(SimpleLCP(), NoPolish());
   EXPECT_EQ(r.status, SolveStatus::kInaccurate);
   EXPECT_THAT(r.message, HasSubstr("natural residual"));
   EXPECT_DOUBLE_EQ(r.residual_abs, 1.0);
@@ -85,7 +92,7 @@ TEST(SolverBase, FailureStatusIsPassedThroughWithResidual) {
   ScriptedSolver solver;
   solver.status_to_report = SolveStatus::kIterationLimit;
   solver.z_to_report = (Vector(2) << 0.5, 0.0).finished();
-  const SolveResult r = solver.Solve(SimpleLCP());
+  const SolveResult r = solver.Solve(SimpleLCP(), NoPolish());
   EXPECT_EQ(r.status, SolveStatus::kIterationLimit);
   EXPECT_DOUBLE_EQ(r.residual_abs, 0.5);
 }
@@ -247,7 +254,7 @@ TEST(SolverBase, ResultIsReusedWithoutStaleState) {
   ScriptedSolver solver;
   SolveResult r;
   solver.z_to_report = Vector::Zero(2);
-  solver.Solve(SimpleLCP(), SolverOptions{}, &r);
+  solver.Solve(SimpleLCP(), NoPolish(), &r);
   EXPECT_FALSE(r.message.empty());
   solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
   solver.Solve(SimpleLCP(), SolverOptions{}, &r);
@@ -286,7 +293,7 @@ TEST(SolverBase, MeasureTimeOffLeavesSolveSecondsZero) {
 }
 
 // A backend that evaluates the merit function itself (Solver::FixedSizeMerit), then optionally changes z or w
-// afterwards: Solve may reuse the value only when z and w are exactly what it was computed from.
+// afterwards: the base judges what is returned, never the backend's own value.
 class MeritCallingSolver final : public Solver {
  public:
   const SolverInfo& info() const override {
@@ -307,24 +314,24 @@ class MeritCallingSolver final : public Solver {
   }
 };
 
-TEST(SolverBase, FixedSizeMeritIsReusedOnlyForTheSameZAndW) {
+TEST(SolverBase, FixedSizeMeritNeverStandsInForTheBasesMerit) {
   MeritCallingSolver solver;
   solver.answer = (Vector(2) << 1.0, 0.0).finished();  // SimpleLCP's solution
-  SolveResult r = solver.Solve(SimpleLCP());
+  SolveResult r = solver.Solve(SimpleLCP(), NoPolish());
   EXPECT_EQ(r.status, SolveStatus::kSolved);
   EXPECT_EQ(r.residual_abs, solver.seen.abs);
   EXPECT_EQ(r.residual_abs, 0.0);
   EXPECT_EQ(r.w, (Vector(2) << 0.0, 2.0).finished());
 
   solver.then = MeritCallingSolver::Then::kChangeZ;  // z = (1.5, 0): w = (0.5, 2), residual 0.5
-  r = solver.Solve(SimpleLCP());
+  r = solver.Solve(SimpleLCP(), NoPolish());
   EXPECT_EQ(solver.seen.abs, 0.0);
   EXPECT_DOUBLE_EQ(r.residual_abs, 0.5);
   EXPECT_EQ(r.w, (Vector(2) << 0.5, 2.0).finished());
   EXPECT_EQ(r.status, SolveStatus::kInaccurate);
 
   solver.then = MeritCallingSolver::Then::kScribbleOnW;
-  r = solver.Solve(SimpleLCP());
+  r = solver.Solve(SimpleLCP(), NoPolish());
   EXPECT_EQ(r.w, (Vector(2) << 0.0, 2.0).finished()) << "w recomputed, not the backend's scribble";
   EXPECT_EQ(r.status, SolveStatus::kSolved);
 }
@@ -372,7 +379,7 @@ TEST(RepeatedSolves, NonFiniteWarmStartIsStillRefusedPerCall) {
 TEST(RepeatedSolves, AnotherProblemOrOptionsObjectGoesThroughSolve) {
   ScriptedSolver solver;
   const BoxMLCP p = SimpleLCP();
-  SolverOptions options;
+  SolverOptions options = NoPolish();
   ASSERT_TRUE(solver.BeginRepeatedSolves(p, options));
   // Another problem (another matrix_id): judged by its own merit function. Options Solve refuses: refused.
   solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();  // solves p, not other (whose solution is (0, 1))
@@ -396,6 +403,138 @@ TEST(RepeatedSolves, AnotherProblemOrOptionsObjectGoesThroughSolve) {
   solver.SolveRepeated<2>(p, options, &r);
   EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
   EXPECT_THAT(r.message, HasSubstr("factor"));
+}
+
+// --- The scale-free verdict and the exact polish (docs/verdict.md). -------------------------------------------
+
+// A backend that records the problem it is given.
+class RecordingSolver final : public Solver {
+ public:
+  const SolverInfo& info() const override {
+    static const SolverInfo kInfo{"recording", "records the problem it is given", "none"};
+    return kInfo;
+  }
+  DenseMatrix seen_M;
+  Vector seen_q;
+  Vector answer;
+
+ protected:
+  void DoSolve(const BoxMLCP& problem, const SolverOptions&, SolveResult* result) override {
+    seen_M = problem.dense_matrix();
+    seen_q = problem.q();
+    result->z = answer;
+    result->status = SolveStatus::kSolved;
+  }
+};
+
+// W = h G, G nonsymmetric with a positive definite symmetric part; s* = (1, 0.25) has row 0 at its upper bound
+// (w_0 = −h·0.5 < 0) and row 1 interior (w_1 = 0): q = w − W s*.
+BoxMLCP SmallHRelay(double h, Vector* solution) {
+  DenseMatrix G(2, 2);
+  G << 2.0, 1.0, -1.0, 2.0;
+  *solution = (Vector(2) << 1.0, 0.25).finished();
+  const Vector w = (Vector(2) << -0.5 * h, 0.0).finished();
+  const DenseMatrix W = h * G;
+  return BoxMLCP::Relay(W, w - W * *solution);
+}
+
+TEST(ScaledResidual, RowScalesAreRowMaximaAndAZeroRowTakesTheMatrixScale) {
+  DenseMatrix M(3, 3);
+  M << 1e6, -3e6, 0.0, 0.0, 0.0, 0.0, 2e-5, 0.0, -1e-5;
+  const BoxMLCP p = BoxMLCP::LCP(M, Vector::Ones(3));
+  EXPECT_EQ(p.row_scale(), (Vector(3) << 3e6, 3e6, 2e-5).finished());
+  const BoxMLCP zero = BoxMLCP::LCP(DenseMatrix::Zero(2, 2), Vector::Ones(2));
+  EXPECT_EQ(zero.row_scale(), Vector::Ones(2));
+  // The equilibrated problem has every row's largest entry exactly 1.
+  EXPECT_EQ(p.Equilibrated().row_scale(), Vector::Ones(3));
+}
+
+TEST(ScaledResidual, SeesAnErrorInZThatTheRelativeResidualCannotAtSmallH) {
+  Vector s_star;
+  const BoxMLCP p = SmallHRelay(1e-8, &s_star);
+  ScriptedSolver solver;
+  solver.z_to_report = s_star;
+  solver.z_to_report[1] += 1e-4;  // wrong in the interior row by 1e-4: W moves w by only 2e-12
+  const SolveResult r = solver.Solve(p, NoPolish());
+  EXPECT_LE(r.residual_rel, 1e-10) << "the unscaled residual is blind to it";
+  EXPECT_NEAR(r.residual_scaled, 1e-4 / 2.0, 1e-12) << "|w_1/d_1| = 2e-4 h / 2h in units of z, over 1 + |z|inf = 2";
+  EXPECT_EQ(r.status, SolveStatus::kInaccurate);
+  EXPECT_THAT(r.message, HasSubstr("row-equilibrated"));
+}
+
+TEST(ScaledResidual, IsInvariantUnderRowScalingAndUnderScalingMAndQTogether) {
+  Vector s_star;
+  const BoxMLCP p = SmallHRelay(1e-3, &s_star);
+  Vector z = s_star;
+  z[1] += 1e-6;
+  Vector w;
+  const double reference = p.NaturalResidual(z, &w).scaled;
+  for (const auto& rows : {std::pair{1e6, 1e-5}, std::pair{1e-150, 1e-150}, std::pair{1e150, 1e150}}) {
+    const Vector r = (Vector(2) << rows.first, rows.second).finished();
+    const BoxMLCP scaled(r.asDiagonal() * p.dense_matrix(), r.asDiagonal() * p.q(), p.l(), p.u());
+    EXPECT_NEAR(scaled.NaturalResidual(z, &w).scaled, reference, 1e-15 * (1.0 + reference)) << rows.first;
+  }
+}
+
+TEST(Equilibration, BackendsAreGivenTheRowEquilibratedProblem) {
+  RecordingSolver solver;
+  DenseMatrix M(2, 2);
+  M << 4.0, -8.0, 1e-6, 5e-7;
+  const BoxMLCP p = BoxMLCP::LCP(M, (Vector(2) << 2.0, -3e-6).finished());
+  solver.answer = Vector::Zero(2);
+  solver.Solve(p, NoPolish());
+  DenseMatrix expected(2, 2);
+  expected << 0.5, -1.0, 1.0, 0.5;
+  EXPECT_EQ(solver.seen_M, expected);
+  EXPECT_EQ(solver.seen_q, (Vector(2) << 0.25, -3.0).finished());
+  // A second solve with a new q: the equilibrated copy is kept (one per M) and its q refreshed.
+  BoxMLCP again = p;
+  again.set_q((Vector(2) << -4.0, 1e-6).finished());
+  solver.Solve(again, NoPolish());
+  EXPECT_EQ(solver.seen_q, (Vector(2) << -0.5, 1.0).finished());
+}
+
+TEST(Polish, ReplacesANearbyAnswerWithTheExactOne) {
+  Vector s_star;
+  const BoxMLCP p = SmallHRelay(1e-8, &s_star);
+  ScriptedSolver solver;
+  solver.z_to_report = s_star;
+  solver.z_to_report[1] += 1e-4;
+  const SolveResult r = solver.Solve(p);
+  EXPECT_EQ(r.status, SolveStatus::kSolved);
+  EXPECT_EQ(r.GetDetail("polished"), 1.0);
+  EXPECT_NEAR(r.z[1], 0.25, 1e-15);
+  EXPECT_EQ(r.z[0], 1.0);
+  EXPECT_LE(r.residual_scaled, 1e-15);
+}
+
+TEST(Polish, AVerifiedAnswerOutranksTheBackendsFailureStatus) {
+  ScriptedSolver solver;
+  solver.status_to_report = SolveStatus::kIterationLimit;
+  solver.z_to_report = (Vector(2) << 0.9, 0.0).finished();  // SimpleLCP: row 0 free, row 1 at its bound
+  const SolveResult r = solver.Solve(SimpleLCP());
+  EXPECT_EQ(r.status, SolveStatus::kSolved);
+  EXPECT_TRUE(r.message.empty());
+  EXPECT_EQ(r.z, (Vector(2) << 1.0, 0.0).finished());
+}
+
+TEST(Polish, NeverLeavesTheBoxNorMakesAnUnsolvableProblemLookSolved) {
+  // z ≥ 0, w = −z − 1 < 0: no solution. The reduced system's answer z = −1 lies outside the box.
+  const BoxMLCP p = BoxMLCP::LCP(DenseMatrix::Constant(1, 1, -1.0), Vector::Constant(1, -1.0));
+  ScriptedSolver solver;
+  solver.z_to_report = Vector::Zero(1);
+  const SolveResult r = solver.Solve(p);
+  EXPECT_EQ(r.status, SolveStatus::kInaccurate);
+  EXPECT_EQ(r.z[0], 0.0);
+  EXPECT_TRUE(std::isnan(r.GetDetail("polished")));
+}
+
+TEST(Polish, OffLeavesTheBackendsAnswerAlone) {
+  ScriptedSolver solver;
+  solver.z_to_report = (Vector(2) << 0.9, 0.0).finished();
+  const SolveResult r = solver.Solve(SimpleLCP(), NoPolish());
+  EXPECT_EQ(r.z, solver.z_to_report);
+  EXPECT_TRUE(std::isnan(r.GetDetail("polished")));
 }
 
 }  // namespace

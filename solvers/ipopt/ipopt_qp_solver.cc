@@ -87,7 +87,6 @@ using Ipopt::Number;
 using ConstMap = Eigen::Map<const Vector>;
 using MutMap = Eigen::Map<Vector>;
 
-constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 // Beyond Ipopt's default nlp_lower/upper_bound_inf (-+1e19): "no bound".
 constexpr double kIpoptInf = 2e19;
 

@@ -301,7 +301,7 @@ TEST_F(Simulate, RecordWritesEveryOneStepProblem) {
   EXPECT_EQ(p.metadata.at("backend"), "lemke");
   for (const LibraryProblem& q : set.problems) {
     EXPECT_EQ(q.expected, ExpectedOutcome::kSolvable) << q.id;
-    EXPECT_EQ(Judge(q, SolveStatus::kSolved, q.solution, 1e-10), Verdict::kSolved) << q.id;
+    EXPECT_EQ(Judge(q, SolveStatus::kSolved, q.solution, 1e-10).verdict, Verdict::kSolved) << q.id;
   }
   // The last problem's solution is the run's final s.
   const nlohmann::json j = ReadJson(summary);

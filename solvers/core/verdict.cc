@@ -1,0 +1,108 @@
+#include "solvers/core/verdict.h"
+
+#include <algorithm>
+
+namespace smcbench {
+
+std::string_view ToString(ExpectedOutcome value) {
+  switch (value) {
+    case ExpectedOutcome::kSolvable:
+      return "solvable";
+    case ExpectedOutcome::kInfeasible:
+      return "infeasible";
+    case ExpectedOutcome::kUnknown:
+      break;
+  }
+  return "unknown";
+}
+
+std::optional<ExpectedOutcome> ExpectedOutcomeFromString(std::string_view text) {
+  for (ExpectedOutcome e : {ExpectedOutcome::kUnknown, ExpectedOutcome::kSolvable, ExpectedOutcome::kInfeasible}) {
+    if (ToString(e) == text) return e;
+  }
+  return std::nullopt;
+}
+
+std::string_view ToString(Certificate value) {
+  switch (value) {
+    case Certificate::kUnique:
+      return "unique";
+    case Certificate::kDegenerate:
+      return "degenerate";
+    case Certificate::kNonUnique:
+      return "non-unique";
+    case Certificate::kNoneFound:
+      return "none found";
+    case Certificate::kIsolated:
+      return "isolated";
+    case Certificate::kNone:
+      break;
+  }
+  return "none";
+}
+
+std::optional<Certificate> CertificateFromString(std::string_view text) {
+  for (Certificate c : {Certificate::kNone, Certificate::kUnique, Certificate::kDegenerate, Certificate::kNonUnique,
+                        Certificate::kNoneFound, Certificate::kIsolated}) {
+    if (ToString(c) == text) return c;
+  }
+  return std::nullopt;
+}
+
+std::string_view ToString(Verdict verdict) {
+  switch (verdict) {
+    case Verdict::kSolved:
+      return "solved";
+    case Verdict::kCorrectlyRefused:
+      return "correctly refused";
+    case Verdict::kFailed:
+      return "failed";
+    case Verdict::kWronglyClaimed:
+      return "WRONGLY CLAIMED";
+    case Verdict::kInaccurate:
+      return "INACCURATE";
+    case Verdict::kWronglyRefused:
+      return "WRONGLY REFUSED";
+  }
+  return "?";
+}
+
+double ForwardErrorAllowance(const ReferenceSolution& reference, double tolerance) {
+  const double z_norm = reference.z.size() ? reference.z.cwiseAbs().maxCoeff() : 0.0;
+  return kForwardErrorFactor * std::max(1.0, reference.condition) * tolerance * (1.0 + z_norm);
+}
+
+Judgement Judge(const BoxMLCP& problem, ExpectedOutcome expected, const ReferenceSolution* reference,
+                SolveStatus status, const Vector& z, double tolerance) {
+  Judgement j;
+  const bool has_z = z.size() == problem.size();
+  if (has_z) {
+    Vector w;
+    j.residual = problem.NaturalResidual(z, &w);
+    if (reference != nullptr && reference->unique() && reference->z.size() == z.size()) {
+      j.forward_error = (z - reference->z).cwiseAbs().maxCoeff();
+      if (!(j.forward_error >= 0.0)) j.forward_error = kInf;  // NaN in z
+      j.forward_error_rel = j.forward_error / std::max(1.0, reference->z.cwiseAbs().maxCoeff());
+      j.forward_allowance = ForwardErrorAllowance(*reference, tolerance);
+    }
+  }
+  const bool known_solvable =
+      expected == ExpectedOutcome::kSolvable || (reference != nullptr && reference->verified());
+  if (status == SolveStatus::kSolved) {
+    if (expected == ExpectedOutcome::kInfeasible || !has_z || !(j.residual.rel <= tolerance) ||
+        !(j.residual.scaled <= tolerance)) {
+      j.verdict = Verdict::kWronglyClaimed;
+    } else if (j.forward_allowance == j.forward_allowance && !(j.forward_error <= j.forward_allowance)) {
+      j.verdict = Verdict::kInaccurate;
+    } else {
+      j.verdict = Verdict::kSolved;
+    }
+  } else if (status == SolveStatus::kInfeasible && known_solvable) {
+    j.verdict = Verdict::kWronglyRefused;
+  } else {
+    j.verdict = expected == ExpectedOutcome::kInfeasible ? Verdict::kCorrectlyRefused : Verdict::kFailed;
+  }
+  return j;
+}
+
+}  // namespace smcbench
