@@ -29,7 +29,7 @@ enum class Certificate : std::uint8_t {
   kDegenerate = 2,  // z* verified and the only solution, but some row is at a bound with w_i = 0 (not strict)
   kNonUnique = 3,   // z* verified, but other solutions exist: z* is one of them, forward error is not defined
   kNoneFound = 4,   // no candidate active set could be verified (not a proof that none exists)
-  kIsolated = 5,    // z* verified, strictly complementary, nonsingular free block (locally unique); global
+  kIsolated = 5,    // z* verified with a nonsingular free block (locally unique; possibly degenerate); global
                     // uniqueness not established (not a P-matrix, too many active sets to enumerate)
 };
 std::string_view ToString(Certificate value);  // "none", "unique", "degenerate", "non-unique", "none found", "isolated"
