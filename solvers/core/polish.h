@@ -5,6 +5,7 @@
 #pragma once
 
 #include <cmath>
+#include <vector>
 
 #include "solvers/core/problem.h"
 
@@ -18,70 +19,108 @@ inline RowState ClassifyRow(double z, double w, double l, double u) {
   return t <= l ? RowState::kLower : (t >= u ? RowState::kUpper : RowState::kFree);
 }
 
-// Dense n = N ≤ BoxMLCP::kSmallSize: fixed-size arrays, Gaussian elimination with partial pivoting on the free
-// block, nothing allocated. Writes the polished point to out (size N); false if the free block is singular, or the
-// result is not finite or leaves the box.
+// A free row whose exact value leaves the box (a degenerate row the natural map called free) is moved to the bound
+// it crossed and the system solved again, at most this many times; then the polish gives up.
+inline constexpr int kPolishPasses = 3;
+
+// Storage for PolishDense on n rows: the pointers it needs, each of the documented length.
+struct PolishScratch {
+  double* block;       // n·n: the reduced matrix, row-major with leading dimension n
+  double* rhs;         // n
+  signed char* state;  // n: RowState per row
+  int* free_rows;      // n
+};
+
+// The polish of a dense n×n problem (N = n fixed at compile time for the time-stepper's small solves, N = 0 for a
+// run-time n): Gaussian elimination with partial pivoting on the free block, nothing allocated. Writes the polished
+// point to out (n entries); false if the free block is singular or the result is not finite or will not stay in
+// the box within kPolishPasses passes.
 template <int N>
-bool PolishSmallDense(const BoxMLCP& equilibrated, const double* z, double* out) {
+bool PolishDense(const BoxMLCP& equilibrated, const double* z, double* out, const PolishScratch& s) {
+  const int n = N > 0 ? N : equilibrated.size();
   const double* a = equilibrated.dense_matrix().data();
   const double *q = equilibrated.q().data(), *l = equilibrated.l().data(), *u = equilibrated.u().data();
-  int free_rows[N];
-  int nf = 0;
-  for (int i = 0; i < N; ++i) {
+  for (int i = 0; i < n; ++i) {
     double w = q[i];
-    for (int j = 0; j < N; ++j) w += a[i + j * N] * z[j];
-    const RowState s = ClassifyRow(z[i], w, l[i], u[i]);
-    if (s == RowState::kFree) {
-      free_rows[nf++] = i;
-      out[i] = z[i];
-    } else {
-      out[i] = s == RowState::kLower ? l[i] : u[i];
-    }
+    for (int j = 0; j < n; ++j) w += a[i + j * n] * z[j];
+    s.state[i] = static_cast<signed char>(ClassifyRow(z[i], w, l[i], u[i]));
   }
-  if (nf == 0) return true;
-  // The reduced system on the free rows, with the bound rows' values moved to the right-hand side.
-  double A[N][N], b[N];
-  for (int k = 0; k < nf; ++k) {
-    const int f = free_rows[k];
-    b[k] = -q[f];
-    for (int j = 0; j < N; ++j) {
-      bool is_free = false;
-      for (int c = 0; c < nf; ++c) is_free = is_free || free_rows[c] == j;
-      if (!is_free) b[k] -= a[f + j * N] * out[j];
+  for (int pass = 0; pass < kPolishPasses; ++pass) {
+    int nf = 0;
+    for (int i = 0; i < n; ++i) {
+      const auto st = static_cast<RowState>(s.state[i]);
+      if (st == RowState::kFree) s.free_rows[nf++] = i;
+      out[i] = st == RowState::kFree ? 0.0 : (st == RowState::kLower ? l[i] : u[i]);
     }
-    for (int c = 0; c < nf; ++c) A[k][c] = a[f + free_rows[c] * N];
+    if (nf == 0) return true;
+    // The reduced system on the free rows, the bound rows' values moved to the right-hand side (out is 0 on free
+    // rows here, so the full row times out is exactly the bound part).
+    for (int k = 0; k < nf; ++k) {
+      const int f = s.free_rows[k];
+      double b = -q[f];
+      for (int j = 0; j < n; ++j) b -= a[f + j * n] * out[j];
+      s.rhs[k] = b;
+      for (int c = 0; c < nf; ++c) s.block[k * n + c] = a[f + s.free_rows[c] * n];
+    }
+    for (int k = 0; k < nf; ++k) {
+      int p = k;
+      for (int r = k + 1; r < nf; ++r) {
+        if (std::abs(s.block[r * n + k]) > std::abs(s.block[p * n + k])) p = r;
+      }
+      if (!(s.block[p * n + k] != 0.0)) return false;
+      if (p != k) {
+        for (int c = 0; c < nf; ++c) std::swap(s.block[k * n + c], s.block[p * n + c]);
+        std::swap(s.rhs[k], s.rhs[p]);
+      }
+      for (int r = k + 1; r < nf; ++r) {
+        const double m = s.block[r * n + k] / s.block[k * n + k];
+        for (int c = k; c < nf; ++c) s.block[r * n + c] -= m * s.block[k * n + c];
+        s.rhs[r] -= m * s.rhs[k];
+      }
+    }
+    bool moved = false;
+    for (int k = nf - 1; k >= 0; --k) {
+      double sum = s.rhs[k];
+      for (int c = k + 1; c < nf; ++c) sum -= s.block[k * n + c] * out[s.free_rows[c]];
+      const double x = sum / s.block[k * n + k];
+      if (!std::isfinite(x)) return false;
+      const int i = s.free_rows[k];
+      out[i] = x;
+      if (x < l[i] || x > u[i]) {
+        s.state[i] = static_cast<signed char>(x < l[i] ? RowState::kLower : RowState::kUpper);
+        moved = true;
+      }
+    }
+    if (!moved) return true;
   }
-  for (int k = 0; k < nf; ++k) {
-    int p = k;
-    for (int r = k + 1; r < nf; ++r) {
-      if (std::abs(A[r][k]) > std::abs(A[p][k])) p = r;
-    }
-    if (!(A[p][k] != 0.0)) return false;
-    if (p != k) {
-      for (int c = 0; c < nf; ++c) std::swap(A[k][c], A[p][c]);
-      std::swap(b[k], b[p]);
-    }
-    for (int r = k + 1; r < nf; ++r) {
-      const double m = A[r][k] / A[k][k];
-      for (int c = k; c < nf; ++c) A[r][c] -= m * A[k][c];
-      b[r] -= m * b[k];
-    }
-  }
-  for (int k = nf - 1; k >= 0; --k) {
-    double s = b[k];
-    for (int c = k + 1; c < nf; ++c) s -= A[k][c] * out[free_rows[c]];
-    const double x = s / A[k][k];
-    // A free row whose exact value leaves the box was not free: this is not the active set.
-    if (!std::isfinite(x) || x < l[free_rows[k]] || x > u[free_rows[k]]) return false;
-    out[free_rows[k]] = x;
-  }
-  return true;
+  return false;
 }
 
-// Any size and storage (dense through Eigen's partial-pivot LU, sparse through Eigen's SparseLU); allocates, so it
-// serves the larger problems, which are not a time-stepper's hot path. Dense problems above kMaxPolishDenseSize are
-// not polished (the O(n³) solve would dominate an iterative backend's time): returns false.
+// Workspace for run-time sizes, sized once per n: repeated polishes of the same size allocate nothing.
+class PolishWorkspace {
+ public:
+  PolishScratch For(int n) {
+    if (static_cast<int>(rhs_.size()) != n) {
+      block_.assign(static_cast<std::size_t>(n) * n, 0.0);
+      rhs_.assign(n, 0.0);
+      state_.assign(n, 0);
+      free_rows_.assign(n, 0);
+    }
+    return {block_.data(), rhs_.data(), state_.data(), free_rows_.data()};
+  }
+
+ private:
+  std::vector<double> block_, rhs_;
+  std::vector<signed char> state_;
+  std::vector<int> free_rows_;
+};
+
+// Dense problems above this size are not polished (the O(n³) solve and n² workspace would dominate an iterative
+// backend's time and memory).
 inline constexpr int kMaxPolishDenseSize = 512;
-bool PolishGeneric(const BoxMLCP& equilibrated, const Vector& z, Vector* out);
+
+// Sparse problems: the same on the free block through Eigen's SparseLU (allocates; sparse problems are not a
+// time-stepper's hot path). One pass: false when the result leaves the box.
+bool PolishSparse(const BoxMLCP& equilibrated, const Vector& z, Vector* out);
 
 }  // namespace smcbench

@@ -69,10 +69,21 @@ const BoxMLCP& Solver::EquilibratedFor(const BoxMLCP& problem) {
 }
 
 namespace {
-// Statuses after which the returned z is an attempt worth polishing (not a refusal before any work).
+// Statuses whose z is the backend's answer or its last iterate on the way to one: the polish may replace z, and a
+// passing polished z makes a short stop (iteration or time limit, stall) solved. A refusal, a crash or a claim that
+// there is no solution (numerical failure, ray, infeasible, ...) is left as the backend said it: the base does not
+// solve problems on a backend's behalf.
 bool Polishable(SolveStatus status) {
-  return status != SolveStatus::kNotRun && status != SolveStatus::kNotApplicable &&
-         status != SolveStatus::kSizeLimit && status != SolveStatus::kInvalidOptions;
+  return status == SolveStatus::kSolved || status == SolveStatus::kIterationLimit ||
+         status == SolveStatus::kTimeLimit || status == SolveStatus::kStalled;
+}
+
+// A short stop whose point passes the tolerance is a success (the polish made it so, or it already was).
+void UpgradeShortStop(double tolerance, const Residual& r, SolveResult* result) {
+  if (result->status != SolveStatus::kSolved && r.rel <= tolerance && r.scaled <= tolerance) {
+    result->status = SolveStatus::kSolved;
+    result->message.clear();
+  }
 }
 }  // namespace
 
@@ -80,15 +91,23 @@ template <int N>
 [[gnu::always_inline]] inline void Solver::Polish(const BoxMLCP& problem, double tolerance, Residual* r,
                                                   SolveResult* result) {
   const int n = problem.size();
+  const BoxMLCP& equilibrated = *equilibrated_;
   if (polish_z_.size() != n) polish_z_.resize(n);
   if (polish_w_.size() != n) polish_w_.resize(n);
-  const BoxMLCP& equilibrated = *equilibrated_;
   Residual candidate;
   if constexpr (N > 0) {
-    if (!PolishSmallDense<N>(equilibrated, result->z.data(), polish_z_.data())) return;
+    double block[N * N], rhs[N];
+    signed char state[N];
+    int free_rows[N];
+    if (!PolishDense<N>(equilibrated, result->z.data(), polish_z_.data(), {block, rhs, state, free_rows})) return;
     candidate = problem.template NaturalResidualFixed<N>(polish_z_, &polish_w_);
   } else {
-    if (!PolishGeneric(equilibrated, result->z, &polish_z_)) return;
+    if (equilibrated.is_sparse()) {
+      if (!PolishSparse(equilibrated, result->z, &polish_z_)) return;
+    } else {
+      if (n > kMaxPolishDenseSize) return;
+      if (!PolishDense<0>(equilibrated, result->z.data(), polish_z_.data(), polish_workspace_.For(n))) return;
+    }
     candidate = problem.NaturalResidual(polish_z_, &polish_w_);
   }
   // Not worse in units of z, and not pushing the unscaled test over the line.
@@ -97,11 +116,7 @@ template <int N>
   result->w.swap(polish_w_);
   *r = candidate;
   result->SetDetail("polished", 1.0);
-  // A verified answer outranks what the backend said it found (an iteration limit, a false "no solution").
-  if (result->status != SolveStatus::kSolved && r->rel <= tolerance && r->scaled <= tolerance) {
-    result->status = SolveStatus::kSolved;
-    result->message.clear();
-  }
+  UpgradeShortStop(tolerance, *r, result);
 }
 
 // After DoSolve (or a refusal): the merit function at the returned z, the polish, then Finish. The fixed-size
@@ -115,12 +130,16 @@ template <int N>
   Residual r = fixed ? problem.template NaturalResidualFixed<kFixedN>(result->z, &result->w)
                      : problem.NaturalResidual(result->z, &result->w);
   // A zero residual cannot be improved; an infinite one is a z with NaN/Inf (nothing to start from).
-  if (options.polish && r.abs > 0.0 && r.abs < kInf && Polishable(result->status) && equilibrated_ &&
+  if (options.polish && Polishable(result->status) && equilibrated_ &&
       equilibrated_source_ == problem.matrix_id() && result->z.size() == problem.size()) {
-    if (fixed) {
-      Polish<kFixedN>(problem, options.tolerance, &r, result);
-    } else {
-      Polish<0>(problem, options.tolerance, &r, result);
+    if (r.abs == 0.0) {
+      UpgradeShortStop(options.tolerance, r, result);
+    } else if (r.abs < kInf) {
+      if (fixed) {
+        Polish<kFixedN>(problem, options.tolerance, &r, result);
+      } else {
+        Polish<0>(problem, options.tolerance, &r, result);
+      }
     }
   }
   result->residual_abs = r.abs;

@@ -11,6 +11,7 @@
 #include <string_view>
 
 #include "solvers/core/options.h"
+#include "solvers/core/polish.h"
 #include "solvers/core/problem.h"
 #include "solvers/core/result.h"
 
@@ -109,7 +110,8 @@ class Solver {
   void Conclude(const BoxMLCP& problem, const SolverOptions& options, std::chrono::steady_clock::time_point start,
                 SolveResult* result);
   // The exact polish of result->z (polish.h) on the equilibrated problem; kept when its scaled residual is not
-  // larger and its relative one not pushed above the tolerance. Updates *r.
+  // larger and its relative one not pushed above the tolerance. Updates *r and, for a backend that stopped short
+  // (iteration, time limit, stalled), the status when the polished point passes.
   template <int N>
   void Polish(const BoxMLCP& problem, double tolerance, Residual* r, SolveResult* result);
   // Prepare's failure path: re-checks in the documented order and sets kInvalidOptions with the message.
@@ -129,6 +131,7 @@ class Solver {
   std::optional<BoxMLCP> equilibrated_;
   std::uint64_t equilibrated_source_ = 0;
   Vector polish_z_, polish_w_;  // the polished candidate, kept to avoid allocating per solve
+  PolishWorkspace polish_workspace_;
   // What BeginRepeatedSolves checked (matrix_id 0: nothing).
   struct RepeatedSolves {
     std::uint64_t matrix_id = 0;

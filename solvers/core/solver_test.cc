@@ -525,8 +525,38 @@ TEST(Polish, NeverLeavesTheBoxNorMakesAnUnsolvableProblemLookSolved) {
   solver.z_to_report = Vector::Zero(1);
   const SolveResult r = solver.Solve(p);
   EXPECT_EQ(r.status, SolveStatus::kInaccurate);
-  EXPECT_EQ(r.z[0], 0.0);
-  EXPECT_TRUE(std::isnan(r.GetDetail("polished")));
+  EXPECT_EQ(r.z[0], 0.0) << "the free row's value −1 leaves the box; at its bound it is the backend's own point";
+}
+
+TEST(Polish, NeverSolvesOnBehalfOfABackendThatFailedOrRefused) {
+  for (SolveStatus status : {SolveStatus::kNumericalFailure, SolveStatus::kRayTermination, SolveStatus::kInfeasible}) {
+    ScriptedSolver solver;
+    solver.status_to_report = status;
+    solver.z_to_report = (Vector(2) << 0.9, 0.0).finished();  // close to SimpleLCP's solution
+    const SolveResult r = solver.Solve(SimpleLCP());
+    EXPECT_EQ(r.status, status) << ToString(status);
+    EXPECT_EQ(r.z, solver.z_to_report) << ToString(status);
+  }
+}
+
+TEST(Polish, AnExactIterateAtAnIterationLimitIsSolved) {
+  ScriptedSolver solver;
+  solver.status_to_report = SolveStatus::kIterationLimit;
+  solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();  // residual exactly 0: nothing to polish
+  EXPECT_EQ(solver.Solve(SimpleLCP()).status, SolveStatus::kSolved);
+}
+
+TEST(Polish, ADegenerateRowCalledFreeIsMovedToItsBound) {
+  // LCP M = I, q = (−1, 1e-17): z* = (1, 0), row 1 at its bound with w = 1e-17 (nearly degenerate). The answer
+  // (1 + 1e-9, 2e-17) makes the natural map call row 1 free; its exact value −1e-17 leaves the box, so the polish
+  // moves it to the bound and solves again.
+  const BoxMLCP p = BoxMLCP::LCP(DenseMatrix::Identity(2, 2), (Vector(2) << -1.0, 1e-17).finished());
+  ScriptedSolver solver;
+  solver.z_to_report = (Vector(2) << 1.0 + 1e-9, 2e-17).finished();
+  const SolveResult r = solver.Solve(p);
+  EXPECT_EQ(r.status, SolveStatus::kSolved);
+  EXPECT_EQ(r.z, (Vector(2) << 1.0, 0.0).finished());
+  EXPECT_EQ(r.GetDetail("polished"), 1.0);
 }
 
 TEST(Polish, OffLeavesTheBackendsAnswerAlone) {
