@@ -2,16 +2,25 @@
 // Ipopt (Wächter & Biegler 2006, Math. Prog. 106:25-57) is a primal-dual interior-point filter line-search
 // method; we give it exact first and second derivatives through its C++ TNLP interface.
 //
-// Formulation 1 — convex QP (M symmetric positive semidefinite; detail formulation = 1):
-//     min 1/2 z'Mz + q'z   s.t.  l <= z <= u.
-//   With bound multipliers w (lower) and v (upper) its KKT conditions are M z + q = w - v, w, v >= 0,
-//   (z-l)'w = 0, (u-z)'v = 0: exactly the box-MLCP. For PSD M a KKT point is a global minimizer, so the MLCP has
-//   a solution iff the QP has a minimizer; Ipopt's "diverging iterates" means the QP is unbounded below.
-//   Hessian = (M + M')/2 (constant; lower triangle, exact zeros of a dense M dropped from the structure).
-//   With formulation = kQp the same QP is used for symmetric indefinite M (detail formulation = 3): every KKT
-//   point of it, which is what Ipopt converges to, still solves the MLCP.
-//   Symmetry: |M_ij - M_ji| <= symmetry_tolerance * max|M|. PSD: Cholesky of (M+M')/2 + delta I succeeds with
-//   delta = psd_tolerance * ||M||_inf, i.e. lambda_min > -delta. The test is cached for repeated solves with
+// The problem arrives row-equilibrated (Solver's base divides row i of M and q by d_i = max_j |M_ij|), so a
+// symmetric M reaches this backend as D^-1 M, which is not symmetric. It is symmetrizable: diag(e) D^-1 M is
+// symmetric for e = c d. Classify recovers such weights e > 0 from the matrix alone (a maximum spanning tree of
+// the entries, e_j = e_i M_ij / M_ji along it, each connected block normalized to max e = 1, then every entry
+// checked) and poses the QP below with S = diag(e) M, r = diag(e) q: scaling row i of the MLCP by e_i leaves its
+// solutions unchanged. So a symmetric problem keeps the convex QP whatever its row scaling, including rows
+// scaled by the user (R M with M symmetric is symmetrizable as well).
+//
+// Formulation 1 — convex QP (S = diag(e) M symmetric positive semidefinite; detail formulation = 1):
+//     min 1/2 z'Sz + r'z   s.t.  l <= z <= u.
+//   With bound multipliers w (lower) and v (upper) its KKT conditions are S z + r = w - v, w, v >= 0,
+//   (z-l)'w = 0, (u-z)'v = 0: the box-MLCP with row i scaled by e_i > 0. For PSD S a KKT point is a global
+//   minimizer, so the MLCP has a solution iff the QP has a minimizer; Ipopt's "diverging iterates" then means the
+//   QP looks unbounded below (not a certificate: the status is kDiverged, never kInfeasible).
+//   Hessian = (S + S')/2 (constant; lower triangle, exact zeros of a dense M dropped from the structure).
+//   With formulation = kQp the same QP is used for symmetrizable indefinite M (detail formulation = 3): every
+//   KKT point of it, which is what Ipopt converges to, still solves the MLCP.
+//   Symmetry: |S_ij - S_ji| <= symmetry_tolerance * max|S|. PSD: Cholesky of (S+S')/2 + delta I succeeds with
+//   delta = psd_tolerance * ||S||_inf, i.e. lambda_min > -delta. The test is cached for repeated solves with
 //   the same M (compared entry by entry, O(nnz), against the O(n^3) factorization).
 //
 // Formulation 2 — complementarity-gap NLP (any other M; detail formulation = 2):
@@ -25,11 +34,17 @@
 //   entries +1 (w_i, z_i) and -1 (v_i, z_i). A stationary point with G > 0 is a failure (kStalled, "complementarity
 //   gap G > 0"). For an LCP with row-sufficient M (P-matrices included) every KKT point of
 //   min z'(Mz+q) s.t. z, Mz+q >= 0 solves the LCP (Cottle, Pang & Stone 1992, §3.5), so for those problems a
-//   stationary point is a solution. If Ipopt reports the (linear) constraints infeasible — its infeasibility
-//   measure is convex for linear constraints, so the local certificate is global — the MLCP has no solution.
+//   stationary point is a solution. If Ipopt reports the (linear) constraints infeasible, the MLCP has no
+//   solution only if a Farkas certificate from Ipopt's final point holds with a margin (CertifyInfeasible):
+//   Ipopt's own test is in floating point, and a claim of no solution is a verdict like "solved".
+//
+// Residual: the base's verdict on the (equilibrated) problem: its natural residual r, in units of z, relative to
+// 1 + min(||z||_inf, ||q||_inf), so that r <= tol means both r <= tol (1 + ||z||) (Residual::scaled) and
+// r <= tol (1 + ||q||) (Residual::rel, which keeps a runaway z from passing); it decides when Ipopt is stopped
+// early and whether a point is a solution.
 //
 // Polish (after OSQP's solution polishing, Stellato et al. 2020, Math. Prog. Comp. 12, §4): interior-point
-// iterates are accurate only to about Ipopt's tolerance, while our merit function asks for 1e-10 relative.
+// iterates are accurate only to about Ipopt's tolerance, while our merit function asks for 1e-10.
 //   1. Active set from the natural map at z, w = Mz+q, p = z - w: i in L if p_i <= l_i (or l_i = u_i),
 //      i in U if p_i >= u_i, else i in F.
 //   2. z_L = l_L, z_U = u_U, and z_F solves M_FF z_F = -(q + M_{F,L+U} z_{L+U}), computed as a correction
@@ -46,12 +61,13 @@
 //
 // Status: solved iff the merit function holds at the returned z (whatever Ipopt said; detail ipopt_status keeps
 // Ipopt's raw ApplicationReturnStatus). Otherwise Ipopt's status is mapped: iteration limit -> kIterationLimit,
-// infeasible -> kInfeasible, restoration failure / step computation error / invalid number -> kNumericalFailure,
-// CPU or wall time -> kTimeLimit, diverging -> kDiverged, tiny step -> kStalled, converged with G > 0 -> kStalled,
-// converged otherwise -> kInaccurate, invalid option -> kInvalidOptions.
+// infeasible -> kInfeasible with a checked certificate (else kNumericalFailure), restoration failure / step
+// computation error / invalid number -> kNumericalFailure, CPU or wall time -> kTimeLimit, diverging -> kDiverged,
+// tiny step -> kStalled, converged with G > 0 -> kStalled, converged otherwise -> kInaccurate, invalid option ->
+// kInvalidOptions.
 //
 // Details: formulation (0 none needed, 1 convex QP, 2 gap NLP, 3 QP forced on symmetric non-PSD M),
-// symmetric_psd (1/0), ipopt_status, ipopt_residual and polished_residual (relative natural residuals, NaN if
+// symmetric_psd (1/0: S above), ipopt_status, ipopt_residual and polished_residual (the residual above, NaN if
 // not computed), polish_accepted (1/0), objective (QP objective or gap G at Ipopt's point), early_stop (0 none,
 // 1 merit met at an Ipopt iterate, 2 early polish succeeded, 3 polished warm start).
 //
@@ -65,6 +81,7 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <queue>
 #include <sstream>
 #include <vector>
 
@@ -179,12 +196,15 @@ class Session {
   // Called by the TNLPs.
   bool OnIteration(Ipopt::AlgorithmMode mode, Index iter);
   void RecordGradientPoint(const Number* x, Index count);
-  void RecordSolution(const Number* x, Number objective);
+  // x has `count` entries: z first (the QP's only variables), then the gap NLP's multipliers.
+  void RecordSolution(const Number* x, Index count, Number objective);
 
   // Per-solve problem data, read by the TNLPs.
   const BoxMLCP* problem_ = nullptr;
   int n_ = 0;
-  bool exact_symmetric_ = false;
+  bool exact_symmetric_ = false;  // S = M exactly (weights all 1, M symmetric to the bit)
+  Vector weights_;                // e: S = diag(e) M symmetric (Classify); all 1 for a symmetric M
+  Vector weighted_q_;             // r = diag(e) q, per solve (the QP's linear term)
   Vector start_;    // starting z
   Vector product_;  // M x scratch for the TNLP evaluations
   Vector product_t_;
@@ -202,17 +222,27 @@ class Session {
 
  private:
   void Classify(const BoxMLCP& p, const IpoptOptions& o);
+  // Weights e > 0 with diag(e) M symmetric, if the maximum-spanning-tree construction finds candidates (Classify
+  // then checks every entry). False when some tree edge has entries of different signs.
+  bool SymmetrizingWeights(const BoxMLCP& p);
   bool SameMatrixAsCache(const BoxMLCP& p) const;
   void SetupQp(const BoxMLCP& p);
   void SetupGap(const BoxMLCP& p);
   void ConfigureOutput(int verbosity, int print_level);
   bool SetIpoptOptions(const SolverOptions& options, const IpoptOptions& o, bool convex_qp);
-  // Relative natural residual at z (the shared, cancellation-free merit function); *w receives M z + q.
+  // Natural residual at z relative to 1 + min(||z||_inf, ||q||_inf) (file comment); *w receives M z + q.
   double RelResidual(const Vector& z, Vector* w) const;
+  double Relative(double residual, const Vector& z) const {
+    return residual / std::min(1.0 + z.cwiseAbs().maxCoeff(), problem_->residual_scale());
+  }
   void ActiveSet(const Vector& z, const Vector& w, std::vector<signed char>* state) const;
-  // Polish from z_in (see the file comment). Returns the smallest relative residual found and writes that
+  // Polish from z_in (see the file comment). Returns the smallest residual (RelResidual's) found and writes that
   // point to *z_out; returns +inf (z_out untouched) if no candidate could be computed.
   double Polish(const Vector& z_in, Vector* z_out);
+  // After Infeasible_Problem_Detected on the gap NLP: a Farkas certificate for its linear constraints, checked
+  // here with a margin (see the definition). False if none of the candidates holds.
+  bool CertifyInfeasible(const BoxMLCP& p) const;
+  bool FarkasCertificateHolds(const BoxMLCP& p, const Vector& y) const;
   bool SolveFreeBlock(int k);
 
   // Ipopt.
@@ -229,6 +259,7 @@ class Session {
   Vector last_x_;        // x of the last gradient evaluation: the current iterate when the callback runs
   bool have_last_x_ = false;
   Vector ipopt_x_;       // Ipopt's final x (z part)
+  Vector ipopt_full_x_;  // all of Ipopt's final x (gap NLP: z, then the multipliers)
   bool have_ipopt_x_ = false;
   double objective_ = kNaN;
   int iterations_ = 0;
@@ -297,23 +328,25 @@ class QpTnlp final : public Ipopt::TNLP {
     return true;
   }
 
-  // x'Mx = x'((M+M')/2)x, so the objective needs only M.
+  // x'Sx = x'((S+S')/2)x and S x = e .* (M x), so the objective needs only M.
   bool eval_f(Index n, const Number* x, bool, Number& f) override {
     const ConstMap xm(x, n);
     MultiplyM(*s_->problem_, xm, s_->product_);
-    f = 0.5 * xm.dot(s_->product_) + xm.dot(s_->problem_->q());
+    f = 0.5 * xm.dot(s_->weights_.cwiseProduct(s_->product_)) + xm.dot(s_->weighted_q_);
     return std::isfinite(f);
   }
 
+  // (S + S')/2 x + r with S x = e .* (M x) and S' x = M' (e .* x).
   bool eval_grad_f(Index n, const Number* x, bool, Number* grad) override {
     const ConstMap xm(x, n);
     MutMap g(grad, n);
     MultiplyM(*s_->problem_, xm, g);
     if (!s_->exact_symmetric_) {
-      MultiplyMt(*s_->problem_, xm, s_->product_t_);
-      g = 0.5 * (g + s_->product_t_);
+      s_->product_ = s_->weights_.cwiseProduct(xm);
+      MultiplyMt(*s_->problem_, s_->product_, s_->product_t_);
+      g = 0.5 * (s_->weights_.cwiseProduct(g) + s_->product_t_);
     }
-    g += s_->problem_->q();
+    g += s_->weighted_q_;
     s_->RecordGradientPoint(x, n);
     return true;
   }
@@ -332,10 +365,10 @@ class QpTnlp final : public Ipopt::TNLP {
     return true;
   }
 
-  void finalize_solution(Ipopt::SolverReturn, Index, const Number* x, const Number*, const Number*, Index,
+  void finalize_solution(Ipopt::SolverReturn, Index n, const Number* x, const Number*, const Number*, Index,
                          const Number*, const Number*, Number obj, const Ipopt::IpoptData*,
                          Ipopt::IpoptCalculatedQuantities*) override {
-    s_->RecordSolution(x, obj);
+    s_->RecordSolution(x, n, obj);
   }
 
   bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iter, Number, Number, Number, Number, Number, Number,
@@ -472,10 +505,10 @@ class GapTnlp final : public Ipopt::TNLP {
     return true;
   }
 
-  void finalize_solution(Ipopt::SolverReturn, Index, const Number* x, const Number*, const Number*, Index,
+  void finalize_solution(Ipopt::SolverReturn, Index n, const Number* x, const Number*, const Number*, Index,
                          const Number*, const Number*, Number obj, const Ipopt::IpoptData*,
                          Ipopt::IpoptCalculatedQuantities*) override {
-    s_->RecordSolution(x, obj);
+    s_->RecordSolution(x, n, obj);
   }
 
   bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iter, Number, Number, Number, Number, Number, Number,
@@ -503,7 +536,8 @@ void Session::RecordGradientPoint(const Number* x, Index count) {
   have_last_x_ = true;
 }
 
-void Session::RecordSolution(const Number* x, Number objective) {
+void Session::RecordSolution(const Number* x, Index count, Number objective) {
+  ipopt_full_x_ = ConstMap(x, count);
   ipopt_x_ = ConstMap(x, n_);
   have_ipopt_x_ = true;
   objective_ = objective;
@@ -512,7 +546,7 @@ void Session::RecordSolution(const Number* x, Number objective) {
 double Session::RelResidual(const Vector& z, Vector* w) const {
   if (w->size() != z.size()) w->resize(z.size());  // Affine writes into a pre-sized vector
   problem_->Affine(z, w);
-  return NaturalResidualNorm(z, *w, problem_->l(), problem_->u()) / problem_->residual_scale();
+  return Relative(NaturalResidualNorm(z, *w, problem_->l(), problem_->u()), z);
 }
 
 bool Session::OnIteration(Ipopt::AlgorithmMode mode, Index iter) {
@@ -564,46 +598,124 @@ bool Session::SameMatrixAsCache(const BoxMLCP& p) const {
          std::equal(M.valuePtr(), M.valuePtr() + nnz, C.valuePtr());
 }
 
+bool Session::SymmetrizingWeights(const BoxMLCP& p) {
+  const int n = p.size();
+  // Prim's maximum spanning tree on the edges {i, j} with M_ij and M_ji both nonzero, weighted by the smaller of
+  // |M_ij|, |M_ji| (the problem is row-equilibrated, so entries are comparable): strong entries set the ratios,
+  // and a tiny entry that may be rounding noise is only checked, never used. Lazy deletion in a heap.
+  weights_.setZero(n);  // 0 = not reached yet
+  Vector best = Vector::Zero(n);
+  std::vector<int> component(n, -1);
+  std::vector<double> component_max;
+  struct Edge {
+    double strength;
+    int to, from;
+    bool operator<(const Edge& other) const { return strength < other.strength; }
+  };
+  std::priority_queue<Edge> heap;
+  const auto entry = [&p](int i, int j) {
+    return p.is_sparse() ? p.sparse_matrix().coeff(i, j) : p.dense_matrix()(i, j);
+  };
+  const auto offer = [&](int i, int j) {  // edge from reached i to j
+    if (j == i || weights_[j] != 0.0) return;
+    const double a = entry(i, j), b = entry(j, i);
+    const double strength = std::min(std::abs(a), std::abs(b));
+    if (strength > best[j]) {
+      best[j] = strength;
+      heap.push({strength, j, i});
+    }
+  };
+  const auto reach = [&](int i) {
+    if (p.is_sparse()) {
+      for (SparseMatrix::InnerIterator it(p.sparse_matrix(), i); it; ++it) offer(i, static_cast<int>(it.row()));
+    } else {
+      for (int j = 0; j < n; ++j) offer(i, j);
+    }
+  };
+  for (int root = 0; root < n; ++root) {
+    if (weights_[root] != 0.0) continue;
+    const int id = static_cast<int>(component_max.size());
+    weights_[root] = 1.0;
+    component[root] = id;
+    component_max.push_back(1.0);
+    reach(root);
+    while (!heap.empty()) {
+      const Edge e = heap.top();
+      heap.pop();
+      if (weights_[e.to] != 0.0) continue;
+      const double a = entry(e.from, e.to), b = entry(e.to, e.from);
+      if ((a > 0.0) != (b > 0.0)) return false;  // e_i a = e_j b has no positive solution
+      // e_from M(from, to) = e_to M(to, from).
+      const double weight = weights_[e.from] * (a / b);
+      if (!(weight > 0.0) || !std::isfinite(weight)) return false;
+      weights_[e.to] = weight;
+      component[e.to] = id;
+      component_max[id] = std::max(component_max[id], weight);
+      reach(e.to);
+    }
+  }
+  for (int i = 0; i < n; ++i) weights_[i] /= component_max[component[i]];
+  return true;
+}
+
 void Session::Classify(const BoxMLCP& p, const IpoptOptions& o) {
   if (cache_sym_tol_ == o.symmetry_tolerance && cache_psd_tol_ == o.psd_tolerance && SameMatrixAsCache(p)) return;
   const int n = p.size();
+  // S = diag(e) M with e from SymmetrizingWeights, then the same symmetry test on S as on any matrix.
+  const bool have_weights = SymmetrizingWeights(p);
+  if (!have_weights) weights_.setOnes(n);
+  const bool unweighted = (weights_.array() == 1.0).all();
   double max_abs = 0.0, max_asym = 0.0;
   if (!p.is_sparse()) {
     const DenseMatrix& M = p.dense_matrix();
-    max_abs = M.cwiseAbs().maxCoeff();
     for (int j = 0; j < n; ++j) {
-      for (int i = j + 1; i < n; ++i) max_asym = std::max(max_asym, std::abs(M(i, j) - M(j, i)));
+      for (int i = 0; i < n; ++i) max_abs = std::max(max_abs, std::abs(weights_[i] * M(i, j)));
+      for (int i = j + 1; i < n; ++i) {
+        max_asym = std::max(max_asym, std::abs(weights_[i] * M(i, j) - weights_[j] * M(j, i)));
+      }
     }
   } else {
     const SparseMatrix& M = p.sparse_matrix();
     for (int j = 0; j < M.outerSize(); ++j) {
       for (SparseMatrix::InnerIterator it(M, j); it; ++it) {
-        max_abs = std::max(max_abs, std::abs(it.value()));
-        if (it.row() != j) max_asym = std::max(max_asym, std::abs(it.value() - M.coeff(j, it.row())));
+        const int i = static_cast<int>(it.row());
+        max_abs = std::max(max_abs, std::abs(weights_[i] * it.value()));
+        if (i != j) max_asym = std::max(max_asym, std::abs(weights_[i] * it.value() - weights_[j] * M.coeff(j, i)));
       }
     }
   }
-  exact_symmetric_ = max_asym == 0.0;
-  symmetric_ = max_asym <= o.symmetry_tolerance * max_abs;
+  exact_symmetric_ = have_weights && unweighted && max_asym == 0.0;
+  symmetric_ = have_weights && max_asym <= o.symmetry_tolerance * max_abs;
   psd_ = false;
   if (symmetric_) {
-    const double norm = p.MatrixInfNorm();
-    const double delta = o.psd_tolerance * norm;
-    if (norm == 0.0) {
-      psd_ = true;  // M = 0
-    } else if (!p.is_sparse()) {
-      const DenseMatrix& M = p.dense_matrix();
-      // Evaluated straight into the factorization's own storage (no n x n temporary).
-      llt_.compute(0.5 * (M + M.transpose()) + delta * DenseMatrix::Identity(n, n));
-      psd_ = llt_.info() == Eigen::Success;
+    // (S + S')/2 and its norm, S = diag(e) M.
+    if (!p.is_sparse()) {
+      const DenseMatrix S = weights_.asDiagonal() * p.dense_matrix();
+      const double norm = S.cwiseAbs().rowwise().sum().maxCoeff();
+      if (norm == 0.0) {
+        psd_ = true;  // M = 0
+      } else {
+        // Evaluated straight into the factorization's own storage (no further n x n temporary).
+        llt_.compute(0.5 * (S + S.transpose()) + o.psd_tolerance * norm * DenseMatrix::Identity(n, n));
+        psd_ = llt_.info() == Eigen::Success;
+      }
     } else {
-      const SparseMatrix& M = p.sparse_matrix();
-      SparseMatrix S = 0.5 * (M + SparseMatrix(M.transpose()));
-      SparseMatrix shift(n, n);
-      shift.setIdentity();
-      S += delta * shift;
-      Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower> llt(S);
-      psd_ = llt.info() == Eigen::Success;
+      const SparseMatrix W = weights_.asDiagonal() * p.sparse_matrix();
+      SparseMatrix S = 0.5 * (W + SparseMatrix(W.transpose()));
+      Vector row_sums = Vector::Zero(n);  // ||W||_inf in one pass over the columns
+      for (int j = 0; j < W.outerSize(); ++j) {
+        for (SparseMatrix::InnerIterator it(W, j); it; ++it) row_sums[it.row()] += std::abs(it.value());
+      }
+      const double norm = n > 0 ? row_sums.maxCoeff() : 0.0;
+      if (norm == 0.0) {
+        psd_ = true;
+      } else {
+        SparseMatrix shift(n, n);
+        shift.setIdentity();
+        S += o.psd_tolerance * norm * shift;
+        Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower> llt(S);
+        psd_ = llt.info() == Eigen::Success;
+      }
     }
   }
   cache_sparse_ = p.is_sparse();
@@ -626,7 +738,7 @@ void Session::SetupQp(const BoxMLCP& p) {
     const DenseMatrix& M = p.dense_matrix();
     for (int j = 0; j < n; ++j) {
       for (int i = j; i < n; ++i) {
-        const double value = exact_symmetric_ ? M(i, j) : 0.5 * (M(i, j) + M(j, i));
+        const double value = exact_symmetric_ ? M(i, j) : 0.5 * (weights_[i] * M(i, j) + weights_[j] * M(j, i));
         if (value == 0.0) continue;
         hess_row_.push_back(i);
         hess_col_.push_back(j);
@@ -649,7 +761,8 @@ void Session::SetupQp(const BoxMLCP& p) {
   if (exact_symmetric_) {
     add_lower(M);
   } else {
-    add_lower(SparseMatrix(0.5 * (M + SparseMatrix(M.transpose()))));
+    const SparseMatrix W = weights_.asDiagonal() * M;
+    add_lower(SparseMatrix(0.5 * (W + SparseMatrix(W.transpose()))));
   }
 }
 
@@ -853,7 +966,7 @@ double Session::Polish(const Vector& z_in, Vector* z_out) {
       }
       if (!finite) break;
     }
-    const double res = NaturalResidualNorm(pol_z_, pol_r_, l, u) / problem_->residual_scale();
+    const double res = Relative(NaturalResidualNorm(pol_z_, pol_r_, l, u), pol_z_);
     if (res < best) {
       best = res;
       *z_out = pol_z_;
@@ -862,6 +975,63 @@ double Session::Polish(const Vector& z_in, Vector* z_out) {
     pol_w_ = pol_r_;
   }
   return best;
+}
+
+// The gap NLP's constraints c(x) = M z + q - w + v - y = 0 over the bounds (z in [l, u], w, v >= 0, y free) have
+// no solution if some vector g has g'c(x) > 0 for every x within the bounds: then c(x) = 0 is impossible, so the
+// MLCP has no solution. The infimum of g'c(x) is finite only if g_i <= 0 on rows with a lower multiplier w only,
+// g_i >= 0 on rows with an upper one v only, g_i = 0 on rows with both or with a fixed-row y; then it is
+// g'q + sum_j min over z_j in [l_j, u_j] of (M'g)_j z_j (infinite when (M'g)_j pushes z_j to an infinite bound).
+// It must exceed 1e3 n eps times the sum of the magnitudes that make it up, a margin for rounding. Candidates:
+// c at Ipopt's final (least-infeasible) point, which is such a g for the least-squares infeasibility measure
+// (g'c(x) >= |c|^2 for every x in the bounds), and its sign vector (for Ipopt's l1 measure); each is first made
+// to satisfy the sign conditions (a vector that then works is a certificate whatever it came from).
+bool Session::FarkasCertificateHolds(const BoxMLCP& p, const Vector& y) const {
+  const int n = p.size();
+  Vector g = y;
+  for (int i = 0; i < n; ++i) {
+    const double l = p.l()[i], u = p.u()[i];
+    const bool lower = std::isfinite(l), upper = std::isfinite(u);
+    if (l == u || (lower && upper)) {
+      g[i] = 0.0;
+    } else if (lower) {
+      g[i] = std::min(g[i], 0.0);
+    } else if (upper) {
+      g[i] = std::max(g[i], 0.0);
+    }
+  }
+  Vector mt_g(n);
+  MultiplyMt(p, g, mt_g);
+  double value = g.dot(p.q()), size = g.cwiseAbs().dot(p.q().cwiseAbs());
+  Vector vertex(n);
+  for (int j = 0; j < n; ++j) {
+    const double c = mt_g[j];
+    vertex[j] = c > 0.0 ? p.l()[j] : (c < 0.0 ? p.u()[j] : 0.0);
+    if (c != 0.0 && !std::isfinite(vertex[j])) return false;
+    value += c * vertex[j];
+  }
+  Vector m_vertex(n);
+  const Vector abs_vertex = vertex.cwiseAbs();
+  if (p.is_sparse()) {
+    m_vertex.noalias() = p.sparse_matrix().cwiseAbs() * abs_vertex;
+  } else {
+    m_vertex.noalias() = p.dense_matrix().cwiseAbs() * abs_vertex;
+  }
+  size += g.cwiseAbs().dot(m_vertex);
+  return value > 1e3 * n * std::numeric_limits<double>::epsilon() * size && size > 0.0;
+}
+
+bool Session::CertifyInfeasible(const BoxMLCP& p) const {
+  const int count = static_cast<int>(mult_row_.size());
+  if (!have_ipopt_x_ || ipopt_full_x_.size() != n_ + count || !ipopt_full_x_.allFinite()) return false;
+  Vector c(n_);
+  MultiplyM(p, ipopt_full_x_.head(n_), c);
+  c += p.q();
+  for (int k = 0; k < count; ++k) {
+    c[mult_row_[k]] += (mult_kind_[k] == kUpperMult ? 1.0 : -1.0) * ipopt_full_x_[n_ + k];
+  }
+  const Vector sign = c.array().sign().matrix();
+  return FarkasCertificateHolds(p, c) || FarkasCertificateHolds(p, sign);
 }
 
 void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptOptions& o, SolveResult* result) {
@@ -907,7 +1077,8 @@ void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptO
   } else if (o.formulation == IpoptOptions::kQp) {
     if (!symmetric_) {
       result->status = SolveStatus::kNotApplicable;
-      result->message = "formulation=qp needs a symmetric M (the QP's KKT system uses (M+M')/2)";
+      result->message =
+          "formulation=qp needs a symmetric M, up to a positive row scaling (the QP's KKT system uses (S+S')/2)";
       return;
     }
     formulation = psd_ ? kConvexQp : kForcedQp;
@@ -921,6 +1092,7 @@ void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptO
     SetupGap(p);
   } else {
     SetupQp(p);
+    weighted_q_ = weights_.cwiseProduct(p.q());
   }
 
   ConfigureOutput(options.verbosity, o.print_level);
@@ -1014,9 +1186,16 @@ void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptO
       }
       break;
     case Ipopt::Infeasible_Problem_Detected:
-      result->status = SolveStatus::kInfeasible;
-      msg << "Ipopt found M z + q = w - v, l <= z <= u, w, v >= 0 infeasible (linear constraints: a global "
-             "certificate), so the MLCP has no solution";
+      // A claim of no solution is a verdict too: only with a certificate checked here.
+      if (gap && CertifyInfeasible(p)) {
+        result->status = SolveStatus::kInfeasible;
+        msg << "M z + q = w - v, l <= z <= u, w, v >= 0 has no solution: Ipopt's least-infeasible point gives a "
+               "Farkas certificate, checked with a margin in the row-equilibrated problem";
+      } else {
+        result->status = SolveStatus::kNumericalFailure;
+        msg << "Ipopt reported the constraints infeasible, but its point gives no Farkas certificate that holds "
+               "with a margin: not a proof that the MLCP has no solution";
+      }
       break;
     case Ipopt::Search_Direction_Becomes_Too_Small:
       result->status = SolveStatus::kStalled;
@@ -1025,7 +1204,8 @@ void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptO
     case Ipopt::Diverging_Iterates:
       result->status = SolveStatus::kDiverged;
       msg << (gap ? "Ipopt's iterates diverged"
-                  : "Ipopt's iterates diverged: the QP looks unbounded below, so the MLCP has no solution");
+                  : "Ipopt's iterates diverged: the QP looks unbounded below (for a PSD M an unbounded QP would "
+                    "mean that the MLCP has no solution; diverging iterates are not a proof of it)");
       break;
     case Ipopt::User_Requested_Stop:
     case Ipopt::Maximum_CpuTime_Exceeded:

@@ -9,6 +9,9 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <vector>
+
+#include "solvers/core/verdict.h"
 
 namespace smcbench {
 namespace {
@@ -270,6 +273,8 @@ TEST(IpoptQpSolverTest, LcpWithoutSolutionNonPsdIsInfeasible) {
   const SolveResult r = solver.Solve(p);
   EXPECT_NE(r.status, SolveStatus::kSolved);
   EXPECT_EQ(r.status, SolveStatus::kInfeasible) << r.message;
+  // Only with a certificate checked by the backend (issue 12: a claim of no solution is a verdict too).
+  EXPECT_NE(r.message.find("Farkas certificate"), std::string::npos) << r.message;
   EXPECT_GT(Residual(p, r.z), kTol);
   EXPECT_EQ(r.GetDetail("formulation"), 2.0);
 }
@@ -352,6 +357,38 @@ TEST(IpoptQpSolverTest, SparseProblems) {
     EXPECT_LE(Residual(p, r.z), kTol);
     EXPECT_EQ(r.GetDetail("formulation"), variant == 0 ? 1.0 : 2.0);
   }
+}
+
+// The backend receives the row-equilibrated problem D⁻¹M (Solver's base), which is not symmetric even for a
+// symmetric M, and a user may scale rows too (R M). Both are symmetric up to a positive row scaling, which keeps
+// the solutions: the convex QP must still be chosen (not the nonconvex gap program), dense and sparse.
+TEST(IpoptQpSolverTest, RowScaledSymmetricProblemKeepsTheConvexQp) {
+  std::mt19937 rng(760);
+  std::uniform_real_distribution<double> exponent(-4.0, 4.0);
+  for (int variant = 0; variant < 2; ++variant) {
+    const int n = 12;
+    const DenseMatrix M = Spd(n, &rng);
+    const Vector l = MixedLower(n), u = MixedUpper(n);
+    const Generated g = MakeSolution(M, l, u, &rng);
+    Vector factors(n);
+    for (int i = 0; i < n; ++i) factors[i] = std::pow(10.0, exponent(rng));
+    const DenseMatrix RM = factors.asDiagonal() * M;
+    const Vector Rq = factors.cwiseProduct(g.q);
+    const BoxMLCP p = variant == 0 ? BoxMLCP(RM, Rq, l, u) : BoxMLCP(SparseMatrix(RM.sparseView()), Rq, l, u);
+    IpoptQpSolver solver;
+    const SolveResult r = solver.Solve(p);
+    ASSERT_EQ(r.status, SolveStatus::kSolved) << (variant == 0 ? "dense: " : "sparse: ") << r.message;
+    EXPECT_LE((r.z - g.z_star).cwiseAbs().maxCoeff(), 1e-8);
+    EXPECT_EQ(r.GetDetail("formulation"), 1.0);
+    EXPECT_EQ(r.GetDetail("symmetric_psd"), 1.0);
+  }
+  // A sign pattern no positive row scaling can symmetrize (M_01 > 0 > M_10) stays with the gap program.
+  DenseMatrix skew(2, 2);
+  skew << 2.0, 1.0, -1.0, 2.0;
+  const BoxMLCP p = BoxMLCP::LCP(skew, Vector::Constant(2, -1.0));
+  const SolveResult r = IpoptQpSolver().Solve(p);
+  ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
+  EXPECT_EQ(r.GetDetail("formulation"), 2.0);
 }
 
 // Block diagonal with [1 -1; -1 1] blocks plus a rank-one coupling: PSD and singular, so the polish meets
@@ -558,6 +595,83 @@ TEST(IpoptFuzzRegression, Ma97WithoutHslIsAnInvalidOptionNotAProcessExit) {
   const SolveResult r = solver.Solve(p);
   EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
   EXPECT_NE(r.message.find("ma97"), std::string::npos) << r.message;
+}
+
+// ---- Small h (issue 12): relay W = h·G with a planted s* ------------------------------------------------------
+// G is a fixed nonsymmetric matrix, diagonally dominant by rows and by columns (so its symmetric part is positive
+// definite and G is a P-matrix and an H-matrix) with diagonal 1 … 300 (condition ≈ 300). s* has rows at ±1 and
+// interior rows; q = −W s* + w with the correctly signed slack w = ∓h·c on the bound rows (w ≤ 0 at +1, ≥ 0 at
+// −1), so s* is the unique solution for every h. The forward error allowed is verdict.h's, with μ computed here.
+DenseMatrix SmallHMatrixG(int n) {
+  std::mt19937_64 rng(1000 + n);
+  std::uniform_real_distribution<double> unit(-1.0, 1.0);
+  DenseMatrix G(n, n);
+  Vector d(n);
+  for (int i = 0; i < n; ++i) d[i] = std::pow(300.0, static_cast<double>(i) / (n - 1));
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      G(i, j) = i == j ? d[i] : 0.6 * unit(rng) * std::min(d[i], d[j]) / (n - 1);
+    }
+  }
+  return G;
+}
+
+struct SmallHRelay {
+  BoxMLCP problem;
+  ReferenceSolution reference;  // s*, unique, with μ = ‖(D_F⁻¹ W_FF)⁻¹‖∞
+};
+
+SmallHRelay MakeSmallHRelay(int n, double h) {
+  const DenseMatrix W = h * SmallHMatrixG(n);
+  Vector s(n), w(n);
+  for (int i = 0; i < n; ++i) {
+    const double c = 0.1 + 0.25 * (i % 4);
+    switch (i % 3) {
+      case 0: s[i] = 1.0, w[i] = -h * c; break;           // at the upper bound: w ≤ 0
+      case 1: s[i] = -1.0, w[i] = h * c; break;           // at the lower bound: w ≥ 0
+      default: s[i] = 0.7 - 0.2 * (i % 5), w[i] = 0.0;    // interior
+    }
+  }
+  const Vector q = w - W * s;
+  BoxMLCP problem = BoxMLCP::Relay(W, q, -1.0, 1.0, "small-h-relay-n" + std::to_string(n));
+  std::vector<int> free_rows;
+  for (int i = 0; i < n; ++i) {
+    if (w[i] == 0.0) free_rows.push_back(i);
+  }
+  const int nf = static_cast<int>(free_rows.size());
+  DenseMatrix block(nf, nf);
+  for (int a = 0; a < nf; ++a) {
+    for (int b = 0; b < nf; ++b) block(a, b) = W(free_rows[a], free_rows[b]) / problem.row_scale()[free_rows[a]];
+  }
+  ReferenceSolution reference;
+  reference.certificate = Certificate::kUnique;
+  reference.z = s;
+  reference.condition = nf == 0 ? 0.0 : DenseMatrix(block.inverse()).cwiseAbs().rowwise().sum().maxCoeff();
+  return {std::move(problem), std::move(reference)};
+}
+
+constexpr double kSmallHs[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10};
+
+TEST(IpoptQpSolverTest, SolvedWithWrongSAtSmallH) {
+  // Issue 12: on relay problems W = h·G, the backend reported |s − s*|∞ between 1e-5 and 0.2 as "solved" at
+  // h = 1e-4 … 1e-8, because "solved" meant a residual within tol·(1 + ‖q‖∞) and q = O(h).
+  for (int n : {4, 6, 8}) {
+    for (double h : kSmallHs) {
+      const SmallHRelay relay = MakeSmallHRelay(n, h);
+      const std::string where = "n = " + std::to_string(n) + ", h = " + std::to_string(h);
+      SolverOptions options;  // tolerance 1e-10, polish on
+      const double allowance = ForwardErrorAllowance(relay.reference, options.tolerance);
+      IpoptQpSolver solver;
+      const SolveResult r = solver.Solve(relay.problem, options);
+      ASSERT_EQ(r.status, SolveStatus::kSolved) << where << ": " << r.message;
+      EXPECT_LE((r.z - relay.reference.z).cwiseAbs().maxCoeff(), allowance) << where;
+      // Without the base's polish (Ipopt's own active-set polish stays on): solved, within the allowance.
+      options.polish = false;
+      const SolveResult raw = solver.Solve(relay.problem, options);
+      ASSERT_EQ(raw.status, SolveStatus::kSolved) << where << " (polish off): " << raw.message;
+      EXPECT_LE((raw.z - relay.reference.z).cwiseAbs().maxCoeff(), allowance) << where << " (polish off)";
+    }
+  }
 }
 
 }  // namespace

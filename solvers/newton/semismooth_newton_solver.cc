@@ -12,7 +12,11 @@
 //      (Levenberg–Marquardt-type choice; Yamashita–Fukushima 2001). On random monotone LCPs with rank-deficient
 //      M this turned ~5% failures (crawling gradient steps) into none;
 //   3. the steepest-descent direction −∇Psi.
-//   Stopping test: the relative natural residual the base class reports (never Psi).
+//   Stopping test: the natural residual the base class reports (never Psi). A box-MLCP arrives row-equilibrated
+//   (Solver's base), and the test is the base's verdict on that problem: its residual r, in units of z, at most
+//   tol·(1 + ‖z‖∞) (Residual::scaled) and tol·(1 + ‖q‖∞) (Residual::rel), i.e. r ≤ tol·(1 + min(‖z‖∞, ‖q‖∞)).
+//   1 + ‖q‖∞ alone would let a problem with small M (W = O(h)) stop at errors of order tol/h in z, 1 + ‖z‖∞ alone
+//   a runaway z. An MCP has no row scale: its residual is relative to 1 + ‖F(Π(0))‖∞, as the base measures it.
 // Safeguard (Billups 1995, ch. 3, "proximal perturbation"): Psi can have local minimizers that are not
 // solutions. Billups' example F(x) = (x − 1)² − 1.01, x ≥ 0, from x = 0 ends at x ≈ 1 − √1.01 ≈ −0.005, a
 // minimizer of Psi outside the box. When the line search fails or Psi stagnates, the solver solves the
@@ -200,7 +204,8 @@ struct SemismoothNewtonSolver::Workspace {
   bool symmetric_jacobian = false;   // dense LCP with symmetric M: Cholesky on the reduced system
   const DenseMatrix* Jd = nullptr;   // ∇F at z, dense (native dense, or a copy when dense_la)
   const SparseMatrix* Js = nullptr;  // ∇F at z, sparse (native sparse, or a copy when !dense_la)
-  double scale = 1.0;                // relative-residual scale, the one the base class uses
+  double scale = 1.0;                // relative-residual scale: 1 + ‖q‖∞, or 1 + ‖F(Π(0))‖∞ for an MCP
+  bool z_relative = false;           // box-MLCP: residuals relative to 1 + min(‖z‖∞, ‖q‖∞) (file comment)
   double tolerance = 1e-10;
   int verbosity = 0;
   int budget = 0;
@@ -213,7 +218,7 @@ struct SemismoothNewtonSolver::Workspace {
   Vector row_scale;             // s_i: Phi_i uses s_i·F_i (see ComputeRowScaling)
   Vector jac_row_max;           // max_j |∂F_i/∂z_j| at the start (row equilibration of the dense LU)
   Vector row_eq;                // equilibration factors of the current reduced rows
-  double best_residual = kInf;  // original natural residual (abs) at zbest
+  double best_residual = kInf;  // original natural residual at zbest, relative (Relative)
 
   // ---- Dense linear algebra ----
   DenseMatrix A;         // n×n LU buffer; the leading |R|×|R| block is used
@@ -382,9 +387,16 @@ struct SemismoothNewtonSolver::Workspace {
     return r;
   }
 
+  // The stopping measure of a natural residual r at x: r / (1 + min(‖x‖∞, ‖q‖∞)) for a box-MLCP, r / scale
+  // for an MCP.
+  double Relative(double r, const Vector& x) const {
+    return z_relative ? r / std::min(1.0 + x.cwiseAbs().maxCoeff(), scale) : r / scale;
+  }
+  // Relative residuals need not decrease with abs ones, so the best iterate is the one with the smallest relative.
   void TrackBest(double original_residual) {
-    if (original_residual < best_residual) {
-      best_residual = original_residual;
+    const double relative = Relative(original_residual, z);
+    if (relative < best_residual) {
+      best_residual = relative;
       zbest = z;
     }
   }
@@ -644,13 +656,13 @@ struct SemismoothNewtonSolver::Workspace {
       double r = ResidualOfCurrent(z, F);
       const double r_original = lambda == 0.0 ? r : NaturalResidualNorm(z, F, *l, *u);
       TrackBest(r_original);
-      bool converged = lambda == 0.0 ? r / scale <= tolerance : r <= target_abs;
+      bool converged = lambda == 0.0 ? Relative(r, z) <= tolerance : r <= target_abs;
       if (converged && F_is_incremental) {
         // The accumulated F + t M d may differ from M z + q by rounding: confirm on a fresh product.
         EvalF(z, &F);
         F_is_incremental = false;
         r = ResidualOfCurrent(z, F);
-        converged = lambda == 0.0 ? r / scale <= tolerance : r <= target_abs;
+        converged = lambda == 0.0 ? Relative(r, z) <= tolerance : r <= target_abs;
         psi = Merit(z, F);
       }
       // FB iterates may sit outside [l, u] by up to the tolerance; the returned point is projected onto the
@@ -726,7 +738,7 @@ struct SemismoothNewtonSolver::Workspace {
       }
       if (verbosity >= 2) {
         std::fprintf(stderr, "newton %4d%s psi %.3e res %.3e step %s t %.2e system %d\n", iterations,
-                     lambda > 0.0 ? " (prox)" : "", psi, r / scale,
+                     lambda > 0.0 ? " (prox)" : "", psi, Relative(r, z),
                      gradient      ? "grad  "
                      : regularized ? "reg   "
                                    : "newton",
@@ -814,7 +826,8 @@ struct SemismoothNewtonSolver::Workspace {
       zbar = z;
       const double r0 = NaturalResidualNorm(z, F, *l, *u);
       lambda = lambda_round;
-      const Exit inner = Loop(std::max(0.5 * tolerance * scale, 0.1 * r0), o.proximal_inner_iterations, true);
+      const double unit = z_relative ? std::min(1.0 + z.cwiseAbs().maxCoeff(), scale) : scale;  // Relative's
+      const Exit inner = Loop(std::max(0.5 * tolerance * unit, 0.1 * r0), o.proximal_inner_iterations, true);
       lambda = 0.0;
       if (verbosity >= 2) {
         std::fprintf(stderr, "newton proximal round %d: lambda %.3e, perturbed solve %s\n", proximal_rounds,
@@ -867,7 +880,7 @@ struct SemismoothNewtonSolver::Workspace {
       zt[i] = std::min(std::max(z[i], (*l)[i]), (*u)[i]);
       outside |= zt[i] != z[i];
     }
-    return !outside || (EvalF(zt, &Ft) && NaturalResidualNorm(zt, Ft, *l, *u) / scale <= tolerance);
+    return !outside || (EvalF(zt, &Ft) && Relative(NaturalResidualNorm(zt, Ft, *l, *u), zt) <= tolerance);
   }
 
   // Writes the returned point, status, message and details. A solved point outside [l, u] (FB iterates need
@@ -880,7 +893,7 @@ struct SemismoothNewtonSolver::Workspace {
     }
     result->z = z;
     result->iterations = iterations;
-    ReportExit(exit, failure_detail, iterations, budget, safeguard_failed ? proximal_rounds : 0, best_residual / scale,
+    ReportExit(exit, failure_detail, iterations, budget, safeguard_failed ? proximal_rounds : 0, best_residual,
                result);
     result->SetDetail("backtracks", backtracks);
     result->SetDetail("gradient_steps", gradient_steps);
@@ -984,6 +997,7 @@ void SemismoothNewtonSolver::DoSolve(const BoxMLCP& problem, const SolverOptions
   }
   ws.symmetric_jacobian = ws.dense_la && options_.use_cholesky && IsNumericallySymmetric(*ws.Jd);
   ws.scale = problem.residual_scale();
+  ws.z_relative = true;
   ws.tolerance = options.tolerance;
   ws.verbosity = options.verbosity;
   ws.budget = IterationBudget(options, kDefaultMaxIterations);
@@ -1026,6 +1040,7 @@ void SemismoothNewtonSolver::DoSolveMCP(const MCP& problem, const SolverOptions&
   problem.Evaluate(ws.zt, &ws.Ft);
   const double scale = 1.0 + ws.Ft.cwiseAbs().maxCoeff();
   ws.scale = std::isfinite(scale) ? scale : 1.0;
+  ws.z_relative = false;
   ws.tolerance = options.tolerance;
   ws.verbosity = options.verbosity;
   ws.budget = IterationBudget(options, kDefaultMaxIterations);

@@ -1,5 +1,12 @@
 // PSOR backend: projected SOR sweeps with an incrementally maintained w = M z + q (see psor_solver.h for the
 // method, its convergence theory and the safeguards).
+//
+// The problem arrives row-equilibrated (Solver's base: rows divided by max_j |M_ij|). The sweep itself does not
+// notice (z_i − ω w_i / M_ii is invariant under row scaling); the stopping test is the base's verdict applied to
+// that problem: its natural residual r (in units of z) relative to 1 + ‖z‖∞ (Residual::scaled) and to 1 + ‖q‖∞
+// (Residual::rel), i.e. r ≤ tol·(1 + min(‖z‖∞, ‖q‖∞)). So a sweep stops neither before the answer is right in z
+// (1 + ‖q‖∞ alone lets wrong points pass when M is small, see docs/verdict.md) nor at a runaway z (1 + ‖z‖∞ alone
+// would), and not long after the verdict would accept it.
 #include "solvers/psor/psor_solver.h"
 
 #include <algorithm>
@@ -88,11 +95,13 @@ class SparseColumns {
 inline double Clamp(double x, double lo, double hi) { return std::min(std::max(x, lo), hi); }
 
 // One pass over the iterate: the natural residual ‖z − Π(z − w)‖∞ (as NaturalResidualNorm computes it),
-// ‖z‖∞ for the divergence test, and whether every z_i, w_i is finite.
+// ‖z‖∞ for the divergence test and the relative residual, and whether every z_i, w_i is finite.
 struct Merit {
   double residual = 0.0;
   double z_norm = 0.0;
   bool finite = true;
+  // The stopping measure (file comment): residual / (1 + min(‖z‖∞, ‖q‖∞)), both residuals of the base's verdict.
+  double relative(double q_norm) const { return residual / (1.0 + std::min(z_norm, q_norm)); }
 };
 
 inline Merit EvaluateMerit(int n, const double* z, const double* w, const double* l, const double* u) {
@@ -214,8 +223,8 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
   double* z = result->z.data();
   double* w = w_.data();
   double* step = step_.data();
-  const double scale = problem.residual_scale();
   const double tolerance = options.tolerance;
+  const double q_norm = problem.residual_scale() - 1.0;  // ‖q‖∞
 
   // Safeguard before any sweep: the update divides by M_ii and is a descent step only for M_ii > 0. Rows with
   // l_i = u_i are fixed by the projection whatever M_ii is, so they are exempt.
@@ -268,7 +277,7 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
   const int budget = IterationBudget(options, kDefaultMaxSweeps);
   int sweeps = 0;
   long long column_updates = 0;
-  double rel = kInf;   // relative residual at the last merit evaluation
+  double rel = kInf;   // Merit::relative at the last merit evaluation
   double best = kInf;  // smallest rel seen
   const auto finish = [&](SolveStatus status) {
     result->status = status;
@@ -277,7 +286,7 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
     result->SetDetail("w_refreshes", refreshes);
     if (options.verbosity > 0) {
       std::fprintf(stderr,
-                   "psor: %s after %d sweeps, relative residual %.3e (best %.3e, tolerance %.1e), %lld column "
+                   "psor: %s after %d sweeps, scaled residual %.3e (best %.3e, tolerance %.1e), %lld column "
                    "updates, %d exact refreshes of w\n",
                    std::string(ToString(status)).c_str(), sweeps, rel, best, tolerance, column_updates, refreshes);
     }
@@ -286,7 +295,7 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
   refresh();
   bool w_exact = true;  // no incremental update since the last refresh
   Merit merit = EvaluateMerit(n, z, w, l, u);
-  rel = merit.residual / scale;
+  rel = merit.relative(q_norm);
   best = rel;
   if (!merit.finite) {
     SetMessage(result, "PSOR: M z0 + q is not finite at the starting point (|z0|inf = %.3e): overflow", z0_norm);
@@ -295,7 +304,6 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
   if (rel <= tolerance) return finish(SolveStatus::kSolved);  // the (warm) start already solves it
 
   // Only needed once sweeping (time-steppers' warm starts usually return above): no division before that.
-  const double q_norm = scale - 1.0;
   const double divergence_limit =
       opt.divergence_threshold * (1.0 + z0_norm + (min_diagonal < kInf ? q_norm / min_diagonal : 0.0));
 
@@ -308,7 +316,7 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
   while (true) {
     if (sweeps >= budget) {
       SetMessage(result,
-                 "PSOR reached the sweep limit (%.0f) with relative residual %.3e (best %.3e); raise "
+                 "PSOR reached the sweep limit (%.0f) with scaled residual %.3e (best %.3e); raise "
                  "max_iterations, or M is ill-conditioned or outside PSOR's convergence classes (symmetric PD, "
                  "H-matrix)",
                  budget, rel, best);
@@ -327,10 +335,10 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
     if (fixed_point || --until_check == 0 || sweeps == budget) {
       until_check = opt.check_interval;
       merit = EvaluateMerit(n, z, w, l, u);
-      rel = merit.residual / scale;
+      rel = merit.relative(q_norm);
       if (!merit.finite) {
         SetMessage(result,
-                   "PSOR diverged: non-finite iterate after %.0f sweeps (best relative residual %.3e); "
+                   "PSOR diverged: non-finite iterate after %.0f sweeps (best scaled residual %.3e); "
                    "M is likely outside PSOR's convergence classes or omega = %g is too large",
                    sweeps, best, opt.omega);
         return finish(SolveStatus::kDiverged);
@@ -341,19 +349,19 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
         w_exact = true;
         since_refresh = 0;
         merit = EvaluateMerit(n, z, w, l, u);
-        rel = merit.residual / scale;
+        rel = merit.relative(q_norm);
       }
       best = std::min(best, rel);
       if (rel <= tolerance) return finish(SolveStatus::kSolved);
       if (merit.z_norm > divergence_limit) {
         SetMessage(result,
-                   "PSOR diverged: |z|inf = %.3e exceeds the divergence limit %.3e (relative residual %.3e)",
+                   "PSOR diverged: |z|inf = %.3e exceeds the divergence limit %.3e (scaled residual %.3e)",
                    merit.z_norm, divergence_limit, rel);
         return finish(SolveStatus::kDiverged);
       }
       if (fixed_point && swept_with_exact_w) {
         SetMessage(result,
-                   "PSOR stalled at a floating-point fixed point (no coordinate moves) with relative residual "
+                   "PSOR stalled at a floating-point fixed point (no coordinate moves) with scaled residual "
                    "%.3e > tolerance %.1e: the tolerance is below the accuracy attainable for this scaling",
                    rel, tolerance);
         return finish(SolveStatus::kStalled);
@@ -367,7 +375,7 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
         const bool at_rounding_level = best <= 100.0 * n * std::numeric_limits<double>::epsilon();
         char buffer[400];
         std::snprintf(buffer, sizeof buffer,
-                      "PSOR stalled: best relative residual %.3e did not fall by a factor %g within %d sweeps "
+                      "PSOR stalled: best scaled residual %.3e did not fall by a factor %g within %d sweeps "
                       "(now %.3e after %d sweeps); %s",
                       best, opt.stall_factor, opt.stall_sweeps, rel, sweeps,
                       at_rounding_level ? "the residual is at rounding level, the tolerance is below the attainable "
@@ -380,7 +388,7 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
         std::fprintf(stderr, "psor: sweep %6d  residual %.3e  moved %d/%d\n", sweeps, rel, updates, n);
       }
       if (has_time_limit && TimeLimitReached()) {
-        SetMessage(result, "PSOR hit the time limit after %.0f sweeps with relative residual %.3e (best %.3e)",
+        SetMessage(result, "PSOR hit the time limit after %.0f sweeps with scaled residual %.3e (best %.3e)",
                    sweeps, rel, best);
         return finish(SolveStatus::kTimeLimit);
       }

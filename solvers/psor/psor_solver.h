@@ -32,6 +32,10 @@
 // although the residual is above tolerance (an exact floating-point fixed point), or no halving of the best
 // residual within stall_sweeps sweeps, is kStalled; the sweep budget (default 10000) is kIterationLimit.
 // result->iterations counts sweeps.
+//
+// Stopping test: the base's verdict on the problem PSOR is given (row-equilibrated by Solver's base): its natural
+// residual, in units of z, at most tol·(1 + ‖z‖∞) and tol·(1 + ‖q‖∞). "Converged" means right in units of z,
+// whatever the size of M; scaled residuals are reported in the messages.
 #pragma once
 
 #include <string>

@@ -58,72 +58,72 @@ const Spec& SpecOf(SiconosMethod method) {
         "needs finite bounds on every row",
         "Siconos Numerics 4.4 relay_lexicolemke; Cottle, Pang & Stone 1992, The Linear Complementarity Problem, "
         "ch. 4",
-        true, false, false, true, false, 0}},
+        true, false, false, true, false, 0, /*equilibrate=*/false}},
       {SiconosMethod::kRelayPgs, SICONOS_RELAY_PGS, Family::kRelay, Algorithm::kPgs, false,
        {"siconos-relay-pgs",
         "Siconos relay_pgs: projected Gauss-Seidel sweeps on the box problem; needs finite bounds on every row",
         "Siconos Numerics 4.4 relay_pgs; Cottle, Pang & Stone 1992, sec. 5.2", true, false, false, false, false,
-        0}},
+        0, /*equilibrate=*/false}},
       {SiconosMethod::kRelayEnum, SICONOS_RELAY_ENUM, Family::kRelay, Algorithm::kEnum, false,
        {"siconos-relay-enum",
         "Siconos relay_enum: relay -> LCP (2n unknowns), enumeration of complementary bases; needs finite bounds",
         "Siconos Numerics 4.4 relay_enum / lcp_enum; Murty 1988, Linear Complementarity, ch. 1", true, false,
-        false, true, false, 8}},
+        false, true, false, 8, /*equilibrate=*/false}},
       {SiconosMethod::kRelayAvi, SICONOS_RELAY_AVI_CAOFERRIS, Family::kRelay, Algorithm::kAvi, false,
        {"siconos-relay-avi",
         "Siconos relay_avi_caoferris (its default relay solver): the relay as an affine variational inequality "
         "over the box, solved by Cao & Ferris' pivotal method; needs finite bounds",
         "Siconos Numerics 4.4 relay_avi_caoferris; Cao & Ferris 1996, A pivotal method for affine variational "
         "inequalities, Math. Oper. Res. 21(1)",
-        true, false, false, true, false, 0}},
+        true, false, false, true, false, 0, /*equilibrate=*/false}},
       {SiconosMethod::kLcpLemke, SICONOS_LCP_LEMKE, Family::kLcp, Algorithm::kLemke, false,
        {"siconos-lcp-lemke",
         "Siconos lcp_lexicolemke on the box -> LCP rewriting (shifted / negated one-sided rows, doubled box "
         "rows); no free rows",
         "Siconos Numerics 4.4 lcp_lexicolemke; Cottle, Pang & Stone 1992, ch. 4", true, false, false, true, false,
-        0}},
+        0, /*equilibrate=*/false}},
       {SiconosMethod::kLcpNewtonFb, SICONOS_LCP_NEWTON_FB_FBLSA, Family::kLcp, Algorithm::kNewton, false,
        {"siconos-lcp-newton-fb",
         "Siconos lcp_newton_FB: nonsmooth Newton on the Fischer-Burmeister reformulation with a line search on "
         "its merit function, on the box -> LCP rewriting; no free rows",
         "Siconos Numerics 4.4 lcp_newton_FB; De Luca, Facchinei & Kanzow 1996, Math. Program. 75; Facchinei & "
         "Pang 2003, ch. 9",
-        true, false, false, false, false, 0}},
+        true, false, false, false, false, 0, /*equilibrate=*/false}},
       {SiconosMethod::kLcpNewtonMin, SICONOS_LCP_NEWTON_MIN_FBLSA, Family::kLcp, Algorithm::kNewton, false,
        {"siconos-lcp-newton-min",
         "Siconos lcp_newton_minFB: nonsmooth Newton on the min reformulation, line search on the "
         "Fischer-Burmeister merit function, on the box -> LCP rewriting; no free rows",
         "Siconos Numerics 4.4 lcp_newton_minFB; Facchinei & Pang 2003, Finite-Dimensional Variational "
         "Inequalities and Complementarity Problems, ch. 9",
-        true, false, false, false, false, 0}},
+        true, false, false, false, false, 0, /*equilibrate=*/false}},
       {SiconosMethod::kMlcpEnum, SICONOS_MLCP_ENUM, Family::kMlcp, Algorithm::kEnum, false,
        {"siconos-mlcp-enum",
         "Siconos mlcp_enum: enumeration of the complementarity configurations of the standard MLCP (free rows "
         "as equalities, the rest as the box -> LCP rewriting)",
-        "Siconos Numerics 4.4 mlcp_enum; Murty 1988, ch. 1", true, false, false, true, false, 16}},
+        "Siconos Numerics 4.4 mlcp_enum; Murty 1988, ch. 1", true, false, false, true, false, 16, /*equilibrate=*/false}},
       {SiconosMethod::kMlcpLemke, SICONOS_MLCP_LCP_LEMKE, Family::kMlcp, Algorithm::kLemke, false,
        {"siconos-mlcp-lemke",
         "Siconos mlcp_lcp_lemke: eliminates the equality block by its Schur complement (needs it invertible), "
         "then lexicographic Lemke; needs at least one free and one sign-constrained row",
         "Siconos Numerics 4.4 mlcp_lcp_lemke; Cottle, Pang & Stone 1992, sec. 1.5 and ch. 4", true, false,
-        false, true, false, 0}},
+        false, true, false, 0, /*equilibrate=*/false}},
       {SiconosMethod::kMlcpFb, SICONOS_MLCP_FB, Family::kMlcp, Algorithm::kNewton, false,
        {"siconos-mlcp-fb",
         "Siconos mlcp_FB: nonsmooth Newton with line search on the Fischer-Burmeister reformulation of the "
         "standard MLCP",
         "Siconos Numerics 4.4 mlcp_FB (NonSmoothNewton); De Luca, Facchinei & Kanzow 1996", true, false, false,
-        false, false, 0}},
+        false, false, 0, /*equilibrate=*/false}},
       {SiconosMethod::kMlcpDirectEnum, SICONOS_MLCP_DIRECT_ENUM, Family::kMlcp, Algorithm::kEnum, true,
        {"siconos-mlcp-direct-enum",
         "Siconos mlcp_direct_enum: solves with the last active sets that worked (up to 3, cached per worker "
         "process) and falls back to mlcp_enum",
-        "Siconos Numerics 4.4 mlcp_direct_enum; Murty 1988, ch. 1", true, false, false, true, false, 16}},
+        "Siconos Numerics 4.4 mlcp_direct_enum; Murty 1988, ch. 1", true, false, false, true, false, 16, /*equilibrate=*/false}},
       {SiconosMethod::kMlcpDirectFb, SICONOS_MLCP_DIRECT_FB, Family::kMlcp, Algorithm::kNewton, true,
        {"siconos-mlcp-direct-fb",
         "Siconos mlcp_direct_FB: solves with the last active sets that worked (up to 3, cached per worker "
         "process) and falls back to mlcp_FB",
         "Siconos Numerics 4.4 mlcp_direct_FB; De Luca, Facchinei & Kanzow 1996", true, false, false, false,
-        false, 0}},
+        false, 0, /*equilibrate=*/false}},
   };
   return kSpecs[static_cast<int>(method)];
 }
@@ -529,12 +529,15 @@ void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
   r.verbose = options.verbosity >= 2 ? 1 : 0;
   r.keep_cache = options_.isolate ? 1 : 0;
   r.has_bounds = spec.family == Family::kRelay ? 1 : 0;
-  // Our test is ‖r‖∞ ≤ tol·(1 + ‖q‖∞) on the box-MLCP; Siconos' is ‖r_s‖₂ ≤ tol_s·(‖q_s‖₂ or 1 + ‖q_s‖₂) on the
-  // rewritten problem. This tol_s makes Siconos' test imply ‖r_s‖∞ ≤ tol·(1 + ‖q‖∞) whichever normalisation the
-  // driver uses, so a Siconos "success" is not routinely a hair above our tolerance; the floor 10·N·ε keeps it
-  // reachable in floating point (else Siconos' final check would reject every answer of a badly scaled problem).
-  r.tolerance = std::max(options.tolerance * problem.residual_scale() /
-                             ((1.0 + form_.q().norm()) * std::sqrt(static_cast<double>(N))),
+  // Our test is ‖r‖∞ ≤ tol·(1 + ‖q‖∞) on the box-MLCP and, row-equilibrated, |r_i(D⁻¹)| ≤ tol·(1 + ‖z‖∞), which
+  // ‖r‖∞ ≤ tol·min(1, min_i d_i) implies (|z_i − Π(z_i − t w_i)| grows with t, and at most linearly: a row with
+  // d_i < 1 can grow by 1/d_i); so the target is ‖r‖∞ ≤ tol·min(1 + ‖q‖∞, 1, min_i d_i). Siconos' test is
+  // ‖r_s‖₂ ≤ tol_s·(‖q_s‖₂ or 1 + ‖q_s‖₂) on the rewritten problem. This tol_s makes Siconos' test imply
+  // ‖r_s‖∞ ≤ that target whichever normalisation the driver uses, so a Siconos "success" is not routinely a hair
+  // above our tolerance; the floor 10·N·ε keeps it reachable in floating point (else Siconos' final check would
+  // reject every answer of a badly scaled problem).
+  const double target = std::min(problem.residual_scale(), std::min(1.0, problem.row_scale().minCoeff()));
+  r.tolerance = std::max(options.tolerance * target / ((1.0 + form_.q().norm()) * std::sqrt(static_cast<double>(N))),
                          10.0 * N * std::numeric_limits<double>::epsilon());
   if (options_.isolate) {
     const double limit =
@@ -587,13 +590,18 @@ void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
     result->message = at_budget
                           ? "Siconos' Lemke used its budget of " + std::to_string(out.budget) + " pivots " + code()
                           : "Siconos' Lemke ended on a secondary ray after " + std::to_string(out.iterations) +
-                                " pivots " + code();
+                                " pivots " + code() + "; Siconos gives no certificate, so this is not a proof that "
+                                "no solution exists";
   } else if (spec.algorithm == Algorithm::kEnum && algo == 1) {
-    // Siconos enumerates 2^m configurations unless our budget stops it earlier.
+    // Siconos enumerates 2^m configurations unless our budget stops it earlier. Finding none is not a proof:
+    // Siconos gives no certificate, and its tests on each configuration are in floating point without a margin
+    // (on M = [0], q = [0], a free row, where every z solves, mlcp_enum returns info 1). So a complete
+    // enumeration that found nothing is a numerical failure, never kInfeasible.
     const bool complete = options.max_iterations <= 0 || complementarity >= 31 ||
                           options.max_iterations >= (1 << complementarity);
-    result->status = complete ? SolveStatus::kInfeasible : SolveStatus::kIterationLimit;
-    result->message = complete ? "Siconos' enumeration found no complementary solution " + code()
+    result->status = complete ? SolveStatus::kNumericalFailure : SolveStatus::kIterationLimit;
+    result->message = complete ? "Siconos' enumeration found no complementary solution " + code() +
+                                     "; Siconos gives no certificate, so this is not a proof that no solution exists"
                                : "Siconos' enumeration stopped at its budget of " +
                                      std::to_string(options.max_iterations) + " configurations " + code();
   } else if (spec.algorithm == Algorithm::kPgs && algo == 2) {

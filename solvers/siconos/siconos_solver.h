@@ -30,10 +30,10 @@
 // re-initialise their cache on every solve because it would otherwise be shared between instances. Siconos' MLCP
 // solvers keep file-static state, so in-process instances must not run concurrently on different threads.
 //
-// Options mapped from ours: tolerance → Siconos' dparam[TOL] = max(tol·(1 + ‖q‖∞)/((1 + ‖q_s‖₂)·√N), 10·N·ε)
-// (Siconos tests a 2-norm relative to its own rewritten q_s, we test the ∞-norm relative to 1 + ‖q‖∞; N = size of
-// the rewritten problem: Siconos' test then implies a residual of the rewritten problem within our threshold; the
-// floor keeps it reachable), max_iterations > 0 → iparam[MAX_ITER] (else Siconos' default),
+// Options mapped from ours: tolerance → Siconos' dparam[TOL] = max(tol·t/((1 + ‖q_s‖₂)·√N), 10·N·ε) with
+// t = min(1 + ‖q‖∞, 1, min_i d_i), d the row scales (Siconos tests a 2-norm relative to its own rewritten q_s, we
+// test the ∞-norm relative to 1 + ‖q‖∞ and the row-equilibrated residual relative to 1 + ‖z‖∞; N = size of the
+// rewritten problem: Siconos' test then implies both within our threshold; the floor keeps it reachable), max_iterations > 0 → iparam[MAX_ITER] (else Siconos' default),
 // verbosity ≥ 2 → Siconos verbose and its output kept. Warm starts reach the methods that use a start point
 // (pgs, newton-*, fb). iterations = Siconos' iparam[ITER_DONE]. The relay and LCP drivers end with an accuracy
 // check (filterOn) whose verdict replaces the algorithm's info; the adapter replays it exactly as the 4.4 drivers
