@@ -6,6 +6,7 @@
 #include <set>
 #include <utility>
 
+#include "problems/library/references.h"
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/nonlinear_scene.h"
 #include "problems/scenes/registry.h"
@@ -89,7 +90,11 @@ void ProblemRecorder::OnStep(std::int64_t step, int newton_iteration, const BoxM
                    std::nullopt,
                    result.solved() ? ExpectedOutcome::kSolvable : ExpectedOutcome::kUnknown,
                    std::move(solution),
-                   std::move(metadata)};
+                   std::move(metadata),
+                   ReferenceSolution{}};
+  if (context_.attach_references && p.size() <= kCaptureReferenceMaxSize) {
+    p.reference = ComputeReference(p, ReferenceOptions{kCaptureReferenceMaxSize, /*ask_backends=*/false});
+  }
   ++count_;
   if (writer_) {
     writer_->Add(p);
@@ -162,6 +167,7 @@ ProblemSet CapturePaperSuite(const PaperSuiteOptions& options) {
     const std::unique_ptr<Solver> solver = CreateSolver(options.backend);
     CaptureContext context = MakeCaptureContext("paper", *scene, settings, options.backend);
     context.tags.push_back("paper");
+    context.attach_references = false;  // most steps are subsampled away: certify only those kept, below
     Trajectory trajectory;
     std::vector<LibraryProblem> problems = CaptureSceneRun(*scene, settings, solver.get(), context, &trajectory);
     const TrajectoryMetrics metrics = ComputeMetrics(trajectory, 10.0 * options.tolerance);
@@ -173,6 +179,8 @@ ProblemSet CapturePaperSuite(const PaperSuiteOptions& options) {
       if (keep.count(std::stoll(p.metadata.at("step")))) set.problems.push_back(std::move(p));
     }
   }
+  // m ≤ 2 everywhere: the run's z and the complete enumeration (at most 3² active sets) need no backend.
+  AttachReferences(&set, ReferenceOptions{ReferenceOptions{}.max_size, /*ask_backends=*/false});
   set.Validate();
   return set;
 }

@@ -17,6 +17,13 @@
 
 namespace smcbench {
 
+// Captured problems up to this many rows get a certified reference as they are recorded (ComputeReference,
+// problems/library/references.h, with the run's z as the only candidate besides Certify's own): at most
+// 3⁴ = 81 active sets of at most 4 rows in quad precision, tens of microseconds a problem, next to a record path
+// that already copies every problem. Larger ones would need the backends and up to 3⁸ sets (milliseconds a step):
+// they keep Certificate::kNone, and `smcbench library FILE --certify OUT` attaches them afterwards.
+inline constexpr int kCaptureReferenceMaxSize = 4;
+
 // What a captured problem records about the run it came from.
 struct CaptureContext {
   std::string set = "capture";  // first part of every id
@@ -27,6 +34,8 @@ struct CaptureContext {
   std::string backend;            // metadata "backend" (omitted if empty)
   std::map<std::string, std::string> metadata;  // extra entries for every problem (gamma, algorithm, ...)
   std::vector<std::string> tags{"capture"};     // free labels for every problem
+  // Attach a certified reference to problems of at most kCaptureReferenceMaxSize rows as they are recorded.
+  bool attach_references = true;
 };
 
 // The context of a scene run: scene name, method, h, θ (not for ZOH), and for nonlinear scenes gamma and the
@@ -43,7 +52,8 @@ std::string CaptureId(const CaptureContext& context, std::int64_t step, int newt
 //   (computed once per distinct M), labels context.tags (+ "newton-mlcp" for Algorithm 2's inner problems),
 //   metadata scene, method, h, theta, step (and iteration), backend, status (the backend's), plus
 //   context.metadata; solution = the z the run used (if finite and of the right size); expected = solvable when
-//   the backend solved it, else unknown (a failure of one backend proves nothing).
+//   the backend solved it, else unknown (a failure of one backend proves nothing); with
+//   context.attach_references and m ≤ kCaptureReferenceMaxSize, the certified reference (the run's z as candidate).
 // With a writer each problem is streamed to it at once (nothing is kept); without, they are collected.
 class ProblemRecorder final : public StepObserver {
  public:
@@ -91,7 +101,8 @@ struct PaperSuiteOptions {
 // settings (h, T, θ, x0, method; implicit or ZOH) and every step's box-MLCP captured, then SubsampleSteps with the
 // reaching step of the run (|y| ≤ 10·tolerance); plus the inner MLCPs of Algorithm 2 for the nonlinear scenes S9
 // (hypomonotone) and S10 (arctan), every Newton iteration of the kept steps. Deterministic: same binary, same ids
-// and bits. Problems are tagged "paper" and "capture", and carry the metadata of ProblemRecorder.
+// and bits. Problems are tagged "paper" and "capture", and carry the metadata of ProblemRecorder and a certified
+// reference (AttachReferences without backends, on the kept steps only: every problem has m ≤ 2).
 ProblemSet CapturePaperSuite(const PaperSuiteOptions& options = {});
 
 }  // namespace smcbench

@@ -5,6 +5,8 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <set>
@@ -70,6 +72,62 @@ TEST(Capture, LinearRunGivesOneSolvedProblemPerStep) {
     EXPECT_TRUE(SameBits(p.solution, tr.s.col(k)));
     EXPECT_EQ(Judge(p, SolveStatus::kSolved, p.solution, kTol).verdict, Verdict::kSolved);
   }
+}
+
+// S1: M = h (1×1), relay bounds, so the solution is z = clamp(−q/h, −1, 1): interior (w = 0, μ = 1 for the
+// equilibrated 1×1 block [1]) when |q| < h, at the bound −sign(q) otherwise (no free row, μ = 0).
+TEST(Capture, RecordedProblemsCarryCertifiedReferences) {
+  const auto scene = LoadScene("sign");
+  const SimulationSettings settings = scene->defaults();
+  auto solver = CreateSolver("lemke");
+  Trajectory tr;
+  const std::vector<LibraryProblem> problems =
+      CaptureSceneRun(*scene, settings, solver.get(), MakeCaptureContext("run", *scene, settings, "lemke"), &tr);
+  ASSERT_EQ(problems.size(), 200u);
+  int interior = 0;
+  for (const LibraryProblem& p : problems) {
+    SCOPED_TRACE(p.id);
+    const double h = p.problem.dense_matrix()(0, 0), q = p.problem.q()[0];
+    ASSERT_EQ(h, 0.01);
+    const double z = std::clamp(-q / h, -1.0, 1.0);
+    const ReferenceSolution& r = p.reference;
+    ASSERT_TRUE(r.unique()) << ToString(r.certificate);
+    ASSERT_EQ(r.z.size(), 1);
+    EXPECT_NEAR(r.z[0], z, 1e-15 * (1.0 + std::abs(z)));
+    if (std::abs(q) < h) {
+      ++interior;
+      EXPECT_EQ(r.condition, 1.0);
+    } else if (std::abs(q) > h) {
+      EXPECT_EQ(r.condition, 0.0);
+    }
+  }
+  // S1 reaches the surface and slides: both kinds of step are checked.
+  EXPECT_GE(interior, 50);
+  EXPECT_LE(interior, 150);
+
+  CaptureContext off = MakeCaptureContext("run", *scene, settings, "lemke");
+  off.attach_references = false;
+  for (const LibraryProblem& p : CaptureSceneRun(*scene, settings, solver.get(), off, &tr)) {
+    EXPECT_EQ(p.reference.certificate, Certificate::kNone) << p.id;
+  }
+}
+
+// Up to kCaptureReferenceMaxSize rows a recorded problem is certified; above, it keeps Certificate::kNone.
+TEST(Capture, ReferencesOnlyUpToFourRows) {
+  ProblemRecorder recorder(CaptureContext{});
+  for (int m : {kCaptureReferenceMaxSize, kCaptureReferenceMaxSize + 1}) {
+    const DenseMatrix M = 2.0 * DenseMatrix::Identity(m, m);
+    const BoxMLCP problem = BoxMLCP::Relay(M, Vector::Constant(m, 1.0));  // z = −½ on every row
+    SolveResult result;
+    result.status = SolveStatus::kSolved;
+    result.z = Vector::Constant(m, -0.5);
+    recorder.OnStep(m, 0, problem, result);
+  }
+  ASSERT_EQ(recorder.problems().size(), 2u);
+  const ReferenceSolution& small = recorder.problems()[0].reference;
+  EXPECT_EQ(small.certificate, Certificate::kUnique);
+  EXPECT_EQ(small.z, Vector::Constant(kCaptureReferenceMaxSize, -0.5));
+  EXPECT_EQ(recorder.problems()[1].reference.certificate, Certificate::kNone);
 }
 
 TEST(Capture, ObserverDoesNotChangeTheRun) {

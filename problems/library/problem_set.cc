@@ -46,6 +46,18 @@ void ProblemSet::Validate() const {
                               "' has a solution of size " +
                               std::to_string(p.solution.size()) + " but n = " + std::to_string(p.size()));
     }
+    const ReferenceSolution& r = p.reference;
+    if (CertificateFromString(ToString(r.certificate)) != r.certificate) {  // ToString names only known values
+      throw InvalidInputError("problem set '" + set_name + "': problem '" + QuoteForMessage(p.id) +
+                              "' has a reference certificate with the invalid value " +
+                              std::to_string(static_cast<int>(r.certificate)));
+    }
+    if (r.z.size() != (r.verified() ? p.size() : 0)) {
+      throw InvalidInputError("problem set '" + set_name + "': problem '" + QuoteForMessage(p.id) +
+                              "' has a reference (certificate '" + std::string(ToString(r.certificate)) +
+                              "') with z* of size " + std::to_string(r.z.size()) + " but n = " +
+                              std::to_string(p.size()) + (r.verified() ? "" : " and nothing verified"));
+    }
   }
 }
 

@@ -65,8 +65,9 @@ struct ProblemSet {
   std::string description;  // one line
   std::vector<LibraryProblem> problems;
 
-  // Throws InvalidInputError naming the id if two problems share an id, an id is empty, or a solution has the
-  // wrong size.
+  // Throws InvalidInputError naming the id if two problems share an id, an id is empty, a solution has the
+  // wrong size, a reference's certificate is not a known value, or its z* does not match the certificate (size n
+  // when verified, else empty).
   void Validate() const;
 };
 

@@ -20,6 +20,8 @@
 #include <utility>
 #include <vector>
 
+#include "solvers/core/number_text.h"
+
 namespace smcbench {
 namespace {
 
@@ -88,6 +90,30 @@ std::uint64_t LoadLE(const char* p, int bytes) {
   std::uint64_t v = 0;
   for (int i = 0; i < bytes; ++i) v |= static_cast<std::uint64_t>(static_cast<unsigned char>(p[i])) << (8 * i);
   return v;
+}
+
+// Whether value is a Certificate this build knows. A switch without default, so that a new enumerator in
+// verdict.h makes -Wswitch point here (the format must then say how it is stored).
+bool KnownCertificate(std::uint8_t value) {
+  switch (static_cast<Certificate>(value)) {
+    case Certificate::kNone:
+    case Certificate::kUnique:
+    case Certificate::kDegenerate:
+    case Certificate::kNonUnique:
+    case Certificate::kNoneFound:
+    case Certificate::kIsolated:
+      return true;
+  }
+  return false;
+}
+
+// "0 none, 1 unique, ..., 5 isolated": the certificate values, for messages.
+std::string KnownCertificates() {
+  std::string s;
+  for (int v = 0; v < 256 && KnownCertificate(static_cast<std::uint8_t>(v)); ++v) {
+    s += (s.empty() ? "" : ", ") + std::to_string(v) + " " + std::string(ToString(static_cast<Certificate>(v)));
+  }
+  return s;
 }
 
 std::string Hex(std::uint64_t v) {
@@ -330,6 +356,7 @@ struct ProblemSetWriter::Impl {
     if (static_cast<std::uint8_t>(p.expected) > 2) {
       Fail(who + ": expected outcome has the invalid value " + std::to_string(static_cast<int>(p.expected)));
     }
+    CheckReference(p, who);
     bool long_string = p.id.size() > kMaxString || p.source.size() > kMaxString ||
                        p.problem.name().size() > kMaxString || p.tags.size() > kMaxString ||
                        p.metadata.size() > kMaxString;
@@ -337,6 +364,31 @@ struct ProblemSetWriter::Impl {
     for (const auto& [k, v] : p.metadata) long_string = long_string || k.size() > kMaxString || v.size() > kMaxString;
     if (long_string) Fail(who + ": a string or list is longer than 2^32 - 1");
     if (ids.count(p.id)) Fail("duplicate id '" + p.id + "'");
+  }
+
+  // The reference as the reader will see it: a known certificate, a condition that is not NaN or negative, z* of
+  // size n and finite exactly when the certificate verified one.
+  void CheckReference(const LibraryProblem& p, const std::string& who) {
+    const ReferenceSolution& r = p.reference;
+    const auto certificate = static_cast<std::uint8_t>(r.certificate);
+    if (!KnownCertificate(certificate)) {
+      Fail(who + ": reference certificate has the invalid value " + std::to_string(certificate));
+    }
+    if (std::isnan(r.condition) || r.condition < 0.0) {
+      Fail(who + ": reference condition is " + NumberText(r.condition) + " (must be >= 0, +inf allowed)");
+    }
+    if (r.verified()) {
+      if (r.z.size() != p.size()) {
+        Fail(who + ": reference certificate '" + std::string(ToString(r.certificate)) + "' with z* of size " +
+             std::to_string(r.z.size()) + " but n = " + std::to_string(p.size()));
+      }
+      for (Eigen::Index i = 0; i < r.z.size(); ++i) {
+        if (!std::isfinite(r.z[i])) Fail(who + ": reference z[" + std::to_string(i) + "] is not finite");
+      }
+    } else if (r.z.size() != 0) {
+      Fail(who + ": reference certificate '" + std::string(ToString(r.certificate)) +
+           "' verified no solution but z* is set (size " + std::to_string(r.z.size()) + ")");
+    }
   }
 
   void WriteProblem(const LibraryProblem& p, std::uint64_t matrix_index) {
@@ -369,6 +421,10 @@ struct ProblemSetWriter::Impl {
       e.Str(k);
       e.Str(v);
     }
+    // Version 2: the certified reference.
+    e.U8(static_cast<std::uint8_t>(p.reference.certificate));
+    e.F64(p.reference.condition);
+    if (p.reference.verified()) e.F64s(p.reference.z.data(), n);
     WriteRecord(kProblemRecord, body);
     ids.insert(p.id);
     ++problems;
@@ -685,7 +741,32 @@ Tristate DecodeTristate(Decoder& d, const char* field) {
   return static_cast<Tristate>(v);
 }
 
-LibraryProblem DecodeProblem(Decoder& d, const std::vector<TableMatrix>& table) {
+// Version 2's reference fields: certificate, condition, z* when the certificate verified one.
+ReferenceSolution DecodeReference(Decoder& d, std::uint64_t n, Eigen::Index size) {
+  ReferenceSolution r;
+  const std::size_t certificate_at = d.pos();
+  const std::uint8_t certificate = d.U8("certificate");
+  if (!KnownCertificate(certificate)) {
+    d.FailAt(certificate_at, "certificate",
+             "value " + std::to_string(certificate) + " is not a known certificate (" + KnownCertificates() + ")");
+  }
+  r.certificate = static_cast<Certificate>(certificate);
+  const std::size_t condition_at = d.pos();
+  r.condition = BitsDouble(d.U64("condition"));
+  if (std::isnan(r.condition) || r.condition < 0.0) {
+    d.FailAt(condition_at, "condition", std::isnan(r.condition) ? "is NaN" : "is negative");
+  }
+  if (r.verified()) {
+    d.Need(n, 8, "reference z");
+    r.z.resize(size);
+    d.F64s(r.z.data(), static_cast<std::size_t>(n), [&](std::size_t i, double v, std::size_t at) {
+      if (!std::isfinite(v)) d.FailAt(at, Index("reference z", i), std::isnan(v) ? "is NaN" : "is infinite");
+    });
+  }
+  return r;
+}
+
+LibraryProblem DecodeProblem(Decoder& d, const std::vector<TableMatrix>& table, std::uint32_t version) {
   std::string id = d.Str("id");
   d.set_where(d.where() + " ('" + QuoteForMessage(id) + "')");
   std::string source = d.Str("source");
@@ -755,6 +836,8 @@ LibraryProblem DecodeProblem(Decoder& d, const std::vector<TableMatrix>& table) 
       d.FailAt(at, Index("metadata key", i), "key repeated");
     }
   }
+  ReferenceSolution reference;  // version 1 stores none: Certificate::kNone
+  if (version >= 2) reference = DecodeReference(d, n, M.n);
   d.ExpectEnd();
   std::optional<BoxMLCP> problem;
   try {
@@ -768,7 +851,7 @@ LibraryProblem DecodeProblem(Decoder& d, const std::vector<TableMatrix>& table) 
   }
   return LibraryProblem{std::move(id),       std::move(source), std::move(*problem),   tags,
                         std::move(labels),   seed,              static_cast<ExpectedOutcome>(expected),
-                        std::move(solution), std::move(metadata)};
+                        std::move(solution), std::move(metadata), std::move(reference)};
 }
 
 struct Decoded {
@@ -799,8 +882,9 @@ Decoded Decode(std::string_view data, const std::string& file) {
   }
   Decoded out;
   const auto version = static_cast<std::uint32_t>(LoadLE(data.data() + 8, 4));
-  if (version != kProblemSetFormatVersion) {
-    fail(8, "format version " + std::to_string(version) + " is not supported: this build reads version " +
+  if (version < kOldestReadableProblemSetFormatVersion || version > kProblemSetFormatVersion) {
+    fail(8, "format version " + std::to_string(version) + " is not supported: this build reads versions " +
+                std::to_string(kOldestReadableProblemSetFormatVersion) + " to " +
                 std::to_string(kProblemSetFormatVersion) +
                 (version > kProblemSetFormatVersion ? " (the file was written by a newer smcbench)" : ""));
   }
@@ -878,7 +962,7 @@ Decoded Decode(std::string_view data, const std::string& file) {
       }
       case kProblemRecord: {
         Decoder d(data, body, body + length, file, "problem #" + std::to_string(out.set.problems.size()));
-        LibraryProblem p = DecodeProblem(d, table);
+        LibraryProblem p = DecodeProblem(d, table, version);
         const BoxMLCP& b = p.problem;
         expanded += b.is_sparse() ? static_cast<std::uint64_t>(b.sparse_matrix().nonZeros()) * 12
                                   : static_cast<std::uint64_t>(b.size()) * static_cast<std::uint64_t>(b.size()) * 8;

@@ -18,8 +18,11 @@
 
 namespace smcbench {
 
-// Format version written by this build; the only one it reads.
-inline constexpr std::uint32_t kProblemSetFormatVersion = 1;
+// Format version written by this build. Version 2 added each problem's certified reference (certificate,
+// condition, z*); version 1 files are still read, their problems with Certificate::kNone.
+inline constexpr std::uint32_t kProblemSetFormatVersion = 2;
+// The oldest version this build reads (every version from it to kProblemSetFormatVersion is read).
+inline constexpr std::uint32_t kOldestReadableProblemSetFormatVersion = 1;
 // The customary file extension.
 inline constexpr const char* kProblemSetExtension = ".smcps";
 // Files larger than this (4 GiB) are refused before reading (10⁵ sparse rows with 10 entries each take ~15 MB).
@@ -28,9 +31,10 @@ inline constexpr std::uint64_t kMaxProblemSetFileBytes = std::uint64_t{1} << 32;
 // could otherwise claim any amount of memory. Beyond this many bytes of matrix data (16 GiB) a read fails.
 inline constexpr std::uint64_t kMaxExpandedMatrixBytes = std::uint64_t{1} << 34;
 
-// Writes the whole set (set.Validate() first; identical matrices are stored once, compared bit by bit). Throws
-// InvalidInputError if the set is invalid (duplicate or empty id, wrong solution size, non-finite solution,
-// out-of-range enum value) or the stream fails.
+// Writes the whole set in version kProblemSetFormatVersion (set.Validate() first; identical matrices are stored
+// once, compared bit by bit). Throws InvalidInputError if the set is invalid (duplicate or empty id, wrong solution
+// size, non-finite solution, out-of-range enum value, a reference whose z* does not match its certificate, a NaN
+// or negative condition) or the stream fails.
 void WriteProblemSet(const ProblemSet& set, std::ostream& out);
 // Same, to a file: written under a temporary name in the same folder and renamed at the end, so a failed write
 // never leaves a half-written file under path.
@@ -44,7 +48,7 @@ ProblemSet ReadProblemSetBytes(std::string_view bytes, const std::string& name_f
 
 // What a file holds besides its problems (for listings; reads and checks the whole file like ReadProblemSet).
 struct ProblemSetFileInfo {
-  std::uint32_t version = 0;
+  std::uint32_t version = 0;  // of the file (a version-1 file read by this build reports 1)
   std::uint64_t bytes = 0;
   std::uint64_t matrices = 0;  // entries of the matrix table (distinct matrices)
   std::uint64_t problems = 0;

@@ -73,6 +73,9 @@ void ExpectSameProblem(const LibraryProblem& a, const LibraryProblem& b) {
   EXPECT_EQ(a.expected, b.expected);
   ExpectSameBits(a.solution, b.solution, "solution");
   EXPECT_EQ(a.metadata, b.metadata);
+  EXPECT_EQ(a.reference.certificate, b.reference.certificate);
+  EXPECT_TRUE(SameBits(a.reference.condition, b.reference.condition)) << a.reference.condition;
+  ExpectSameBits(a.reference.z, b.reference.z, "reference z");
 }
 
 Vector Vec(std::initializer_list<double> values) {
@@ -100,7 +103,7 @@ SparseMatrix Sparse4() {
 }
 
 LibraryProblem Problem(std::string id, BoxMLCP box) {
-  return LibraryProblem{std::move(id), "", std::move(box), {}, {}, std::nullopt, ExpectedOutcome::kUnknown, {}, {}};
+  return LibraryProblem{std::move(id), "", std::move(box), {}, {}, std::nullopt, ExpectedOutcome::kUnknown, {}, {}, {}};
 }
 
 // Every field set, every special value in every vector.
@@ -117,6 +120,9 @@ ProblemSet SampleSet() {
   a.expected = ExpectedOutcome::kSolvable;
   a.solution = Vec({1.5, -0.0, kDenorm});
   a.metadata = {{"h", "0.1"}, {"scene", "sign"}, {"empty", ""}, {"unicode", "θ → ∞"}};
+  a.reference.certificate = Certificate::kUnique;
+  a.reference.condition = 2.5;
+  a.reference.z = Vec({1.5, -0.0, kDenorm});
   set.problems.push_back(a);
 
   LibraryProblem b = Problem("lib/sparse/b", BoxMLCP(Sparse4(), Vec({1, 2, 3, 4}), Vec({0, -1, -kInf, 0}),
@@ -124,12 +130,17 @@ ProblemSet SampleSet() {
   b.expected = ExpectedOutcome::kInfeasible;
   b.seed = 0;
   b.matrix = {Tristate::kNo, Tristate::kUnknown, Tristate::kYes};
+  b.reference.certificate = Certificate::kNoneFound;  // no z*, a condition all the same (kept bit for bit)
+  b.reference.condition = kDenorm;
   set.problems.push_back(b);
 
   // Same M as a (stored once), different q; id with non-ASCII characters; named by its id (not stored twice).
   LibraryProblem c = Problem("lib/dense/c/ü", BoxMLCP(Dense3(), Vec({1, 2, 3}), Vec({-1, -1, -1}), Vec({1, 1, 1}),
                                                       "lib/dense/c/ü"));
   c.source = "capture:sign";
+  c.reference.certificate = Certificate::kNonUnique;  // verified through a singular block: μ = +∞
+  c.reference.condition = kInf;
+  c.reference.z = Vec({-kMax, 0.0, 1e-300});
   set.problems.push_back(c);
   return set;
 }
@@ -203,7 +214,8 @@ constexpr std::uint8_t kSet = 1, kMatrix = 2, kProblem = 3, kEnd = 4;
 
 // A one-problem file with a 2×2 M: problem id "p", empty source and name, so its body offsets are fixed:
 // id 0, source 5, flags 9, name 10, matrix index 14, n 22, q 30, l 46, u 62, tristates 78, expected 81, tag count
-// 82, metadata 86.
+// 82, metadata 86 (count, then "a" "1" "b" "2": 24 bytes), certificate 110 (0, none), condition 111; 119 bytes.
+constexpr std::size_t kSmallCertificate = 110, kSmallCondition = 111, kSmallBodyLength = 119;
 std::string SmallFile(bool sparse = false) {
   ProblemSet set;
   set.name = "s";
@@ -244,6 +256,76 @@ TEST(ProblemSetIo, RoundTripIsBitExact) {
   for (std::size_t i = 0; i < set.problems.size(); ++i) ExpectSameProblem(set.problems[i], back.problems[i]);
   // And the bytes are a fixed point: writing what was read gives the same file.
   EXPECT_EQ(Serialize(back), Serialize(set));
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// Version 1 (before references): still read, every problem with Certificate::kNone
+
+// The version-1 image of a set whose references are all unverified: the same records without the 9 trailing
+// bytes (certificate, condition) of each problem body, header version 1, lengths and checksum fixed. Built from
+// the specification's version-1 layout, independently of the reader.
+std::string VersionOneImage(const std::string& v2) {
+  std::string v1 = v2.substr(0, 16);
+  Store(&v1, 8, 1, 4);
+  for (const Record& r : Records(v2)) {
+    const std::uint64_t length = r.kind == kProblem ? r.length - 9 : r.length;
+    std::string record = v2.substr(r.at, 9 + length);
+    Store(&record, 1, length, 8);
+    v1 += record;
+  }
+  FixProblemSetChecksum(&v1);
+  return v1;
+}
+
+TEST(ProblemSetIoVersion1, HandBuiltVersionOneImageIsReadWithoutReferences) {
+  ProblemSet set = SampleSet();
+  for (LibraryProblem& p : set.problems) p.reference = {};
+  const std::string v2 = Serialize(set);
+  const std::string v1 = VersionOneImage(v2);
+  EXPECT_EQ(v1.size(), v2.size() - 9 * set.problems.size());
+  ProblemSetFileInfo info;
+  const fs::path path = fs::temp_directory_path() / ("library-v1-" + std::to_string(::getpid()) + ".smcps");
+  {
+    std::ofstream out(path, std::ios::binary);
+    out << v1;
+  }
+  const ProblemSet back = ReadProblemSetFile(path.string(), &info);
+  fs::remove(path);
+  EXPECT_EQ(info.version, 1u);
+  ASSERT_EQ(back.problems.size(), set.problems.size());
+  for (std::size_t i = 0; i < set.problems.size(); ++i) ExpectSameProblem(set.problems[i], back.problems[i]);
+  // Written again, it is the version-2 file.
+  EXPECT_EQ(Serialize(back), v2);
+  // The version decides the layout: version-2 bodies under a version-1 header have 9 bytes too many.
+  std::string mislabeled = v2;
+  Store(&mislabeled, 8, 1, 4);
+  FixProblemSetChecksum(&mislabeled);
+  ExpectRejected(mislabeled, {"problem #0", "9 unexpected trailing byte(s) inside the record"});
+}
+
+// A file written by the version-1 writer (a copy of tests/fuzz/seeds/library/sign.smcps, `smcbench simulate sign
+// --T 0.05 --record`, committed before version 2 existed).
+TEST(ProblemSetIoVersion1, FileWrittenByTheVersionOneWriterIsRead) {
+  ProblemSetFileInfo info;
+  const ProblemSet set =
+      ReadProblemSetFile(std::string(SMCBENCH_SOURCE_DIR) + "/problems/library/testdata/format-v1-sign.smcps", &info);
+  EXPECT_EQ(info.version, 1u);
+  EXPECT_EQ(set.name, "capture");
+  ASSERT_GT(set.problems.size(), 0u);
+  for (const LibraryProblem& p : set.problems) {
+    SCOPED_TRACE(p.id);
+    EXPECT_EQ(p.id.rfind("capture/sign/", 0), 0u);
+    EXPECT_EQ(p.reference.certificate, Certificate::kNone);
+    EXPECT_EQ(p.reference.z.size(), 0);
+    // The captured z is what the run used, and it solves the problem (the bytes were read as meant).
+    ASSERT_EQ(p.solution.size(), p.size());
+    Vector w(p.size());  // sized: GCC 12 -Warray-bounds misreads the inlined small-size path on an empty w
+    EXPECT_LE(p.problem.NaturalResidual(p.solution, &w).rel, 1e-10);
+  }
+  // Round trip through version 2: same problems.
+  const ProblemSet again = Parse(Serialize(set));
+  ASSERT_EQ(again.problems.size(), set.problems.size());
+  for (std::size_t i = 0; i < set.problems.size(); ++i) ExpectSameProblem(set.problems[i], again.problems[i]);
 }
 
 TEST(ProblemSetIo, EmptySetRoundTrips) {
@@ -388,6 +470,41 @@ TEST(ProblemSetIo, WriterRejectsWhatTheReaderWouldRefuse) {
   set.problems[0].expected = static_cast<ExpectedOutcome>(7);
   EXPECT_THROW(Serialize(set), InvalidInputError);
 
+  // References: what the certificate promises must be there, and nothing else.
+  const auto expect_refused = [](const ProblemSet& bad, const std::string& needle) {
+    try {
+      Serialize(bad);
+      ADD_FAILURE() << "wrote " << needle;
+    } catch (const InvalidInputError& e) {
+      EXPECT_NE(std::string(e.what()).find(needle), std::string::npos) << e.what();
+    }
+  };
+  set = SampleSet();
+  set.problems[0].reference.certificate = static_cast<Certificate>(9);
+  expect_refused(set, "reference certificate with the invalid value 9");
+  set = SampleSet();
+  set.problems[0].reference.z = Vec({1.0});
+  expect_refused(set, "z* of size 1 but n = 3");
+  set = SampleSet();
+  set.problems[1].reference.z = Vec({1, 2, 3, 4});  // none found, yet a z*
+  expect_refused(set, "z* of size 4");
+  set = SampleSet();
+  set.problems[0].reference.condition = -1.0;
+  expect_refused(set, "reference condition");
+  set = SampleSet();
+  set.problems[0].reference.condition = std::nan("");
+  expect_refused(set, "reference condition");
+  set = SampleSet();
+  set.problems[2].reference.z[1] = std::nan("");
+  std::ostringstream out_of_validate;  // Validate passes (sizes match): the writer's own check refuses it
+  try {
+    ProblemSetWriter w(out_of_validate, "stream", "s", "");
+    w.Add(set.problems[2]);
+    ADD_FAILURE();
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("reference z[1] is not finite"), std::string::npos) << e.what();
+  }
+
   std::ostringstream out;
   ProblemSetWriter writer(out, "stream", "s", "");
   writer.Add(SampleSet().problems[0]);
@@ -409,8 +526,8 @@ TEST(ProblemSetIoDefects, TruncatedHeader) { ExpectRejected(SmallFile().substr(0
 
 TEST(ProblemSetIoDefects, VersionMismatch) {
   std::string bytes = SmallFile();
-  Store(&bytes, 8, 2, 4);
-  ExpectRejected(bytes, {"format version 2 is not supported", "reads version 1", "newer"});
+  Store(&bytes, 8, 3, 4);
+  ExpectRejected(bytes, {"format version 3 is not supported", "reads versions 1 to 2", "newer"});
   Store(&bytes, 8, 0, 4);
   ExpectRejected(bytes, {"format version 0 is not supported", "byte 8"});
 }
@@ -520,6 +637,57 @@ TEST(ProblemSetIoDefects, InvalidExpectedOutcome) {
   ExpectRejected(bytes, {"expected", "value 3"});
 }
 
+TEST(ProblemSetIoDefects, UnknownCertificate) {
+  std::string bytes = SmallFile();
+  const Record& p = Nth(Records(bytes), kProblem);
+  ASSERT_EQ(p.length, kSmallBodyLength);
+  const std::size_t at = p.body + kSmallCertificate;
+  ASSERT_EQ(bytes[at], 0);
+  bytes[at] = 6;
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"problem #0 ('p') certificate at byte " + std::to_string(at),
+                         "value 6 is not a known certificate (0 none, 1 unique, 2 degenerate, 3 non-unique, "
+                         "4 none found, 5 isolated)"});
+  bytes[at] = static_cast<char>(0xff);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"certificate at byte " + std::to_string(at), "value 255"});
+}
+
+TEST(ProblemSetIoDefects, VerifiedCertificateWithoutItsSolution) {
+  // Certificate 1 (unique) promises z*: 2 doubles, but the record ends after the condition.
+  std::string bytes = SmallFile();
+  const Record& p = Nth(Records(bytes), kProblem);
+  bytes[p.body + kSmallCertificate] = 1;
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"problem #0 ('p') reference z at byte " + std::to_string(p.body + kSmallBodyLength),
+                         "declares 2 value(s) of 8 byte(s) but only 0 byte(s) remain"});
+}
+
+TEST(ProblemSetIoDefects, BadCondition) {
+  std::string bytes = SmallFile();
+  const std::size_t at = Nth(Records(bytes), kProblem).body + kSmallCondition;
+  StoreDouble(&bytes, at, std::nan(""));
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"condition at byte " + std::to_string(at), "is NaN"});
+  StoreDouble(&bytes, at, -1.0);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"condition at byte " + std::to_string(at), "is negative"});
+}
+
+TEST(ProblemSetIoDefects, NonFiniteReferenceSolution) {
+  ProblemSet set;
+  DenseMatrix M(1, 1);
+  M << 2;
+  set.problems.push_back(Problem("p", BoxMLCP::Relay(M, Vec({1}))));
+  set.problems[0].reference = ReferenceSolution{Certificate::kUnique, Vec({-0.5}), 0.5};
+  std::string bytes = Serialize(set);
+  const Record& p = Nth(Records(bytes), kProblem);
+  const std::size_t at = p.body + p.length - 8;  // z*[0], the record's last field
+  StoreDouble(&bytes, at, kInf);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"reference z[0] at byte " + std::to_string(at), "is infinite"});
+}
+
 TEST(ProblemSetIoDefects, UnknownFlagBits) {
   std::string bytes = SmallFile();
   bytes[Nth(Records(bytes), kProblem).body + 9] = 0x10;
@@ -530,9 +698,10 @@ TEST(ProblemSetIoDefects, UnknownFlagBits) {
 TEST(ProblemSetIoDefects, RepeatedMetadataKey) {
   std::string bytes = SmallFile();
   const Record& p = Nth(Records(bytes), kProblem);
-  // Metadata: u32 count, then "a" "1" "b" "2" as 5-byte strings: the second key's character is 6 bytes from the end.
-  ASSERT_EQ(bytes[p.body + p.length - 6], 'b');
-  bytes[p.body + p.length - 6] = 'a';
+  // Metadata: u32 count, then "a" "1" "b" "2" as 5-byte strings, then the reference (certificate 0 and the
+  // condition: 9 bytes): the second key's character is 6 + 9 bytes from the end.
+  ASSERT_EQ(bytes[p.body + p.length - 15], 'b');
+  bytes[p.body + p.length - 15] = 'a';
   FixProblemSetChecksum(&bytes);
   ExpectRejected(bytes, {"metadata key[1]", "key repeated"});
 }

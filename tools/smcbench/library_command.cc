@@ -2,14 +2,18 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <map>
 #include <ostream>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
+#include "problems/library/references.h"
 #include "problems/library/siconos_export.h"
 
 namespace smcbench {
@@ -49,6 +53,21 @@ std::string CsvQuote(const std::string& text) {
 }
 
 std::string TagLetter(Tristate t) { return t == Tristate::kYes ? "y" : t == Tristate::kNo ? "n" : "?"; }
+
+// "unique 3, none 1": the certificates of the set's references.
+std::string CertificateCounts(const ProblemSet& set) {
+  std::map<std::string, std::size_t> counts;
+  for (const LibraryProblem& p : set.problems) ++counts[std::string(ToString(p.reference.certificate))];
+  return Counts(counts);
+}
+
+// The condition μ of a reference, 3 digits ("-" when no reference was computed or none verified).
+std::string ConditionText(const ReferenceSolution& r) {
+  if (!r.verified()) return "-";
+  char text[32];
+  std::snprintf(text, sizeof text, "%.3g", r.condition);
+  return text;
+}
 
 }  // namespace
 
@@ -97,6 +116,7 @@ std::string ProblemSetSummary(const ProblemSet& set, const ProblemSetFileInfo* i
   }
   o << "bounds: " << Counts(bounds) << "\n";
   o << "expected: " << Counts(expected) << "\n";
+  o << "references: " << CertificateCounts(set) << "\n";
   o << "matrix tags (yes / no / unknown):\n";
   const char* names[3] = {"symmetric", "positive definite", "P-matrix"};
   for (int k = 0; k < 3; ++k) {
@@ -143,16 +163,31 @@ std::size_t ExportProblemSetRelay(const ProblemSet& set, const std::string& dir,
 }
 
 struct LibraryCommand::Flags {
-  std::string file, export_dir;
+  std::string file, export_dir, certify_out;
   bool list = false;
+  int certify_max_size = ReferenceOptions{}.max_size;
 };
 
 LibraryCommand::LibraryCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
-  command_ = app->add_subcommand("library", "summarize a problem-set file (.smcps, see problems/library/README.md) "
-                                            "and export it to Siconos relay files");
+  command_ = app->add_subcommand("library", "summarize a problem-set file (.smcps, see problems/library/README.md), "
+                                            "attach certified reference solutions, export it to Siconos relay files");
   command_->add_option("FILE", flags_->file, "problem-set file (written by simulate --record, bench, ...)")
       ->required();
-  command_->add_flag("--list", flags_->list, "also print one line per problem: id, n, storage, expected, tags");
+  command_->add_flag("--list", flags_->list,
+                     "also print one line per problem: id, n, storage, expected, matrix tags, the reference's "
+                     "certificate and its condition mu (after --certify when both are given)");
+  command_->add_option("--certify", flags_->certify_out,
+                       "compute a certified reference solution (extended-precision active-set certification, "
+                       "candidates: the known solution and the answers of lemke, enum and newton) for every "
+                       "problem that has none and at most --certify-max-size rows, and write the set with them "
+                       "to OUT.smcps (format version " + std::to_string(kProblemSetFormatVersion) +
+                       "; OUT may be FILE itself); existing references are kept")
+      ->type_name("OUT");
+  command_->add_option("--certify-max-size", flags_->certify_max_size,
+                       "larger problems keep certificate 'none' (default " +
+                           std::to_string(ReferenceOptions{}.max_size) +
+                           "; each quad-precision active-set solve costs ~n^3, a few ms at n = 64)")
+      ->check(CLI::Range(1, 256));
   command_->add_option("--export-relay", flags_->export_dir,
                        "write every problem with finite bounds to DIR/<id>.dat in Siconos relay format, plus "
                        "DIR/index.csv; problems with infinite bounds are listed and make the exit status 1");
@@ -165,14 +200,44 @@ bool LibraryCommand::parsed() const { return command_->parsed(); }
 int LibraryCommand::Run(std::ostream& out, std::ostream& err) const {
   const Flags& f = *flags_;
   ProblemSetFileInfo info;
-  const ProblemSet set = ReadProblemSetFile(f.file, &info);
+  ProblemSet set = ReadProblemSetFile(f.file, &info);
   out << ProblemSetSummary(set, &info);
+  if (!f.certify_out.empty()) {
+    ReferenceOptions options;
+    options.max_size = f.certify_max_size;
+    std::size_t todo = 0, kept = 0, too_large = 0;
+    for (const LibraryProblem& p : set.problems) {
+      if (p.reference.certificate != Certificate::kNone) {
+        ++kept;
+      } else if (p.size() > options.max_size) {
+        ++too_large;
+      } else {
+        ++todo;
+      }
+    }
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      AttachReferences(&set, options);
+    } catch (const std::logic_error& e) {
+      // A solution verified on a problem the file says is infeasible: the file's data is wrong, not smcbench.
+      throw InvalidInputError("--certify: " + std::string(e.what()) + "; nothing was written");
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    WriteProblemSetFile(set, f.certify_out);
+    char time_text[32];
+    std::snprintf(time_text, sizeof time_text, "%.2f", seconds);
+    out << "\ncertified " << todo << " problem(s) in " << time_text << " s (kept " << kept
+        << " existing reference(s); " << too_large << " above " << options.max_size << " rows left without)\n"
+        << "references: " << CertificateCounts(set) << "\n"
+        << "wrote " << f.certify_out << " (format version " << kProblemSetFormatVersion << ")\n";
+  }
   if (f.list) {
-    out << "\nid | n | storage | expected | symmetric/pd/P\n";
+    out << "\nid | n | storage | expected | symmetric/pd/P | certificate | mu\n";
     for (const LibraryProblem& p : set.problems) {
       out << p.id << " | " << p.size() << " | " << (p.sparse() ? "sparse" : "dense") << " | "
           << ToString(p.expected) << " | " << TagLetter(p.matrix.symmetric) << TagLetter(p.matrix.positive_definite)
-          << TagLetter(p.matrix.p_matrix) << "\n";
+          << TagLetter(p.matrix.p_matrix) << " | " << ToString(p.reference.certificate) << " | "
+          << ConditionText(p.reference) << "\n";
     }
   }
   if (f.export_dir.empty()) return 0;

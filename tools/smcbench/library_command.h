@@ -1,6 +1,7 @@
 // `smcbench library FILE`: what a problem-set file (problems/library, ".smcps") holds — name, counts, sizes, bound
-// kinds, matrix-class tags, expected outcomes — optionally one line per problem, and `--export-relay DIR` to write
-// every problem in Siconos relay format for Siconos' own tools.
+// kinds, matrix-class tags, expected outcomes, certified references — optionally one line per problem;
+// `--certify OUT` to attach certified reference solutions (problems/library/references.h) and write the set, and
+// `--export-relay DIR` to write every problem in Siconos relay format for Siconos' own tools.
 #pragma once
 
 #include <iosfwd>
@@ -31,6 +32,7 @@ class LibraryCommand {
   ~LibraryCommand();
   bool parsed() const;
   // 0 on success; 1 (with one line per skipped problem on err) if --export-relay had to skip problems.
+  // --certify runs before --list and --export-relay, so they show and export the certified set.
   int Run(std::ostream& out, std::ostream& err) const;
 
   struct Flags;

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <cmath>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -29,7 +30,7 @@ using test_support::RunSmcbench;
 
 LibraryProblem Problem(std::string id, BoxMLCP box, ExpectedOutcome expected) {
   return LibraryProblem{std::move(id), "generated:test", std::move(box), {}, {"handmade"},
-                        std::uint64_t{7},  expected,   {}, {}};
+                        std::uint64_t{7},  expected,   {}, {}, {}};
 }
 
 // Two relay problems whose ids sanitize to the same file name, a sparse box problem and an LCP.
@@ -70,11 +71,12 @@ TEST_F(LibraryCommandTest, SummaryAndList) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   EXPECT_THAT(r.out, HasSubstr("set mixed: relay, sparse box and LCP rows\n"));
-  EXPECT_THAT(r.out, HasSubstr("format version 1, 2 distinct matrices for 4 problems"));
+  EXPECT_THAT(r.out, HasSubstr("format version 2, 2 distinct matrices for 4 problems"));
   EXPECT_THAT(r.out, HasSubstr("problems: 4 (dense 3, sparse 1)\n"));
   EXPECT_THAT(r.out, HasSubstr("sizes: n=2 x4\n"));
   EXPECT_THAT(r.out, HasSubstr("bounds: relay/box 3, lcp 1\n"));
   EXPECT_THAT(r.out, HasSubstr("expected: solvable 2, infeasible 1, unknown 1\n"));
+  EXPECT_THAT(r.out, HasSubstr("references: none 4\n"));
   EXPECT_THAT(r.out, HasSubstr("  P-matrix           1 / 0 / 3\n"));
   EXPECT_THAT(r.out, HasSubstr("sources: generated 4\n"));
   EXPECT_THAT(r.out, HasSubstr("labels: handmade 4\n"));
@@ -83,8 +85,8 @@ TEST_F(LibraryCommandTest, SummaryAndList) {
 
   r = RunSmcbench({"library", file, "--list"});
   ASSERT_EQ(r.code, 0) << r.err;
-  EXPECT_THAT(r.out, HasSubstr("a/b | 2 | dense | solvable | yyy\n"));
-  EXPECT_THAT(r.out, HasSubstr("sparse/box | 2 | sparse | unknown | ???\n"));
+  EXPECT_THAT(r.out, HasSubstr("a/b | 2 | dense | solvable | yyy | none | -\n"));
+  EXPECT_THAT(r.out, HasSubstr("sparse/box | 2 | sparse | unknown | ??? | none | -\n"));
 }
 
 TEST_F(LibraryCommandTest, ExportRelayWritesBitExactFilesAndRefusesInfiniteBounds) {
@@ -134,6 +136,86 @@ TEST_F(LibraryCommandTest, RecordedRunExportsEveryStep) {
     ++files;
   }
   EXPECT_EQ(files, 100);
+}
+
+// M = [[2, −1], [−1, 2]], q = (½, −⅓), relay: z = −M⁻¹q = −(1/3)[[2, 1], [1, 2]] q = (−2/9, 1/18), both rows
+// inside [−1, 1], so w = 0 and the solution is unique (M is SPD). Row scales 2: D⁻¹M = [[1, −½], [−½, 1]], whose
+// inverse (4/3)[[1, ½], [½, 1]] has ∞-norm 2 = μ. A 5×5 problem above --certify-max-size 4, and an LCP with
+// w = −z − 1 < 0 for every z ≥ 0 (no solution).
+TEST_F(LibraryCommandTest, CertifyAttachesReferencesAndWritesTheSet) {
+  ProblemSet set;
+  set.name = "certify";
+  DenseMatrix M(2, 2);
+  M << 2, -1, -1, 2;
+  Vector q(2);
+  q << 0.5, -1.0 / 3.0;
+  set.problems.push_back(Problem("relay/two", BoxMLCP::Relay(M, q), ExpectedOutcome::kSolvable));
+  set.problems.push_back(Problem("lcp/none", BoxMLCP::LCP(DenseMatrix::Constant(1, 1, -1.0), Vector::Constant(1, -1.0)),
+                                 ExpectedOutcome::kInfeasible));
+  set.problems.push_back(Problem("relay/five", BoxMLCP::Relay(DenseMatrix::Identity(5, 5), Vector::Constant(5, 0.5)),
+                                 ExpectedOutcome::kSolvable));
+  const std::string file = Path("in.smcps"), certified = Path("certified.smcps");
+  WriteProblemSetFile(set, file);
+  CliRun r = RunSmcbench({"library", file, "--certify", certified, "--certify-max-size", "4", "--list"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("references: none 3\n"));  // the summary of the file as read
+  EXPECT_THAT(r.out, HasSubstr("certified 2 problem(s) in "));
+  EXPECT_THAT(r.out, HasSubstr("(kept 0 existing reference(s); 1 above 4 rows left without)\n"));
+  EXPECT_THAT(r.out, HasSubstr("references: none 1, none found 1, unique 1\n"));
+  EXPECT_THAT(r.out, HasSubstr("wrote " + certified + " (format version 2)\n"));
+  EXPECT_THAT(r.out, HasSubstr("relay/two | 2 | dense | solvable | ??? | unique | 2\n"));
+  EXPECT_THAT(r.out, HasSubstr("lcp/none | 1 | dense | infeasible | ??? | none found | -\n"));
+  EXPECT_THAT(r.out, HasSubstr("relay/five | 5 | dense | solvable | ??? | none | -\n"));
+
+  ProblemSetFileInfo info;
+  const ProblemSet back = ReadProblemSetFile(certified, &info);
+  EXPECT_EQ(info.version, 2u);
+  ASSERT_EQ(back.problems.size(), 3u);
+  const ReferenceSolution& two = back.problems[0].reference;
+  ASSERT_EQ(two.certificate, Certificate::kUnique);
+  EXPECT_NEAR(two.z[0], -2.0 / 9.0, 1e-16);
+  EXPECT_NEAR(two.z[1], 1.0 / 18.0, 1e-16);
+  EXPECT_NEAR(two.condition, 2.0, 1e-15);
+  EXPECT_EQ(back.problems[1].reference.certificate, Certificate::kNoneFound);
+  EXPECT_EQ(back.problems[2].reference.certificate, Certificate::kNone);
+
+  // Certifying the certified file again keeps what is there and, with the default limit, adds the 5×5 one.
+  r = RunSmcbench({"library", certified, "--certify", certified});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("certified 1 problem(s) in "));
+  EXPECT_THAT(r.out, HasSubstr("(kept 2 existing reference(s); 0 above 64 rows left without)\n"));
+  EXPECT_EQ(ReadProblemSetFile(certified).problems[2].reference.certificate, Certificate::kUnique);
+
+  EXPECT_EQ(RunSmcbench({"library", file, "--certify", certified, "--certify-max-size", "0"}).code, 2);
+}
+
+// A version-1 file (written before references existed) is read, certified, and written as version 2.
+TEST_F(LibraryCommandTest, CertifyUpgradesAVersionOneFile) {
+  const std::string v1 = std::string(SMCBENCH_SOURCE_DIR) + "/problems/library/testdata/format-v1-sign.smcps";
+  const std::string out = Path("sign-v2.smcps");
+  const CliRun r = RunSmcbench({"library", v1, "--certify", out});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("format version 1,"));
+  ProblemSetFileInfo info;
+  const ProblemSet set = ReadProblemSetFile(out, &info);
+  EXPECT_EQ(info.version, 2u);
+  for (const LibraryProblem& p : set.problems) {
+    // S1's one-step problems: 1×1, M = h > 0, relay bounds: a unique solution, which the run's z approximates.
+    EXPECT_TRUE(p.reference.unique()) << p.id;
+    EXPECT_LE(std::abs(p.reference.z[0] - p.solution[0]), ForwardErrorAllowance(p.reference, 1e-10)) << p.id;
+  }
+}
+
+// The file says "infeasible" but a solution is verified: the file is wrong; one line, exit 1, nothing written.
+TEST_F(LibraryCommandTest, CertifyRefusesAnInfeasibleProblemWithASolution) {
+  const std::string file = Path("mixed.smcps"), out = Path("never.smcps");
+  WriteProblemSetFile(MixedSet(), file);  // "lcp/one" is an SPD LCP (it has a solution) marked infeasible
+  const CliRun r = RunSmcbench({"library", file, "--certify", out});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("smcbench: --certify: problem 'lcp/one' is expected infeasible"));
+  EXPECT_THAT(r.err, HasSubstr("nothing was written"));
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(out));
 }
 
 TEST_F(LibraryCommandTest, DamagedOrMissingFilesAreOneLineErrors) {
