@@ -293,6 +293,137 @@ inline bool SolveBlock(double* a, int ld, int k, double* b, int* piv, double sma
   return true;
 }
 
+// The smallest |pivot| of a block factored by FactorBlock and the sign of its determinant (row swaps included).
+struct BlockPivots {
+  double smallest = kInf;
+  int sign = 1;
+};
+inline BlockPivots FactoredPivots(const double* a, int ld, int k, const int* piv) {
+  BlockPivots p;
+  const auto take = [&](double d) {
+    p.smallest = std::min(p.smallest, std::abs(d));
+    if (d < 0.0) p.sign = -p.sign;
+  };
+  if (k == 1) {
+    take(a[0]);
+  } else if (k == 2) {
+    take(a[0]), take(a[ld + 1]);
+    if (piv[0] == 1) p.sign = -p.sign;
+  } else {
+    for (int j = 0; j < k; ++j) {
+      take(a[j + static_cast<std::ptrdiff_t>(j) * ld]);
+      if (piv[j] != j) p.sign = -p.sign;
+    }
+  }
+  return p;
+}
+
+// "Solved" as Solver::Finish means it, on the (row-equilibrated) problem the search was given: relative residual
+// and residual in units of z both within the tolerance.
+inline bool Passes(const Residual& r, double tolerance) { return r.rel <= tolerance && r.scaled <= tolerance; }
+
+// Why the box-MLCP is known to have a solution, or nullptr; for the failure path of the search only (allocates):
+// every bound finite (a continuous map on a compact box), M + Mᵀ positive definite with a margin (the Cholesky
+// factorization of (M + Mᵀ)/2 − δI, δ = 1e3·n·ε·‖M‖∞, succeeds), or, from the search itself, every free block's
+// determinant of one sign with clear pivots (the Schur complement of the always-free rows is then a P-matrix).
+const char* SolutionExistsReason(const BoxMLCP& problem, bool determinants_of_one_sign) {
+  const Vector& l = problem.l();
+  const Vector& u = problem.u();
+  const int n = problem.size();
+  bool all_finite = true;
+  for (int i = 0; i < n; ++i) all_finite = all_finite && l[i] > -kInf && u[i] < kInf;
+  if (all_finite) return "every bound is finite";
+  const DenseMatrix& M = problem.dense_matrix();
+  DenseMatrix S = 0.5 * (M + M.transpose());
+  S.diagonal().array() -= 1e3 * n * kEps * S.cwiseAbs().rowwise().sum().maxCoeff();
+  if (Eigen::LLT<DenseMatrix>(S).info() == Eigen::Success) return "M + Mᵀ is positive definite";
+  if (determinants_of_one_sign) return "every free block's determinant has the same sign (a P-matrix problem)";
+  return nullptr;
+}
+
+// A determinant's sign counts (for the P-matrix argument) only when every LU pivot exceeds this · k · ε · max|M_FF|.
+constexpr double kDeterminantSignMargin = 1e3;
+
+// The line on which every solution of a rank-(k − 1) free block lies, from the column-pivoted QR left in a by
+// LeastNormSolve: A P = Q [R11 r12; 0 ρ] with R11 (k−1)×(k−1) upper triangular, so A P n = 0 up to ρ for
+// n = [−R11⁻¹ r12; 1]; v = P n scaled to ‖v‖∞ = 1 (scratch: k doubles for n). growth = max |R_ss| / min |R_ss|
+// over the kept part: how much it amplifies rounding. ok is false if something is not finite.
+struct LineOfSolutions {
+  bool ok = false;
+  double growth = kInf;
+};
+inline LineOfSolutions FitLine(const double* a, int ld, int k, const int* jpvt, double* scratch, double* v) {
+  const int r = k - 1;
+  const auto R = [&](int s, int c) { return a[s + static_cast<std::ptrdiff_t>(c) * ld]; };
+  double* n_perm = scratch;
+  n_perm[r] = 1.0;
+  double dmax = 0.0, dmin = kInf;
+  for (int s = r - 1; s >= 0; --s) {
+    double sum = -R(s, r);
+    for (int c = s + 1; c < r; ++c) sum -= R(s, c) * n_perm[c];
+    n_perm[s] = sum / R(s, s);
+    dmax = std::max(dmax, std::abs(R(s, s)));
+    dmin = std::min(dmin, std::abs(R(s, s)));
+  }
+  LineOfSolutions line;
+  double norm = 0.0;
+  for (int i = 0; i < k; ++i) norm = std::max(norm, std::abs(n_perm[i]));
+  if (!(norm > 0.0) || !std::isfinite(norm)) return line;
+  for (int i = 0; i < k; ++i) v[jpvt[i]] = n_perm[i] / norm;
+  line.growth = r == 0 ? 1.0 : dmax / dmin;
+  line.ok = std::isfinite(line.growth);
+  return line;
+}
+
+// True when Σ_a row(a)·v[a] is exactly zero in real arithmetic: every product and every partial sum is computed
+// without rounding (error-free transformations: the FMA residual of each product, Knuth's TwoSum of each sum).
+template <typename Row>
+bool ExactlyZeroDot(int k, const Row& row, const double* v) {
+  double sum = 0.0;
+  for (int a = 0; a < k; ++a) {
+    const double m = row(a);
+    const double p = m * v[a];
+    if (std::fma(m, v[a], -p) != 0.0) return false;
+    const double t = sum + p;
+    const double bp = t - sum;
+    if ((sum - (t - bp)) + (p - bp) != 0.0) return false;
+    sum = t;
+  }
+  return sum == 0.0;
+}
+
+// min over t of the largest violation max_j max(0, −(α_j + β_j t)) of linear constraints α_j + β_j t ≥ 0, with the
+// t that attains it (the one nearest 0, i.e. nearest the least-norm point). constraints(f) calls f(α, β) for each
+// constraint; it is called a few times (pairs are compared, nothing is stored: no allocation). Exact: the upper
+// envelope of the decreasing violations meets that of the increasing ones at a crossing of one pair of them.
+struct LeastViolation {
+  double violation = 0.0;
+  double t = 0.0;
+};
+template <typename Constraints>
+LeastViolation MinimizeWorstViolation(const Constraints& constraints) {
+  double v = 0.0;
+  constraints([&](double alpha, double beta) {
+    if (beta == 0.0) {
+      v = std::max(v, -alpha);
+    } else if (beta > 0.0) {
+      constraints([&](double alpha2, double beta2) {
+        if (beta2 < 0.0) v = std::max(v, (-alpha * -beta2 - alpha2 * beta) / (beta - beta2));
+      });
+    }
+  });
+  double lo = -kInf, hi = kInf;
+  constraints([&](double alpha, double beta) {
+    if (beta > 0.0) lo = std::max(lo, (-alpha - v) / beta);
+    if (beta < 0.0) hi = std::min(hi, (alpha + v) / -beta);
+  });
+  LeastViolation best;
+  best.violation = v;
+  best.t = lo > 0.0 ? lo : (hi < 0.0 ? hi : 0.0);
+  if (lo > hi) best.t = 0.5 * (lo + hi);  // rounding at the crossing
+  return best;
+}
+
 // The first active set tried for row i: the state of the Jacobi-scaled natural map y = z0 − (M z0 + q)_i / d_i
 // (d_i = M_ii where positive, else 1) projected on [l_i, u_i]. At a solution z0 = z* it is z*'s active set,
 // and from the cold start Π(0) of a 1×1 problem with M > 0 it gives the exact answer Π(−q/M).
@@ -470,6 +601,15 @@ std::string CountText(double count) {
   return s.str();
 }
 
+// The search's details, out of line: one call site of SetDetail for every instantiation of the search keeps the
+// translation unit small enough for the fast path's own SetDetail calls to stay inlined (measured: 35 instructions
+// per m = 1 solve).
+[[gnu::noinline]] void SetSearchDetails(double total, double guided, double singular, SolveResult* result) {
+  result->SetDetail("active_sets_total", total);
+  result->SetDetail("guided_sets", guided);
+  result->SetDetail("singular_blocks", singular);
+}
+
 // One verbosity-2 line: the active set as a string of L/U/F/X and what became of it.
 void Trace(long long index, const int* state, int n, const char* what, double value) {
   char pattern[65];
@@ -576,10 +716,15 @@ template <int N>
   for (int i = 0; i < N; ++i) z0[i] = zr[i];
   if (!SolveGuessedSet<N>(problem, options_.rank_tolerance, z0, z, &block_cache_)) return false;
   for (int i = 0; i < N; ++i) zr[i] = z[i];
-  // Accepted by the merit function Solve applies afterwards (and reuses): rel = abs / scale ≤ tolerance, tested
-  // without the division and 4 ulps on the safe side, so that Solve's own test can never disagree.
-  const Residual merit = FixedSizeMerit<N>(problem, result);
-  if (!(merit.abs <= options.tolerance * problem.residual_scale() * (1.0 - 4.0 * kEps))) {
+  // Accepted by the merit function, both of its tests, division-free and 4 ulps on the safe side: the problem is
+  // the row-equilibrated one (row scales 1), so the residual in units of z is abs / (1 + ‖z‖∞) and both tests bound
+  // abs. Only when that fails, the exact test (a point the merit function accepts must not be passed over: the
+  // search would judge another candidate, not this one); it recomputes the merit, a cold path.
+  double z_norm = 0.0;
+  for (int i = 0; i < N; ++i) z_norm = std::max(z_norm, std::abs(z[i]));
+  const double abs = FixedSizeMerit<N>(problem, result).abs;
+  if (!(abs <= options.tolerance * std::min(problem.residual_scale(), 1.0 + z_norm) * (1.0 - 4.0 * kEps)) &&
+      !Passes(FixedSizeMerit<N>(problem, result), options.tolerance)) {
     for (int i = 0; i < N; ++i) zr[i] = z0[i];  // the search starts from the caller's point
     return false;
   }
@@ -601,8 +746,11 @@ void EnumerativeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& opt
   }
 }
 
+// Out of line: the search is the fast path's fallback, and inlined into DoSolve it would crowd out the inlining
+// of the fast path's own calls.
 template <int N>
-void EnumerativeSolver::Search(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+[[gnu::noinline]] void EnumerativeSolver::Search(const BoxMLCP& problem, const SolverOptions& options,
+                                                 SolveResult* result) {
   const int n = N > 0 ? N : problem.size();
   const int guided_max = options_.guided_steps;
   FixedStorage<N> storage;
@@ -688,17 +836,268 @@ void EnumerativeSolver::Search(const BoxMLCP& problem, const SolverOptions& opti
   const bool verbose = options.verbosity >= 2;
   const long long budget = options.max_iterations > 0 ? options.max_iterations : -1;
   long long examined = 0, guided = 0, exhaustive = 0, singular = 0, singular_skipped = 0, nonfinite = 0,
-            near_misses = 0;
+            near_misses = 0, unresolved = 0;
   double best_merit = kInf;  // smallest merit value among the candidates that reached the merit test
-  // The closest miss of any candidate (bound violation of z_F, or merit value) relative to its threshold τ.
+  // The closest refutation of any candidate (bound violation of z_F, or merit value) relative to its certificate
+  // threshold (τ, widened by the block's pivot growth).
   double closest = kInf, closest_tau = 1.0;
   const auto record_miss = [&](double miss, double tau) {
     if (miss * closest_tau < closest * tau) closest = miss, closest_tau = tau;
   };
+  // Signs of det M_FF over the exhaustive phase (every free set appears there): one sign throughout, with clear
+  // pivots, means the Schur complement of the always-free rows is a P-matrix, so a solution exists.
+  bool in_exhaustive = false;
+  long long det_positive = 0, det_negative = 0, det_unclear = 0;
   SolveStatus stop = SolveStatus::kNotRun;  // kSolved, or why the search stopped early
 
-  // Examines the active set in b.state. Leaves z_F (unclipped) in b.rhs and z_B in b.z.
+  // Judges the candidate with z_B in b.z and the free rows' values (unclipped) in b.rhs. How a rejection counts:
+  // kRefutes (it refutes the active set, at the threshold τ widened by the block solve's error, growth = max|M_FF|
+  // over the smallest LU pivot), kUnresolved (it does not: a point of a singular block's solution set), kAttempt
+  // (no bookkeeping: the caller tries more points of the same set).
   enum class Outcome { kSolution, kRejected, kBroken };
+  enum class Refutation { kRefutes, kUnresolved, kAttempt };
+  const auto judge = [&](int k, double growth, Refutation refutation) -> Outcome {
+    double zmax = 0.0;
+    for (int i = 0; i < n; ++i) zmax = std::max(zmax, b.state[i] == kFree ? 0.0 : std::abs(b.z[i]));
+    for (int a = 0; a < k; ++a) {
+      if (!std::isfinite(b.rhs[a])) {
+        if (refutation == Refutation::kAttempt) return Outcome::kRejected;
+        ++nonfinite;
+        if (verbose) Trace(examined, b.state, n, "block solution overflowed", 0.0);
+        return Outcome::kBroken;
+      }
+      zmax = std::max(zmax, std::abs(b.rhs[a]));
+    }
+    const double roundoff_scale = roundoff * (m_norm * zmax + q_norm);
+    const double tau = std::max(roundoff_scale, tol_abs);
+    const double tau_certify = std::max(tau, roundoff_scale * growth);
+    const auto miss = [&](double value) {
+      if (refutation == Refutation::kRefutes) record_miss(value, tau_certify);
+      if (refutation == Refutation::kUnresolved) ++unresolved;
+    };
+    // z_F within its bounds up to τ, then clipped onto them.
+    double violation = 0.0;
+    for (int a = 0; a < k; ++a) {
+      const int i = b.free_idx[a];
+      violation = std::max(violation, std::max(l[i] - b.rhs[a], b.rhs[a] - u[i]));
+    }
+    if (violation > tau) {
+      miss(violation);
+      if (verbose) Trace(examined, b.state, n, "z_F outside its bounds by", violation);
+      return Outcome::kRejected;
+    }
+    double z_norm = 0.0;
+    for (int a = 0; a < k; ++a) {
+      const int i = b.free_idx[a];
+      b.z[i] = std::min(std::max(b.rhs[a], l[i]), u[i]);
+    }
+    for (int i = 0; i < n; ++i) z_norm = std::max(z_norm, std::abs(b.z[i]));
+    // The merit function decides: r = ‖z − Π(z − (M z + q))‖∞. On bound rows it is the sign violation of w, on
+    // free rows the equation residual, so it is also the sign test (at threshold τ). "Solved" (Solver::Finish)
+    // needs r ≤ tol·(1 + ‖q‖∞) and r ≤ tol·(1 + ‖z‖∞) (the problem is equilibrated): clearly below both, the
+    // candidate is accepted; near them, BoxMLCP::NaturalResidual, the function the base class applies, decides.
+    affine(b.z, b.w);
+    double merit = 0.0;
+    for (int i = 0; i < n; ++i) {
+      merit = std::max(merit, std::abs(b.z[i] - std::min(std::max(b.z[i] - b.w[i], l[i]), u[i])));
+    }
+    const double accept = options.tolerance * std::min(problem.residual_scale(), 1.0 + z_norm);
+    const double reject = options.tolerance * std::max(problem.residual_scale(), 1.0 + z_norm);
+    if (merit <= 2.0 * reject) {
+      for (int i = 0; i < n; ++i) result->z[i] = b.z[i];
+      if (merit <= 0.5 * accept || Passes(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
+        if (verbose) Trace(examined, b.state, n, "solves; merit", merit);
+        return Outcome::kSolution;
+      }
+    }
+    if (merit < best_merit) {
+      best_merit = merit;
+      for (int i = 0; i < n; ++i) b.best[i] = b.z[i];
+    }
+    if (refutation == Refutation::kAttempt) return Outcome::kRejected;
+    if (merit <= tau) ++near_misses;  // passes the sign tests at roundoff level only: ill-conditioned
+    if (verbose) Trace(examined, b.state, n, merit <= tau ? "near-solution; merit" : "sign test fails; merit", merit);
+    miss(merit);
+    return Outcome::kRejected;
+  };
+
+  // The free block of the active set in b.state (rows b.free_idx[0 .. k)): right-hand side −(q_F + M_FB z_B) into
+  // b.rhs, M_FF into b.A (returns max |M_FF|).
+  const auto build_rhs = [&](int k) {
+    for (int a = 0; a < k; ++a) b.rhs[a] = -q[b.free_idx[a]];
+    for (int j = 0; j < n; ++j) {
+      const double zj = b.z[j];
+      if (zj == 0.0 || b.state[j] == kFree) continue;
+      const double* mj = col(j);
+      for (int a = 0; a < k; ++a) b.rhs[a] -= mj[b.free_idx[a]] * zj;
+    }
+  };
+  const auto gather = [&](int k) {
+    double amax = 0.0;
+    for (int c = 0; c < k; ++c) {
+      const double* mj = col(b.free_idx[c]);
+      double* ac = b.A + static_cast<std::ptrdiff_t>(c) * b.ld;
+      for (int a = 0; a < k; ++a) {
+        ac[a] = mj[b.free_idx[a]];
+        amax = std::max(amax, std::abs(ac[a]));
+      }
+    }
+    return amax;
+  };
+  // The rest of examine for a numerically singular block (rare): out of line, so that it does not weigh on the
+  // inlining budget of the fixed-size paths.
+  const auto examine_singular = [&](int k) __attribute__((noinline)) -> Outcome {
+    // First the LU solution itself, when its pivots are nonzero: the merit function, not the size of a pivot,
+    // decides whether it solves the problem.
+    build_rhs(k);
+    gather(k);
+    if (SolveBlock(b.A, b.ld, k, b.rhs, b.piv, 0.0) && judge(k, kInf, Refutation::kAttempt) == Outcome::kSolution) {
+      return Outcome::kSolution;
+    }
+    // Then the least-norm solution about Π(0) of the rank-cut system (a consistent singular block has a whole
+    // affine set of solutions).
+    build_rhs(k);
+    gather(k);
+    for (int a = 0; a < k; ++a) b.w[a] = b.xref[b.free_idx[a]];  // w is scratch until the merit test
+    const int rank = LeastNormSolve(b.A, b.T, b.ld, k, b.w, b.rhs, b.tau, b.tau2, b.v, b.jpvt, small_rel);
+    // Rank k − 1: every solution of this active set (the whole line if the block is exactly singular and the
+    // system consistent, the one point if the cut direction was merely tiny, none if inconsistent) lies on the line
+    // x₀ + t·v, v spanning the cut direction of the QR. The set is refuted when no point of that line meets the
+    // equations, box and sign conditions; otherwise the best point of the line is the candidate.
+    LineOfSolutions line;
+    if (rank == k - 1) line = FitLine(b.A, b.ld, k, b.jpvt, b.T, b.v);  // T is free after LeastNormSolve
+    // Rows whose entries on the free columns are all exactly zero: their w does not depend on x at all, so their
+    // conditions hold or fail for every point of the block's solution set alike (b.margin is scratch here).
+    for (int i = 0; i < n; ++i) {
+      bool zero = true;
+      for (int a = 0; a < k && zero; ++a) zero = col(b.free_idx[a])[i] == 0.0;
+      b.margin[i] = zero ? 1.0 : 0.0;
+    }
+    if (!line.ok) {
+      // A larger rank deficiency: the least-norm point is one of many and refutes nothing; only a row that does not
+      // see x (above) can refute the set, for every x at once.
+      double zmax = 0.0;
+      for (int a = 0, i = 0; i < n; ++i) {
+        if (b.state[i] == kFree) b.z[i] = b.rhs[a++];
+        zmax = std::max(zmax, std::abs(b.z[i]));
+      }
+      affine(b.z, b.w);
+      double blind_violation = 0.0;  // the largest violated condition among the rows that do not see x
+      for (int i = 0; i < n; ++i) {
+        if (b.margin[i] == 0.0) continue;
+        const double wi = b.w[i];
+        const int st = b.state[i];
+        const double violated = st == kFree ? std::abs(wi) : st == kLower ? -wi : st == kUpper ? wi : 0.0;
+        blind_violation = std::max(blind_violation, violated);
+      }
+      for (int i = 0; i < n; ++i) {
+        if (b.state[i] == kFree) b.z[i] = 0.0;
+      }
+      if (judge(k, kInf, Refutation::kAttempt) == Outcome::kSolution) return Outcome::kSolution;
+      const double tau = std::max(roundoff * (m_norm * zmax + q_norm), tol_abs);
+      if (blind_violation > kCertifyMargin * tau) {
+        record_miss(blind_violation, tau);
+      } else {
+        ++unresolved;
+      }
+      if (verbose) Trace(examined, b.state, n, "singular block; violation independent of x", blind_violation);
+      return Outcome::kRejected;
+    }
+    // When M_FF v = 0 holds exactly (checked without rounding), v spans the exact null space: the solution set is
+    // exactly parallel to the line and a constant threshold suffices. The QR's v carries rounding, so v rounded to
+    // 20 bits (an exact null vector of a matrix of small integers and simple ratios, e.g. (1, 1)) is tried too.
+    const auto exact_null = [&](const double* vec) {
+      bool exact = true;
+      for (int c = 0; c < k && exact; ++c) {
+        const int i = b.free_idx[c];
+        exact = ExactlyZeroDot(k, [&](int a) { return col(b.free_idx[a])[i]; }, vec);
+      }
+      return exact;
+    };
+    bool null_exact = exact_null(b.v);
+    if (!null_exact) {
+      for (int a = 0; a < k; ++a) b.T[a] = std::ldexp(std::round(std::ldexp(b.v[a], 20)), -20);
+      null_exact = exact_null(b.T);
+      if (null_exact) std::copy(b.T, b.T + k, b.v);
+    }
+    // Constraints α_j + β_j t ≥ 0 on the line: the free rows' equations w_i = 0 (both signs: an inconsistent block
+    // violates them everywhere on the line) and bounds, the signs of w on the bound rows (w at x₀ in b.w, its change
+    // Δw = M_·F v per unit of t in b.y).
+    for (int i = 0; i < n; ++i) b.y[i] = 0.0;
+    for (int a = 0; a < k; ++a) {
+      const double* mj = col(b.free_idx[a]);
+      for (int i = 0; i < n; ++i) b.y[i] += mj[i] * b.v[a];
+    }
+    double bound_max = 0.0;  // largest |z_i| over the bound rows
+    for (int a = 0, i = 0; i < n; ++i) {
+      if (b.state[i] == kFree) {
+        b.z[i] = b.rhs[a++];
+      } else {
+        bound_max = std::max(bound_max, std::abs(b.z[i]));
+      }
+    }
+    affine(b.z, b.w);
+    // take(α, β, sees_x): sees_x is false for a row that does not see x, whose condition is exact along the line.
+    const auto constraints_flagged = [&](const auto& take) {
+      for (int a = 0; a < k; ++a) {
+        const int i = b.free_idx[a];
+        if (l[i] > -kInf) take(b.rhs[a] - l[i], b.v[a], true);
+        if (u[i] < kInf) take(u[i] - b.rhs[a], -b.v[a], true);
+      }
+      for (int i = 0; i < n; ++i) {
+        const bool sees_x = b.margin[i] == 0.0;
+        if (b.state[i] == kLower || b.state[i] == kFree) take(b.w[i], b.y[i], sees_x);
+        if (b.state[i] == kUpper || b.state[i] == kFree) take(-b.w[i], -b.y[i], sees_x);
+      }
+    };
+    const auto constraints = [&](const auto& take) {
+      constraints_flagged([&](double alpha, double beta, bool) { take(alpha, beta); });
+    };
+    // Refuted with a margin when no t meets every constraint to within kCertifyMargin·τ(t), where the rounding
+    // threshold τ(t) grows with ‖x(t)‖∞ (far along the line the computed Δw is mostly rounding: a nearly singular
+    // block's one solution can sit at |t| ~ 1/σ_min). τ(t) = tol·(1 + ‖q‖) + G·feasibility_scale·n·ε·(‖M‖‖x(t)‖∞
+    // + ‖q‖), G the growth of the kept part of the QR. ‖x(t)‖∞ is the largest of the pieces ±(x₀ + t v)_a and the bound rows'
+    // |z|: the constraints hold at some t for the largest piece iff they do for one piece, an interval test each.
+    // A row that does not see x keeps a constant threshold: its w is the same at every point.
+    const double growth = std::max(1.0, line.growth);
+    const double slack0 = kCertifyMargin * (tol_abs + growth * roundoff * q_norm);
+    const double slack1 = null_exact ? 0.0 : kCertifyMargin * growth * roundoff * m_norm;
+    const auto some_t_within_slack = [&](double piece0, double piece1) {
+      double lo = -kInf, hi = kInf;
+      bool ok = true;
+      constraints_flagged([&](double alpha, double beta, bool sees_x) {
+        const double grow = sees_x ? slack1 : 0.0;
+        const double a0 = alpha + slack0 + grow * piece0, a1 = beta + grow * piece1;
+        if (a1 > 0.0) {
+          lo = std::max(lo, -a0 / a1);
+        } else if (a1 < 0.0) {
+          hi = std::min(hi, -a0 / a1);
+        } else {
+          ok = ok && a0 >= 0.0;
+        }
+      });
+      return ok && lo <= hi;
+    };
+    bool refuted = !some_t_within_slack(bound_max, 0.0);
+    for (int a = 0; a < k && refuted; ++a) {
+      refuted = !some_t_within_slack(b.rhs[a], b.v[a]) && !some_t_within_slack(-b.rhs[a], -b.v[a]);
+    }
+    // The candidate: the point of the line with the least violation, nearest x₀.
+    const LeastViolation least = MinimizeWorstViolation(constraints);
+    for (int a = 0, i = 0; i < n; ++i) {
+      if (b.state[i] == kFree) b.z[i] = 0.0, b.rhs[a] += least.t * b.v[a], ++a;
+    }
+    if (judge(k, line.growth, Refutation::kAttempt) == Outcome::kSolution) return Outcome::kSolution;
+    if (!refuted) ++near_misses;  // some point of the line is within rounding of every condition
+    if (verbose) {
+      Trace(examined, b.state, n, refuted ? "singular block, no point of its line qualifies; least violation"
+                                          : "singular block, a point of its line is within rounding; violation",
+            least.violation);
+    }
+    return Outcome::kRejected;
+  };
+
+  // Examines the active set in b.state.
   const auto examine = [&]() -> Outcome {
     // Free block: M_FF z_F = −(q_F + M_FB z_B).
     int k = 0;
@@ -711,95 +1110,31 @@ void EnumerativeSolver::Search(const BoxMLCP& problem, const SolverOptions& opti
         b.z[i] = s == kUpper ? u[i] : l[i];
       }
     }
-    const auto build_rhs = [&]() {
-      for (int a = 0; a < k; ++a) b.rhs[a] = -q[b.free_idx[a]];
-      for (int j = 0; j < n; ++j) {
-        const double zj = b.z[j];
-        if (zj == 0.0 || b.state[j] == kFree) continue;
-        const double* mj = col(j);
-        for (int a = 0; a < k; ++a) b.rhs[a] -= mj[b.free_idx[a]] * zj;
+    if (k == 0) {
+      if (in_exhaustive) ++det_positive;  // the empty block: det = 1
+      return judge(0, 1.0, Refutation::kRefutes);
+    }
+    build_rhs(k);
+    const double amax = gather(k);
+    if (SolveBlock(b.A, b.ld, k, b.rhs, b.piv, small_rel * amax)) {
+      const BlockPivots pivots = FactoredPivots(b.A, b.ld, k, b.piv);
+      if (in_exhaustive) {
+        const bool clear = pivots.smallest > kDeterminantSignMargin * k * kEps * amax;
+        ++(!clear ? det_unclear : pivots.sign > 0 ? det_positive : det_negative);
       }
-    };
-    const auto gather = [&]() {
-      double amax = 0.0;
-      for (int c = 0; c < k; ++c) {
-        const double* mj = col(b.free_idx[c]);
-        double* ac = b.A + static_cast<std::ptrdiff_t>(c) * b.ld;
-        for (int a = 0; a < k; ++a) {
-          ac[a] = mj[b.free_idx[a]];
-          amax = std::max(amax, std::abs(ac[a]));
-        }
-      }
-      return amax;
-    };
-    if (k > 0) {
-      build_rhs();
-      const double small = small_rel * gather();
-      if (!SolveBlock(b.A, b.ld, k, b.rhs, b.piv, small)) {
-        // Numerically singular M_FF: the system may still be consistent, with a whole affine set of
-        // solutions. Take the least-norm one about Π(0); the merit test below rejects it if inconsistent.
-        ++singular;
-        if (!options_.solve_singular_blocks) {
-          ++singular_skipped;
-          if (verbose) Trace(examined, b.state, n, "singular block skipped", 0.0);
-          return Outcome::kBroken;
-        }
-        build_rhs();
-        gather();
-        for (int a = 0; a < k; ++a) b.w[a] = b.xref[b.free_idx[a]];  // w is scratch until the merit test
-        LeastNormSolve(b.A, b.T, b.ld, k, b.w, b.rhs, b.tau, b.tau2, b.v, b.jpvt, small_rel);
-      }
+      return judge(k, amax / pivots.smallest, Refutation::kRefutes);
     }
-    // z_F within its bounds up to τ, then clipped onto them.
-    double zmax = 0.0;
-    for (int i = 0; i < n; ++i) zmax = std::max(zmax, b.state[i] == kFree ? 0.0 : std::abs(b.z[i]));
-    for (int a = 0; a < k; ++a) {
-      if (!std::isfinite(b.rhs[a])) {
-        ++nonfinite;
-        if (verbose) Trace(examined, b.state, n, "block solution overflowed", 0.0);
-        return Outcome::kBroken;
-      }
-      zmax = std::max(zmax, std::abs(b.rhs[a]));
+    // Numerically singular M_FF (a pivot below rank_tolerance · max|M_FF|).
+    ++singular;
+    if (in_exhaustive) ++det_unclear;
+    if (!options_.solve_singular_blocks) {
+      ++singular_skipped;
+      if (verbose) Trace(examined, b.state, n, "singular block skipped", 0.0);
+      return Outcome::kBroken;
     }
-    const double tau = std::max(roundoff * (m_norm * zmax + q_norm), tol_abs);
-    double violation = 0.0;
-    for (int a = 0; a < k; ++a) {
-      const int i = b.free_idx[a];
-      violation = std::max(violation, std::max(l[i] - b.rhs[a], b.rhs[a] - u[i]));
-    }
-    if (violation > tau) {
-      record_miss(violation, tau);
-      if (verbose) Trace(examined, b.state, n, "z_F outside its bounds by", violation);
-      return Outcome::kRejected;
-    }
-    for (int a = 0; a < k; ++a) {
-      const int i = b.free_idx[a];
-      b.z[i] = std::min(std::max(b.rhs[a], l[i]), u[i]);
-    }
-    // The merit function decides: r = ‖z − Π(z − (M z + q))‖∞. On bound rows it is the sign violation of
-    // w, on free rows the equation residual, so it is also the sign test (at threshold τ).
-    affine(b.z, b.w);
-    double merit = 0.0;
-    for (int i = 0; i < n; ++i) {
-      merit = std::max(merit, std::abs(b.z[i] - std::min(std::max(b.z[i] - b.w[i], l[i]), u[i])));
-    }
-    if (merit <= tol_abs) {
-      for (int i = 0; i < n; ++i) result->z[i] = b.z[i];
-      // Near the threshold, confirm with the very computation the base class will make.
-      if (merit <= 0.5 * tol_abs || problem.NaturalResidual(result->z, &result->w).rel <= options.tolerance) {
-        if (verbose) Trace(examined, b.state, n, "solves; merit", merit);
-        return Outcome::kSolution;
-      }
-    }
-    if (merit <= tau) ++near_misses;  // passes the sign tests at roundoff level only: ill-conditioned
-    if (verbose) Trace(examined, b.state, n, merit <= tau ? "near-solution; merit" : "sign test fails; merit", merit);
-    record_miss(merit, tau);
-    if (merit < best_merit) {
-      best_merit = merit;
-      for (int i = 0; i < n; ++i) b.best[i] = b.z[i];
-    }
-    return Outcome::kRejected;
+    return examine_singular(k);
   };
+
   // Budget and clock, checked after each examined set that did not solve.
   const auto out_of_budget = [&]() {
     if (budget > 0 && examined >= budget) {
@@ -883,6 +1218,7 @@ void EnumerativeSolver::Search(const BoxMLCP& problem, const SolverOptions& opti
     for (int p = 0; p < nb; ++p) b.comb[p] = b.radix[b.order[p]];
     for (int p = 0; p < nb; ++p) b.radix[p] = b.comb[p];  // now per position
     NearestFirst order(nb, b.radix, b.comb, b.offset);
+    in_exhaustive = true;
     while (true) {
       for (int p = 0; p < nb; ++p) {
         const int i = b.order[p];
@@ -899,9 +1235,7 @@ void EnumerativeSolver::Search(const BoxMLCP& problem, const SolverOptions& opti
 
   result->iterations = examined > std::numeric_limits<int>::max() ? std::numeric_limits<int>::max()
                                                                   : static_cast<int>(examined);
-  result->SetDetail("active_sets_total", total);
-  result->SetDetail("guided_sets", static_cast<double>(guided));
-  result->SetDetail("singular_blocks", static_cast<double>(singular));
+  SetSearchDetails(total, static_cast<double>(guided), static_cast<double>(singular), result);
   if (stop == SolveStatus::kSolved) {
     result->status = SolveStatus::kSolved;
     if (options.verbosity >= 1) {
@@ -911,9 +1245,14 @@ void EnumerativeSolver::Search(const BoxMLCP& problem, const SolverOptions& opti
     return;
   }
 
-  // No solution. Return the best candidate by merit value if there was one, else the starting point.
+  // No solution found. Return the best candidate by merit value if there was one, else the starting point.
   const bool have_best = std::isfinite(best_merit);
   for (int i = 0; i < n; ++i) result->z[i] = have_best ? b.best[i] : b.start[i];
+  // The merit function has the last word: a point it accepts is an answer, whatever the search's own tests said.
+  if (have_best && Passes(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
+    result->status = SolveStatus::kSolved;
+    return;
+  }
   std::ostringstream s;
   s.precision(3);
   if (stop == SolveStatus::kIterationLimit || stop == SolveStatus::kTimeLimit) {
@@ -921,26 +1260,46 @@ void EnumerativeSolver::Search(const BoxMLCP& problem, const SolverOptions& opti
     s << "enum: " << (stop == SolveStatus::kTimeLimit ? "time limit" : "iteration limit (max_iterations)")
       << " reached after " << examined << " active sets (" << guided << " guided, " << exhaustive << " of the "
       << CountText(total) << " of the full search) without a solution";
-  } else if (near_misses > 0 || nonfinite > 0 || closest <= kCertifyMargin * closest_tau) {
-    // Infeasibility is only claimed when every candidate misses clearly; otherwise it is too close to call.
-    result->status = SolveStatus::kNumericalFailure;
-    s << "enum: all " << exhaustive << " active sets examined and none meets the tolerance, but infeasibility "
-      << "is not certain: ";
-    if (near_misses > 0) s << near_misses << " pass the sign tests at roundoff level (ill-conditioned blocks); ";
-    if (nonfinite > 0) s << nonfinite << " block solves overflowed; ";
-    s << "the closest candidate misses by " << closest << " against a test threshold of " << closest_tau;
   } else {
-    result->status = SolveStatus::kInfeasible;
-    s << "enum: no solution exists: all " << exhaustive << " active sets examined (after " << guided
-      << " guided), none satisfies the sign conditions";
-    if (singular > 0) {
-      s << " (" << singular << " singular free blocks";
-      if (singular_skipped > 0) {
-        s << ", " << singular_skipped << " of them skipped because solve_singular_blocks is off";
-      } else {
-        s << ", each tried with its least-norm solution";
-      }
-      s << ")";
+    // Every active set was examined. "No solution exists" needs a certificate: each set refuted with a margin, no
+    // singular block left unresolved, and a problem of a class that can lack a solution. Anything else is a
+    // failure of the method, and says why.
+    std::ostringstream why;
+    const char* sep = "";
+    const auto reason = [&]() -> std::ostringstream& {
+      why << sep;
+      sep = "; ";
+      return why;
+    };
+    why.precision(3);
+    if (near_misses > 0) {
+      reason() << near_misses << " active sets pass the sign tests at roundoff level (ill-conditioned blocks)";
+    }
+    if (nonfinite > 0) reason() << nonfinite << " block solves overflowed";
+    if (singular_skipped > 0) {
+      reason() << singular_skipped << " singular free blocks were skipped (solve_singular_blocks is off)";
+    }
+    if (unresolved > 0) {
+      reason() << unresolved << " active sets have a singular free block whose solution set was not searched (only "
+               << "its least-norm point was tried)";
+    }
+    if (std::isfinite(closest) && closest <= kCertifyMargin * closest_tau) {
+      reason() << "the closest refutation misses by " << closest << " against a threshold of " << closest_tau
+               << " (a certificate needs " << kCertifyMargin << "x)";
+    }
+    const bool one_sign = det_unclear == 0 && (det_positive == 0 || det_negative == 0);
+    if (const char* exists = SolutionExistsReason(problem, one_sign)) {
+      reason() << exists << ", so a solution exists";
+    }
+    if (why.str().empty()) {
+      result->status = SolveStatus::kInfeasible;
+      s << "enum: no solution exists: all " << exhaustive << " active sets examined (after " << guided
+        << " guided), each refuted with a margin of at least " << kCertifyMargin << "x the rounding threshold";
+      if (singular > 0) s << " (" << singular << " singular free blocks, each refuted on its whole solution set)";
+    } else {
+      result->status = SolveStatus::kNumericalFailure;
+      s << "enum: enumeration found no verified active set (all " << exhaustive << " examined); not a proof of "
+        << "infeasibility: " << why.str();
     }
   }
   if (have_best) s << "; best candidate's natural residual " << best_merit << " (absolute)";

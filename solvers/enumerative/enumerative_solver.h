@@ -19,9 +19,11 @@
 // Each candidate: LU with partial pivoting of M_FF (closed forms for 1×1, 2×2); if a pivot falls below
 // rank_tolerance · max|M_FF| the block is treated as singular and solved by column-pivoted QR plus a second
 // QR, giving the least-norm solution about Π(0) of the rank-cut system, so consistent singular blocks are not
-// skipped. z_F must lie within its bounds up to τ (see feasibility_scale), is clipped onto them, and the
-// candidate is accepted only if the natural residual ‖z − Π(z − (Mz + q))‖∞ — which on bound rows is the sign
-// violation of w — is within the solve tolerance. Siconos' lcp_enum, by contrast, skips a basis only on an
+// skipped (before that, the plain LU solution is tried: a small pivot does not make a candidate wrong). z_F must
+// lie within its bounds up to τ (see feasibility_scale), is clipped onto them, and the candidate is accepted when
+// the merit function passes — BoxMLCP::NaturalResidual, relative and in units of z, the test of Solver::Finish;
+// on bound rows it is the sign violation of w. Solver::Solve hands the search the row-equilibrated problem, so
+// every threshold here is in units of z. Siconos' lcp_enum, by contrast, skips a basis only on an
 // exactly zero LAPACK pivot and accepts any solution with no entry below −1e-6 (NaN and 1e13-sized garbage
 // included), which is why it fails, platform-dependently, on lcp_enum_fails.dat (296 of its 512 bases are
 // singular).
@@ -47,11 +49,12 @@ struct EnumerativeOptions {
   //   τ = max(feasibility_scale · n · ε · (‖M‖∞ ‖z‖∞ + ‖q‖∞),  tolerance · (1 + ‖q‖∞)),
   // i.e. roundoff of the block solve or what the merit test itself tolerates; the merit function decides.
   double feasibility_scale = 1e3;
-  // A free block whose LU pivot falls below rank_tolerance · max|M_FF| is treated as (numerically) singular and
-  // solved by column-pivoted QR with rank cut-off rank_tolerance · |R_00| and its least-norm solution.
+  // A free block whose LU pivot falls below rank_tolerance · max|M_FF| is treated as (numerically) singular: its
+  // plain LU solution is tried, then column-pivoted QR with rank cut-off rank_tolerance · |R_00| gives the
+  // least-norm solution and, for rank k − 1, the line of solutions searched for a point meeting every condition.
   double rank_tolerance = 1e-12;
-  // Try least-norm solutions of consistent singular free blocks (else such blocks are skipped and a
-  // kInfeasible verdict says how many were skipped).
+  // Try least-norm solutions of consistent singular free blocks (else such blocks are skipped, and the search can
+  // no longer prove infeasibility: a skipped block could hold a solution).
   bool solve_singular_blocks = true;
   // Guided steps before the exhaustive search: each next active set is the natural-map active set at the
   // last candidate (block principal pivoting). Stops early at a repeated set; 0 goes straight to the
@@ -62,11 +65,20 @@ struct EnumerativeOptions {
 };
 
 // Exhaustive active-set enumeration. iterations = number of active sets examined (guided ones included; a set
-// may be examined in both phases). Outcomes: kSolved (merit function ≤ tolerance); kInfeasible (every active
-// set examined and each misses its sign test by more than 100 τ: no solution exists); kNumericalFailure (all
-// examined, none solves, but some came too close to call, or a block solve overflowed); kSizeLimit (before any
-// work); kIterationLimit (options.max_iterations sets examined; ≤ 0 means no budget beyond the full search);
-// kTimeLimit. Details: active_sets_total (size of the full search), guided_sets, singular_blocks.
+// may be examined in both phases). Outcomes: kSolved (the merit function accepts z); kSizeLimit (before any work);
+// kIterationLimit (options.max_iterations sets examined; ≤ 0 means no budget beyond the full search); kTimeLimit;
+// and, once every active set was examined without a solution, kInfeasible only with a certificate:
+//   - each set refuted with a margin: z_F out of its box, or a sign condition of w violated, by more than
+//     100·τ_B, τ_B = max(τ, feasibility_scale·n·ε·(‖M‖∞‖z‖∞ + ‖q‖∞)·growth), growth = max|M_FF| over the
+//     smallest LU pivot (the block solve's error); a singular block (pivot below rank_tolerance) only on its
+//     whole solution set: a rank k − 1 block on its line of solutions, with a threshold that grows along the line
+//     (the single solution of a nearly singular block may lie far out) unless M_FF v = 0 holds exactly, a deeper
+//     deficiency only by a row that does not see z_F (zero entries on the free columns); no block skipped or
+//     overflowed;
+//   - a class that can lack a solution: not every bound finite, M + Mᵀ not positive definite, and the signs of
+//     the free blocks' determinants not all alike (which would make the problem a P-matrix one).
+// Otherwise kNumericalFailure, "not a proof of infeasibility", with the reasons. Details: active_sets_total (size
+// of the full search), guided_sets, singular_blocks.
 // Problems with m ≤ 4 rows first try the guessed set on a fixed-size fast path (loops unrolled at compile time,
 // values in registers, cached factors or inverses of the free blocks, division-free guess and acceptance tests).
 class EnumerativeSolver final : public Solver {

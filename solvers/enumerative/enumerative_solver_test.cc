@@ -220,7 +220,8 @@ TEST(Enumerative, InfeasibilityIsOnlyClaimedWithAMargin) {
   EnumerativeSolver solver;
   SolveResult r = SolveWith(solver, BoxMLCP::LCP(Mat({{-1.0}}), Vec({-1e-9})));
   EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
-  EXPECT_NE(r.message.find("not certain"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("not a proof of infeasibility"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("closest refutation"), std::string::npos) << r.message;
   // At a looser tolerance the same point is a solution.
   SolverOptions loose;
   loose.tolerance = 1e-8;
@@ -301,13 +302,17 @@ TEST(Enumerative, SingularFreeBlockWithConsistentSolution) {
   EXPECT_NEAR(r.z[1], 1.0, 1e-14);
   EXPECT_GE(r.GetDetail("singular_blocks"), 1.0);
 
-  // Skipping singular blocks (what a plain LU enumeration does) misses it, and says so.
+  // Skipping singular blocks (what a plain LU enumeration does) misses it, and says so: a skipped block could hide
+  // a solution (here it does), so this is a failure of the method, never a claim that none exists.
   EnumerativeOptions o;
   o.solve_singular_blocks = false;
   EnumerativeSolver skipping(o);
-  r = SolveWith(skipping, p);
-  EXPECT_EQ(r.status, SolveStatus::kInfeasible);
+  SolverOptions raw;
+  raw.polish = false;
+  r = SolveWith(skipping, p, raw);
+  EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
   EXPECT_NE(r.message.find("skipped"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("not a proof of infeasibility"), std::string::npos) << r.message;
 
   // The same structure in the run-time-size path: a 6×6 LCP with two such 2×2 blocks and an SPD remainder,
   // which makes the 4×4 free block singular of rank 2.
@@ -737,6 +742,205 @@ TEST(EnumerativeSolver, TwoByTwoFreeBlocksWellAndIllConditioned) {
       const Vector reference = M.fullPivLu().solve(-q);
       EXPECT_LE((r.z - reference).cwiseAbs().maxCoeff(), 1e-9 / eps) << r.z.transpose();
     }
+  }
+}
+
+// ---------------------------------------------------------------------------------------------------------
+// Regression tests for issue 12 ("Verdicts that see the error in s").
+
+// A fixed orthogonal 3×3 matrix: the Householder reflection I − 2 v vᵀ / vᵀv.
+DenseMatrix Householder3(const Vector& v) {
+  return DenseMatrix::Identity(3, 3) - 2.0 * v * v.transpose() / v.squaredNorm();
+}
+
+// enum answered "infeasible" on a 3×3 SPD LCP with condition 1e13. An SPD matrix is a P-matrix: such an LCP always
+// has exactly one solution, so that was a false certificate. Planted solutions are now found (the merit function
+// accepts the LU candidate even though a pivot of the free block looks small); and when the one solution lies far
+// out along the near-null direction (here ≈ 5e12, beyond what double precision can verify to 1e-10), the answer
+// is a numerical failure, never a claim of infeasibility.
+TEST(Enumerative, IllConditionedSpdLcpWasCalledInfeasible) {
+  const Vector lambda = Vec({1.0, 1.0, 1e-13});
+  EnumerativeSolver solver, unguided(Unguided());
+  {
+    const DenseMatrix Q = Householder3(Vec({1.0, 2.0, 3.0}));
+    const DenseMatrix M = Q * lambda.asDiagonal() * Q.transpose();
+    ASSERT_EQ(M.llt().info(), Eigen::Success);
+    // An interior z* > 0, q = −M z*; and planted mixes: rows at 0 with w* > 0, the others interior.
+    const std::vector<Vector> z_stars = {Vec({1.0, 2.0, 0.5}), Vec({0.0, 1.5, 0.7}), Vec({0.3, 0.0, 0.0})};
+    for (const Vector& z_star : z_stars) {
+      Vector w_star = Vector::Zero(3);
+      for (int i = 0; i < 3; ++i) w_star[i] = z_star[i] == 0.0 ? 0.5 + i : 0.0;
+      const BoxMLCP p = BoxMLCP::LCP(M, w_star - M * z_star);
+      for (EnumerativeSolver* s : {&solver, &unguided}) {
+        for (bool polish : {false, true}) {
+          SolverOptions o;
+          o.polish = polish;
+          const SolveResult r = SolveWith(*s, p, o);
+          EXPECT_NE(r.status, SolveStatus::kInfeasible) << r.message;
+          ExpectSolved(p, r, "z* = " + std::to_string(z_star[0]) + " polish " + std::to_string(polish));
+        }
+      }
+    }
+  }
+  {  // The near-null vector Q e₃ = (6, 6, 17)/19 is positive, and q = −e: the solution −M⁻¹q ≈ 5e12 (6, 6, 17)/19.
+    const DenseMatrix Q = Householder3(Vec({-3.0, -3.0, 1.0}));
+    const DenseMatrix M = Q * lambda.asDiagonal() * Q.transpose();
+    ASSERT_EQ(M.llt().info(), Eigen::Success);
+    const BoxMLCP p = BoxMLCP::LCP(M, Vec({-1.0, -1.0, -1.0}));
+    for (EnumerativeSolver* s : {&solver, &unguided}) {
+      for (bool polish : {false, true}) {
+        SolverOptions o;
+        o.polish = polish;
+        const SolveResult r = SolveWith(*s, p, o);
+        EXPECT_NE(r.status, SolveStatus::kInfeasible) << r.message;
+        if (r.status == SolveStatus::kNumericalFailure) {
+          EXPECT_NE(r.message.find("not a proof of infeasibility"), std::string::npos) << r.message;
+        }
+      }
+    }
+  }
+}
+
+// enum reported numerical_failure on an answer whose residual was within tolerance: a test of its own (the fast
+// path's 4-ulp safety margin, the search's column-by-column merit value) rejected a point that the merit function,
+// BoxMLCP::NaturalResidual, accepts. Rows with largest entry exactly 1 make the row equilibration the identity, so
+// the search sees the same numbers as the base class. With the tolerance set to exactly the residual of the first
+// answer, that answer is acceptable, and enum must say solved.
+TEST(Enumerative, ReportedNumericalFailureOnAnAnswerWithinTolerance) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> unif(-0.9, 0.9), unit(0.0, 1.0);
+  int tested = 0;
+  for (int trial = 0; trial < 400; ++trial) {
+    const int n = 1 + trial % 6;
+    DenseMatrix M(n, n);
+    for (int i = 0; i < n; ++i) {
+      for (int j = 0; j < n; ++j) M(i, j) = i == j ? 1.0 : unif(rng) / n;  // row max 1: D = I
+    }
+    Vector l(n), u(n), z(n), w(n);
+    for (int i = 0; i < n; ++i) {
+      l[i] = trial % 2 ? -1.0 : 0.0, u[i] = trial % 2 ? 1.0 : kInf;
+      const double t = unit(rng);
+      if (t < 0.3) {
+        z[i] = l[i], w[i] = 0.1 + unit(rng);
+      } else if (t < 0.5 && u[i] < kInf) {
+        z[i] = u[i], w[i] = -0.1 - unit(rng);
+      } else {
+        z[i] = l[i] + (0.1 + 0.8 * unit(rng)) * (std::min(u[i], 2.0) - l[i]), w[i] = 0.0;
+      }
+    }
+    const BoxMLCP p(M, w - M * z, l, u);
+    ASSERT_TRUE((p.row_scale().array() == 1.0).all());
+    EnumerativeSolver solver;
+    SolverOptions o;
+    o.polish = false;
+    o.tolerance = 1e-12;
+    const SolveResult first = solver.Solve(p, o);
+    ASSERT_EQ(first.status, SolveStatus::kSolved) << first.message;
+    const double reached = std::max(first.residual_rel, first.residual_scaled);
+    if (!(reached > 0.0)) continue;  // an exact answer: no threshold to sit on
+    o.tolerance = reached;
+    for (int rep = 0; rep < 2; ++rep) {  // a fresh solver, then one with the block cache warm
+      EnumerativeSolver again_solver;
+      EnumerativeSolver& s = rep == 0 ? again_solver : solver;
+      const SolveResult again = s.Solve(p, o);
+      EXPECT_EQ(again.status, SolveStatus::kSolved) << "trial " << trial << ": " << again.message;
+      EXPECT_LE(again.residual_rel, o.tolerance);
+      EXPECT_LE(again.residual_scaled, o.tolerance);
+    }
+    ++tested;
+  }
+  EXPECT_GT(tested, 100);
+}
+
+// The small-h relay family of issue 12: W = h·G with G a fixed nonsymmetric 6×6 matrix with a positive definite
+// symmetric part (condition ≈ 230), planted s* with rows at ±1 and inside, q = −W s* + h·c (c ≤ 0 at +1, ≥ 0 at −1).
+// At h = 1e-8 enum used to return a wrong active set (|s − s*|∞ = 1) as solved.
+TEST(Enumerative, SmallStepRelayReturnedAWrongActiveSet) {
+  constexpr int n = 6;
+  std::mt19937 rng(2026);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  DenseMatrix X(n, n), K(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) X(i, j) = normal(rng), K(i, j) = normal(rng);
+  }
+  const DenseMatrix Q = Eigen::HouseholderQR<DenseMatrix>(X).householderQ();
+  Vector lambda(n);
+  for (int i = 0; i < n; ++i) lambda[i] = std::pow(300.0, i / (n - 1.0));
+  const DenseMatrix G = Q * lambda.asDiagonal() * Q.transpose() + 0.5 * (K - K.transpose());
+  ASSERT_EQ((0.5 * (G + G.transpose())).llt().info(), Eigen::Success);
+  const Vector sigma = Eigen::JacobiSVD<DenseMatrix>(G).singularValues();
+  EXPECT_GT(sigma[0] / sigma[n - 1], 100.0);
+  EXPECT_LT(sigma[0] / sigma[n - 1], 1000.0);
+  const Vector s_star = Vec({1.0, -1.0, 0.3, 1.0, -0.55, -1.0});
+  const Vector c = Vec({-0.8, 0.5, 0.0, -2.0, 0.0, 1.3});
+  EnumerativeSolver solver, unguided(Unguided());
+  for (double h : {1e-2, 1e-4, 1e-6, 1e-8, 1e-10}) {
+    const DenseMatrix W = h * G;
+    const BoxMLCP p = BoxMLCP::Relay(W, -W * s_star + h * c);
+    for (EnumerativeSolver* s : {&solver, &unguided}) {
+      for (bool polish : {false, true}) {
+        SolverOptions o;
+        o.polish = polish;
+        const SolveResult r = s->Solve(p, o);
+        ASSERT_EQ(r.status, SolveStatus::kSolved) << "h = " << h << " polish " << polish << ": " << r.message;
+        EXPECT_LE((r.z - s_star).cwiseAbs().maxCoeff(), 1e-9) << "h = " << h << " polish " << polish;
+      }
+    }
+  }
+}
+
+// A problem that genuinely has no solution, of a class that can lack one (an infinite bound), keeps its
+// certificate: every active set refuted with a margin.
+TEST(Enumerative, InfeasibleWithAnInfiniteBoundKeepsItsCertificate) {
+  EnumerativeSolver solver;
+  SolverOptions raw;
+  raw.polish = false;
+  {  // LCP M = [−1], q = [−1]: w = −z − 1 < 0 for every z ≥ 0.
+    const SolveResult r = SolveWith(solver, BoxMLCP::LCP(Mat({{-1.0}}), Vec({-1.0})), raw);
+    EXPECT_EQ(r.status, SolveStatus::kInfeasible) << r.message;
+    EXPECT_NE(r.message.find("no solution exists"), std::string::npos) << r.message;
+  }
+  {  // A certificate row: row 0 of M is zero and q_0 = −1, so w_0 = −1 < 0 whatever z (the other rows are a
+     // harmless P-matrix block); its free blocks are singular (a zero row), refuted by their equations.
+    const BoxMLCP p = BoxMLCP::LCP(Mat({{0.0, 0.0, 0.0}, {0.5, 2.0, 1.0}, {-0.3, 1.0, 3.0}}), Vec({-1.0, 0.4, -2.0}));
+    const SolveResult r = SolveWith(solver, p, raw);
+    EXPECT_EQ(r.status, SolveStatus::kInfeasible) << r.message;
+    EXPECT_NE(r.message.find("all 8 active sets"), std::string::npos) << r.message;
+  }
+}
+
+// An exhausted search on a class that always has a solution is a failure of the method, and the message says why.
+// A tolerance far below rounding makes every candidate miss while none is refuted (rows of largest entry 1, so the
+// row equilibration is the identity and the search sees the numbers the base class judges).
+TEST(Enumerative, ExhaustedSearchOnASolvableClassIsNotAProof) {
+  const DenseMatrix M = Mat({{1.0, 0.3, -0.7}, {0.1, 1.0, 0.2}, {0.5, -0.2, 1.0}});  // M + Mᵀ diagonally dominant
+  const Vector q = Vec({-1.0 / 3.0, -1.0 / 7.0, -2.0 / 3.0});
+  SolverOptions tight;
+  tight.polish = false;
+  tight.tolerance = 1e-30;
+  EnumerativeSolver solver;
+  {  // M + Mᵀ positive definite (an LCP: infinite upper bounds).
+    const SolveResult r = solver.Solve(BoxMLCP::LCP(M, q), tight);
+    EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
+    EXPECT_NE(r.message.find("not a proof of infeasibility"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("M + Mᵀ is positive definite, so a solution exists"), std::string::npos) << r.message;
+  }
+  {  // Every bound finite (a relay problem).
+    const SolveResult r = solver.Solve(BoxMLCP::Relay(M, q), tight);
+    EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
+    EXPECT_NE(r.message.find("every bound is finite, so a solution exists"), std::string::npos) << r.message;
+  }
+  {  // A skipped singular block is never refuted: M = [0 1; 0 0], q = (−1, 0), whose solutions (0, s ≥ 1) and
+     // (t ≥ 0, 1) all need one.
+    const BoxMLCP p = BoxMLCP::LCP(Mat({{0.0, 1.0}, {0.0, 0.0}}), Vec({-1.0, 0.0}));
+    EnumerativeOptions o;
+    o.solve_singular_blocks = false;
+    EnumerativeSolver skipping(o);
+    SolverOptions raw;
+    raw.polish = false;
+    const SolveResult r = skipping.Solve(p, raw);
+    EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
+    EXPECT_NE(r.message.find("singular free blocks were skipped"), std::string::npos) << r.message;
   }
 }
 

@@ -438,6 +438,77 @@ const char* FreeModeName(FreeMode mode) {
   return "?";
 }
 
+// What "solved" means inside DoSolve: the merit function of the (row-equilibrated) problem it was given, relative
+// residual and residual in units of z both within the tolerance, as Solver::Finish requires. The relative one
+// alone is blind when ‖q‖ dwarfs the rows (a bound row with a huge multiplier): it let sign violations of order
+// tol·‖q‖ through.
+bool Passes(const Residual& r, double tolerance) { return r.rel <= tolerance && r.scaled <= tolerance; }
+// The larger of the two, for "is this point better" comparisons (NaN-safe: NaN compares as not better).
+double Worst(const Residual& r) { return std::max(r.rel, r.scaled); }
+
+// Largest LCP size for which the ray-termination path tests every principal minor (2^n − 1 LU factorizations).
+constexpr int kMaxPMatrixTestSize = 12;
+
+// True when every principal minor of the dense n×n M is positive with a margin (each LU pivot of each principal
+// submatrix above 1e3·k·ε times its largest entry, so that the sign is not rounding): M is a P-matrix. Only on the
+// failure path (a ray): 2^n small factorizations, allocating.
+bool IsPMatrix(const DenseMatrix& M) {
+  const int n = static_cast<int>(M.rows());
+  if (n > kMaxPMatrixTestSize) return false;
+  std::vector<double> a(size_t(n) * n);
+  std::vector<int> idx(n), perm(n);
+  for (unsigned mask = 1; mask < (1u << n); ++mask) {
+    int k = 0;
+    for (int i = 0; i < n; ++i) {
+      if (mask >> i & 1u) idx[k++] = i;
+    }
+    double amax = 0.0;
+    for (int r = 0; r < k; ++r) {
+      for (int c = 0; c < k; ++c) {
+        a[size_t(r) * k + c] = M(idx[r], idx[c]);
+        amax = std::max(amax, std::abs(a[size_t(r) * k + c]));
+      }
+    }
+    if (!LuFactor(a.data(), k, perm.data())) return false;
+    double sign = 1.0, pmin = kInf;
+    for (int r = 0; r < k; ++r) {
+      const double d = a[size_t(r) * k + r];
+      sign *= d > 0.0 ? 1.0 : -1.0;
+      if (perm[r] != r) sign = -sign;
+      pmin = std::min(pmin, std::abs(d));
+    }
+    if (!(sign > 0.0) || !(pmin > 1e3 * k * kEps * amax)) return false;
+  }
+  return true;
+}
+
+// True when the symmetric part S = (M + Mᵀ)/2 is positive definite with a margin: the Cholesky factorization of
+// S − δI, δ = 1e3·n·ε·‖S‖∞, succeeds (rounding in forming and factoring S cannot make it so).
+bool SymmetricPartPositiveDefinite(const DenseMatrix& M) {
+  const int n = static_cast<int>(M.rows());
+  DenseMatrix S = 0.5 * (M + M.transpose());
+  const double delta = 1e3 * n * kEps * S.cwiseAbs().rowwise().sum().maxCoeff();
+  S.diagonal().array() -= delta;
+  Eigen::LLT<DenseMatrix> llt(S);
+  return llt.info() == Eigen::Success;
+}
+
+// Why the box-MLCP is known to have a solution, or nullptr: every bound finite (a continuous map on a compact box
+// always has one), M with a positive definite symmetric part, or M a P-matrix (the box-MLCP then has exactly one
+// solution whatever the bounds). Positive row scaling keeps all three, so the equilibrated M serves. Only called
+// when Lemke ends on a ray: a ray on such a problem is a failure of the method, not a verdict on the problem.
+const char* SolutionExistsReason(const BoxMLCP& problem) {
+  const Vector& l = problem.l();
+  const Vector& u = problem.u();
+  bool all_finite = true;
+  for (int i = 0; i < problem.size(); ++i) all_finite = all_finite && l[i] > -kInf && u[i] < kInf;
+  if (all_finite) return "every bound is finite";
+  const DenseMatrix& M = problem.dense_matrix();
+  if (SymmetricPartPositiveDefinite(M)) return "the symmetric part of M is positive definite";
+  if (IsPMatrix(M)) return "M is a P-matrix";
+  return nullptr;
+}
+
 // Builds LCP(N, r) from the classified rows for the given free-row mode (Schur data already in ws). Returns p and
 // sets *nx, the number of x slots (the y slots of the box rows follow them).
 int BuildLcp(const BoxMLCP& problem, FreeMode mode, int covering, Workspace* ws_ptr, int* c_out, int* nx_out) {
@@ -775,12 +846,12 @@ void LemkeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, 
         ws.z_polish[i] = std::min(std::max(zi, l[i]), u[i]);
       }
       const Residual r = problem.NaturalResidual(ws.z_polish, &ws.w);
-      if (r.rel < best.rel) {
+      if (Worst(r) < Worst(best)) {
         z = ws.z_polish;
         best = r;
         polished = true;
       }
-      if (best.rel <= options.tolerance || !changed) break;
+      if (Passes(best, options.tolerance) || !changed) break;
     }
     return best;
   };
@@ -806,22 +877,26 @@ void LemkeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, 
     const int refactor = options_.refactor_interval > 0 ? options_.refactor_interval : std::max(64, p);
     double dmax = 0.0;
     for (int i = 0; i < p; ++i) dmax = std::max(dmax, std::abs(ws.d[i]));
-    // Below this level z₀ moves w by less than the tolerance of the merit function.
+    // Dropping z₀ moves w (of the equilibrated problem: units of z) by up to z₀·‖d‖∞, so the point without z₀ can
+    // only pass the merit function once z₀·‖d‖∞ is within its tolerance: tol·(1 + ‖q‖∞) for the relative residual
+    // (a cheap first filter) and tol·(1 + ‖z‖∞) for the residual in units of z (checked on the recovered z).
     const double z0_negligible = options.tolerance * problem.residual_scale() / dmax;
     int exit_polishes = 0;
     while (true) {
       const int entering = engine.Complement(leaving);
       z0_value = ws.beta[ws.where[engine.z0()]];
       if (z0_value <= z0_negligible) {
-        // z₀ is zero up to rounding (degenerate end of the path, where tiny pivots would follow): accept the
-        // almost-complementary point without z₀ if the merit function says it solves the problem.
+        // z₀ may be zero up to rounding (degenerate end of the path, where tiny pivots would follow): accept the
+        // almost-complementary point without z₀ only if the merit function says it solves the problem, which
+        // includes every sign condition (w ≥ 0 on rows at l, ≤ 0 at u) to tol·(1 + ‖z‖∞) in units of z.
         recover(true);
         exit_residual = problem.NaturalResidual(z, &ws.w);
-        if (!(exit_residual.rel <= options.tolerance) && exit_polishes < 3) {  // bounded: a degenerate stretch
-          ++exit_polishes;                                                       // may keep z₀ tiny for long
+        const bool negligible_in_z = z0_value * dmax <= options.tolerance * (1.0 + z.cwiseAbs().maxCoeff());
+        if (!Passes(exit_residual, options.tolerance) && negligible_in_z && exit_polishes < 3) {
+          ++exit_polishes;  // bounded: a degenerate stretch may keep z₀ tiny for long
           exit_residual = polish(exit_residual);
         }
-        if (exit_residual.rel <= options.tolerance) {
+        if (Passes(exit_residual, options.tolerance)) {
           z0_exit = true;
           return SolveStatus::kSolved;
         }
@@ -908,12 +983,23 @@ void LemkeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, 
   } else {
     recover(p > 0 && status != SolveStatus::kSingular);
     res = problem.NaturalResidual(z, &ws.w);
-    if (status == SolveStatus::kSolved && !(res.rel <= options.tolerance)) res = polish(res);
+  }
+  // The pivots accumulate rounding of order ε·max|β|, and β holds q̂ (a huge multiplier on one row, a base-point
+  // shift M·l): an answer that is not at the rounding level in units of z has its active set solved again.
+  const double rounding_level = 1e3 * n * kEps;
+  if (status == SolveStatus::kSolved && !(Passes(res, options.tolerance) && res.scaled <= rounding_level)) {
+    res = polish(res);
   }
   if (status == SolveStatus::kSolved && !std::isfinite(res.abs)) {
     status = SolveStatus::kNumericalFailure;
     failure = "the solution contains NaN or Inf";
   }
+  // The merit function decides: wherever the method stopped, a point it accepts is a solution.
+  if (status != SolveStatus::kSolved && Passes(res, options.tolerance)) status = SolveStatus::kSolved;
+  // A secondary ray is no verdict on the problem (in floating point not even for copositive-plus M): on a problem
+  // known to have a solution it is a failure of the method.
+  const char* exists = status == SolveStatus::kRayTermination ? SolutionExistsReason(problem) : nullptr;
+  if (exists) status = SolveStatus::kNumericalFailure;
 
   result->status = status;
   result->iterations = pivots;
@@ -931,28 +1017,32 @@ void LemkeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, 
     std::string& msg = result->message;
     switch (status) {
       case SolveStatus::kRayTermination:
-        msg = "secondary ray after " + std::to_string(pivots) + " pivots: the entering column has no blocking row";
-        Append(&msg, " (z0 = %.3e, residual %.3e)", z0_value, res.rel);
+        msg = "Lemke's method ended on a secondary ray after " + std::to_string(pivots) +
+              " pivots (the entering column has no blocking row): no solution found by this method";
+        Append(&msg, " (z0 = %.3e, residual %.3e)", z0_value, Worst(res));
+        msg += "; this proves infeasibility only for a copositive-plus M in exact arithmetic, which was not checked";
         if (mode == FreeMode::kSplit || mode == FreeMode::kBasic) {
-          msg += std::string("; free rows handled by the ") + FreeModeName(mode) +
-                 " method (no well-conditioned Schur complement), for which a ray does not prove that no solution "
-                 "exists";
+          msg += std::string("; free rows handled by the ") + FreeModeName(mode) + " method";
           if (split_fallback) msg += " (the free columns are dependent)";
-        } else {
-          msg += "; when M is positive semidefinite this proves the problem has no solution";
         }
         break;
       case SolveStatus::kIterationLimit:
         msg = "pivot limit " + std::to_string(max_pivots) + " reached";
-        Append(&msg, " (z0 = %.3e, residual %.3e)", z0_value, res.rel);
+        Append(&msg, " (z0 = %.3e, residual %.3e)", z0_value, Worst(res));
         break;
       case SolveStatus::kTimeLimit:
         msg = "time limit reached after " + std::to_string(pivots) + " pivots";
-        Append(&msg, " (residual %.3e)", res.rel);
+        Append(&msg, " (residual %.3e)", Worst(res));
         break;
       default:
+        if (exists) {
+          msg = std::string("a solution exists (") + exists + ") but Lemke's method failed: it ended on a secondary "
+                "ray after " + std::to_string(pivots) + " pivots";
+          Append(&msg, " (z0 = %.3e, residual %.3e)", z0_value, Worst(res));
+          break;
+        }
         msg = failure ? failure : "numerical failure";
-        Append(&msg, " after %.0f pivots (residual %.3e)", pivots, res.rel);
+        Append(&msg, " after %.0f pivots (residual %.3e)", pivots, Worst(res));
         break;
     }
   }

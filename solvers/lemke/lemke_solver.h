@@ -24,9 +24,16 @@
 // with S = diag(±1), the LCP is N = [[S M_C S, E], [−Eᵀ, 0]], r = [S q_C; u_K − l_K] (E: identity columns of the
 // box rows K).
 // Each LCP solution maps to a box-MLCP solution and back. Classes are preserved: M P-matrix ⇒ Lemke cannot end on a
-// secondary ray (the augmented problem is the box-MLCP with q + t·d and bounds [l, u + t·d], uniquely solvable for
-// every t); M positive semidefinite ⇒ N positive semidefinite ⇒ a secondary ray proves that the problem has no
-// solution (copositive-plus theory, Cottle-Pang-Stone ch. 4).
+// secondary ray in exact arithmetic (the augmented problem is the box-MLCP with q + t·d and bounds [l, u + t·d],
+// uniquely solvable for every t); M positive semidefinite ⇒ N copositive-plus, for which an exact secondary ray would
+// show that no solution exists (Cottle-Pang-Stone ch. 4). A ray computed in floating point proves nothing, so it is
+// reported as what it is: kRayTermination ("no solution found by this method"), or kNumericalFailure when the
+// problem is known to have a solution (every bound finite; M + Mᵀ positive definite; M a P-matrix, tested by its
+// principal minors up to n = 12) — these checks run only on the ray path.
+//
+// Solver::Solve hands DoSolve the row-equilibrated problem (max_j |M_ij| = 1), so every tolerance below is relative
+// to entries of size 1 and every w is in units of z; "solved" inside DoSolve means the merit function of that
+// problem passes both of Solver::Finish's tests (relative residual and residual in units of z).
 //
 // The pivoting works on the revised form: an explicit basis inverse B⁻¹ (p×p, p = LCP size), updated by a rank-one
 // Gauss-Jordan step per pivot and recomputed from scratch (reinversion, with one step of iterative refinement of
@@ -37,12 +44,16 @@
 //   - ties are ratios equal up to the rounding scale of their own rows, max(1e-14, 8pε)·Σ_k |B⁻¹_ik r_k|;
 //     a degenerate basic value rounded below zero counts as zero in the ratio test;
 //   - z₀ leaves as soon as it ties; and once z₀·‖d‖∞ ≤ tolerance·(1 + ‖q‖∞), the almost-complementary point
-//     without z₀ is checked against the merit function and accepted if it passes (z₀ is then zero up to rounding,
-//     and the degenerate pivots that would follow have tiny pivot elements);
-//   - if the final point misses the tolerance (an ill-conditioned reduction, or a base-point shift M·l that
-//     dwarfs q), the active set of the final basis is solved again in the original variables (LU of M_EE, one
-//     refinement step), followed by at most four primal-dual active-set corrections (Hintermüller, Ito & Kunisch
-//     2002); the result is kept only if its residual is smaller.
+//     without z₀ is checked against the merit function and accepted only if it passes both tests, the one in units
+//     of z included, so every sign condition holds to tolerance·(1 + ‖z‖∞) (z₀ is then zero up to rounding, and
+//     the degenerate pivots that would follow have tiny pivot elements); the relative test alone let a point with
+//     a violated sign condition through when one row's q dwarfs the others;
+//   - if the final point misses the tolerance, or its residual in units of z is above the rounding level 1e3·n·ε
+//     (the pivots carry rounding of order ε·max|β|, and β holds q̂: an ill-conditioned reduction, a base-point shift
+//     M·l or a multiplier that dwarfs the rest), the active set of the final basis is solved again in the original
+//     variables (LU of M_EE, one refinement step), followed by at most four primal-dual active-set corrections
+//     (Hintermüller, Ito & Kunisch 2002); the result is kept only if its residual is smaller.
+// Wherever the method stops, a point the merit function accepts is reported solved.
 // Warm starts are ignored (Lemke starts from the slack basis, or the free-variable basis above). iterations =
 // number of pivots: the z₀ entry and exit and the pivots that bring free variables into the starting basis count,
 // reinversions do not.

@@ -295,21 +295,65 @@ TEST(LemkeSolver, KnownSmallLcps) {
   }
 }
 
+// A ray's message says what it is and claims no proof: "no solution found by this method", and that a ray proves
+// infeasibility only for copositive-plus M, which Lemke does not check.
+void ExpectHonestRay(const SolveResult& r) {
+  EXPECT_EQ(r.status, SolveStatus::kRayTermination) << r.message;
+  EXPECT_NE(r.message.find("secondary ray"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("no solution found by this method"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("copositive-plus"), std::string::npos) << r.message;
+  EXPECT_EQ(r.message.find("proves the problem"), std::string::npos) << r.message;
+  EXPECT_EQ(r.message.find("a solution exists"), std::string::npos) << r.message;
+}
+
 TEST(LemkeSolver, NoSolutionIsRayTermination) {
   LemkeSolver solver;
   const BoxMLCP p = BoxMLCP::LCP(DenseMatrix::Constant(1, 1, -1.0), Vector::Constant(1, -1.0), "infeasible1");
   const SolveResult r = solver.Solve(p);
-  EXPECT_EQ(r.status, SolveStatus::kRayTermination);
+  ExpectHonestRay(r);
   EXPECT_FALSE(r.solved());
-  EXPECT_NE(r.message.find("ray"), std::string::npos) << r.message;
   EXPECT_GT(RelativeNaturalResidual(p, r.z), 1e-3);
 
   // PSD with infeasible constraints: z1 − z2 ≥ 1 and −z1 + z2 ≥ 1 cannot both hold.
   DenseMatrix M(2, 2);
   M << 1, -1, -1, 1;
   const BoxMLCP p2 = BoxMLCP::LCP(M, Vector{{-1.0, -1.0}}, "infeasible_psd");
-  const SolveResult r2 = solver.Solve(p2);
-  EXPECT_EQ(r2.status, SolveStatus::kRayTermination) << r2.message;
+  ExpectHonestRay(solver.Solve(p2));
+}
+
+// Issue 12: the ray message said "when M is positive semidefinite this proves the problem has no solution", also on
+// problems that have one. On a class that always has a solution a ray is a failure of the method.
+TEST(LemkeSolver, RayClaimedAProofOnProblemsThatHaveASolution) {
+  LemkeSolver solver;
+  SolverOptions raw;
+  raw.polish = false;  // the method's own verdict
+  {  // Every bound finite: M = −1, q = −2 on [0, 2] has the solution z = 2 (w = −4 ≤ 0 at the upper bound), but
+     // Lemke leaves on a ray after its first pivot: with z₀ = 2 + x basic, the bound row's slack 2 − x + z₀ = 4 does
+     // not move as x enters, so nothing blocks.
+    const BoxMLCP p(DenseMatrix::Constant(1, 1, -1.0), Vector::Constant(1, -2.0), Vector::Constant(1, 0.0),
+                    Vector::Constant(1, 2.0), "finite_box");
+    EXPECT_EQ(RelativeNaturalResidual(p, Vector::Constant(1, 2.0)), 0.0);
+    const SolveResult r = solver.Solve(p, raw);
+    EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
+    EXPECT_NE(r.message.find("a solution exists (every bound is finite)"), std::string::npos) << r.message;
+    EXPECT_NE(r.message.find("Lemke's method failed"), std::string::npos) << r.message;
+    EXPECT_EQ(r.message.find("proves"), std::string::npos) << r.message;
+  }
+  {  // SPD LCP (so a P-matrix: exactly one solution), made to end on a ray by a coarse pivot tolerance that refuses
+     // the small blocking entries of the entering column.
+    DenseMatrix M(2, 2);
+    M << 2e-6, -1e-3, -1e-3, 1.0;  // det = 1e-6 > 0
+    ASSERT_EQ(M.llt().info(), Eigen::Success);
+    const BoxMLCP p = BoxMLCP::LCP(M, Vector{{-1.0, 0.5}}, "spd_coarse_pivots");
+    LemkeSolver coarse;
+    coarse.options().pivot_tolerance = 1e-3;
+    const SolveResult r = coarse.Solve(p, raw);
+    EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
+    EXPECT_NE(r.message.find("a solution exists"), std::string::npos) << r.message;
+    EXPECT_EQ(r.message.find("proves"), std::string::npos) << r.message;
+    // The default pivot tolerance solves it.
+    ExpectSolved(p, solver.Solve(p, raw));
+  }
 }
 
 TEST(LemkeSolver, DegenerateCyclingExampleIsSolved) {
@@ -331,14 +375,36 @@ TEST(LemkeSolver, DegenerateCyclingExampleIsSolved) {
   ExpectSolved(p2, solver.Solve(p2));
 }
 
+// Murty's matrix with its last diagonal entry 2: every row's largest entry is then 2, so the row equilibration that
+// Solver::Solve applies is a uniform scaling and Lemke (d = e) still walks an exponentially long path (Murty's own
+// matrix has a last row of largest entry 1, and equilibration turns d = e into d = row scales, see below).
+BoxMLCP MurtyEqualRowScales(int n) {
+  BoxMLCP murty = Murty(n);
+  DenseMatrix M = murty.dense_matrix();
+  M(n - 1, n - 1) = 2.0;
+  return BoxMLCP::LCP(M, murty.q(), "murty_equal_rows" + std::to_string(n));
+}
+
 TEST(LemkeSolver, MurtyExponentialExample) {
   LemkeSolver solver;
+  SolverOptions raw;
+  raw.polish = false;  // the pivot count of the algorithm itself
   for (int n : {8, 12, 16}) {
+    // Murty's problem as published: its unique solution is z = 2^n e_n (w_i = 2^(i+1) > 0 above it). Lemke gets the
+    // row-equilibrated problem, i.e. Murty's with covering vector d = (2, …, 2, 1): z₀ first blocks on the last row
+    // (−q_i/d_i is 2^n − 2^i above, 2^n there), so z_n enters and z₀ leaves: two pivots instead of 2^n.
     const BoxMLCP p = Murty(n);
-    const SolveResult r = solver.Solve(p);
+    const SolveResult r = solver.Solve(p, raw);
     ExpectSolved(p, r);
-    EXPECT_GE(r.iterations, (1 << n) - 1) << "n = " << n;
-    EXPECT_LE(r.iterations, (1 << n) + 1) << "n = " << n;
+    EXPECT_EQ(r.iterations, 2) << "n = " << n;
+    EXPECT_EQ(r.z[n - 1], std::ldexp(1.0, n));
+    for (int i = 0; i < n - 1; ++i) EXPECT_EQ(r.z[i], 0.0);
+    // With equal row scales the path stays exponential.
+    const BoxMLCP e = MurtyEqualRowScales(n);
+    const SolveResult re = solver.Solve(e, raw);
+    ExpectSolved(e, re);
+    EXPECT_GE(re.iterations, 1 << (n - 1)) << "n = " << n;
+    EXPECT_LE(re.iterations, (1 << n) + 1) << "n = " << n;
   }
 }
 
@@ -346,7 +412,8 @@ TEST(LemkeSolver, PivotLimitIsIterationLimit) {
   LemkeSolver solver;
   SolverOptions options;
   options.max_iterations = 50;
-  const SolveResult r = solver.Solve(Murty(10), options);
+  options.polish = false;  // the raw algorithm's status
+  const SolveResult r = solver.Solve(MurtyEqualRowScales(12), options);
   EXPECT_EQ(r.status, SolveStatus::kIterationLimit);
   EXPECT_EQ(r.iterations, 50);
   EXPECT_FALSE(r.message.empty());
@@ -356,7 +423,8 @@ TEST(LemkeSolver, TimeLimit) {
   LemkeSolver solver;
   SolverOptions options;
   options.time_limit_seconds = 1e-7;
-  const SolveResult r = solver.Solve(Murty(18), options);
+  options.polish = false;
+  const SolveResult r = solver.Solve(MurtyEqualRowScales(19), options);
   EXPECT_EQ(r.status, SolveStatus::kTimeLimit);
 }
 
@@ -384,14 +452,26 @@ TEST(LemkeSolver, SiconosLcpFiles) {
     EXPECT_EQ(r.status, SolveStatus::kRayTermination) << r.message;
   }
   {  // A bimatrix game (CPS Example 4.4.23): solutions exist, but with d = e Lemke leaves on a ray at once
-     // (z_n enters against a zero diagonal block); Lemke-Howson is the method for games. Never a false success.
+     // (z_n enters against a zero diagonal block); Lemke-Howson is the method for games. The class (zero diagonal,
+     // infinite bounds) can lack a solution, so the ray is reported as such, without a claim of a proof.
     DenseMatrix M;
     Vector q;
     ASSERT_TRUE(ReadSiconosLcp("lcp/lcp_CPS_3.dat", &M, &q));
     EXPECT_TRUE(LcpHasSolutionByEnumeration(M, q));
-    const SolveResult r = solver.Solve(BoxMLCP::LCP(M, q));
+    const BoxMLCP p = BoxMLCP::LCP(M, q);
+    SolverOptions raw;
+    raw.polish = false;
+    const SolveResult r = solver.Solve(p, raw);
     EXPECT_EQ(r.status, SolveStatus::kRayTermination) << r.message;
-    EXPECT_FALSE(r.message.empty());
+    EXPECT_NE(r.message.find("no solution found by this method"), std::string::npos) << r.message;
+    // With the base layer's polish (on by default) any answer is verified: solved with a residual checked here, or
+    // not solved.
+    const SolveResult polished = solver.Solve(p);
+    if (polished.solved()) {
+      EXPECT_LE(RelativeNaturalResidual(p, polished.z), 1e-10);
+    } else {
+      EXPECT_FALSE(polished.message.empty());
+    }
   }
 }
 
@@ -648,6 +728,105 @@ TEST(LemkeSolver, ReinversionKeepsAccuracy) {
     ExpectSolved(k.problem, r);
     EXPECT_GT(r.GetDetail("reinversions"), 0.0);
     EXPECT_LE((r.z - k.z_star).cwiseAbs().maxCoeff(), 1e-9);
+  }
+}
+
+// Issue 12: a 2×2 P-matrix box problem whose rows are scaled by 1e6 and 1e-5 was "solved" at the wrong vertex: Lemke
+// left the pivot path early (z0_negligible_exit) because the relative residual, scaled by 1 + ‖q‖∞ ≈ 1e6, could not
+// see the 1e-5 row's sign condition. Lemke now gets the row-equilibrated problem, and the early exit requires the
+// residual in units of z as well; the equilibrated analogue (one bound row's multiplier 1e12 times its row, so that
+// its q dwarfs the other row's) is covered too. The planted z* must come back to 1e-12, polish on and off.
+TEST(LemkeSolver, ScaledRowsLeftThePathEarlyAtTheWrongVertex) {
+  DenseMatrix spd(2, 2), nonsymmetric(2, 2);
+  spd << 2, 1, 1, 3;
+  nonsymmetric << 2, -1, 1, 3;  // a P-matrix: diagonal 2, 3 and determinant 7
+  struct RowBounds {
+    double l, u;
+  };
+  const RowBounds kinds[] = {{-1.0, 2.0}, {0.0, kInf}, {-kInf, 1.5}, {-1.0, 1.0}};
+  LemkeSolver solver;
+  int cases = 0;
+  for (const DenseMatrix* A : {&spd, &nonsymmetric}) {
+    for (const RowBounds& b0 : kinds) {
+      for (const RowBounds& b1 : kinds) {
+        for (int interior = 0; interior < 2; ++interior) {
+          for (int side = 0; side < 2; ++side) {  // the bound row at its lower (0) or upper (1) bound
+          for (double multiplier : {0.7, 1e12}) {
+            const Vector l{{b0.l, b1.l}}, u{{b0.u, b1.u}};
+            // z*: the interior row 35% into its box (3 below an infinite upper bound); the other row at a finite
+            // bound, with w* of the sign that keeps it there.
+            Vector z(2), w(2);
+            const int bound = 1 - interior;
+            const bool at_lower = side == 0;
+            if (!std::isfinite(at_lower ? l[bound] : u[bound])) continue;
+            const double lo = std::isfinite(l[interior]) ? l[interior] : u[interior] - 3.0;
+            const double hi = std::isfinite(u[interior]) ? u[interior] : lo + 3.0;
+            z[interior] = lo + 0.35 * (hi - lo), w[interior] = 0.0;
+            z[bound] = at_lower ? l[bound] : u[bound], w[bound] = at_lower ? multiplier : -multiplier;
+            for (const Vector& d : {Vector{{1e6, 1e-5}}, Vector{{1e-5, 1e6}}}) {
+              const DenseMatrix M = d.asDiagonal() * (*A);
+              const Vector q = d.asDiagonal() * w - M * z;
+              const BoxMLCP p(M, q, l, u, "scaled2x2_" + std::to_string(cases));
+              for (bool polish : {false, true}) {
+                SolverOptions options;
+                options.polish = polish;
+                const SolveResult r = solver.Solve(p, options);
+                ASSERT_EQ(r.status, SolveStatus::kSolved) << p.name() << " polish " << polish << ": " << r.message;
+                EXPECT_LE((r.z - z).cwiseAbs().maxCoeff(), 1e-12)
+                    << p.name() << " polish " << polish << ": z = " << r.z.transpose() << ", z* = " << z.transpose();
+              }
+              ++cases;
+            }
+          }
+          }
+        }
+      }
+    }
+  }
+  // Per matrix: 4 × 4 bound kinds × 2 interior rows, 6 of the 8 (kind, side) pairs finite, 2 multipliers, 2 scalings.
+  EXPECT_EQ(cases, 2 * 4 * 2 * 6 * 2 * 2);
+}
+
+// The small-h relay family of issue 12: W = h·G with G a fixed nonsymmetric 6×6 matrix whose symmetric part is
+// positive definite (eigenvalues 1 … 300; G's condition ≈ 230), planted s* with rows at +1, at −1 and inside,
+// q = −W s* + h·c with the slack c of the sign that keeps each bound row at its bound. At h = 1e-8 lemke used to
+// return a wrong active set (|s − s*|∞ = 1) as solved.
+DenseMatrix RelayFamilyG() {
+  constexpr int n = 6;
+  std::mt19937 rng(2026);
+  std::normal_distribution<double> normal(0.0, 1.0);
+  DenseMatrix X(n, n), K(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) X(i, j) = normal(rng), K(i, j) = normal(rng);
+  }
+  const DenseMatrix Q = Eigen::HouseholderQR<DenseMatrix>(X).householderQ();
+  Vector lambda(n);
+  for (int i = 0; i < n; ++i) lambda[i] = std::pow(300.0, i / (n - 1.0));  // 1 … 300
+  return Q * lambda.asDiagonal() * Q.transpose() + 0.5 * (K - K.transpose());
+}
+
+TEST(LemkeSolver, SmallStepRelayReturnedAWrongActiveSet) {
+  const DenseMatrix G = RelayFamilyG();
+  const DenseMatrix S = 0.5 * (G + G.transpose());
+  ASSERT_EQ(S.llt().info(), Eigen::Success);
+  const Vector sigma = Eigen::JacobiSVD<DenseMatrix>(G).singularValues();
+  const double condition = sigma[0] / sigma[sigma.size() - 1];
+  EXPECT_GT(condition, 100.0);
+  EXPECT_LT(condition, 1000.0);
+  const Vector s_star{{1.0, -1.0, 0.3, 1.0, -0.55, -1.0}};
+  const Vector c{{-0.8, 0.5, 0.0, -2.0, 0.0, 1.3}};  // ≤ 0 at +1 (w ≤ 0), ≥ 0 at −1, 0 inside
+  LemkeSolver solver;
+  for (double h : {1e-2, 1e-4, 1e-6, 1e-8, 1e-10}) {
+    const DenseMatrix W = h * G;
+    const Vector q = -W * s_star + h * c;
+    const BoxMLCP p = BoxMLCP::Relay(W, q, -1.0, 1.0, "relay_h" + std::to_string(h));
+    for (bool polish : {false, true}) {
+      SolverOptions options;
+      options.polish = polish;
+      const SolveResult r = solver.Solve(p, options);
+      ASSERT_EQ(r.status, SolveStatus::kSolved) << "h = " << h << " polish " << polish << ": " << r.message;
+      EXPECT_LE((r.z - s_star).cwiseAbs().maxCoeff(), 1e-9) << "h = " << h << " polish " << polish;
+    }
   }
 }
 
