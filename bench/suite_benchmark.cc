@@ -1,12 +1,15 @@
 // The replay suites of `smcbench bench` as Google Benchmark benchmarks: one per problem × backend, named
 // "suite/<problem id>/<backend>", so --benchmark_filter, repetitions and the standard JSON output apply to exactly
-// the problems the report is about. Cold start, tolerance 1e-10; a solve that is not "solved" is reported as an
-// error (never as a fast time), except on problems whose expected outcome is "infeasible", where the refusal is
-// the right answer and is timed.
-// Suites: SMCBENCH_SUITES (comma-separated: paper, families, hard, siconos, scale; default "paper,families,hard";
-// "siconos" reads SMCBENCH_SICONOS_DIR, default ../shared/peer-data/siconos).
+// the problems the report is about (built as `smcbench bench` builds them, certified references attached). Cold
+// start, tolerance 1e-10, judged by the one verdict (solvers/core/verdict.h): a wrong answer (wrongly claimed,
+// inaccurate, wrongly refused) or a failure is reported as an error (never as a fast time); a correct refusal of
+// a problem whose expected outcome is "infeasible" is the right answer and is timed.
+// Suites: SMCBENCH_SUITES (comma-separated names `smcbench bench --suite` takes: paper, families, hard, siconos,
+// scale, tiny or a .smcps file; default "paper,families,hard"; "siconos" and "hard" read SMCBENCH_SICONOS_DIR,
+// default ../shared/peer-data/siconos).
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <memory>
@@ -14,9 +17,6 @@
 #include <string>
 #include <vector>
 
-#include "problems/library/capture.h"
-#include "problems/suites/families.h"
-#include "problems/suites/hard_cases.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_command.h"
 
@@ -36,9 +36,10 @@ void SolveBenchmark(benchmark::State& state, const LibraryProblem* problem, std:
   options.measure_time = false;
   SolveResult result;
   solver->Solve(problem->problem, options, &result);  // warm-up sizes the workspace
-  const Verdict verdict = Judge(*problem, result.status, result.z, options.tolerance).verdict;
-  if (verdict != Verdict::kSolved && verdict != Verdict::kCorrectlyRefused) {
-    state.SkipWithError((std::string(ToString(verdict)) + ": " + std::string(ToString(result.status))).c_str());
+  const Judgement judgement = Judge(*problem, result.status, result.z, options.tolerance);
+  if (IsWrong(judgement.verdict) || judgement.verdict == Verdict::kFailed) {
+    state.SkipWithError(
+        (std::string(ToString(judgement.verdict)) + ": " + std::string(ToString(result.status))).c_str());
     return;
   }
   for (auto _ : state) {
@@ -47,7 +48,10 @@ void SolveBenchmark(benchmark::State& state, const LibraryProblem* problem, std:
     benchmark::ClobberMemory();
   }
   state.counters["iterations"] = result.iterations;
-  state.counters["residual_rel"] = result.residual_rel;
+  state.counters["residual_rel"] = judgement.residual.rel;
+  state.counters["residual_scaled"] = judgement.residual.scaled;
+  // Only where the certified reference proves z* unique (a NaN counter would break the JSON output).
+  if (!std::isnan(judgement.forward_error)) state.counters["forward_error"] = judgement.forward_error;
   state.counters["m"] = problem->size();
 }
 
@@ -55,21 +59,11 @@ void RegisterAll() {
   const char* env = std::getenv("SMCBENCH_SUITES");
   const char* dir = std::getenv("SMCBENCH_SICONOS_DIR");
   const std::string siconos_dir = dir ? dir : "../shared/peer-data/siconos";
+  SuiteRequest request;
+  request.siconos_dir = siconos_dir;
   std::stringstream names(env ? env : "paper,families,hard");
   for (std::string name; std::getline(names, name, ',');) {
-    if (name == "paper") {
-      Sets().push_back(std::make_unique<ProblemSet>(CapturePaperSuite()));
-    } else if (name == "families") {
-      Sets().push_back(std::make_unique<ProblemSet>(FamiliesSuite()));
-    } else if (name == "hard") {
-      Sets().push_back(std::make_unique<ProblemSet>(HardSuite(siconos_dir)));
-    } else if (name == "siconos") {
-      Sets().push_back(std::make_unique<ProblemSet>(SiconosSuite(siconos_dir)));
-    } else if (name == "scale") {
-      Sets().push_back(std::make_unique<ProblemSet>(ScaleSuite()));
-    } else {
-      throw InvalidInputError("suite_benchmark: unknown suite '" + name + "' in SMCBENCH_SUITES");
-    }
+    Sets().push_back(std::make_unique<ProblemSet>(BuildSuite(name, request)));
   }
   for (const auto& set : Sets()) {
     for (const LibraryProblem& p : set->problems) {
@@ -94,7 +88,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "suite_benchmark: %s\n", e.what());
     return 1;
   }
-  benchmark::AddCustomContext("tolerance", "1e-10 relative natural residual");
+  benchmark::AddCustomContext("tolerance", "1e-10 on the relative and the row-equilibrated natural residual");
   benchmark::RunSpecifiedBenchmarks();
   benchmark::Shutdown();
   return 0;

@@ -37,14 +37,23 @@ ReplayRecord Describe(const ProblemSet& set, const LibraryProblem& p, std::strin
   return r;
 }
 
+// The verdict and the numbers it rests on: residuals recomputed from z by Judge (never the backend's own claim),
+// the forward error against the problem's certified reference where that proves z* unique.
 void Fill(const LibraryProblem& p, const SolveResult& result, double tolerance, ReplayRecord* r) {
+  const Judgement j = Judge(p, result.status, result.z, tolerance);
+  const bool has_z = result.z.size() == p.size();
   r->status = result.status;
   r->message = result.message;
   r->iterations = result.iterations;
-  r->residual_abs = result.residual_abs;
-  r->residual_rel = result.residual_rel;
+  r->residual_abs = has_z ? j.residual.abs : result.residual_abs;
+  r->residual_rel = has_z ? j.residual.rel : result.residual_rel;
+  r->residual_scaled = has_z ? j.residual.scaled : result.residual_scaled;
+  r->forward_error = j.forward_error;
+  r->forward_error_rel = j.forward_error_rel;
+  r->forward_allowance = j.forward_allowance;
+  r->certificate = std::string(ToString(p.reference.certificate));
   r->tolerance = tolerance;
-  r->verdict = Judge(p, result.status, result.z, tolerance);
+  r->verdict = j.verdict;
 }
 
 }  // namespace
@@ -112,6 +121,7 @@ ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& optio
   solve_options.tolerance = options.tolerance;
   solve_options.time_limit_seconds = options.time_limit_seconds;
   solve_options.measure_time = false;  // timed from outside, around many solves
+  solve_options.polish = options.polish;
 
   ReplayResults out;
   const int sweep_problems = std::min<int>(options.tolerance_sweep_problems, static_cast<int>(set.problems.size()));
@@ -129,7 +139,8 @@ ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& optio
       if (options.progress) options.progress(++done, total, set.name + " " + p.id + " " + names[b]);
     }
   }
-  // Tolerance sweep: time against the residual actually reached, for the iterative backends.
+  // Tolerance sweep: time against the error actually reached (residuals, and the forward error where the problem
+  // has a unique reference), for the iterative backends.
   constexpr double kSweep[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
   for (int i = 0; i < sweep_problems; ++i) {
     const LibraryProblem& p = set.problems[i];

@@ -1,7 +1,8 @@
 // The replay benchmark behind `smcbench bench`: every problem of a ProblemSet on every chosen backend, with
-// warm-up and repetitions, judged against its expected outcome; plus the measured dimensions the report plots
-// (tolerance sweep of iterative backends, warm vs cold starts along trajectories). Results are plain structs,
-// written as JSON and CSV (results_io.h).
+// warm-up and repetitions, judged by the one verdict (solvers/core/verdict.h: expected outcome, both residuals
+// recomputed from z, forward error against the problem's certified reference); plus the measured dimensions the
+// report plots (tolerance sweep of iterative backends, warm vs cold starts along trajectories). Results are plain
+// structs, written as JSON and CSV (results_io.h).
 #pragma once
 
 #include <cstdint>
@@ -18,7 +19,9 @@ struct ReplayOptions {
   std::vector<std::string> solvers;  // registry names; empty = every registered backend
   // Typed backend options "BACKEND.OPTION=VALUE" (as `smcbench solve --set`), applied to that backend.
   std::vector<std::string> settings;
-  double tolerance = 1e-10;          // on the relative natural residual
+  double tolerance = 1e-10;          // on the relative and the row-equilibrated natural residual
+  // SolverOptions::polish: false times the raw algorithms (no exact polish of their answers in the base layer).
+  bool polish = true;
   double time_limit_seconds = 10.0;  // per solve; a backend over it gets kTimeLimit (and is timed once)
   int repetitions = 7;               // timing samples per problem × backend (median and spread over these)
   // Each sample repeats the solve until it lasts at least this long (so a 100 ns solve is not timed by a
@@ -45,8 +48,16 @@ struct ReplayRecord {
   std::string message;
   Verdict verdict = Verdict::kFailed;
   int iterations = 0;
+  // The residuals the verdict recomputed from z (Judgement::residual; the backend's own when it returned no z).
   double residual_abs = 0.0;
   double residual_rel = 0.0;
+  double residual_scaled = 0.0;  // of the row-equilibrated problem, relative to 1 + ‖z‖∞
+  // ‖z − z*‖∞, that over max(1, ‖z*‖∞), and the allowance it is judged against; NaN unless the problem's
+  // reference is unique (ReferenceSolution::unique) and the backend returned z.
+  double forward_error = kNaN;
+  double forward_error_rel = kNaN;
+  double forward_allowance = kNaN;
+  std::string certificate = "none";  // ToString of the problem's reference certificate
   double tolerance = 0.0;
   // Per-solve wall time over the samples (seconds): median, min, max, and the median absolute deviation.
   double time_median = 0.0;

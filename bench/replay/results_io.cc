@@ -15,6 +15,8 @@
 #include <sstream>
 #include <suitesparse/umfpack.h>
 
+#include "solvers/core/number_text.h"
+
 #ifndef SMCBENCH_SOURCE_DIR_FOR_GIT
 #define SMCBENCH_SOURCE_DIR_FOR_GIT ""
 #endif
@@ -56,6 +58,10 @@ std::string CpuModel() {
 
 json Finite(double v) { return std::isfinite(v) ? json(v) : json(nullptr); }
 double Number(const json& j) { return j.is_null() ? std::nan("") : j.get<double>(); }
+// A number written by a later format revision: NaN when an older results.json does not have it.
+double OptionalNumber(const json& record, const char* key) {
+  return record.contains(key) ? Number(record.at(key)) : std::nan("");
+}
 
 json RecordJson(const ReplayRecord& r) {
   return {{"suite", r.suite},
@@ -71,6 +77,11 @@ json RecordJson(const ReplayRecord& r) {
           {"iterations", r.iterations},
           {"residual_abs", Finite(r.residual_abs)},
           {"residual_rel", Finite(r.residual_rel)},
+          {"residual_scaled", Finite(r.residual_scaled)},
+          {"forward_error", Finite(r.forward_error)},
+          {"forward_error_rel", Finite(r.forward_error_rel)},
+          {"forward_allowance", Finite(r.forward_allowance)},
+          {"certificate", r.certificate},
           {"tolerance", r.tolerance},
           {"time_median", r.time_median},
           {"time_min", r.time_min},
@@ -107,12 +118,19 @@ ReplayRecord RecordFromJson(const json& j) {
   }
   if (!found) throw InvalidInputError("results.json: unknown status '" + status + "'");
   r.message = j.at("message").get<std::string>();
-  r.verdict = EnumFromText<Verdict>(
-      j.at("verdict").get<std::string>(),
-      std::array{Verdict::kSolved, Verdict::kCorrectlyRefused, Verdict::kFailed, Verdict::kWronglyClaimed}, "verdict");
+  // Every Verdict value (append-only, explicit values; ToString gives "?" past the last one).
+  std::vector<Verdict> verdicts;
+  for (int v = 0; v < 64 && ToString(static_cast<Verdict>(v)) != "?"; ++v) verdicts.push_back(static_cast<Verdict>(v));
+  r.verdict = EnumFromText<Verdict>(j.at("verdict").get<std::string>(), verdicts, "verdict");
   r.iterations = j.at("iterations").get<int>();
   r.residual_abs = Number(j.at("residual_abs"));
   r.residual_rel = Number(j.at("residual_rel"));
+  // Written since the scale-free verdict (issue 12); results.json files from before it read as NaN / "none".
+  r.residual_scaled = OptionalNumber(j, "residual_scaled");
+  r.forward_error = OptionalNumber(j, "forward_error");
+  r.forward_error_rel = OptionalNumber(j, "forward_error_rel");
+  r.forward_allowance = OptionalNumber(j, "forward_allowance");
+  r.certificate = j.value("certificate", std::string("none"));
   r.tolerance = j.at("tolerance").get<double>();
   r.time_median = j.at("time_median").get<double>();
   r.time_min = j.at("time_min").get<double>();
@@ -175,6 +193,7 @@ json ToJson(const BenchResults& results, const json& environment) {
   json j;
   j["format"] = "smcbench-bench/1";
   j["command"] = results.command;
+  j["polish"] = results.polish;
   j["environment"] = environment;
   j["suites"] = json::array();
   for (const SuiteResults& s : results.suites) {
@@ -198,7 +217,8 @@ json ToJson(const BenchResults& results, const json& environment) {
     for (const auto& r : results.stepper.work_precision) {
       st["work_precision"].push_back({{"scene", r.scene}, {"method", r.method}, {"solver", r.solver}, {"h", r.h},
                                       {"steps", r.steps}, {"seconds", r.seconds}, {"error", Finite(r.error)},
-                                      {"ok", r.ok}});
+                                      {"s_forward_error", Finite(r.s_forward_error)},
+                                      {"s_certified_steps", r.s_certified_steps}, {"ok", r.ok}});
     }
     j["stepper"] = st;
   }
@@ -212,6 +232,7 @@ BenchResults BenchResultsFromJson(const json& j) {
     }
     BenchResults out;
     out.command = j.at("command").get<std::string>();
+    out.polish = j.value("polish", false);  // written since the exact polish; before it, answers were raw
     for (const json& s : j.at("suites")) {
       SuiteResults suite;
       suite.suite = s.at("suite").get<std::string>();
@@ -232,10 +253,18 @@ BenchResults BenchResultsFromJson(const json& j) {
                                           r.at("iterations_per_step").get<double>(), r.at("ok").get<bool>()});
       }
       for (const json& r : st.at("work_precision")) {
-        out.stepper.work_precision.push_back({r.at("scene").get<std::string>(), r.at("method").get<std::string>(),
-                                              r.at("solver").get<std::string>(), r.at("h").get<double>(),
-                                              r.at("steps").get<std::int64_t>(), r.at("seconds").get<double>(),
-                                              Number(r.at("error")), r.at("ok").get<bool>()});
+        WorkPrecisionRecord w;
+        w.scene = r.at("scene").get<std::string>();
+        w.method = r.at("method").get<std::string>();
+        w.solver = r.at("solver").get<std::string>();
+        w.h = r.at("h").get<double>();
+        w.steps = r.at("steps").get<std::int64_t>();
+        w.seconds = r.at("seconds").get<double>();
+        w.error = Number(r.at("error"));
+        w.s_forward_error = OptionalNumber(r, "s_forward_error");
+        w.s_certified_steps = r.value("s_certified_steps", std::int64_t{0});
+        w.ok = r.at("ok").get<bool>();
+        out.stepper.work_precision.push_back(std::move(w));
       }
     }
     return out;
@@ -253,17 +282,23 @@ void WriteBenchResults(const BenchResults& results, const std::string& dir) {
     out << ToJson(results, BenchEnvironment()).dump(1) << "\n";
     if (!out) throw InvalidInputError("bench: cannot write " + (fs::path(dir) / "results.json").string());
   }
+  // Numbers in shortest round-trip form (NumberText: reads back to the same double; "inf", "nan" when not finite).
+  // The columns since issue 12 come last, so scripts that index the older ones keep working.
   std::ofstream csv(fs::path(dir) / "results.csv");
   csv << "suite,problem,solver,mode,size,sparse,expected,status,verdict,iterations,residual_abs,residual_rel,"
-         "tolerance,time_median,time_min,time_max,time_mad,samples,solves_per_sample\n";
+         "tolerance,time_median,time_min,time_max,time_mad,samples,solves_per_sample,residual_scaled,"
+         "forward_error,forward_error_rel,forward_allowance,certificate\n";
   for (const SuiteResults& s : results.suites) {
     for (const auto* records : {&s.replay.records, &s.replay.sweep}) {
       for (const ReplayRecord& r : *records) {
         csv << CsvField(r.suite) << ',' << CsvField(r.problem) << ',' << CsvField(r.solver) << ',' << r.mode << ','
             << r.size << ',' << (r.sparse ? 1 : 0) << ',' << ToString(r.expected) << ',' << ToString(r.status) << ','
-            << ToString(r.verdict) << ',' << r.iterations << ',' << r.residual_abs << ',' << r.residual_rel << ','
-            << r.tolerance << ',' << r.time_median << ',' << r.time_min << ',' << r.time_max << ',' << r.time_mad
-            << ',' << r.samples << ',' << r.solves_per_sample << '\n';
+            << ToString(r.verdict) << ',' << r.iterations << ',' << NumberText(r.residual_abs) << ','
+            << NumberText(r.residual_rel) << ',' << NumberText(r.tolerance) << ',' << NumberText(r.time_median) << ','
+            << NumberText(r.time_min) << ',' << NumberText(r.time_max) << ',' << NumberText(r.time_mad) << ','
+            << r.samples << ',' << r.solves_per_sample << ',' << NumberText(r.residual_scaled) << ','
+            << NumberText(r.forward_error) << ',' << NumberText(r.forward_error_rel) << ','
+            << NumberText(r.forward_allowance) << ',' << CsvField(r.certificate) << '\n';
       }
     }
   }

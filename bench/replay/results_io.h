@@ -25,6 +25,7 @@ struct SuiteResults {
 
 struct BenchResults {
   std::string command;      // the command line that produced them
+  bool polish = true;       // SolverOptions::polish of every solve (false: `bench --no-polish`, raw algorithms)
   std::vector<SuiteResults> suites;
   bool has_stepper = false;
   StepperStudy stepper;

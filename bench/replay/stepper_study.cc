@@ -4,9 +4,11 @@
 #include <chrono>
 #include <cmath>
 #include <memory>
+#include <optional>
 
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/registry.h"
+#include "problems/stepper/linear_stepper.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {
@@ -30,6 +32,27 @@ double TimeRuns(Fn&& fn, double min_seconds) {
 
 constexpr double kReferenceFactor = 8.0;
 
+// The largest per-step forward error of s over a run: each one-step problem the backend claimed to solve judged by
+// the caller's certifier (a step it did not solve is a failure, already counted by Trajectory::ok, not an error).
+class StepErrorObserver final : public StepObserver {
+ public:
+  explicit StepErrorObserver(const StepForwardError& forward_error) : forward_error_(forward_error) {}
+  void OnStep(std::int64_t, int, const BoxMLCP& problem, const SolveResult& result) override {
+    if (result.status != SolveStatus::kSolved || result.z.size() != problem.size()) return;
+    const double e = forward_error_(problem, result.z);
+    if (std::isnan(e)) return;
+    max_error_ = std::isnan(max_error_) ? e : std::max(max_error_, e);
+    ++steps_;
+  }
+  double max_error() const { return max_error_; }
+  std::int64_t steps() const { return steps_; }
+
+ private:
+  const StepForwardError& forward_error_;
+  double max_error_ = kNaN;
+  std::int64_t steps_ = 0;
+};
+
 }  // namespace
 
 StepperStudy RunStepperStudy(const StepperStudyOptions& options) {
@@ -51,6 +74,7 @@ StepperStudy RunStepperStudy(const StepperStudyOptions& options) {
         s.stepper.record = false;
         s.stepper.warm_start = warm;
         s.stepper.on_failure = FailurePolicy::kContinue;
+        s.stepper.solver.polish = options.polish;
         Trajectory tr;
         const double seconds = TimeRuns([&] { scene->Run(s, solvers[b].get(), &tr); }, options.min_seconds);
         WarmStartRecord r;
@@ -91,6 +115,7 @@ StepperStudy RunStepperStudy(const StepperStudyOptions& options) {
         const bool is_explicit = b == solvers.size();
         SimulationSettings s = base;
         s.h = h;
+        s.stepper.solver.polish = options.polish;
         Solver* solver = nullptr;
         if (is_explicit) {
           s.method = s.method == Method::kZoh ? Method::kZohExplicit : Method::kExplicit;
@@ -99,8 +124,13 @@ StepperStudy RunStepperStudy(const StepperStudyOptions& options) {
           solver = solvers[b].get();
         }
         s.stepper.record = true;
+        std::optional<StepErrorObserver> step_errors;
+        if (options.step_forward_error && !is_explicit) {
+          s.stepper.observer = &step_errors.emplace(options.step_forward_error);
+        }
         const Trajectory tr = scene->Run(s, solver);
         s.stepper.record = false;
+        s.stepper.observer = nullptr;  // the timed runs are not observed
         Trajectory quiet;
         WorkPrecisionRecord r;
         r.scene = scene_name;
@@ -110,6 +140,10 @@ StepperStudy RunStepperStudy(const StepperStudyOptions& options) {
         r.steps = tr.steps_taken;
         r.ok = tr.ok();
         r.error = error_of(tr);
+        if (step_errors) {
+          r.s_forward_error = step_errors->max_error();
+          r.s_certified_steps = step_errors->steps();
+        }
         r.seconds = TimeRuns([&] { scene->Run(s, solver, &quiet); }, options.min_seconds);
         out.work_precision.push_back(r);
       }

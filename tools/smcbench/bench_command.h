@@ -6,6 +6,7 @@
 #include <iosfwd>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "problems/library/problem_set.h"
@@ -31,11 +32,21 @@ ProblemSet TinySuite();
 struct SuiteRequest {
   std::string siconos_dir = "../shared/peer-data/siconos";
   bool quick = false;  // smaller families / scale sizes
+  // Attach certified reference solutions (AttachReferences, problems/library/references.h) to the problems small
+  // enough, so the verdict can judge forward errors. `bench` turns it off here and attaches them itself, timed.
+  bool references = true;
 };
 
 // "tiny", "paper", "families", "hard", "siconos", "scale", or the path of a problem-set file (problems/library).
 // InvalidInputError for an unknown name.
 ProblemSet BuildSuite(const std::string& name, const SuiteRequest& request);
+
+// True when text matches the glob pattern ('*' any run of characters, '?' one character, no escapes): how
+// `bench --allow-wrong 'siconos-*'` names backends.
+bool GlobMatch(std::string_view pattern, std::string_view text);
+
+// `bench`'s exit status when some result is wrong (Verdict IsWrong) on a backend not excused by --allow-wrong.
+inline constexpr int kExitWrongAnswers = 3;
 
 class BenchCommand {
  public:

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
+#include "problems/library/problem_set_io.h"
 #include "tools/smcbench/bench_command.h"
 #include "tools/smcbench/bench_report.h"
 #include "tools/smcbench/cli_test_runner.h"
@@ -44,6 +45,20 @@ TEST(Bench, TinySuiteEndToEndWithReport) {
   int correct = 0;
   for (const auto& rec : records) {
     EXPECT_NE(rec["verdict"], "WRONGLY CLAIMED") << rec.dump();
+    EXPECT_NE(rec["verdict"], "INACCURATE") << rec.dump();
+    EXPECT_NE(rec["verdict"], "WRONGLY REFUSED") << rec.dump();
+    for (const char* key :
+         {"residual_scaled", "forward_error", "forward_error_rel", "forward_allowance", "certificate"}) {
+      EXPECT_TRUE(rec.contains(key)) << key;
+    }
+    // The four generated problems are P-matrix problems with a planted solution: bench attaches a certified
+    // reference to each, so every solved answer has a forward error within its allowance.
+    if (rec["problem"] != "tiny/infeasible-lcp") {
+      EXPECT_TRUE(rec["certificate"] == "unique" || rec["certificate"] == "degenerate") << rec.dump();
+      if (rec["verdict"] == "solved") {
+        EXPECT_LE(rec["forward_error"].get<double>(), rec["forward_allowance"].get<double>()) << rec.dump();
+      }
+    }
     EXPECT_GT(rec["time_median"].get<double>(), 0.0);
     EXPECT_LE(rec["time_min"].get<double>(), rec["time_median"].get<double>());
     EXPECT_GE(rec["time_max"].get<double>(), rec["time_median"].get<double>());
@@ -60,9 +75,13 @@ TEST(Bench, TinySuiteEndToEndWithReport) {
 
   const std::string csv = ReadText(dir / "results.csv");
   EXPECT_EQ(csv.rfind("suite,problem,solver,mode,size", 0), 0u);
+  EXPECT_THAT(csv, HasSubstr(",residual_scaled,forward_error,forward_error_rel,forward_allowance,certificate\n"));
   const std::string md = ReadText(dir / "report.md");
   EXPECT_THAT(md, HasSubstr("## Suite `tiny`"));
-  EXPECT_THAT(md, HasSubstr("| lemke | 4 | 1 | 0 | 0 | 100% |"));
+  // solved, correctly refused, failed, wrongly claimed, inaccurate, wrongly refused, success.
+  EXPECT_THAT(md, HasSubstr("| lemke | 4 | 1 | 0 | 0 | 0 | 0 | 100% |"));
+  EXPECT_THAT(md, HasSubstr("recomputed by us from z"));  // the verdict, in words a reader can check
+  EXPECT_THAT(md, HasSubstr("worst forward error"));
   EXPECT_THAT(md, HasSubstr("warm against cold"));
 
   // `report` on the same folder, with plots when gnuplot is there.
@@ -73,6 +92,123 @@ TEST(Bench, TinySuiteEndToEndWithReport) {
     EXPECT_TRUE(fs::is_regular_file(dir / "work-precision-galias-yu-2007.png"));
   }
   fs::remove_all(dir);
+}
+
+// A suite file whose stored reference contradicts its data: M = [[2, 1], [1, 2]], q = (−1, −1) has the single
+// solution z = (1/3, 1/3) (both rows free: 2a + b = 1, a + 2b = 1), but the file claims z* = (1, 0) is unique. A
+// correct backend's answer is then 2/3 away from "z*": judged inaccurate, a wrong answer.
+fs::path WriteContradictorySuite(const fs::path& dir) {
+  DenseMatrix M(2, 2);
+  M << 2.0, 1.0, 1.0, 2.0;
+  Vector q(2);
+  q << -1.0, -1.0;
+  LibraryProblem p = MakeLibraryProblem("contradiction/spd2", "handmade", BoxMLCP::LCP(M, q, "spd2"));
+  p.expected = ExpectedOutcome::kSolvable;
+  p.reference.certificate = Certificate::kUnique;
+  p.reference.z = Vector::Zero(2);
+  p.reference.z[0] = 1.0;
+  p.reference.condition = 1.0;
+  ProblemSet set;
+  set.name = "contradiction";
+  set.description = "a stored reference that contradicts the data";
+  set.problems.push_back(std::move(p));
+  fs::create_directories(dir);
+  const fs::path path = dir / "contradiction.smcps";
+  WriteProblemSetFile(set, path.string());
+  return path;
+}
+
+TEST(Bench, ExitsThreeOnAWrongAnswerUnlessTheBackendIsAllowed) {
+  const fs::path dir = fs::temp_directory_path() / ("smcbench-bench-wrong-" + std::to_string(::getpid()));
+  const fs::path suite = WriteContradictorySuite(dir);
+  const std::vector<std::string> base = {"bench", "--suite", suite.string(), "--solver", "lemke", "--quick",
+                                         "--no-stepper", "--out", (dir / "out").string(), "--report", "--no-plots"};
+  const CliRun wrong = RunSmcbench(base);
+  EXPECT_EQ(wrong.code, 3) << wrong.err;
+  EXPECT_THAT(wrong.err, HasSubstr("bench: 1 wrong answer (INACCURATE 1; lemke 1)"));
+  // The results and the report are written before the exit status says so.
+  const auto j = nlohmann::json::parse(ReadText(dir / "out" / "results.json"));
+  const auto& rec = j["suites"][0]["records"][0];
+  EXPECT_EQ(rec["verdict"], "INACCURATE") << rec.dump();
+  EXPECT_NEAR(rec["forward_error"].get<double>(), 2.0 / 3.0, 1e-15);
+  EXPECT_THAT(ReadText(dir / "out" / "report.md"), HasSubstr("| contradiction/spd2 | lemke | INACCURATE |"));
+
+  std::vector<std::string> allowed = base;
+  allowed.insert(allowed.end(), {"--allow-wrong", "siconos-*", "--allow-wrong", "lem*"});
+  const CliRun excused = RunSmcbench(allowed);
+  EXPECT_EQ(excused.code, 0) << excused.err;
+  EXPECT_THAT(excused.err, HasSubstr("1 of them allowed by --allow-wrong"));  // still reported
+
+  std::vector<std::string> other = base;
+  other.insert(other.end(), {"--allow-wrong", "siconos-*"});
+  EXPECT_EQ(RunSmcbench(other).code, 3);
+  fs::remove_all(dir);
+}
+
+TEST(Bench, GlobMatchesBackendNames) {
+  EXPECT_TRUE(GlobMatch("siconos-*", "siconos-lcp-lemke"));
+  EXPECT_TRUE(GlobMatch("siconos-*", "siconos-"));
+  EXPECT_FALSE(GlobMatch("siconos-*", "lemke"));
+  EXPECT_TRUE(GlobMatch("*lemke", "siconos-lcp-lemke"));
+  EXPECT_TRUE(GlobMatch("*-lcp-*", "siconos-lcp-lemke"));
+  EXPECT_TRUE(GlobMatch("ps?r", "psor"));
+  EXPECT_FALSE(GlobMatch("ps?r", "pso"));
+  EXPECT_TRUE(GlobMatch("enum", "enum"));
+  EXPECT_FALSE(GlobMatch("enum", "enum2"));
+  EXPECT_TRUE(GlobMatch("*", ""));
+  EXPECT_TRUE(GlobMatch("a*b*c", "aXbYbZc"));
+  EXPECT_FALSE(GlobMatch("a*b*c", "aXbYbZ"));
+}
+
+// results.json keeps every verdict and the numbers behind it; NaN (not defined) reads back as NaN.
+TEST(Bench, ResultsJsonRoundTripsEveryVerdictAndTheNewNumbers) {
+  BenchResults results;
+  results.command = "test";
+  SuiteResults suite;
+  suite.suite = "s";
+  suite.description = "d";
+  for (Verdict v : {Verdict::kSolved, Verdict::kCorrectlyRefused, Verdict::kFailed, Verdict::kWronglyClaimed,
+                    Verdict::kInaccurate, Verdict::kWronglyRefused}) {
+    ReplayRecord r;
+    r.suite = "s";
+    r.problem = "p" + std::to_string(static_cast<int>(v));
+    r.solver = "x";
+    r.verdict = v;
+    r.residual_scaled = 0.1 + static_cast<int>(v);  // not exactly representable: a round trip must keep all bits
+    r.forward_error = v == Verdict::kFailed ? kNaN : 1.0 / 3.0;
+    r.forward_error_rel = r.forward_error / 7.0;
+    r.forward_allowance = 2e-9;
+    r.certificate = v == Verdict::kFailed ? "none found" : "unique";
+    suite.replay.records.push_back(r);
+  }
+  results.suites.push_back(suite);
+  const BenchResults back = BenchResultsFromJson(nlohmann::json::parse(ToJson(results, {}).dump()));
+  ASSERT_EQ(back.suites.size(), 1u);
+  ASSERT_EQ(back.suites[0].replay.records.size(), 6u);
+  for (std::size_t i = 0; i < 6; ++i) {
+    const ReplayRecord& a = suite.replay.records[i];
+    const ReplayRecord& b = back.suites[0].replay.records[i];
+    EXPECT_EQ(b.verdict, a.verdict);
+    EXPECT_EQ(b.residual_scaled, a.residual_scaled);
+    EXPECT_EQ(std::isnan(b.forward_error), std::isnan(a.forward_error));
+    if (!std::isnan(a.forward_error)) {
+      EXPECT_EQ(b.forward_error, a.forward_error);
+      EXPECT_EQ(b.forward_error_rel, a.forward_error_rel);
+    }
+    EXPECT_EQ(b.forward_allowance, a.forward_allowance);
+    EXPECT_EQ(b.certificate, a.certificate);
+  }
+  // A results.json from before these fields still reads: the new numbers are NaN, the certificate "none".
+  auto old = ToJson(results, {});
+  for (auto& rec : old["suites"][0]["records"]) {
+    for (const char* key :
+         {"residual_scaled", "forward_error", "forward_error_rel", "forward_allowance", "certificate"}) {
+      rec.erase(key);
+    }
+  }
+  const BenchResults older = BenchResultsFromJson(old);
+  EXPECT_TRUE(std::isnan(older.suites[0].replay.records[0].residual_scaled));
+  EXPECT_EQ(older.suites[0].replay.records[0].certificate, "none");
 }
 
 TEST(Report, PerfHistoryTableAndPlot) {
@@ -141,6 +277,15 @@ TEST(Report, SummaryProfileAndExponentArithmetic) {
   s.replay.records = {Rec("p1", "a", Verdict::kSolved, 1e-6), Rec("p1", "b", Verdict::kSolved, 4e-6),
                       Rec("p2", "a", Verdict::kFailed, 1.0), Rec("p2", "b", Verdict::kSolved, 2e-6),
                       Rec("p3", "a", Verdict::kCorrectlyRefused, 1e-6), Rec("p3", "b", Verdict::kWronglyClaimed, 1e-6)};
+  // Residuals and forward errors: the worst is taken over the solved records only, the forward error only where
+  // defined (p2 has no reference).
+  s.replay.records[0].residual_scaled = 3e-12;
+  s.replay.records[0].forward_error = 5e-13;
+  s.replay.records[1].residual_scaled = 4e-11;
+  s.replay.records[1].forward_error = 1e-14;
+  s.replay.records[3].residual_scaled = 2e-11;
+  s.replay.records[5].residual_scaled = 1.0;  // wrongly claimed: not in the worst of the solved
+  s.replay.records[5].forward_error = 0.5;
   const auto summary = SummarizeSuite(s);
   ASSERT_EQ(summary.size(), 2u);
   EXPECT_EQ(summary[0].solver, "a");
@@ -152,6 +297,13 @@ TEST(Report, SummaryProfileAndExponentArithmetic) {
   const double expected_a = std::cbrt((2e-6) * (2e-5 + 1e-6) * (2e-6)) - 1e-6;
   EXPECT_NEAR(summary[0].shifted_geomean, expected_a, 1e-18);
   EXPECT_EQ(summary[1].wrongly_claimed, 1);
+  EXPECT_EQ(summary[1].wrong(), 1);
+  EXPECT_EQ(summary[0].wrong(), 0);
+  EXPECT_EQ(summary[0].worst_residual_scaled, 3e-12);
+  EXPECT_EQ(summary[0].worst_forward_error, 5e-13);
+  EXPECT_EQ(summary[1].worst_residual_scaled, 4e-11);
+  EXPECT_EQ(summary[1].worst_forward_error, 1e-14);
+  EXPECT_EQ(summary[1].forward_error_defined, 1);
   // Dolan–Moré: best times p1 = 1e-6 (a), p2 = 2e-6 (b); p3 nobody solved → left out.
   const auto ratios = PerformanceRatios(s);
   ASSERT_EQ(ratios.size(), 2u);
@@ -161,6 +313,23 @@ TEST(Report, SummaryProfileAndExponentArithmetic) {
   SuiteResults scale;
   for (int m : {10, 100, 1000}) scale.replay.records.push_back(Rec("m" + std::to_string(m), "x", Verdict::kSolved, 1e-9 * m * m, m));
   EXPECT_NEAR(GrowthExponent(scale, "x"), 2.0, 1e-12);
+}
+
+// The two new wrong verdicts are counted in their own columns and in wrong(), never as solved.
+TEST(Report, InaccurateAndWronglyRefusedAreCountedAsWrong) {
+  SuiteResults s;
+  s.suite = "s";
+  s.replay.records = {Rec("p1", "a", Verdict::kInaccurate, 1e-6), Rec("p2", "a", Verdict::kWronglyRefused, 1e-6),
+                      Rec("p3", "a", Verdict::kSolved, 1e-6)};
+  s.replay.records[0].forward_error = 0.25;
+  const auto summary = SummarizeSuite(s);
+  ASSERT_EQ(summary.size(), 1u);
+  EXPECT_EQ(summary[0].inaccurate, 1);
+  EXPECT_EQ(summary[0].wrongly_refused, 1);
+  EXPECT_EQ(summary[0].solved, 1);
+  EXPECT_EQ(summary[0].wrong(), 2);
+  EXPECT_NEAR(summary[0].success_rate, 1.0 / 3.0, 1e-15);
+  EXPECT_TRUE(std::isnan(summary[0].worst_forward_error));  // the inaccurate one is not a solved answer
 }
 
 }  // namespace

@@ -87,7 +87,53 @@ std::string Safe(const std::string& text) {
   return out;
 }
 
+// The largest of a and b where NaN means "not defined" (so a defined value always wins).
+double MaxDefined(double a, double b) { return std::isnan(a) ? b : std::isnan(b) ? a : std::max(a, b); }
+
+// Median of the defined (non-NaN) values; NaN when there are none.
+double MedianDefined(std::vector<double> v) {
+  v.erase(std::remove_if(v.begin(), v.end(), [](double x) { return std::isnan(x); }), v.end());
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  return v[v.size() / 2];
+}
+
+std::string Count(int n) { return n ? "**" + std::to_string(n) + "**" : std::string("0"); }
+
+// One curve per label of (x, time) points on log axes, joined in x order when sort_by_x (else in the given order,
+// e.g. of decreasing h): writes the data file and plots it to dir/png.
+void PlotCurves(const std::map<std::string, std::vector<std::pair<double, double>>>& curves, const std::string& dir,
+                const std::string& png, const std::string& stem, const std::string& xlabel,
+                const std::string& ylabel, const std::string& title, bool sort_by_x = true) {
+  DataFile data(stem);
+  std::ofstream out(data.path);
+  std::ostringstream g;
+  g << GnuplotPngPreamble(900, 600, (fs::path(dir) / png).string())
+    << "set logscale xy\nset grid\nset key top right\nset xlabel " << GnuplotQuote(xlabel) << "\nset ylabel "
+    << GnuplotQuote(ylabel) << "\nset title " << GnuplotQuote(title) << "\nplot ";
+  int index = 0;
+  for (const auto& [label, points] : curves) {
+    auto sorted = points;
+    if (sort_by_x) std::sort(sorted.begin(), sorted.end());
+    for (auto [x, y] : sorted) out << x << ' ' << y << '\n';
+    out << "\n\n";
+    g << (index ? ", " : "") << GnuplotQuote(data.path.string()) << " index " << index
+      << " using 1:2 with linespoints pt 7 lw 2 title " << GnuplotQuote(label);
+    ++index;
+  }
+  out.close();
+  g << "\n";
+  RunGnuplot(g.str(), (fs::path(dir) / png).string(), "report");
+}
+
 }  // namespace
+
+const char* const kVerdictInTwoSentences =
+    "An answer z counts as solved when its status is solved and, recomputed by us from z, (1) the natural residual "
+    "‖z − Π[l,u](z − w)‖∞ is ≤ tol·(1 + ‖q‖∞) and (2) the natural residual of the row-equilibrated problem (each "
+    "row of M and q divided by d_i = max_j |M_ij|) is ≤ tol·(1 + ‖z‖∞). Where a certified reference z* proves the "
+    "solution unique, also ‖z − z*‖∞ ≤ 10·max(1, μ)·tol·(1 + ‖z*‖∞), with μ = ‖(D⁻¹M)_FF⁻¹‖∞ the conditioning of "
+    "z*'s free rows; a claim that no solution exists, on a problem known to have one, is wrongly refused.";
 
 std::vector<BackendSummary> SummarizeSuite(const SuiteResults& suite, double time_limit_seconds) {
   const auto& records = suite.replay.records;
@@ -109,6 +155,11 @@ std::vector<BackendSummary> SummarizeSuite(const SuiteResults& suite, double tim
         case Verdict::kSolved:
           ++b.solved;
           b.worst_residual = std::max(b.worst_residual, r.residual_rel);
+          b.worst_residual_scaled = MaxDefined(b.worst_residual_scaled, r.residual_scaled);
+          if (!std::isnan(r.forward_error)) {
+            ++b.forward_error_defined;
+            b.worst_forward_error = MaxDefined(b.worst_forward_error, r.forward_error);
+          }
           break;
         case Verdict::kCorrectlyRefused:
           ++b.correctly_refused;
@@ -118,6 +169,12 @@ std::vector<BackendSummary> SummarizeSuite(const SuiteResults& suite, double tim
           break;
         case Verdict::kWronglyClaimed:
           ++b.wrongly_claimed;
+          break;
+        case Verdict::kInaccurate:
+          ++b.inaccurate;
+          break;
+        case Verdict::kWronglyRefused:
+          ++b.wrongly_refused;
           break;
       }
       const auto it = slowest.find(r.problem);
@@ -180,25 +237,69 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
      << (env.value("git_dirty", false) ? " (dirty tree)" : "") << ", " << env.value("compiler", std::string("?"))
      << " " << env.value("build_type", std::string("")) << ", " << env.value("cpu", std::string("?")) << " ("
      << env.value("cores", 0) << " cores), " << env.value("date", std::string("")) << ".\n\n"
-     << "Success = the backend says solved AND the merit function (the natural residual, recomputed from the returned "
-        "z) is at or below the tolerance, or — on a problem known to have no solution — any non-solved status "
-        "('correctly refused'). **Wrongly claimed** = status solved where the recomputed residual says otherwise or "
-        "no solution exists; it must be 0. Times are medians over repeated cold solves (each sample repeats the "
-        "solve until it lasts ≥ 0.2 ms); SGM is the shifted geometric mean (shift 1 µs) with a wrong or failed "
-        "problem counted at 10× the slowest correct time on it.\n\n";
+     << "**The verdict.** " << kVerdictInTwoSentences
+     << " (docs/verdict.md says why each part is there.) Success = solved, or — on a problem known to have no "
+        "solution — any non-solved status ('correctly refused'). The **wrong** answers, which must be 0: **wrongly "
+        "claimed** (status solved where a recomputed residual says otherwise, or on a problem with no solution), "
+        "**inaccurate** (the residuals pass but z is farther from the certified z* than its conditioning allows) "
+        "and **wrongly refused** (status infeasible on a problem known to be solvable). `smcbench bench` exits "
+        "with status 3 when there is any (backends named by `--allow-wrong` excepted). Residual = relative "
+        "natural residual (1), residual (eq.) = the row-equilibrated one (2), forward error = ‖z − z*‖∞ where a "
+        "certified reference proves z* unique (– where none does). Times are medians over repeated cold solves "
+        "(each sample repeats the solve until it lasts ≥ 0.2 ms); SGM is the shifted geometric mean (shift 1 µs) "
+        "with a wrong or failed problem counted at 10× the slowest correct time on it. "
+     << (results.polish ? "Every answer went through the base layer's exact polish (the default: from the answer's "
+                          "active set, the reduced system solved directly), so an answer with the right active set "
+                          "is exact whatever the tolerance; `smcbench bench --no-polish` times the raw algorithms."
+                        : "**No polish** (`--no-polish`): the raw algorithms' answers.")
+     << "\n\n";
 
   for (const SuiteResults& suite : results.suites) {
+    // What the certified references prove, per problem (every backend's record carries its problem's).
+    std::map<std::string, std::string> certificate_of;
+    for (const auto& r : suite.replay.records) certificate_of.emplace(r.problem, r.certificate);
+    std::map<std::string, int> certificates;
+    for (const auto& [problem, certificate] : certificate_of) ++certificates[certificate];
+    std::string certified;
+    for (const auto& [certificate, count] : certificates) {
+      certified += (certified.empty() ? "" : ", ") + std::to_string(count) + " " + certificate;
+    }
     md << "## Suite `" << suite.suite << "`: " << suite.description << "\n\n"
-       << suite.problems << " problems.\n\n"
-       << "| backend | solved | correctly refused | failed | **wrongly claimed** | success | SGM time | worst "
-          "residual (solved) |\n|---|---|---|---|---|---|---|---|\n";
+       << suite.problems << " problems; certified references: " << (certified.empty() ? "–" : certified)
+       << " (forward errors are judged on the unique and degenerate ones).\n\n"
+       << "| backend | solved | correctly refused | failed | **wrongly claimed** | **inaccurate** | **wrongly "
+          "refused** | success | SGM time | worst residual (solved) | worst residual (eq.) | worst forward error "
+          "(solved) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const BackendSummary& b : SummarizeSuite(suite)) {
       md << "| " << b.solver << " | " << b.solved << " | " << b.correctly_refused << " | " << b.failed << " | "
-         << (b.wrongly_claimed ? "**" + std::to_string(b.wrongly_claimed) + "**" : std::string("0")) << " | "
+         << Count(b.wrongly_claimed) << " | " << Count(b.inaccurate) << " | " << Count(b.wrongly_refused) << " | "
          << G(100.0 * b.success_rate, 3) << "% | " << Seconds(b.shifted_geomean) << " | " << G(b.worst_residual)
-         << " |\n";
+         << " | " << G(b.worst_residual_scaled) << " | " << G(b.worst_forward_error);
+      if (b.forward_error_defined) md << " (" << b.forward_error_defined << " with z*)";
+      md << " |\n";
     }
     md << "\n";
+
+    // Every wrong answer, so a reader can check it (the first few per suite; results.csv has them all).
+    {
+      std::vector<const ReplayRecord*> wrong;
+      for (const auto& r : suite.replay.records) {
+        if (IsWrong(r.verdict)) wrong.push_back(&r);
+      }
+      if (!wrong.empty()) {
+        constexpr std::size_t kListed = 30;
+        md << "Wrong answers (" << wrong.size() << (wrong.size() > kListed ? ", the first 30" : "")
+           << "):\n\n| problem | backend | verdict | status | residual | residual (eq.) | forward error | "
+              "allowance | certificate |\n|---|---|---|---|---|---|---|---|---|\n";
+        for (std::size_t i = 0; i < std::min(wrong.size(), kListed); ++i) {
+          const ReplayRecord& r = *wrong[i];
+          md << "| " << r.problem << " | " << r.solver << " | " << ToString(r.verdict) << " | "
+             << ToString(r.status) << " | " << G(r.residual_rel) << " | " << G(r.residual_scaled) << " | "
+             << G(r.forward_error) << " | " << G(r.forward_allowance) << " | " << r.certificate << " |\n";
+        }
+        md << "\n";
+      }
+    }
 
     // The paper suite against the generic sparse path (bench adds it: newton on sparse copies).
     {
@@ -304,52 +405,54 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
       md << "![performance profile, " << suite.suite << "](" << png << ")\n\n";
     }
 
-    // Speed against error: the tolerance sweep.
+    // Speed against error: the tolerance sweep. Two errors: the forward error ‖z − z*‖∞ (what a user reads, on the
+    // swept problems with a unique certified reference) and the residual reached (every swept problem).
     if (!suite.replay.sweep.empty()) {
-      md << "Speed against error (iterative backends, tolerance 1e-2 … 1e-12, median over the swept problems):\n\n"
-         << "| backend | tolerance | achieved residual (median) | time (median) | solved |\n|---|---|---|---|---|\n";
+      md << "Speed against error (iterative backends, tolerance 1e-2 … 1e-12, medians over the swept problems; "
+            "forward error over those with a unique certified reference):\n\n"
+         << "| backend | tolerance | forward error (median) | with z* | achieved residual (median) | achieved "
+            "residual, eq. (median) | time (median) | solved |\n|---|---|---|---|---|---|---|---|\n";
       // Keyed by (backend, −tolerance): loosest tolerance first.
       std::map<std::pair<std::string, double>, std::vector<const ReplayRecord*>> groups;
       for (const auto& r : suite.replay.sweep) groups[{r.solver, -r.tolerance}].push_back(&r);
-      std::map<std::string, std::vector<std::pair<double, double>>> curves;
+      std::map<std::string, std::vector<std::pair<double, double>>> by_forward, by_residual;
       for (auto& [key, rs] : groups) {
-        std::vector<double> res, t;
+        std::vector<double> res, res_scaled, fwd, t, t_fwd;
         int solved = 0;
         for (const auto* r : rs) {
           res.push_back(std::isfinite(r->residual_rel) ? r->residual_rel : 1e300);
+          res_scaled.push_back(std::isfinite(r->residual_scaled) ? r->residual_scaled
+                                                                 : std::isnan(r->residual_scaled) ? kNaN : 1e300);
           t.push_back(r->time_median);
+          if (!std::isnan(r->forward_error)) {
+            fwd.push_back(std::isfinite(r->forward_error) ? r->forward_error : 1e300);
+            t_fwd.push_back(r->time_median);
+          }
           solved += r->verdict == Verdict::kSolved;
         }
-        std::sort(res.begin(), res.end());
-        std::sort(t.begin(), t.end());
-        const double mres = res[res.size() / 2], mt = t[t.size() / 2];
-        md << "| " << key.first << " | " << G(-key.second) << " | " << G(mres) << " | " << Seconds(mt) << " | "
-           << solved << "/" << rs.size() << " |\n";
-        curves[key.first].emplace_back(std::max(mres, 1e-17), mt);
+        const double mres = MedianDefined(res), mres_scaled = MedianDefined(res_scaled), mt = MedianDefined(t);
+        const double mfwd = MedianDefined(fwd);
+        md << "| " << key.first << " | " << G(-key.second) << " | " << G(mfwd) << " | " << fwd.size() << "/"
+           << rs.size() << " | " << G(mres) << " | " << G(mres_scaled) << " | " << Seconds(mt) << " | " << solved
+           << "/" << rs.size() << " |\n";
+        by_residual[key.first].emplace_back(std::max(mres, 1e-17), mt);
+        // Time over the same problems as the error: the median time of those with a reference.
+        if (!fwd.empty()) by_forward[key.first].emplace_back(std::max(mfwd, 1e-17), MedianDefined(t_fwd));
       }
       md << "\n";
+      if (plots && !by_forward.empty()) {
+        const std::string png = "speed-forward-error-" + Safe(suite.suite) + ".png";
+        PlotCurves(by_forward, dir, png, "sweep-forward-" + Safe(suite.suite),
+                   "forward error |z - z*|inf (median; problems with a unique certified z*)", "time per solve [s]",
+                   "Speed against forward error, suite " + suite.suite);
+        md << "![speed against forward error, " << suite.suite << "](" << png << ")\n\n";
+      }
       if (plots) {
-        DataFile data("sweep-" + Safe(suite.suite));
-        std::ofstream out(data.path);
-        std::ostringstream g;
-        const std::string png = "speed-error-" + Safe(suite.suite) + ".png";
-        g << GnuplotPngPreamble(900, 600, (fs::path(dir) / png).string())
-          << "set logscale xy\nset grid\nset key top right\nset xlabel 'achieved relative residual'\n"
-          << "set ylabel 'time per solve [s]'\nset title "
-          << GnuplotQuote("Speed against error, suite " + suite.suite) << "\nplot ";
-        int index = 0;
-        for (auto& [solver, pts] : curves) {
-          std::sort(pts.begin(), pts.end());
-          for (auto [x, y] : pts) out << x << ' ' << y << '\n';
-          out << "\n\n";
-          g << (index ? ", " : "") << GnuplotQuote(data.path.string()) << " index " << index
-            << " using 1:2 with linespoints pt 7 lw 2 title " << GnuplotQuote(solver);
-          ++index;
-        }
-        out.close();
-        g << "\n";
-        RunGnuplot(g.str(), (fs::path(dir) / png).string(), "report");
-        md << "![speed against error, " << suite.suite << "](" << png << ")\n\n";
+        const std::string png = "speed-residual-" + Safe(suite.suite) + ".png";
+        PlotCurves(by_residual, dir, png, "sweep-residual-" + Safe(suite.suite),
+                   "achieved relative natural residual (median)", "time per solve [s]",
+                   "Speed against residual, suite " + suite.suite);
+        md << "![speed against residual, " << suite.suite << "](" << png << ")\n\n";
       }
     }
 
@@ -393,9 +496,13 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
          << G(c.seconds_per_step / w.seconds_per_step) << " | " << G(w.iterations_per_step) << " | "
          << G(c.iterations_per_step) << " |\n";
     }
-    md << "\n## Time-stepper: work-precision\n\nRun time (set-up included, median of repeats) against the max-norm "
-          "error of x on the grid, against implicit Euler (lemke) at the smallest h / "
-       << G(st.reference_h_factor) << ", h halved " << "from the scene's own.\n\n";
+    md << "\n## Time-stepper: work-precision\n\nRun time (set-up included, median of repeats) against two errors, h "
+          "halved from the scene's own: the **trajectory error of x** (max over the grid of ‖x_k − x_ref(t_k)‖∞, "
+          "x_ref a finer reference run: implicit Euler with lemke at the smallest h / "
+       << G(st.reference_h_factor)
+       << "; mostly discretization error), and the **per-step forward error of s** (max of ‖s_k − s*_k‖∞ over "
+          "the steps the backend solved, s*_k the certified solution of step k's own one-step problem where it is "
+          "proven unique: the solver's error alone, in the units of the control; 0 = exact).\n\n";
     std::map<std::string, std::map<std::string, std::vector<const WorkPrecisionRecord*>>> by_scene;
     for (const auto& r : st.work_precision) {
       by_scene[r.scene][r.method == "explicit" ? std::string("explicit Euler") : "implicit, " + r.solver].push_back(&r);
@@ -403,30 +510,43 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
     for (const auto& [scene, lines] : by_scene) {
       md << "**" << scene << "**: ";
       for (const auto& [label, rs] : lines) {
-        md << label << ": error " << G(rs.front()->error) << " → " << G(rs.back()->error) << " in "
-           << Seconds(rs.front()->seconds) << " → " << Seconds(rs.back()->seconds) << "; ";
+        md << label << ": x error " << G(rs.front()->error) << " → " << G(rs.back()->error) << " in "
+           << Seconds(rs.front()->seconds) << " → " << Seconds(rs.back()->seconds);
+        double worst_s = kNaN;
+        std::int64_t certified = 0, steps = 0;
+        for (const auto* r : rs) {
+          worst_s = MaxDefined(worst_s, r->s_forward_error);
+          certified += r->s_certified_steps;
+          steps += r->steps;
+        }
+        if (certified > 0) {
+          md << ", s per-step error ≤ " << G(worst_s) << " (" << certified << "/" << steps << " steps)";
+        }
+        md << "; ";
       }
       md << "\n\n";
       if (plots) {
-        DataFile data("wp-" + Safe(scene));
-        std::ofstream out(data.path);
-        std::ostringstream g;
-        const std::string png = "work-precision-" + Safe(scene) + ".png";
-        g << GnuplotPngPreamble(900, 600, (fs::path(dir) / png).string())
-          << "set logscale xy\nset grid\nset key top right\nset xlabel 'max error of x'\nset ylabel 'run time [s]'\n"
-          << "set title " << GnuplotQuote("Work-precision, " + scene) << "\nplot ";
-        int index = 0;
+        std::map<std::string, std::vector<std::pair<double, double>>> by_x, by_s;
         for (const auto& [label, rs] : lines) {
-          for (const auto* r : rs) out << std::max(r->error, 1e-17) << ' ' << r->seconds << '\n';
-          out << "\n\n";
-          g << (index ? ", " : "") << GnuplotQuote(data.path.string()) << " index " << index
-            << " using 1:2 with linespoints pt 7 lw 2 title " << GnuplotQuote(label);
-          ++index;
+          for (const auto* r : rs) {
+            by_x[label].emplace_back(std::max(r->error, 1e-17), r->seconds);
+            // A certified exact answer has error 0: drawn at 1e-17, the bottom of the axis.
+            if (!std::isnan(r->s_forward_error)) {
+              by_s[label].emplace_back(std::max(r->s_forward_error, 1e-17), r->seconds);
+            }
+          }
         }
-        out.close();
-        g << "\n";
-        RunGnuplot(g.str(), (fs::path(dir) / png).string(), "report");
+        const std::string png = "work-precision-" + Safe(scene) + ".png";
+        PlotCurves(by_x, dir, png, "wp-" + Safe(scene), "trajectory error of x against a finer reference run (max)",
+                   "run time [s]", "Work-precision (trajectory error of x), " + scene, /*sort_by_x=*/false);
         md << "![work-precision, " << scene << "](" << png << ")\n\n";
+        if (!by_s.empty()) {
+          const std::string png_s = "work-precision-s-" + Safe(scene) + ".png";
+          PlotCurves(by_s, dir, png_s, "wps-" + Safe(scene),
+                     "per-step forward error of s against certified solutions (max; 1e-17 = exact)", "run time [s]",
+                     "Work-precision (per-step forward error of s), " + scene, /*sort_by_x=*/false);
+          md << "![work-precision against the per-step error of s, " << scene << "](" << png_s << ")\n\n";
+        }
       }
     }
   }

@@ -1,7 +1,8 @@
 // `smcbench report DIR`: turns a bench run's results.json into DIR/report.md with PNG plots — per suite and
-// backend the success rate, shifted geometric mean time and worst residual, Dolan–Moré performance profiles,
-// time against achieved residual (tolerance sweep), the time-stepper's work-precision diagrams and warm/cold
-// table, and the scale family's growth exponent.
+// backend the verdict counts (wrong answers apart), success rate, shifted geometric mean time, worst residuals
+// (relative and row-equilibrated) and worst forward error, Dolan–Moré performance profiles, time against the
+// forward error and against the residual reached (tolerance sweep), the time-stepper's work-precision diagrams
+// and warm/cold table, and the scale family's growth exponent.
 #pragma once
 
 #include <string>
@@ -13,10 +14,17 @@ namespace smcbench {
 
 struct BackendSummary {
   std::string solver;
-  int problems = 0, solved = 0, correctly_refused = 0, failed = 0, wrongly_claimed = 0;
+  int problems = 0, solved = 0, correctly_refused = 0, failed = 0;
+  int wrongly_claimed = 0, inaccurate = 0, wrongly_refused = 0;  // the wrong answers (IsWrong)
   double success_rate = 0.0;     // (solved + correctly refused) / problems
   double shifted_geomean = 0.0;  // seconds; see SummarizeSuite
-  double worst_residual = 0.0;   // max relative residual over the solved records
+  // Over the records with verdict solved: max relative residual, max row-equilibrated residual, and max forward
+  // error ‖z − z*‖∞ over those whose problem has a unique reference (NaN when none has).
+  double worst_residual = 0.0;
+  double worst_residual_scaled = 0.0;
+  double worst_forward_error = kNaN;
+  int forward_error_defined = 0;  // solved records with a forward error
+  int wrong() const { return wrongly_claimed + inaccurate + wrongly_refused; }
 };
 
 // Shifted geometric mean of the per-problem median times, shift 1e-6 s, a problem the backend does not get right
@@ -29,6 +37,9 @@ std::vector<std::pair<std::string, std::vector<double>>> PerformanceRatios(const
 
 // Least-squares slope of log(time) against log(size) over the solved records of one backend (NaN if < 2 sizes).
 double GrowthExponent(const SuiteResults& suite, const std::string& solver);
+
+// The verdict in two sentences a user can check by hand (the report's text and `smcbench bench --help`).
+extern const char* const kVerdictInTwoSentences;
 
 // Writes dir/report.md (and PNGs when plots is true and gnuplot is on PATH). Returns the markdown.
 // InvalidInputError if results are missing or gnuplot is required but absent.

@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
@@ -39,15 +41,81 @@ TEST(Cli, SolveJsonHasTheStableKeys) {
   ASSERT_TRUE(j.is_array());
   ASSERT_EQ(j.size(), SolverNames().size());  // every registered backend (5 + the siconos-* when built)
   for (const auto& row : j) {
-    for (const char* key : {"solver", "status", "iterations", "residual_abs", "residual_rel", "time_ns_median", "z"}) {
+    for (const char* key : {"solver", "status", "iterations", "residual_abs", "residual_rel", "residual_scaled",
+                            "time_ns_median", "z"}) {
       EXPECT_TRUE(row.contains(key)) << key;
     }
+    EXPECT_FALSE(row.contains("forward_error")) << "only with --reference";
     EXPECT_EQ(row["z"].size(), 2u);
     if (row["status"] == "solved") {
       EXPECT_LE(row["residual_rel"].get<double>(), 1e-10);
+      EXPECT_LE(row["residual_scaled"].get<double>(), 1e-10);  // solved needs both
     }
   }
   EXPECT_EQ(j[0]["status"], "solved") << j[0].dump();  // Lemke solves this relay problem
+}
+
+// lcp_trivial: M = diag(1, …, 9), q = −1, so z*_i = 1/i (every row free), the only solution (M is a P-matrix).
+TEST(Cli, SolveReferenceGivesEachBackendsForwardErrorAgainstTheCertifiedSolution) {
+  const CliRun r = RunSmcbench({"solve", kPeer + "/lcp/lcp_trivial.dat", "--solver", "lemke", "psor", "newton",
+                                "--json", "--reference"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.is_object());
+  const auto& reference = j["reference"];
+  EXPECT_EQ(reference["certificate"], "unique");
+  ASSERT_EQ(reference["z"].size(), 9u);
+  for (int i = 0; i < 9; ++i) EXPECT_DOUBLE_EQ(reference["z"][i].get<double>(), 1.0 / (i + 1)) << i;
+  EXPECT_DOUBLE_EQ(reference["condition"].get<double>(), 1.0);  // (D⁻¹M)_FF = I
+  ASSERT_EQ(j["results"].size(), 3u);
+  for (const auto& row : j["results"]) {
+    ASSERT_EQ(row["z"].size(), 9u) << row.dump();
+    double error = 0.0;
+    for (int i = 0; i < 9; ++i) error = std::max(error, std::abs(row["z"][i].get<double>() - 1.0 / (i + 1)));
+    EXPECT_DOUBLE_EQ(row["forward_error"].get<double>(), error) << row["solver"];
+    EXPECT_DOUBLE_EQ(row["forward_error_rel"].get<double>(), error) << "‖z*‖∞ = 1";
+    // 10 · max(1, μ) · tol · (1 + ‖z*‖∞) with μ = 1, tol = 1e-10.
+    EXPECT_DOUBLE_EQ(row["forward_allowance"].get<double>(), 2e-9);
+    EXPECT_TRUE(row.contains("residual_scaled"));
+    EXPECT_EQ(row["verdict"], "solved") << row.dump();
+  }
+
+  // The same as text: the certificate on one line, each backend's forward error on its line.
+  const CliRun text = RunSmcbench({"solve", kPeer + "/lcp/lcp_trivial.dat", "--solver", "lemke", "--reference"});
+  ASSERT_EQ(text.code, 0) << text.err;
+  EXPECT_THAT(text.out, HasSubstr("reference: certificate unique"));
+  EXPECT_THAT(text.out, HasSubstr("fwd err 0.00e+00"));
+}
+
+// M = [[1, 1], [1, 1]], q = (−1, −1): every z ≥ 0 with z₁ + z₂ = 1 solves it, so no forward error is defined.
+TEST(Cli, SolveReferenceOnANonUniqueProblemDefinesNoForwardError) {
+  const std::string path = testing::TempDir() + "/lcp_nonunique.dat";
+  std::ofstream(path) << "2\n0\n2\n2\n2\t2\n1 1\n1 1\n-1 -1\n";
+  const CliRun r = RunSmcbench({"solve", path, "--solver", "lemke", "--json", "--reference"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  EXPECT_EQ(j["reference"]["certificate"], "non-unique") << j.dump();
+  const auto& row = j["results"][0];
+  EXPECT_EQ(row["status"], "solved");
+  EXPECT_TRUE(row["forward_error"].is_null()) << row.dump();
+  EXPECT_EQ(row["verdict"], "solved");
+}
+
+// --no-polish reaches SolverOptions::polish: psor stopped after 2 sweeps on lcp_mmc is polished by default (detail
+// "polished"), and returned raw with the flag.
+TEST(Cli, NoPolishReturnsTheRawAlgorithmsAnswer) {
+  const std::vector<std::string> base = {"solve", kPeer + "/lcp/lcp_mmc.dat", "--solver", "psor", "--max-iter", "2",
+                                         "--json"};
+  const CliRun polished = RunSmcbench(base);
+  std::vector<std::string> args = base;
+  args.push_back("--no-polish");
+  const CliRun raw = RunSmcbench(args);
+  ASSERT_EQ(polished.code, 0) << polished.err;
+  ASSERT_EQ(raw.code, 0) << raw.err;
+  const auto p = nlohmann::json::parse(polished.out)[0], q = nlohmann::json::parse(raw.out)[0];
+  EXPECT_EQ(p["details"].value("polished", 0.0), 1.0) << p.dump();
+  EXPECT_FALSE(q["details"].contains("polished")) << q.dump();
+  EXPECT_GE(q["residual_scaled"].get<double>(), p["residual_scaled"].get<double>());
 }
 
 TEST(Cli, SolveTextHasOneLinePerBackend) {

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "problems/io/siconos_format.h"
+#include "solvers/reference/certify.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_command.h"
 #include "tools/smcbench/library_command.h"
@@ -33,6 +34,7 @@ struct SolveSettings {
   double time_limit = 30.0;
   int repeat = 1;
   std::vector<std::string> sets;  // "backend.option=value"
+  bool no_polish = false;         // SolverOptions::polish = false
 };
 
 // CLI11's PositiveNumber prints its range with DBL_MAX in full (300 digits): a short message instead.
@@ -56,12 +58,15 @@ CLI::Validator PositiveNumber() {
 
 void AddSolveFlags(CLI::App* app, SolveSettings* s) {
   app->add_option("--solver", s->solvers, "backend name(s) from `smcbench list`, or all")->expected(1, -1);
-  app->add_option("--tol", s->tolerance, "tolerance on the relative natural residual")->check(PositiveNumber());
+  app->add_option("--tol", s->tolerance, "tolerance on the relative and the row-equilibrated natural residual")
+      ->check(PositiveNumber());
   app->add_option("--max-iter", s->max_iterations, "iteration/pivot budget (0: backend default)");
   app->add_option("--time-limit", s->time_limit, "seconds per solve")->check(PositiveNumber());
   app->add_option("--repeat", s->repeat, "cold solves per backend; the median time is reported")
       ->check(CLI::Range(1, 1000000));
   app->add_option("--set", s->sets, "typed backend option, e.g. --set psor.omega=1.2 (see `smcbench list`)");
+  app->add_flag("--no-polish", s->no_polish, "no exact polish of the backends' answers (SolverOptions::polish = "
+                                             "false): time a raw algorithm");
 }
 
 std::vector<std::string> ResolveSolverNames(const std::vector<std::string>& requested) {
@@ -105,6 +110,7 @@ SolverOptions MakeOptions(const SolveSettings& s) {
   options.tolerance = s.tolerance;
   options.max_iterations = s.max_iterations;
   options.time_limit_seconds = s.time_limit;
+  options.polish = !s.no_polish;
   return options;
 }
 
@@ -124,21 +130,52 @@ int RunList(std::ostream& out) {
   return 0;
 }
 
-int RunSolve(const std::string& path, const SolveSettings& s, bool json, std::ostream& out) {
+// `solve FILE`: every chosen backend on one file; with reference, the problem is also certified
+// (solvers/reference/certify.h) from every backend's answer and the cold point Π(0), and each answer judged against
+// z* (forward error, verdict with an unknown expected outcome).
+int RunSolve(const std::string& path, const SolveSettings& s, bool json, bool reference, std::ostream& out) {
   const BoxMLCP problem = ReadSiconosFile(path);
   auto solvers = MakeSolvers(s);
   const SolverOptions options = MakeOptions(s);
-  nlohmann::json array = nlohmann::json::array();
-  if (!json) out << problem.name() << " (n = " << problem.size() << ")\n";
-  for (auto& solver : solvers) {
-    const SolveRecord record = TimedSolve(*solver, problem, options, s.repeat);
-    if (json) {
-      array.push_back(RecordToJson(record));
-    } else {
-      out << "  " << FormatRecordLine(record) << "\n";
+  std::vector<SolveRecord> records;
+  for (auto& solver : solvers) records.push_back(TimedSolve(*solver, problem, options, s.repeat));
+
+  ReferenceSolution certified;
+  if (reference) {
+    std::vector<Vector> candidates;
+    for (const SolveRecord& r : records) {
+      if (r.result.z.size() == problem.size()) candidates.push_back(r.result.z);
+    }
+    Vector cold;
+    ProjectZeroOntoBox(problem.l(), problem.u(), &cold);
+    candidates.push_back(cold);
+    certified = Certify(problem, candidates);
+    for (SolveRecord& r : records) {
+      r.has_judgement = true;
+      r.judgement =
+          Judge(problem, ExpectedOutcome::kUnknown, &certified, r.result.status, r.result.z, options.tolerance);
     }
   }
-  if (json) out << array.dump(2) << "\n";
+
+  if (json) {
+    nlohmann::json array = nlohmann::json::array();
+    for (const SolveRecord& r : records) array.push_back(RecordToJson(r));
+    if (reference) {
+      out << nlohmann::json{{"reference", ReferenceToJson(certified)}, {"results", std::move(array)}}.dump(2) << "\n";
+    } else {
+      out << array.dump(2) << "\n";
+    }
+    return 0;
+  }
+  out << problem.name() << " (n = " << problem.size() << ")\n";
+  if (reference) {
+    char line[160];
+    std::snprintf(line, sizeof line, "reference: certificate %s, condition %.3g, |z*|inf %.3g",
+                  std::string(ToString(certified.certificate)).c_str(), certified.condition,
+                  certified.z.size() ? certified.z.cwiseAbs().maxCoeff() : 0.0);
+    out << line << (certified.unique() ? "" : " (forward error not defined: z* not proven unique)") << "\n";
+  }
+  for (const SolveRecord& r : records) out << "  " << FormatRecordLine(r) << "\n";
   return 0;
 }
 
@@ -317,11 +354,15 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
   auto* solve = app.add_subcommand("solve", "solve one Siconos LCP/Relay/MLCP file with one or all backends");
   std::string solve_file;
-  bool solve_json = false;
+  bool solve_json = false, solve_reference = false;
   SolveSettings solve_settings;
   solve->add_option("FILE", solve_file, "problem file (Siconos LCP, Relay or MLCP format)")->required();
   AddSolveFlags(solve, &solve_settings);
-  solve->add_flag("--json", solve_json, "print one JSON array, one object per backend");
+  solve->add_flag("--json", solve_json, "print one JSON array, one object per backend (with --reference: one "
+                                        "object {reference, results})");
+  solve->add_flag("--reference", solve_reference, "certify the problem in extended precision (dense, n <= 64) "
+                                                  "and judge every answer by its forward error |z - z*|inf "
+                                                  "(keys forward_error, forward_error_rel, verdict)");
 
   auto* collection = app.add_subcommand("collection", "solve every file of a Siconos collection with every backend");
   std::string collection_dir, markdown_path, json_path;
@@ -375,7 +416,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   for (int i = 1; i < argc; ++i) command_line += std::string(" ") + argv[i];
   try {
     if (list->parsed()) return RunList(out);
-    if (solve->parsed()) return RunSolve(solve_file, solve_settings, solve_json, out);
+    if (solve->parsed()) return RunSolve(solve_file, solve_settings, solve_json, solve_reference, out);
     if (collection->parsed()) {
       return RunCollection(collection_dir, collection_settings, markdown_path, json_path, command_line, out, err);
     }

@@ -45,10 +45,20 @@ std::string FormatRecordLine(const SolveRecord& record) {
     return buffer;
   }
   const SolveResult& r = record.result;
-  std::snprintf(buffer, sizeof buffer, "%-8s %-18s iters %-7d res %.2e abs / %.2e rel   %s", record.solver.c_str(),
-                std::string(ToString(r.status)).c_str(), r.iterations, r.residual_abs, r.residual_rel,
-                FormatDuration(record.time_ns_median).c_str());
+  std::snprintf(buffer, sizeof buffer, "%-8s %-18s iters %-7d res %.2e abs / %.2e rel / %.2e eq   %s",
+                record.solver.c_str(), std::string(ToString(r.status)).c_str(), r.iterations, r.residual_abs,
+                r.residual_rel, r.residual_scaled, FormatDuration(record.time_ns_median).c_str());
   std::string line = buffer;
+  if (record.has_judgement) {
+    const Judgement& j = record.judgement;
+    if (std::isnan(j.forward_error)) {
+      std::snprintf(buffer, sizeof buffer, "   fwd err n/a   %s", std::string(ToString(j.verdict)).c_str());
+    } else {
+      std::snprintf(buffer, sizeof buffer, "   fwd err %.2e (rel %.2e, allowed %.2e)   %s", j.forward_error,
+                    j.forward_error_rel, j.forward_allowance, std::string(ToString(j.verdict)).c_str());
+    }
+    line += buffer;
+  }
   if (!r.solved() && !r.message.empty()) line += "   (" + r.message + ")";
   return line;
 }
@@ -73,6 +83,13 @@ nlohmann::json RecordToJson(const SolveRecord& record) {
   j["iterations"] = r.iterations;
   j["residual_abs"] = Number(r.residual_abs);
   j["residual_rel"] = Number(r.residual_rel);
+  j["residual_scaled"] = Number(r.residual_scaled);
+  if (record.has_judgement) {
+    j["forward_error"] = Number(record.judgement.forward_error);
+    j["forward_error_rel"] = Number(record.judgement.forward_error_rel);
+    j["forward_allowance"] = Number(record.judgement.forward_allowance);
+    j["verdict"] = std::string(ToString(record.judgement.verdict));
+  }
   j["time_ns_median"] = record.time_ns_median;
   j["time_ns_min"] = record.time_ns_min;
   j["time_ns_max"] = record.time_ns_max;
@@ -83,6 +100,16 @@ nlohmann::json RecordToJson(const SolveRecord& record) {
   nlohmann::json details = nlohmann::json::object();
   for (int i = 0; i < r.num_details; ++i) details[r.details[i].name] = Number(r.details[i].value);
   j["details"] = std::move(details);
+  return j;
+}
+
+nlohmann::json ReferenceToJson(const ReferenceSolution& reference) {
+  nlohmann::json j;
+  j["certificate"] = std::string(ToString(reference.certificate));
+  j["condition"] = Number(reference.condition);
+  nlohmann::json z = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < reference.z.size(); ++i) z.push_back(Number(reference.z[i]));
+  j["z"] = std::move(z);
   return j;
 }
 
