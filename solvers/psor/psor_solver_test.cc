@@ -446,6 +446,7 @@ TEST(PsorSolver, IterationLimitReportsTheResidualReached) {
   const Planted p = SpdLcp(60, 21);
   SolverOptions o = Tight();
   o.max_iterations = 2;
+  o.polish = false;  // the raw sweeps (the polish would finish the job: Polish.AVerifiedAnswerOutranks...)
   const SolveResult r = PsorSolver().Solve(p.problem, o);
   EXPECT_EQ(r.status, SolveStatus::kIterationLimit);
   EXPECT_EQ(r.iterations, 2);
@@ -457,6 +458,7 @@ TEST(PsorSolver, TimeLimitStopsTheSweeps) {
   const Planted p = SpdLcp(60, 22);
   SolverOptions o = Tight();
   o.time_limit_seconds = 1e-12;
+  o.polish = false;  // the raw sweeps
   const SolveResult r = PsorSolver().Solve(p.problem, o);
   EXPECT_EQ(r.status, SolveStatus::kTimeLimit) << r.message;
   EXPECT_TRUE(Contains(r.message, "residual"));
