@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <type_traits>
 #include <utility>
 
@@ -180,11 +181,16 @@ class KernelImpl final : public LinearStepper::Kernel {
       P_.setZero(n, n);
       CP_.setZero(m, n);
     }
-    x_.resize(n), xn_.resize(n), g_prev_.resize(n), g_next_.resize(n), gbar_.resize(n);
+    x_.resize(n), xn_.resize(n), b_.resize(n), g_prev_.resize(n), g_next_.resize(n), gbar_.resize(n);
     s_.resize(m), q_.resize(m), y_.resize(m);
   }
 
   bool fixed_size() const override { return N != Eigen::Dynamic && M != Eigen::Dynamic; }
+
+  // K·u of StepperOptions::zero_rounding_residue: K = n + m + 1 terms per component (+ n with forcing), u = ε/2.
+  static double ResidueFactor(int n, int m, bool forced) {
+    return static_cast<double>(n + m + 1 + (forced ? n : 0)) * 0.5 * std::numeric_limits<double>::epsilon();
+  }
 
   void Run(const OneStepData& d, BoxMLCP* problem, const Vector& x0, std::int64_t num_steps, Solver* solver,
            const StepperOptions& options, Trajectory* out) override {
@@ -203,7 +209,7 @@ class KernelImpl final : public LinearStepper::Kernel {
     CMatMN C = C_, CR = CR_, CP = CP_;
     CVecN p = p_;
     CVecM D = D_, c0 = c0_;
-    WVecN x = x_, xn = xn_, g_prev = g_prev_, g_next = g_next_, gbar = gbar_;
+    WVecN x = x_, xn = xn_, b = b_, g_prev = g_prev_, g_next = g_next_, gbar = gbar_;
     WVecM s = s_, q = q_, y = y_;
 
     const bool implicit = d.sign == SignTreatment::kImplicit;
@@ -215,6 +221,9 @@ class KernelImpl final : public LinearStepper::Kernel {
     const double t0 = options.t0;
     const double theta = d.forcing_theta;
     const int m = M != Eigen::Dynamic ? M : d.m();  // a compile-time constant for the fixed kernels
+    const int n = N != Eigen::Dynamic ? N : d.n();
+    const bool zero_residue = implicit && options.zero_rounding_residue;
+    const double residue_factor = ResidueFactor(n, m, forced);
     StepObserver* const observer = options.observer;
 
     // The backend's options: copied once; per step only warm_start's values change (same size: no allocation).
@@ -284,8 +293,17 @@ class KernelImpl final : public LinearStepper::Kernel {
       xn = p;
       xn.noalias() += R * x;
       if (forced) xn.noalias() += P * gbar;
-      xn.noalias() -= S * s;
-      x = xn;
+      if (zero_residue) {
+        // a = xn, b = S s: a component within the rounding bound of a − b is 0 (StepperOptions).
+        b.noalias() = S * s;
+        for (int i = 0; i < n; ++i) {
+          const double v = xn[i] - b[i];
+          x[i] = std::abs(v) <= residue_factor * (std::abs(xn[i]) + std::abs(b[i])) ? 0.0 : v;
+        }
+      } else {
+        xn.noalias() -= S * s;
+        x = xn;
+      }
       // y_k feeds the explicit sign and the record; an unrecorded implicit run needs only y_final (below).
       if (need_y) {
         y = D;
@@ -322,7 +340,7 @@ class KernelImpl final : public LinearStepper::Kernel {
   MatMN C_, CR_, CP_;
   VecN p_;
   VecM D_, c0_;
-  VecN x_, xn_, g_prev_, g_next_, gbar_;
+  VecN x_, xn_, b_, g_prev_, g_next_, gbar_;
   VecM s_, q_, y_;
   SolverOptions solver_options_;
   SolveResult result_;
@@ -441,7 +459,19 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
     } else {
       for (int i = 0; i < m; ++i) s[i] = y[i] > 0.0 ? 1.0 : (y[i] < 0.0 ? -1.0 : 0.0);
     }
-    x = d.R * x + p - d.S * s;
+    if (implicit && options.zero_rounding_residue) {
+      // The same rule as the prefactored kernels (StepperOptions::zero_rounding_residue); p holds P ḡ here.
+      const Vector a = d.R * x + p;
+      const Vector b = d.S * s;
+      const double factor = static_cast<double>(n + m + 1 + (d.has_forcing() ? n : 0)) * 0.5 *
+                            std::numeric_limits<double>::epsilon();
+      for (int i = 0; i < n; ++i) {
+        const double v = a[i] - b[i];
+        x[i] = std::abs(v) <= factor * (std::abs(a[i]) + std::abs(b[i])) ? 0.0 : v;
+      }
+    } else {
+      x = d.R * x + p - d.S * s;
+    }
     y = d.C * x + d.D;
     ++k;
     if (options.record) record(k, t_next, iterations, residual, status);

@@ -57,6 +57,15 @@ struct StepperOptions {
   // state decaying to the origin underflows through the subnormal range, where arithmetic is 10–100× slower; this
   // changes results only below 2.2e-308. Off by default: plain IEEE arithmetic.
   bool flush_subnormals = false;
+  // Implicit steps: a component of x_{k+1} = a − b (a = R x_k + p_k, b = S s_{k+1}) with |x_{k+1,i}| ≤ K·u·(|a_i| +
+  // |b_i|) (u = ε/2, K = n + m + 1, plus n with forcing) is set to exactly 0: it lies within the rounding-error
+  // bound γ_K(|R||x_k| + |p_k| + |S||s_{k+1}|) of its own computation (Higham, Accuracy and Stability, §3.1), so
+  // its digits are rounding, not state. Why: on the sliding surface of S1 the exact step is x_{k+1} = x_k − h·(x_k/h)
+  // = 0, but with s = fl(x_k/h) rounded, fl(x_k − h·s) ≠ 0 for about 1 % of h, and the residue r only shrinks by
+  // ~2⁻⁵³ per step (r − h·fl(r/h) again), ~20 steps to underflow: Lemma (yahoo) would fail by rounding alone.
+  // Implicit steps only: s_{k+1} = Π(·) is continuous in x_k, so a zeroed residue moves the next s by residue/h;
+  // the explicit sgn(y_k) jumps at 0 and is left to plain arithmetic. false: the plain update.
+  bool zero_rounding_residue = true;
 
   // True if usable; otherwise *why names the field.
   bool IsValid(std::string* why) const;

@@ -115,4 +115,29 @@ SolutionErrors ComputeErrors(const Trajectory& trajectory, const ExactSolution& 
   return out;
 }
 
+ReferenceErrors CompareWithReference(const Trajectory& run, const Trajectory& reference) {
+  RequireRecorded(run, "CompareWithReference (run)");
+  RequireRecorded(reference, "CompareWithReference (reference)");
+  if (run.n != reference.n || run.m != reference.m || run.h != reference.h) {
+    throw InvalidInputError("CompareWithReference: the runs differ in n, m or h (n " + std::to_string(run.n) + "/" +
+                            std::to_string(reference.n) + ", m " + std::to_string(run.m) + "/" +
+                            std::to_string(reference.m) + ")");
+  }
+  // The reference is trusted up to its first failed step only (that step's s was not certified).
+  std::int64_t last = std::min(run.steps_taken, reference.steps_taken);
+  if (reference.first_failed_step >= 1) last = std::min(last, reference.first_failed_step - 1);
+  ReferenceErrors out;
+  out.steps_compared = std::max<std::int64_t>(last, 0);
+  const auto worst = [](double current, double difference) {
+    return std::isnan(difference) ? kInf : std::max(current, difference);
+  };
+  for (Eigen::Index k = 1; k <= static_cast<Eigen::Index>(last); ++k) {
+    for (int i = 0; i < run.m; ++i) {
+      out.s_error_max = worst(out.s_error_max, std::abs(run.s(i, k) - reference.s(i, k)));
+      out.y_error_max = worst(out.y_error_max, std::abs(run.y(i, k) - reference.y(i, k)));
+    }
+  }
+  return out;
+}
+
 }  // namespace smcbench

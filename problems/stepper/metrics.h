@@ -66,4 +66,18 @@ struct SolutionErrors {
 // Throws InvalidInputError if the trajectory was not recorded.
 SolutionErrors ComputeErrors(const Trajectory& trajectory, const ExactSolution& exact);
 
+// The error of a run in the units its users read (issue 12): s is the control, y = Cx + D the sliding variable.
+// Against a reference run of the same scene, h, method and x0 (`smcbench simulate` steps it with certified solves):
+//   s_error_max = max_k ‖s_k − s_ref,k‖∞,  y_error_max = max_k ‖y_k − y_ref,k‖∞,
+// over the steps k = 1..steps_compared both runs took without a failure of the reference (k = 0 is the shared
+// initial state). A NaN difference counts as +∞.
+struct ReferenceErrors {
+  double s_error_max = 0.0;
+  double y_error_max = 0.0;
+  std::int64_t steps_compared = 0;  // min(run.steps_taken, reference's last good step)
+};
+
+// Throws InvalidInputError if either trajectory was not recorded or their n, m or h differ.
+ReferenceErrors CompareWithReference(const Trajectory& run, const Trajectory& reference);
+
 }  // namespace smcbench

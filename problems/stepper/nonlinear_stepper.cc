@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -219,6 +220,7 @@ struct NonlinearStepper::Workspace {
   Vector x, xn, xa, r, v;       // n
   Vector s, sn, sa, y, b, q;    // m
   Vector l, u;                  // the relay box of the MLCP
+  std::optional<BoxMLCP> mlcp_storage;  // Algorithm 2's m×m box-MLCP, built at its first use
   Vector z, F;                  // n + m
   DenseMatrix Mx, G, V, H, W;
   SolverOptions solver_options;
@@ -339,9 +341,15 @@ void NonlinearStepper::Workspace::StepNewton(std::int64_t k, Solver* solver, boo
                   ": the MLCP data W, b are not finite";
         return finish(SolveStatus::kNumericalFailure);
       }
-      // BoxMLCP has no in-place update of M (only set_q), and M changes every Newton iteration: a fresh problem
-      // is built here, copying W, q and the bounds (4 small allocations per iteration). See the report.
-      const BoxMLCP mlcp(W, q, l, u);
+      // One problem for the whole run, M and q replaced in place: set_M takes its matrix by value, so the copy of
+      // W is the one allocation per Newton iteration here (M changes every iteration, and so does matrix_id).
+      if (!mlcp_storage) {
+        mlcp_storage.emplace(W, q, l, u);
+      } else {
+        mlcp_storage->set_M(W);
+        mlcp_storage->set_q(q);
+      }
+      const BoxMLCP& mlcp = *mlcp_storage;
       if (options.stepper.warm_start) solver_options.warm_start = sa;
       solver->Solve(mlcp, solver_options, &result);
       if (options.stepper.observer) options.stepper.observer->OnStep(k, it, mlcp, result);

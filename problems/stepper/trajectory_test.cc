@@ -166,5 +166,39 @@ TEST(ErrorNorms, SignSceneConverges) {
   }
 }
 
+TEST(ReferenceErrors, HandComputedMaxOverStepsAndComponents) {
+  // s differs by 0.25 at k = 1 and 0.5 at k = 2; y (= x) by 0.125 at k = 2; row 0 is never compared.
+  const Trajectory run = Handmade({9.0, 1.0, 0.125}, {7.0, 0.75, 0.5});
+  const Trajectory reference = Handmade({1.0, 1.0, 0.0}, {0.0, 1.0, 0.0});
+  const ReferenceErrors e = CompareWithReference(run, reference);
+  EXPECT_EQ(e.s_error_max, 0.5);
+  EXPECT_EQ(e.y_error_max, 0.125);
+  EXPECT_EQ(e.steps_compared, 2);
+  EXPECT_EQ(CompareWithReference(run, run).s_error_max, 0.0);
+}
+
+TEST(ReferenceErrors, StopsBeforeTheReferenceFailsAndTreatsNaNAsInfinite) {
+  const Trajectory run = Handmade({1.0, 0.5, 0.25, 0.0}, {0.0, 1.0, 1.0, 1.0});
+  Trajectory reference = Handmade({1.0, 0.5, 7.0, 7.0}, {0.0, 1.0, 9.0, 9.0});
+  reference.first_failed_step = 2;  // its s_2 was not certified: only k = 1 counts
+  ReferenceErrors e = CompareWithReference(run, reference);
+  EXPECT_EQ(e.steps_compared, 1);
+  EXPECT_EQ(e.s_error_max, 0.0);
+  EXPECT_EQ(e.y_error_max, 0.0);
+  // A shorter run: steps up to its end.
+  e = CompareWithReference(Handmade({1.0, 0.5}, {0.0, 1.0}), Handmade({1.0, 0.5, 0.25}, {0.0, 0.5, 1.0}));
+  EXPECT_EQ(e.steps_compared, 1);
+  EXPECT_EQ(e.s_error_max, 0.5);
+  e = CompareWithReference(Handmade({1.0, NAN}, {0.0, 1.0}), Handmade({1.0, 0.5}, {0.0, 1.0}));
+  EXPECT_EQ(e.y_error_max, kInf);
+  // Unrecorded or mismatched runs are errors that say so.
+  Trajectory unrecorded = run;
+  unrecorded.recorded = false;
+  EXPECT_THAT([&] { CompareWithReference(unrecorded, run); },
+              ::testing::ThrowsMessage<InvalidInputError>(HasSubstr("not recorded")));
+  EXPECT_THROW(CompareWithReference(run, Handmade({1.0, 0.5, 0.25, 0.0}, {0.0, 1.0, 1.0, 1.0}, 0.25)),
+               InvalidInputError);
+}
+
 }  // namespace
 }  // namespace smcbench

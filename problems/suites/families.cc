@@ -10,6 +10,7 @@
 #include <cmath>
 #include <limits>
 #include <memory>
+#include <utility>
 #include <vector>
 
 #include "problems/library/matrix_tags.h"
@@ -24,7 +25,7 @@ using suites_detail::MakeProblem;
 using suites_detail::PlantedRow;
 using suites_detail::PlantRow;
 using suites_detail::Random;
-using suites_detail::RowState;
+using suites_detail::PlantedState;
 using suites_detail::StepText;
 
 constexpr int kMaxDenseFamilySize = 4096;  // dense constructions cost O(m³) (PSD) or O(m²)
@@ -78,13 +79,13 @@ double LowerOf(BoundKind bounds) { return bounds == BoundKind::kRelay ? -1.0 : 0
 double UpperOf(BoundKind bounds) { return bounds == BoundKind::kRelay ? 1.0 : kInf; }
 
 // A row state allowed by [l, u], with equal odds among the allowed ones.
-RowState DrawState(double l, double u, Random& rng) {
+PlantedState DrawState(double l, double u, Random& rng) {
   const bool has_l = l > -kInf;
   const bool has_u = u < kInf;
   const int states = 1 + (has_l ? 1 : 0) + (has_u ? 1 : 0);
   int s = rng.Index(states);  // 0 inside, then lower (if any), then upper (if any)
   if (s == 1 && !has_l) s = 2;
-  return s == 0 ? RowState::kInside : (s == 1 ? RowState::kAtLower : RowState::kAtUpper);
+  return s == 0 ? PlantedState::kInside : (s == 1 ? PlantedState::kAtLower : PlantedState::kAtUpper);
 }
 
 }  // namespace
@@ -168,15 +169,15 @@ LibraryProblem PsdSingularProblem(BoundKind bounds, int m, std::uint64_t seed) {
   const double l = LowerOf(bounds);
   const double u = UpperOf(bounds);
 
-  std::vector<RowState> state(static_cast<std::size_t>(m));
+  std::vector<PlantedState> state(static_cast<std::size_t>(m));
   int inside = 0;
-  for (RowState& s : state) {
+  for (PlantedState& s : state) {
     s = DrawState(l, u, rng);
-    if (s == RowState::kInside) ++inside;
+    if (s == PlantedState::kInside) ++inside;
   }
   for (int i = 0; i < m && inside < 2; ++i) {
-    if (state[static_cast<std::size_t>(i)] != RowState::kInside) {
-      state[static_cast<std::size_t>(i)] = RowState::kInside;
+    if (state[static_cast<std::size_t>(i)] != PlantedState::kInside) {
+      state[static_cast<std::size_t>(i)] = PlantedState::kInside;
       ++inside;
     }
   }
@@ -190,7 +191,7 @@ LibraryProblem PsdSingularProblem(BoundKind bounds, int m, std::uint64_t seed) {
   while (!(norm2 > 0.1)) {  // a direction with real weight (redrawn in the unlikely case it is tiny)
     norm2 = 0.0;
     for (int i = 0; i < m; ++i) {
-      if (state[static_cast<std::size_t>(i)] != RowState::kInside) continue;
+      if (state[static_cast<std::size_t>(i)] != PlantedState::kInside) continue;
       d[i] = rng.Uniform(-1.0, 1.0);
       norm2 += d[i] * d[i];
     }
@@ -464,18 +465,18 @@ LibraryProblem SceneStepProblem(std::string_view scene_name, double h, std::uint
 
   // At least one row at a bound (q = O(1)); with m ≥ 2 at least one row strictly inside (q_i = O(h)).
   Random rng(seed);
-  std::vector<RowState> state(static_cast<std::size_t>(m));
-  for (RowState& s : state) s = DrawState(-1.0, 1.0, rng);
+  std::vector<PlantedState> state(static_cast<std::size_t>(m));
+  for (PlantedState& s : state) s = DrawState(-1.0, 1.0, rng);
   const auto count = [&](bool inside) {
     int c = 0;
-    for (RowState s : state) c += ((s == RowState::kInside) == inside) ? 1 : 0;
+    for (PlantedState s : state) c += ((s == PlantedState::kInside) == inside) ? 1 : 0;
     return c;
   };
   if (count(false) == 0) {
-    state[static_cast<std::size_t>(rng.Index(m))] = rng.Coin() ? RowState::kAtUpper : RowState::kAtLower;
+    state[static_cast<std::size_t>(rng.Index(m))] = rng.Coin() ? PlantedState::kAtUpper : PlantedState::kAtLower;
   }
   if (m >= 2 && count(true) == 0) {
-    state[static_cast<std::size_t>(rng.Index(m))] = RowState::kInside;  // m ≥ 2 rows at bounds: one stays
+    state[static_cast<std::size_t>(rng.Index(m))] = PlantedState::kInside;  // m ≥ 2 rows at bounds: one stays
   }
   Vector z(m), w(m);
   for (int i = 0; i < m; ++i) {
@@ -497,6 +498,149 @@ LibraryProblem SceneStepProblem(std::string_view scene_name, double h, std::uint
   p.metadata["theta"] = NumberText(settings.theta);
   p.metadata["method"] = "implicit";
   p.metadata["one_step_matrix"] = "W = hC(I - h theta E)^-1 B";
+  return p;
+}
+
+// --- The small-h family. ----------------------------------------------------------------------------------------
+std::vector<double> SmallHSteps() { return {1e-2, 1e-4, 1e-6, 1e-8, 1e-10}; }
+
+namespace {
+
+// The planted relay solution of the small-h family: row states drawn with equal odds, then at least one row at a
+// bound and (m ≥ 2) at least one strictly inside; a bound row's slack is h·U(0.1, 1.1), signed by its bound.
+void PlantSmallH(int m, double h, Random& rng, Vector* z, Vector* w) {
+  std::vector<PlantedState> state(static_cast<std::size_t>(m));
+  for (PlantedState& s : state) s = DrawState(-1.0, 1.0, rng);
+  int inside = 0;
+  for (PlantedState s : state) inside += s == PlantedState::kInside ? 1 : 0;
+  if (inside == m) {
+    state[static_cast<std::size_t>(rng.Index(m))] = rng.Coin() ? PlantedState::kAtUpper : PlantedState::kAtLower;
+  }
+  if (m >= 2 && inside == 0) state[static_cast<std::size_t>(rng.Index(m))] = PlantedState::kInside;
+  z->resize(m);
+  w->resize(m);
+  for (int i = 0; i < m; ++i) {
+    const PlantedRow row = PlantRow(-1.0, 1.0, state[static_cast<std::size_t>(i)], rng);
+    (*z)[i] = row.z;
+    (*w)[i] = h * row.w;  // 0 inside; ±U(0.1, 1.1) at a bound, scaled to O(h)
+  }
+}
+
+LibraryProblem SmallHProblem(std::string id, const std::string& kind, DenseMatrix W, double h, Random& rng,
+                             const MatrixTags* proved_tags) {
+  const int m = static_cast<int>(W.rows());
+  Vector z, w;
+  PlantSmallH(m, h, rng, &z, &w);
+  Vector q = DeriveQ(W, z, w);
+  BoxMLCP problem = BoxMLCP::Relay(std::move(W), std::move(q));
+  const MatrixTags tags = proved_tags ? *proved_tags : ClassifyMatrix(problem);
+  LibraryProblem p =
+      MakeProblem(std::move(id), "generated:small-h", std::move(problem), tags, ExpectedOutcome::kSolvable);
+  p.tags = {"small-h", kind, "relay"};
+  p.solution = std::move(z);
+  p.metadata["family"] = "small-h";
+  p.metadata["h"] = NumberText(h);
+  p.metadata["slack"] = "w*_i = +-h c_i, c_i in [0.1, 1.1], on the rows at a bound; 0 inside";
+  return p;
+}
+
+}  // namespace
+
+LibraryProblem SmallHSceneProblem(std::string_view scene_name, double h, std::uint64_t seed) {
+  const std::string owner = "SmallHSceneProblem('" + std::string(scene_name) + "')";
+  if (!(h > 0.0 && std::isfinite(h))) Fail(owner, "h = " + NumberText(h) + " must be positive and finite");
+  const std::unique_ptr<Scene> scene = LoadScene(scene_name);
+  const auto* linear = dynamic_cast<const LinearScene*>(scene.get());
+  if (linear == nullptr) Fail(owner, "not a linear scene (its one-step problem is not a fixed box-MLCP)");
+  if (linear->info().m < 2) Fail(owner, "m = " + std::to_string(linear->info().m) + ": the family takes m >= 2");
+  SimulationSettings settings = linear->defaults();
+  settings.method = Method::kImplicit;
+  settings.h = h;
+  DenseMatrix W = linear->Discretization(settings).OneStepMatrix();
+  Random rng(seed);
+  const std::string name(scene_name);
+  const std::string id = Id(kFamiliesSuite, "small-h", name + "/h" + StepText(h) + "/s" + std::to_string(seed));
+  LibraryProblem p = SmallHProblem(id, name, std::move(W), h, rng, nullptr);
+  p.seed = seed;
+  p.metadata["scene"] = name;
+  p.metadata["theta"] = NumberText(settings.theta);
+  p.metadata["one_step_matrix"] = "W = hC(I - h theta E)^-1 B";
+  return p;
+}
+
+// G = P(I + K)Pᵀ, P = QΛ^½, K skew, ‖K‖₂ ≤ ‖K‖_F = 1. Why each claim holds:
+//   P-matrix: xᵀGx = (Pᵀx)ᵀ(I + K)(Pᵀx) = ‖Pᵀx‖² > 0 for x ≠ 0 (xᵀKx = 0), so the symmetric part QΛQᵀ is PD;
+//     every principal submatrix inherits it, so every principal minor is positive. h > 0 keeps all of this.
+//   ‖G‖₂ ≤ ‖P‖₂²‖I + K‖₂ ≤ 1·√2 (I + K is normal with singular values √(1 + μ²), μ ≤ ‖K‖₂ ≤ 1), and ‖G‖₂ ≥ 1
+//     (uᵀGu = λ_max for the top eigenvector u of QΛQᵀ).
+//   ‖G⁻¹‖₂ ≤ ‖P⁻¹‖₂²‖(I + K)⁻¹‖₂ ≤ c·1, and ‖G⁻¹‖₂ ≥ vᵀG⁻¹v = (1/λ_min) e_kᵀ(I + K)⁻¹e_k ≥ c/2 for v = Qe_k the
+//     bottom eigenvector (the symmetric part of (I + K)⁻¹ is (I + KᵀK)⁻¹ ≥ I/2). Hence κ₂(G) ∈ [c/2, √2·c].
+// Explicit loops in a fixed order: the same bits on every machine.
+LibraryProblem SmallHPMatrixProblem(int m, int log10_condition, double h, std::uint64_t seed) {
+  const char* owner = "SmallHPMatrixProblem";
+  CheckSize(owner, m, 2, 64);
+  if (log10_condition < 0 || log10_condition > 12) {
+    Fail(owner, "log10_condition = " + std::to_string(log10_condition) + " must lie in [0, 12]");
+  }
+  if (!(h > 0.0 && std::isfinite(h))) Fail(owner, "h = " + NumberText(h) + " must be positive and finite");
+  Random rng(seed);
+  // Q = H1 H2 H3 (Householder reflections I − 2vvᵀ/vᵀv), applied to I from the right.
+  DenseMatrix Q = DenseMatrix::Identity(m, m);
+  for (int r = 0; r < 3; ++r) {
+    Vector v(m);
+    double vv = 0.0;
+    for (int i = 0; i < m; ++i) {
+      v[i] = rng.Uniform(-1.0, 1.0);
+      vv += v[i] * v[i];
+    }
+    for (int i = 0; i < m; ++i) {
+      double t = 0.0;
+      for (int j = 0; j < m; ++j) t += Q(i, j) * v[j];
+      for (int j = 0; j < m; ++j) Q(i, j) -= (2.0 / vv) * t * v[j];
+    }
+  }
+  DenseMatrix P(m, m);
+  for (int k = 0; k < m; ++k) {
+    const double lambda = std::pow(10.0, -static_cast<double>(log10_condition) * k / (m - 1));
+    for (int i = 0; i < m; ++i) P(i, k) = Q(i, k) * std::sqrt(lambda);
+  }
+  DenseMatrix A = DenseMatrix::Identity(m, m);  // I + K
+  double frobenius = 0.0;
+  for (int i = 0; i < m; ++i) {
+    for (int j = i + 1; j < m; ++j) {
+      A(i, j) = rng.Uniform(-1.0, 1.0);
+      frobenius += 2.0 * A(i, j) * A(i, j);
+    }
+  }
+  frobenius = std::sqrt(frobenius);
+  for (int i = 0; i < m; ++i) {
+    for (int j = i + 1; j < m; ++j) {
+      A(i, j) /= frobenius;
+      A(j, i) = -A(i, j);
+    }
+  }
+  DenseMatrix PA(m, m), W(m, m);
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < m; ++j) {
+      double t = 0.0;
+      for (int k = 0; k < m; ++k) t += P(i, k) * A(k, j);
+      PA(i, j) = t;
+    }
+  }
+  for (int i = 0; i < m; ++i) {
+    for (int j = 0; j < m; ++j) {
+      double g = 0.0;  // G_ij = Σ_k (PA)_ik P_jk
+      for (int k = 0; k < m; ++k) g += PA(i, k) * P(j, k);
+      W(i, j) = h * g;
+    }
+  }
+  const MatrixTags proved{Tristate::kNo, Tristate::kYes, Tristate::kYes};
+  const std::string family = "pmatrix-m" + std::to_string(m) + "-cond1e" + std::to_string(log10_condition);
+  const std::string id = Id(kFamiliesSuite, "small-h", family + "/h" + StepText(h) + "/s" + std::to_string(seed));
+  LibraryProblem p = SmallHProblem(id, "pmatrix", std::move(W), h, rng, &proved);
+  p.seed = seed;
+  p.metadata["one_step_matrix"] = "W = h G, G = P (I + K) P^T, P = Q Lambda^(1/2), K skew, |K|_F = 1";
+  p.metadata["condition"] = "kappa_2(G) in [c/2, sqrt(2) c], c = 1e" + std::to_string(log10_condition);
   return p;
 }
 
@@ -527,6 +671,7 @@ LibraryProblem MurtyProblem(int n) {
   p.solution = std::move(z);
   p.metadata["family"] = "murty";
   p.metadata["reference"] = "Murty 1978; Murty 1988 ch. 6: (q^(n), M~(n)), 2^n complementary pivots";
+  // Raw Lemke with covering vector e on these rows (not our lemke, which works on the row-equilibrated problem).
   p.metadata["lemke_pivots_expected"] = NumberText(two_n);
   return p;
 }
@@ -579,7 +724,8 @@ LibraryProblem CoupledSlidingModeProblem(int m, std::uint64_t seed, double h, st
   Vector z(m), w(m);
   for (int k = 0; k < m; ++k) {
     const int pick = rng.Index(4);
-    const RowState s = pick < 2 ? RowState::kInside : (pick == 2 ? RowState::kAtLower : RowState::kAtUpper);
+    const PlantedState s =
+        pick < 2 ? PlantedState::kInside : (pick == 2 ? PlantedState::kAtLower : PlantedState::kAtUpper);
     const PlantedRow row = PlantRow(-1.0, 1.0, s, rng);
     z[k] = row.z;
     w[k] = row.w;
@@ -630,7 +776,8 @@ ProblemSet FamiliesSuite(const FamiliesOptions& options) {
   set.name = std::string(kFamiliesSuite);
   set.description =
       "generated families with planted solutions: SPD, P-matrix, diagonally dominant, PSD singular, "
-      "non-P (several / no solutions), scene one-step matrices over h, Murty, coupled sliding modes";
+      "non-P (several / no solutions), scene one-step matrices over h, small h (W = h G, h down to 1e-10), Murty, "
+      "coupled sliding modes";
   auto& out = set.problems;
   const auto fits = [&](int m) { return m <= options.max_size; };
   const auto seeds = [&](auto&& add) {
@@ -659,6 +806,23 @@ ProblemSet FamiliesSuite(const FamiliesOptions& options) {
     for (const char* scene : {"galias-yu-2007", "multi-surface", "filippov", "observer", "parasitic"}) {
       for (double h : HSweepSteps()) out.push_back(SceneStepProblem(scene, h, 1));
     }
+  }
+  // Small h: the paper's linear scenes with m ≥ 2, then P-matrices of growing condition (and size), each at every
+  // h of SmallHSteps, one seed (the family varies h and the condition, not the draw).
+  if (options.scenes) {
+    for (std::string_view scene : SceneNames()) {
+      const std::unique_ptr<Scene> loaded = LoadScene(scene);
+      if (dynamic_cast<const LinearScene*>(loaded.get()) == nullptr || loaded->info().m < 2 ||
+          !fits(loaded->info().m)) {
+        continue;
+      }
+      for (double h : SmallHSteps()) out.push_back(SmallHSceneProblem(scene, h, 1));
+    }
+  }
+  for (const auto& [m, log10_condition] : {std::pair{2, 1}, std::pair{3, 2}, std::pair{4, 3}, std::pair{6, 4},
+                                           std::pair{8, 6}}) {
+    if (!fits(m)) continue;
+    for (double h : SmallHSteps()) out.push_back(SmallHPMatrixProblem(m, log10_condition, h, 1));
   }
   for (int n = 4; n <= 16 && fits(n); ++n) out.push_back(MurtyProblem(n));
   for (int m : {16, 64}) {

@@ -50,9 +50,30 @@ LibraryProblem SceneStepProblem(std::string_view scene, double h, std::uint64_t 
 // h = 1e-1, 1e-2, ..., 1e-8: one problem per decade.
 std::vector<double> HSweepSteps();
 
+// --- The small-h family: W = h·G as h → 0 (issue 12). -----------------------------------------------------------
+// Relay bounds [−1, 1]. Planted s*: at least one row strictly inside (w*_i = 0) and at least one at a bound (m ≥ 2),
+// the slack of a bound row correctly signed and of order h, w*_i = ±h·c_i with c_i ∈ [0.1, 1.1] (w* > 0 at −1,
+// w* < 0 at +1), q = w* − W s*. Every datum is then O(h): the problem is h times a fixed unit problem, on which a
+// residual test not scaled by h accepts an error of order tol/h in s. Expected solvable, solution s*, tags
+// "small-h", "relay" and the kind below; metadata family, h.
+// (a) G = W/h with W = hC(I − hθE)⁻¹B the one-step matrix (eq:TDS3/TDS4) of a linear scene with m ≥ 2 (ZOH scenes:
+//     the implicit θ-method on their closed loop), matrix tags computed from W (ClassifyMatrix). Id
+//     "families/small-h/<scene>/h<h>/s<seed>". Throws InvalidInputError for m < 2 or a scene that is not linear.
+LibraryProblem SmallHSceneProblem(std::string_view scene, double h, std::uint64_t seed);
+// (b) G = P(I + K)Pᵀ, P = QΛ^½: Q orthogonal (three Householder reflections of random vectors), Λ = diag(λ_k) with
+//     λ_k = 10^(−log10_condition·k/(m−1)) log-spaced in [10^−log10_condition, 1], K skew with ‖K‖_F = 1. The
+//     symmetric part of G is QΛQᵀ, positive definite: G (and every positive multiple h·G) is a P-matrix, proved
+//     (tags: not symmetric, PD, P). κ₂(G) ∈ [c/2, √2·c], c = 10^log10_condition (families.cc). The same seed gives
+//     the same G and s* for every h. Id "families/small-h/pmatrix-m<m>-cond1e<k>/h<h>/s<seed>". m in [2, 64].
+LibraryProblem SmallHPMatrixProblem(int m, int log10_condition, double h, std::uint64_t seed);
+// h = 1e-2, 1e-4, 1e-6, 1e-8, 1e-10.
+std::vector<double> SmallHSteps();
+
 // --- Murty's exponential family for Lemke's method (Murty 1978; Murty 1988, ch. 6). ----------------------------
 // M̃(n) lower triangular with 1 on the diagonal and 2 below it, q̂(n)_i = −(2ⁿ + 2ⁿ⁻¹ + ... + 2ⁿ⁻ⁱ⁺¹): Lemke's
-// complementary pivot method with covering vector e takes 2ⁿ pivots. Unique solution z* = 2ⁿ e₁ (exact in double).
+// complementary pivot method with covering vector e takes 2ⁿ pivots on the problem as written (Siconos' Lemke does).
+// Our backends receive the row-equilibrated problem (solvers/core), for Lemke the covering vector (1, 2, …, 2) in
+// these units: our lemke takes 2 pivots (suites_test). Unique solution z* = 2ⁿ e₁ (exact in double).
 // n in [2, 40]. Id "families/murty/n<n>", tag "murty". Not random: no seed.
 LibraryProblem MurtyProblem(int n);
 
@@ -70,15 +91,16 @@ LibraryProblem CoupledSlidingModeProblem(int m, std::uint64_t seed, double h = 1
 struct FamiliesOptions {
   int seeds = 2;       // seeds 1..seeds for each random (family, bounds, size)
   int max_size = 64;   // problems larger than this are left out
-  bool scenes = true;  // include the h-sweep (reads the scene files of problems/scenes)
+  bool scenes = true;  // include the h-sweep and small-h scene problems (read the scene files of problems/scenes)
   // True if usable; otherwise *why names the field.
   bool IsValid(std::string* why) const;
 };
 
-// The "families" suite at small sizes (m ≤ 64 by default, ~120 problems): SPD, P-matrix and diagonally dominant
+// The "families" suite at small sizes (m ≤ 64 by default, ~160 problems): SPD, P-matrix and diagonally dominant
 // (m = 8, 64; LCP, relay, mixed bounds), PSD singular, non-P with several solutions, non-P infeasible
-// (m = 8, 32), the h-sweep of five paper scenes (h = 1e-1 … 1e-8), Murty n = 4 … 16, coupled sliding-mode
-// subsystems (m = 16, 64). Throws InvalidInputError on invalid options.
+// (m = 8, 32), the h-sweep of five paper scenes (h = 1e-1 … 1e-8), the small-h family (the m ≥ 2 paper scenes and
+// five P-matrices of condition 1e1 … 1e6, m = 2 … 8, each at h = 1e-2 … 1e-10: 40 problems), Murty n = 4 … 16,
+// coupled sliding-mode subsystems (m = 16, 64). Throws InvalidInputError on invalid options.
 ProblemSet FamiliesSuite(const FamiliesOptions& options = {});
 
 struct ScaleOptions {

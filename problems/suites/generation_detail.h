@@ -25,7 +25,7 @@ inline std::string StepText(double h) {
 }
 
 // The state of a planted row: strictly inside its bounds with w = 0, at l with w > 0, at u with w < 0.
-enum class RowState { kInside, kAtLower, kAtUpper };
+enum class PlantedState { kInside, kAtLower, kAtUpper };
 
 struct PlantedRow {
   double z;
@@ -34,13 +34,13 @@ struct PlantedRow {
 
 // z*, w* of a row of bounds [l, u] in the given state (the bound must be finite for kAtLower / kAtUpper):
 // |w| ∈ [0.1, 1.1] at a bound; inside, z at least 10% of a finite box (or 0.1) away from each finite bound.
-inline PlantedRow PlantRow(double l, double u, RowState state, Random& rng) {
+inline PlantedRow PlantRow(double l, double u, PlantedState state, Random& rng) {
   switch (state) {
-    case RowState::kAtLower:
+    case PlantedState::kAtLower:
       return {l, rng.Uniform(0.1, 1.1)};
-    case RowState::kAtUpper:
+    case PlantedState::kAtUpper:
       return {u, -rng.Uniform(0.1, 1.1)};
-    case RowState::kInside:
+    case PlantedState::kInside:
       break;
   }
   const bool has_l = l > -kInf;

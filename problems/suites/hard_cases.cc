@@ -21,7 +21,7 @@ using suites_detail::MakeProblem;
 using suites_detail::PlantedRow;
 using suites_detail::PlantRow;
 using suites_detail::Random;
-using suites_detail::RowState;
+using suites_detail::PlantedState;
 using suites_detail::StepText;
 
 // Gives a problem its hard-suite identity: id "hard/<kind>/<name>", the kind as first tag, the reason.
@@ -29,7 +29,7 @@ LibraryProblem Hard(LibraryProblem p, const std::string& kind, const std::string
   if (p.id.rfind("hard/", 0) != 0) p.metadata["family_id"] = p.id;
   p.id = "hard/" + kind + "/" + name;
   p.problem.set_name(p.id);
-  p.tags.insert(p.tags.begin(), kind);
+  if (p.tags.empty() || p.tags.front() != kind) p.tags.insert(p.tags.begin(), kind);
   p.metadata["why"] = why;
   return p;
 }
@@ -79,9 +79,11 @@ LibraryProblem UpperMurtyAllOnes(int n) {
                   "Murty's matrix with q = -e: all n ratios of the first Lemke step tie");
 }
 
-// SPD with eigenvalues 10^(−12 k/(n−1)), k = 0..n−1 (condition number 1e12), eigenvectors from three Householder
-// reflections of random vectors; symmetrized after the product, so exactly symmetric. z* planted, q = w* − M z*.
-LibraryProblem NearSingular(bool relay, int n, std::uint64_t seed) {
+// SPD with eigenvalues 10^(−c k/(n−1)), k = 0..n−1 (condition number 10^c), eigenvectors from three Householder
+// reflections of random vectors; symmetrized after the product, so exactly symmetric. z* planted, q = w* − M z*
+// (z* solves the stored problem to rounding: its free rows may differ from the exact solution by ~10^c·ε, which the
+// certified reference, not z*, resolves).
+LibraryProblem NearSingular(bool relay, int n, std::uint64_t seed, int log10_condition = 12) {
   Random rng(seed);
   DenseMatrix Q = DenseMatrix::Identity(n, n);
   for (int r = 0; r < 3; ++r) {
@@ -91,7 +93,7 @@ LibraryProblem NearSingular(bool relay, int n, std::uint64_t seed) {
     Q -= (2.0 / vv) * (Q * v) * v.transpose();  // Q ← Q (I − 2vvᵀ/vᵀv)
   }
   Vector lambda(n);
-  for (int k = 0; k < n; ++k) lambda[k] = std::pow(10.0, -12.0 * k / (n - 1));
+  for (int k = 0; k < n; ++k) lambda[k] = std::pow(10.0, -static_cast<double>(log10_condition) * k / (n - 1));
   DenseMatrix M = Q * lambda.asDiagonal() * Q.transpose();
   M = (0.5 * (M + M.transpose())).eval();
   const double l = relay ? -1.0 : 0.0;
@@ -99,7 +101,8 @@ LibraryProblem NearSingular(bool relay, int n, std::uint64_t seed) {
   Vector z(n), w(n);
   for (int i = 0; i < n; ++i) {
     const int pick = rng.Index(relay ? 3 : 2);
-    const RowState s = pick == 0 ? RowState::kInside : (pick == 1 ? RowState::kAtLower : RowState::kAtUpper);
+    const PlantedState s =
+        pick == 0 ? PlantedState::kInside : (pick == 1 ? PlantedState::kAtLower : PlantedState::kAtUpper);
     const PlantedRow row = PlantRow(l, u, s, rng);
     z[i] = row.z;
     w[i] = row.w;
@@ -111,15 +114,69 @@ LibraryProblem NearSingular(bool relay, int n, std::uint64_t seed) {
     q[i] = w[i] - s;
   }
   BoxMLCP problem(std::move(M), std::move(q), Vector::Constant(n, l), Vector::Constant(n, u));
-  const MatrixTags tags = ClassifyMatrix(problem);  // symmetric, PD (λ_min = 1e-12 ≫ rounding 1e-15), P
+  const MatrixTags tags = ClassifyMatrix(problem);  // symmetric, PD (λ_min ≥ 1e-13 ≫ rounding 1e-15), P
   const std::string bounds = relay ? "relay" : "lcp";
-  LibraryProblem p = MakeProblem("hard/near-singular/spd-" + bounds + "-m" + std::to_string(n) + "-cond1e12",
-                                 "generated:near-singular", std::move(problem), tags, ExpectedOutcome::kSolvable);
+  const std::string condition = "1e" + std::to_string(log10_condition);
+  LibraryProblem p =
+      MakeProblem("hard/near-singular/spd-" + bounds + "-m" + std::to_string(n) + "-cond" + condition,
+                  "generated:near-singular", std::move(problem), tags, ExpectedOutcome::kSolvable);
   p.tags = {"near-singular", bounds};
   p.seed = seed;
   p.solution = std::move(z);
-  p.metadata["why"] = "SPD with condition number 1e12: Newton systems and pivots lose 12 digits";
-  p.metadata["condition_number"] = "1e12";
+  p.metadata["why"] = "SPD with condition number " + condition + ": Newton systems and pivots lose " +
+                      std::to_string(log10_condition) + " digits";
+  p.metadata["condition_number"] = condition;
+  return p;
+}
+
+// A 2×2 box problem with a nonsymmetric P-matrix M0 = [[4, −1], [2, 3]] (symmetric part [[4, ½], [½, 3]], PD) whose
+// rows are then scaled by 1e6 and 1e-5. z* = (0.25, 0.5): row 1 strictly inside [−1, 1] (w* = 0), row 2 at its upper
+// bound 0.5 of [−2, 0.5] with w* = −0.7 < 0; q0 = w* − M0 z*. A positive row scaling d leaves the solution set alone
+// (d_i w_i has the sign of w_i) and keeps every principal minor positive: P-matrix, unique solution z*. The scaled
+// matrix's symmetric part is indefinite (its determinant 4e6·3e-5 − (5e5)² < 0). Issue 12:
+// lemke, working on the unscaled rows, left its pivot path early (z0 negligible) at the wrong vertex.
+LibraryProblem RowScaledPMatrix() {
+  const double d[2] = {1e6, 1e-5};
+  const double M0[2][2] = {{4.0, -1.0}, {2.0, 3.0}};
+  const double z[2] = {0.25, 0.5};
+  const double w[2] = {0.0, -0.7};
+  DenseMatrix M(2, 2);
+  Vector q(2), solution(2), l(2), u(2);
+  for (int i = 0; i < 2; ++i) {
+    double Mz = 0.0;
+    for (int j = 0; j < 2; ++j) {
+      M(i, j) = d[i] * M0[i][j];
+      Mz += M0[i][j] * z[j];
+    }
+    q[i] = d[i] * (w[i] - Mz);
+    solution[i] = z[i];
+  }
+  l << -1.0, -2.0;
+  u << 1.0, 0.5;
+  LibraryProblem p = Handmade("row-scaling", "pmatrix-1e6-1e-5", BoxMLCP(std::move(M), std::move(q), l, u),
+                              {Tristate::kNo, Tristate::kNo, Tristate::kYes}, ExpectedOutcome::kSolvable,
+                              std::move(solution),
+                              "a 2x2 P-matrix box problem with rows scaled by 1e6 and 1e-5: lemke left the pivot path "
+                              "early at the wrong vertex");
+  p.tags.push_back("box");
+  p.metadata["row_scales"] = "1e6 1e-5";
+  return p;
+}
+
+// A P-matrix box-MLCP (families' nonsymmetric P-matrix, mixed bounds: free, LCP, upper-only and box rows) with M and
+// q scaled together by `factor`: (factor·M) z + factor·q = factor·(w − v) has the same solutions for factor > 0, and
+// factor·M is still a P-matrix. Issue 12: at 1e±150 backends reported different, wrong points as solved.
+LibraryProblem JointlyScaled(double factor, const std::string& name) {
+  LibraryProblem base = RandomFamilyProblem(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kMixed, 8, 1);
+  DenseMatrix M = factor * base.problem.dense_matrix();
+  Vector q = factor * base.problem.q();
+  LibraryProblem p = base;
+  p.problem = BoxMLCP(std::move(M), std::move(q), base.problem.l(), base.problem.u());
+  // The matrix tags of the construction hold for factor·M too (a positive factor changes no sign of a minor).
+  p = Hard(std::move(p), "joint-scaling", name,
+           "M and q scaled together by " + NumberText(factor) +
+               ": same solution; backends reported different, wrong points as solved");
+  p.metadata["scale_factor"] = NumberText(factor);
   return p;
 }
 
@@ -220,6 +277,32 @@ ProblemSet HardSuite(const std::string& siconos_dir) {
   // Near-singular.
   out.push_back(NearSingular(true, 12, 1));
   out.push_back(NearSingular(false, 12, 2));
+  {
+    LibraryProblem p = NearSingular(false, 3, 3, 13);
+    p.id = "hard/near-singular/spd-lcp-cond1e13";
+    p.problem.set_name(p.id);
+    p.metadata["why"] = "3x3 SPD LCP with condition 1e13: enum answered infeasible, but a P-matrix LCP always has a "
+                        "solution";
+    out.push_back(std::move(p));
+  }
+
+  // Small h: W = h G with every datum O(h) (families.h, small-h family).
+  out.push_back(Hard(SmallHPMatrixProblem(4, 2, 1e-8, 12), "small-h", "relay-h1e-8-m4",
+                     "W = 1e-8 G (G nonsymmetric PD, condition ~1e2): lemke and enum used to return a wrong active "
+                     "set and report solved"));
+
+  // Badly scaled: rows, and M with q together.
+  out.push_back(RowScaledPMatrix());
+  out.push_back(JointlyScaled(1e-150, "x1e-150"));
+  out.push_back(JointlyScaled(1e150, "x1e150"));
+
+  // A free row with M = [0], q = [0]: every z solves it.
+  out.push_back(Handmade("free-row", "zero",
+                         BoxMLCP(DenseMatrix::Zero(1, 1), Vector::Zero(1), Vector::Constant(1, -kInf),
+                                 Vector::Constant(1, kInf)),
+                         {Tristate::kYes, Tristate::kNo, Tristate::kNo}, ExpectedOutcome::kSolvable, Vector::Zero(1),
+                         "M = [0], q = [0], l = -inf, u = inf: every z solves it; Siconos' mlcp-enum said infeasible"));
+  out.back().tags.push_back("non-unique");
 
   // h → 0 scaling.
   for (const char* scene : {"multi-surface", "filippov", "observer"}) {

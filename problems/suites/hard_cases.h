@@ -12,7 +12,11 @@ namespace smcbench {
 // The hard cases, ids "hard/<kind>/<name>", tags {<kind>, ...}, metadata["why"] a one-line reason. Kinds:
 //   degenerate     z* at a bound with w* = 0 on some or all rows (wrapped generator, and q = 0);
 //   cycling        degenerate first ratio tests where Lemke without a lexicographic rule can cycle;
-//   near-singular  SPD with condition number 1e12 (relay and LCP);
+//   near-singular  SPD with condition number 1e12 (relay and LCP), and a 3×3 SPD LCP with condition 1e13;
+//   small-h        W = h·G at h = 1e-8 with every datum O(h) (the small-h family of families.h);
+//   row-scaling    a 2×2 P-matrix box problem with rows scaled by 1e6 and 1e-5;
+//   joint-scaling  a P-matrix problem with M and q scaled together by 1e-150 and 1e150;
+//   free-row       M = [0], q = [0] on a free row (every z solves it);
 //   h-to-zero      scene one-step matrices W = hC(I − hE)⁻¹B at h = 1e-6 … 1e-8;
 //   non-unique     PSD singular (a segment of solutions);
 //   infeasible     certificate rows (expected infeasible: every non-solved status is the right answer);

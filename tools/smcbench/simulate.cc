@@ -20,6 +20,7 @@
 #include "problems/scenes/nonlinear_scene.h"
 #include "problems/scenes/registry.h"
 #include "solvers/core/number_text.h"
+#include "solvers/reference/certify.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {
@@ -120,8 +121,58 @@ bool IsImplicit(Method m) { return m == Method::kImplicit || m == Method::kZoh; 
 // ------------------------------------------------------------------------------------------------------------
 // Summary
 
+ReferenceComparison CompareWithReferenceRun(const Scene& scene, const SimulationSettings& settings,
+                                            const Trajectory& run) {
+  ReferenceComparison out;
+  constexpr int kMaxReferenceSize = 64;  // ReferenceSolver: dense problems up to 64 rows
+  if (!IsImplicit(settings.method)) {
+    out.skipped = "method " + std::string(ToString(settings.method)) +
+                  " solves no one-step problem: there is nothing to certify";
+  } else if (!run.recorded) {
+    out.skipped = "the run was not recorded";
+  } else if (run.num_steps > kMaxReferenceSteps) {
+    out.skipped = std::to_string(run.num_steps) + " steps > " + std::to_string(kMaxReferenceSteps) +
+                  ": the reference run (certified solves) is made only up to that many steps";
+  } else if (run.m > kMaxReferenceSize) {
+    out.skipped = "m = " + std::to_string(run.m) + " > " + std::to_string(kMaxReferenceSize) +
+                  ": the reference backend certifies dense problems up to that size";
+  }
+  if (!out.skipped.empty()) return out;
+
+  SimulationSettings reference_settings = settings;
+  reference_settings.stepper.record = true;
+  reference_settings.stepper.observer = nullptr;  // never into the run's --record file
+  reference_settings.stepper.on_failure = FailurePolicy::kStop;
+  // The certified z* is the answer whatever the tolerance; 1e-10 (the default) only decides "solved", and the
+  // polish, which would trade z* for the double-precision solve of the same active set, is off.
+  reference_settings.stepper.solver = SolverOptions{};
+  reference_settings.stepper.solver.polish = false;
+  reference_settings.algorithm = NonlinearAlgorithm::kNewtonMlcp;
+  ReferenceSolver reference;
+  Trajectory ref;
+  const auto start = std::chrono::steady_clock::now();
+  scene.Run(reference_settings, &reference, &ref);
+  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  out.ran = true;
+  out.steps = ref.steps_taken;
+  out.completed = ref.ok();
+  if (ref.first_failed_step >= 0) {
+    out.first_failure = "step " + std::to_string(ref.first_failed_step) + ": " +
+                        std::string(ToString(ref.first_failure_status)) +
+                        (ref.first_failure_message.empty() ? "" : ": " + ref.first_failure_message);
+  }
+  const ReferenceErrors errors = CompareWithReference(run, ref);
+  if (errors.steps_compared == 0 && run.steps_taken > 0) {
+    out.skipped = "the reference run failed at step 1 (" + out.first_failure + ")";
+  } else {
+    out.errors = errors;
+  }
+  return out;
+}
+
 json SimulationSummary(const Scene& scene, const SimulationSettings& settings, std::string_view solver,
-                       const Trajectory& tr, double reach_tol, double wall_seconds) {
+                       const Trajectory& tr, double reach_tol, double wall_seconds,
+                       const ReferenceComparison* reference) {
   json j;
   j["scene"] = scene.info().name;
   j["source"] = scene.info().source;
@@ -196,6 +247,28 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
   j["sign_changes_total"] = changes_total;
   j["total_variation_total"] = tv_total;
   j["surfaces"] = surfaces;
+
+  // The error in s and y against the certified reference run (keys always present; null when there is none).
+  if (reference != nullptr && reference->errors) {
+    j["s_error_max"] = reference->errors->s_error_max;
+    j["y_error_max"] = reference->errors->y_error_max;
+    j["reference_skipped"] = nullptr;
+  } else {
+    j["s_error_max"] = nullptr;
+    j["y_error_max"] = nullptr;
+    j["reference_skipped"] = reference == nullptr ? std::string("not computed") : reference->skipped;
+  }
+  if (reference != nullptr && reference->ran) {
+    j["reference"] = {{"solver", "reference"},
+                      {"steps", reference->steps},
+                      {"steps_compared", reference->errors ? reference->errors->steps_compared : 0},
+                      {"completed", reference->completed},
+                      {"first_failure",
+                       reference->first_failure.empty() ? json(nullptr) : json(reference->first_failure)},
+                      {"wall_seconds", reference->wall_seconds}};
+  } else {
+    j["reference"] = nullptr;
+  }
 
   // Errors against the exact solution, for scenes that have one.
   try {
@@ -309,7 +382,7 @@ struct SimulateCommand::Flags {
   std::string scene, method, x0, solver, out, summary, plot, on_failure = "stop", algorithm, record;
   double h = 0.0, T = 0.0, theta = 0.0, gamma = 0.0, tol = 1e-10, reach_tol = 0.0, newton_tol = 0.0;
   int max_iter = 0, newton_max_iter = 0;
-  bool no_warm_start = false, flush_subnormals = false;
+  bool no_warm_start = false, flush_subnormals = false, no_polish = false;
   std::vector<std::string> params, sets;
   CLI::Option *method_opt = nullptr, *h_opt = nullptr, *T_opt = nullptr, *theta_opt = nullptr,
               *gamma_opt = nullptr, *x0_opt = nullptr, *reach_opt = nullptr, *solver_opt = nullptr,
@@ -347,13 +420,17 @@ SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>
   command_->add_option("--set", f.sets, "typed backend option BACKEND.OPTION=VALUE (see `smcbench list`)");
   command_->add_option("--on-failure", f.on_failure, "stop | continue when a step's problem is not solved");
   command_->add_flag("--no-warm-start", f.no_warm_start, "cold-start every step instead of starting from s_k");
+  command_->add_flag("--no-polish", f.no_polish,
+                     "no exact polish of the backend's answers (SolverOptions::polish = false): the raw algorithm");
   command_->add_flag("--flush-subnormals", f.flush_subnormals,
                      "flush subnormal results to zero during the run (linear scenes; faster when the state decays "
                      "to the origin over many steps)");
   f.reach_opt = command_->add_option("--reach-tol", f.reach_tol,
                                      "|y| bound defining 'on the surface' for the reaching step (default 10*tol)");
   command_->add_option("--out", f.out, "write the trajectory CSV t,x1..xn,s1..sm,y1..ym,iterations,residual");
-  command_->add_option("--summary", f.summary, "write the JSON summary (steps, x_final, reaching_step, ...)");
+  command_->add_option("--summary", f.summary,
+                       "write the JSON summary (steps, x_final, reaching_step, s_error_max and y_error_max against a "
+                       "certified reference run, ...)");
   command_->add_option("--plot", f.plot, "write a PNG (gnuplot): x, s, y against t and the phase portrait");
   command_->add_option("--record", f.record,
                        "write every one-step box-MLCP of the run (M, q, l, u, the z used, scene, method, h, theta, "
@@ -416,6 +493,7 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
   s.stepper.solver.tolerance = f.tol;
   s.stepper.solver.max_iterations = f.max_iter;
   s.stepper.warm_start = !f.no_warm_start;
+  s.stepper.solver.polish = !f.no_polish;
   s.stepper.flush_subnormals = f.flush_subnormals;
   if (f.on_failure == "stop") {
     s.stepper.on_failure = FailurePolicy::kStop;
@@ -499,8 +577,12 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
   if (record_writer) record_writer->Close();
 
   if (!f.out.empty()) WriteTrajectoryCsvFile(tr, f.out);
+  // With --summary: the run's error in s and y against a certified reference run (a second run, made only up to
+  // kMaxReferenceSteps steps).
+  std::optional<ReferenceComparison> reference;
+  if (!f.summary.empty()) reference = CompareWithReferenceRun(*scene, s, tr);
   if (!f.summary.empty()) {
-    const json summary = SimulationSummary(*scene, s, solver_name, tr, reach_tol, wall);
+    const json summary = SimulationSummary(*scene, s, solver_name, tr, reach_tol, wall, &*reference);
     std::ofstream js(f.summary);
     js << summary.dump(2) << "\n";
     if (!js) fail("cannot write the summary '" + f.summary + "'");
@@ -546,6 +628,16 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
     const std::uint64_t matrices = record_writer->matrices_written();
     out << "  recorded " << record_writer->problems_written() << " one-step problem(s), " << matrices
         << " distinct matri" << (matrices == 1 ? "x" : "ces") << ", to " << f.record << "\n";
+  }
+  if (reference) {
+    if (reference->errors) {
+      out << "  against the certified reference run (" << FormatSeconds(reference->wall_seconds)
+          << "): max |s - s_ref| " << NumberText(reference->errors->s_error_max) << ", max |y - y_ref| "
+          << NumberText(reference->errors->y_error_max) << " over " << reference->errors->steps_compared
+          << " steps\n";
+    } else {
+      out << "  no reference run: " << reference->skipped << "\n";
+    }
   }
   if (tr.first_failed_step >= 0) {
     err << "warning: step " << tr.first_failed_step << ": " << ToString(tr.first_failure_status) << " (residual "

@@ -16,7 +16,9 @@
 #include <vector>
 
 #include "problems/library/problem_set_io.h"
+#include "problems/scenes/linear_scene.h"
 #include "problems/scenes/registry.h"
+#include "solvers/registry/registry.h"
 #include "tools/smcbench/cli_test_runner.h"
 #include "tools/smcbench/simulate.h"
 
@@ -93,14 +95,15 @@ TEST_F(Simulate, SignSceneWritesCsvAndSummary) {
   const auto j = ReadJson(summary);
   for (const char* key : {"steps", "x_final", "reaching_step", "max_abs_y_after_reaching", "sign_changes_after_reaching",
                           "total_variation_after_reaching", "max_residual", "errors", "scene", "method", "solver",
-                          "failed_steps", "surfaces"}) {
+                          "failed_steps", "surfaces", "s_error_max", "y_error_max", "reference_skipped",
+                          "reference"}) {
     EXPECT_TRUE(j.contains(key)) << key;
   }
   EXPECT_EQ(j["steps"], 200);
   ASSERT_EQ(j["x_final"].size(), 1u);
-  // Lemma (yahoo) gives x = 0 exactly when s = x_k/h is computed by one division; a pivoting backend's s carries
-  // rounding, leaving |x| at the 1e-19 level, which is still "on the surface".
-  EXPECT_LE(std::abs(j["x_final"][0].get<double>()), 1e-15);
+  // Lemma (yahoo): x = 0 exactly after the arrival, with the default backend (the base's exact polish gives
+  // s = fl(x_k/h), and the stepper zeroes the rounding residue of x_k − h·s).
+  EXPECT_EQ(j["x_final"][0].get<double>(), 0.0);
   const int k0 = 100;
   const auto reaching = j["reaching_step"].get<int>();
   EXPECT_TRUE(reaching == k0 + 1 || reaching == k0 + 2) << reaching;
@@ -113,6 +116,88 @@ TEST_F(Simulate, SignSceneWritesCsvAndSummary) {
   }
   EXPECT_LE(j["errors"]["x"]["max"].get<double>(), 0.011);
   EXPECT_LE(j["errors"]["s"]["l1"].get<double>(), 0.02);
+}
+
+// Lemma (yahoo) through the command line with issue 12's example (x0 = 1.7771, h = 0.021, T = 8), where x sat at
+// 1.7e-18 (lemke) and 1e-10 (newton) after the arrival: with every backend at its default settings x is exactly
+// 0 from k0+1 (or k0+2) to the end, k0 the first step with |x_k| ≤ h.
+TEST_F(Simulate, LemmaYahooIssueExampleIsExactlyZeroWithEveryBackend) {
+  for (const char* solver : {"", "lemke", "psor", "newton", "enum", "ipopt"}) {
+    SCOPED_TRACE(*solver ? solver : "default backend");
+    const std::string csv = Path("yahoo.csv");
+    std::vector<std::string> args{"simulate", "sign", "--x0", "1.7771", "--h", "0.021", "--T", "8", "--out", csv};
+    if (*solver) args.insert(args.end(), {"--solver", solver});
+    const CliRun r = RunSmcbench(args);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto lines = ReadLines(csv);
+    ASSERT_EQ(lines.size(), 1u + 382u);  // header + k = 0..381 (T/h = 380.95)
+    std::vector<double> x;
+    for (std::size_t k = 1; k < lines.size(); ++k) x.push_back(SplitNumbers(lines[k])[1]);
+    std::size_t k0 = 0;
+    while (std::abs(x[k0]) > 0.021) ++k0;
+    std::size_t arrival = k0 + 1;
+    while (arrival < x.size() && x[arrival] != 0.0) ++arrival;
+    EXPECT_TRUE(arrival == k0 + 1 || arrival == k0 + 2) << "arrival " << arrival << ", k0 " << k0;
+    for (std::size_t k = arrival; k < x.size(); ++k) ASSERT_EQ(x[k], 0.0) << "step " << k;
+  }
+}
+
+// Accuracy in the units users read (issue 12): s_error_max and y_error_max against a run stepped with certified
+// solves. enum solves each one-step problem exactly, so it matches the reference to rounding; PSOR without the
+// polish at tolerance 1e-4 stops early and its s and y are measurably off.
+TEST_F(Simulate, SummaryReportsTheErrorInSAndYAgainstACertifiedReferenceRun) {
+  for (const char* scene : {"sign", "multi-surface"}) {
+    SCOPED_TRACE(scene);
+    const std::string exact = Path("exact.json"), loose = Path("loose.json");
+    CliRun r = RunSmcbench({"simulate", scene, "--solver", "enum", "--summary", exact});
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_THAT(r.out, HasSubstr("against the certified reference run"));
+    const auto e = ReadJson(exact);
+    ASSERT_TRUE(e["s_error_max"].is_number()) << e["reference_skipped"];
+    EXPECT_LE(e["s_error_max"].get<double>(), 1e-12);
+    EXPECT_LE(e["y_error_max"].get<double>(), 1e-12);
+    EXPECT_TRUE(e["reference_skipped"].is_null());
+    EXPECT_EQ(e["reference"]["solver"], "reference");
+    EXPECT_EQ(e["reference"]["steps"], e["steps"]);
+    EXPECT_EQ(e["reference"]["steps_compared"], e["steps"]);
+    EXPECT_EQ(e["reference"]["completed"], true);
+    EXPECT_GE(e["reference"]["wall_seconds"].get<double>(), 0.0);
+
+    r = RunSmcbench({"simulate", scene, "--solver", "psor", "--no-polish", "--tol", "1e-4", "--summary", loose});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto l = ReadJson(loose);
+    ASSERT_TRUE(l["s_error_max"].is_number()) << l["reference_skipped"];
+    EXPECT_GT(l["s_error_max"].get<double>(), 0.0);
+    EXPECT_GT(l["y_error_max"].get<double>(), 0.0);
+    EXPECT_LE(l["s_error_max"].get<double>(), 1.0);  // still the same trajectory, roughly
+  }
+  // No one-step problem, no reference: the keys are null and say why.
+  const std::string ex = Path("explicit.json");
+  ASSERT_EQ(RunSmcbench({"simulate", "sign", "--method", "explicit", "--summary", ex}).code, 0);
+  const auto x = ReadJson(ex);
+  EXPECT_TRUE(x["s_error_max"].is_null());
+  EXPECT_TRUE(x["y_error_max"].is_null());
+  EXPECT_TRUE(x["reference"].is_null());
+  EXPECT_THAT(x["reference_skipped"].get<std::string>(), HasSubstr("solves no one-step problem"));
+}
+
+TEST_F(Simulate, ReferenceRunIsSkippedAboveAMillionSteps) {
+  const auto scene = LoadScene("sign");
+  SimulationSettings settings = scene->defaults();
+  Trajectory run;  // only its size matters: the limit is checked before anything runs
+  run.n = run.m = 1;
+  run.recorded = true;
+  run.num_steps = kMaxReferenceSteps + 1;
+  const ReferenceComparison c = CompareWithReferenceRun(*scene, settings, run);
+  EXPECT_FALSE(c.errors.has_value());
+  EXPECT_FALSE(c.ran);
+  EXPECT_THAT(c.skipped, HasSubstr("1000001 steps > 1000000"));
+  const auto enumerative = CreateSolver("enum");
+  LinearStepper stepper(dynamic_cast<const LinearScene&>(*scene).Discretization(settings));
+  const Trajectory three_steps = stepper.Run(settings.x0, 3, enumerative.get(), StepperOptions{});
+  const nlohmann::json j = SimulationSummary(*scene, settings, "enum", three_steps, 1e-9, 0.0, &c);
+  EXPECT_TRUE(j["s_error_max"].is_null());
+  EXPECT_THAT(j["reference_skipped"].get<std::string>(), HasSubstr("> 1000000"));
 }
 
 // S2 at h = 0.3: explicit Euler ends on a period-2 orbit around the sliding line; implicit Euler reaches it and
