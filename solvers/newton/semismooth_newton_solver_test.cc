@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "solvers/core/verdict.h"
+#include "tests/support/small_h_relay.h"
 #include "solvers/newton/fischer_burmeister.h"
 
 // Counts global operator new calls, to pin "repeated solves of the same size do not allocate".
@@ -648,59 +649,10 @@ TEST(NewtonSolverMcp, NanInFIsNumericalFailure) {
 }
 
 // ---- Small h (issue 12): relay W = h·G with a planted s* ------------------------------------------------------
-// G is a fixed nonsymmetric matrix, diagonally dominant by rows and by columns (so its symmetric part is positive
-// definite and G is a P-matrix and an H-matrix) with diagonal 1 … 300 (condition ≈ 300). s* has rows at ±1 and
-// interior rows; q = −W s* + w with the correctly signed slack w = ∓h·c on the bound rows (w ≤ 0 at +1, ≥ 0 at
-// −1), so s* is the unique solution for every h. The forward error allowed is verdict.h's, with μ computed here.
-DenseMatrix SmallHMatrixG(int n) {
-  std::mt19937_64 rng(1000 + n);
-  std::uniform_real_distribution<double> unit(-1.0, 1.0);
-  DenseMatrix G(n, n);
-  Vector d(n);
-  for (int i = 0; i < n; ++i) d[i] = std::pow(300.0, static_cast<double>(i) / (n - 1));
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) {
-      G(i, j) = i == j ? d[i] : 0.6 * unit(rng) * std::min(d[i], d[j]) / (n - 1);
-    }
-  }
-  return G;
-}
-
-struct SmallHRelay {
-  BoxMLCP problem;
-  ReferenceSolution reference;  // s*, unique, with μ = ‖(D_F⁻¹ W_FF)⁻¹‖∞
-};
-
-SmallHRelay MakeSmallHRelay(int n, double h) {
-  const DenseMatrix W = h * SmallHMatrixG(n);
-  Vector s(n), w(n);
-  for (int i = 0; i < n; ++i) {
-    const double c = 0.1 + 0.25 * (i % 4);
-    switch (i % 3) {
-      case 0: s[i] = 1.0, w[i] = -h * c; break;           // at the upper bound: w ≤ 0
-      case 1: s[i] = -1.0, w[i] = h * c; break;           // at the lower bound: w ≥ 0
-      default: s[i] = 0.7 - 0.2 * (i % 5), w[i] = 0.0;    // interior
-    }
-  }
-  const Vector q = w - W * s;
-  BoxMLCP problem = BoxMLCP::Relay(W, q, -1.0, 1.0, "small-h-relay-n" + std::to_string(n));
-  std::vector<int> free_rows;
-  for (int i = 0; i < n; ++i) {
-    if (w[i] == 0.0) free_rows.push_back(i);
-  }
-  const int nf = static_cast<int>(free_rows.size());
-  DenseMatrix block(nf, nf);
-  for (int a = 0; a < nf; ++a) {
-    for (int b = 0; b < nf; ++b) block(a, b) = W(free_rows[a], free_rows[b]) / problem.row_scale()[free_rows[a]];
-  }
-  ReferenceSolution reference;
-  reference.certificate = Certificate::kUnique;
-  reference.z = s;
-  reference.condition = nf == 0 ? 0.0 : DenseMatrix(block.inverse()).cwiseAbs().rowwise().sum().maxCoeff();
-  return {std::move(problem), std::move(reference)};
-}
-
-constexpr double kSmallHs[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10};
+// The fixture (G, s*, the reference with μ) is tests/support/small_h_relay.h.
+using test_support::kSmallHs;
+using test_support::MakeSmallHRelay;
+using test_support::SmallHRelay;
 
 TEST(NewtonSolver, SolvedWithWrongSAtSmallH) {
   // Issue 12: on relay problems W = h·G, the backend reported |s − s*|∞ between 1e-5 and 0.2 as "solved" at
