@@ -26,17 +26,22 @@ function(smcbench_library name)
   target_link_libraries(smcbench_${name} PUBLIC ${ARG_DEPS} PRIVATE smcbench_build_flags)
 endfunction()
 
-# smcbench_test(NAME SOURCES ... DEPS ... [LABELS ...]) → a GoogleTest binary registered with ctest.
+# smcbench_test(NAME SOURCES ... DEPS ... [LABELS ...] [ENVIRONMENT VAR=VALUE ...]) → a GoogleTest binary
+# registered with ctest.
 function(smcbench_test name)
   if(NOT SMCBENCH_BUILD_TESTS)
     return()
   endif()
-  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS" ${ARGN})
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;LABELS;ENVIRONMENT" ${ARGN})
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gmock GTest::gtest GTest::gtest_main smcbench_build_flags)
   target_compile_definitions(${name} PRIVATE
     SMCBENCH_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
     SMCBENCH_PEER_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/peer-data")
   include(GoogleTest)
-  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES LABELS "${ARG_LABELS}")
+  set(properties LABELS "${ARG_LABELS}")
+  if(ARG_ENVIRONMENT)
+    list(APPEND properties ENVIRONMENT "${ARG_ENVIRONMENT}")
+  endif()
+  gtest_discover_tests(${name} DISCOVERY_TIMEOUT 60 PROPERTIES ${properties})
 endfunction()
