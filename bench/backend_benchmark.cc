@@ -50,6 +50,39 @@ void SolveBenchmark(benchmark::State& state, std::string solver_name, GeneratorO
   state.counters["m"] = g.size;
 }
 
+// A prepared session (Solver::Prepare) solving the same problem again and again, the clock off (the benchmark
+// times the loop): "cold" = the backend's algorithm from Π(0) every call (reuse off), "warm" = the previous
+// answer's active set tried first (the default). What `smcbench solve --repeat N [--warm]` measures per call.
+void SessionBenchmark(benchmark::State& state, std::string solver_name, GeneratorOptions g, bool warm) {
+  const GeneratedProblem gen = GenerateProblem(g);
+  auto solver = CreateSolver(solver_name);
+  SolverOptions options;
+  options.tolerance = 1e-10;
+  options.measure_time = false;
+  SessionOptions session_options;
+  session_options.reuse_active_set = warm;
+  SolveSession session = solver->Prepare(gen.problem, options, session_options);
+  SolveResult result;
+  const Vector& q = gen.problem.q();
+  session.Solve(q, &result);
+  if (!result.solved()) {
+    state.SkipWithError((std::string(ToString(result.status)) + ": " + result.message).c_str());
+    return;
+  }
+  for (auto _ : state) {
+    session.Solve(q, &result);
+    benchmark::DoNotOptimize(result.z.data());
+    benchmark::ClobberMemory();
+  }
+  if (!result.solved()) {
+    state.SkipWithError((std::string(ToString(result.status)) + ": " + result.message).c_str());
+    return;
+  }
+  state.counters["reused"] = static_cast<double>(session.reused()) / static_cast<double>(session.calls());
+  state.counters["forward_error"] = (result.z - gen.z_star).cwiseAbs().maxCoeff();
+  state.counters["m"] = g.size;
+}
+
 void RegisterAll() {
   for (auto solver : SolverNames()) {
     for (MatrixFamily family : {MatrixFamily::kSymmetricPositiveDefinite, MatrixFamily::kNonsymmetricPMatrix}) {
@@ -66,6 +99,14 @@ void RegisterAll() {
           auto* b = benchmark::RegisterBenchmark(name.c_str(), SolveBenchmark, std::string(solver), g);
           b->Unit(benchmark::kNanosecond);
           if (m >= 256) b->Iterations(m >= 1024 ? 3 : 20);
+          if (m > 16 || solver == "ipopt") continue;
+          for (bool warm : {false, true}) {
+            const std::string session_name = "session/" + std::string(solver) + "/" + ToString(family) + "-" +
+                                             ToString(bounds) + "/" + std::to_string(m) + "/" +
+                                             (warm ? "warm" : "cold");
+            benchmark::RegisterBenchmark(session_name.c_str(), SessionBenchmark, std::string(solver), g, warm)
+                ->Unit(benchmark::kNanosecond);
+          }
         }
       }
     }

@@ -3,9 +3,10 @@
 // rebuilds the one-step problem at every step (SimulateRebuildingEachStep), plus the explicit scheme (no solve) as
 // the floor of the per-step bookkeeping. One benchmark iteration is one whole run of the scene (N steps); the
 // counter steps/s is the rate, s/step its inverse. A run whose steps are not all solved is reported as an error.
-// Long runs (`.../prefactored-long`, 1000× the scene's horizon, psor and enum) show the steady state once the state
-// has decayed to the origin, where IEEE arithmetic spends most of its time on subnormal numbers; `-long-flush` is the
-// same run with StepperOptions::flush_subnormals.
+// Long runs (1000× the scene's horizon, psor and enum) show the steady state once the state has decayed to the
+// origin, where plain IEEE arithmetic spends most of its time on subnormal numbers: `.../prefactored-long` runs
+// the default StepperOptions (SubnormalPolicy::kZeroState: a state component below 2.2e-308 becomes 0),
+// `-long-flush` SubnormalPolicy::kFlushToZero (x86 FTZ/DAZ) and `-long-ieee` SubnormalPolicy::kIeee.
 // After the run a table on stderr gives, per scene and backend, prefactored vs rebuild steps/s, their ratio and
 // the goal (≥ 20 M steps/s for S1–S8; the reference, Siconos 4.4, runs 140–200 k steps/s).
 #include <benchmark/benchmark.h>
@@ -14,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "problems/scenes/linear_scene.h"
@@ -143,10 +145,12 @@ void RegisterAll() {
       if (backend == "psor" || backend == "enum") {
         Case long_run = c;
         long_run.horizon_factor = 1000.0;
-        for (bool flush : {false, true}) {
-          long_run.settings.stepper.flush_subnormals = flush;
-          const std::string long_name = Name(std::string(name), backend, Path::kPrefactored) + "-long" +
-                                        (flush ? "-flush" : "");
+        const std::pair<SubnormalPolicy, const char*> policies[] = {{SubnormalPolicy::kZeroState, ""},
+                                                                   {SubnormalPolicy::kFlushToZero, "-flush"},
+                                                                   {SubnormalPolicy::kIeee, "-ieee"}};
+        for (const auto& [policy, suffix] : policies) {
+          long_run.settings.stepper.subnormals = policy;
+          const std::string long_name = Name(std::string(name), backend, Path::kPrefactored) + "-long" + suffix;
           benchmark::RegisterBenchmark(long_name.c_str(), StepperBenchmark, long_run, Path::kPrefactored)
               ->Unit(benchmark::kMillisecond);
         }

@@ -104,46 +104,42 @@ TEST_P(Conformance, SolvesGeneratedProblemsWithKnownSolution) {
   EXPECT_GT(checked, 0) << name << " solved nothing";
 }
 
-// Solver::SolveRepeated (the time-stepper's path) is Solve without the per-call re-checks: over a sequence of
-// one-step problems (q replaced in place, warm start = the previous answer) two instances of the backend, one
-// driven by each, must return the same bits: status, z, w, residuals, iterations, details.
-void SolveRepeatedBySize(Solver* solver, const BoxMLCP& p, const SolverOptions& o, SolveResult* r) {
-  switch (p.size()) {
-    case 1: return solver->SolveRepeated<1>(p, o, r);
-    case 2: return solver->SolveRepeated<2>(p, o, r);
-    case 3: return solver->SolveRepeated<3>(p, o, r);
-    default: return solver->SolveRepeated<4>(p, o, r);
-  }
-}
-
-TEST_P(Conformance, RepeatedSolvesGiveTheBitsOfSolve) {
+// A session without the warm active-set path (the time-stepper's path, the backend's own algorithm) is Solve
+// without the per-call re-checks: over a sequence of one-step problems (q replaced, warm start = the previous
+// answer) two instances of the backend, one driven by each, must return the same bits: status, z, w, residuals,
+// iterations, details (the session adds only "path").
+TEST_P(Conformance, SessionGivesTheBitsOfSolve) {
   const std::string name = GetParam();
   auto plain = CreateSolver(name);
-  auto repeated = CreateSolver(name);
+  auto prepared = CreateSolver(name);
   int compared = 0;
   for (BoundKind bounds : {BoundKind::kRelay, BoundKind::kLCP, BoundKind::kBox}) {
-    for (int n : {1, 2, 3, 4}) {
+    for (int n : {1, 2, 3, 4, 6}) {
       GeneratorOptions g;
       g.family = MatrixFamily::kSymmetricPositiveDefinite;
       g.bounds = bounds;
       g.size = n;
       g.seed = 7;
-      BoxMLCP p_plain = GenerateProblem(g).problem;
-      BoxMLCP p_repeated = p_plain;
-      const Vector q0 = p_plain.q();
-      SolverOptions o_plain, o_repeated;
-      o_plain.tolerance = o_repeated.tolerance = kTol;
-      ASSERT_TRUE(repeated->BeginRepeatedSolves(p_repeated, o_repeated)) << name << " on " << p_plain.name();
+      BoxMLCP p = GenerateProblem(g).problem;
+      const Vector q0 = p.q();
+      SolverOptions options;
+      options.tolerance = kTol;
+      SessionOptions no_reuse;
+      no_reuse.reuse_active_set = false;
+      SolveSession session = prepared->Prepare(p, options, no_reuse);
+      // A meta-backend's session calls its choice directly: compare with that backend's own Solve.
+      if (prepared->DelegateFor(p, options) != nullptr) plain = CreateSolver(session.backend().info().name);
       SolveResult a, b;
+      Vector warm_a, warm_b;
       for (int k = 0; k < 12; ++k) {
         // A slowly turning right side, as along a trajectory.
         Vector q = q0;
         for (int i = 0; i < n; ++i) q[i] *= std::cos(0.4 * k + i);
-        p_plain.set_q(q);
-        p_repeated.set_q(q);
-        plain->Solve(p_plain, o_plain, &a);
-        SolveRepeatedBySize(repeated.get(), p_repeated, o_repeated, &b);
-        const std::string where = name + " on " + p_plain.name() + ", step " + std::to_string(k);
+        p.set_q(q);
+        options.warm_start = warm_a;
+        plain->Solve(p, options, &a);
+        session.Solve(q, &b, &warm_b);
+        const std::string where = name + " on " + p.name() + ", step " + std::to_string(k);
         ASSERT_EQ(a.status, b.status) << where;
         EXPECT_EQ(a.message, b.message) << where;
         EXPECT_EQ(a.solver, b.solver) << where;
@@ -151,21 +147,66 @@ TEST_P(Conformance, RepeatedSolvesGiveTheBitsOfSolve) {
         EXPECT_EQ(a.w, b.w) << where;
         EXPECT_EQ(a.residual_abs, b.residual_abs) << where;
         EXPECT_EQ(a.residual_rel, b.residual_rel) << where;
+        EXPECT_EQ(a.residual_scaled, b.residual_scaled) << where;
         EXPECT_EQ(a.iterations, b.iterations) << where;
-        ASSERT_EQ(a.num_details, b.num_details) << where;
+        EXPECT_EQ(b.GetDetail("path"), static_cast<double>(SessionPath::kBackend)) << where;
+        ASSERT_EQ(a.num_details + 1, b.num_details) << where;
         for (int d = 0; d < a.num_details; ++d) {
           EXPECT_STREQ(a.details[d].name, b.details[d].name) << where;
           EXPECT_EQ(a.details[d].value, b.details[d].value) << where << " " << a.details[d].name;
         }
         if (a.solved()) {
-          o_plain.warm_start = a.z;
-          o_repeated.warm_start = b.z;  // same size: the values change, the options object stays
+          warm_a = a.z;
+          warm_b = b.z;
         }
         ++compared;
       }
     }
   }
-  EXPECT_EQ(compared, 3 * 4 * 12);
+  EXPECT_EQ(compared, 3 * 5 * 12);
+}
+
+// With the warm active-set path on (the default), every answer still satisfies the verdict and agrees with the
+// backend's own answer to rounding, and along a slowly moving q most calls are answered by the reused set.
+TEST_P(Conformance, SessionReusedActiveSetAgreesWithTheBackend) {
+  const std::string name = GetParam();
+  auto plain = CreateSolver(name);
+  auto prepared = CreateSolver(name);
+  int reused = 0, calls = 0;
+  for (BoundKind bounds : {BoundKind::kRelay, BoundKind::kLCP, BoundKind::kBox}) {
+    for (int n : {1, 2, 4, 8}) {
+      GeneratorOptions g;
+      g.family = MatrixFamily::kSymmetricPositiveDefinite;
+      g.bounds = bounds;
+      g.size = n;
+      g.seed = 11;
+      BoxMLCP p = GenerateProblem(g).problem;
+      const Vector q0 = p.q();
+      SolverOptions options;
+      options.tolerance = kTol;
+      SolveSession session = prepared->Prepare(p, options);
+      SolveResult a, b;
+      for (int k = 0; k < 40; ++k) {
+        Vector q = q0;
+        for (int i = 0; i < n; ++i) q[i] *= 1.0 + 0.3 * std::sin(0.05 * k + i);
+        p.set_q(q);
+        plain->Solve(p, options, &a);
+        session.Solve(q, &b);
+        const std::string where = name + " on " + p.name() + ", step " + std::to_string(k);
+        ++calls;
+        if (!a.solved()) continue;
+        ASSERT_TRUE(b.solved()) << where << ": " << b.message;
+        EXPECT_LE(b.residual_rel, kTol) << where;
+        EXPECT_LE(b.residual_scaled, kTol) << where;
+        EXPECT_LE((a.z - b.z).lpNorm<Eigen::Infinity>(), 1e-9 * (1.0 + a.z.lpNorm<Eigen::Infinity>())) << where;
+        if (b.GetDetail("path") == static_cast<double>(SessionPath::kReusedActiveSet)) {
+          EXPECT_EQ(b.iterations, 0) << where;
+          ++reused;
+        }
+      }
+    }
+  }
+  EXPECT_GT(reused, calls / 2) << name << ": the reused active set answered " << reused << " of " << calls;
 }
 
 // smcbench's own backends: external adapters (siconos-*) take only the shapes their library expresses and are
@@ -195,9 +236,9 @@ TEST(Registry, CreatesEveryListedBackendAndRejectsUnknownNames) {
   for (const auto& name : seen) {
     if (!IsExternalBackend(name)) own.insert(name);
   }
-  // The five benchmarked backends, and the certifier "reference" (solvers/reference) once it is registered.
+  // The five benchmarked backends, the `auto` meta-backend, and the certifier "reference" once it is registered.
   own.erase("reference");
-  EXPECT_EQ(own, (std::set<std::string>{"lemke", "psor", "newton", "enum", "ipopt"}));
+  EXPECT_EQ(own, (std::set<std::string>{"lemke", "psor", "newton", "enum", "ipopt", "auto"}));
   try {
     CreateSolver("simplex");
     FAIL() << "no error";

@@ -60,7 +60,9 @@ void Fill(const LibraryProblem& p, const SolveResult& result, double tolerance, 
 
 void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& options, const ReplayOptions& replay,
                 SolveResult* result, ReplayRecord* record) {
-  // Warm-up: sizes the workspace and tells how long one solve takes.
+  // Warm-up: sizes the workspace, tells how long one solve takes, and is a siconos-* backend's probe (its first
+  // solve of a problem runs in its isolation worker; the timed ones then run in process, unless the probe crashed
+  // or timed out, in which case every solve stays in the worker).
   const auto t0 = Clock::now();
   solver->Solve(problem, options, result);
   const double first = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -71,16 +73,21 @@ void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& opt
   }
   count = std::min<std::int64_t>(count, 1 << 20);
   std::vector<double> samples;
+  // Which path answered the timed solves (detail "in_process", NaN for our backends): one worker answer taints all.
+  const auto answered_in_worker = [&] { return result->GetDetail("in_process") == 0.0; };
+  record->timed_in_worker = false;
   const int wanted = std::max(1, replay.repetitions);
   // A solve that ran into the time limit is not repeated: its time is the limit, not a measurement.
   if (result->status == SolveStatus::kTimeLimit) {
     samples.push_back(first);
     count = 1;
+    record->timed_in_worker = answered_in_worker();
   }
   while (static_cast<int>(samples.size()) < wanted) {
     const auto s0 = Clock::now();
     for (std::int64_t i = 0; i < count; ++i) solver->Solve(problem, options, result);
     samples.push_back(std::chrono::duration<double>(Clock::now() - s0).count() / static_cast<double>(count));
+    record->timed_in_worker = record->timed_in_worker || answered_in_worker();
     if (std::chrono::duration<double>(Clock::now() - pair_start).count() > replay.max_seconds_per_pair) break;
   }
   record->samples = static_cast<int>(samples.size());

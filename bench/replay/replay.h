@@ -67,6 +67,11 @@ struct ReplayRecord {
   int samples = 0;
   std::int64_t solves_per_sample = 0;
   std::string mode = "cold";  // "cold", or "sweep" for tolerance-sweep records
+  // The timed solves went through an isolation worker, so the times include its inter-process round trip (≈ 7 µs):
+  // a siconos-* backend with isolate=always, or a problem whose probe crashed or ran out of time (it is never
+  // solved in process). False for every backend of ours, and for siconos-* ones by default: the untimed warm-up
+  // solve is the probe, the timed ones run in process (detail "in_process" of solvers/siconos/siconos_solver.h).
+  bool timed_in_worker = false;
 };
 
 struct ReplayResults {
@@ -80,7 +85,9 @@ struct ReplayResults {
 ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& options);
 
 // Times one solve configuration: repeated cold solves of problem with solver/options into *result, honouring
-// min_sample_seconds, repetitions and max_seconds (writes median/min/max/mad/samples/solves_per_sample).
+// min_sample_seconds, repetitions and max_seconds (writes median/min/max/mad/samples/solves_per_sample and
+// timed_in_worker). An untimed warm-up solve comes first: it sizes the workspace and, for a siconos-* backend, is
+// the probe in its isolation worker, after which the timed solves of that problem run in process.
 void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& options, const ReplayOptions& replay,
                 SolveResult* result, ReplayRecord* record);
 

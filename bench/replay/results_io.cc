@@ -89,7 +89,8 @@ json RecordJson(const ReplayRecord& r) {
           {"time_mad", r.time_mad},
           {"samples", r.samples},
           {"solves_per_sample", r.solves_per_sample},
-          {"mode", r.mode}};
+          {"mode", r.mode},
+          {"timed_in_worker", r.timed_in_worker}};
 }
 
 template <typename Enum, typename Values>
@@ -139,6 +140,10 @@ ReplayRecord RecordFromJson(const json& j) {
   r.samples = j.at("samples").get<int>();
   r.solves_per_sample = j.at("solves_per_sample").get<std::int64_t>();
   r.mode = j.at("mode").get<std::string>();
+  // Written since Siconos is timed in process after its probe (issue 13); every results.json before it timed each
+  // siconos-* solve through the isolation worker.
+  r.timed_in_worker = j.contains("timed_in_worker") ? j.at("timed_in_worker").get<bool>()
+                                                    : r.solver.rfind("siconos-", 0) == 0;
   return r;
 }
 
@@ -283,11 +288,12 @@ void WriteBenchResults(const BenchResults& results, const std::string& dir) {
     if (!out) throw InvalidInputError("bench: cannot write " + (fs::path(dir) / "results.json").string());
   }
   // Numbers in shortest round-trip form (NumberText: reads back to the same double; "inf", "nan" when not finite).
-  // The columns since issue 12 come last, so scripts that index the older ones keep working.
+  // The columns since issue 12 (and timed_in_worker, issue 13) come last, so scripts that index the older ones keep
+  // working.
   std::ofstream csv(fs::path(dir) / "results.csv");
   csv << "suite,problem,solver,mode,size,sparse,expected,status,verdict,iterations,residual_abs,residual_rel,"
          "tolerance,time_median,time_min,time_max,time_mad,samples,solves_per_sample,residual_scaled,"
-         "forward_error,forward_error_rel,forward_allowance,certificate\n";
+         "forward_error,forward_error_rel,forward_allowance,certificate,timed_in_worker\n";
   for (const SuiteResults& s : results.suites) {
     for (const auto* records : {&s.replay.records, &s.replay.sweep}) {
       for (const ReplayRecord& r : *records) {
@@ -298,7 +304,8 @@ void WriteBenchResults(const BenchResults& results, const std::string& dir) {
             << NumberText(r.time_min) << ',' << NumberText(r.time_max) << ',' << NumberText(r.time_mad) << ','
             << r.samples << ',' << r.solves_per_sample << ',' << NumberText(r.residual_scaled) << ','
             << NumberText(r.forward_error) << ',' << NumberText(r.forward_error_rel) << ','
-            << NumberText(r.forward_allowance) << ',' << CsvField(r.certificate) << '\n';
+            << NumberText(r.forward_allowance) << ',' << CsvField(r.certificate) << ','
+            << (r.timed_in_worker ? 1 : 0) << '\n';
       }
     }
   }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstring>
 #include <set>
+#include <stdexcept>
 #include <utility>
 
 #include "problems/library/references.h"
@@ -62,6 +63,13 @@ ProblemRecorder::ProblemRecorder(CaptureContext context, ProblemSetWriter* write
 
 void ProblemRecorder::OnStep(std::int64_t step, int newton_iteration, const BoxMLCP& problem,
                              const SolveResult& result) {
+  if (step < last_step_ || (step == last_step_ && newton_iteration <= last_iteration_)) {
+    throw std::logic_error("ProblemRecorder: step " + std::to_string(step) + " iteration " +
+                           std::to_string(newton_iteration) + " after step " + std::to_string(last_step_) +
+                           " iteration " + std::to_string(last_iteration_) + ": the ids would repeat");
+  }
+  last_step_ = step;
+  last_iteration_ = newton_iteration;
   if (!classified_ || !SameMatrix(*classified_, problem)) {
     classified_tags_ = ClassifyMatrix(problem, classify_);
     classified_.emplace(problem);

@@ -55,6 +55,9 @@ std::string CaptureId(const CaptureContext& context, std::int64_t step, int newt
 //   the backend solved it, else unknown (a failure of one backend proves nothing); with
 //   context.attach_references and m ≤ kCaptureReferenceMaxSize, the certified reference (the run's z as candidate).
 // With a writer each problem is streamed to it at once (nothing is kept); without, they are collected.
+// The ids of one recorder are distinct by construction: OnStep throws std::logic_error unless (step, Newton
+// iteration) strictly increases from call to call (as every stepper calls it), so a writer may be told
+// IdCheck::kGuaranteedByCaller and a capture of any length is written in constant memory.
 class ProblemRecorder final : public StepObserver {
  public:
   explicit ProblemRecorder(CaptureContext context, ProblemSetWriter* writer = nullptr,
@@ -73,6 +76,8 @@ class ProblemRecorder final : public StepObserver {
   ClassifyOptions classify_;
   std::vector<LibraryProblem> problems_;
   std::uint64_t count_ = 0;
+  std::int64_t last_step_ = -1;
+  int last_iteration_ = -1;
   // ClassifyMatrix of the last matrix seen (a linear run's M is constant: classified once).
   std::optional<BoxMLCP> classified_;
   MatrixTags classified_tags_;

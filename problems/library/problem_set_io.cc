@@ -32,11 +32,29 @@ constexpr std::size_t kHeaderBytes = 16;        // magic, u32 version, u32 reser
 constexpr std::size_t kRecordHeaderBytes = 9;   // u8 kind, u64 body length
 constexpr std::uint64_t kEndBodyBytes = 24;     // u64 matrices, u64 problems, u64 checksum
 
-enum RecordKind : std::uint8_t { kSetRecord = 1, kMatrixRecord = 2, kProblemRecord = 3, kEndRecord = 4 };
+// Kind 5 (the bounds table) exists from version 3 on.
+enum RecordKind : std::uint8_t {
+  kSetRecord = 1,
+  kMatrixRecord = 2,
+  kProblemRecord = 3,
+  kEndRecord = 4,
+  kBoundsRecord = 5
+};
 enum MatrixStorage : std::uint8_t { kDenseStorage = 0, kSparseStorage = 1 };
-// Bit 2: the BoxMLCP's name equals the id and is not stored (captures name their problems by id).
-enum ProblemFlags : std::uint8_t { kHasSeed = 1, kHasSolution = 2, kNameIsId = 4 };
-constexpr std::uint8_t kKnownFlags = kHasSeed | kHasSolution | kNameIsId;
+// Bit 2: the BoxMLCP's name equals the id and is not stored (captures name their problems by id). Version 3:
+// bit 3, l and u are an entry of the bounds table (u64 index) instead of 2n doubles; bit 4, source, tags and
+// metadata continue the previous problem's (stored: an empty source, no tags, the metadata entries that differ).
+enum ProblemFlags : std::uint8_t {
+  kHasSeed = 1,
+  kHasSolution = 2,
+  kNameIsId = 4,
+  kSharedBounds = 8,
+  kInherits = 16
+};
+constexpr std::uint8_t kKnownFlagsV2 = kHasSeed | kHasSolution | kNameIsId;
+constexpr std::uint8_t kKnownFlagsV3 = kKnownFlagsV2 | kSharedBounds | kInherits;
+// The streaming writer recognizes repeated bounds among the last this many distinct ones (a capture has one).
+constexpr std::size_t kBoundsCacheEntries = 16;
 
 // Eigen's int indices bound every dimension and nnz.
 constexpr std::uint64_t kMaxDimension = static_cast<std::uint64_t>(std::numeric_limits<int>::max());
@@ -48,6 +66,7 @@ const char* KindName(std::uint8_t kind) {
     case kMatrixRecord: return "matrix record";
     case kProblemRecord: return "problem record";
     case kEndRecord: return "end record";
+    case kBoundsRecord: return "bounds record";
   }
   return "record";
 }
@@ -236,6 +255,47 @@ struct MatrixCopy {
   }
 };
 
+// l and u of a problem, hashed and compared bit by bit (the bounds table's key).
+std::uint64_t BoundsHash(const Vector& l, const Vector& u) {
+  Fnv1a64 h;
+  const Eigen::Index n = l.size();
+  h.Update(&n, sizeof n);
+  h.Update(l.data(), static_cast<std::size_t>(n) * sizeof(double));
+  h.Update(u.data(), static_cast<std::size_t>(n) * sizeof(double));
+  return h.value();
+}
+
+bool SameBounds(const Vector& l1, const Vector& u1, const Vector& l2, const Vector& u2) {
+  const auto bytes = static_cast<std::size_t>(l1.size()) * sizeof(double);
+  return l1.size() == l2.size() && std::memcmp(l1.data(), l2.data(), bytes) == 0 &&
+         std::memcmp(u1.data(), u2.data(), bytes) == 0;
+}
+
+// Bounds seen by a writer: the first problem with them stores them inline (a file whose bounds never repeat is
+// laid out as in version 2); the second writes them to the bounds table, and it and every later one refer to it.
+struct BoundsEntry {
+  std::uint64_t hash = 0;
+  Vector l, u;
+  std::optional<std::uint64_t> index;  // the bounds-table entry, once written
+};
+
+// What a problem may inherit from the previous one (version 3, flag bit 4).
+struct InheritedFields {
+  std::string source;
+  std::vector<std::string> tags;
+  std::map<std::string, std::string> metadata;
+};
+
+// Whether p can continue previous (same source and tags, every key of previous in p) and saves bytes doing so.
+bool CanInherit(const LibraryProblem& p, const InheritedFields& previous) {
+  if (previous.source.empty() && previous.tags.empty() && previous.metadata.empty()) return false;
+  if (p.source != previous.source || p.tags != previous.tags) return false;
+  for (const auto& [key, value] : previous.metadata) {
+    if (!p.metadata.count(key)) return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 // ------------------------------------------------------------------------------------------------------------
@@ -248,10 +308,17 @@ struct ProblemSetWriter::Impl {
   std::string name;                // for messages
   ProblemSetWriterOptions options;
   Fnv1a64 checksum;
-  std::uint64_t bytes = 0, matrices = 0, problems = 0;
+  std::uint64_t bytes = 0, matrices = 0, problems = 0, bounds_records = 0;
   bool closed = false;
-  std::unordered_set<std::string> ids;
+  std::unordered_set<std::string> ids;  // IdCheck::kRemembered only
   std::string body, record_header;
+  // Bounds seen so far, most recently used first: the streaming writer keeps kBoundsCacheEntries, the whole-set
+  // writer all of them (bounds_by_hash indexes the list then).
+  std::list<BoundsEntry> bounds;
+  std::size_t bounds_cache_entries = kBoundsCacheEntries;
+  std::unordered_map<std::uint64_t, std::vector<std::list<BoundsEntry>::iterator>> bounds_by_hash;
+  bool index_bounds = false;
+  std::optional<InheritedFields> previous;  // of the last problem written
 
   struct CacheEntry {
     std::uint64_t hash;
@@ -363,7 +430,7 @@ struct ProblemSetWriter::Impl {
     for (const auto& t : p.tags) long_string = long_string || t.size() > kMaxString;
     for (const auto& [k, v] : p.metadata) long_string = long_string || k.size() > kMaxString || v.size() > kMaxString;
     if (long_string) Fail(who + ": a string or list is longer than 2^32 - 1");
-    if (ids.count(p.id)) Fail("duplicate id '" + p.id + "'");
+    if (options.id_check == IdCheck::kRemembered && ids.count(p.id)) Fail("duplicate id '" + p.id + "'");
   }
 
   // The reference as the reader will see it: a known certificate, a condition that is not NaN or negative, z* of
@@ -391,42 +458,112 @@ struct ProblemSetWriter::Impl {
     }
   }
 
+  // The bounds-table entry for l, u if they were seen before (written to the table now if the first problem
+  // with them stored them inline); nullopt the first time (the caller stores them inline).
+  std::optional<std::uint64_t> BoundsIndex(const Vector& l, const Vector& u) {
+    const std::uint64_t hash = BoundsHash(l, u);
+    std::list<BoundsEntry>::iterator found = bounds.end();
+    if (index_bounds) {
+      const auto it = bounds_by_hash.find(hash);
+      if (it != bounds_by_hash.end()) {
+        for (const auto& entry : it->second) {
+          if (SameBounds(entry->l, entry->u, l, u)) found = entry;
+        }
+      }
+    } else {
+      for (auto it = bounds.begin(); it != bounds.end() && found == bounds.end(); ++it) {
+        if (it->hash == hash && SameBounds(it->l, it->u, l, u)) found = it;
+      }
+    }
+    if (found == bounds.end()) {
+      bounds.push_front(BoundsEntry{hash, l, u, std::nullopt});
+      if (index_bounds) {
+        bounds_by_hash[hash].push_back(bounds.begin());
+      } else if (bounds.size() > bounds_cache_entries) {
+        bounds.pop_back();
+      }
+      return std::nullopt;
+    }
+    if (!index_bounds) bounds.splice(bounds.begin(), bounds, found);
+    if (!found->index) found->index = WriteBounds(l, u);
+    return found->index;
+  }
+
+  // Writes l, u as the next entry of the bounds table; returns its index.
+  std::uint64_t WriteBounds(const Vector& l, const Vector& u) {
+    const auto n = static_cast<std::size_t>(l.size());
+    body.clear();
+    body.reserve(8 + 16 * n);
+    Encoder e(&body);
+    e.U64(n);
+    e.F64s(l.data(), n);
+    e.F64s(u.data(), n);
+    WriteRecord(kBoundsRecord, body);
+    return bounds_records++;
+  }
+
   void WriteProblem(const LibraryProblem& p, std::uint64_t matrix_index) {
     const BoxMLCP& b = p.problem;
     const auto n = static_cast<std::size_t>(b.size());
+    const std::optional<std::uint64_t> bounds_index = BoundsIndex(b.l(), b.u());
+    const bool inherits = previous && CanInherit(p, *previous);
     body.clear();
     body.reserve(64 + p.id.size() + p.source.size() + n * 32);
     Encoder e(&body);
     e.Str(p.id);
-    e.Str(p.source);
+    e.Str(inherits ? std::string() : p.source);
     const bool name_is_id = b.name() == p.id;
     e.U8(static_cast<std::uint8_t>((p.seed ? kHasSeed : 0) | (p.solution.size() ? kHasSolution : 0) |
-                                   (name_is_id ? kNameIsId : 0)));
+                                   (name_is_id ? kNameIsId : 0) | (bounds_index ? kSharedBounds : 0) |
+                                   (inherits ? kInherits : 0)));
     if (!name_is_id) e.Str(b.name());
     e.U64(matrix_index);
     e.U64(n);
     e.F64s(b.q().data(), n);
-    e.F64s(b.l().data(), n);
-    e.F64s(b.u().data(), n);
+    if (bounds_index) {
+      e.U64(*bounds_index);
+    } else {
+      e.F64s(b.l().data(), n);
+      e.F64s(b.u().data(), n);
+    }
     e.U8(static_cast<std::uint8_t>(p.matrix.symmetric));
     e.U8(static_cast<std::uint8_t>(p.matrix.positive_definite));
     e.U8(static_cast<std::uint8_t>(p.matrix.p_matrix));
     e.U8(static_cast<std::uint8_t>(p.expected));
     if (p.seed) e.U64(*p.seed);
     if (p.solution.size()) e.F64s(p.solution.data(), n);
-    e.U32(static_cast<std::uint32_t>(p.tags.size()));
-    for (const auto& t : p.tags) e.Str(t);
-    e.U32(static_cast<std::uint32_t>(p.metadata.size()));
-    for (const auto& [k, v] : p.metadata) {
-      e.Str(k);
-      e.Str(v);
+    if (inherits) {
+      // No tags (the previous problem's); the metadata entries that are new or differ from the previous ones.
+      e.U32(0);
+      const auto differs = [&](const std::string& key, const std::string& value) {
+        const auto it = previous->metadata.find(key);
+        return it == previous->metadata.end() || it->second != value;
+      };
+      std::uint32_t changed = 0;
+      for (const auto& [k, v] : p.metadata) changed += differs(k, v) ? 1 : 0;
+      e.U32(changed);
+      for (const auto& [k, v] : p.metadata) {
+        if (differs(k, v)) e.Str(k), e.Str(v);
+      }
+    } else {
+      e.U32(static_cast<std::uint32_t>(p.tags.size()));
+      for (const auto& t : p.tags) e.Str(t);
+      e.U32(static_cast<std::uint32_t>(p.metadata.size()));
+      for (const auto& [k, v] : p.metadata) {
+        e.Str(k);
+        e.Str(v);
+      }
     }
     // Version 2: the certified reference.
     e.U8(static_cast<std::uint8_t>(p.reference.certificate));
     e.F64(p.reference.condition);
     if (p.reference.verified()) e.F64s(p.reference.z.data(), n);
     WriteRecord(kProblemRecord, body);
-    ids.insert(p.id);
+    if (options.id_check == IdCheck::kRemembered) ids.insert(p.id);
+    if (!previous) previous.emplace();
+    previous->source = p.source;
+    previous->tags = p.tags;
+    previous->metadata = p.metadata;
     ++problems;
   }
 
@@ -533,6 +670,7 @@ void WriteProblemSet(const ProblemSet& set, std::ostream& out) {
   ProblemSetWriter::Impl w;
   w.out = &out;
   w.name = set.name;
+  w.index_bounds = true;  // every distinct l, u is remembered (the set is in memory anyway)
   w.Begin(set.name, set.description);
   // The whole set is at hand: every repeated matrix is found (hash, then bits), without copying any.
   std::unordered_map<std::uint64_t, std::vector<std::pair<std::uint64_t, MatrixView>>> table;
@@ -734,6 +872,38 @@ TableMatrix DecodeMatrix(Decoder& d) {
   return m;
 }
 
+// The bounds table (version 3): l and u of n rows; NaN never, and every row oriented as BoxMLCP requires
+// (l ≤ u, l < +∞, u > −∞), checked here so that the error names the record.
+struct TableBounds {
+  Vector l, u;
+};
+
+TableBounds DecodeBounds(Decoder& d) {
+  const std::size_t n_at = d.pos();
+  const std::uint64_t n = d.U64("n");
+  if (n < 1 || n > kMaxDimension) {
+    d.FailAt(n_at, "n", "n = " + std::to_string(n) + " is outside [1, " + std::to_string(kMaxDimension) + "]");
+  }
+  d.Need(n, 16, "l, u");
+  TableBounds b;
+  b.l.resize(static_cast<Eigen::Index>(n));
+  b.u.resize(static_cast<Eigen::Index>(n));
+  const auto count = static_cast<std::size_t>(n);
+  d.F64s(b.l.data(), count, [&](std::size_t i, double v, std::size_t at) {
+    if (std::isnan(v)) d.FailAt(at, Index("l", i), "is NaN");
+    if (v == kInf) d.FailAt(at, Index("l", i), "is +inf");
+  });
+  d.F64s(b.u.data(), count, [&](std::size_t i, double v, std::size_t at) {
+    if (std::isnan(v)) d.FailAt(at, Index("u", i), "is NaN");
+    if (v == -kInf) d.FailAt(at, Index("u", i), "is -inf");
+    if (b.l[static_cast<Eigen::Index>(i)] > v) {
+      d.FailAt(at, Index("u", i), "u = " + NumberText(v) + " < l = " + NumberText(b.l[static_cast<Eigen::Index>(i)]));
+    }
+  });
+  d.ExpectEnd();
+  return b;
+}
+
 Tristate DecodeTristate(Decoder& d, const char* field) {
   const std::size_t at = d.pos();
   const std::uint8_t v = d.U8(field);
@@ -766,13 +936,27 @@ ReferenceSolution DecodeReference(Decoder& d, std::uint64_t n, Eigen::Index size
   return r;
 }
 
-LibraryProblem DecodeProblem(Decoder& d, const std::vector<TableMatrix>& table, std::uint32_t version) {
+// previous: the problem decoded before this one (null for the first), which a version-3 problem may continue
+// (flag bit 4); *inherited_bytes grows by the bytes of source, tags and metadata it takes from it.
+LibraryProblem DecodeProblem(Decoder& d, const std::vector<TableMatrix>& table,
+                             const std::vector<TableBounds>& bounds_table, std::uint32_t version,
+                             const LibraryProblem* previous, std::uint64_t* inherited_bytes) {
   std::string id = d.Str("id");
   d.set_where(d.where() + " ('" + QuoteForMessage(id) + "')");
+  const std::size_t source_at = d.pos();
   std::string source = d.Str("source");
   const std::size_t flags_at = d.pos();
   const std::uint8_t flags = d.U8("flags");
-  if (flags & ~kKnownFlags) d.FailAt(flags_at, "flags", "unknown flag bits " + Hex(flags & ~kKnownFlags));
+  const std::uint8_t known = version >= 3 ? kKnownFlagsV3 : kKnownFlagsV2;
+  if (flags & ~known) d.FailAt(flags_at, "flags", "unknown flag bits " + Hex(flags & ~known));
+  const bool inherits = (flags & kInherits) != 0;
+  if (inherits && previous == nullptr) {
+    d.FailAt(flags_at, "flags",
+             "bit 4 (continue the previous problem's source, tags and metadata) on the first problem");
+  }
+  if (inherits && !source.empty()) {
+    d.FailAt(source_at, "source", "must be empty when flag bit 4 (continue the previous problem) is set");
+  }
   std::string name = (flags & kNameIsId) ? id : d.Str("name");
   const std::size_t index_at = d.pos();
   const std::uint64_t index = d.U64("matrix index");
@@ -788,18 +972,35 @@ LibraryProblem DecodeProblem(Decoder& d, const std::vector<TableMatrix>& table, 
                             std::to_string(M.n) + "x" + std::to_string(M.n));
   }
   const auto count = static_cast<std::size_t>(n);
-  d.Need(n, 24, "q, l, u");
+  const bool shared_bounds = (flags & kSharedBounds) != 0;
+  d.Need(n, shared_bounds ? 8 : 24, shared_bounds ? "q" : "q, l, u");
   Vector q(M.n), l(M.n), u(M.n);
   d.F64s(q.data(), count, [&](std::size_t i, double v, std::size_t at) {
     if (!std::isfinite(v)) d.FailAt(at, Index("q", i), std::isnan(v) ? "is NaN" : "is infinite");
   });
-  // Bounds may be ±∞; NaN never. Orientation (l < +∞, u > −∞, l ≤ u) is BoxMLCP's check, below.
-  d.F64s(l.data(), count, [&](std::size_t i, double v, std::size_t at) {
-    if (std::isnan(v)) d.FailAt(at, Index("l", i), "is NaN");
-  });
-  d.F64s(u.data(), count, [&](std::size_t i, double v, std::size_t at) {
-    if (std::isnan(v)) d.FailAt(at, Index("u", i), "is NaN");
-  });
+  if (shared_bounds) {
+    const std::size_t bounds_at = d.pos();
+    const std::uint64_t b = d.U64("bounds index");
+    if (b >= bounds_table.size()) {
+      d.FailAt(bounds_at, "bounds index", "refers to bounds " + std::to_string(b) + " but only " +
+                                              std::to_string(bounds_table.size()) + " precede this problem");
+    }
+    const TableBounds& entry = bounds_table[static_cast<std::size_t>(b)];
+    if (entry.l.size() != M.n) {
+      d.FailAt(bounds_at, "bounds index", "bounds " + std::to_string(b) + " have " + std::to_string(entry.l.size()) +
+                                              " rows but n = " + std::to_string(n));
+    }
+    l = entry.l;
+    u = entry.u;
+  } else {
+    // Bounds may be ±∞; NaN never. Orientation (l < +∞, u > −∞, l ≤ u) is BoxMLCP's check, below.
+    d.F64s(l.data(), count, [&](std::size_t i, double v, std::size_t at) {
+      if (std::isnan(v)) d.FailAt(at, Index("l", i), "is NaN");
+    });
+    d.F64s(u.data(), count, [&](std::size_t i, double v, std::size_t at) {
+      if (std::isnan(v)) d.FailAt(at, Index("u", i), "is NaN");
+    });
+  }
   MatrixTags tags;
   tags.symmetric = DecodeTristate(d, "symmetric");
   tags.positive_definite = DecodeTristate(d, "positive_definite");
@@ -820,7 +1021,11 @@ LibraryProblem DecodeProblem(Decoder& d, const std::vector<TableMatrix>& table, 
       if (!std::isfinite(v)) d.FailAt(at, Index("solution", i), std::isnan(v) ? "is NaN" : "is infinite");
     });
   }
+  const std::size_t tags_at = d.pos();
   const std::uint32_t tag_count = d.U32("tag count");
+  if (inherits && tag_count != 0) {
+    d.FailAt(tags_at, "tag count", "must be 0 when flag bit 4 (continue the previous problem) is set");
+  }
   d.Need(tag_count, 4, "tags");  // each tag takes at least its 4-byte length
   std::vector<std::string> labels;
   labels.reserve(tag_count);
@@ -835,6 +1040,17 @@ LibraryProblem DecodeProblem(Decoder& d, const std::vector<TableMatrix>& table, 
     if (!metadata.emplace(std::move(key), std::move(value)).second) {
       d.FailAt(at, Index("metadata key", i), "key repeated");
     }
+  }
+  if (inherits) {
+    // The previous problem's source, tags and metadata, with the entries stored here replacing or adding to its own.
+    source = previous->source;
+    labels = previous->tags;
+    std::uint64_t bytes = source.size();
+    for (const std::string& t : labels) bytes += t.size();
+    for (const auto& [key, value] : previous->metadata) {
+      if (metadata.emplace(key, value).second) bytes += key.size() + value.size();
+    }
+    *inherited_bytes += bytes;
   }
   ReferenceSolution reference;  // version 1 stores none: Certificate::kNone
   if (version >= 2) reference = DecodeReference(d, n, M.n);
@@ -936,7 +1152,9 @@ Decoded Decode(std::string_view data, const std::string& file) {
 
   // ---- records
   std::vector<TableMatrix> table;
+  std::vector<TableBounds> bounds_table;
   std::uint64_t expanded = 0;  // bytes of matrix data once every problem holds its own copy
+  std::uint64_t inherited = 0;  // bytes of text the problems take from the one before them (version 3)
   std::unordered_set<std::string> ids;
   bool have_set = false;
   pos = kHeaderBytes;
@@ -960,9 +1178,23 @@ Decoded Decode(std::string_view data, const std::string& file) {
         table.push_back(DecodeMatrix(d));
         break;
       }
+      case kBoundsRecord: {
+        if (version < 3) {
+          fail(pos, "unknown record kind " + std::to_string(kind) + " in a version-" + std::to_string(version) +
+                        " file (bounds records exist from version 3 on)");
+        }
+        Decoder d(data, body, body + length, file, "bounds #" + std::to_string(bounds_table.size()));
+        bounds_table.push_back(DecodeBounds(d));
+        break;
+      }
       case kProblemRecord: {
         Decoder d(data, body, body + length, file, "problem #" + std::to_string(out.set.problems.size()));
-        LibraryProblem p = DecodeProblem(d, table, version);
+        LibraryProblem p = DecodeProblem(d, table, bounds_table, version,
+                                         out.set.problems.empty() ? nullptr : &out.set.problems.back(), &inherited);
+        if (inherited > kMaxInheritedTextBytes) {
+          fail(body, "the problems so far take " + std::to_string(inherited) + " bytes of source, tags and metadata " +
+                         "from the problems before them, above the limit of " + std::to_string(kMaxInheritedTextBytes));
+        }
         const BoxMLCP& b = p.problem;
         expanded += b.is_sparse() ? static_cast<std::uint64_t>(b.sparse_matrix().nonZeros()) * 12
                                   : static_cast<std::uint64_t>(b.size()) * static_cast<std::uint64_t>(b.size()) * 8;
@@ -978,7 +1210,7 @@ Decoded Decode(std::string_view data, const std::string& file) {
       }
       default:
         fail(pos, "unknown record kind " + std::to_string(kind) +
-                      " (this build knows 1 set, 2 matrix, 3 problem, 4 end)");
+                      " (this build knows 1 set, 2 matrix, 3 problem, 4 end, 5 bounds)");
     }
     pos = body + length;
   }

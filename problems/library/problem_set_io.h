@@ -19,8 +19,11 @@
 namespace smcbench {
 
 // Format version written by this build. Version 2 added each problem's certified reference (certificate,
-// condition, z*); version 1 files are still read, their problems with Certificate::kNone.
-inline constexpr std::uint32_t kProblemSetFormatVersion = 2;
+// condition, z*); version 1 files are still read, their problems with Certificate::kNone. Version 3 (issue 13:
+// captures of long runs) added the bounds table (l and u stored once, like M) and lets a problem continue the
+// previous one's source, tags and metadata, storing only the entries that differ; a file that uses neither is
+// laid out as version 2, and versions 1 and 2 are still read.
+inline constexpr std::uint32_t kProblemSetFormatVersion = 3;
 // The oldest version this build reads (every version from it to kProblemSetFormatVersion is read).
 inline constexpr std::uint32_t kOldestReadableProblemSetFormatVersion = 1;
 // The customary file extension.
@@ -30,6 +33,10 @@ inline constexpr std::uint64_t kMaxProblemSetFileBytes = std::uint64_t{1} << 32;
 // Reading expands the matrix table (every problem owns its M): a small file whose problems share one large M
 // could otherwise claim any amount of memory. Beyond this many bytes of matrix data (16 GiB) a read fails.
 inline constexpr std::uint64_t kMaxExpandedMatrixBytes = std::uint64_t{1} << 34;
+// The same for version 3's inherited text: a problem that continues the previous one's source, tags and metadata
+// gets its own copy of them, so a file of small records could repeat a long text any number of times. Beyond this
+// many inherited bytes (4 GiB) a read fails.
+inline constexpr std::uint64_t kMaxInheritedTextBytes = std::uint64_t{1} << 32;
 
 // Writes the whole set in version kProblemSetFormatVersion (set.Validate() first; identical matrices are stored
 // once, compared bit by bit). Throws InvalidInputError if the set is invalid (duplicate or empty id, wrong solution
@@ -62,15 +69,26 @@ std::uint64_t ProblemSetChecksum(std::string_view bytes);
 // judge the edit. No-op if bytes is shorter than 8.
 void FixProblemSetChecksum(std::string* bytes);
 
+// How a streaming writer keeps ids unique within its file.
+//   kRemembered: it keeps every id written and refuses a repeat (memory grows with the number of problems).
+//   kGuaranteedByCaller: it keeps none, for streams whose ids are distinct by construction (a capture of a run:
+//     ProblemRecorder checks that its (step, Newton iteration) pairs strictly increase), so that a capture of any
+//     length writes in constant memory. A repeated id written anyway makes the file unreadable (readers check).
+enum class IdCheck { kRemembered, kGuaranteedByCaller };
+
 struct ProblemSetWriterOptions {
   // Matrices kept in memory to recognize a repeated M (hash first, then a bit-by-bit comparison), most recently
   // used first, up to this many bytes of matrix data. The last matrix written is always kept, so consecutive
-  // identical matrices (a linear stepper's constant M) are always stored once whatever the budget.
+  // identical matrices (a linear stepper's constant M) are always stored once whatever the budget. (Bounds: the
+  // last 16 distinct l, u are recognized.)
   std::size_t dedupe_cache_bytes = std::size_t{64} << 20;
+  IdCheck id_check = IdCheck::kRemembered;
 };
 
 // Writes a set one problem at a time without holding the problems (captures of long runs). Add() validates like
-// WriteProblemSet (ids must be unique within the file: the writer keeps the ids it has written). Close() writes
+// WriteProblemSet (ids must be unique within the file: the writer keeps the ids it has written, unless
+// options.id_check says the caller guarantees it). Its memory is bounded (the caches above, one problem's text for
+// the next one to continue). Close() writes
 // the end record with the counts and the checksum; a file whose writer was never closed has no end record and
 // every reader rejects it as truncated. The file variant writes to "<path>.partial" and renames it to path on
 // Close(); destroying an unclosed file writer removes the partial file.

@@ -210,7 +210,7 @@ Record Nth(const std::vector<Record>& records, std::uint8_t kind, int n = 0) {
   throw std::logic_error("no such record");
 }
 
-constexpr std::uint8_t kSet = 1, kMatrix = 2, kProblem = 3, kEnd = 4;
+constexpr std::uint8_t kSet = 1, kMatrix = 2, kProblem = 3, kEnd = 4, kBounds = 5;
 
 // A one-problem file with a 2×2 M: problem id "p", empty source and name, so its body offsets are fixed:
 // id 0, source 5, flags 9, name 10, matrix index 14, n 22, q 30, l 46, u 62, tristates 78, expected 81, tag count
@@ -526,8 +526,8 @@ TEST(ProblemSetIoDefects, TruncatedHeader) { ExpectRejected(SmallFile().substr(0
 
 TEST(ProblemSetIoDefects, VersionMismatch) {
   std::string bytes = SmallFile();
-  Store(&bytes, 8, 3, 4);
-  ExpectRejected(bytes, {"format version 3 is not supported", "reads versions 1 to 2", "newer"});
+  Store(&bytes, 8, 4, 4);
+  ExpectRejected(bytes, {"format version 4 is not supported", "reads versions 1 to 3", "newer"});
   Store(&bytes, 8, 0, 4);
   ExpectRejected(bytes, {"format version 0 is not supported", "byte 8"});
 }
@@ -690,9 +690,14 @@ TEST(ProblemSetIoDefects, NonFiniteReferenceSolution) {
 
 TEST(ProblemSetIoDefects, UnknownFlagBits) {
   std::string bytes = SmallFile();
-  bytes[Nth(Records(bytes), kProblem).body + 9] = 0x10;
+  bytes[Nth(Records(bytes), kProblem).body + 9] = 0x40;
   FixProblemSetChecksum(&bytes);
-  ExpectRejected(bytes, {"flags", "unknown flag bits"});
+  ExpectRejected(bytes, {"flags", "unknown flag bits 0x0000000000000040"});
+  // Bits 3 and 4 exist from version 3 on.
+  Store(&bytes, 8, 2, 4);
+  bytes[Nth(Records(bytes), kProblem).body + 9] = 0x08;
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"flags", "unknown flag bits 0x0000000000000008"});
 }
 
 TEST(ProblemSetIoDefects, RepeatedMetadataKey) {
@@ -973,6 +978,199 @@ TEST(MatrixTags, OneByOne) {
   M << -2;
   EXPECT_EQ(Classify(M).p_matrix, Tristate::kNo);
   EXPECT_EQ(Classify(M).positive_definite, Tristate::kNo);
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// Version 3 (issue 13): the bounds table, and problems that continue the previous one's source, tags and metadata.
+// Offsets below come from the specification (problems/library/README.md), not from the reader.
+
+// count problems of a capture: same M (2×2), source, tags and bounds [−1, 1]; metadata differing in "step" only.
+ProblemSet CaptureLikeSet(int count) {
+  ProblemSet set;
+  set.name = "capture";
+  DenseMatrix M(2, 2);
+  M << 2, 1, 1, 3;
+  for (int k = 1; k <= count; ++k) {
+    const std::string id = "capture/s/implicit/h0.1/k" + std::to_string(k);
+    LibraryProblem p = Problem(id, BoxMLCP::Relay(M, Vec({1.0 * k, -1.0}), -1.0, 1.0, id));
+    p.source = "capture:s";
+    p.tags = {"capture"};
+    p.metadata = {{"scene", "s"}, {"method", "implicit"}, {"status", "solved"}, {"step", std::to_string(k)}};
+    p.solution = Vec({0.5, -0.5});
+    set.problems.push_back(p);
+  }
+  return set;
+}
+
+// The stored flags byte of a problem record (after the id and source strings).
+std::uint8_t StoredFlags(const std::string& bytes, const Record& r) {
+  const std::size_t id = Load(bytes, r.body, 4);
+  const std::size_t source = Load(bytes, r.body + 4 + id, 4);
+  return static_cast<std::uint8_t>(bytes[r.body + 8 + id + source]);
+}
+
+TEST(ProblemSetIoVersion3, RepeatedBoundsAreStoredOnceAndMetadataAsChanges) {
+  const ProblemSet set = CaptureLikeSet(5);
+  const std::string bytes = Serialize(set);
+  EXPECT_EQ(Load(bytes, 8, 4), 3u);
+  const std::vector<Record> records = Records(bytes);
+  int bounds = 0;
+  for (const Record& r : records) bounds += r.kind == kBounds;
+  EXPECT_EQ(bounds, 1);
+  // The first problem is laid out as in version 2 (inline l, u; its own source, tags, metadata).
+  EXPECT_EQ(StoredFlags(bytes, Nth(records, kProblem, 0)), 0x02 | 0x04);  // solution, name = id
+  // The bounds record comes before the second problem, which refers to it and continues the first.
+  EXPECT_LT(Nth(records, kBounds).at, Nth(records, kProblem, 1).at);
+  EXPECT_GT(Nth(records, kBounds).at, Nth(records, kProblem, 0).at);
+  for (int i = 1; i < 5; ++i) {
+    const Record& r = Nth(records, kProblem, i);
+    EXPECT_EQ(StoredFlags(bytes, r), 0x02 | 0x04 | 0x08 | 0x10) << i;
+    const std::size_t id = Load(bytes, r.body, 4);
+    EXPECT_EQ(Load(bytes, r.body + 4 + id, 4), 0u) << "stored source is empty";
+    // id, source, flags, matrix, n, q (2), bounds index, tristates, expected, solution (2), tag count 0, metadata
+    // count 1 and "step" = "k" (4 + 4 + 4 + 1), certificate and condition.
+    EXPECT_EQ(r.length, 4 + id + 4 + 1 + 8 + 8 + 16 + 8 + 3 + 1 + 16 + 4 + 4 + 13 + 9) << i;
+  }
+  const ProblemSet back = Parse(bytes);
+  ASSERT_EQ(back.problems.size(), set.problems.size());
+  for (std::size_t i = 0; i < set.problems.size(); ++i) ExpectSameProblem(set.problems[i], back.problems[i]);
+  EXPECT_EQ(Serialize(back), bytes);  // a fixed point
+  // The streaming writer writes the same bytes.
+  std::ostringstream out;
+  ProblemSetWriter writer(out, "stream", set.name, set.description);
+  for (const LibraryProblem& p : set.problems) writer.Add(p);
+  writer.Close();
+  EXPECT_EQ(out.str(), bytes);
+}
+
+// A problem continues the previous one only when its source and tags are the same and it keeps every key; new keys
+// and changed values are stored. Otherwise it is stored in full.
+TEST(ProblemSetIoVersion3, OnlyWhatCanBeContinuedIs) {
+  ProblemSet set = CaptureLikeSet(5);
+  set.problems[1].metadata["iteration"] = "2";   // a new key: continued, the key stored
+  set.problems[2].metadata.erase("status");      // a dropped key: stored in full
+  set.problems[3].source = "capture:other";      // another source: in full
+  set.problems[4].problem = BoxMLCP(set.problems[4].problem.dense_matrix(), Vec({1, 2}), Vec({0, 0}),
+                                    Vec({kInf, kInf}), set.problems[4].id);  // other bounds: inline
+  const std::string bytes = Serialize(set);
+  const std::vector<Record> records = Records(bytes);
+  EXPECT_EQ(StoredFlags(bytes, Nth(records, kProblem, 1)) & 0x18, 0x18);
+  EXPECT_EQ(StoredFlags(bytes, Nth(records, kProblem, 2)) & 0x10, 0);
+  EXPECT_EQ(StoredFlags(bytes, Nth(records, kProblem, 3)) & 0x10, 0);
+  EXPECT_EQ(StoredFlags(bytes, Nth(records, kProblem, 4)) & 0x08, 0);
+  const ProblemSet back = Parse(bytes);
+  for (std::size_t i = 0; i < set.problems.size(); ++i) ExpectSameProblem(set.problems[i], back.problems[i]);
+  EXPECT_EQ(Serialize(back), bytes);
+}
+
+// The committed fuzz seeds of versions 1 and 2 (tests/fuzz/seeds/library) are still read, and written as version 3
+// they give the same problems.
+TEST(ProblemSetIoVersion3, EarlierVersionsAreStillRead) {
+  const std::string dir = std::string(SMCBENCH_SOURCE_DIR) + "/tests/fuzz/seeds/library/";
+  int versions_seen[4] = {0, 0, 0, 0};
+  for (const char* name : {"sign.smcps", "zoh-mimo.smcps", "arctan-newton.smcps", "zoh-mimo-v2.smcps"}) {
+    SCOPED_TRACE(name);
+    ProblemSetFileInfo info;
+    const ProblemSet set = ReadProblemSetFile(dir + name, &info);
+    ASSERT_LE(info.version, 2u);
+    ++versions_seen[info.version];
+    ASSERT_FALSE(set.problems.empty());
+    const std::string v3 = Serialize(set);
+    EXPECT_LT(v3.size(), info.bytes);  // the captures' bounds and metadata repeat
+    const ProblemSet again = Parse(v3);
+    ASSERT_EQ(again.problems.size(), set.problems.size());
+    for (std::size_t i = 0; i < set.problems.size(); ++i) ExpectSameProblem(set.problems[i], again.problems[i]);
+  }
+  EXPECT_GT(versions_seen[1], 0);
+  EXPECT_GT(versions_seen[2], 0);
+}
+
+TEST(ProblemSetIoVersion3, BoundsIndexOutOfRangeOrOfAnotherSize) {
+  std::string bytes = Serialize(CaptureLikeSet(2));
+  const Record& p = Nth(Records(bytes), kProblem, 1);
+  // Problem #1: id, empty source, flags, matrix index, n, q (2 doubles), then the bounds index.
+  const std::size_t at = p.body + 4 + Load(bytes, p.body, 4) + 4 + 1 + 8 + 8 + 16;
+  ASSERT_EQ(Load(bytes, at, 8), 0u);
+  Store(&bytes, at, 7, 8);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"problem #1", "bounds index at byte " + std::to_string(at), "refers to bounds 7"});
+
+  // Two sizes, each with repeated bounds: bounds #0 has 2 rows, #1 has 3; point a 2-row problem at #1.
+  ProblemSet set = CaptureLikeSet(2);
+  for (int k = 0; k < 2; ++k) {
+    set.problems.push_back(
+        Problem("three/" + std::to_string(k), BoxMLCP::Relay(DenseMatrix::Identity(3, 3), Vec({1, 2, 3}))));
+  }
+  set.problems.push_back(set.problems[0]);
+  set.problems.back().id = "two/again";
+  set.problems.back().problem.set_name("two/again");
+  bytes = Serialize(set);
+  const Record& last = Nth(Records(bytes), kProblem, 4);
+  const std::size_t id_length = Load(bytes, last.body, 4);
+  const std::size_t source_length = Load(bytes, last.body + 4 + id_length, 4);  // "capture:s": stored in full
+  const std::size_t index_at = last.body + 4 + id_length + 4 + source_length + 1 + 8 + 8 + 16;
+  ASSERT_EQ(Load(bytes, index_at, 8), 0u);
+  Store(&bytes, index_at, 1, 8);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"problem #4", "bounds 1 have 3 rows but n = 2"});
+}
+
+TEST(ProblemSetIoVersion3, ContinuingWhatCannotBeContinued) {
+  // Bit 4 on the first problem.
+  std::string bytes = SmallFile();
+  bytes[Nth(Records(bytes), kProblem).body + 9] |= 0x10;
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"problem #0", "flags", "on the first problem"});
+
+  // Bit 4 on a problem that stores a source, or tags.
+  ProblemSet set = CaptureLikeSet(2);
+  set.problems[1].source = "capture:t";  // stored in full
+  bytes = Serialize(set);
+  Record p = Nth(Records(bytes), kProblem, 1);
+  std::size_t flags_at = p.body + 4 + Load(bytes, p.body, 4) + 4 + Load(bytes, p.body + 4 + Load(bytes, p.body, 4), 4);
+  ASSERT_EQ(bytes[flags_at] & 0x10, 0);
+  bytes[flags_at] |= 0x10;
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"problem #1", "source", "must be empty when flag bit 4"});
+
+  set = CaptureLikeSet(2);
+  for (LibraryProblem& q : set.problems) q.source.clear();
+  set.problems[1].tags = {"other"};  // stored in full, with an empty source
+  bytes = Serialize(set);
+  p = Nth(Records(bytes), kProblem, 1);
+  flags_at = p.body + 4 + Load(bytes, p.body, 4) + 4;
+  ASSERT_EQ(bytes[flags_at] & 0x10, 0);
+  bytes[flags_at] |= 0x10;
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"problem #1", "tag count", "must be 0 when flag bit 4"});
+}
+
+TEST(ProblemSetIoVersion3, BoundsRecordDefects) {
+  std::string good = Serialize(CaptureLikeSet(2));
+  const Record b = Nth(Records(good), kBounds);
+  ASSERT_EQ(b.length, 8u + 32u);
+  // A bounds record in a version-2 file.
+  std::string bytes = good;
+  Store(&bytes, 8, 2, 4);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"unknown record kind 5 in a version-2 file", "version 3"});
+  // NaN, +inf as a lower bound, u < l.
+  bytes = good;
+  StoreDouble(&bytes, b.body + 8, std::nan(""));
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"bounds #0 l[0] at byte " + std::to_string(b.body + 8), "is NaN"});
+  bytes = good;
+  StoreDouble(&bytes, b.body + 16, kInf);
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"bounds #0 l[1]", "is +inf"});
+  bytes = good;
+  StoreDouble(&bytes, b.body + 24, -2.0);  // u[0] = −2 < l[0] = −1
+  FixProblemSetChecksum(&bytes);
+  ExpectRejected(bytes, {"bounds #0 u[0]", "u = -2 < l = -1"});
+  // A hostile row count.
+  bytes = good;
+  Store(&bytes, b.body, std::uint64_t{1} << 30, 8);
+  ExpectHostileRejected(bytes, {"bounds #0 l, u", "declares 1073741824 value(s) of 16 byte(s)"});
 }
 
 }  // namespace

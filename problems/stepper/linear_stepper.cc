@@ -117,9 +117,10 @@ struct Counters {
 // Bookkeeping of a failed step k (backend status != kSolved, or a non-finite state); returns true if the run must
 // stop after it. Off the hot path: only failed steps get here.
 bool HandleFailure(std::int64_t k, SolveStatus status, double residual, bool state_finite, bool state_has_nan,
-                   const std::string* message, FailurePolicy policy, Trajectory* out) {
+                   const std::string* message, FailurePolicy policy, TrajectoryStream* stream, Trajectory* out) {
   if (!state_finite) status = state_has_nan ? SolveStatus::kNumericalFailure : SolveStatus::kDiverged;
   if (out->recorded) out->status[k] = status;
+  if (stream->active()) stream->SetLastStatus(status);
   ++out->failed_steps;
   if (out->first_failed_step < 0) {
     out->first_failed_step = k;
@@ -138,6 +139,12 @@ bool HandleFailure(std::int64_t k, SolveStatus status, double residual, bool sta
     return true;
   }
   return false;
+}
+
+// SubnormalPolicy::kZeroState: a state component below this magnitude after an implicit step is set to 0 (0: the
+// rule is off, nothing is below it).
+double ZeroStateBelow(const StepperOptions& options, bool implicit) {
+  return implicit && options.subnormals == SubnormalPolicy::kZeroState ? std::numeric_limits<double>::min() : 0.0;
 }
 
 }  // namespace
@@ -215,7 +222,8 @@ class KernelImpl final : public LinearStepper::Kernel {
     const bool implicit = d.sign == SignTreatment::kImplicit;
     const bool forced = d.has_forcing();
     const bool record = options.record;
-    const bool need_y = record || !implicit;
+    const bool stream = options.sink != nullptr;
+    const bool need_y = record || stream || !implicit;
     const bool warm = options.warm_start;
     const double h = d.h;
     const double t0 = options.t0;
@@ -224,7 +232,9 @@ class KernelImpl final : public LinearStepper::Kernel {
     const int n = N != Eigen::Dynamic ? N : d.n();
     const bool zero_residue = implicit && options.zero_rounding_residue;
     const double residue_factor = ResidueFactor(n, m, forced);
+    const double zero_below = ZeroStateBelow(options, implicit);
     StepObserver* const observer = options.observer;
+    stream_.Start(n, m, options.sink);
 
     // The backend's options: copied once; per step only warm_start's values change (same size: no allocation).
     solver_options_ = options.solver;
@@ -236,6 +246,7 @@ class KernelImpl final : public LinearStepper::Kernel {
     y = D;
     y.noalias() += C * x;
     if (record) Record(0, t0, x, s, y, 0, 0.0, SolveStatus::kNotRun, out);
+    if (stream) stream_.Add(0, t0, x, s, y, 0, 0.0, SolveStatus::kNotRun, n, m);
     if (forced) d.forcing(t0, g_prev);
 
     // The fixed kernels solve through Solver::SolveRepeated: the checks that cannot change during the run are
@@ -296,13 +307,18 @@ class KernelImpl final : public LinearStepper::Kernel {
       if (zero_residue) {
         // a = xn, b = S s: a component within the rounding bound of a − b is 0 (StepperOptions).
         b.noalias() = S * s;
+        // And one below the normal range is 0 (SubnormalPolicy::kZeroState; zero_below = 0 turns it off).
         for (int i = 0; i < n; ++i) {
           const double v = xn[i] - b[i];
-          x[i] = std::abs(v) <= residue_factor * (std::abs(xn[i]) + std::abs(b[i])) ? 0.0 : v;
+          const double magnitude = std::abs(v);
+          x[i] = magnitude <= residue_factor * (std::abs(xn[i]) + std::abs(b[i])) || magnitude < zero_below ? 0.0 : v;
         }
       } else {
         xn.noalias() -= S * s;
         x = xn;
+        for (int i = 0; i < n; ++i) {
+          if (std::abs(x[i]) < zero_below) x[i] = 0.0;
+        }
       }
       // y_k feeds the explicit sign and the record; an unrecorded implicit run needs only y_final (below).
       if (need_y) {
@@ -311,11 +327,12 @@ class KernelImpl final : public LinearStepper::Kernel {
       }
       ++k;
       if (record) Record(k, t_next, x, s, y, iterations, residual, status, out);
+      if (stream) stream_.Add(k, t_next, x, s, y, iterations, residual, status, n, m);
       const bool finite = x.allFinite();
       if (!finite || (implicit && status != SolveStatus::kSolved)) {
         const bool has_nan = !finite && x.hasNaN();
         if (HandleFailure(k, status, residual, finite, has_nan, implicit ? &result_.message : nullptr,
-                          options.on_failure, out)) {
+                          options.on_failure, &stream_, out)) {
           break;
         }
       }
@@ -324,6 +341,7 @@ class KernelImpl final : public LinearStepper::Kernel {
       y = D;
       y.noalias() += C * x;
     }
+    stream_.Flush();
     counters.Store(out);
     FinishTrajectory(k, x, s, y, out);
   }
@@ -344,6 +362,7 @@ class KernelImpl final : public LinearStepper::Kernel {
   VecM s_, q_, y_;
   SolverOptions solver_options_;
   SolveResult result_;
+  TrajectoryStream stream_;
 };
 
 // Fixed-size kernels for n ≤ 4, m ≤ 2 (every linear scene of SCENES.md); the dynamic kernel otherwise.
@@ -384,7 +403,7 @@ void LinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* solver
                         Trajectory* out) {
   CheckRunArguments(kRunOwner, data_.n(), data_.sign, x0, num_steps, solver, options);
   PrepareTrajectory(data_, num_steps, options, out);
-  const ScopedFlushSubnormals flush(options.flush_subnormals);
+  const ScopedFlushSubnormals flush(options.subnormals == SubnormalPolicy::kFlushToZero);
   kernel_->Run(data_, problem_.get(), x0, num_steps, solver, options, out);
 }
 
@@ -404,7 +423,7 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
   const OneStepData first = Discretize(model, method, h, theta);  // validates everything once
   CheckRunArguments(kOwner, first.n(), first.sign, x0, num_steps, solver, options);
   PrepareTrajectory(first, num_steps, options, out);
-  const ScopedFlushSubnormals flush(options.flush_subnormals);
+  const ScopedFlushSubnormals flush(options.subnormals == SubnormalPolicy::kFlushToZero);
   // A ZOH plant run with a θ-method is its closed loop; form it once (a model change, not a discretization).
   LinearModel effective = model;
   if (const auto* zsys = std::get_if<ZohSmcSystem>(&model)) {
@@ -419,10 +438,14 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
   Vector x = x0, s = Vector::Zero(m), y = first.C * x + first.D;
   Vector g_prev(n), g_next(n), gbar(n);
   if (first.has_forcing()) first.forcing(options.t0, g_prev);
+  TrajectoryStream stream;
+  stream.Start(n, m, options.sink);
   const auto record = [&](std::int64_t k, double t, int iterations, double residual, SolveStatus status) {
-    out->SetRow(k, t, x, s, y, iterations, residual, status);
+    if (options.record) out->SetRow(k, t, x, s, y, iterations, residual, status);
+    if (stream.active()) stream.Add(k, t, x, s, y, iterations, residual, status, n, m);
   };
-  if (options.record) record(0, options.t0, 0, 0.0, SolveStatus::kNotRun);
+  record(0, options.t0, 0, 0.0, SolveStatus::kNotRun);
+  const double zero_below = ZeroStateBelow(options, implicit);
 
   Counters counters;
   std::int64_t k = 0;
@@ -467,22 +490,27 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
                             std::numeric_limits<double>::epsilon();
       for (int i = 0; i < n; ++i) {
         const double v = a[i] - b[i];
-        x[i] = std::abs(v) <= factor * (std::abs(a[i]) + std::abs(b[i])) ? 0.0 : v;
+        const double magnitude = std::abs(v);
+        x[i] = magnitude <= factor * (std::abs(a[i]) + std::abs(b[i])) || magnitude < zero_below ? 0.0 : v;
       }
     } else {
       x = d.R * x + p - d.S * s;
+      for (int i = 0; i < n; ++i) {
+        if (std::abs(x[i]) < zero_below) x[i] = 0.0;
+      }
     }
     y = d.C * x + d.D;
     ++k;
-    if (options.record) record(k, t_next, iterations, residual, status);
+    record(k, t_next, iterations, residual, status);
     const bool finite = x.allFinite();
     if (!finite || (implicit && status != SolveStatus::kSolved)) {
       if (HandleFailure(k, status, residual, finite, !finite && x.hasNaN(), implicit ? &result.message : nullptr,
-                        options.on_failure, out)) {
+                        options.on_failure, &stream, out)) {
         break;
       }
     }
   }
+  stream.Flush();
   counters.Store(out);
   FinishTrajectory(k, x, s, y, out);
 }

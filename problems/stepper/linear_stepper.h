@@ -5,7 +5,8 @@
 //     in-place q update (BoxMLCP::set_q) and the solve, warm-started from s_k (fixed kernels: Solver::SolveRepeated,
 //     whose checks that cannot change during the run are made once before the loop). Fixed-size Eigen kernels serve
 //     n ≤ 4, m ≤ 2 (every linear scene of SCENES.md); larger systems use a dynamic kernel with preallocated
-//     buffers. Neither allocates per step.
+//     buffers. Neither allocates per step. A run either records its history (O(N) memory) or hands its rows to a
+//     TrajectorySink as it goes (StepperOptions::sink: one bounded block), or keeps only the final state.
 //   SimulateRebuildingEachStep: what a general simulator does: every step re-discretizes (LU of I − hθE or the
 //     matrix exponential), rebuilds M = C S and a fresh BoxMLCP, then solves. Same trajectory up to rounding;
 //     benchmarks compare the two to show what precomputation buys.
@@ -42,6 +43,22 @@ class StepObserver {
                       const SolveResult& result) = 0;
 };
 
+// What a run does about subnormal numbers (|v| < 2.2e-308, float_mode.h): a state decaying to the origin enters
+// that range and, in IEEE arithmetic, stays there for good (the smallest subnormal divided by 1.3 rounds back to
+// itself), and every operation on a subnormal costs 10–100× more (measured: zoh-mimo's 1000×-horizon run at half
+// the steps per second, README "Long runs and subnormal numbers").
+//   kZeroState (default): after each implicit step, a state component whose magnitude is below the smallest normal
+//     double (std::numeric_limits<double>::min(), 2.2e-308) is set to exactly 0. The state then reaches the origin
+//     exactly instead of parking on subnormals, and 0 is a fixed point. It changes a component by less than
+//     2.2e-308 (absolute), the size of the subnormal range itself, and touches nothing else: the backend's and the
+//     steppers' arithmetic stays plain IEEE on every architecture. Implicit steps only (like zero_rounding_residue):
+//     s_{k+1} = Π(·) is continuous in x_k, whereas the explicit sgn(y_k) jumps at 0, so an explicit step keeps its
+//     subnormal state (an explicit scheme chatters around the surface instead of decaying to the origin).
+//   kFlushToZero: x86 flush-to-zero and denormals-are-zero for the whole run, on the calling thread, backend
+//     included (ScopedFlushSubnormals); every subnormal result and operand is 0. A no-op on other architectures.
+//   kIeee: plain IEEE arithmetic, subnormal states kept (`smcbench simulate --ieee-subnormals`).
+enum class SubnormalPolicy { kZeroState, kFlushToZero, kIeee };
+
 struct StepperOptions {
   // Passed to the backend at every step. The stepper overrides two fields: warm_start (s_k when warm_start below
   // is on, else empty) and measure_time (false: the clock costs as much as a small solve).
@@ -53,10 +70,12 @@ struct StepperOptions {
   double t0 = 0.0;
   // Not owned; null (the default) costs one predictable branch per step and nothing else.
   StepObserver* observer = nullptr;
-  // Flush subnormal results to zero during the run (x86 FTZ/DAZ, this thread; problems/stepper/float_mode.h). A
-  // state decaying to the origin underflows through the subnormal range, where arithmetic is 10–100× slower; this
-  // changes results only below 2.2e-308. Off by default: plain IEEE arithmetic.
-  bool flush_subnormals = false;
+  // Not owned. Receives every row of the run (0 .. steps_taken) while it goes, through one buffer of bounded size
+  // (trajectory.h: TrajectoryStream), whether or not record is on: outputs of long runs in constant memory. Null
+  // (the default) costs one predictable branch per step.
+  TrajectorySink* sink = nullptr;
+  // See SubnormalPolicy: by default a state component that underflows below 2.2e-308 after an implicit step is 0.
+  SubnormalPolicy subnormals = SubnormalPolicy::kZeroState;
   // Implicit steps: a component of x_{k+1} = a − b (a = R x_k + p_k, b = S s_{k+1}) with |x_{k+1,i}| ≤ K·u·(|a_i| +
   // |b_i|) (u = ε/2, K = n + m + 1, plus n with forcing) is set to exactly 0: it lies within the rounding-error
   // bound γ_K(|R||x_k| + |p_k| + |S||s_{k+1}|) of its own computation (Higham, Accuracy and Stability, §3.1), so

@@ -1,6 +1,7 @@
 // Pins down "no allocation per step": a second run of the pre-factored stepper into the same Trajectory
-// allocates nothing (fixed-size and dynamic kernels, implicit and explicit, with forcing), given a backend
-// that does not allocate. Registry backends are reported, not asserted (tests/allocation_test owns them).
+// allocates nothing (fixed-size and dynamic kernels, implicit and explicit, with forcing; recorded, unrecorded and
+// streamed to a sink), given a backend that does not allocate. Registry backends are reported, not asserted
+// (tests/allocation_test owns them).
 #include <gtest/gtest.h>
 
 #include <atomic>
@@ -67,17 +68,29 @@ std::vector<Case> Cases() {
   };
 }
 
+// Reads every streamed row and keeps a sum (so that the rows are really used), allocating nothing.
+class SummingSink final : public TrajectorySink {
+ public:
+  void OnRows(const TrajectoryBlock& block) override {
+    for (std::int64_t j = 0; j < block.rows; ++j) sum += block.x(0, static_cast<Eigen::Index>(j));
+  }
+  double sum = 0.0;
+};
+
 TEST(StepperAllocation, RepeatedRunsDoNotAllocate) {
   stepper_test::ReferenceSolver solver;
+  SummingSink sink;
   for (const Case& c : Cases()) {
-    for (bool record : {true, false}) {
-      SCOPED_TRACE(std::string(c.name) + (record ? " recorded" : " unrecorded"));
+    for (const char* mode : {"recorded", "unrecorded", "streamed"}) {
+      SCOPED_TRACE(std::string(c.name) + " " + mode);
+      const bool record = std::string(mode) == "recorded";
       LinearStepper stepper(DiscretizeTheta(c.system, 0.05, 1.0, c.sign));
       StepperOptions options;
       options.record = record;
+      if (std::string(mode) == "streamed") options.sink = &sink;
       Trajectory tr;
-      stepper.Run(c.x0, 200, &solver, options, &tr);  // sizes everything
-      const long count = CountAllocations([&] { stepper.Run(c.x0, 200, &solver, options, &tr); });
+      stepper.Run(c.x0, 5000, &solver, options, &tr);  // sizes everything (streamed: more than one block)
+      const long count = CountAllocations([&] { stepper.Run(c.x0, 5000, &solver, options, &tr); });
       EXPECT_EQ(count, 0);
       EXPECT_TRUE(tr.ok());
     }

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <memory>
 #include <random>
 #include <string>
@@ -14,6 +15,7 @@
 #include "problems/stepper/float_mode.h"
 #include "problems/stepper/metrics.h"
 #include "problems/stepper/stepper_test_util.h"
+#include "problems/stepper/streaming_test_util.h"
 #include "solvers/core/number_text.h"
 #include "solvers/registry/registry.h"
 #include "solvers/siconos/external_backends.h"
@@ -199,6 +201,7 @@ TEST(LemmaYahoo, PlainArithmeticLeavesARoundingResidueForSomeH) {
     LinearStepper stepper(DiscretizeTheta(stepper_test::SignScene(), c.h, 1.0, SignTreatment::kImplicit));
     StepperOptions plain;
     plain.zero_rounding_residue = false;
+    plain.subnormals = SubnormalPolicy::kIeee;  // the plain update all the way (the residue ends subnormal)
     const Trajectory tr = stepper.Run(Vec({c.x0}), NumSteps(c.T, c.h), solver.get(), plain);
     ASSERT_TRUE(tr.ok());
     std::int64_t k0 = 0;
@@ -679,48 +682,206 @@ namespace smcbench {
 namespace {
 
 // A state sliding to the origin decays by 1/(1 + h) per step and underflows into the subnormal range, where it
-// stays for good (the smallest subnormal divided by 1.3 rounds back to itself) and every step costs 5–15× more.
-// flush_subnormals keeps the run out of that range (subnormal results become zeros); the steps before the underflow region are bit-identical, and
-// the thread's floating-point mode is restored after the run.
-TEST(LinearStepperFloatMode, FlushSubnormalsZeroesTheUnderflowOnly) {
-  if (!ScopedFlushSubnormals::supported()) GTEST_SKIP() << "no flush-to-zero control on this architecture";
+// stays for good in IEEE arithmetic (the smallest subnormal divided by 1.3 rounds back to itself) and every step
+// costs 5–15× more.
+struct UnderflowRuns {
+  static constexpr std::int64_t kSteps = 4000;  // 2.21 · 1.3⁻ᵏ < 2.2e-308 from k ≈ 2700 on
+  static Vector X0() { return Vec({0.0, 2.21}); }
+  static LinearStepper Stepper() {
+    return LinearStepper(DiscretizeTheta(stepper_test::GaliasYuScene(), 0.3, 1.0, SignTreatment::kImplicit));
+  }
+  static Trajectory Run(SubnormalPolicy policy) {
+    stepper_test::ReferenceSolver solver;
+    LinearStepper stepper = Stepper();
+    StepperOptions options;
+    options.solver.tolerance = 1e-12;
+    options.subnormals = policy;
+    return stepper.Run(X0(), kSteps, &solver, options);
+  }
+};
+
+bool Subnormal(double v) { return std::fpclassify(v) == FP_SUBNORMAL; }
+
+// The first row with a subnormal state component, -1 if none.
+std::int64_t FirstSubnormalRow(const Trajectory& tr) {
+  for (std::int64_t k = 0; k <= tr.steps_taken; ++k) {
+    for (int i = 0; i < tr.n; ++i) {
+      if (Subnormal(tr.x(i, k))) return k;
+    }
+  }
+  return -1;
+}
+
+// The default (SubnormalPolicy::kZeroState): the run is bit-identical to plain IEEE arithmetic until IEEE's state
+// first underflows; from there a component below 2.2e-308 is 0 instead, so the two differ by less than that, and
+// the state reaches the origin exactly (0 is a fixed point) instead of parking on subnormals.
+TEST(LinearStepperFloatMode, DefaultZeroesTheSubnormalStateOnly) {
+  const Trajectory ieee = UnderflowRuns::Run(SubnormalPolicy::kIeee);
+  const Trajectory zeroed = UnderflowRuns::Run(StepperOptions{}.subnormals);
+  EXPECT_EQ(StepperOptions{}.subnormals, SubnormalPolicy::kZeroState);
+  ASSERT_TRUE(ieee.ok()) << ieee.first_failure_message;
+  ASSERT_TRUE(zeroed.ok()) << zeroed.first_failure_message;
+  const std::int64_t first_subnormal = FirstSubnormalRow(ieee);
+  ASSERT_GT(first_subnormal, 1000) << "the IEEE run must underflow into subnormals";
+  EXPECT_TRUE(Subnormal(ieee.x_final[0]) || Subnormal(ieee.x_final[1])) << "and stay there";
+  for (std::int64_t k = 0; k < first_subnormal; ++k) {
+    for (int i = 0; i < 2; ++i) ASSERT_EQ(ieee.x(i, k), zeroed.x(i, k)) << "step " << k;
+    ASSERT_EQ(ieee.s(0, k), zeroed.s(0, k)) << "step " << k;
+  }
+  const double smallest_normal = std::numeric_limits<double>::min();
+  for (std::int64_t k = 0; k <= UnderflowRuns::kSteps; ++k) {
+    for (int i = 0; i < 2; ++i) {
+      ASSERT_FALSE(Subnormal(zeroed.x(i, k))) << "step " << k;
+      ASSERT_LT(std::abs(zeroed.x(i, k) - ieee.x(i, k)), smallest_normal) << "step " << k;
+    }
+  }
+  EXPECT_EQ(zeroed.x_final[0], 0.0);
+  EXPECT_EQ(zeroed.x_final[1], 0.0);
+  // The rebuild-every-step path applies the same rule.
   stepper_test::ReferenceSolver solver;
-  const OneStepData d = DiscretizeTheta(stepper_test::GaliasYuScene(), 0.3, 1.0, SignTreatment::kImplicit);
-  LinearStepper stepper(d);
   StepperOptions options;
   options.solver.tolerance = 1e-12;
-  const std::int64_t steps = 4000;  // 2.21 · 1.3⁻ᵏ < 2.2e-308 from k ≈ 2700 on
-  const Vector x0 = Vec({0.0, 2.21});
-  const Trajectory ieee = stepper.Run(x0, steps, &solver, options);
-  options.flush_subnormals = true;
+  Trajectory rebuilt;
+  SimulateRebuildingEachStep(stepper_test::GaliasYuScene(), Method::kImplicit, 0.3, 1.0, UnderflowRuns::X0(),
+                             UnderflowRuns::kSteps, &solver, options, &rebuilt);
+  EXPECT_EQ(FirstSubnormalRow(rebuilt), -1);
+  EXPECT_EQ(rebuilt.x_final[0], 0.0);
+  EXPECT_EQ(rebuilt.x_final[1], 0.0);
+}
+
+// SubnormalPolicy::kFlushToZero keeps the run out of that range by x86 flush-to-zero (subnormal results become
+// zeros); the steps before the underflow region are bit-identical, and the thread's floating-point mode is restored
+// after the run.
+TEST(LinearStepperFloatMode, FlushToZeroZeroesTheUnderflowOnly) {
+  if (!ScopedFlushSubnormals::supported()) GTEST_SKIP() << "no flush-to-zero control on this architecture";
+  const Trajectory ieee = UnderflowRuns::Run(SubnormalPolicy::kIeee);
 #ifdef SMCBENCH_HAS_MXCSR
   const unsigned mode_before = _mm_getcsr();
 #endif
-  const Trajectory flushed = stepper.Run(x0, steps, &solver, options);
+  const Trajectory flushed = UnderflowRuns::Run(SubnormalPolicy::kFlushToZero);
 #ifdef SMCBENCH_HAS_MXCSR
   EXPECT_EQ(_mm_getcsr(), mode_before);
 #endif
   ASSERT_TRUE(ieee.ok()) << ieee.first_failure_message;
   ASSERT_TRUE(flushed.ok()) << flushed.first_failure_message;
-  const auto subnormal = [](double v) { return std::fpclassify(v) == FP_SUBNORMAL; };
-  std::int64_t first_subnormal = -1;
-  for (std::int64_t k = 0; k <= steps && first_subnormal < 0; ++k) {
-    for (int i = 0; i < 2; ++i) {
-      if (subnormal(ieee.x(i, k))) first_subnormal = k;
-    }
-  }
-  ASSERT_GT(first_subnormal, 1000) << "the IEEE run must underflow into subnormals";
-  EXPECT_TRUE(subnormal(ieee.x_final[0]) || subnormal(ieee.x_final[1])) << "and stay there";
+  ASSERT_GT(FirstSubnormalRow(ieee), 1000) << "the IEEE run must underflow into subnormals";
   // Bit-identical while the state is far above the underflow threshold (a step's intermediate products, such as
   // h·x·1e-17 in the merit function, underflow a little before x itself does).
-  for (std::int64_t k = 0; k <= steps && std::max(std::abs(ieee.x(0, k)), std::abs(ieee.x(1, k))) > 1e-250; ++k) {
+  for (std::int64_t k = 0;
+       k <= UnderflowRuns::kSteps && std::max(std::abs(ieee.x(0, k)), std::abs(ieee.x(1, k))) > 1e-250; ++k) {
     for (int i = 0; i < 2; ++i) ASSERT_EQ(ieee.x(i, k), flushed.x(i, k)) << "step " << k;
     ASSERT_EQ(ieee.s(0, k), flushed.s(0, k)) << "step " << k;
   }
-  for (std::int64_t k = 0; k <= steps; ++k) {
-    for (int i = 0; i < 2; ++i) ASSERT_FALSE(subnormal(flushed.x(i, k))) << "step " << k;
-  }
+  EXPECT_EQ(FirstSubnormalRow(flushed), -1);
   EXPECT_LT(flushed.x_final.cwiseAbs().maxCoeff(), 1e-300);  // at the origin to within the normal range
+}
+
+// ----------------------------------------------------------------------------------------------------------
+// Streaming (StepperOptions::sink): every row handed out while the run goes, bit for bit the recorded run's, in
+// blocks of bounded size, with the final status of a failed step.
+
+Trajectory StreamAndRecord(LinearStepper& stepper, const Vector& x0, std::int64_t steps, Solver* solver,
+                           StepperOptions options, stepper_test::CollectingSink* sink, Trajectory* streamed) {
+  const Trajectory recorded = stepper.Run(x0, steps, solver, options);
+  options.record = false;
+  options.sink = sink;
+  stepper.Run(x0, steps, solver, options, streamed);
+  return recorded;
+}
+
+TEST(LinearStepperStreaming, FixedKernelHandsOutEveryRowInBoundedBlocks) {
+  stepper_test::ReferenceSolver solver;
+  LinearStepper stepper(DiscretizeTheta(stepper_test::GaliasYuScene(), 0.001, 1.0, SignTreatment::kImplicit));
+  ASSERT_TRUE(stepper.uses_fixed_size_kernel());
+  stepper_test::CollectingSink sink;
+  Trajectory streamed;
+  const Trajectory recorded = StreamAndRecord(stepper, Vec({0.0, 2.21}), 10000, &solver, {}, &sink, &streamed);
+  stepper_test::ExpectSameRows(recorded, sink);
+  EXPECT_EQ(sink.blocks, 3);  // 4096 + 4096 + 1809 rows
+  EXPECT_EQ(sink.largest_block, kTrajectoryBlockMaxRows);
+  EXPECT_FALSE(streamed.recorded);
+  EXPECT_EQ(streamed.x.cols(), 0);  // nothing kept beyond the block
+  EXPECT_EQ(streamed.x_final, recorded.x_final);
+  EXPECT_EQ(streamed.y_final, recorded.y_final);
+  EXPECT_EQ(streamed.total_iterations, recorded.total_iterations);
+}
+
+TEST(LinearStepperStreaming, DynamicKernelExplicitAndRebuildPathsToo) {
+  stepper_test::ReferenceSolver solver;
+  LinearSignSystem big;  // n = 6, m = 3, forced: the dynamic kernel
+  big.E = -0.1 * DenseMatrix::Identity(6, 6);
+  big.B = DenseMatrix::Zero(6, 3);
+  big.B(0, 0) = 1, big.B(2, 1) = 1, big.B(4, 2) = 1;
+  big.C = big.B.transpose();
+  big.forcing = [](double t, Eigen::Ref<Vector> g) { g.setConstant(0.01 * t); };
+  {
+    LinearStepper stepper(DiscretizeTheta(big, 0.05, 1.0, SignTreatment::kImplicit));
+    ASSERT_FALSE(stepper.uses_fixed_size_kernel());
+    stepper_test::CollectingSink sink;
+    Trajectory streamed;
+    stepper_test::ExpectSameRows(
+        StreamAndRecord(stepper, Vec({1, -1, 0.5, 0.3, -0.7, 0.2}), 300, &solver, {}, &sink, &streamed), sink);
+  }
+  {
+    LinearStepper stepper(DiscretizeTheta(stepper_test::GaliasYuScene(), 0.3, 0.0, SignTreatment::kExplicit));
+    stepper_test::CollectingSink sink;
+    Trajectory streamed;
+    stepper_test::ExpectSameRows(StreamAndRecord(stepper, Vec({0.0, 2.21}), 100, nullptr, {}, &sink, &streamed),
+                                 sink);
+  }
+  {
+    // Recorded and streamed in the same run.
+    StepperOptions options;
+    stepper_test::CollectingSink sink;
+    options.sink = &sink;
+    Trajectory tr;
+    SimulateRebuildingEachStep(stepper_test::MultiSurfaceScene(), Method::kImplicit, 0.02, 1.0, Vec({1.0, -1.0}),
+                               75, &solver, options, &tr);
+    stepper_test::ExpectSameRows(tr, sink);
+  }
+}
+
+TEST(LinearStepperStreaming, AFailedStepIsStreamedWithItsFinalStatus) {
+  LinearStepper stepper(DiscretizeTheta(stepper_test::SignScene(), 0.2, 1.0, SignTreatment::kImplicit));
+  StepperOptions options;
+  options.solver.polish = false;
+  FailingSolver first({3}), second({3});
+  const Trajectory recorded = stepper.Run(Vec({1.01}), 10, &first, options);
+  stepper_test::CollectingSink sink;
+  options.record = false;
+  options.sink = &sink;
+  Trajectory streamed;
+  stepper.Run(Vec({1.01}), 10, &second, options, &streamed);
+  stepper_test::ExpectSameRows(recorded, sink);
+  ASSERT_EQ(sink.rows.steps_taken, 3);
+  EXPECT_EQ(sink.rows.status[3], SolveStatus::kIterationLimit);
+
+  // A state that overflows: its row carries kDiverged or kNumericalFailure, not the (absent) backend status.
+  LinearStepper blowing_up(DiscretizeTheta(stepper_test::ObserverScene(0.001), 0.1, 0.0, SignTreatment::kExplicit));
+  stepper_test::CollectingSink overflow;
+  Trajectory diverged;
+  const Trajectory recorded_overflow =
+      StreamAndRecord(blowing_up, Vec({2.0, 0.0, 0.0, 0.0}), 100000, nullptr, {}, &overflow, &diverged);
+  stepper_test::ExpectSameRows(recorded_overflow, overflow);
+  EXPECT_EQ(overflow.rows.status.back(), diverged.first_failure_status);
+  EXPECT_NE(overflow.rows.status.back(), SolveStatus::kNotRun);
+}
+
+// A sink that throws stops the run (the exception propagates); the stepper is usable afterwards.
+TEST(LinearStepperStreaming, AnExceptionFromTheSinkPropagates) {
+  struct Throwing final : TrajectorySink {
+    void OnRows(const TrajectoryBlock&) override { throw InvalidInputError("sink: disk full"); }
+  } throwing;
+  stepper_test::ReferenceSolver solver;
+  LinearStepper stepper(DiscretizeTheta(stepper_test::SignScene(), 0.01, 1.0, SignTreatment::kImplicit));
+  StepperOptions options;
+  options.sink = &throwing;
+  EXPECT_THROW(stepper.Run(Vec({1.01}), 10000, &solver, options), InvalidInputError);
+  stepper_test::CollectingSink sink;
+  options.sink = &sink;
+  Trajectory tr;
+  stepper.Run(Vec({1.01}), 10, &solver, options, &tr);
+  stepper_test::ExpectSameRows(tr, sink);
 }
 
 }  // namespace

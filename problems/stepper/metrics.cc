@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "solvers/core/problem.h"
 
@@ -71,6 +72,108 @@ TrajectoryMetrics ComputeMetrics(const Trajectory& trajectory, double tol, doubl
   return out;
 }
 
+// ------------------------------------------------------------------------------------------------------------
+// MetricsAccumulator: ComputeMetrics forwards. Per surface and row j, with v the last violating row so far:
+//   j violates (|y| > tol or NaN): v = j; the "after" statistics restart (max |y|, changes, variation = 0).
+//   else: max |y| after includes |y_j|; and for j ≥ 1 (row 0 holds no step's s), SignStatistics over rows
+//   [max(v + 1, 1), j]: the first of those rows sets the last sign, each later one adds |s_j − s_{j−1}| and
+//   counts a sign change exactly as the backward scan does.
+// The totals are SignStatistics over rows [1, j]. At the end, reached ⇔ the last row does not violate.
+
+MetricsAccumulator::MetricsAccumulator(int m, double tol, double sign_dead_zone)
+    : tol_(tol), dead_zone_(sign_dead_zone) {
+  if (!(tol >= 0.0)) throw InvalidInputError("MetricsAccumulator: tol must be >= 0");
+  if (!(sign_dead_zone >= 0.0)) throw InvalidInputError("MetricsAccumulator: sign_dead_zone must be >= 0");
+  if (m < 0) throw InvalidInputError("MetricsAccumulator: m must be >= 0");
+  surfaces_.resize(static_cast<std::size_t>(m));
+}
+
+void MetricsAccumulator::OnRows(const TrajectoryBlock& block) {
+  const int m = static_cast<int>(surfaces_.size());
+  if (block.m != m) {
+    throw InvalidInputError("MetricsAccumulator: a block with m = " + std::to_string(block.m) + " for " +
+                            std::to_string(m) + " surface(s)");
+  }
+  if (block.rows <= 0) return;
+  // Surface by surface, its state in locals (registers) over the block's rows: this runs once per step of
+  // `simulate --summary`, whose budget is a few nanoseconds.
+  const double tol = tol_, dead_zone = dead_zone_;
+  for (int i = 0; i < m; ++i) {
+    Surface sf = surfaces_[static_cast<std::size_t>(i)];
+    const double* s_row = block.s.data() + i;
+    const double* y_row = block.y.data() + i;
+    std::int64_t j = block.first_row;
+    for (std::int64_t c = 0; c < block.rows; ++c, ++j, s_row += m, y_row += m) {
+      const double s = *s_row;
+      const double abs_y = std::abs(*y_row);
+      const int sign = Sign(s, dead_zone);
+      if (j >= 2) {
+        // Totals over rows [1, j] (row 1 only sets the first sign, below).
+        sf.variation_total += std::abs(s - sf.previous_s);
+        if (sign != 0) {
+          if (sf.last_sign_total != 0 && sign != sf.last_sign_total) ++sf.changes_total;
+          sf.last_sign_total = sign;
+        }
+      } else if (j == 1) {
+        sf.last_sign_total = sign;
+      }
+      if (!(abs_y <= tol)) {  // a violation (NaN included): the "after" statistics restart
+        sf.last_violation = j;
+        sf.max_abs_y_after = 0.0;
+        sf.changes_after = 0;
+        sf.variation_after = 0.0;
+        sf.last_sign_after = 0;
+      } else {
+        sf.max_abs_y_after = std::max(sf.max_abs_y_after, abs_y);
+        const std::int64_t first = std::max<std::int64_t>(sf.last_violation + 1, 1);
+        if (j > first) {
+          sf.variation_after += std::abs(s - sf.previous_s);
+          if (sign != 0) {
+            if (sf.last_sign_after != 0 && sign != sf.last_sign_after) ++sf.changes_after;
+            sf.last_sign_after = sign;
+          }
+        } else if (j == first) {
+          sf.last_sign_after = sign;
+        }
+      }
+      sf.previous_s = s;
+    }
+    surfaces_[static_cast<std::size_t>(i)] = sf;
+  }
+  last_row_ = block.first_row + block.rows - 1;
+}
+
+TrajectoryMetrics MetricsAccumulator::Result(const Trajectory& run) const {
+  TrajectoryMetrics out;
+  out.tolerance = tol_;
+  out.sign_dead_zone = dead_zone_;
+  out.max_residual = run.max_residual;
+  out.total_iterations = run.total_iterations;
+  out.max_iterations = run.max_iterations;
+  out.failed_steps = run.failed_steps;
+  out.surfaces.resize(surfaces_.size());
+  bool all_reached = true;
+  std::int64_t reaching_all = 0;
+  for (std::size_t i = 0; i < surfaces_.size(); ++i) {
+    const Surface& sf = surfaces_[i];
+    SurfaceMetrics& sm = out.surfaces[i];
+    sm.sign_changes_total = sf.changes_total;
+    sm.total_variation_total = sf.variation_total;
+    if (last_row_ < 0 || sf.last_violation == last_row_) {
+      sm.reaching_step = -1;
+      all_reached = false;
+    } else {
+      sm.reaching_step = sf.last_violation + 1;
+      reaching_all = std::max(reaching_all, sm.reaching_step);
+      sm.max_abs_y_after = sf.max_abs_y_after;
+      sm.sign_changes_after = sf.changes_after;
+      sm.total_variation_after = sf.variation_after;
+    }
+  }
+  out.reaching_step = all_reached ? reaching_all : -1;
+  return out;
+}
+
 namespace {
 
 ErrorNorms Norms(const std::vector<double>& e, double h) {
@@ -113,6 +216,49 @@ SolutionErrors ComputeErrors(const Trajectory& trajectory, const ExactSolution& 
     out.s = Norms(e, tr.h);
   }
   return out;
+}
+
+ErrorsAccumulator::ErrorsAccumulator(int n, int m, double h, ExactSolution exact)
+    : exact_(std::move(exact)), h_(h), x_ref_(n), s_ref_(m) {}
+
+void ErrorsAccumulator::OnRows(const TrajectoryBlock& block) {
+  for (std::int64_t c = 0; c < block.rows; ++c) {
+    const auto col = static_cast<Eigen::Index>(c);
+    if (exact_.x) {
+      exact_.x(block.t[c], x_ref_);
+      x_.Add((block.x.col(col) - x_ref_).cwiseAbs().maxCoeff());
+    }
+    if (exact_.s && block.row(c) >= 1) {
+      exact_.s(block.t[c], s_ref_);
+      s_.Add((block.s.col(col) - s_ref_).cwiseAbs().maxCoeff());
+    }
+  }
+}
+
+SolutionErrors ErrorsAccumulator::Result() const {
+  const auto norms = [&](const Sums& sums) {
+    ErrorNorms n;
+    n.l1 = sums.sum * h_;
+    n.l2 = std::sqrt(h_ * sums.sum_sq);
+    n.max = sums.max;
+    return n;
+  };
+  SolutionErrors out;
+  if (exact_.x) out.x = norms(x_);
+  if (exact_.s) out.s = norms(s_);
+  return out;
+}
+
+void ReferenceErrorsAccumulator::Add(const double* s, const double* y, const double* s_ref, const double* y_ref,
+                                     int m) {
+  const auto worst = [](double current, double difference) {
+    return std::isnan(difference) ? kInf : std::max(current, difference);
+  };
+  for (int i = 0; i < m; ++i) {
+    errors_.s_error_max = worst(errors_.s_error_max, std::abs(s[i] - s_ref[i]));
+    errors_.y_error_max = worst(errors_.y_error_max, std::abs(y[i] - y_ref[i]));
+  }
+  ++errors_.steps_compared;
 }
 
 ReferenceErrors CompareWithReference(const Trajectory& run, const Trajectory& reference) {

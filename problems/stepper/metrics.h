@@ -1,7 +1,10 @@
-// Sliding-surface accuracy metrics of a recorded run (issue 3's JSON summary) and error norms against an exact
-// solution (the report's `eq:trivial-conv1`, with its "∞-norm" read as the max, not the sum it prints).
+// Sliding-surface accuracy metrics of a run (issue 3's JSON summary) and error norms against an exact solution
+// (the report's `eq:trivial-conv1`, with its "∞-norm" read as the max, not the sum it prints): from a recorded
+// trajectory, or accumulated while the run goes in memory independent of its length (issue 13: the *Accumulator
+// sinks give the same numbers bit for bit).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -44,6 +47,37 @@ struct TrajectoryMetrics {
 // Throws InvalidInputError if the trajectory was not recorded, or tol or sign_dead_zone is < 0 or NaN.
 TrajectoryMetrics ComputeMetrics(const Trajectory& trajectory, double tol, double sign_dead_zone = kSignDeadZone);
 
+// ComputeMetrics while the run goes (a TrajectorySink on StepperOptions::sink): O(m) memory whatever the number of
+// steps, and the same numbers bit for bit (the same comparisons, and the sums of |Δs| added in the same order).
+// The reaching step is defined backwards from the end ("|y_i| ≤ tol at every later step"); forwards it is one after
+// the last row that violated it, known at every row, and the "after reaching" statistics restart from 0 at every
+// violation, so when the run ends they cover exactly the rows after the last one.
+class MetricsAccumulator final : public TrajectorySink {
+ public:
+  // InvalidInputError as ComputeMetrics for tol or sign_dead_zone < 0 or NaN, or m < 0.
+  MetricsAccumulator(int m, double tol, double sign_dead_zone = kSignDeadZone);
+  void OnRows(const TrajectoryBlock& block) override;
+  // The metrics of the rows seen so far; the per-run counters (max_residual, iterations, failed_steps) from run.
+  TrajectoryMetrics Result(const Trajectory& run) const;
+
+ private:
+  struct Surface {
+    std::int64_t last_violation = -1;  // last row with |y| > tol or NaN (−1: none yet)
+    double max_abs_y_after = 0.0;      // over the rows after last_violation
+    std::int64_t changes_after = 0;
+    double variation_after = 0.0;
+    int last_sign_after = 0;
+    std::int64_t changes_total = 0;
+    double variation_total = 0.0;
+    int last_sign_total = 0;
+    double previous_s = 0.0;           // s of the previous row
+  };
+  double tol_;
+  double dead_zone_;
+  std::vector<Surface> surfaces_;
+  std::int64_t last_row_ = -1;
+};
+
 // Discrete error norms of e_k = ‖f_k − f(t_k)‖∞ (∞-norm over components):
 //   l1 = h Σ_k e_k,  l2 = (h Σ_k e_k²)^½,  max = max_k e_k.
 struct ErrorNorms {
@@ -66,6 +100,29 @@ struct SolutionErrors {
 // Throws InvalidInputError if the trajectory was not recorded.
 SolutionErrors ComputeErrors(const Trajectory& trajectory, const ExactSolution& exact);
 
+// ComputeErrors while the run goes (a TrajectorySink): the same sums in the same order, O(n + m) memory.
+class ErrorsAccumulator final : public TrajectorySink {
+ public:
+  // h: the run's step (the norms' weight).
+  ErrorsAccumulator(int n, int m, double h, ExactSolution exact);
+  void OnRows(const TrajectoryBlock& block) override;
+  SolutionErrors Result() const;
+
+ private:
+  struct Sums {
+    double sum = 0.0, sum_sq = 0.0, max = 0.0;
+    void Add(double e) {
+      sum += e;
+      sum_sq += e * e;
+      max = std::max(max, e);
+    }
+  };
+  ExactSolution exact_;
+  double h_;
+  Vector x_ref_, s_ref_;
+  Sums x_, s_;
+};
+
 // The error of a run in the units its users read (issue 12): s is the control, y = Cx + D the sliding variable.
 // Against a reference run of the same scene, h, method and x0 (`smcbench simulate` steps it with certified solves):
 //   s_error_max = max_k ‖s_k − s_ref,k‖∞,  y_error_max = max_k ‖y_k − y_ref,k‖∞,
@@ -79,5 +136,16 @@ struct ReferenceErrors {
 
 // Throws InvalidInputError if either trajectory was not recorded or their n, m or h differ.
 ReferenceErrors CompareWithReference(const Trajectory& run, const Trajectory& reference);
+
+// CompareWithReference one step at a time, for runs that are streamed rather than recorded: Add(s, y, s_ref,
+// y_ref) for each step k = 1..steps_compared, in any order (a maximum). m entries each.
+class ReferenceErrorsAccumulator {
+ public:
+  void Add(const double* s, const double* y, const double* s_ref, const double* y_ref, int m);
+  const ReferenceErrors& errors() const { return errors_; }
+
+ private:
+  ReferenceErrors errors_;
+};
 
 }  // namespace smcbench

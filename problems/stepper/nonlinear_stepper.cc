@@ -7,6 +7,7 @@
 #include <string>
 #include <utility>
 
+#include "problems/stepper/float_mode.h"
 #include "problems/stepper/validation.h"
 #include "solvers/core/number_text.h"
 
@@ -231,6 +232,7 @@ struct NonlinearStepper::Workspace {
   Vector probe_f, probe_y, ones;
   DenseMatrix probe_J, probe_G, probe_H;
   std::string description_mcp, description_newton, description_explicit;
+  TrajectoryStream stream;  // StepperOptions::sink's buffer
 };
 
 namespace {
@@ -480,6 +482,14 @@ void NonlinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* sol
   w.s.setZero();
   sys.h(w.x, w.y);
   if (record) record_row(0, t0, 0, 0.0, SolveStatus::kNotRun);
+  TrajectoryStream& stream = w.stream;
+  stream.Start(n, m, options.stepper.sink);
+  if (stream.active()) stream.Add(0, t0, w.x, w.s, w.y, 0, 0.0, SolveStatus::kNotRun, n, m);
+  const ScopedFlushSubnormals flush(options.stepper.subnormals == SubnormalPolicy::kFlushToZero);
+  // SubnormalPolicy::kZeroState (implicit steps): a component of x_{k+1} below the normal range is 0.
+  const double zero_below = implicit && options.stepper.subnormals == SubnormalPolicy::kZeroState
+                                ? std::numeric_limits<double>::min()
+                                : 0.0;
 
   double max_residual = 0.0;
   std::int64_t total_iterations = 0;
@@ -495,6 +505,9 @@ void NonlinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* sol
     } else {
       w.StepNewton(k + 1, solver, implicit, options, &step);
     }
+    for (int i = 0; i < n; ++i) {
+      if (std::abs(w.xn[i]) < zero_below) w.xn[i] = 0.0;
+    }
     w.x = w.xn;
     w.s = w.sn;
     sys.h(w.x, w.y);
@@ -508,12 +521,16 @@ void NonlinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* sol
       record_row(k, t_next, step.backend_iterations, step.residual, step.status);
       stats.iterations[static_cast<std::size_t>(k)] = step.newton_iterations;
     }
+    if (stream.active()) {
+      stream.Add(k, t_next, w.x, w.s, w.y, step.backend_iterations, step.residual, step.status, n, m);
+    }
     const bool finite = w.x.allFinite() && w.s.allFinite();
     if (!finite || step.status != SolveStatus::kSolved) {
       // Off the hot path: only failed steps get here.
       SolveStatus status = step.status;
       if (!finite) status = w.x.hasNaN() || w.s.hasNaN() ? SolveStatus::kNumericalFailure : SolveStatus::kDiverged;
       if (record) out->status[static_cast<Eigen::Index>(k)] = status;
+      if (stream.active()) stream.SetLastStatus(status);
       ++out->failed_steps;
       if (out->first_failed_step < 0) {
         out->first_failed_step = k;
@@ -530,6 +547,7 @@ void NonlinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* sol
       }
     }
   }
+  stream.Flush();
   out->max_residual = max_residual;
   out->total_iterations = total_iterations;
   out->max_iterations = max_iterations;

@@ -66,7 +66,8 @@ std::optional<NonlinearAlgorithm> NonlinearAlgorithmFromString(std::string_view 
 struct NonlinearStepperOptions {
   // solver: options of every backend call (Algorithm 1: the MCP solve; Algorithm 2: each inner MLCP solve);
   // warm_start: Algorithm 1 starts the MCP solve from (x_k, s_k), Algorithm 2 starts each MLCP from s^α (the
-  // Newton loop itself always starts from (x_k, s_k), `eq:NL7`); on_failure, record, t0 as in the linear stepper;
+  // Newton loop itself always starts from (x_k, s_k), `eq:NL7`); on_failure, record, t0, sink and subnormals as in
+  // the linear stepper (kZeroState zeroes the subnormal components of an implicit step's accepted x_{k+1});
   // observer receives every inner MLCP of Algorithm 2 (step k, Newton iteration α), nothing for Algorithm 1.
   StepperOptions stepper;
   NonlinearAlgorithm algorithm = NonlinearAlgorithm::kNewtonMlcp;

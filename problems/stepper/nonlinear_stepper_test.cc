@@ -10,12 +10,14 @@
 #include <cstdio>
 #include <sstream>
 #include <string>
+#include <vector>
 
 #include "problems/stepper/linear_stepper.h"
 #include "problems/stepper/metrics.h"
 #include "problems/stepper/nonlinear_scenes.h"
 #include "problems/stepper/nonlinear_stepper.h"
 #include "problems/stepper/stepper_test_util.h"
+#include "problems/stepper/streaming_test_util.h"
 #include "problems/stepper/trajectory.h"
 #include "solvers/registry/registry.h"
 #include "solvers/siconos/external_backends.h"
@@ -765,6 +767,51 @@ TEST(NonlinearStepper, RepeatedRunsDoNotAllocateExceptTheMlcpCopies) {
   const NonlinearStepperOptions o = Options(NonlinearAlgorithm::kNewtonMlcp);
   explicit_stepper.Run(scene.x0, 50, nullptr, o, &tr);
   EXPECT_EQ(test_support::CountMallocs([&] { explicit_stepper.Run(scene.x0, 50, nullptr, o, &tr); }), 0);
+}
+
+// StepperOptions::sink: every row handed out while the run goes, bit for bit the recorded run's, for both
+// algorithms, the explicit-sign Newton and a run that stops on a failure (its last row carries the status).
+TEST(NonlinearStepper, StreamedRowsEqualTheRecordedRun) {
+  const NonlinearScene arctan = ArctanScene();
+  stepper_test::ReferenceSolver reference;
+  auto newton = CreateSolver("newton");
+  struct Case {
+    const char* name;
+    NonlinearSignSystem system;
+    NonlinearScheme scheme;
+    Vector x0;
+    Solver* solver;
+    NonlinearStepperOptions options;
+  };
+  NonlinearScheme explicit_scheme = arctan.scheme;
+  explicit_scheme.sign = SignTreatment::kExplicit;
+  NonlinearScheme two_d = arctan.scheme;
+  two_d.h = 0.01;
+  const NonlinearScene hypomonotone = HypomonotoneScene();
+  NonlinearStepperOptions one_newton_iteration = Options(NonlinearAlgorithm::kNewtonMlcp);
+  one_newton_iteration.newton_max_iterations = 1;  // fails at step 1 (see Failures above)
+  const std::vector<Case> cases = {
+      {"algorithm 2", arctan.system, arctan.scheme, arctan.x0, &reference, Options(NonlinearAlgorithm::kNewtonMlcp)},
+      {"algorithm 1", arctan.system, arctan.scheme, arctan.x0, newton.get(), Options(NonlinearAlgorithm::kMcp)},
+      {"explicit sign", arctan.system, explicit_scheme, arctan.x0, nullptr, Options(NonlinearAlgorithm::kNewtonMlcp)},
+      {"m = 2, 5000 rows", Nonlinear2D(), two_d, Vec({0.5, -0.3}), &reference,
+       Options(NonlinearAlgorithm::kNewtonMlcp)},
+      {"failure", hypomonotone.system, hypomonotone.scheme, hypomonotone.x0, &reference, one_newton_iteration},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    NonlinearStepper stepper(c.system, c.scheme);
+    const std::int64_t steps = c.system.m == 2 ? 5000 : 200;
+    const Trajectory recorded = stepper.Run(c.x0, steps, c.solver, c.options);
+    stepper_test::CollectingSink sink;
+    NonlinearStepperOptions streaming = c.options;
+    streaming.stepper.record = false;
+    streaming.stepper.sink = &sink;
+    const Trajectory streamed = stepper.Run(c.x0, steps, c.solver, streaming);
+    stepper_test::ExpectSameRows(recorded, sink);
+    EXPECT_EQ(streamed.x_final, recorded.x_final);
+    EXPECT_EQ(streamed.first_failed_step, recorded.first_failed_step);
+  }
 }
 
 TEST(NonlinearStepper, AlgorithmNamesRoundTrip) {

@@ -19,6 +19,32 @@ void Append(long long value, std::string* line) {
   line->append(buffer, result.ptr);
 }
 
+std::string CsvHeader(int n, int m) {
+  std::string line = "t";
+  for (int i = 1; i <= n; ++i) line += ",x" + std::to_string(i);
+  for (int i = 1; i <= m; ++i) line += ",s" + std::to_string(i);
+  for (int i = 1; i <= m; ++i) line += ",y" + std::to_string(i);
+  line += ",iterations,residual\n";
+  return line;
+}
+
+// One CSV row from column c of the history matrices (a recorded trajectory or a streamed block).
+void AppendCsvRow(double t, const DenseMatrix& x, const DenseMatrix& s, const DenseMatrix& y, Eigen::Index c,
+                  int iterations, double residual, std::string* line) {
+  Append(t, line);
+  for (Eigen::Index i = 0; i < x.rows(); ++i) line->push_back(','), Append(x(i, c), line);
+  for (Eigen::Index i = 0; i < s.rows(); ++i) line->push_back(','), Append(s(i, c), line);
+  for (Eigen::Index i = 0; i < y.rows(); ++i) line->push_back(','), Append(y(i, c), line);
+  line->push_back(',');
+  Append(static_cast<long long>(iterations), line);
+  line->push_back(',');
+  Append(residual, line);
+  line->push_back('\n');
+}
+
+// Text buffered before each write to the stream.
+constexpr std::size_t kCsvBufferBytes = std::size_t{1} << 16;
+
 }  // namespace
 
 void WriteTrajectoryCsv(const Trajectory& trajectory, std::ostream& out) {
@@ -26,24 +52,12 @@ void WriteTrajectoryCsv(const Trajectory& trajectory, std::ostream& out) {
   if (!tr.recorded) {
     throw InvalidInputError("WriteTrajectoryCsv: the trajectory was not recorded (StepperOptions::record = false)");
   }
-  std::string line = "t";
-  for (int i = 1; i <= tr.n; ++i) line += ",x" + std::to_string(i);
-  for (int i = 1; i <= tr.m; ++i) line += ",s" + std::to_string(i);
-  for (int i = 1; i <= tr.m; ++i) line += ",y" + std::to_string(i);
-  line += ",iterations,residual\n";
-  out << line;
+  out << CsvHeader(tr.n, tr.m);
+  std::string line;
   const std::int64_t rows = tr.steps_taken + 1;
   for (std::int64_t k = 0; k < rows; ++k) {
     line.clear();
-    Append(tr.t[k], &line);
-    for (int i = 0; i < tr.n; ++i) line.push_back(','), Append(tr.x(i, k), &line);
-    for (int i = 0; i < tr.m; ++i) line.push_back(','), Append(tr.s(i, k), &line);
-    for (int i = 0; i < tr.m; ++i) line.push_back(','), Append(tr.y(i, k), &line);
-    line.push_back(',');
-    Append(static_cast<long long>(tr.iterations[k]), &line);
-    line.push_back(',');
-    Append(tr.residual[k], &line);
-    line.push_back('\n');
+    AppendCsvRow(tr.t[k], tr.x, tr.s, tr.y, static_cast<Eigen::Index>(k), tr.iterations[k], tr.residual[k], &line);
     out << line;
   }
   if (!out) throw InvalidInputError("WriteTrajectoryCsv: writing to the stream failed");
@@ -55,6 +69,72 @@ void WriteTrajectoryCsvFile(const Trajectory& trajectory, const std::string& pat
   WriteTrajectoryCsv(trajectory, out);
   out.flush();
   if (!out) throw InvalidInputError("WriteTrajectoryCsvFile: writing '" + path + "' failed");
+}
+
+void FeedRecorded(const Trajectory& trajectory, TrajectorySink* sink, std::int64_t block_rows) {
+  const Trajectory& tr = trajectory;
+  if (!tr.recorded) {
+    throw InvalidInputError("FeedRecorded: the trajectory was not recorded (StepperOptions::record = false)");
+  }
+  if (block_rows < 1) throw InvalidInputError("FeedRecorded: block_rows must be >= 1");
+  TrajectoryBlock block;
+  block.n = tr.n;
+  block.m = tr.m;
+  const std::int64_t rows = tr.steps_taken + 1;
+  for (std::int64_t first = 0; first < rows; first += block_rows) {
+    const std::int64_t count = std::min(block_rows, rows - first);
+    const auto f = static_cast<Eigen::Index>(first), c = static_cast<Eigen::Index>(count);
+    block.first_row = first;
+    block.rows = count;
+    block.t.assign(tr.t.begin() + first, tr.t.begin() + first + count);
+    block.x = tr.x.middleCols(f, c);
+    block.s = tr.s.middleCols(f, c);
+    block.y = tr.y.middleCols(f, c);
+    block.iterations.assign(tr.iterations.begin() + first, tr.iterations.begin() + first + count);
+    block.residual.assign(tr.residual.begin() + first, tr.residual.begin() + first + count);
+    block.status.assign(tr.status.begin() + first, tr.status.begin() + first + count);
+    sink->OnRows(block);
+  }
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// Streamed CSV
+
+TrajectoryCsvWriter::TrajectoryCsvWriter(const std::string& path)
+    : file_(std::make_unique<std::ofstream>(path)), out_(file_.get()), name_(path) {
+  if (!*file_) throw InvalidInputError("TrajectoryCsvWriter: cannot open '" + path + "' for writing");
+  buffer_.reserve(kCsvBufferBytes + 1024);
+}
+
+TrajectoryCsvWriter::TrajectoryCsvWriter(std::ostream* out, std::string name) : out_(out), name_(std::move(name)) {
+  buffer_.reserve(kCsvBufferBytes + 1024);
+}
+
+TrajectoryCsvWriter::~TrajectoryCsvWriter() = default;
+
+void TrajectoryCsvWriter::Drain() {
+  out_->write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+  buffer_.clear();
+  if (!*out_) throw InvalidInputError("TrajectoryCsvWriter: writing '" + name_ + "' failed");
+}
+
+void TrajectoryCsvWriter::OnRows(const TrajectoryBlock& block) {
+  if (!header_written_) {
+    buffer_ += CsvHeader(block.n, block.m);
+    header_written_ = true;
+  }
+  for (std::int64_t j = 0; j < block.rows; ++j) {
+    AppendCsvRow(block.t[j], block.x, block.s, block.y, static_cast<Eigen::Index>(j), block.iterations[j],
+                 block.residual[j], &buffer_);
+    if (buffer_.size() >= kCsvBufferBytes) Drain();
+  }
+  rows_ += block.rows;
+}
+
+void TrajectoryCsvWriter::Close() {
+  Drain();
+  out_->flush();
+  if (!*out_) throw InvalidInputError("TrajectoryCsvWriter: writing '" + name_ + "' failed");
 }
 
 }  // namespace smcbench

@@ -1,9 +1,13 @@
 // What a time-stepper run produces: the discrete trajectory (t_k, x_k, s_k, y_k) and, per step, what the
-// backend reported; plus the CSV writer of issue 3 (`t,x1..xn,s1..sm,y1..ym,iterations,residual`).
+// backend reported; the streaming hook that hands the rows out while the run goes (TrajectorySink: outputs of
+// long runs in constant memory, issue 13); and the CSV writer of issue 3 (`t,x1..xn,s1..sm,y1..ym,iterations,
+// residual`), for a recorded trajectory or streamed.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <iosfwd>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -64,9 +68,150 @@ struct Trajectory {
   double time(std::int64_t k) const { return t0 + static_cast<double>(k) * h; }
 };
 
+// Rows first_row .. first_row + rows − 1 of a run, as a stepper hands them to a TrajectorySink: column j (j < rows)
+// holds row first_row + j with the fields of Trajectory's history (t_k, x_k, s_k, y_k, and the iterations,
+// residual and status of the step producing x_k; row 0: 0, 0, kNotRun). The storage may hold more columns than
+// rows; only the first `rows` are meaningful.
+struct TrajectoryBlock {
+  int n = 0;
+  int m = 0;
+  std::int64_t first_row = 0;
+  std::int64_t rows = 0;
+  std::vector<double> t;
+  DenseMatrix x, s, y;
+  std::vector<int> iterations;
+  std::vector<double> residual;
+  std::vector<SolveStatus> status;  // the step's final status (a non-finite state: kNumericalFailure/kDiverged)
+
+  std::int64_t row(std::int64_t j) const { return first_row + j; }
+};
+
+// Receives a run's rows while it goes (StepperOptions::sink): every row 0 .. steps_taken exactly once, in order,
+// in blocks of bounded size, the last block before Run returns. Whatever a sink keeps is its own business; the
+// stepper keeps one block. An exception thrown by OnRows propagates out of Run (the run stops there).
+class TrajectorySink {
+ public:
+  virtual ~TrajectorySink() = default;
+  virtual void OnRows(const TrajectoryBlock& block) = 0;
+};
+
+// Sends every block to each of several sinks, in order (not owned).
+class TrajectorySinks final : public TrajectorySink {
+ public:
+  void Add(TrajectorySink* sink) {
+    if (sink) sinks_.push_back(sink);
+  }
+  bool empty() const { return sinks_.empty(); }
+  void OnRows(const TrajectoryBlock& block) override {
+    for (TrajectorySink* sink : sinks_) sink->OnRows(block);
+  }
+
+ private:
+  std::vector<TrajectorySink*> sinks_;
+};
+
+// Rows per streamed block: as many as fit in kTrajectoryBlockBytes, between 1 and kTrajectoryBlockMaxRows (a
+// block is the only per-run buffer of a streamed run; 4096 rows amortize the sink's virtual call to nothing).
+inline constexpr std::size_t kTrajectoryBlockBytes = std::size_t{1} << 18;
+inline constexpr std::int64_t kTrajectoryBlockMaxRows = 4096;
+
+// The steppers' side of a TrajectorySink: Add() writes row k into the block, which goes to the sink when it is full
+// (at the next Add, so that the last row can still have its status corrected) and at Finish(). Sized once per
+// run by Start(); Add() never allocates.
+class TrajectoryStream {
+ public:
+  // sink may be null: then the stream is inactive and Add() must not be called.
+  void Start(int n, int m, TrajectorySink* sink) {
+    sink_ = sink;
+    if (!sink_) return;
+    const std::size_t row_bytes = sizeof(double) * static_cast<std::size_t>(1 + n + 2 * m) + sizeof(int) +
+                                  sizeof(double) + sizeof(SolveStatus);
+    capacity_ = std::clamp<std::int64_t>(static_cast<std::int64_t>(kTrajectoryBlockBytes / row_bytes), 1,
+                                         kTrajectoryBlockMaxRows);
+    const auto c = static_cast<Eigen::Index>(capacity_);
+    block_.n = n;
+    block_.m = m;
+    block_.first_row = 0;
+    block_.rows = 0;
+    block_.t.resize(capacity_);
+    block_.x.resize(n, c);
+    block_.s.resize(m, c);
+    block_.y.resize(m, c);
+    block_.iterations.resize(capacity_);
+    block_.residual.resize(capacity_);
+    block_.status.resize(capacity_);
+  }
+  bool active() const { return sink_ != nullptr; }
+
+  // Plain loops over the first n / m entries (unrolled when they are compile-time constants): Eigen's fixed ↔
+  // dynamic assignments are out-of-line calls.
+  template <typename X, typename S, typename Y>
+  void Add(std::int64_t k, double t_k, const X& x_k, const S& s_k, const Y& y_k, int iterations_k,
+           double residual_k, SolveStatus status_k, int n, int m) {
+    if (block_.rows == capacity_) Flush();
+    const std::int64_t c = block_.rows;
+    if (c == 0) block_.first_row = k;
+    const auto col = static_cast<Eigen::Index>(c);
+    block_.t[c] = t_k;
+    double* x = block_.x.data() + col * n;
+    for (int i = 0; i < n; ++i) x[i] = x_k[i];
+    double* s = block_.s.data() + col * m;
+    double* y = block_.y.data() + col * m;
+    for (int i = 0; i < m; ++i) s[i] = s_k[i], y[i] = y_k[i];
+    block_.iterations[c] = iterations_k;
+    block_.residual[c] = residual_k;
+    block_.status[c] = status_k;
+    block_.rows = c + 1;
+  }
+  // The status of the row added last (a failed step's final status).
+  void SetLastStatus(SolveStatus status) {
+    if (block_.rows > 0) block_.status[block_.rows - 1] = status;
+  }
+  // Hands the buffered rows to the sink (the end of a run; Add() does it when the block is full).
+  void Flush() {
+    if (!sink_ || block_.rows == 0) return;
+    sink_->OnRows(block_);
+    block_.rows = 0;
+  }
+
+ private:
+  TrajectorySink* sink_ = nullptr;
+  std::int64_t capacity_ = 0;
+  TrajectoryBlock block_;
+};
+
+// Hands a recorded trajectory's rows to a sink in blocks of at most block_rows rows (a recorded run seen by the
+// streaming consumers: plots and tests). InvalidInputError if the trajectory was not recorded or block_rows < 1.
+void FeedRecorded(const Trajectory& trajectory, TrajectorySink* sink,
+                  std::int64_t block_rows = kTrajectoryBlockMaxRows);
+
 // Header `t,x1..xn,s1..sm,y1..ym,iterations,residual`, then one row per recorded step, numbers in shortest
 // round-trip form. Throws InvalidInputError if the trajectory was not recorded or the stream fails.
 void WriteTrajectoryCsv(const Trajectory& trajectory, std::ostream& out);
 void WriteTrajectoryCsvFile(const Trajectory& trajectory, const std::string& path);
+
+// The same CSV written while the run goes (a TrajectorySink): the header at the first block, then each block's
+// rows through a bounded text buffer. Byte for byte what WriteTrajectoryCsv writes for the recorded run.
+// InvalidInputError if the file cannot be opened (constructor) or a write fails (OnRows, Close).
+class TrajectoryCsvWriter final : public TrajectorySink {
+ public:
+  explicit TrajectoryCsvWriter(const std::string& path);
+  // Writes into out (not owned; it must outlive the writer); name names it in errors.
+  TrajectoryCsvWriter(std::ostream* out, std::string name);
+  ~TrajectoryCsvWriter() override;
+  void OnRows(const TrajectoryBlock& block) override;
+  // Flushes what is buffered and checks the stream.
+  void Close();
+  std::int64_t rows_written() const { return rows_; }
+
+ private:
+  void Drain();
+  std::unique_ptr<std::ofstream> file_;
+  std::ostream* out_;
+  std::string name_;
+  std::string buffer_;
+  bool header_written_ = false;
+  std::int64_t rows_ = 0;
+};
 
 }  // namespace smcbench

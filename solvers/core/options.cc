@@ -64,6 +64,17 @@ bool OptionBinder::Set(std::string_view name, std::string_view value, std::strin
         return false;
       }
       **i = static_cast<int>(v);
+    } else if (auto* c = std::get_if<ChoiceField>(&e.field)) {
+      for (const auto& [choice, v] : c->choices) {
+        if (choice == text) {
+          c->set(c->field, v);
+          return true;
+        }
+      }
+      std::string names;
+      for (const auto& choice : c->choices) names += (names.empty() ? "" : ", ") + choice.first;
+      *error = "option '" + e.name + "' expects one of " + names + ", got '" + text + "'";
+      return false;
     } else if (auto* b = std::get_if<bool*>(&e.field)) {
       if (text == "1" || text == "true" || text == "yes" || text == "on") {
         **b = true;
@@ -91,6 +102,8 @@ std::string OptionBinder::ValueText(std::string_view name) const {
       std::snprintf(buffer, sizeof buffer, "%.17g", **d);
     } else if (auto* i = std::get_if<int*>(&e.field)) {
       std::snprintf(buffer, sizeof buffer, "%d", **i);
+    } else if (auto* c = std::get_if<ChoiceField>(&e.field)) {
+      return c->Current();
     } else {
       std::snprintf(buffer, sizeof buffer, "%s", **std::get_if<bool*>(&e.field) ? "true" : "false");
     }
@@ -99,11 +112,29 @@ std::string OptionBinder::ValueText(std::string_view name) const {
   return {};
 }
 
+std::string OptionBinder::ChoiceField::Current() const {
+  const int value = get(field);
+  for (const auto& [name, v] : choices) {
+    if (v == value) return name;
+  }
+  return "?";
+}
+
 std::string OptionBinder::Help() const {
   std::ostringstream s;
   for (const Entry& e : entries_) {
     s << "  " << e.name << " = ";
-    std::visit([&](auto* p) { s << *p; }, e.field);
+    if (auto* c = std::get_if<ChoiceField>(&e.field)) {
+      s << c->Current() << " (one of";
+      for (const auto& choice : c->choices) s << " " << choice.first;
+      s << ")";
+    } else {
+      std::visit(
+          [&](const auto& p) {
+            if constexpr (std::is_pointer_v<std::decay_t<decltype(p)>>) s << *p;
+          },
+          e.field);
+    }
     s << "  " << e.help << "\n";
   }
   return s.str();

@@ -2,10 +2,10 @@
 // option struct (for the CLI) and rejects unknown names.
 #pragma once
 
-#include <cstring>
 #include <string>
 #include <string_view>
 #include <type_traits>
+#include <utility>
 #include <variant>
 #include <vector>
 
@@ -45,27 +45,11 @@ struct SolverOptions {
   bool Explain(std::string* why) const;
 };
 
-// Remembers the last value of a backend's options struct that passed its IsValid, byte for byte, so validating
-// an unchanged value again (every solve of a time-stepper) costs one fixed-size memcmp instead of every field
-// test. A changed value (SetOption, mutable_options(), set_options()) differs in its bytes and is validated
-// afresh; equal bytes mean equal fields, hence the same verdict. Not thread-safe, like the Solver that owns it.
-template <typename Options>
-class OptionsCheckCache {
-  static_assert(std::is_trivially_copyable_v<Options>, "compared and copied bytewise");
-
- public:
-  bool Check(const Options& options, std::string* why) const {
-    if (valid_ && std::memcmp(&options, &last_, sizeof(Options)) == 0) return true;
-    valid_ = false;
-    if (!options.IsValid(why)) return false;
-    std::memcpy(static_cast<void*>(&last_), &options, sizeof(Options));
-    valid_ = true;
-    return true;
-  }
-
- private:
-  mutable Options last_{};
-  mutable bool valid_ = false;
+// One accepted spelling of an enum option: `--set backend.name=NAME` stores value. Several names may map to one
+// value (an old spelling); the first listed for a value is the one printed.
+struct OptionChoice {
+  std::string_view name;
+  int value;
 };
 
 // Binds option names to fields of a typed options struct, so "omega=1.5" can be parsed and checked.
@@ -74,6 +58,17 @@ class OptionBinder {
   void Add(std::string_view name, double* field, std::string_view help);
   void Add(std::string_view name, int* field, std::string_view help);
   void Add(std::string_view name, bool* field, std::string_view help);
+  // A named-value (enum) option: only the listed names are accepted.
+  template <typename Enum>
+  void Add(std::string_view name, Enum* field, std::initializer_list<OptionChoice> choices, std::string_view help) {
+    static_assert(std::is_enum_v<Enum>);
+    ChoiceField f;
+    f.field = field;
+    f.get = [](const void* p) { return static_cast<int>(*static_cast<const Enum*>(p)); };
+    f.set = [](void* p, int v) { *static_cast<Enum*>(p) = static_cast<Enum>(v); };
+    for (const OptionChoice& c : choices) f.choices.emplace_back(std::string(c.name), c.value);
+    entries_.push_back({std::string(name), std::move(f), std::string(help)});
+  }
   // Sets name to value. Returns false with *error naming the problem (unknown key, unparsable value).
   bool Set(std::string_view name, std::string_view value, std::string* error) const;
   // Current value of an option as text that Set() parses back exactly; empty if the name is unknown.
@@ -82,9 +77,17 @@ class OptionBinder {
   std::string Help() const;
 
  private:
+  struct ChoiceField {
+    void* field = nullptr;
+    int (*get)(const void*) = nullptr;
+    void (*set)(void*, int) = nullptr;
+    std::vector<std::pair<std::string, int>> choices;
+    // The first name listed for the field's current value ("?" if none).
+    std::string Current() const;
+  };
   struct Entry {
     std::string name;
-    std::variant<double*, int*, bool*> field;
+    std::variant<double*, int*, bool*, ChoiceField> field;
     std::string help;
   };
   std::vector<Entry> entries_;

@@ -20,11 +20,11 @@ bool Solver::RejectOptions(int n, const SolverOptions& options, SolveResult* res
 }
 
 // Inlined into the Solve()s: a call boundary costs as much as the work for the paper's m = 1, 2 problems. Every
-// check of SolverOptions::IsValid and ValidateBackendOptions runs on every call (kCheckOptions; SolveRepeated made
-// them in BeginRepeatedSolves); only the messages are built out of line (RejectOptions), and the warm start's
+// check of SolverOptions::IsValid and ValidateBackendOptions runs on every call (kCheckOptions; a session made
+// them in Prepare); only the messages are built out of line (RejectOptions), and the warm start's
 // size and finiteness are tested while it is copied.
 template <int N, bool kCheckOptions>
-[[gnu::always_inline]] inline bool Solver::Prepare(int n_runtime, const Vector& l, const Vector& u,
+[[gnu::always_inline]] inline bool Solver::BeginSolve(int n_runtime, const Vector& l, const Vector& u,
                                                    const SolverOptions& options, std::string_view name,
                                                    SolveResult* result) {
   const int n = N > 0 ? N : n_runtime;
@@ -202,7 +202,11 @@ void Solver::SolveBox(const BoxMLCP& problem, const SolverOptions& options, Solv
   static_assert(N <= BoxMLCP::kSmallSize);
   const auto start = StartClock(options);
   const SolverInfo& solver_info = info();
-  if (Prepare<N, true>(problem.size(), problem.l(), problem.u(), options, solver_info.name, result)) {
+  if (BeginSolve<N, true>(problem.size(), problem.l(), problem.u(), options, solver_info.name, result)) {
+    if (solver_info.delegates) {  // the delegate's Solve did the shared work: keep its residuals
+      DoSolve(problem, options, result);
+      return Finish(options.tolerance, start, result);
+    }
     const BoxMLCP& equilibrated = EquilibratedFor(problem);
     const BoxMLCP& given = solver_info.equilibrate ? equilibrated : problem;
     if (problem.is_sparse() && !solver_info.sparse) {
@@ -227,41 +231,38 @@ void Solver::SolveBox(const BoxMLCP& problem, const SolverOptions& options, Solv
   Conclude<N>(problem, options, start, result);
 }
 
-bool Solver::BeginRepeatedSolves(const BoxMLCP& problem, const SolverOptions& options) {
-  repeated_ = {};
-  const int n = problem.size();
-  if (problem.is_sparse() || n > BoxMLCP::kSmallSize) return false;
+bool Solver::ChecksPass(const BoxMLCP& problem, const SolverOptions& options) const {
   std::string why;
   if (!options.IsValid(&why) || !ValidateBackendOptions(&why)) return false;
   const SolverInfo& solver_info = info();
-  if (!solver_info.dense || (solver_info.symmetric_only && !problem.IsSymmetric())) return false;
-  repeated_ = {problem.matrix_id(), n, &options, solver_info.name};
-  return true;
+  if (problem.is_sparse() ? !solver_info.sparse : !solver_info.dense) return false;
+  return !solver_info.symmetric_only || problem.IsSymmetric();
 }
 
 template <int N>
-void Solver::SolveRepeated(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+void Solver::SolveValidated(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
   static_assert(N >= 1 && N <= BoxMLCP::kSmallSize);
-  if (repeated_.matrix_id != problem.matrix_id() || repeated_.n != N || repeated_.options != &options) {
-    return Solve(problem, options, result);
-  }
   const auto start = StartClock(options);
-  if (Prepare<N, false>(N, problem.l(), problem.u(), options, repeated_.name, result)) {
+  if (BeginSolve<N, false>(N, problem.l(), problem.u(), options, info().name, result)) {
     const BoxMLCP& equilibrated = EquilibratedFor(problem);
     DoSolve(info().equilibrate ? equilibrated : problem, options, result);
   }
   Conclude<N>(problem, options, start, result);
 }
 
-template void Solver::SolveRepeated<1>(const BoxMLCP&, const SolverOptions&, SolveResult*);
-template void Solver::SolveRepeated<2>(const BoxMLCP&, const SolverOptions&, SolveResult*);
-template void Solver::SolveRepeated<3>(const BoxMLCP&, const SolverOptions&, SolveResult*);
-template void Solver::SolveRepeated<4>(const BoxMLCP&, const SolverOptions&, SolveResult*);
+template void Solver::SolveValidated<1>(const BoxMLCP&, const SolverOptions&, SolveResult*);
+template void Solver::SolveValidated<2>(const BoxMLCP&, const SolverOptions&, SolveResult*);
+template void Solver::SolveValidated<3>(const BoxMLCP&, const SolverOptions&, SolveResult*);
+template void Solver::SolveValidated<4>(const BoxMLCP&, const SolverOptions&, SolveResult*);
+
+SolveSession Solver::Prepare(const BoxMLCP& problem, const SolverOptions& options, const SessionOptions& session) {
+  return SolveSession(this, problem, options, session);
+}
 
 void Solver::Solve(const MCP& problem, const SolverOptions& options, SolveResult* result) {
   const auto start = StartClock(options);
   const int n = problem.size();
-  if (Prepare<0, true>(n, problem.l(), problem.u(), options, info().name, result)) {
+  if (BeginSolve<0, true>(n, problem.l(), problem.u(), options, info().name, result)) {
     if (!info().mcp) {
       result->status = SolveStatus::kNotApplicable;
       result->message = "backend does not solve nonlinear MCPs";
@@ -304,7 +305,7 @@ void Solver::BindOptions(OptionBinder*) {}
 bool Solver::ValidateBackendOptions(std::string*) const { return true; }
 
 bool Solver::SetOption(std::string_view name, std::string_view value, std::string* error) {
-  repeated_ = {};  // BeginRepeatedSolves checked the old values
+  ++option_generation_;  // sessions checked the old values
   OptionBinder binder;
   BindOptions(&binder);
   const std::string previous = binder.ValueText(name);

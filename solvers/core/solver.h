@@ -14,6 +14,7 @@
 #include "solvers/core/polish.h"
 #include "solvers/core/problem.h"
 #include "solvers/core/result.h"
+#include "solvers/core/session.h"
 
 namespace smcbench {
 
@@ -31,6 +32,9 @@ struct SolverInfo {
   // DoSolve receives the row-equilibrated problem (BoxMLCP::Equilibrated), so the backend's pivot tolerances,
   // stopping and sign tests are in units of z. External codes (siconos-*) get the problem as the user wrote it.
   bool equilibrate = true;
+  // A meta-backend (auto) whose DoSolve hands the problem to another backend's Solve, which already did the shared
+  // work (equilibration, polish, merit function, the rule for "solved"): the base does not do it a second time.
+  bool delegates = false;
 };
 
 // Not thread-safe: a Solver owns its workspace. Use one instance per thread.
@@ -52,24 +56,37 @@ class Solver {
   SolveResult Solve(const BoxMLCP& problem, const SolverOptions& options = {});
   SolveResult Solve(const MCP& problem, const SolverOptions& options = {});
 
-  // Repeated solves of one small dense problem with the same options: a time-stepper's one-step problems (M, l, u
-  // fixed, q replaced in place between calls, warm start = the previous step's solution). BeginRepeatedSolves runs
-  // once every check of Solve that cannot change between those calls (SolverOptions::IsValid, the backend's
-  // options, the problem's size and storage, the backend's capability); false means the calls would only repeat a
-  // refusal (or the problem is sparse or has more than BoxMLCP::kSmallSize rows): use Solve, which reports it.
-  // SolveRepeated<N> (N = problem.size()) then does the per-call part of Solve only, with the same guarantees: the
-  // warm start's size and finiteness, DoSolve, timing, the merit function and the rule that "solved" requires it.
-  // Between the two, change neither the options object (warm_start's values aside) nor the backend's options:
-  // SetOption ends the repeated solves, and a call with another problem (matrix_id), size or options object goes
-  // through Solve.
-  bool BeginRepeatedSolves(const BoxMLCP& problem, const SolverOptions& options);
+  // Prepare once, solve many (session.h): checks the options and this backend's capability once, keeps copies of
+  // the problem and the options; session.Solve(q) then does the per-call part only, and tries the previous answer's
+  // active set first. The session points to this backend, which must outlive it.
+  SolveSession Prepare(const BoxMLCP& problem, const SolverOptions& options = {},
+                       const SessionOptions& session = {});
+
+  // TEMPORARY (removed once problems/stepper uses sessions): the pre-session form of the same fast path.
+  bool BeginRepeatedSolves(const BoxMLCP& problem, const SolverOptions& options) {
+    repeated_matrix_id_ = ChecksPass(problem, options) ? problem.matrix_id() : 0;
+    repeated_options_ = &options;
+    return repeated_matrix_id_ != 0;
+  }
   template <int N>
-  void SolveRepeated(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
+  void SolveRepeated(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+    if (repeated_matrix_id_ != problem.matrix_id() || repeated_options_ != &options) {
+      return Solve(problem, options, result);
+    }
+    SolveValidated<N>(problem, options, result);
+  }
+
+  // A meta-backend (`auto`) that hands a problem to another backend returns that backend here (owned by this one,
+  // valid while it lives); a solve session and the time-steppers then call it directly, so the choice costs
+  // nothing per step. nullptr (every real backend): this backend solves the problem itself.
+  virtual Solver* DelegateFor(const BoxMLCP& /*problem*/, const SolverOptions& /*options*/) { return nullptr; }
 
   // Typed backend options set from text ("omega", "1.5"); false with *error on unknown name or bad value,
   // in which case the option keeps its previous value.
   bool SetOption(std::string_view name, std::string_view value, std::string* error);
   std::string OptionsHelp();
+  // Changes whenever the backend's options may have changed (SetOption, OptionsChanged): sessions re-check then.
+  std::uint64_t option_generation() const { return option_generation_; }
 
  protected:
   // Called with result->z holding the starting point (warm start or Π(0)), sizes checked, options valid.
@@ -82,6 +99,9 @@ class Solver {
   // Checks the backend's typed options; false with *why when invalid.
   virtual bool ValidateBackendOptions(std::string* why) const;
 
+  // A backend whose options can change other than through SetOption (a mutable_options() accessor, a setter)
+  // calls this from there, so prepared sessions validate them again.
+  void OptionsChanged() { ++option_generation_; }
   // For iterative backends: true once the options' time limit has passed (cheap when there is none).
   bool TimeLimitReached() const;
   // max_iterations if positive, else fallback.
@@ -97,11 +117,12 @@ class Solver {
   }
 
  private:
+  friend class SolveSession;
   // N > 0: n = N known at compile time (dense problems up to BoxMLCP::kSmallSize), 0: read at run time.
   template <int N>
   void SolveBox(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
   template <int N, bool kCheckOptions>
-  bool Prepare(int n, const Vector& l, const Vector& u, const SolverOptions& options, std::string_view name,
+  bool BeginSolve(int n, const Vector& l, const Vector& u, const SolverOptions& options, std::string_view name,
                SolveResult* result);
   // The problem DoSolve receives: the equilibrated copy (made once per matrix_id, its q refreshed per call), or
   // the problem itself for a backend with info().equilibrate false.
@@ -114,7 +135,15 @@ class Solver {
   // (iteration, time limit, stalled), the status when the polished point passes.
   template <int N>
   void Polish(const BoxMLCP& problem, double tolerance, Residual* r, SolveResult* result);
-  // Prepare's failure path: re-checks in the documented order and sets kInvalidOptions with the message.
+  // Every check of Solve that cannot change while a session's problem and options stay the same: the options
+  // (SolverOptions::IsValid, the backend's), dense storage or a backend that takes sparse M, symmetry when
+  // required. False: Solve reports the refusal, so the session sends its calls there.
+  bool ChecksPass(const BoxMLCP& problem, const SolverOptions& options) const;
+  // A session's per-call part for dense n = N ≤ BoxMLCP::kSmallSize once ChecksPass held: the warm start's size
+  // and finiteness, DoSolve, timing, the polish, the merit function and the rule that "solved" requires it.
+  template <int N>
+  void SolveValidated(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
+  // BeginSolve's failure path: re-checks in the documented order and sets kInvalidOptions with the message.
   bool RejectOptions(int n, const SolverOptions& options, SolveResult* result);
   // Arms TimeLimitReached for this solve (cheap when there is no limit).
   void StartDeadline(double time_limit_seconds) {
@@ -132,14 +161,9 @@ class Solver {
   std::uint64_t equilibrated_source_ = 0;
   Vector polish_z_, polish_w_;  // the polished candidate, kept to avoid allocating per solve
   PolishWorkspace polish_workspace_;
-  // What BeginRepeatedSolves checked (matrix_id 0: nothing).
-  struct RepeatedSolves {
-    std::uint64_t matrix_id = 0;
-    int n = 0;
-    const SolverOptions* options = nullptr;
-    std::string_view name;
-  };
-  RepeatedSolves repeated_;
+  std::uint64_t option_generation_ = 1;
+  std::uint64_t repeated_matrix_id_ = 0;  // TEMPORARY, see BeginRepeatedSolves
+  const SolverOptions* repeated_options_ = nullptr;
   std::chrono::steady_clock::time_point deadline_{};
   bool has_deadline_ = false;
   Vector scale_point_;  // Π(0) for the MCP relative scale, kept to avoid allocating per solve

@@ -336,73 +336,162 @@ TEST(SolverBase, FixedSizeMeritNeverStandsInForTheBasesMerit) {
   EXPECT_EQ(r.status, SolveStatus::kSolved);
 }
 
-// Solver::BeginRepeatedSolves / SolveRepeated: what is checked once, what is still checked per call.
-TEST(RepeatedSolves, BeginRefusesWhatSolveWouldRefuse) {
-  ScriptedSolver solver;
-  const BoxMLCP p = SimpleLCP();
-  SolverOptions options;
-  EXPECT_TRUE(solver.BeginRepeatedSolves(p, options));
-  SolverOptions bad = options;
-  bad.tolerance = -1.0;
-  EXPECT_FALSE(solver.BeginRepeatedSolves(p, bad));
-  solver.options.factor = -1.0;  // the backend's own options
-  EXPECT_FALSE(solver.BeginRepeatedSolves(p, options));
-  solver.options.factor = 1.0;
-  SparseMatrix sparse(2, 2);
-  sparse.setIdentity();
-  const BoxMLCP sparse_problem(sparse, p.q(), p.l(), p.u());
-  EXPECT_FALSE(solver.BeginRepeatedSolves(sparse_problem, options)) << "sparse: Solve's path";
-  const BoxMLCP large = BoxMLCP::LCP(DenseMatrix::Identity(5, 5), Vector::Ones(5));
-  EXPECT_FALSE(solver.BeginRepeatedSolves(large, options)) << "n > BoxMLCP::kSmallSize: Solve's path";
-}
-
-TEST(RepeatedSolves, NonFiniteWarmStartIsStillRefusedPerCall) {
+// Solver::Prepare / SolveSession (session.h): what is checked once, what is still checked per call, and the warm
+// active-set path.
+TEST(Session, RefusesWhatSolveWouldRefuseWithTheSameMessage) {
   ScriptedSolver solver;
   solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
   const BoxMLCP p = SimpleLCP();
-  SolverOptions options;
-  options.warm_start = Vector::Zero(2);
-  ASSERT_TRUE(solver.BeginRepeatedSolves(p, options));
+  SolverOptions bad;
+  bad.tolerance = -1.0;
+  SolveResult by_solve, by_session;
+  solver.Solve(p, bad, &by_solve);
+  SolveSession session = solver.Prepare(p, bad);
+  session.Solve(p.q(), &by_session);
+  EXPECT_EQ(by_session.status, SolveStatus::kInvalidOptions);
+  EXPECT_EQ(by_session.message, by_solve.message);
+  solver.options.factor = -1.0;  // the backend's own options, changed directly: Solve sees it
+  solver.Solve(p, SolverOptions{}, &by_solve);
+  SolveSession other = solver.Prepare(p);
+  other.Solve(p.q(), &by_session);
+  EXPECT_EQ(by_session.status, SolveStatus::kInvalidOptions);
+  EXPECT_EQ(by_session.message, by_solve.message);
+  EXPECT_THAT(by_session.message, HasSubstr("factor"));
+}
+
+TEST(Session, NonFiniteWarmStartIsStillRefusedPerCall) {
+  ScriptedSolver solver;
+  solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
+  const BoxMLCP p = SimpleLCP();
+  SessionOptions no_reuse;
+  no_reuse.reuse_active_set = false;
+  SolveSession session = solver.Prepare(p, SolverOptions{}, no_reuse);
   SolveResult r;
-  solver.SolveRepeated<2>(p, options, &r);
+  Vector warm = Vector::Zero(2);
+  session.Solve(p.q(), &r, &warm);
   EXPECT_EQ(r.status, SolveStatus::kSolved);
   EXPECT_EQ(r.solver, "scripted");
   EXPECT_EQ(r.GetDetail("answer"), 42.0);
-  options.warm_start[1] = std::nan("");
-  solver.SolveRepeated<2>(p, options, &r);
+  EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+  warm[1] = std::nan("");
+  session.Solve(p.q(), &r, &warm);
   EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
   EXPECT_THAT(r.message, HasSubstr("warm_start"));
   EXPECT_EQ(r.z, Vector::Zero(2));
   EXPECT_DOUBLE_EQ(r.residual_abs, 1.0) << "the merit function at the returned z, as Solve reports it";
 }
 
-TEST(RepeatedSolves, AnotherProblemOrOptionsObjectGoesThroughSolve) {
+TEST(Session, BackendOptionsChangedAfterPrepareAreCheckedOnTheNextCall) {
   ScriptedSolver solver;
+  solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
   const BoxMLCP p = SimpleLCP();
-  SolverOptions options = NoPolish();
-  ASSERT_TRUE(solver.BeginRepeatedSolves(p, options));
-  // Another problem (another matrix_id): judged by its own merit function. Options Solve refuses: refused.
-  solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();  // solves p, not other (whose solution is (0, 1))
-  DenseMatrix M(2, 2);
-  M << 1.0, 2.0, 0.0, 1.0;
-  const BoxMLCP other = BoxMLCP::LCP(M, (Vector(2) << 1.0, -1.0).finished());
+  SessionOptions no_reuse;
+  no_reuse.reuse_active_set = false;
+  SolveSession session = solver.Prepare(p, SolverOptions{}, no_reuse);
   SolveResult r;
-  solver.SolveRepeated<2>(p, options, &r);
-  EXPECT_EQ(r.status, SolveStatus::kSolved);
-  solver.SolveRepeated<2>(other, options, &r);
-  EXPECT_EQ(r.status, SolveStatus::kInaccurate);
-  EXPECT_DOUBLE_EQ(r.residual_abs, 1.0);
-  SolverOptions refused = options;
-  refused.tolerance = 0.0;
-  solver.SolveRepeated<2>(p, refused, &r);
-  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
-  // SetOption ends the repeated solves: the new value is checked on the next call.
+  session.Solve(p.q(), &r);
+  ASSERT_EQ(r.status, SolveStatus::kSolved);
   std::string error;
   ASSERT_TRUE(solver.SetOption("factor", "2", &error)) << error;
-  solver.options.factor = -3.0;
-  solver.SolveRepeated<2>(p, options, &r);
+  solver.options.factor = -3.0;  // after SetOption: the generation changed, so the session checks again
+  session.Solve(p.q(), &r);
   EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
   EXPECT_THAT(r.message, HasSubstr("factor"));
+  solver.options.factor = 1.0;
+  ASSERT_TRUE(solver.SetOption("factor", "1", &error)) << error;
+  session.Solve(p.q(), &r);
+  EXPECT_EQ(r.status, SolveStatus::kSolved);
+}
+
+TEST(Session, BadQIsAnErrorNamingQ) {
+  ScriptedSolver solver;
+  const BoxMLCP p = SimpleLCP();
+  SolveSession session = solver.Prepare(p);
+  SolveResult r;
+  EXPECT_THROW(session.Solve(Vector::Zero(3), &r), InvalidInputError);
+  Vector nan_q = p.q();
+  nan_q[0] = std::nan("");
+  try {
+    session.Solve(nan_q, &r);
+    FAIL() << "NaN in q accepted";
+  } catch (const InvalidInputError& e) {
+    EXPECT_THAT(e.what(), HasSubstr("q"));
+  }
+}
+
+// The warm path on a 2×2 box problem whose solution is known by hand. M = [[2, 1], [1, 2]], l = −1, u = 1.
+// q = (−1, −1): both rows free, z = M⁻¹(1, 1) = (1/3, 1/3). q = (−1.3, −0.5): same active set, z = (0.7, −0.1).
+// q = (−9, 0): row 0 hits u (z0 = 1), row 1 free: 2 z1 + 1 = 0, z1 = −1/2 — another active set.
+TEST(Session, ReusesTheActiveSetWhileItHoldsAndSaysSo) {
+  DenseMatrix M(2, 2);
+  M << 2.0, 1.0, 1.0, 2.0;
+  const Vector ones = Vector::Ones(2);
+  const BoxMLCP p(M, (Vector(2) << -1.0, -1.0).finished(), -ones, ones, "box");
+  ScriptedSolver solver;
+  solver.z_to_report = (Vector(2) << 1.0 / 3.0, 1.0 / 3.0).finished();
+  SolverOptions options;
+  options.polish = false;
+  SolveSession session = solver.Prepare(p, options);
+  SolveResult r;
+  session.Solve(p.q(), &r);
+  ASSERT_EQ(r.status, SolveStatus::kSolved);
+  EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+  EXPECT_EQ(r.iterations, 7);
+
+  solver.z_to_report = Vector::Zero(2);  // the backend would now be wrong: only the warm path can answer
+  session.Solve((Vector(2) << -1.3, -0.5).finished(), &r);
+  ASSERT_EQ(r.status, SolveStatus::kSolved);
+  EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kReusedActiveSet));
+  EXPECT_EQ(r.iterations, 0);
+  EXPECT_NEAR(r.z[0], 0.7, 1e-15);
+  EXPECT_NEAR(r.z[1], -0.1, 1e-15);
+  EXPECT_EQ(r.solver, "scripted");
+  EXPECT_LE(r.residual_scaled, 1e-15);
+  EXPECT_EQ(session.reused(), 1);
+
+  // The stored set gives z0 = (2·9 − 0)/3 = 6 > u: the warm path declines and the backend answers.
+  solver.z_to_report = (Vector(2) << 1.0, -0.5).finished();
+  session.Solve((Vector(2) << -9.0, 0.0).finished(), &r);
+  ASSERT_EQ(r.status, SolveStatus::kSolved);
+  EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+  // ... and its active set is the one tried next: q = (−9, 0.2) → z = (1, −0.6).
+  solver.z_to_report = Vector::Zero(2);
+  session.Solve((Vector(2) << -9.0, 0.2).finished(), &r);
+  ASSERT_EQ(r.status, SolveStatus::kSolved);
+  EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kReusedActiveSet));
+  EXPECT_EQ(r.z[0], 1.0);
+  EXPECT_NEAR(r.z[1], -0.6, 1e-15);
+  EXPECT_EQ(session.calls(), 4);
+}
+
+TEST(Session, ReuseOffAlwaysCallsTheBackend) {
+  ScriptedSolver solver;
+  solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
+  const BoxMLCP p = SimpleLCP();
+  SessionOptions no_reuse;
+  no_reuse.reuse_active_set = false;
+  SolveSession session = solver.Prepare(p, SolverOptions{}, no_reuse);
+  SolveResult r;
+  for (int k = 0; k < 3; ++k) {
+    session.Solve(p.q(), &r);
+    EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+    EXPECT_EQ(r.iterations, 7);
+  }
+  EXPECT_EQ(session.reused(), 0);
+}
+
+// A block too close to singular is not stored: the backend answers (its own safeguards handle it).
+TEST(Session, NearlySingularFreeBlockIsNotReused) {
+  DenseMatrix M(2, 2);
+  M << 1.0, 1.0, 1.0, 1.0 + 1e-15;
+  const Vector ones = Vector::Ones(2);
+  ActiveSetFactors factors;
+  factors.Resize(2);
+  const signed char both_free[2] = {0, 0};
+  EXPECT_FALSE(factors.Factor(M, both_free));
+  EXPECT_FALSE(factors.valid());
+  M(1, 1) = 3.0;
+  EXPECT_TRUE(factors.Factor(M, both_free));
 }
 
 // --- The scale-free verdict and the exact polish (docs/verdict.md). -------------------------------------------
@@ -567,5 +656,29 @@ TEST(Polish, OffLeavesTheBackendsAnswerAlone) {
   EXPECT_TRUE(std::isnan(r.GetDetail("polished")));
 }
 
+}  // namespace
+}  // namespace smcbench
+
+namespace smcbench {
+namespace {
+using ::testing::HasSubstr;
+enum class Colour { kRed, kGreen };
+
+TEST(OptionBinder, NamedValuesAcceptOnlyTheirNamesAndPrintTheFirstName) {
+  Colour colour = Colour::kRed;
+  OptionBinder binder;
+  binder.Add("colour", &colour,
+             {{"red", static_cast<int>(Colour::kRed)}, {"green", static_cast<int>(Colour::kGreen)},
+              {"g", static_cast<int>(Colour::kGreen)}},
+             "a colour");
+  std::string error;
+  ASSERT_TRUE(binder.Set("colour", "g", &error)) << error;
+  EXPECT_EQ(colour, Colour::kGreen);
+  EXPECT_EQ(binder.ValueText("colour"), "green") << "the first name listed for the value";
+  EXPECT_FALSE(binder.Set("colour", "1", &error));
+  EXPECT_EQ(error, "option 'colour' expects one of red, green, g, got '1'");
+  EXPECT_EQ(colour, Colour::kGreen);
+  EXPECT_THAT(binder.Help(), HasSubstr("colour = green (one of red green g)"));
+}
 }  // namespace
 }  // namespace smcbench

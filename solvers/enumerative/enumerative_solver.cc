@@ -679,7 +679,7 @@ void EnumerativeSolver::BindOptions(OptionBinder* binder) {
 }
 
 bool EnumerativeSolver::ValidateBackendOptions(std::string* why) const {
-  return options_check_.Check(options_, why);
+  return options_.IsValid(why);
 }
 
 void EnumerativeSolver::Reserve(int n, int guided_steps) {

@@ -112,7 +112,11 @@ class EnumerativeSolver final : public Solver {
 
   const SolverInfo& info() const override;
   const EnumerativeOptions& options() const { return options_; }
-  EnumerativeOptions& mutable_options() { return options_; }
+  // The options, to change in place; sessions check them again on their next call.
+  EnumerativeOptions& mutable_options() {
+    OptionsChanged();
+    return options_;
+  }
 
  protected:
   void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
@@ -130,7 +134,6 @@ class EnumerativeSolver final : public Solver {
   void Reserve(int n, int guided_steps);
 
   EnumerativeOptions options_;
-  OptionsCheckCache<EnumerativeOptions> options_check_;  // validated on every solve: a memcmp when unchanged
   // Workspace for the run-time-size path (the fixed-size path keeps its buffers on the stack).
   int workspace_n_ = -1;
   int workspace_history_ = 0;

@@ -191,7 +191,7 @@ void PsorSolver::BindOptions(OptionBinder* binder) {
 }
 
 bool PsorSolver::ValidateBackendOptions(std::string* why) const {
-  return options_check_.Check(options_, why);
+  return options_.IsValid(why);
 }
 
 void PsorSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {

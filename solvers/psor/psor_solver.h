@@ -75,7 +75,10 @@ class PsorSolver final : public Solver {
   const SolverInfo& info() const override;
   const PsorOptions& options() const { return options_; }
   // Replaces the options; they are validated when Solve runs (invalid → kInvalidOptions).
-  void set_options(const PsorOptions& options) { options_ = options; }
+  void set_options(const PsorOptions& options) {
+    options_ = options;
+    OptionsChanged();
+  }
 
  protected:
   void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
@@ -87,7 +90,6 @@ class PsorSolver final : public Solver {
   void Iterate(const Columns& columns, const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
 
   PsorOptions options_;
-  OptionsCheckCache<PsorOptions> options_check_;  // validated on every solve: a memcmp when unchanged
   Vector step_;  // ω / M_ii per row (0 for fixed rows l_i = u_i); sized once per n
   Vector w_;     // M z + q, updated incrementally
 };

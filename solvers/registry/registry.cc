@@ -4,6 +4,7 @@
 #include <string>
 #include <utility>
 
+#include "solvers/auto/auto_solver.h"
 #include "solvers/enumerative/enumerative_solver.h"
 #include "solvers/ipopt/ipopt_qp_solver.h"
 #include "solvers/lemke/lemke_solver.h"
@@ -28,6 +29,8 @@ constexpr std::pair<std::string_view, Factory> kBackends[] = {
     {"newton", &Make<SemismoothNewtonSolver>},
     {"enum", &Make<EnumerativeSolver>},
     {"ipopt", &Make<IpoptQpSolver>},
+    // The default of the commands: one of the four above per problem (solvers/auto/auto_solver.h).
+    {"auto", &Make<AutoSolver>},
 };
 
 // Ours, then the optional external ones that were built in (siconos-*; none without Siconos).

@@ -9,7 +9,8 @@
 
 namespace smcbench {
 
-// Registered names in a fixed order ("lemke", "psor", "newton", "enum", "ipopt").
+// Registered names in a fixed order: ours ("lemke", "psor", "newton", "enum", "ipopt", then "auto", which picks one
+// of them per problem), then the external adapters that were built in ("siconos-*").
 std::vector<std::string_view> SolverNames();
 // A fresh backend with default options; throws InvalidInputError listing the known names if name is unknown.
 std::unique_ptr<Solver> CreateSolver(std::string_view name);

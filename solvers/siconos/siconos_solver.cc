@@ -3,6 +3,7 @@
 #include "solvers/siconos/siconos_solver.h"
 
 #include <fcntl.h>
+#include <sys/mman.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -143,6 +144,8 @@ struct Request {
   std::int32_t has_bounds = 0;  // relay: lower and upper bounds follow q
   double tolerance = 1e-10;
 };
+// Hashed and compared bytewise (ProbedProblems): no padding bytes, whose values would be arbitrary.
+static_assert(sizeof(Request) == 8 * sizeof(std::int32_t) + sizeof(double), "Request has padding");
 
 struct Response {
   std::int32_t magic = kMagic;
@@ -150,7 +153,7 @@ struct Response {
   std::int32_t algorithm_info = -1;  // what the algorithm itself returned, before that check
   std::int32_t iterations = 0;
   std::int32_t budget = 0;  // iteration budget Siconos used
-  std::int32_t padding = 0;
+  std::int32_t console = 0;  // worker only: ProbedProblems::Console, what Siconos printed during this solve
   double error = NAN;  // Siconos' own error measure, if it set one
 };
 
@@ -186,6 +189,33 @@ class QuietStdio {
   int saved_err_ = -1;
 };
 
+// Points the C streams stdout and stderr at sink for the lifetime of the object: silences what Siconos prints
+// through stdio (printf, fprintf(stderr)) without a system call, where QuietStdio costs several. glibc's stdout and
+// stderr are ordinary variables (glibc manual, "Standard Streams"). Output written to descriptors 1 and 2 directly
+// is not caught (ProbedProblems::Console says when that happens). sink nullptr: does nothing.
+class SwappedStdio {
+ public:
+  explicit SwappedStdio(FILE* sink) : sink_(sink) {
+    if (sink_ == nullptr) return;
+    saved_out_ = stdout;
+    saved_err_ = stderr;
+    stdout = sink_;
+    stderr = sink_;
+  }
+  ~SwappedStdio() {
+    if (sink_ == nullptr) return;
+    stdout = saved_out_;
+    stderr = saved_err_;
+  }
+  SwappedStdio(const SwappedStdio&) = delete;
+  SwappedStdio& operator=(const SwappedStdio&) = delete;
+
+ private:
+  FILE* sink_;
+  FILE* saved_out_ = nullptr;
+  FILE* saved_err_ = nullptr;
+};
+
 bool AllFinite(const Vector& v) {
   for (Eigen::Index i = 0; i < v.size(); ++i) {
     if (!std::isfinite(v[i])) return false;
@@ -196,6 +226,17 @@ bool AllFinite(const Vector& v) {
 }  // namespace siconos_detail
 
 using namespace siconos_detail;  // NOLINT: this file's own helpers
+
+class SiconosSession;
+namespace {
+// Siconos' MLCP solvers keep their state in file-static variables (mlcp_direct.c: the direct solvers' active-set
+// cache and pointers into the options' work arrays; mlcp_enum.c likewise), so at most one SiconosSession of a
+// process can have an MLCP solver initialised. This names it, so that another session first releases it (its next
+// solve re-initialises, a direct solver from an empty cache) instead of leaving it pointing into memory Siconos
+// has moved on from. Global because Siconos' state is; in-process solves never run concurrently
+// (siconos_solver.h). A worker process forgets the holder it inherited (ServeSiconos).
+SiconosSession* mlcp_state_holder = nullptr;
+}  // namespace
 
 // Siconos' structs for one method, reused across solves of one size. In the worker this is the whole state.
 class SiconosSession {
@@ -230,6 +271,7 @@ class SiconosSession {
 void SiconosSession::Release() {
   if (mlcp_initialised_) mlcp_driver_reset(&mlcp_, options_);
   mlcp_initialised_ = false;
+  if (mlcp_state_holder == this) mlcp_state_holder = nullptr;
   if (options_) solver_options_delete(options_);
   options_ = nullptr;
   if (matrix_) NM_free(matrix_);
@@ -244,9 +286,10 @@ void SiconosSession::PrepareMlcp(const Request& r, const Spec& spec, const doubl
   // The direct solvers' cache describes M: it survives only while M (and the split) stays the same.
   const bool same_matrix = last_M_.size() == static_cast<std::size_t>(N) * N &&
                            std::memcmp(last_M_.data(), M, sizeof(double) * N * N) == 0;
-  const bool reuse = spec.direct && r.keep_cache && mlcp_initialised_ && method_ == r.method && size_ == N &&
-                     num_equalities_ == n && same_matrix;
+  const bool reuse = spec.direct && r.keep_cache && mlcp_initialised_ && mlcp_state_holder == this &&
+                     method_ == r.method && size_ == N && num_equalities_ == n && same_matrix;
   if (!reuse) {
+    if (mlcp_state_holder != nullptr && mlcp_state_holder != this) mlcp_state_holder->Release();
     Release();
     options_ = solver_options_create(spec.siconos_id);
     default_budget_ = options_->iparam[SICONOS_IPARAM_MAX_ITER];
@@ -297,6 +340,7 @@ void SiconosSession::PrepareMlcp(const Request& r, const Spec& spec, const doubl
   if (!reuse) {
     mlcp_driver_init(&mlcp_, options_);
     mlcp_initialised_ = true;
+    mlcp_state_holder = this;
   }
 }
 
@@ -385,8 +429,49 @@ Response SiconosSession::Solve(const Request& r, const double* M, const double* 
 
 namespace {
 
-// The worker's main loop: read a request, solve it, answer; ends when the backend closes the socket.
-void ServeSiconos(int fd, void*) {
+// The worker's console capture (ServeSiconos): the C streams write to one memory file, descriptors 1 and 2 to
+// another, so that each answer can say whether and how Siconos printed during the solve.
+struct ConsoleCapture {
+  FILE* stdio = nullptr;  // what stdout and stderr point to
+  bool active = false;    // false: not capturing (output kept, or a system call failed): reads as kDescriptors
+};
+
+ConsoleCapture CaptureConsole(bool keep_output) {
+  ConsoleCapture capture;
+  if (keep_output) return capture;
+  const int raw = memfd_create("siconos-descriptor-output", MFD_CLOEXEC);
+  const int buffered = memfd_create("siconos-stdio-output", MFD_CLOEXEC);
+  const bool redirected = raw >= 0 && dup2(raw, STDOUT_FILENO) >= 0 && dup2(raw, STDERR_FILENO) >= 0;
+  if (raw >= 0) close(raw);
+  capture.stdio = redirected && buffered >= 0 ? fdopen(buffered, "w") : nullptr;
+  if (capture.stdio == nullptr) {
+    if (buffered >= 0) close(buffered);
+    return capture;
+  }
+  stdout = capture.stdio;
+  stderr = capture.stdio;
+  capture.active = true;
+  return capture;
+}
+
+// What Siconos printed since the last call; both memory files are emptied for the next solve.
+ProbedProblems::Console TakeConsole(const ConsoleCapture& capture) {
+  using Console = ProbedProblems::Console;
+  if (!capture.active) return Console::kDescriptors;
+  std::fflush(capture.stdio);
+  const long via_stdio = std::ftell(capture.stdio);
+  const off_t via_descriptors = lseek(STDOUT_FILENO, 0, SEEK_CUR);
+  if (via_stdio != 0 && ftruncate(fileno(capture.stdio), 0) == 0) std::rewind(capture.stdio);
+  if (via_descriptors != 0 && ftruncate(STDOUT_FILENO, 0) == 0) lseek(STDOUT_FILENO, 0, SEEK_SET);
+  if (via_descriptors != 0) return Console::kDescriptors;
+  return via_stdio != 0 ? Console::kStdio : Console::kSilent;
+}
+
+// The worker's main loop: read a request, solve it, answer; ends when the backend closes the socket. context
+// points to the backend's keep_output flag (a copy of it: this is a forked process).
+void ServeSiconos(int fd, void* context) {
+  mlcp_state_holder = nullptr;  // the parent's, copied by the fork: no Siconos state of this process
+  const ConsoleCapture capture = CaptureConsole(*static_cast<const bool*>(context));
   SiconosSession session;
   std::vector<double> payload;  // M (N×N), q, [lb, ub,] x: one block, read with one call
   for (;;) {
@@ -402,8 +487,8 @@ void ServeSiconos(int fd, void*) {
     const double* lb = r.has_bounds ? q + N : nullptr;
     const double* ub = r.has_bounds ? q + 2 * N : nullptr;
     double* x = payload.data() + payload.size() - N;
-    const Response out = session.Solve(r, M, q, lb, ub, x);
-    std::fflush(nullptr);
+    Response out = session.Solve(r, M, q, lb, ub, x);
+    out.console = static_cast<std::int32_t>(TakeConsole(capture));
     if (!ChildProcess::WriteAll(fd, {{&out, sizeof out}, {x, sizeof(double) * N}})) return;
   }
 }
@@ -428,16 +513,57 @@ bool SiconosOptions::IsValid(std::string* why) const {
     *why = "max_size must be in [1, " + std::to_string(kMaxWireSize) + "], got " + std::to_string(max_size);
     return false;
   }
+  if (remembered_problems < 0) {
+    *why = "remembered_problems must be >= 0, got " + std::to_string(remembered_problems);
+    return false;
+  }
+  if (!(remembered_megabytes >= 0.0 && remembered_megabytes <= 1e6)) {
+    *why = "remembered_megabytes must be in [0, 1e6], got " + std::to_string(remembered_megabytes);
+    return false;
+  }
   return true;
+}
+
+std::string_view ToString(SiconosIsolation isolation) {
+  switch (isolation) {
+    case SiconosIsolation::kNever:
+      return "never";
+    case SiconosIsolation::kFirst:
+      return "first";
+    case SiconosIsolation::kAlways:
+      return "always";
+  }
+  return "?";
+}
+
+bool ParseSiconosIsolation(std::string_view text, SiconosIsolation* isolation) {
+  for (SiconosIsolation value : {SiconosIsolation::kNever, SiconosIsolation::kFirst, SiconosIsolation::kAlways}) {
+    if (text == ToString(value)) {
+      *isolation = value;
+      return true;
+    }
+  }
+  if (text == "0" || text == "1") {  // the option's old boolean spelling: isolate every solve, or none
+    *isolation = text == "1" ? SiconosIsolation::kAlways : SiconosIsolation::kNever;
+    return true;
+  }
+  return false;
 }
 
 SiconosSolver::SiconosSolver(SiconosMethod method) : SiconosSolver(method, SiconosOptions{}) {}
 
-SiconosSolver::SiconosSolver(SiconosMethod method, const SiconosOptions& options)
-    : method_(method), options_(options) {}
+SiconosSolver::SiconosSolver(SiconosMethod method, const SiconosOptions& options) : method_(method) {
+  set_options(options);
+}
+
+void SiconosSolver::set_options(const SiconosOptions& options) {
+  options_ = options;
+  OptionsChanged();
+}
 
 SiconosSolver::~SiconosSolver() {
   if (dev_null_ >= 0) close(dev_null_);
+  if (stdio_sink_ != nullptr) std::fclose(stdio_sink_);
 }
 
 const SolverInfo& SiconosSolver::info() const { return SpecOf(method_).info; }
@@ -446,27 +572,40 @@ int SiconosSolver::SiconosId(SiconosMethod method) { return SpecOf(method).sicon
 
 void SiconosSolver::BindOptions(OptionBinder* binder) {
   binder->Add("isolate", &options_.isolate,
-              "run Siconos in this backend's own worker process (crash/hang containment, silent); 0 = in process");
+              {{"first", static_cast<int>(SiconosIsolation::kFirst)},
+               {"always", static_cast<int>(SiconosIsolation::kAlways)},
+               {"never", static_cast<int>(SiconosIsolation::kNever)},
+               {"1", static_cast<int>(SiconosIsolation::kAlways)},  // the option's old boolean spelling
+               {"0", static_cast<int>(SiconosIsolation::kNever)}},
+              "where Siconos runs: first (default: a problem's first solve in this backend's worker process, "
+              "later solves of the same problem in process once it came back), always (in the worker: "
+              "crash/hang containment per solve, +7 us), never (in process, no protection)");
   binder->Add("default_time_limit", &options_.default_time_limit,
-              "seconds a solve may take when no time limit is given (isolate only); then the worker is killed");
+              "seconds a solve in the worker may take when no time limit is given; then the worker is killed");
+  binder->Add("remembered_problems", &options_.remembered_problems,
+              "isolate=first: how many probed problems are remembered (the latest); others are probed again");
+  binder->Add("remembered_megabytes", &options_.remembered_megabytes,
+              "isolate=first: memory for the copies of the remembered problems (8(N^2+4N) bytes each)");
   binder->Add("max_enumerated", &options_.max_enumerated,
               "enum methods: largest number of complementarity variables (2^k bases; a relay row counts 2)");
   binder->Add("max_size", &options_.max_size,
               "largest rewritten problem (unknowns; relay rows count 2 in LCP/MLCP form) sent to Siconos");
   binder->Add("quiet", &options_.quiet,
-              "in process: send stdout/stderr to /dev/null around each Siconos call (~1 us); 0 = bare call");
+              "in process: silence Siconos' console around each call (the C streams always, free; descriptors "
+              "1 and 2 too, ~1 us, only if the probe saw output there, or always with isolate=never); 0 = bare call");
   binder->Add("allow_known_crashes", &options_.allow_known_crashes,
               "pass problems on which Siconos is known to crash instead of refusing them (isolation demo)");
 }
 
-bool SiconosSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }
+bool SiconosSolver::ValidateBackendOptions(std::string* why) const {
+  return options_.IsValid(why);
+}
 
 void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
   using Clock = std::chrono::steady_clock;
   const Clock::time_point start = Clock::now();
   const Spec& spec = SpecOf(method_);
   result->SetDetail("siconos_id", spec.siconos_id);
-  result->SetDetail("isolated", options_.isolate ? 1.0 : 0.0);
 
   // What the method can express.
   const StandardForm::RowCounts rows = StandardForm::Count(problem.l(), problem.u());
@@ -527,7 +666,6 @@ void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
   r.num_equalities = form_.num_equalities();
   r.max_iterations = options.max_iterations;
   r.verbose = options.verbosity >= 2 ? 1 : 0;
-  r.keep_cache = options_.isolate ? 1 : 0;
   r.has_bounds = spec.family == Family::kRelay ? 1 : 0;
   // Our test is ‖r‖∞ ≤ tol·(1 + ‖q‖∞) on the box-MLCP and, row-equilibrated, |r_i(D⁻¹)| ≤ tol·(1 + ‖z‖∞), which
   // ‖r‖∞ ≤ tol·min(1, min_i d_i) implies (|z_i − Π(z_i − t w_i)| grows with t, and at most linearly: a row with
@@ -539,17 +677,47 @@ void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
   const double target = std::min(problem.residual_scale(), std::min(1.0, problem.row_scale().minCoeff()));
   r.tolerance = std::max(options.tolerance * target / ((1.0 + form_.q().norm()) * std::sqrt(static_cast<double>(N))),
                          10.0 * N * std::numeric_limits<double>::epsilon());
-  if (options_.isolate) {
-    const double limit =
-        std::isfinite(options.time_limit_seconds) ? options.time_limit_seconds : options_.default_time_limit;
+  // Where this call runs (siconos_solver.h, "Isolation"): in process when the policy says never, or says first
+  // and these exact bytes have come back from a probe before; else in the worker, a probe when the policy is first.
+  // A problem whose probe took longer than this call's time limit stays in the worker, where the limit is enforced.
+  const SiconosIsolation isolation = options_.isolate;
+  const double limit =
+      std::isfinite(options.time_limit_seconds) ? options.time_limit_seconds : options_.default_time_limit;
+  const ProbedProblems::Outcome* probed = nullptr;
+  if (isolation == SiconosIsolation::kFirst) {
+    probed_.set_limits(options_.remembered_problems,
+                       static_cast<std::size_t>(options_.remembered_megabytes * 1024.0 * 1024.0));
+    probed = probed_.Find(RequestParts(outcome));
+  }
+  const bool probe = isolation == SiconosIsolation::kFirst && probed == nullptr;
+  const bool in_process =
+      isolation == SiconosIsolation::kNever || (probed != nullptr && probed->seconds <= limit);
+  result->SetDetail("in_process", in_process ? 1.0 : 0.0);
+  if (in_process) {
+    // What to silence: the C streams always (free of system calls, and what Siconos prints may depend on its state,
+    // e.g. a direct solver's cache that is warm in the worker and cold here), the descriptors too when the probe
+    // saw output there or there was no probe (kNever).
+    using Console = ProbedProblems::Console;
+    const Console silence = !options_.quiet || options.verbosity >= 2                       ? Console::kSilent
+                            : probed != nullptr && probed->console != Console::kDescriptors ? Console::kStdio
+                                                                                            : Console::kDescriptors;
+    RunInProcess(silence, &outcome);
+  } else {
     const Clock::time_point deadline =
         start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit));
+    if (probe) probed_.Stage(RequestParts(outcome));  // before x_ is overwritten
     if (!RunIsolated(options.verbosity >= 2, limit, deadline, &outcome, result)) {
+      probed_.Discard();  // a crash, a signal or the deadline: this problem never runs in process
       form_.ToBox(problem, x_, &result->z);  // the start point: Siconos' answer never arrived
       return;
     }
-  } else {
-    RunInProcess(options, &outcome);
+    if (probe) {
+      const int console = outcome.response.console;
+      probed_.Commit({console == 0   ? ProbedProblems::Console::kSilent
+                      : console == 1 ? ProbedProblems::Console::kStdio
+                                     : ProbedProblems::Console::kDescriptors,
+                      std::chrono::duration<double>(Clock::now() - start).count()});
+    }
   }
 
   const Response& out = outcome.response;
@@ -623,11 +791,25 @@ void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
   }
 }
 
-void SiconosSolver::RunInProcess(const SolverOptions& options, Outcome* outcome) {
+std::array<ProbedProblems::Part, 6> SiconosSolver::RequestParts(const Outcome& outcome) const {
+  const Request& r = outcome.request;
+  const std::size_t N = static_cast<std::size_t>(r.size);
+  const std::size_t bounds = r.has_bounds ? sizeof(double) * N : 0;  // relay only
+  return {{{&r, sizeof r},
+           {form_.M().data(), sizeof(double) * N * N},
+           {form_.q().data(), sizeof(double) * N},
+           {form_.lower().data(), bounds},
+           {form_.upper().data(), bounds},
+           {x_.data(), sizeof(double) * N}}};
+}
+
+void SiconosSolver::RunInProcess(ProbedProblems::Console silence, Outcome* outcome) {
+  using Console = ProbedProblems::Console;
   if (!session_) session_ = std::make_unique<SiconosSession>();
-  const bool silence = options_.quiet && options.verbosity < 2;
-  if (silence && dev_null_ < 0) dev_null_ = open("/dev/null", O_WRONLY | O_CLOEXEC);
-  const QuietStdio quiet(silence ? dev_null_ : -1);
+  if (silence == Console::kDescriptors && dev_null_ < 0) dev_null_ = open("/dev/null", O_WRONLY | O_CLOEXEC);
+  if (silence == Console::kStdio && stdio_sink_ == nullptr) stdio_sink_ = std::fopen("/dev/null", "we");
+  const QuietStdio quiet(silence == Console::kDescriptors ? dev_null_ : -1);
+  const SwappedStdio swapped(silence == Console::kStdio ? stdio_sink_ : nullptr);
   const bool relay = outcome->request.has_bounds != 0;
   outcome->response = session_->Solve(outcome->request, form_.M().data(), form_.q().data(),
                                       relay ? form_.lower().data() : nullptr,
@@ -643,21 +825,21 @@ bool SiconosSolver::RunIsolated(bool keep_output, double limit_seconds,
     if (worker_.running() && worker_keeps_output_ != keep_output) worker_.Stop();
     if (!worker_.running()) {
       std::string error;
-      if (!worker_.Start(&ServeSiconos, nullptr, keep_output, &error)) {
+      worker_keeps_output_ = keep_output;  // the worker reads it through the context pointer, at its start
+      if (!worker_.Start(&ServeSiconos, &worker_keeps_output_, keep_output, &error)) {
         result->status = SolveStatus::kNumericalFailure;
         result->message = "could not start the Siconos worker process: " + error;
         return false;
       }
-      worker_keeps_output_ = keep_output;
     }
     using Io = ChildProcess::Io;
-    const std::size_t bounds = r.has_bounds ? sizeof(double) * N : 0;  // relay only
-    Io io = worker_.Write({{&r, sizeof r},
-                           {form_.M().data(), sizeof(double) * N * N},
-                           {form_.q().data(), sizeof(double) * N},
-                           {form_.lower().data(), bounds},
-                           {form_.upper().data(), bounds},
-                           {x_.data(), sizeof(double) * N}});
+    const std::array<ProbedProblems::Part, 6> parts = RequestParts(*outcome);
+    Io io = worker_.Write({{parts[0].data, parts[0].bytes},
+                           {parts[1].data, parts[1].bytes},
+                           {parts[2].data, parts[2].bytes},
+                           {parts[3].data, parts[3].bytes},
+                           {parts[4].data, parts[4].bytes},
+                           {parts[5].data, parts[5].bytes}});
     if (io == Io::kClosed && attempt == 0) {  // the worker died while idle: start a fresh one, once
       int signal = 0;
       worker_.Reap(&signal);

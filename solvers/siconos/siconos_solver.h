@@ -20,15 +20,20 @@
 // kSolved; info = 0 is only a claim, which the base class checks with our merit function (kInaccurate if it
 // fails). Siconos' own code is recorded as detail "siconos_info".
 //
-// Isolation (option isolate, default on). Each backend instance runs Siconos in its own worker process
-// (child_process.h), started at its first solve: a crash (Siconos aborts on some inputs) becomes
-// kNumericalFailure naming the signal, a solve that outlasts the time limit (options.time_limit_seconds, else
-// default_time_limit) is killed and reported as kTimeLimit, console output is discarded, and Siconos' file-static
-// state (the "direct" solvers' active-set cache) belongs to that instance alone. Per solve the parent sends the
-// rewritten problem over a socket and allocates nothing. isolate = false calls Siconos in this process (to measure
-// the call itself): no time limit, no protection, stdout/stderr silenced around the call, and the direct solvers
-// re-initialise their cache on every solve because it would otherwise be shared between instances. Siconos' MLCP
-// solvers keep file-static state, so in-process instances must not run concurrently on different threads.
+// Isolation (option isolate, SiconosIsolation; default kFirst). Siconos aborts or hangs on some inputs, so a call
+// can run in this backend's own worker process (child_process.h): a crash becomes kNumericalFailure naming the
+// signal, a solve that outlasts the time limit (options.time_limit_seconds, else default_time_limit) is killed and
+// reported as kTimeLimit, console output is discarded. That costs a socket round trip (≈ 7 µs) per solve, far more
+// than a small solve itself, so by default only a problem's first solve (the probe) runs there; once a probe came
+// back normally (any status, but no crash, no signal, no deadline), later solves of exactly the same bytes (request,
+// options that reach Siconos, M, q, bounds, start point) run in this process, with the same answer bit for bit.
+// Detail "in_process" says which path answered. In process there is no time limit and no protection (a problem
+// whose probe failed is never run here, a call whose time limit is shorter than its probe took goes to the
+// worker); the C streams stdout/stderr point to /dev/null during the call (no system
+// call), descriptors 1 and 2 are redirected too only if the probe saw Siconos write there (or, for kNever, unless
+// quiet is off); Siconos' file-static MLCP state (the "direct" solvers' active-set cache) is handed between
+// instances (SiconosSession). In-process instances must not run concurrently on different threads.
+// remembered_problems / remembered_megabytes bound the memory of probed problems (probed_problems.h).
 //
 // Options mapped from ours: tolerance → Siconos' dparam[TOL] = max(tol·t/((1 + ‖q_s‖₂)·√N), 10·N·ε) with
 // t = min(1 + ‖q‖∞, 1, min_i d_i), d the row scales (Siconos tests a 2-norm relative to its own rewritten q_s, we
@@ -42,12 +47,15 @@
 // rejects" is kInaccurate, not a ray.
 #pragma once
 
+#include <array>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <string_view>
 
 #include "solvers/core/solver.h"
 #include "solvers/siconos/child_process.h"
+#include "solvers/siconos/probed_problems.h"
 #include "solvers/siconos/standard_form.h"
 
 namespace smcbench {
@@ -68,10 +76,26 @@ enum class SiconosMethod : int {
 };
 inline constexpr int kNumSiconosMethods = 12;
 
+// Where a backend runs Siconos (SiconosOptions::isolate).
+enum class SiconosIsolation {
+  kNever,   // always in this process: fastest, no crash or hang protection
+  kFirst,   // a problem's first solve in the worker (the probe); once it came back normally, in this process
+  kAlways,  // every solve in the worker (the behaviour before the probe policy)
+};
+// "never", "first", "always".
+std::string_view ToString(SiconosIsolation isolation);
+// Parses those names, and the old boolean spelling "0" (never) / "1" (always). False if text is none of them.
+bool ParseSiconosIsolation(std::string_view text, SiconosIsolation* isolation);
+
 struct SiconosOptions {
-  // Run Siconos in this backend's own worker process (crash and hang containment, silent, no shared state).
-  bool isolate = true;
-  // Seconds a solve may take when SolverOptions::time_limit_seconds is infinite (isolate only; > 0).
+  // Where Siconos runs: see SiconosIsolation and the header comment.
+  SiconosIsolation isolate = SiconosIsolation::kFirst;
+  // kFirst: how many probed problems are remembered (the most recent ones), and how much memory their copies may
+  // take (a problem is M, q, bounds and start point of the rewritten form: 8·(N² + 4N) bytes). A problem that is
+  // not remembered, or no longer, is probed again. 0 problems: every solve is a probe (like kAlways).
+  int remembered_problems = 32;
+  double remembered_megabytes = 64.0;
+  // Seconds a solve in the worker may take when SolverOptions::time_limit_seconds is infinite (> 0).
   double default_time_limit = 60.0;
   // Enumerative methods: largest number of complementarity variables they may enumerate (2^k candidate
   // bases; a relay row counts 2, Siconos enumerates the doubled LCP). Larger problems get kSizeLimit.
@@ -82,8 +106,10 @@ struct SiconosOptions {
   // Pass problems on which Siconos is known to crash (siconos-mlcp-lemke without equality or without
   // complementarity rows) instead of refusing them with kNotApplicable. For demonstrating the isolation.
   bool allow_known_crashes = false;
-  // In process (isolate = false): redirect stdout/stderr to /dev/null around each Siconos call (some of its
-  // messages are unconditional printf). Costs a few system calls (~1 µs) per solve; false measures the bare call.
+  // In process: redirect stdout/stderr to /dev/null around a Siconos call (some of its messages are unconditional
+  // printf). Costs a few system calls (~1 µs) per solve, so kFirst does it only for a problem whose probe saw
+  // Siconos print; kNever, which has no probe, does it on every call. false: never (the bare call, output
+  // through). Verbosity ≥ 2 keeps Siconos' output in every mode.
   bool quiet = true;
 
   bool IsValid(std::string* why) const;
@@ -100,7 +126,7 @@ class SiconosSolver final : public Solver {
   const SolverInfo& info() const override;
   SiconosMethod method() const { return method_; }
   const SiconosOptions& options() const { return options_; }
-  void set_options(const SiconosOptions& options) { options_ = options; }
+  void set_options(const SiconosOptions& options);
   // Process id of the running worker, or −1 (none yet, or killed after a timeout or crash).
   int worker_pid() const { return worker_.running() ? static_cast<int>(worker_.pid()) : -1; }
 
@@ -114,9 +140,12 @@ class SiconosSolver final : public Solver {
 
  private:
   struct Outcome;
+  // The exact bytes sent to Siconos for the request in *outcome (ProbedProblems' key).
+  std::array<ProbedProblems::Part, 6> RequestParts(const Outcome& outcome) const;
   bool RunIsolated(bool keep_output, double limit_seconds, std::chrono::steady_clock::time_point deadline,
                    Outcome* outcome, SolveResult* result);
-  void RunInProcess(const SolverOptions& options, Outcome* outcome);
+  // silence: what to silence around the call (ProbedProblems::Console).
+  void RunInProcess(ProbedProblems::Console silence, Outcome* outcome);
 
   SiconosMethod method_;
   SiconosOptions options_;
@@ -125,7 +154,9 @@ class SiconosSolver final : public Solver {
   std::unique_ptr<SiconosSession> session_;  // in-process Siconos state, created on first in-process solve
   ChildProcess worker_;
   bool worker_keeps_output_ = false;
-  int dev_null_ = -1;  // /dev/null, opened on the first quiet in-process solve
+  ProbedProblems probed_;  // isolate = kFirst: the problems whose probe came back normally
+  int dev_null_ = -1;            // /dev/null, opened on the first in-process solve that silences descriptors
+  std::FILE* stdio_sink_ = nullptr;  // /dev/null as a C stream, opened on the first that silences stdio only
 };
 
 }  // namespace smcbench

@@ -4,7 +4,11 @@
 
 #include <gtest/gtest.h>
 
+#include <array>
 #include <chrono>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
 #include <set>
 #include <string>
 
@@ -386,8 +390,8 @@ TEST(SiconosIsolation, ACrashIsAStatusNamingTheSignal) {
 TEST(SiconosIsolation, InProcessGivesTheSameAnswersAndStaysSilent) {
   for (const std::string& name : SiconosNames()) {
     SCOPED_TRACE(name);
-    auto isolated = Make(name);
-    auto in_process = Make(name, {{"isolate", "0"}});
+    auto isolated = Make(name, {{"isolate", "1"}});  // the old spelling: 1 = always in the worker
+    auto in_process = Make(name, {{"isolate", "0"}});  // 0 = never
     for (BoundKind bounds : {BoundKind::kRelay, BoundKind::kLCP, BoundKind::kMixed}) {
       GeneratorOptions g;
       g.bounds = bounds;
@@ -397,8 +401,9 @@ TEST(SiconosIsolation, InProcessGivesTheSameAnswersAndStaysSilent) {
       const SolveResult a = isolated->Solve(gen.problem);
       const SolveResult b = in_process->Solve(gen.problem);
       EXPECT_EQ(a.status, b.status);
-      EXPECT_EQ(a.GetDetail("isolated"), 1.0);
-      EXPECT_EQ(b.GetDetail("isolated"), 0.0);
+      if (a.status == SolveStatus::kNotApplicable) continue;  // refused before any Siconos call
+      EXPECT_EQ(a.GetDetail("in_process"), 0.0);
+      EXPECT_EQ(b.GetDetail("in_process"), 1.0);
       if (a.solved()) {
         EXPECT_LE((a.z - b.z).cwiseAbs().maxCoeff(), 1e-12);
       }
@@ -422,7 +427,7 @@ TEST(SiconosIsolation, InProcessGivesTheSameAnswersAndStaysSilent) {
 TEST(SiconosIsolation, RepeatedIsolatedSolvesDoNotAllocateInThisProcess) {
   if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";
   for (const char* name : {"siconos-relay-avi", "siconos-lcp-lemke", "siconos-mlcp-direct-enum"}) {
-    auto solver = Make(name);
+    auto solver = Make(name, {{"isolate", "1"}});  // every solve in the worker
     GeneratorOptions g;
     g.bounds = BoundKind::kRelay;
     g.size = 4;
@@ -436,7 +441,332 @@ TEST(SiconosIsolation, RepeatedIsolatedSolvesDoNotAllocateInThisProcess) {
     });
     EXPECT_EQ(count, 0) << name;
     EXPECT_TRUE(result.solved());
+    EXPECT_EQ(result.GetDetail("in_process"), 0.0);
   }
+}
+
+// --- The probe policy (isolate = first, the default) ---
+
+bool SameBits(const Vector& a, const Vector& b) {
+  return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * a.size()) == 0;
+}
+
+// Every file of the Siconos collection (../shared/peer-data/siconos) the reader accepts.
+std::vector<std::filesystem::path> CollectionFiles() {
+  namespace fs = std::filesystem;
+  const fs::path collection = SMCBENCH_PEER_DATA_DIR "/siconos";
+  std::vector<fs::path> files;
+  for (const char* sub : {"lcp", "relay", "mlcp"}) {
+    for (const auto& e : fs::directory_iterator(collection / sub)) {
+      // Rectangular_mlcp.dat has no box-MLCP reading (tests/siconos_collection_test.cc).
+      if (e.path().extension() == ".dat" && e.path().filename() != "Rectangular_mlcp.dat") files.push_back(e.path());
+    }
+  }
+  std::sort(files.begin(), files.end());
+  return files;
+}
+
+TEST(SiconosProbe, InProcessAnswerEqualsTheProbesBitForBitOnTheSiconosCollection) {
+  // A fresh backend per file: its first solve is the probe in the worker, its second the same call in this
+  // process. Both start from the same Siconos state (a fresh session, the direct solvers' cache empty), so the
+  // status, Siconos' code and z must agree to the last bit.
+  const auto files = CollectionFiles();
+  ASSERT_EQ(files.size(), 44u);
+  SolverOptions options;
+  options.time_limit_seconds = 1.0;  // mlcp_FB runs for more than 30 s on deltasigma_mlcp (README)
+  int compared = 0, not_back = 0;
+  std::set<std::string> backends_compared;
+  for (const std::string& name : SiconosNames()) {
+    for (const auto& file : files) {
+      SCOPED_TRACE(name + " on " + file.filename().string());
+      const BoxMLCP p = ReadSiconosFile(file.string());
+      auto solver = Make(name);
+      const SolveResult probe = solver->Solve(p, options);
+      if (std::isnan(probe.GetDetail("in_process"))) continue;  // refused before any Siconos call
+      EXPECT_EQ(probe.GetDetail("in_process"), 0.0);
+      const SolveResult again = solver->Solve(p, options);
+      const bool came_back = probe.status != SolveStatus::kTimeLimit && std::isnan(probe.GetDetail("siconos_signal")) &&
+                             !std::isnan(probe.GetDetail("siconos_info"));
+      if (!came_back) {  // probed again, never run here
+        ++not_back;
+        EXPECT_EQ(again.GetDetail("in_process"), 0.0);
+        continue;
+      }
+      EXPECT_EQ(again.GetDetail("in_process"), 1.0);
+      EXPECT_EQ(again.status, probe.status) << probe.message << " / " << again.message;
+      EXPECT_EQ(again.GetDetail("siconos_info"), probe.GetDetail("siconos_info"));
+      EXPECT_EQ(again.iterations, probe.iterations);
+      EXPECT_TRUE(SameBits(again.z, probe.z));
+      ++compared;
+      backends_compared.insert(name);
+    }
+  }
+  EXPECT_GE(compared, 250) << not_back << " probes did not come back";
+  EXPECT_EQ(backends_compared.size(), 12u);
+}
+
+TEST(SiconosProbe, ACrashOrAHangIsAStatusOnEverySolveAndNeverRunsInProcess) {
+  // mlcp_lcp_lemke aborts on an MLCP without equality rows: had any of these solves run in this process, the test
+  // program would have died of SIGABRT.
+  auto crashing = Make("siconos-mlcp-lemke", {{"allow_known_crashes", "1"}});
+  const BoxMLCP lcp = BoxMLCP::LCP(DenseMatrix::Identity(2, 2) * 2.0, Vector::Constant(2, -1.0));
+  SolverOptions raw;
+  raw.polish = false;
+  for (int k = 0; k < 3; ++k) {
+    const SolveResult r = crashing->Solve(lcp, raw);
+    EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
+    EXPECT_EQ(r.GetDetail("siconos_signal"), 6.0) << r.message;
+    EXPECT_EQ(r.GetDetail("in_process"), 0.0);
+  }
+  // A hang: killed at the deadline, and again on the next solve of the same problem.
+  auto hanging = Make("siconos-mlcp-enum", {{"max_enumerated", "22"}});
+  const BoxMLCP hard = BoxMLCP::LCP(DenseMatrix::Zero(22, 22), Vector::Constant(22, -1.0), "lcp-22-infeasible");
+  SolverOptions limited;
+  limited.time_limit_seconds = 0.2;
+  for (int k = 0; k < 2; ++k) {
+    const SolveResult r = hanging->Solve(hard, limited);
+    EXPECT_EQ(r.status, SolveStatus::kTimeLimit) << r.message;
+    EXPECT_EQ(r.GetDetail("in_process"), 0.0);
+  }
+  // The same backend still moves a problem that came back into this process.
+  const BoxMLCP easy = BoxMLCP::LCP(DenseMatrix::Identity(2, 2), Vector::Constant(2, -1.0));
+  EXPECT_EQ(hanging->Solve(easy, limited).GetDetail("in_process"), 0.0);
+  const SolveResult e = hanging->Solve(easy, limited);
+  EXPECT_TRUE(e.solved()) << e.message;
+  EXPECT_EQ(e.GetDetail("in_process"), 1.0);
+}
+
+TEST(SiconosProbe, AProblemIsTheExactBytesSentToSiconosAndTheMemoryIsBounded) {
+  auto solver = Make("siconos-lcp-lemke", {{"remembered_problems", "2"}});
+  const DenseMatrix M = DenseMatrix::Identity(2, 2) * 3.0;
+  std::vector<BoxMLCP> p;
+  for (int k = 0; k < 3; ++k) p.push_back(BoxMLCP::LCP(M, Vector::Constant(2, -1.0 - k)));
+  const auto path = [&](const BoxMLCP& problem, const SolverOptions& options = {}) {
+    const SolveResult r = solver->Solve(problem, options);
+    EXPECT_TRUE(r.solved()) << r.message;
+    return r.GetDetail("in_process");
+  };
+  EXPECT_EQ(path(p[0]), 0.0);
+  EXPECT_EQ(path(p[1]), 0.0);
+  EXPECT_EQ(path(p[2]), 0.0);  // remembers p1, p2: p0 forgotten
+  EXPECT_EQ(path(p[2]), 1.0);
+  EXPECT_EQ(path(p[1]), 1.0);
+  EXPECT_EQ(path(p[0]), 0.0);  // probed again; now p2, p0 (p1 was the oldest)
+  EXPECT_EQ(path(p[0]), 1.0);
+  EXPECT_EQ(path(p[1]), 0.0);
+  // The options that reach Siconos and the start point are part of the problem.
+  SolverOptions tighter;
+  tighter.tolerance = 1e-12;
+  EXPECT_EQ(path(p[1], tighter), 0.0);
+  EXPECT_EQ(path(p[1], tighter), 1.0);
+  SolverOptions warm;
+  warm.warm_start = Vector::Constant(2, 0.5);
+  EXPECT_EQ(path(p[1], warm), 0.0);
+  // A problem with the same bits in a new object is the same problem.
+  EXPECT_EQ(path(BoxMLCP::LCP(M, Vector::Constant(2, -2.0)), warm), 1.0);
+  // A time limit shorter than the probe took: the call goes to the worker, which enforces limits, and the problem
+  // is still remembered for solves under a longer one.
+  warm.time_limit_seconds = 1e-9;
+  const SolveResult limited = solver->Solve(p[1], warm);
+  EXPECT_EQ(limited.GetDetail("in_process"), 0.0);
+  EXPECT_TRUE(limited.status == SolveStatus::kTimeLimit || limited.solved()) << limited.message;
+  warm.time_limit_seconds = kInf;
+  EXPECT_EQ(path(p[1], warm), 1.0);
+  // No memory at all: every solve is a probe.
+  auto forgetful = Make("siconos-lcp-lemke", {{"remembered_megabytes", "0"}});
+  EXPECT_EQ(forgetful->Solve(p[0]).GetDetail("in_process"), 0.0);
+  EXPECT_EQ(forgetful->Solve(p[0]).GetDetail("in_process"), 0.0);
+}
+
+TEST(SiconosProbe, InProcessSolveIsSilencedWhenTheProbeSawSiconosPrint) {
+  // relay_pgs prints "No convergence ..." with printf at its budget, whatever the verbosity. The probe's worker
+  // captures that, so the in-process solve of the same problem silences the C streams (without, this would print).
+  DenseMatrix M(2, 2);
+  M << 2, 1.8, 1.8, 2;
+  const BoxMLCP p = BoxMLCP::Relay(M, Vector::Constant(2, 0.1));
+  SolverOptions options;
+  options.max_iterations = 1;
+  options.polish = false;
+  auto pgs = Make("siconos-relay-pgs");
+  const SolveResult probe = pgs->Solve(p, options);
+  ::testing::internal::CaptureStdout();
+  const SolveResult r = pgs->Solve(p, options);
+  const std::string printed = ::testing::internal::GetCapturedStdout();
+  EXPECT_EQ(r.GetDetail("in_process"), 1.0);
+  EXPECT_EQ(r.status, SolveStatus::kIterationLimit);
+  EXPECT_EQ(r.status, probe.status);
+  EXPECT_EQ(printed, "");
+  // What Siconos prints can depend on its state: mlcp_direct_enum's fallback to enumeration prints a warning, its
+  // cached path does not. Here the worker's cache is warm for q2 (its probe printed nothing), this process's cold
+  // (the in-process solve enumerates): the C streams are silenced all the same.
+  auto direct = Make("siconos-mlcp-direct-enum");
+  const DenseMatrix two = DenseMatrix::Identity(2, 2) * 2.0;
+  const BoxMLCP q1 = BoxMLCP::LCP(two, Vector::Constant(2, -1.0)), q2 = BoxMLCP::LCP(two, Vector::Constant(2, -2.0));
+  ASSERT_TRUE(direct->Solve(q1).solved());  // probe: enumeration, then the active set is cached in the worker
+  ASSERT_EQ(direct->Solve(q2).GetDetail("in_process"), 0.0);  // probe: the cached active set, silent
+  ::testing::internal::CaptureStdout();
+  ::testing::internal::CaptureStderr();
+  const SolveResult cold = direct->Solve(q2);
+  const std::string out = ::testing::internal::GetCapturedStdout() + ::testing::internal::GetCapturedStderr();
+  EXPECT_EQ(cold.GetDetail("in_process"), 1.0);
+  EXPECT_TRUE(cold.solved()) << cold.message;
+  EXPECT_EQ(out, "");
+  // quiet=0 asks for the bare call: Siconos' message comes through.
+  auto loud = Make("siconos-relay-pgs", {{"quiet", "0"}});
+  loud->Solve(p, options);
+  ::testing::internal::CaptureStdout();
+  loud->Solve(p, options);
+  EXPECT_NE(::testing::internal::GetCapturedStdout().find("onvergence"), std::string::npos);
+}
+
+TEST(SiconosProbe, InProcessSolvesAllocateNoMoreThanSiconosDoesItself) {
+  // The probe policy's bookkeeping on the in-process path (hash, comparison with the stored copy) allocates
+  // nothing: the same solves with isolate = never (no bookkeeping at all) make exactly as many allocations.
+  if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";
+  GeneratorOptions g;
+  g.bounds = BoundKind::kRelay;
+  g.size = 3;
+  const GeneratedProblem gen = GenerateProblem(g);
+  for (const char* name :
+       {"siconos-relay-lemke", "siconos-lcp-lemke", "siconos-mlcp-direct-enum", "siconos-mlcp-enum"}) {
+    SCOPED_TRACE(name);
+    auto first = Make(name);
+    auto never = Make(name, {{"isolate", "0"}});
+    SolverOptions options;
+    SolveResult a, b;
+    first->Solve(gen.problem, options, &a);  // the probe
+    first->Solve(gen.problem, options, &a);  // in process: sizes the session
+    never->Solve(gen.problem, options, &b);
+    never->Solve(gen.problem, options, &b);
+    ASSERT_EQ(a.GetDetail("in_process"), 1.0);
+    const long with_probe_policy = test_support::CountMallocs([&] {
+      for (int k = 0; k < 10; ++k) first->Solve(gen.problem, options, &a);
+    });
+    const long bare = test_support::CountMallocs([&] {
+      for (int k = 0; k < 10; ++k) never->Solve(gen.problem, options, &b);
+    });
+    EXPECT_EQ(with_probe_policy, bare);
+    EXPECT_TRUE(a.solved()) << a.message;
+    EXPECT_TRUE(SameBits(a.z, b.z));
+  }
+}
+
+TEST(SiconosProbe, InProcessDirectSolversOfSeveralInstancesEachSolveTheirOwnProblem) {
+  // Siconos keeps the MLCP solvers' state in file-static variables: in one process, an instance that initialises
+  // an MLCP solver takes that state over from another (which re-initialises on its next solve). Interleaved solves
+  // of different problems (sizes, matrices) by several in-process instances must each be right.
+  struct Case {
+    std::unique_ptr<Solver> solver;
+    GeneratedProblem gen;
+  };
+  std::vector<Case> cases;
+  int seed = 1;
+  for (const char* name : {"siconos-mlcp-direct-enum", "siconos-mlcp-direct-fb", "siconos-mlcp-direct-enum",
+                           "siconos-mlcp-enum"}) {
+    GeneratorOptions g;
+    g.bounds = BoundKind::kMixed;
+    g.size = 3 + seed;
+    g.seed = static_cast<std::uint64_t>(seed++);
+    cases.push_back({Make(name, {{"isolate", "0"}}), GenerateProblem(g)});
+  }
+  for (int round = 0; round < 3; ++round) {
+    for (Case& c : cases) {
+      const SolveResult r = c.solver->Solve(c.gen.problem);
+      ASSERT_TRUE(r.solved()) << c.solver->info().name << " round " << round << ": " << r.message;
+      EXPECT_LE((r.z - c.gen.z_star).cwiseAbs().maxCoeff(), 1e-8) << c.solver->info().name;
+    }
+  }
+}
+
+TEST(SiconosProbe, IsolationPolicyIsAnOptionWithTheOldSpelling) {
+  SiconosIsolation isolation = SiconosIsolation::kAlways;
+  ASSERT_TRUE(ParseSiconosIsolation("first", &isolation));
+  EXPECT_EQ(isolation, SiconosIsolation::kFirst);
+  ASSERT_TRUE(ParseSiconosIsolation("0", &isolation));
+  EXPECT_EQ(isolation, SiconosIsolation::kNever);
+  ASSERT_TRUE(ParseSiconosIsolation("1", &isolation));
+  EXPECT_EQ(isolation, SiconosIsolation::kAlways);
+  EXPECT_FALSE(ParseSiconosIsolation("sometimes", &isolation));
+  for (auto value : {SiconosIsolation::kNever, SiconosIsolation::kFirst, SiconosIsolation::kAlways}) {
+    ASSERT_TRUE(ParseSiconosIsolation(ToString(value), &isolation));
+    EXPECT_EQ(isolation, value);
+  }
+  SiconosSolver solver(SiconosMethod::kRelayLemke);
+  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kFirst);  // the default
+  std::string error;
+  ASSERT_TRUE(solver.SetOption("isolate", "0", &error)) << error;
+  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kNever);
+  ASSERT_TRUE(solver.SetOption("isolate", "1", &error)) << error;
+  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kAlways);
+  ASSERT_TRUE(solver.SetOption("isolate", "never", &error)) << error;
+  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kNever);
+  ASSERT_TRUE(solver.SetOption("isolate", "first", &error)) << error;
+  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kFirst);
+  EXPECT_FALSE(solver.SetOption("isolate", "2", &error)) << "named values, not codes";
+  EXPECT_NE(error.find("isolate"), std::string::npos) << error;
+  EXPECT_NE(error.find("first, always, never"), std::string::npos) << error;
+  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kFirst);  // a rejected value is not kept
+  EXPECT_FALSE(solver.SetOption("remembered_problems", "-1", &error));
+  EXPECT_NE(error.find("remembered_problems"), std::string::npos) << error;
+  SiconosOptions always;
+  always.isolate = SiconosIsolation::kAlways;
+  solver.set_options(always);
+  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kAlways);
+  const SolveResult r = solver.Solve(BoxMLCP::Relay(DenseMatrix::Identity(1, 1), Vector::Constant(1, 0.5)));
+  EXPECT_EQ(r.GetDetail("in_process"), 0.0);
+}
+
+// ProbedProblems on its own: a hash collision never makes two problems one, and the bounds forget the oldest.
+std::uint64_t CollidingHash(ProbedProblems::Parts) { return 42; }
+
+TEST(ProbedProblemsTest, EqualHashesOfDifferentBytesAreDifferentProblems) {
+  ProbedProblems memory(&CollidingHash);
+  const double a[3] = {1.0, 2.0, 3.0};
+  double b[3] = {1.0, 2.0, 3.0};
+  b[2] = std::nextafter(3.0, 4.0);  // the last bit of the last number
+  const std::array<ProbedProblems::Part, 1> pa = {{{a, sizeof a}}}, pb = {{{b, sizeof b}}};
+  memory.Stage(pa);
+  ASSERT_TRUE(memory.Commit({ProbedProblems::Console::kStdio}));
+  ASSERT_NE(memory.Find(pa), nullptr);
+  EXPECT_EQ(memory.Find(pa)->console, ProbedProblems::Console::kStdio);
+  EXPECT_EQ(memory.Find(pb), nullptr);
+  const std::array<ProbedProblems::Part, 2> split = {{{a, 8}, {a + 1, 16}}};  // the same bytes in two parts
+  EXPECT_NE(memory.Find(split), nullptr);
+  const std::array<ProbedProblems::Part, 1> shorter = {{{a, 16}}};
+  EXPECT_EQ(memory.Find(shorter), nullptr);
+  // With the real hash too, and a discarded probe is not remembered.
+  ProbedProblems real;
+  real.Stage(pb);
+  real.Discard();
+  EXPECT_FALSE(real.Commit({}));
+  EXPECT_EQ(real.Find(pb), nullptr);
+  EXPECT_NE(ProbedProblems::Hash(pa), ProbedProblems::Hash(pb));
+}
+
+TEST(ProbedProblemsTest, BoundsForgetTheOldestFirst) {
+  ProbedProblems memory;
+  memory.set_limits(2, 1 << 20);
+  double v[4] = {1, 2, 3, 4};
+  std::vector<std::array<ProbedProblems::Part, 1>> parts;
+  for (double& x : v) parts.push_back({{{&x, sizeof x}}});
+  for (const auto& p : parts) {
+    memory.Stage(p);
+    ASSERT_TRUE(memory.Commit({}));
+  }
+  EXPECT_EQ(memory.size(), 2u);
+  EXPECT_EQ(memory.Find(parts[0]), nullptr);
+  EXPECT_EQ(memory.Find(parts[1]), nullptr);
+  EXPECT_NE(memory.Find(parts[2]), nullptr);
+  EXPECT_NE(memory.Find(parts[3]), nullptr);
+  memory.set_limits(10, sizeof(double));  // room for one copy: the newest stays
+  EXPECT_EQ(memory.size(), 1u);
+  EXPECT_NE(memory.Find(parts[3]), nullptr);
+  EXPECT_EQ(memory.bytes(), sizeof(double));
+  const double big[2] = {5, 6};
+  const std::array<ProbedProblems::Part, 1> too_big = {{{big, sizeof big}}};
+  memory.Stage(too_big);
+  EXPECT_FALSE(memory.Commit({}));  // larger than the whole memory: probed on every solve
+  EXPECT_NE(memory.Find(parts[3]), nullptr);
 }
 
 // --- Behaviour of individual adapters ---

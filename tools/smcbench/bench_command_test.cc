@@ -10,6 +10,7 @@
 #include <unistd.h>
 
 #include "problems/library/problem_set_io.h"
+#include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_command.h"
 #include "tools/smcbench/bench_report.h"
 #include "tools/smcbench/cli_test_runner.h"
@@ -51,6 +52,7 @@ TEST(Bench, TinySuiteEndToEndWithReport) {
          {"residual_scaled", "forward_error", "forward_error_rel", "forward_allowance", "certificate"}) {
       EXPECT_TRUE(rec.contains(key)) << key;
     }
+    EXPECT_EQ(rec["timed_in_worker"], false) << rec.dump();  // our backends run in this process
     // The four generated problems are P-matrix problems with a planted solution: bench attaches a certified
     // reference to each, so every solved answer has a forward error within its allowance.
     if (rec["problem"] != "tiny/infeasible-lcp") {
@@ -75,7 +77,8 @@ TEST(Bench, TinySuiteEndToEndWithReport) {
 
   const std::string csv = ReadText(dir / "results.csv");
   EXPECT_EQ(csv.rfind("suite,problem,solver,mode,size", 0), 0u);
-  EXPECT_THAT(csv, HasSubstr(",residual_scaled,forward_error,forward_error_rel,forward_allowance,certificate\n"));
+  EXPECT_THAT(csv, HasSubstr(",residual_scaled,forward_error,forward_error_rel,forward_allowance,certificate,"
+                             "timed_in_worker\n"));
   const std::string md = ReadText(dir / "report.md");
   EXPECT_THAT(md, HasSubstr("## Suite `tiny`"));
   // solved, correctly refused, failed, wrongly claimed, inaccurate, wrongly refused, success.
@@ -160,6 +163,40 @@ TEST(Bench, GlobMatchesBackendNames) {
   EXPECT_FALSE(GlobMatch("a*b*c", "aXbYbZ"));
 }
 
+// A siconos-* backend's untimed warm-up solve is its probe in the isolation worker: the timed solves then run in
+// process (timed_in_worker false), unless isolate=always or the probe crashed, which is never run in process.
+TEST(Bench, SiconosIsTimedInProcessAfterItsProbeUnlessItCrashed) {
+  bool built_in = false;
+  for (auto name : SolverNames()) built_in = built_in || name == "siconos-mlcp-lemke";
+  if (!built_in) GTEST_SKIP() << "built without Siconos";
+  ProblemSet set;
+  set.name = "s";
+  const BoxMLCP lcp = BoxMLCP::LCP(DenseMatrix::Identity(2, 2) * 2.0, Vector::Constant(2, -1.0));
+  set.problems.push_back(MakeLibraryProblem("s/lcp", "handmade", lcp));
+  ReplayOptions options;
+  options.solvers = {"siconos-lcp-lemke", "siconos-relay-lemke", "siconos-mlcp-lemke"};
+  // relay-lemke does not apply to an LCP; mlcp_lcp_lemke aborts on an MLCP without equality rows.
+  options.settings = {"siconos-mlcp-lemke.allow_known_crashes=1"};
+  options.repetitions = 2;
+  options.max_seconds_per_pair = 0.2;
+  options.tolerance_sweep_problems = 0;
+  ReplayResults results = ReplayProblemSet(set, options);
+  ASSERT_EQ(results.records.size(), 3u);
+  EXPECT_EQ(results.records[0].status, SolveStatus::kSolved);
+  EXPECT_FALSE(results.records[0].timed_in_worker);
+  EXPECT_EQ(results.records[1].status, SolveStatus::kNotApplicable);  // no Siconos call at all
+  EXPECT_FALSE(results.records[1].timed_in_worker);
+  EXPECT_EQ(results.records[2].status, SolveStatus::kNumericalFailure) << results.records[2].message;
+  EXPECT_TRUE(results.records[2].timed_in_worker);
+  // isolate=always: every timed solve goes through the worker.
+  options.settings = {"siconos-lcp-lemke.isolate=always"};
+  options.solvers = {"siconos-lcp-lemke"};
+  results = ReplayProblemSet(set, options);
+  ASSERT_EQ(results.records.size(), 1u);
+  EXPECT_EQ(results.records[0].status, SolveStatus::kSolved);
+  EXPECT_TRUE(results.records[0].timed_in_worker);
+}
+
 // results.json keeps every verdict and the numbers behind it; NaN (not defined) reads back as NaN.
 TEST(Bench, ResultsJsonRoundTripsEveryVerdictAndTheNewNumbers) {
   BenchResults results;
@@ -179,6 +216,7 @@ TEST(Bench, ResultsJsonRoundTripsEveryVerdictAndTheNewNumbers) {
     r.forward_error_rel = r.forward_error / 7.0;
     r.forward_allowance = 2e-9;
     r.certificate = v == Verdict::kFailed ? "none found" : "unique";
+    r.timed_in_worker = v == Verdict::kInaccurate;
     suite.replay.records.push_back(r);
   }
   results.suites.push_back(suite);
@@ -197,6 +235,7 @@ TEST(Bench, ResultsJsonRoundTripsEveryVerdictAndTheNewNumbers) {
     }
     EXPECT_EQ(b.forward_allowance, a.forward_allowance);
     EXPECT_EQ(b.certificate, a.certificate);
+    EXPECT_EQ(b.timed_in_worker, a.timed_in_worker);
   }
   // A results.json from before these fields still reads: the new numbers are NaN, the certificate "none".
   auto old = ToJson(results, {});
@@ -209,6 +248,14 @@ TEST(Bench, ResultsJsonRoundTripsEveryVerdictAndTheNewNumbers) {
   const BenchResults older = BenchResultsFromJson(old);
   EXPECT_TRUE(std::isnan(older.suites[0].replay.records[0].residual_scaled));
   EXPECT_EQ(older.suites[0].replay.records[0].certificate, "none");
+  // Without timed_in_worker (before Siconos was timed in process after its probe), a siconos-* record was timed
+  // through its isolation worker, any other in this process.
+  auto before_probe = ToJson(results, {});
+  before_probe["suites"][0]["records"][1]["solver"] = "siconos-lcp-lemke";
+  for (auto& rec : before_probe["suites"][0]["records"]) rec.erase("timed_in_worker");
+  const BenchResults before = BenchResultsFromJson(before_probe);
+  EXPECT_FALSE(before.suites[0].replay.records[0].timed_in_worker);
+  EXPECT_TRUE(before.suites[0].replay.records[1].timed_in_worker);
 }
 
 TEST(Report, PerfHistoryTableAndPlot) {
@@ -313,6 +360,32 @@ TEST(Report, SummaryProfileAndExponentArithmetic) {
   SuiteResults scale;
   for (int m : {10, 100, 1000}) scale.replay.records.push_back(Rec("m" + std::to_string(m), "x", Verdict::kSolved, 1e-9 * m * m, m));
   EXPECT_NEAR(GrowthExponent(scale, "x"), 2.0, 1e-12);
+}
+
+// The headline "our best against Siconos' best" compares in-process times; Siconos records timed through the
+// isolation worker (timed_in_worker) are a labelled footnote, never mixed into it.
+TEST(Report, SiconosHeadlineIsInProcessAndWorkerTimesAreAFootnote) {
+  const fs::path dir = fs::temp_directory_path() / ("smcbench-report-siconos-" + std::to_string(::getpid()));
+  BenchResults results;
+  results.command = "test";
+  SuiteResults suite;
+  suite.suite = "paper";
+  suite.description = "d";
+  suite.replay.records = {Rec("p1", "enum", Verdict::kSolved, 100e-9),
+                          Rec("p1", "siconos-lcp-lemke", Verdict::kSolved, 250e-9),
+                          Rec("p1", "siconos-relay-lemke", Verdict::kSolved, 7300e-9),
+                          Rec("p2", "enum", Verdict::kSolved, 200e-9),
+                          Rec("p2", "siconos-lcp-lemke", Verdict::kSolved, 300e-9)};
+  suite.replay.records[2].timed_in_worker = true;  // e.g. isolate=always: 7 µs of IPC in its time
+  results.suites.push_back(suite);
+  WriteBenchResults(results, dir.string());
+  const std::string md = WriteBenchReport(dir.string(), /*plots=*/false);
+  EXPECT_THAT(md, HasSubstr("both timed in process"));
+  // In process: p1 250/100 = 2.5, p2 300/200 = 1.5 (the worker-timed 7.3 µs is not Siconos' best of p1).
+  EXPECT_THAT(md, HasSubstr("| 1 | 2 | 2.5× | 1.5× | 2.5× |"));
+  EXPECT_THAT(md, HasSubstr("Footnote: Siconos records timed through the isolation worker"));
+  EXPECT_THAT(md, HasSubstr("| 1 | 1 | 73× | 73× | 73× |"));
+  fs::remove_all(dir);
 }
 
 // The two new wrong verdicts are counted in their own columns and in wrong(), never as solved.

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "solvers/auto/auto_solver.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/cli_test_runner.h"
 
@@ -53,6 +54,37 @@ TEST(Cli, SolveJsonHasTheStableKeys) {
     }
   }
   EXPECT_EQ(j[0]["status"], "solved") << j[0].dump();  // Lemke solves this relay problem
+}
+
+// With no --solver, `solve` runs the default backend, auto, and its JSON row says which backend answered (detail
+// chosen, an index into AutoCandidateName): relay_2x2 has two rows with a choice, so enum.
+TEST(Cli, SolveDefaultsToAutoAndRecordsTheChoice) {
+  const CliRun r = RunSmcbench({"solve", kPeer + "/relay/relay_2x2.dat", "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_TRUE(j.is_array());
+  ASSERT_EQ(j.size(), 1u) << j.dump();
+  EXPECT_EQ(j[0]["solver"], "auto");
+  EXPECT_EQ(j[0]["status"], "solved") << j[0].dump();
+  ASSERT_TRUE(j[0]["details"].contains("chosen")) << j[0].dump();
+  EXPECT_EQ(AutoCandidateName(j[0]["details"]["chosen"].get<int>()), "enum") << j[0].dump();
+  EXPECT_EQ(j[0]["details"]["fallbacks"].get<int>(), 0);
+  const CliRun help = RunSmcbench({"solve", "--help"});
+  EXPECT_THAT(help.out, HasSubstr("default: auto"));
+}
+
+// --set BACKEND.OPTION reaches auto's own instance of that backend: with enum limited to 1 row with a choice,
+// relay_2x2 goes elsewhere. A bad option of a backend that is not selected is still an error.
+TEST(Cli, SetReachesAutosInstanceOfTheBackend) {
+  const CliRun r = RunSmcbench({"solve", kPeer + "/relay/relay_2x2.dat", "--json", "--set", "enum.size_limit=1"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.size(), 1u);
+  EXPECT_EQ(j[0]["status"], "solved") << j[0].dump();
+  EXPECT_NE(AutoCandidateName(j[0]["details"]["chosen"].get<int>()), "enum") << j[0].dump();
+  const CliRun bad = RunSmcbench({"solve", kPeer + "/relay/relay_2x2.dat", "--set", "psor.omega=3"});
+  EXPECT_EQ(bad.code, 1);
+  EXPECT_THAT(bad.err, HasSubstr("omega"));
 }
 
 // lcp_trivial: M = diag(1, …, 9), q = −1, so z*_i = 1/i (every row free), the only solution (M is a P-matrix).

@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "problems/io/siconos_format.h"
+#include "solvers/auto/auto_solver.h"
 #include "solvers/reference/certify.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_command.h"
@@ -28,13 +29,15 @@ namespace fs = std::filesystem;
 
 // Common solve settings shared by `solve` and `collection`.
 struct SolveSettings {
-  std::vector<std::string> solvers{"all"};
+  // `solve` uses the default backend (auto: solvers/auto/auto_solver.h); `collection` tables every backend.
+  std::vector<std::string> solvers{"auto"};
   double tolerance = 1e-10;
   int max_iterations = 0;
   double time_limit = 30.0;
   int repeat = 1;
   std::vector<std::string> sets;  // "backend.option=value"
   bool no_polish = false;         // SolverOptions::polish = false
+  bool warm = false;              // repeats through a session, each from the previous answer (docs/session.md)
 };
 
 // CLI11's PositiveNumber prints its range with DBL_MAX in full (300 digits): a short message instead.
@@ -57,14 +60,17 @@ CLI::Validator PositiveNumber() {
 }
 
 void AddSolveFlags(CLI::App* app, SolveSettings* s) {
-  app->add_option("--solver", s->solvers, "backend name(s) from `smcbench list`, or all")->expected(1, -1);
+  app->add_option("--solver", s->solvers,
+                  "backend name(s) from `smcbench list`, or all (default: " + s->solvers.front() + ")")
+      ->expected(1, -1);
   app->add_option("--tol", s->tolerance, "tolerance on the relative and the row-equilibrated natural residual")
       ->check(PositiveNumber());
   app->add_option("--max-iter", s->max_iterations, "iteration/pivot budget (0: backend default)");
   app->add_option("--time-limit", s->time_limit, "seconds per solve")->check(PositiveNumber());
   app->add_option("--repeat", s->repeat, "cold solves per backend; the median time is reported")
       ->check(CLI::Range(1, 1000000));
-  app->add_option("--set", s->sets, "typed backend option, e.g. --set psor.omega=1.2 (see `smcbench list`)");
+  app->add_option("--set", s->sets, "typed backend option, e.g. --set psor.omega=1.2 (see `smcbench list`); it also "
+                                    "applies to auto's own instance of that backend");
   app->add_flag("--no-polish", s->no_polish, "no exact polish of the backends' answers (SolverOptions::polish = "
                                              "false): time a raw algorithm");
 }
@@ -92,14 +98,24 @@ std::vector<std::unique_ptr<Solver>> MakeSolvers(const SolveSettings& s) {
     if (dot == std::string::npos || eq == std::string::npos || eq < dot) {
       throw InvalidInputError("--set expects BACKEND.OPTION=VALUE, got '" + set + "'");
     }
-    const std::string backend = set.substr(0, dot);
-    CreateSolver(backend);  // reject unknown backends even if not selected
+    const std::string backend = set.substr(0, dot), option = set.substr(dot + 1, eq - dot - 1);
+    const std::string value = set.substr(eq + 1);
+    // Unknown backends, options and values are errors even when the backend is not selected (the default, auto,
+    // selects none of the others by name).
+    std::string error;
+    if (!CreateSolver(backend)->SetOption(option, value, &error)) throw InvalidInputError(backend + ": " + error);
     for (auto& solver : solvers) {
-      if (solver->info().name != backend) continue;
-      std::string error;
-      if (!solver->SetOption(set.substr(dot + 1, eq - dot - 1), set.substr(eq + 1), &error)) {
-        throw InvalidInputError(backend + ": " + error);
+      Solver* target = solver.get();
+      if (solver->info().name != backend) {
+        // auto's own instance of a backend it chooses from takes that backend's options too.
+        auto* automatic = dynamic_cast<AutoSolver*>(solver.get());
+        target = nullptr;
+        for (int i = 0; automatic && i < kAutoCandidateCount; ++i) {
+          if (AutoCandidateName(i) == backend) target = &automatic->candidate(static_cast<AutoCandidate>(i));
+        }
+        if (!target) continue;
       }
+      if (!target->SetOption(option, value, &error)) throw InvalidInputError(backend + ": " + error);
     }
   }
   return solvers;
@@ -138,7 +154,7 @@ int RunSolve(const std::string& path, const SolveSettings& s, bool json, bool re
   auto solvers = MakeSolvers(s);
   const SolverOptions options = MakeOptions(s);
   std::vector<SolveRecord> records;
-  for (auto& solver : solvers) records.push_back(TimedSolve(*solver, problem, options, s.repeat));
+  for (auto& solver : solvers) records.push_back(TimedSolve(*solver, problem, options, s.repeat, s.warm));
 
   ReferenceSolution certified;
   if (reference) {
@@ -352,12 +368,16 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
   auto* list = app.add_subcommand("list", "list the backends with their capabilities, references and options");
 
-  auto* solve = app.add_subcommand("solve", "solve one Siconos LCP/Relay/MLCP file with one or all backends");
+  auto* solve = app.add_subcommand("solve", "solve one Siconos LCP/Relay/MLCP file with the default backend "
+                                             "(auto), or the ones named by --solver (all: every backend)");
   std::string solve_file;
   bool solve_json = false, solve_reference = false;
   SolveSettings solve_settings;
   solve->add_option("FILE", solve_file, "problem file (Siconos LCP, Relay or MLCP format)")->required();
   AddSolveFlags(solve, &solve_settings);
+  solve->add_flag("--warm", solve_settings.warm, "time the repeats through a prepared session, each starting from "
+                                                "the previous answer with the warm active-set path on "
+                                                "(docs/session.md): what one time step costs");
   solve->add_flag("--json", solve_json, "print one JSON array, one object per backend (with --reference: one "
                                         "object {reference, results})");
   solve->add_flag("--reference", solve_reference, "certify the problem in extended precision (dense, n <= 64) "
@@ -367,6 +387,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   auto* collection = app.add_subcommand("collection", "solve every file of a Siconos collection with every backend");
   std::string collection_dir, markdown_path, json_path;
   SolveSettings collection_settings;
+  collection_settings.solvers = {"all"};
   collection_settings.repeat = 3;
   collection->add_option("DIR", collection_dir, "folder holding lcp/, relay/, mlcp/")->required();
   AddSolveFlags(collection, &collection_settings);

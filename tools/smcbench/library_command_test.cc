@@ -71,7 +71,8 @@ TEST_F(LibraryCommandTest, SummaryAndList) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(r.err, "");
   EXPECT_THAT(r.out, HasSubstr("set mixed: relay, sparse box and LCP rows\n"));
-  EXPECT_THAT(r.out, HasSubstr("format version 2, 2 distinct matrices for 4 problems"));
+  EXPECT_THAT(r.out, HasSubstr("format version " + std::to_string(kProblemSetFormatVersion) +
+                               ", 2 distinct matrices for 4 problems"));
   EXPECT_THAT(r.out, HasSubstr("problems: 4 (dense 3, sparse 1)\n"));
   EXPECT_THAT(r.out, HasSubstr("sizes: n=2 x4\n"));
   EXPECT_THAT(r.out, HasSubstr("bounds: relay/box 3, lcp 1\n"));
@@ -162,14 +163,15 @@ TEST_F(LibraryCommandTest, CertifyAttachesReferencesAndWritesTheSet) {
   EXPECT_THAT(r.out, HasSubstr("certified 2 problem(s) in "));
   EXPECT_THAT(r.out, HasSubstr("(kept 0 existing reference(s); 1 above 4 rows left without)\n"));
   EXPECT_THAT(r.out, HasSubstr("references: none 1, none found 1, unique 1\n"));
-  EXPECT_THAT(r.out, HasSubstr("wrote " + certified + " (format version 2)\n"));
+  EXPECT_THAT(r.out, HasSubstr("wrote " + certified + " (format version " +
+                               std::to_string(kProblemSetFormatVersion) + ")\n"));
   EXPECT_THAT(r.out, HasSubstr("relay/two | 2 | dense | solvable | ??? | unique | 2\n"));
   EXPECT_THAT(r.out, HasSubstr("lcp/none | 1 | dense | infeasible | ??? | none found | -\n"));
   EXPECT_THAT(r.out, HasSubstr("relay/five | 5 | dense | solvable | ??? | none | -\n"));
 
   ProblemSetFileInfo info;
   const ProblemSet back = ReadProblemSetFile(certified, &info);
-  EXPECT_EQ(info.version, 2u);
+  EXPECT_EQ(info.version, kProblemSetFormatVersion);
   ASSERT_EQ(back.problems.size(), 3u);
   const ReferenceSolution& two = back.problems[0].reference;
   ASSERT_EQ(two.certificate, Certificate::kUnique);
@@ -189,16 +191,16 @@ TEST_F(LibraryCommandTest, CertifyAttachesReferencesAndWritesTheSet) {
   EXPECT_EQ(RunSmcbench({"library", file, "--certify", certified, "--certify-max-size", "0"}).code, 2);
 }
 
-// A version-1 file (written before references existed) is read, certified, and written as version 2.
+// A version-1 file (written before references existed) is read, certified, and written in the current version.
 TEST_F(LibraryCommandTest, CertifyUpgradesAVersionOneFile) {
   const std::string v1 = std::string(SMCBENCH_SOURCE_DIR) + "/problems/library/testdata/format-v1-sign.smcps";
-  const std::string out = Path("sign-v2.smcps");
+  const std::string out = Path("sign-certified.smcps");
   const CliRun r = RunSmcbench({"library", v1, "--certify", out});
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("format version 1,"));
   ProblemSetFileInfo info;
   const ProblemSet set = ReadProblemSetFile(out, &info);
-  EXPECT_EQ(info.version, 2u);
+  EXPECT_EQ(info.version, kProblemSetFormatVersion);
   for (const LibraryProblem& p : set.problems) {
     // S1's one-step problems: 1×1, M = h > 0, relay bounds: a unique solution, which the run's z approximates.
     EXPECT_TRUE(p.reference.unique()) << p.id;

@@ -18,7 +18,7 @@ namespace smcbench {
 struct PaperOptions {
   std::string out_dir = "results/paper";
   bool plots = true;             // PNG figures with gnuplot (needs gnuplot on PATH)
-  std::string solver = "lemke";  // backend of the implicit linear steps and of Algorithm 2 (S11 runs all of them)
+  std::string solver = "auto";   // backend of the implicit linear steps and of Algorithm 2 (S11 runs all of them)
   std::string command;           // the command line recorded in the report
 };
 

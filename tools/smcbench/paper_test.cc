@@ -140,6 +140,10 @@ void Paper::CheckFiles() {
   const auto j = nlohmann::json::parse(report_->json);
   EXPECT_EQ(j["claims"].size(), report_->claims.size());
   EXPECT_EQ(j["S1"]["convergence"].size(), 8u);  // at least six values of h
+  // The default backend of the implicit steps is auto (it picks enum for these one-step problems, m ≤ 2).
+  EXPECT_EQ(PaperOptions{}.solver, "auto");
+  EXPECT_EQ(j["solver"], "auto");
+  EXPECT_THAT(text, HasSubstr("implicit steps solved by `auto`"));
 }
 
 TEST(PaperCli, BadOptionsAreOneLineErrors) {

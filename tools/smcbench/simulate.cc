@@ -3,7 +3,9 @@
 #include <unistd.h>
 
 #include <CLI/CLI.hpp>
+#include <algorithm>
 #include <atomic>
+#include <cerrno>
 #include <charconv>
 #include <chrono>
 #include <cmath>
@@ -14,6 +16,7 @@
 #include <nlohmann/json.hpp>
 #include <ostream>
 #include <sstream>
+#include <system_error>
 
 #include "problems/library/capture.h"
 #include "problems/scenes/linear_scene.h"
@@ -29,9 +32,10 @@ namespace {
 namespace fs = std::filesystem;
 using json = nlohmann::json;
 
-// The backend used when neither --solver nor the scene names one: Lemke's method is exact (finite termination) on
-// the one-step problems of every linear scene and handles m = 2 and the nearly singular S11 steps.
-constexpr const char* kDefaultSolver = "lemke";
+// The backend used when neither --solver nor the scene names one: "auto" (solvers/auto/auto_solver.h) picks per
+// one-step problem the fastest backend that is exact or reliable for its class (enum on the paper's m ≤ 2
+// problems), with lemke and newton behind it when a choice fails without a proof.
+constexpr const char* kDefaultSolver = "auto";
 
 std::string VectorText(const Vector& v) {
   std::string text = "[";
@@ -121,57 +125,219 @@ bool IsImplicit(Method m) { return m == Method::kImplicit || m == Method::kZoh; 
 // ------------------------------------------------------------------------------------------------------------
 // Summary
 
-ReferenceComparison CompareWithReferenceRun(const Scene& scene, const SimulationSettings& settings,
-                                            const Trajectory& run) {
-  ReferenceComparison out;
-  constexpr int kMaxReferenceSize = 64;  // ReferenceSolver: dense problems up to 64 rows
-  if (!IsImplicit(settings.method)) {
-    out.skipped = "method " + std::string(ToString(settings.method)) +
-                  " solves no one-step problem: there is nothing to certify";
-  } else if (!run.recorded) {
-    out.skipped = "the run was not recorded";
-  } else if (run.num_steps > kMaxReferenceSteps) {
-    out.skipped = std::to_string(run.num_steps) + " steps > " + std::to_string(kMaxReferenceSteps) +
-                  ": the reference run (certified solves) is made only up to that many steps";
-  } else if (run.m > kMaxReferenceSize) {
-    out.skipped = "m = " + std::to_string(run.m) + " > " + std::to_string(kMaxReferenceSize) +
-                  ": the reference backend certifies dense problems up to that size";
-  }
-  if (!out.skipped.empty()) return out;
+namespace {
 
+constexpr int kMaxReferenceSize = 64;  // ReferenceSolver: dense problems up to 64 rows
+
+// The reference run's settings (CompareWithReferenceRun): the run's, stepped with certified solves.
+SimulationSettings ReferenceSettings(const SimulationSettings& settings) {
   SimulationSettings reference_settings = settings;
-  reference_settings.stepper.record = true;
   reference_settings.stepper.observer = nullptr;  // never into the run's --record file
+  reference_settings.stepper.sink = nullptr;      // nor into its outputs
   reference_settings.stepper.on_failure = FailurePolicy::kStop;
   // The certified z* is the answer whatever the tolerance; 1e-10 (the default) only decides "solved", and the
   // polish, which would trade z* for the double-precision solve of the same active set, is off.
   reference_settings.stepper.solver = SolverOptions{};
   reference_settings.stepper.solver.polish = false;
   reference_settings.algorithm = NonlinearAlgorithm::kNewtonMlcp;
+  return reference_settings;
+}
+
+// What the reference run gives besides the errors: its steps, completion, first failure and wall time.
+void DescribeReferenceRun(const Trajectory& ref, double wall_seconds, ReferenceComparison* out) {
+  out->wall_seconds = wall_seconds;
+  out->ran = true;
+  out->steps = ref.steps_taken;
+  out->completed = ref.ok();
+  if (ref.first_failed_step >= 0) {
+    out->first_failure = "step " + std::to_string(ref.first_failed_step) + ": " +
+                         std::string(ToString(ref.first_failure_status)) +
+                         (ref.first_failure_message.empty() ? "" : ": " + ref.first_failure_message);
+  }
+}
+
+// The errors, or why there are none: a reference run that fails at its first step compares nothing.
+void SetReferenceErrors(const ReferenceErrors& errors, const Trajectory& run, ReferenceComparison* out) {
+  if (errors.steps_compared == 0 && run.steps_taken > 0) {
+    out->skipped = "the reference run failed at step 1 (" + out->first_failure + ")";
+  } else {
+    out->errors = errors;
+  }
+}
+
+}  // namespace
+
+std::string ReferenceRunSkipReason(const SimulationSettings& settings, int m, std::int64_t num_steps) {
+  if (!IsImplicit(settings.method)) {
+    return "method " + std::string(ToString(settings.method)) +
+           " solves no one-step problem: there is nothing to certify";
+  }
+  if (num_steps > kMaxReferenceSteps) {
+    return std::to_string(num_steps) + " steps > " + std::to_string(kMaxReferenceSteps) +
+           ": the reference run (certified solves) is made only up to that many steps";
+  }
+  if (m > kMaxReferenceSize) {
+    return "m = " + std::to_string(m) + " > " + std::to_string(kMaxReferenceSize) +
+           ": the reference backend certifies dense problems up to that size";
+  }
+  return "";
+}
+
+ReferenceComparison CompareWithReferenceRun(const Scene& scene, const SimulationSettings& settings,
+                                            const Trajectory& run) {
+  ReferenceComparison out;
+  if (IsImplicit(settings.method) && !run.recorded) {
+    out.skipped = "the run was not recorded";
+  } else {
+    out.skipped = ReferenceRunSkipReason(settings, run.m, run.num_steps);
+  }
+  if (!out.skipped.empty()) return out;
+
+  SimulationSettings reference_settings = ReferenceSettings(settings);
+  reference_settings.stepper.record = true;
   ReferenceSolver reference;
   Trajectory ref;
   const auto start = std::chrono::steady_clock::now();
   scene.Run(reference_settings, &reference, &ref);
-  out.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  out.ran = true;
-  out.steps = ref.steps_taken;
-  out.completed = ref.ok();
-  if (ref.first_failed_step >= 0) {
-    out.first_failure = "step " + std::to_string(ref.first_failed_step) + ": " +
-                        std::string(ToString(ref.first_failure_status)) +
-                        (ref.first_failure_message.empty() ? "" : ": " + ref.first_failure_message);
+  DescribeReferenceRun(ref, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), &out);
+  SetReferenceErrors(CompareWithReference(run, ref), run, &out);
+  return out;
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// The streamed comparison: the run's s and y in a temporary file, the reference run compared row by row.
+
+namespace {
+
+// Rows read back per chunk.
+constexpr std::size_t kSpillChunkRows = 4096;
+
+std::string ErrnoText() { return std::generic_category().message(errno); }
+
+// The reference run's sink: reference row k against the run's row k, for k = 1 up to the last row of the run and
+// before the reference's first failed step (the rows CompareWithReference compares).
+class ReferenceRowComparer final : public TrajectorySink {
+ public:
+  explicit ReferenceRowComparer(RunRowsForReference* run_rows) : run_rows_(run_rows) {}
+  void OnRows(const TrajectoryBlock& block) override {
+    const int m = block.m;
+    for (std::int64_t c = 0; c < block.rows && !done_; ++c) {
+      const double *s = nullptr, *y = nullptr;
+      if (!run_rows_->Next(&s, &y)) {
+        done_ = true;  // past the run's last row
+        break;
+      }
+      if (block.row(c) == 0) continue;  // the shared initial state
+      if (block.status[static_cast<std::size_t>(c)] != SolveStatus::kSolved) {
+        done_ = true;  // the reference is trusted up to its first failed step only
+        break;
+      }
+      const auto col = static_cast<Eigen::Index>(c);
+      errors_.Add(s, y, block.s.data() + col * m, block.y.data() + col * m, m);
+    }
   }
-  const ReferenceErrors errors = CompareWithReference(run, ref);
-  if (errors.steps_compared == 0 && run.steps_taken > 0) {
-    out.skipped = "the reference run failed at step 1 (" + out.first_failure + ")";
-  } else {
-    out.errors = errors;
+  const ReferenceErrors& errors() const { return errors_.errors(); }
+
+ private:
+  RunRowsForReference* run_rows_;
+  ReferenceErrorsAccumulator errors_;
+  bool done_ = false;
+};
+
+}  // namespace
+
+RunRowsForReference::RunRowsForReference(int m) : m_(m) {
+  file_ = std::tmpfile();
+  if (!file_) {
+    throw InvalidInputError("--summary: cannot create a temporary file for the run's s and y (the comparison with "
+                            "the reference run): " + ErrnoText());
   }
+}
+
+RunRowsForReference::~RunRowsForReference() {
+  if (file_) std::fclose(file_);
+}
+
+void RunRowsForReference::OnRows(const TrajectoryBlock& block) {
+  const auto m = static_cast<std::size_t>(m_);
+  const auto rows = static_cast<std::size_t>(block.rows);
+  buffer_.resize(rows * 2 * m);
+  for (std::size_t c = 0; c < rows; ++c) {
+    const auto col = static_cast<Eigen::Index>(c);
+    for (std::size_t i = 0; i < m; ++i) {
+      buffer_[c * 2 * m + i] = block.s(static_cast<Eigen::Index>(i), col);
+      buffer_[c * 2 * m + m + i] = block.y(static_cast<Eigen::Index>(i), col);
+    }
+  }
+  if (!buffer_.empty() && std::fwrite(buffer_.data(), sizeof(double), buffer_.size(), file_) != buffer_.size()) {
+    throw InvalidInputError("--summary: writing the run's s and y to a temporary file failed: " + ErrnoText());
+  }
+  rows_written_ += block.rows;
+}
+
+void RunRowsForReference::Rewind() {
+  std::fflush(file_);
+  std::rewind(file_);
+  buffered_rows_ = next_row_ = 0;
+  rows_read_ = 0;
+}
+
+bool RunRowsForReference::Next(const double** s, const double** y) {
+  const auto m = static_cast<std::size_t>(m_);
+  if (next_row_ == buffered_rows_) {
+    if (rows_read_ == rows_written_) return false;
+    const auto rows = static_cast<std::size_t>(
+        std::min<std::int64_t>(static_cast<std::int64_t>(kSpillChunkRows), rows_written_ - rows_read_));
+    buffer_.resize(rows * 2 * m);
+    if (!buffer_.empty() && std::fread(buffer_.data(), sizeof(double), buffer_.size(), file_) != buffer_.size()) {
+      throw InvalidInputError("--summary: reading the run's s and y back from a temporary file failed");
+    }
+    buffered_rows_ = rows;
+    next_row_ = 0;
+    rows_read_ += static_cast<std::int64_t>(rows);
+  }
+  *s = buffer_.data() + next_row_ * 2 * m;
+  *y = *s + m;
+  ++next_row_;
+  return true;
+}
+
+ReferenceComparison CompareWithReferenceRun(const Scene& scene, const SimulationSettings& settings,
+                                            const Trajectory& run, RunRowsForReference* rows) {
+  ReferenceComparison out;
+  out.skipped = ReferenceRunSkipReason(settings, run.m, run.num_steps);
+  if (out.skipped.empty() && rows == nullptr) out.skipped = "the run's rows were not kept";
+  if (!out.skipped.empty()) return out;
+
+  rows->Rewind();
+  ReferenceRowComparer comparer(rows);
+  SimulationSettings reference_settings = ReferenceSettings(settings);
+  reference_settings.stepper.record = false;
+  reference_settings.stepper.sink = &comparer;
+  ReferenceSolver reference;
+  Trajectory ref;
+  const auto start = std::chrono::steady_clock::now();
+  scene.Run(reference_settings, &reference, &ref);
+  DescribeReferenceRun(ref, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), &out);
+  SetReferenceErrors(comparer.errors(), run, &out);
   return out;
 }
 
 json SimulationSummary(const Scene& scene, const SimulationSettings& settings, std::string_view solver,
                        const Trajectory& tr, double reach_tol, double wall_seconds,
+                       const ReferenceComparison* reference) {
+  RunMetrics metrics;
+  metrics.metrics = ComputeMetrics(tr, reach_tol);
+  try {
+    if (const auto exact = scene.Exact(settings)) metrics.exact_errors = ComputeErrors(tr, *exact);
+  } catch (const InvalidInputError& e) {
+    metrics.exact_unavailable = e.what();
+  }
+  return SimulationSummary(scene, settings, solver, tr, metrics, reach_tol, wall_seconds, reference);
+}
+
+json SimulationSummary(const Scene& scene, const SimulationSettings& settings, std::string_view solver,
+                       const Trajectory& tr, const RunMetrics& run_metrics, double reach_tol, double wall_seconds,
                        const ReferenceComparison* reference) {
   json j;
   j["scene"] = scene.info().name;
@@ -217,8 +383,8 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
   j["wall_seconds"] = wall_seconds;
   j["steps_per_second"] = wall_seconds > 0.0 ? static_cast<double>(tr.steps_taken) / wall_seconds : 0.0;
 
-  // Sliding-surface accuracy (needs the recorded history).
-  const TrajectoryMetrics metrics = ComputeMetrics(tr, reach_tol);
+  // Sliding-surface accuracy (computed while the run went, or from its recorded history).
+  const TrajectoryMetrics& metrics = run_metrics.metrics;
   j["reaching_tolerance"] = reach_tol;
   j["sign_dead_zone"] = metrics.sign_dead_zone;
   j["reaching_step"] = metrics.reaching_step;
@@ -271,17 +437,15 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
   }
 
   // Errors against the exact solution, for scenes that have one.
-  try {
-    if (const auto exact = scene.Exact(settings)) {
-      const SolutionErrors e = ComputeErrors(tr, *exact);
-      json errors = json::object();
-      if (e.x) errors["x"] = {{"l1", e.x->l1}, {"l2", e.x->l2}, {"max", e.x->max}};
-      if (e.s) errors["s"] = {{"l1", e.s->l1}, {"l2", e.s->l2}, {"max", e.s->max}};
-      j["errors"] = errors;
-    }
-  } catch (const InvalidInputError& e) {
+  if (!run_metrics.exact_unavailable.empty()) {
     j["errors"] = nullptr;
-    j["exact_solution_unavailable"] = e.what();
+    j["exact_solution_unavailable"] = run_metrics.exact_unavailable;
+  } else if (run_metrics.exact_errors) {
+    const SolutionErrors& e = *run_metrics.exact_errors;
+    json errors = json::object();
+    if (e.x) errors["x"] = {{"l1", e.x->l1}, {"l2", e.x->l2}, {"max", e.x->max}};
+    if (e.s) errors["s"] = {{"l1", e.s->l1}, {"l2", e.s->l2}, {"max", e.s->max}};
+    j["errors"] = errors;
   }
   return j;
 }
@@ -301,39 +465,143 @@ bool GnuplotAvailable() {
   return false;
 }
 
-void PlotTrajectory(const Trajectory& tr, const std::string& data_csv, const std::string& title,
-                    const std::string& png_path) {
+TrajectoryPlotData::TrajectoryPlotData(int n, int m, std::int64_t rows_expected) : n_(n), m_(m) {
+  if (n < 1 || m < 0) throw InvalidInputError("TrajectoryPlotData: n must be >= 1 and m >= 0");
+  const std::int64_t rows = std::max<std::int64_t>(rows_expected, 1);
+  rows_per_bucket_ = (rows + kPlotBuckets - 1) / kPlotBuckets;
+  buckets_ = (rows + rows_per_bucket_ - 1) / rows_per_bucket_;
+  series_.resize(static_cast<std::size_t>((n + 2 * m) * buckets_));
+  if (n >= 2) phase_.resize(static_cast<std::size_t>(4 * buckets_));
+  ends_.resize(static_cast<std::size_t>(2 * (n + 2 * m)), Extreme{0.0, -1, 0.0});
+}
+
+void TrajectoryPlotData::OnRows(const TrajectoryBlock& block) {
+  if (block.n != n_ || block.m != m_) throw InvalidInputError("TrajectoryPlotData: a block of another size");
+  const int series = n_ + 2 * m_;
+  for (std::int64_t c = 0; c < block.rows; ++c) {
+    const std::int64_t row = block.row(c);
+    const double t = block.t[static_cast<std::size_t>(c)];
+    const auto col = static_cast<Eigen::Index>(c);
+    // Rows past rows_expected (none for a stepper run) join the last bucket.
+    const std::int64_t b = std::min(row / rows_per_bucket_, buckets_ - 1);
+    for (int i = 0; i < series; ++i) {
+      const bool is_s = i >= n_ && i < n_ + m_;
+      if (is_s && row == 0) continue;  // row 0 holds no step's s
+      const double v = i < n_ ? block.x(i, col) : is_s ? block.s(i - n_, col) : block.y(i - n_ - m_, col);
+      Extreme& first = ends_[static_cast<std::size_t>(2 * i)];
+      if (first.row < 0) first = Extreme{v, row, t};
+      ends_[static_cast<std::size_t>(2 * i + 1)] = Extreme{v, row, t};
+      Bucket& bucket = series_[static_cast<std::size_t>(i * buckets_ + b)];
+      const bool new_min = !bucket.used || v < bucket.min.value;
+      const bool new_max = !bucket.used || v > bucket.max.value;
+      if (new_min) bucket.min = Extreme{v, row, t};
+      if (new_max) bucket.max = Extreme{v, row, t};
+      bucket.used = true;
+      if (n_ >= 2 && i < 2) {
+        // The phase portrait: the true state at each new extreme of x1 (slots 0, 1) and of x2 (slots 2, 3).
+        const PhasePoint point{row, t, block.x(0, col), block.x(1, col)};
+        if (new_min) phase_[static_cast<std::size_t>(4 * b + 2 * i)] = point;
+        if (new_max) phase_[static_cast<std::size_t>(4 * b + 2 * i + 1)] = point;
+      }
+    }
+  }
+}
+
+void TrajectoryPlotData::WriteData(std::ostream& out) const {
+  std::string line;
+  const auto point = [&](double a, double b) {
+    line.clear();
+    AppendNumberText(&line, a);
+    line.push_back(' ');
+    AppendNumberText(&line, b);
+    line.push_back('\n');
+    out << line;
+  };
+  const int series = n_ + 2 * m_;
+  for (int i = 0; i < series; ++i) {
+    if (i > 0) out << "\n\n";
+    const Extreme& first = ends_[static_cast<std::size_t>(2 * i)];
+    const Extreme& last = ends_[static_cast<std::size_t>(2 * i + 1)];
+    if (first.row < 0) continue;  // no row (s of a run without steps)
+    std::int64_t written = first.row;
+    point(first.t, first.value);
+    for (std::int64_t b = 0; b < buckets_; ++b) {
+      const Bucket& bucket = series_[static_cast<std::size_t>(i * buckets_ + b)];
+      if (!bucket.used) continue;
+      const Extreme& a = bucket.min.row <= bucket.max.row ? bucket.min : bucket.max;
+      const Extreme& z = bucket.min.row <= bucket.max.row ? bucket.max : bucket.min;
+      for (const Extreme* e : {&a, &z}) {
+        if (e->row > written) point(e->t, e->value), written = e->row;
+      }
+    }
+    if (last.row > written) point(last.t, last.value);
+  }
+  if (n_ >= 2) {
+    out << "\n\n";
+    const Extreme& x1 = ends_[0];
+    const Extreme& x2 = ends_[2];
+    if (x1.row < 0) return;
+    point(x1.value, x2.value);  // x0 first: the plot marks it
+    std::int64_t written = x1.row;
+    for (std::int64_t b = 0; b < buckets_; ++b) {
+      PhasePoint points[4];
+      for (int k = 0; k < 4; ++k) points[k] = phase_[static_cast<std::size_t>(4 * b + k)];
+      std::sort(points, points + 4, [](const PhasePoint& p, const PhasePoint& q) { return p.row < q.row; });
+      for (const PhasePoint& p : points) {
+        if (p.row > written) point(p.x1, p.x2), written = p.row;
+      }
+    }
+    const Extreme& last1 = ends_[1];
+    const Extreme& last2 = ends_[3];
+    if (last1.row > written) point(last1.value, last2.value);
+  }
+}
+
+void PlotTrajectory(const TrajectoryPlotData& plot_data, const std::string& title, const std::string& png_path) {
   if (!GnuplotAvailable()) {
     throw InvalidInputError("--plot needs gnuplot (Debian package gnuplot-nox), which is not on PATH");
   }
-  const int n = tr.n, m = tr.m;
-  const std::int64_t rows = tr.steps_taken + 1;
-  // Beyond ~100k points a PNG shows nothing more; thin the data instead of making gnuplot crawl.
-  const std::int64_t stride = std::max<std::int64_t>(1, rows / 100000);
-  const std::string every = "every " + std::to_string(stride);
-  const std::string data = GnuplotQuote(data_csv);
+  TempFile temp{TempPath("trajectory", ".dat")};
+  {
+    std::ofstream out(temp.path);
+    plot_data.WriteData(out);
+    out.flush();
+    if (!out) throw InvalidInputError("--plot: cannot write the plot data " + temp.path.string());
+  }
+  const int n = plot_data.n(), m = plot_data.m();
+  const std::string data = GnuplotQuote(temp.path.string());
   std::ostringstream g;
+  // Series i of the data is its gnuplot "index i" (blocks two blank lines apart): x1..xn, s1..sm, y1..ym, phase.
   g << GnuplotPngPreamble(1200, n >= 2 ? 900 : 1000, png_path)
-    << "set datafile separator ','\nset datafile columnheaders\nset grid\nset key top right\n"
+    << "set grid\nset key top right\n"
     << "set multiplot layout " << (n >= 2 ? "2,2" : "3,1") << " title " << GnuplotQuote(title) << "\n"
     << "set xlabel 't'\n"
     << "set title 'state x'\n"
-    << "plot for [i=2:" << 1 + n << "] " << data << " " << every << " using 1:i with lines lw 1.5 title sprintf('x%d', i-1)\n"
-    // Row k holds the s_k that produced x_k, i.e. s on (t_{k-1}, t_k]: a step drawn vertically first (fsteps).
+    << "plot for [i=0:" << n - 1 << "] " << data << " index i using 1:2 with lines lw 1.5 title sprintf('x%d', i+1)\n"
+    // s_k (row k) acts on (t_{k-1}, t_k]: a step drawn vertically first (fsteps).
     << "set title 'multiplier s (s_k acts on (t_k-1, t_k])'\nset yrange [-1.1:1.1]\n"
-    << "plot for [i=" << 2 + n << ":" << 1 + n + m << "] " << data << " " << every
-    << "::1 using 1:i with fsteps lw 1.5 title sprintf('s%d', i-" << 1 + n << ")\n"
+    << "plot for [i=" << n << ":" << n + m - 1 << "] " << data
+    << " index i using 1:2 with fsteps lw 1.5 title sprintf('s%d', i-" << n - 1 << ")\n"
     << "set autoscale y\n"
     << "set title 'sliding variable y = Cx + D'\n"
-    << "plot for [i=" << 2 + n + m << ":" << 1 + n + 2 * m << "] " << data << " " << every
-    << " using 1:i with lines lw 1.5 title sprintf('y%d', i-" << 1 + n + m << ")\n";
+    << "plot for [i=" << n + m << ":" << n + 2 * m - 1 << "] " << data
+    << " index i using 1:2 with lines lw 1.5 title sprintf('y%d', i-" << n + m - 1 << ")\n";
   if (n >= 2) {
+    const int phase = n + 2 * m;
     g << "set title 'phase portrait'\nset xlabel 'x1'\nset ylabel 'x2'\n"
-      << "plot " << data << " " << every << " using 2:3 with linespoints pt 7 ps 0.4 lw 1 title 'x_k', "
-      << data << " every ::0::0 using 2:3 with points pt 6 ps 2.5 lw 2 title 'x0'\n";
+      << "plot " << data << " index " << phase << " using 1:2 with linespoints pt 7 ps 0.4 lw 1 title 'x_k', "
+      << data << " index " << phase << " every ::0::0 using 1:2 with points pt 6 ps 2.5 lw 2 title 'x0'\n";
   }
   g << "unset multiplot\n";
   RunGnuplot(g.str(), png_path, "--plot");
+}
+
+void PlotTrajectory(const Trajectory& tr, const std::string& data_csv, const std::string& title,
+                    const std::string& png_path) {
+  (void)data_csv;  // see the header: the data are decimated from the trajectory itself
+  TrajectoryPlotData data(tr.n, tr.m, tr.steps_taken + 1);
+  FeedRecorded(tr, &data);
+  PlotTrajectory(data, title, png_path);
 }
 
 std::string GnuplotPngPreamble(int width, int height, const std::string& png_path) {
@@ -382,7 +650,7 @@ struct SimulateCommand::Flags {
   std::string scene, method, x0, solver, out, summary, plot, on_failure = "stop", algorithm, record;
   double h = 0.0, T = 0.0, theta = 0.0, gamma = 0.0, tol = 1e-10, reach_tol = 0.0, newton_tol = 0.0;
   int max_iter = 0, newton_max_iter = 0;
-  bool no_warm_start = false, flush_subnormals = false, no_polish = false;
+  bool no_warm_start = false, flush_subnormals = false, ieee_subnormals = false, no_polish = false;
   std::vector<std::string> params, sets;
   CLI::Option *method_opt = nullptr, *h_opt = nullptr, *T_opt = nullptr, *theta_opt = nullptr,
               *gamma_opt = nullptr, *x0_opt = nullptr, *reach_opt = nullptr, *solver_opt = nullptr,
@@ -423,8 +691,11 @@ SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>
   command_->add_flag("--no-polish", f.no_polish,
                      "no exact polish of the backend's answers (SolverOptions::polish = false): the raw algorithm");
   command_->add_flag("--flush-subnormals", f.flush_subnormals,
-                     "flush subnormal results to zero during the run (linear scenes; faster when the state decays "
-                     "to the origin over many steps)");
+                     "x86 flush-to-zero for the whole run, backend included, instead of the default (a state "
+                     "component that underflows below 2.2e-308 after an implicit step is set to 0)");
+  command_->add_flag("--ieee-subnormals", f.ieee_subnormals,
+                     "plain IEEE arithmetic: keep subnormal states (a long run decaying to the origin then steps "
+                     "2-18x slower; the default sets a state component below 2.2e-308 to 0)");
   f.reach_opt = command_->add_option("--reach-tol", f.reach_tol,
                                      "|y| bound defining 'on the surface' for the reaching step (default 10*tol)");
   command_->add_option("--out", f.out, "write the trajectory CSV t,x1..xn,s1..sm,y1..ym,iterations,residual");
@@ -494,7 +765,10 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
   s.stepper.solver.max_iterations = f.max_iter;
   s.stepper.warm_start = !f.no_warm_start;
   s.stepper.solver.polish = !f.no_polish;
-  s.stepper.flush_subnormals = f.flush_subnormals;
+  if (f.flush_subnormals && f.ieee_subnormals) fail("--flush-subnormals and --ieee-subnormals exclude each other");
+  s.stepper.subnormals = f.flush_subnormals   ? SubnormalPolicy::kFlushToZero
+                         : f.ieee_subnormals ? SubnormalPolicy::kIeee
+                                             : SubnormalPolicy::kZeroState;
   if (f.on_failure == "stop") {
     s.stepper.on_failure = FailurePolicy::kStop;
   } else if (f.on_failure == "continue") {
@@ -504,8 +778,9 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
   }
   const double reach_tol = f.reach_opt->count() ? f.reach_tol : 10.0 * f.tol;
   if (!(reach_tol >= 0.0) || !std::isfinite(reach_tol)) fail("--reach-tol must be finite and >= 0");
-  const bool record = !f.out.empty() || !f.summary.empty() || !f.plot.empty();
-  s.stepper.record = record;
+  // Outputs are computed while the run goes (sinks below): nothing is recorded.
+  const bool outputs = !f.out.empty() || !f.summary.empty() || !f.plot.empty();
+  s.stepper.record = false;
   try {
     s.Validate(info.n);
   } catch (const InvalidInputError& e) {
@@ -558,46 +833,100 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
       fail("--record captures box-MLCPs, but --algorithm mcp solves each step as a nonlinear MCP; use --algorithm "
            "newton-mlcp (its inner problems are box-MLCPs)");
     }
+    // The recorder's ids are distinct by construction: the writer need not remember them (constant memory).
+    ProblemSetWriterOptions writer_options;
+    writer_options.id_check = IdCheck::kGuaranteedByCaller;
     record_writer = std::make_unique<ProblemSetWriter>(
-        f.record, "capture", "one-step problems of smcbench simulate " + info.name + " (" + std::string(ToString(s.method)) +
-                                 ", h = " + NumberText(s.h) + ", backend " + solver_name + ")");
+        f.record, "capture",
+        "one-step problems of smcbench simulate " + info.name + " (" + std::string(ToString(s.method)) +
+            ", h = " + NumberText(s.h) + ", backend " + solver_name + ")",
+        writer_options);
     recorder = std::make_unique<ProblemRecorder>(MakeCaptureContext("capture", *scene, s, solver_name),
                                                  record_writer.get());
     s.stepper.observer = recorder.get();
   }
+
+  // The outputs, each a sink fed while the run goes (bounded memory whatever the number of steps).
+  const std::int64_t num_steps = NumSteps(s.T, s.h);
+  TrajectorySinks sinks;
+  std::unique_ptr<TrajectoryCsvWriter> csv;
+  if (!f.out.empty()) {
+    try {
+      csv = std::make_unique<TrajectoryCsvWriter>(f.out);
+    } catch (const InvalidInputError& e) {
+      fail(std::string("--out: ") + e.what());
+    }
+    sinks.Add(csv.get());
+  }
+  std::optional<MetricsAccumulator> metrics;
+  std::optional<ErrorsAccumulator> exact_errors;
+  std::string exact_unavailable;
+  if (outputs) {
+    metrics.emplace(info.m, reach_tol);
+    sinks.Add(&*metrics);
+  }
+  std::unique_ptr<RunRowsForReference> run_rows;
+  std::string no_run_rows;
+  if (!f.summary.empty()) {
+    try {
+      if (auto exact = scene->Exact(s)) {
+        exact_errors.emplace(info.n, info.m, s.h, std::move(*exact));
+        sinks.Add(&*exact_errors);
+      }
+    } catch (const InvalidInputError& e) {
+      exact_unavailable = e.what();
+    }
+    // With --summary: the run's error in s and y against a certified reference run (a second run, made only up
+    // to kMaxReferenceSteps steps), compared against the run's rows kept in a temporary file.
+    if (ReferenceRunSkipReason(s, info.m, num_steps).empty()) {
+      try {
+        run_rows = std::make_unique<RunRowsForReference>(info.m);
+        sinks.Add(run_rows.get());
+      } catch (const InvalidInputError& e) {
+        no_run_rows = e.what();  // no temporary file: the summary says so instead of the errors
+      }
+    }
+  }
+  std::optional<TrajectoryPlotData> plot_data;
+  if (!f.plot.empty()) {
+    plot_data.emplace(info.n, info.m, num_steps + 1);
+    sinks.Add(&*plot_data);
+  }
+  s.stepper.sink = sinks.empty() ? nullptr : &sinks;
 
   Trajectory tr;
   const auto start = std::chrono::steady_clock::now();
   try {
     scene->Run(s, solver.get(), &tr);
   } catch (const InvalidInputError& e) {
+    if (csv) {
+      csv.reset();  // no half-written CSV under --out
+      std::error_code ec;
+      fs::remove(f.out, ec);
+    }
     fail(e.what());
   }
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   if (record_writer) record_writer->Close();
+  if (csv) csv->Close();
 
-  if (!f.out.empty()) WriteTrajectoryCsvFile(tr, f.out);
-  // With --summary: the run's error in s and y against a certified reference run (a second run, made only up to
-  // kMaxReferenceSteps steps).
   std::optional<ReferenceComparison> reference;
-  if (!f.summary.empty()) reference = CompareWithReferenceRun(*scene, s, tr);
   if (!f.summary.empty()) {
-    const json summary = SimulationSummary(*scene, s, solver_name, tr, reach_tol, wall, &*reference);
+    reference = CompareWithReferenceRun(*scene, s, tr, run_rows.get());
+    if (!no_run_rows.empty()) reference->skipped = no_run_rows;
+    RunMetrics run_metrics;
+    run_metrics.metrics = metrics->Result(tr);
+    if (exact_errors) run_metrics.exact_errors = exact_errors->Result();
+    run_metrics.exact_unavailable = exact_unavailable;
+    const json summary = SimulationSummary(*scene, s, solver_name, tr, run_metrics, reach_tol, wall, &*reference);
     std::ofstream js(f.summary);
     js << summary.dump(2) << "\n";
     if (!js) fail("cannot write the summary '" + f.summary + "'");
   }
-  if (!f.plot.empty()) {
-    TempFile temp;
-    std::string data = f.out;
-    if (data.empty()) {
-      temp.path = TempPath("trajectory", ".csv");
-      data = temp.path.string();
-      WriteTrajectoryCsvFile(tr, data);
-    }
+  if (plot_data) {
     std::string title = info.name + ": " + tr.description + ", h = " + NumberText(s.h);
     if (!solver_name.empty()) title += ", " + solver_name;
-    PlotTrajectory(tr, data, title, f.plot);
+    PlotTrajectory(*plot_data, title, f.plot);
   }
 
   // A short report on out; the files hold the details.
@@ -605,13 +934,16 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
       << ", T = " << NumberText(s.T) << ", " << tr.steps_taken << " of " << tr.num_steps << " steps"
       << (solver_name.empty() ? "" : ", backend " + solver_name) << "\n";
   out << "  x_final = " << VectorText(tr.x_final) << ", s_final = " << VectorText(tr.s_final) << "\n";
-  if (tr.recorded) {
-    const TrajectoryMetrics metrics = ComputeMetrics(tr, reach_tol);
-    if (metrics.reaching_step >= 0) {
+  if (metrics) {
+    const TrajectoryMetrics result = metrics->Result(tr);
+    if (result.reaching_step >= 0) {
       double max_y = 0.0;
       std::int64_t changes = 0;
-      for (const auto& sm : metrics.surfaces) max_y = std::max(max_y, sm.max_abs_y_after), changes += sm.sign_changes_after;
-      out << "  surfaces reached at step " << metrics.reaching_step << " (t = " << NumberText(tr.time(metrics.reaching_step))
+      for (const auto& sm : result.surfaces) {
+        max_y = std::max(max_y, sm.max_abs_y_after);
+        changes += sm.sign_changes_after;
+      }
+      out << "  surfaces reached at step " << result.reaching_step << " (t = " << NumberText(tr.time(result.reaching_step))
           << "): max |y| after " << NumberText(max_y) << ", sign changes of s after " << changes << "\n";
     } else {
       out << "  not every surface is reached (|y| <= " << NumberText(reach_tol) << " to the end)\n";
@@ -623,7 +955,7 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
   }
   // One cold run, set-up (discretization, factorization) included: `stepper_benchmark` measures the loop itself.
   out << "  wall " << FormatSeconds(wall) << " for set-up + " << tr.steps_taken << " steps ("
-      << FormatRate(wall > 0 ? tr.steps_taken / wall : 0.0) << "steps/s" << (record ? ", recording" : "") << ")\n";
+      << FormatRate(wall > 0 ? tr.steps_taken / wall : 0.0) << "steps/s" << (outputs ? ", recording" : "") << ")\n";
   if (record_writer) {
     const std::uint64_t matrices = record_writer->matrices_written();
     out << "  recorded " << record_writer->problems_written() << " one-step problem(s), " << matrices

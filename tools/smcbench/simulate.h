@@ -1,12 +1,15 @@
 // `smcbench simulate SCENE ...` and `smcbench scenes`: run a scene of SCENES.md (or a scene file) on any backend,
-// write its trajectory CSV, JSON summary of sliding-surface accuracy metrics and a gnuplot figure.
+// write its trajectory CSV, JSON summary of sliding-surface accuracy metrics and a gnuplot figure. Every output is
+// produced while the run goes (issue 13): memory does not grow with the number of steps.
 #pragma once
 
-#include <iosfwd>
 #include <cstdint>
+#include <cstdio>
+#include <iosfwd>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json_fwd.hpp>
 
@@ -45,22 +48,113 @@ struct ReferenceComparison {
 ReferenceComparison CompareWithReferenceRun(const Scene& scene, const SimulationSettings& settings,
                                             const Trajectory& run);
 
+// Why no reference run is made for a run of num_steps steps with m surfaces and these settings (the summary's
+// reference_skipped); empty when one will be made.
+std::string ReferenceRunSkipReason(const SimulationSettings& settings, int m, std::int64_t num_steps);
+
+// A streamed run's s and y rows, kept for the comparison with its reference run after the run: a TrajectorySink
+// on the run that writes 2m doubles a row to an anonymous temporary file (the run's memory stays constant; at most
+// kMaxReferenceSteps rows, 16·m MB). CompareWithReferenceRun(scene, settings, run, &rows) then streams the
+// reference run against the file. InvalidInputError if no temporary file can be made.
+class RunRowsForReference final : public TrajectorySink {
+ public:
+  explicit RunRowsForReference(int m);
+  ~RunRowsForReference() override;
+  RunRowsForReference(const RunRowsForReference&) = delete;
+  RunRowsForReference& operator=(const RunRowsForReference&) = delete;
+  void OnRows(const TrajectoryBlock& block) override;
+
+  // Reading back, from row 0: the next row's s and y (m entries each); false after the last row written.
+  void Rewind();
+  bool Next(const double** s, const double** y);
+  int m() const { return m_; }
+
+ private:
+  int m_;
+  std::FILE* file_ = nullptr;
+  std::vector<double> buffer_;      // rows being written or read
+  std::size_t buffered_rows_ = 0;   // rows in buffer_ (reading)
+  std::size_t next_row_ = 0;        // next row of buffer_ to hand out (reading)
+  std::int64_t rows_written_ = 0, rows_read_ = 0;
+};
+
+// The same comparison for a streamed run (unrecorded; its counters and steps_taken) whose rows went to *rows (null:
+// skipped, "the run's rows were not kept").
+ReferenceComparison CompareWithReferenceRun(const Scene& scene, const SimulationSettings& settings,
+                                            const Trajectory& run, RunRowsForReference* rows);
+
 // The JSON summary of a run (`--summary`). Stable keys; scripts rely on steps, x_final, reaching_step and:
 //   s_error_max, y_error_max  max over steps k ≥ 1 of ‖s_k − s_ref,k‖∞ and ‖y_k − y_ref,k‖∞ against the reference
 //                             run above (CompareWithReferenceRun); null when there is none, and then
 //   reference_skipped         says why (a string; null when the errors are there);
 //   reference                 {solver: "reference", steps, steps_compared, completed, first_failure, wall_seconds}
 //                             of the reference run, or null when none was made.
-// reference may be null (the keys are then null with reference_skipped "not computed"). The trajectory must be
-// recorded unless metrics are not wanted (then only the always-kept fields are written).
+// reference may be null (the keys are then null with reference_skipped "not computed"). This overload computes the
+// metrics from the history (ComputeMetrics, ComputeErrors: InvalidInputError if the trajectory was not recorded);
+// `simulate` itself uses the one below with metrics accumulated while the run went (the same numbers).
 //   reach_tol: a surface is "reached" from the first step after which |y_i| ≤ reach_tol at every later step.
 nlohmann::json SimulationSummary(const Scene& scene, const SimulationSettings& settings, std::string_view solver,
                                  const Trajectory& trajectory, double reach_tol, double wall_seconds,
                                  const ReferenceComparison* reference = nullptr);
 
-// Writes a PNG with gnuplot: states and s (and y) against time and, for n ≥ 2, the phase portrait (x1, x2).
-// data_csv is a trajectory CSV (WriteTrajectoryCsv). Throws InvalidInputError if gnuplot is not on PATH
-// ("--plot needs gnuplot (Debian package gnuplot-nox)") or fails.
+// What the summary says about a run's rows beyond its counters: computed while it ran (MetricsAccumulator,
+// ErrorsAccumulator: `simulate`) or from a recorded trajectory (ComputeMetrics, ComputeErrors: the overload above).
+struct RunMetrics {
+  TrajectoryMetrics metrics;
+  std::optional<SolutionErrors> exact_errors;  // against the scene's exact solution, when it has one
+  std::string exact_unavailable;               // why Exact() refused these settings (errors: null); else empty
+};
+// The summary from metrics computed elsewhere; run gives the counters, finals and sizes (it need not be recorded).
+nlohmann::json SimulationSummary(const Scene& scene, const SimulationSettings& settings, std::string_view solver,
+                                 const Trajectory& run, const RunMetrics& metrics, double reach_tol,
+                                 double wall_seconds, const ReferenceComparison* reference);
+
+// What `--plot` draws, kept in memory independent of the run's length: rows_expected rows (N + 1) are cut into at
+// most kPlotBuckets consecutive buckets, and per bucket each series (x_i, s_i, y_i) keeps its minimum and maximum
+// with their times, so a spike or chattering of a single step stays visible (a band between the extremes) where
+// taking every k-th row would hide it. The phase portrait keeps, per bucket, the states (x1, x2) at the extremes
+// of x1 and of x2 (true points of the trajectory), plus x0. A run of at most kPlotBuckets rows keeps every row.
+inline constexpr std::int64_t kPlotBuckets = 2048;
+class TrajectoryPlotData final : public TrajectorySink {
+ public:
+  TrajectoryPlotData(int n, int m, std::int64_t rows_expected);
+  void OnRows(const TrajectoryBlock& block) override;
+  // gnuplot data: one block (two blank lines apart) per series x1..xn, s1..sm, y1..ym of "t value" lines in time
+  // order, then, for n ≥ 2, the phase block "x1 x2" starting at x0.
+  void WriteData(std::ostream& out) const;
+  // Points written per series at most (2 per bucket).
+  std::int64_t max_points_per_series() const { return 2 * kPlotBuckets; }
+  int n() const { return n_; }
+  int m() const { return m_; }
+
+ private:
+  struct Extreme {
+    double value;
+    std::int64_t row;
+    double t;
+  };
+  struct Bucket {
+    bool used = false;
+    Extreme min, max;
+  };
+  struct PhasePoint {
+    std::int64_t row = -1;
+    double t = 0.0, x1 = 0.0, x2 = 0.0;
+  };
+  int n_, m_;
+  std::int64_t rows_per_bucket_;
+  std::int64_t buckets_;
+  std::vector<Bucket> series_;       // (n + 2m) × buckets_, series-major
+  std::vector<PhasePoint> phase_;    // 4 × buckets_: at min x1, max x1, min x2, max x2
+  std::vector<Extreme> ends_;        // per series: its first and last row (row −1: none yet)
+};
+
+// Writes a PNG with gnuplot from the decimated data: states, s and y against time and, for n ≥ 2, the phase
+// portrait (x1, x2). Throws InvalidInputError if gnuplot is not on PATH ("--plot needs gnuplot (Debian package
+// gnuplot-nox)") or fails.
+void PlotTrajectory(const TrajectoryPlotData& data, const std::string& title, const std::string& png_path);
+// The same for a recorded trajectory (its rows go through TrajectoryPlotData). data_csv is not read (the data are
+// decimated from the trajectory); it is kept for callers written before issue 13.
 void PlotTrajectory(const Trajectory& trajectory, const std::string& data_csv, const std::string& title,
                     const std::string& png_path);
 // True if an executable named gnuplot is on PATH.

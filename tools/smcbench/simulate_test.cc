@@ -3,24 +3,133 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <malloc.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <utility>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
 #include <vector>
 
+#include "problems/library/capture.h"
 #include "problems/library/problem_set_io.h"
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/registry.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/cli_test_runner.h"
 #include "tools/smcbench/simulate.h"
+
+// Live heap bytes of this process at the malloc level, and their peak since HeapPeak::Reset(): malloc & co. are
+// interposed in this test executable (glibc exports its allocator as __libc_*; the same technique as
+// tests/support/malloc_counter.cc), sizes from malloc_usable_size, so Eigen's aligned buffers count too. Not under
+// AddressSanitizer, which owns malloc.
+#if defined(__SANITIZE_ADDRESS__)
+#define SIMULATE_TEST_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SIMULATE_TEST_SANITIZED 1
+#endif
+#endif
+
+namespace simulate_test_heap {
+std::atomic<long> live{0};
+std::atomic<long> peak{0};
+
+[[maybe_unused]] void Add(void* p) {
+  if (!p) return;
+  const auto size = static_cast<long>(malloc_usable_size(p));
+  const long now = live.fetch_add(size, std::memory_order_relaxed) + size;
+  long seen = peak.load(std::memory_order_relaxed);
+  while (now > seen && !peak.compare_exchange_weak(seen, now, std::memory_order_relaxed)) {
+  }
+}
+[[maybe_unused]] void Remove(void* p) {
+  if (p) live.fetch_sub(static_cast<long>(malloc_usable_size(p)), std::memory_order_relaxed);
+}
+}  // namespace simulate_test_heap
+
+#ifndef SIMULATE_TEST_SANITIZED
+extern "C" {
+void* __libc_malloc(std::size_t size);
+void* __libc_calloc(std::size_t n, std::size_t size);
+void* __libc_realloc(void* p, std::size_t size);
+void* __libc_memalign(std::size_t alignment, std::size_t size);
+void __libc_free(void* p);
+
+void* malloc(std::size_t size) noexcept {
+  void* p = __libc_malloc(size);
+  simulate_test_heap::Add(p);
+  return p;
+}
+void free(void* p) noexcept {
+  simulate_test_heap::Remove(p);
+  __libc_free(p);
+}
+void* calloc(std::size_t n, std::size_t size) noexcept {
+  void* p = __libc_calloc(n, size);
+  simulate_test_heap::Add(p);
+  return p;
+}
+void* realloc(void* p, std::size_t size) noexcept {
+  // The old block is released (or moved) either way, except when the call fails, which leaves it in place.
+  simulate_test_heap::Remove(p);
+  void* q = __libc_realloc(p, size);
+  simulate_test_heap::Add(q ? q : (size ? p : nullptr));
+  return q;
+}
+void* aligned_alloc(std::size_t alignment, std::size_t size) noexcept {
+  void* p = __libc_memalign(alignment, size);
+  simulate_test_heap::Add(p);
+  return p;
+}
+void* memalign(std::size_t alignment, std::size_t size) noexcept {
+  void* p = __libc_memalign(alignment, size);
+  simulate_test_heap::Add(p);
+  return p;
+}
+int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept {
+  *out = __libc_memalign(alignment, size);
+  simulate_test_heap::Add(*out);
+  return *out ? 0 : 12 /* ENOMEM */;
+}
+}
+#endif
+
+namespace smcbench {
+namespace {
+
+class HeapPeak {
+ public:
+  static bool Available() {
+#ifdef SIMULATE_TEST_SANITIZED
+    return false;
+#else
+    return true;
+#endif
+  }
+  static void Reset() {
+    start_ = simulate_test_heap::live.load();
+    simulate_test_heap::peak = start_;
+  }
+  // The peak of the live bytes since Reset(), above the live bytes at Reset().
+  static long Peak() { return simulate_test_heap::peak.load() - start_; }
+
+ private:
+  static inline long start_ = 0;
+};
+
+}  // namespace
+}  // namespace smcbench
 
 namespace smcbench {
 namespace {
@@ -383,7 +492,7 @@ TEST_F(Simulate, RecordWritesEveryOneStepProblem) {
   EXPECT_EQ(p.source, "capture:sign");
   EXPECT_EQ(p.metadata.at("theta"), "1");
   EXPECT_EQ(p.metadata.at("step"), "12");
-  EXPECT_EQ(p.metadata.at("backend"), "lemke");
+  EXPECT_EQ(p.metadata.at("backend"), "auto");  // the default backend
   for (const LibraryProblem& q : set.problems) {
     EXPECT_EQ(q.expected, ExpectedOutcome::kSolvable) << q.id;
     EXPECT_EQ(Judge(q, SolveStatus::kSolved, q.solution, 1e-10).verdict, Verdict::kSolved) << q.id;
@@ -410,6 +519,266 @@ TEST_F(Simulate, RecordWritesEveryOneStepProblem) {
   ExpectOneLineError(RunSmcbench({"simulate", "sign", "--record", Path("no/such/dir/x.smcps")}),
                      {"cannot open", "for writing"});
   EXPECT_FALSE(fs::exists(none));
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// Issue 13: the outputs are computed while the run goes, in memory independent of its length.
+
+// The summary `simulate` computes on the fly against the whole-trajectory computation of the same run (recorded
+// trajectory, ComputeMetrics, ComputeErrors, CompareWithReference after a recorded reference run: the path
+// `simulate` took before issue 13, kept in SimulationSummary's recorded overload). Every key must be equal;
+// doubles compare exactly (the accumulators add the same terms in the same order, and the JSON text round-trips
+// doubles), except wall_seconds, steps_per_second and reference.wall_seconds, which are timings.
+TEST_F(Simulate, StreamedSummaryEqualsTheWholeTrajectoryComputation) {
+  struct Case {
+    std::vector<std::string> args;                     // after "simulate SCENE"
+    std::function<void(SimulationSettings*)> settings;  // what those arguments set
+    std::string solver;
+    double tol = 1e-10;
+  };
+  const auto none = [](SimulationSettings*) {};
+  const std::vector<std::pair<std::string, Case>> cases = {
+      // S1: errors against its exact solution, the reference run, Lemma (yahoo).
+      {"sign", {{"--solver", "enum"}, none, "enum"}},
+      // Explicit S2: no reference, never reached, chattering (sign changes, variation).
+      {"galias-yu-2007",
+       {{"--method", "explicit", "--h", "0.3", "--T", "30"},
+        [](SimulationSettings* s) {
+          s->method = Method::kExplicit, s->h = 0.3, s->T = 30, s->theta = 0.0, s->gamma = 0.0;
+        },
+        ""}},
+      // S3, m = 2, a loose backend: nonzero s and y errors against the reference.
+      {"multi-surface",
+       {{"--solver", "psor", "--no-polish", "--tol", "1e-4"},
+        [](SimulationSettings* s) { s->stepper.solver.polish = false; },
+        "psor",
+        1e-4}},
+      // ZOH, m = 2, 4001 rows (two streamed blocks).
+      {"zoh-mimo",
+       {{"--solver", "lemke", "--T", "40"}, [](SimulationSettings* s) { s->T = 40; }, "lemke"}},
+      // Forced (S7), and S8 with a parameter and θ = 1/2.
+      {"lyapunov", {{"--solver", "enum"}, none, "enum"}},
+      {"observer",
+       {{"--solver", "enum", "--param", "tau=0.5", "--theta", "0.5"},
+        [](SimulationSettings* s) { s->parameters["tau"] = 0.5, s->theta = 0.5; },
+        "enum"}},
+      // The default backend ("auto") on S11's nearly singular steps.
+      {"parasitic", {{}, none, "auto"}},
+      // Nonlinear S10 (Algorithm 2) and S9 (Algorithm 1).
+      {"arctan", {{"--solver", "enum"}, none, "enum"}},
+      {"hypomonotone",
+       {{"--algorithm", "mcp"}, [](SimulationSettings* s) { s->algorithm = NonlinearAlgorithm::kMcp; }, "newton"}},
+      // Failed steps, kept going past (first_failure, failed_steps, max_residual), and a run that stops at one.
+      {"filippov",
+       {{"--solver", "psor", "--no-polish", "--max-iter", "2", "--tol", "1e-14", "--on-failure", "continue"},
+        [](SimulationSettings* s) {
+          s->stepper.solver.polish = false, s->stepper.solver.max_iterations = 2;
+          s->stepper.on_failure = FailurePolicy::kContinue;
+        },
+        "psor",
+        1e-14}},
+      {"filippov",
+       {{"--solver", "psor", "--no-polish", "--max-iter", "1", "--tol", "1e-14"},
+        [](SimulationSettings* s) { s->stepper.solver.polish = false, s->stepper.solver.max_iterations = 1; },
+        "psor",
+        1e-14}},
+  };
+  int with_reference = 0, with_failures = 0, stopped = 0;
+  for (const auto& [scene_name, c] : cases) {
+    SCOPED_TRACE(scene_name + " " + ::testing::PrintToString(c.args));
+    const std::string file = Path("streamed.json");
+    std::vector<std::string> args{"simulate", scene_name, "--summary", file};
+    args.insert(args.end(), c.args.begin(), c.args.end());
+    const CliRun r = RunSmcbench(args);
+    ASSERT_EQ(r.code, 0) << r.err;
+    const nlohmann::json streamed = ReadJson(file);
+
+    const auto scene = LoadScene(scene_name);
+    SimulationSettings settings = scene->defaults();
+    c.settings(&settings);
+    settings.stepper.solver.tolerance = c.tol;
+    settings.stepper.record = true;
+    std::unique_ptr<Solver> solver = c.solver.empty() ? nullptr : CreateSolver(c.solver);
+    Trajectory tr;
+    scene->Run(settings, solver.get(), &tr);
+    const ReferenceComparison reference = CompareWithReferenceRun(*scene, settings, tr);
+    const nlohmann::json whole = SimulationSummary(*scene, settings, c.solver, tr, 10 * c.tol, 0.0, &reference);
+
+    with_reference += streamed["s_error_max"].is_number() ? 1 : 0;
+    with_failures += tr.failed_steps > 0 ? 1 : 0;
+    stopped += tr.stopped_early ? 1 : 0;
+    EXPECT_EQ(streamed["steps"], tr.steps_taken);
+    for (const auto& [key, value] : whole.items()) {
+      if (key == "wall_seconds" || key == "steps_per_second") continue;
+      ASSERT_TRUE(streamed.contains(key)) << key;
+      if (key == "reference" && value.is_object()) {
+        nlohmann::json a = value, b = streamed[key];
+        a.erase("wall_seconds"), b.erase("wall_seconds");
+        EXPECT_EQ(b, a) << key;
+      } else {
+        EXPECT_EQ(streamed[key], value) << key << ": streamed " << streamed[key].dump() << ", whole "
+                                        << value.dump();
+      }
+    }
+    EXPECT_EQ(streamed.size(), whole.size());
+  }
+  // The cases exercise what they are meant to.
+  EXPECT_GE(with_reference, 6);
+  EXPECT_GE(with_failures, 2);
+  EXPECT_GE(stopped, 1);
+}
+
+// Every output at once (--summary with its reference run, --out, --record) for N and 10 N steps: the heap the run
+// adds to the process must not grow with N. Measured at the malloc level (HeapPeak below: live bytes, whatever
+// allocates them, Eigen included), not through /proc (VmHWM does not see the heap on every kernel this runs on).
+// Before issue 13, 10⁵ steps of S2 held ≈ 11 MB of trajectory (the run's and the reference run's rows) plus
+// ≈ 10 MB of --record ids at once; here the peak of the 10 N run may exceed the N run's by at most 1 MB.
+TEST_F(Simulate, OutputsStreamInMemoryIndependentOfTheNumberOfSteps) {
+  if (!HeapPeak::Available()) GTEST_SKIP() << "the allocator is not ours to observe (sanitizer build)";
+  const auto peak_bytes = [&](const char* T) {
+    const std::string out = Path("run.csv"), summary = Path("run.json"), record = Path("run.smcps");
+    HeapPeak::Reset();
+    const CliRun r = RunSmcbench({"simulate", "galias-yu-2007", "--solver", "enum", "--h", "1e-3", "--T", T, "--out",
+                                  out, "--summary", summary, "--record", record});
+    const long peak = HeapPeak::Peak();
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(ReadJson(summary)["s_error_max"].is_number()) << "the reference run was made";
+    return peak;
+  };
+  const long small = peak_bytes("10");   // N = 10⁴ steps
+  const long large = peak_bytes("100");  // 10 N
+  std::printf("[ info     ] peak heap above the start of the run: %ld kB for 10^4 steps, %ld kB for 10^5 steps\n",
+              small / 1024, large / 1024);
+  EXPECT_GT(small, 0) << "the counter sees the run's allocations";
+  EXPECT_LT(large - small, 1 << 20);
+}
+
+// --record writes version 3: l and u stored once (like M), and each problem after the first stores only the
+// metadata that changed. The problems read back equal the in-memory capture of the same run.
+TEST_F(Simulate, RecordSharesBoundsAndMetadataAcrossSteps) {
+  const std::string file = Path("galias.smcps");
+  const CliRun r = RunSmcbench({"simulate", "galias-yu-2007", "--solver", "enum", "--h", "0.01", "--T", "20",
+                                "--record", file});
+  ASSERT_EQ(r.code, 0) << r.err;
+  ProblemSetFileInfo info;
+  const ProblemSet set = ReadProblemSetFile(file, &info);
+  EXPECT_EQ(info.version, 3u);
+  ASSERT_EQ(set.problems.size(), 2000u);
+  // Version 2 took ≈ 300 bytes a step here (id 49, source 26, tags 15, metadata 137, l and u 16, ...).
+  const double per_step = static_cast<double>(info.bytes) / 2000.0;
+  std::printf("[ info     ] --record: %.1f bytes per step (S2, m = 1)\n", per_step);
+  EXPECT_LT(per_step, 160.0);
+
+  const auto scene = LoadScene("galias-yu-2007");
+  SimulationSettings settings = scene->defaults();
+  settings.h = 0.01, settings.T = 20;
+  const auto solver = CreateSolver("enum");
+  Trajectory tr;
+  const std::vector<LibraryProblem> captured =
+      CaptureSceneRun(*scene, settings, solver.get(), MakeCaptureContext("capture", *scene, settings, "enum"), &tr);
+  ASSERT_EQ(captured.size(), set.problems.size());
+  for (std::size_t i = 0; i < captured.size(); ++i) {
+    const LibraryProblem &a = captured[i], &b = set.problems[i];
+    ASSERT_EQ(a.id, b.id);
+    EXPECT_EQ(a.source, b.source) << a.id;
+    EXPECT_EQ(a.tags, b.tags) << a.id;
+    EXPECT_EQ(a.metadata, b.metadata) << a.id;
+    EXPECT_EQ(a.problem.q(), b.problem.q()) << a.id;
+    EXPECT_EQ(a.problem.l(), b.problem.l()) << a.id;
+    EXPECT_EQ(a.problem.u(), b.problem.u()) << a.id;
+    EXPECT_EQ(a.solution, b.solution) << a.id;
+    EXPECT_EQ(a.reference.certificate, b.reference.certificate) << a.id;
+  }
+}
+
+// The default zeroes a state component that underflows below 2.2e-308 after an implicit step, so S2 sliding to
+// the origin ends exactly there; --ieee-subnormals keeps plain IEEE arithmetic, whose state parks on subnormals.
+TEST_F(Simulate, SubnormalStatesAreZeroByDefaultAndKeptWithIeeeSubnormals) {
+  const std::string zeroed = Path("zeroed.json"), ieee = Path("ieee.json");
+  const std::vector<std::string> run{"simulate", "galias-yu-2007", "--solver", "enum", "--h", "0.3", "--T", "1200",
+                                     "--x0", "0,2.21"};
+  std::vector<std::string> args = run;
+  args.insert(args.end(), {"--summary", zeroed});
+  ASSERT_EQ(RunSmcbench(args).code, 0);
+  args = run;
+  args.insert(args.end(), {"--ieee-subnormals", "--summary", ieee});
+  ASSERT_EQ(RunSmcbench(args).code, 0);
+  const auto z = ReadJson(zeroed)["x_final"], i = ReadJson(ieee)["x_final"];
+  EXPECT_EQ(z[0].get<double>(), 0.0);
+  EXPECT_EQ(z[1].get<double>(), 0.0);
+  const double largest = std::max(std::abs(i[0].get<double>()), std::abs(i[1].get<double>()));
+  EXPECT_GT(largest, 0.0);
+  EXPECT_LT(largest, std::numeric_limits<double>::min());
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--flush-subnormals", "--ieee-subnormals"}),
+                     {"--flush-subnormals and --ieee-subnormals exclude each other"});
+}
+
+// --plot keeps per bucket the minimum and maximum of each series: a one-step spike and a chattering series stay
+// visible in a 10⁵-row run, with at most 2 points per bucket; a short run keeps every row.
+TEST(TrajectoryPlotData, KeepsExtremesPerBucketInBoundedMemory) {
+  constexpr std::int64_t kRows = 100000;
+  TrajectoryPlotData data(2, 1, kRows);
+  TrajectoryBlock block;
+  block.n = 2, block.m = 1;
+  block.t.resize(1000), block.x.resize(2, 1000), block.s.resize(1, 1000), block.y.resize(1, 1000);
+  block.iterations.resize(1000), block.residual.resize(1000), block.status.resize(1000);
+  for (std::int64_t first = 0; first < kRows; first += 1000) {
+    block.first_row = first;
+    block.rows = 1000;
+    for (Eigen::Index j = 0; j < 1000; ++j) {
+      const std::int64_t k = first + j;
+      block.t[static_cast<std::size_t>(j)] = 0.001 * static_cast<double>(k);
+      block.x(0, j) = k == 54321 ? 7.0 : 1.0;  // a single-step spike
+      block.x(1, j) = -static_cast<double>(k);
+      block.s(0, j) = k % 2 ? 1.0 : -1.0;      // chattering every step
+      block.y(0, j) = 0.0;
+    }
+    data.OnRows(block);
+  }
+  std::ostringstream out;
+  data.WriteData(out);
+  // Blocks two blank lines apart: x1, x2, s1, y1, phase.
+  std::vector<std::vector<std::pair<double, double>>> series(1);
+  std::istringstream in(out.str());
+  int blank = 0;
+  for (std::string line; std::getline(in, line);) {
+    if (line.empty()) {
+      if (++blank == 2) series.emplace_back(), blank = 0;
+      continue;
+    }
+    blank = 0;
+    std::istringstream fields(line);
+    double a = 0, b = 0;
+    fields >> a >> b;
+    series.back().emplace_back(a, b);
+  }
+  ASSERT_EQ(series.size(), 5u);
+  for (const auto& points : series) EXPECT_LE(static_cast<std::int64_t>(points.size()), 2 * kPlotBuckets + 2);
+  const auto has = [](const std::vector<std::pair<double, double>>& points, double t, double v) {
+    for (const auto& [pt, pv] : points) {
+      if (pt == t && pv == v) return true;
+    }
+    return false;
+  };
+  EXPECT_TRUE(has(series[0], 0.001 * 54321.0, 7.0)) << "the spike of x1";
+  // s: both +1 and −1 in every bucket (the chattering band), in time order.
+  int plus = 0, minus = 0;
+  for (const auto& [t, v] : series[2]) plus += v == 1.0, minus += v == -1.0;
+  EXPECT_GE(plus, 2000);  // 2041 buckets of 49 rows
+  EXPECT_GE(minus, 2000);
+  for (std::size_t i = 1; i < series[2].size(); ++i) EXPECT_LT(series[2][i - 1].first, series[2][i].first);
+  // The phase portrait starts at x0 and holds the spike as a true state (x1, x2) = (7, −54321).
+  EXPECT_EQ(series[4].front(), std::make_pair(1.0, 0.0));
+  EXPECT_TRUE(has(series[4], 7.0, -54321.0));
+
+  // A short run: every row, s from row 1.
+  TrajectoryPlotData small(2, 1, 10);
+  block.first_row = 0, block.rows = 10;
+  small.OnRows(block);
+  std::ostringstream short_out;
+  small.WriteData(short_out);
+  const std::string text = short_out.str();
+  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 10 + 2 + 10 + 2 + 9 + 2 + 10 + 2 + 10);
 }
 
 }  // namespace

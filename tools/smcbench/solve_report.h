@@ -14,10 +14,15 @@ struct SolveRecord {
   std::string problem;
   std::string solver;
   SolveResult result;             // from the last repetition
-  double time_ns_median = 0.0;    // median wall time per cold solve
+  double time_ns_median = 0.0;    // median wall time per solve (cold, or warm with `solve --warm`)
   double time_ns_min = 0.0;
   double time_ns_max = 0.0;
   int repeats = 0;
+  bool warm = false;  // timed through a session, each repeat from the previous answer
+  // Some timed solve was answered by a siconos-* backend's isolation worker (detail "in_process" = 0), so the times
+  // include its inter-process round trip (≈ 7 µs): `--repeat 1` (the one solve is the probe), isolate=always, or a
+  // problem whose probe crashed or timed out. False for our backends.
+  bool timed_in_worker = false;
   std::string error;              // set when the backend could not even be configured
   // With `solve --reference`: the judgement against the certified reference (forward errors NaN when the
   // reference does not prove z* unique). has_judgement false: not judged, the keys are not written.
@@ -26,15 +31,22 @@ struct SolveRecord {
 };
 
 // Solves problem `repeat` times from a cold start with one reused result (the workspace is reused too) and
-// records the median, min and max solve time (SolveResult::solve_seconds, the base class's own timer).
-SolveRecord TimedSolve(Solver& solver, const BoxMLCP& problem, const SolverOptions& options, int repeat);
+// records the median, min and max solve time (SolveResult::solve_seconds, the base class's own timer). With
+// repeat > 1 an untimed warm-up solve comes first: it sizes the workspace and, for a siconos-* backend, is the
+// probe in its isolation worker, so that the timed solves run in process (solvers/siconos/siconos_solver.h). A
+// warm-up that hit the time limit is not repeated: its time is the record's (repeats 1).
+// warm: the repeats go through a prepared session (Solver::Prepare, docs/session.md), each starting from the
+// previous answer with the warm active-set path on, as a time-stepper's steps do; the warm-up is its first call.
+SolveRecord TimedSolve(Solver& solver, const BoxMLCP& problem, const SolverOptions& options, int repeat,
+                       bool warm = false);
 
 // "lemke    solved   iters 3   res 0.00e+00 abs / 0.00e+00 rel / 0.00e+00 eq   1.2 us" (fixed columns), then
 // "   fwd err 1.11e-16 (rel 1.11e-16, allowed 2.00e-09)   solved" (or "fwd err n/a") when judged.
 std::string FormatRecordLine(const SolveRecord& record);
 // The stable JSON keys scripts depend on: solver, status, iterations, residual_abs, residual_rel,
-// residual_scaled, time_ns_median, z (plus problem, message, time_ns_min/max, repeats, details); when judged
-// against a reference also forward_error, forward_error_rel (null when not defined), forward_allowance, verdict.
+// residual_scaled, time_ns_median, z (plus problem, message, time_ns_min/max, repeats, timed_in_worker, details);
+// when judged against a reference also forward_error, forward_error_rel (null when not defined), forward_allowance,
+// verdict.
 nlohmann::json RecordToJson(const SolveRecord& record);
 // {certificate, condition, z} of a reference solution (z empty unless verified; condition null when infinite).
 nlohmann::json ReferenceToJson(const ReferenceSolution& reference);

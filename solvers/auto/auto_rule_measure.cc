@@ -1,0 +1,279 @@
+// The measurements behind auto's rule (docs/auto.md), as markdown tables: run it to check the thresholds on another
+// machine. Cold solves of seeded problems with a planted solution, median over 7 samples of ≥ 2 ms each.
+//   auto_rule_measure sizes       every candidate and auto on the generated families, m = 3 … 128
+//   auto_rule_measure condition   psor against lemke on SPD M of condition 1e2 … 1e8, m = 16, 64, 256
+//   auto_rule_measure spd-test    cost of auto's SPD test (symmetry, Cholesky, condition estimate) against psor
+//   auto_rule_measure overhead    a one-off solve through auto against the same solve by the backend it chose
+//                                 (fastest of 15 samples each, taken in turn)
+#include <Eigen/Cholesky>
+#include <Eigen/QR>
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <string>
+#include <tuple>
+#include <utility>
+#include <vector>
+
+#include "problems/generators/random_problems.h"
+#include "problems/generators/seeded_random.h"
+#include "solvers/auto/auto_solver.h"
+
+namespace smcbench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// Median over 7 samples of the time per call of f, each sample repeating f until it lasts ≥ 2 ms; ns.
+template <typename F>
+double MedianNs(F f) {
+  f();  // warm-up: sizes workspaces, fills per-matrix caches
+  std::vector<double> samples;
+  for (int k = 0; k < 7; ++k) {
+    int calls = 0;
+    const auto start = Clock::now();
+    double elapsed = 0.0;
+    do {
+      f();
+      ++calls;
+      elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    } while (elapsed < 2e-3);
+    samples.push_back(elapsed / calls * 1e9);
+  }
+  std::sort(samples.begin(), samples.end());
+  return samples[3];
+}
+
+// The fastest of 15 samples of each of f and g (each sample repeats its function until it lasts ≥ 2 ms), taken in
+// turn so that both see the same machine load: the fastest sample is the one least disturbed by other processes.
+template <typename F, typename G>
+std::pair<double, double> FastestInTurnNs(F f, G g) {
+  f();
+  g();
+  const auto sample = [](auto& call) {
+    int calls = 0;
+    const auto start = Clock::now();
+    double elapsed = 0.0;
+    do {
+      call();
+      ++calls;
+      elapsed = std::chrono::duration<double>(Clock::now() - start).count();
+    } while (elapsed < 2e-3);
+    return elapsed / calls * 1e9;
+  };
+  double best_f = kInf, best_g = kInf;
+  for (int k = 0; k < 15; ++k) {
+    best_f = std::min(best_f, sample(f));
+    best_g = std::min(best_g, sample(g));
+  }
+  return {best_f, best_g};
+}
+
+std::string Ns(double ns) {
+  char text[32];
+  if (ns < 1e4) {
+    std::snprintf(text, sizeof text, "%.0f ns", ns);
+  } else if (ns < 1e7) {
+    std::snprintf(text, sizeof text, "%.1f µs", ns / 1e3);
+  } else {
+    std::snprintf(text, sizeof text, "%.1f ms", ns / 1e6);
+  }
+  return text;
+}
+
+// An SPD problem with eigenvalues 1 … 1/condition (M = Q diag(λ) Qᵀ) and a planted solution (as in
+// auto_solver_test.cc): LCP rows alternately positive (w = 0) and at 0 (w > 0); relay rows at 1, −1, inside.
+BoxMLCP SpdWithCondition(int n, double condition, bool relay) {
+  SeededRandom random(29);
+  DenseMatrix A(n, n);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) A(i, j) = random.Uniform(-1.0, 1.0);
+  }
+  const DenseMatrix Q = Eigen::HouseholderQR<DenseMatrix>(A).householderQ();
+  Vector lambda(n);
+  for (int i = 0; i < n; ++i) lambda[i] = std::pow(condition, -static_cast<double>(i) / (n - 1));
+  DenseMatrix M = Q * lambda.asDiagonal() * Q.transpose();
+  M = 0.5 * (M + M.transpose()).eval();
+  Vector z = Vector::Zero(n), w = Vector::Zero(n);
+  for (int i = 0; i < n; ++i) {
+    if (relay) {
+      if (i % 3 == 0) z[i] = 1.0, w[i] = -random.Uniform(0.1, 1.1);
+      if (i % 3 == 1) z[i] = -1.0, w[i] = random.Uniform(0.1, 1.1);
+      if (i % 3 == 2) z[i] = random.Uniform(-0.9, 0.9);
+    } else if (i % 2 == 0) {
+      z[i] = random.Uniform(0.5, 1.5);
+    } else {
+      w[i] = random.Uniform(0.1, 1.1);
+    }
+  }
+  const Vector q = w - M * z;
+  return relay ? BoxMLCP::Relay(M, q) : BoxMLCP::LCP(M, q);
+}
+
+SolverOptions TimedOptions() {
+  SolverOptions options;
+  options.measure_time = false;
+  options.time_limit_seconds = 10.0;
+  return options;
+}
+
+void Sizes() {
+  AutoSolver automatic;
+  const AutoCandidate candidates[] = {AutoCandidate::kEnum, AutoCandidate::kPsor, AutoCandidate::kLemke,
+                                      AutoCandidate::kNewton};
+  std::printf("Geometric mean over seeds 1, 2, 3 of the median cold-solve time; a failure names its status.\n\n"
+              "| problem | m | enum | psor | lemke | newton | auto | auto chose |\n"
+              "|---|---:|---:|---:|---:|---:|---:|---|\n");
+  const SolverOptions options = TimedOptions();
+  for (MatrixFamily family : {MatrixFamily::kSymmetricPositiveDefinite, MatrixFamily::kNonsymmetricPMatrix}) {
+    for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kMixed}) {
+      for (int m : {3, 4, 6, 8, 10, 12, 16, 24, 32, 48, 64, 96, 128}) {
+        std::printf("| %s-%s | %d |", ToString(family).c_str(), ToString(bounds).c_str(), m);
+        std::string chose;
+        for (int column = 0; column < 5; ++column) {
+          Solver& solver = column < 4 ? automatic.candidate(candidates[column]) : automatic;
+          if (column == 0 && m > 16) {
+            std::printf(" – |");
+            continue;
+          }
+          double log_sum = 0.0;
+          int solved = 0;
+          std::string failure;
+          for (std::uint64_t seed : {1u, 2u, 3u}) {
+            GeneratorOptions g;
+            g.family = family;
+            g.bounds = bounds;
+            g.size = m;
+            g.seed = seed;
+            const BoxMLCP problem = GenerateProblem(g).problem;
+            SolveResult result;
+            const double ns = MedianNs([&] { solver.Solve(problem, options, &result); });
+            if (result.solved()) {
+              log_sum += std::log(ns);
+              ++solved;
+            } else {
+              failure = std::string(ToString(result.status));
+            }
+            if (column == 4) {
+              const std::string name(AutoCandidateName(static_cast<int>(result.GetDetail("chosen"))));
+              if (chose.find(name) == std::string::npos) chose += (chose.empty() ? "" : ", ") + name;
+            }
+          }
+          std::printf(" %s%s |", solved ? Ns(std::exp(log_sum / solved)).c_str() : "",
+                      failure.empty() ? "" : (" " + failure).c_str());
+        }
+        std::printf(" %s |\n", chose.c_str());
+        std::fflush(stdout);
+      }
+    }
+  }
+}
+
+void Condition() {
+  AutoSolver automatic;
+  Solver& psor = automatic.candidate(AutoCandidate::kPsor);
+  Solver& lemke = automatic.candidate(AutoCandidate::kLemke);
+  const SolverOptions options = TimedOptions();
+  std::printf("| m | bounds | condition | rcond estimate | psor | sweeps | lemke | pivots | auto chose |\n"
+              "|---:|---|---:|---:|---:|---:|---:|---:|---|\n");
+  for (int m : {16, 64, 256}) {
+    for (bool relay : {false, true}) {
+      for (double condition : {1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8}) {
+        const BoxMLCP problem = SpdWithCondition(m, condition, relay);
+        const Eigen::LLT<DenseMatrix> cholesky(problem.dense_matrix());
+        SolveResult p, l;
+        const double tp = MedianNs([&] { psor.Solve(problem, options, &p); });
+        const double tl = MedianNs([&] { lemke.Solve(problem, options, &l); });
+        const AutoCandidate chosen = automatic.ChoiceFor(problem).chosen();
+        std::printf("| %d | %s | %.0e | %.2e | %s%s | %d | %s%s | %d | %s |\n", m, relay ? "relay" : "LCP", condition,
+                    cholesky.rcond(), Ns(tp).c_str(), p.solved() ? "" : (" " + std::string(ToString(p.status))).c_str(),
+                    p.iterations, Ns(tl).c_str(), l.solved() ? "" : (" " + std::string(ToString(l.status))).c_str(),
+                    l.iterations, std::string(AutoCandidateName(static_cast<int>(chosen))).c_str());
+        std::fflush(stdout);
+      }
+    }
+  }
+}
+
+void SpdTest() {
+  AutoSolver automatic;
+  Solver& psor = automatic.candidate(AutoCandidate::kPsor);
+  const SolverOptions options = TimedOptions();
+  std::printf("| m | symmetry test + Cholesky + condition estimate | psor solve (spd-relay) |\n|---:|---:|---:|\n");
+  for (int m : {16, 64, 128, 256, 512, 1024}) {
+    GeneratorOptions g;
+    g.size = m;
+    g.bounds = BoundKind::kRelay;
+    const BoxMLCP problem = GenerateProblem(g).problem;
+    double rcond = 0.0;
+    const double test = MedianNs([&] {
+      const bool symmetric = problem.IsSymmetric();
+      const Eigen::LLT<DenseMatrix> cholesky(problem.dense_matrix());
+      rcond = symmetric ? cholesky.rcond() : 0.0;
+    });
+    SolveResult result;
+    const double solve = MedianNs([&] { psor.Solve(problem, options, &result); });
+    std::printf("| %d | %s | %s |\n", m, Ns(test).c_str(), Ns(solve).c_str());
+    std::fflush(stdout);
+  }
+}
+
+void Overhead() {
+  std::printf("| problem | chosen | options | auto | chosen backend directly | overhead |\n"
+              "|---|---|---|---:|---:|---:|\n");
+  struct Setting {
+    const char* name;
+    bool measure_time, polish;
+  };
+  // As `smcbench solve` times (the base's clock), as `smcbench bench` and the benchmarks do (timed from outside),
+  // and the raw algorithm.
+  const Setting settings[] = {{"timed, polish", true, true}, {"untimed, polish", false, true},
+                              {"untimed, no polish", false, false}};
+  for (auto [family, bounds, m] : std::vector<std::tuple<MatrixFamily, BoundKind, int>>{
+           {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 1},
+           {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 2},
+           {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 64},
+           {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 128},
+           {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 256}}) {
+    GeneratorOptions g;
+    g.family = family;
+    g.bounds = bounds;
+    g.size = m;
+    const BoxMLCP problem = GenerateProblem(g).problem;
+    for (const Setting& setting : settings) {
+      AutoSolver automatic;
+      SolverOptions options;
+      options.measure_time = setting.measure_time;
+      options.polish = setting.polish;
+      Solver* chosen = automatic.DelegateFor(problem, options);
+      SolveResult a, d;
+      const auto [ta, td] = FastestInTurnNs([&] { automatic.Solve(problem, options, &a); },
+                                            [&] { chosen->Solve(problem, options, &d); });
+      std::printf("| %s | %s | %s | %s | %s | %+.0f%% |\n", problem.name().c_str(),
+                  std::string(chosen->info().name).c_str(), setting.name, Ns(ta).c_str(), Ns(td).c_str(),
+                  100.0 * (ta - td) / td);
+      std::fflush(stdout);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace smcbench
+
+int main(int argc, char** argv) {
+  const std::string mode = argc > 1 ? argv[1] : "";
+  if (mode == "sizes") {
+    smcbench::Sizes();
+  } else if (mode == "condition") {
+    smcbench::Condition();
+  } else if (mode == "spd-test") {
+    smcbench::SpdTest();
+  } else if (mode == "overhead") {
+    smcbench::Overhead();
+  } else {
+    std::fprintf(stderr, "usage: %s sizes|condition|spd-test|overhead (docs/auto.md)\n", argv[0]);
+    return 2;
+  }
+  return 0;
+}

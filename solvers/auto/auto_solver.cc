@@ -1,0 +1,225 @@
+#include "solvers/auto/auto_solver.h"
+
+#include <Eigen/Cholesky>
+#include <cmath>
+
+#include "solvers/enumerative/enumerative_solver.h"
+#include "solvers/lemke/lemke_solver.h"
+#include "solvers/newton/semismooth_newton_solver.h"
+#include "solvers/psor/psor_solver.h"
+
+namespace smcbench {
+
+namespace {
+
+constexpr std::string_view kCandidateNames[kAutoCandidateCount] = {"enum", "psor", "lemke", "newton"};
+
+// Whether the chain goes on after a candidate returned `status`: not after an answer, a proof (kInfeasible from
+// an exact backend), the caller's spent time budget, or options every candidate would refuse.
+bool PassOn(SolveStatus status, bool exact) {
+  switch (status) {
+    case SolveStatus::kSolved:
+    case SolveStatus::kTimeLimit:
+    case SolveStatus::kInvalidOptions:
+      return false;
+    case SolveStatus::kInfeasible:
+      return !exact;
+    default:
+      return true;
+  }
+}
+
+// Rows with a choice of state (enum's size measure: free rows l = −∞, u = +∞ and fixed rows l = u have none), the
+// number of active sets a full enumeration may need (2 states per half-bounded row, 3 per finite box), and the size
+// of lemke's LCP (one variable per row with a choice, plus the upper-bound multiplier of each finite box row).
+struct RowCounts {
+  int choice = 0;
+  double active_sets = 1.0;
+  int lemke_size = 0;
+};
+RowCounts CountRows(const BoxMLCP& problem) {
+  RowCounts c;
+  for (int i = 0; i < problem.size(); ++i) {
+    const double l = problem.l()[i], u = problem.u()[i];
+    const bool lower = std::isfinite(l), upper = std::isfinite(u);
+    if (!(l < u) || (!lower && !upper)) continue;
+    ++c.choice;
+    c.active_sets *= lower && upper ? 3.0 : 2.0;
+    c.lemke_size += lower && upper ? 2 : 1;
+  }
+  return c;
+}
+
+// Predicted time of lemke over that of psor on SPD M (docs/auto.md, measured at m = 16 … 256, condition 1e2 … 1e8):
+// psor takes about 3·√(1/rcond) sweeps of m² entry updates (rcond: the reciprocal 1-norm condition estimate of M),
+// lemke about p/2 pivots of p² updates on its LCP of size p, each update costing about 0.16 ns and 0.2 ns here.
+double LemkeOverPsor(int m, int lemke_size, double rcond) {
+  const double m2 = static_cast<double>(m) * m, p = lemke_size;
+  return (0.5 * p * p * p * 0.2) / (3.0 * std::sqrt(1.0 / rcond) * m2 * 0.16);
+}
+
+// The reciprocal condition estimate of M if it is symmetric positive definite (a Cholesky attempt: m³/3 flops,
+// once per matrix), else 0.
+double SpdReciprocalCondition(const BoxMLCP& problem) {
+  if (!problem.IsSymmetric()) return 0.0;
+  const Eigen::LLT<DenseMatrix> cholesky(problem.dense_matrix());
+  return cholesky.info() == Eigen::Success ? cholesky.rcond() : 0.0;
+}
+
+}  // namespace
+
+std::string_view AutoCandidateName(int index) {
+  return index >= 0 && index < kAutoCandidateCount ? kCandidateNames[index] : std::string_view();
+}
+
+bool AutoOptions::IsValid(std::string* why) const {
+  const int enum_limit = EnumerativeOptions{}.size_limit;
+  if (enum_max_choice_rows < 0 || enum_max_choice_rows > enum_limit) {
+    *why = "enum_max_choice_rows must be in [0, " + std::to_string(enum_limit) + "] (enum's size_limit), got " +
+           std::to_string(enum_max_choice_rows);
+    return false;
+  }
+  if (!(psor_min_speedup >= 0.0)) {
+    *why = "psor_min_speedup must be >= 0 (0: psor on every SPD M, inf: never), got " +
+           std::to_string(psor_min_speedup);
+    return false;
+  }
+  return true;
+}
+
+AutoSolver::AutoSolver() : AutoSolver(AutoOptions{}) {}
+
+AutoSolver::AutoSolver(const AutoOptions& options) : options_(options) {
+  candidates_[static_cast<int>(AutoCandidate::kEnum)] = std::make_unique<EnumerativeSolver>();
+  candidates_[static_cast<int>(AutoCandidate::kPsor)] = std::make_unique<PsorSolver>();
+  candidates_[static_cast<int>(AutoCandidate::kLemke)] = std::make_unique<LemkeSolver>();
+  candidates_[static_cast<int>(AutoCandidate::kNewton)] = std::make_unique<SemismoothNewtonSolver>();
+}
+
+AutoSolver::~AutoSolver() = default;
+
+const SolverInfo& AutoSolver::info() const {
+  static const SolverInfo kInfo{
+      "auto",
+      "picks per problem the fastest backend that is exact or reliable for its class: enum (dense, few rows with "
+      "a choice), psor (dense SPD, well conditioned), lemke (other dense), newton (sparse, nonlinear MCP); on a "
+      "failure that proves nothing it tries the next (lemke, newton); details chosen, fallbacks",
+      "docs/auto.md (the rule and the measurements behind it); the chosen backend's own reference",
+      /*dense=*/true,
+      /*sparse=*/true,
+      /*symmetric_only=*/false,
+      /*exact=*/false,
+      /*mcp=*/true,
+      /*default_size_limit=*/0,
+      // The chosen backend equilibrates the problem itself; doing it here too would only cost a copy per call.
+      /*equilibrate=*/false,
+      // ... and its Solve polishes, computes the merit function and applies the rule: the base skips them here.
+      /*delegates=*/true};
+  return kInfo;
+}
+
+void AutoSolver::BindOptions(OptionBinder* binder) {
+  binder->Add("enum_max_choice_rows", &options_.enum_max_choice_rows,
+              "dense problems with at most this many rows with a choice of state (l < u, not free) go to enum");
+  binder->Add("psor_min_speedup", &options_.psor_min_speedup,
+              "dense SPD M goes to psor when lemke's predicted time is at least this many times psor's (0: always)");
+  binder->Add("fallback", &options_.fallback, "try the next candidate when the chosen one fails without a proof");
+}
+
+bool AutoSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }
+
+AutoChoice AutoSolver::Classify(const BoxMLCP& problem) const {
+  AutoChoice c;
+  const auto add = [&c](AutoCandidate candidate) { c.order[c.count++] = candidate; };
+  if (problem.is_sparse()) {
+    add(AutoCandidate::kNewton);
+    if (problem.size() <= kMaxDensifiedSize) add(AutoCandidate::kLemke);
+    return c;
+  }
+  const RowCounts rows = CountRows(problem);
+  const auto& enum_options = static_cast<const EnumerativeSolver&>(candidate(AutoCandidate::kEnum)).options();
+  if (rows.choice <= options_.enum_max_choice_rows && rows.choice <= enum_options.size_limit &&
+      rows.active_sets <= enum_options.max_candidates) {
+    add(AutoCandidate::kEnum);
+  } else if (rows.lemke_size > 0) {
+    const double rcond = SpdReciprocalCondition(problem);
+    if (rcond > 0.0 && LemkeOverPsor(problem.size(), rows.lemke_size, rcond) >= options_.psor_min_speedup) {
+      add(AutoCandidate::kPsor);
+    }
+  }
+  add(AutoCandidate::kLemke);
+  add(AutoCandidate::kNewton);
+  return c;
+}
+
+const AutoChoice& AutoSolver::ChoiceFor(const BoxMLCP& problem) {
+  // The rule reads auto's options and enum's size limits.
+  const std::uint64_t enum_generation = candidate(AutoCandidate::kEnum).option_generation();
+  if (choice_matrix_id_ != problem.matrix_id() || choice_generation_ != option_generation() ||
+      choice_enum_generation_ != enum_generation) {
+    choice_matrix_id_ = 0;  // a throw below (out of memory in the Cholesky) must not leave a stale choice
+    choice_ = Classify(problem);
+    choice_matrix_id_ = problem.matrix_id();
+    choice_generation_ = option_generation();
+    choice_enum_generation_ = enum_generation;
+  }
+  return choice_;
+}
+
+Solver* AutoSolver::DelegateFor(const BoxMLCP& problem, const SolverOptions&) {
+  // Invalid options of auto's own: no delegate, so the caller's solves come here and report them.
+  std::string why;
+  if (!options_.IsValid(&why)) return nullptr;
+  return &candidate(ChoiceFor(problem).chosen());
+}
+
+const SolverOptions& AutoSolver::UntimedOptions(const SolverOptions& options) {
+  if (!options.measure_time) return options;
+  delegate_options_ = options;  // no allocation while the warm start keeps its size
+  delegate_options_.measure_time = false;
+  return delegate_options_;
+}
+
+void AutoSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  const AutoChoice& choice = ChoiceFor(problem);
+  const SolverOptions& given = UntimedOptions(options);
+  const int last = options_.fallback ? choice.count - 1 : choice.first;
+  int at = choice.first;
+  std::string trail;  // the failed candidates, for the message (written only on the fallback path)
+  for (;;) {
+    Solver& backend = candidate(choice.order[at]);
+    backend.Solve(problem, given, result);
+    if (at == last || !PassOn(result->status, backend.info().exact)) break;
+    trail += std::string(trail.empty() ? "" : "; ") + std::string(backend.info().name) + " " +
+             std::string(ToString(result->status)) + (result->message.empty() ? "" : " (" + result->message + ")");
+    ++at;
+  }
+  const int fallbacks = at - choice.first;
+  const Solver& answered = candidate(choice.order[at]);
+  if (result->status == SolveStatus::kInfeasible && !answered.info().exact) {
+    result->status = SolveStatus::kNumericalFailure;
+    result->message = std::string(answered.info().name) + " reported infeasible, which is not a proof (it is not "
+                      "exact): " + result->message;
+  }
+  if (!trail.empty()) {
+    if (result->solved()) {
+      choice_.first = at;  // later calls on this matrix start with the candidate that answered
+    } else {
+      result->message = "after " + trail + ": " + std::string(answered.info().name) + " " +
+                        std::string(ToString(result->status)) + (result->message.empty() ? "" : " (" +
+                        result->message + ")");
+    }
+  }
+  result->solver = info().name;
+  result->SetDetail("chosen", static_cast<double>(static_cast<int>(choice.order[at])));
+  result->SetDetail("fallbacks", static_cast<double>(fallbacks));
+}
+
+void AutoSolver::DoSolveMCP(const MCP& problem, const SolverOptions& options, SolveResult* result) {
+  candidate(AutoCandidate::kNewton).Solve(problem, UntimedOptions(options), result);
+  result->solver = info().name;
+  result->SetDetail("chosen", static_cast<double>(static_cast<int>(AutoCandidate::kNewton)));
+  result->SetDetail("fallbacks", 0.0);
+}
+
+}  // namespace smcbench

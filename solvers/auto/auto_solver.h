@@ -1,0 +1,126 @@
+// The default backend: picks, per problem, the fastest of our backends that is exact or reliable for the problem's
+// class, hands the problem to it, and tries the next candidate when the choice fails without proving anything.
+// docs/auto.md gives the rule and the measurements behind each threshold.
+//
+// The rule (per M, l, u, i.e. per BoxMLCP::matrix_id(); the decision is cached, so a time-stepper pays it once):
+//   sparse M                                        → newton (UMFPACK), then lemke on a dense copy (n ≤ 4096)
+//   dense, at most enum_max_choice_rows rows with a
+//     choice of state (l < u, not free: enum's own
+//     size measure)                                 → enum, then lemke, then newton
+//   dense, symmetric positive definite (a Cholesky
+//     factorization of M succeeds), and psor predicted
+//     faster than lemke from M's condition estimate
+//     and the row counts (psor_min_speedup)         → psor, then lemke, then newton
+//   any other dense M                               → lemke, then newton
+//   nonlinear MCP                                   → newton
+// A candidate's answer ends the chain when it is solved, when it is a proof (kInfeasible from an exact backend),
+// when the caller's time limit ran out (kTimeLimit: the budget is spent) or when the options were refused (every
+// candidate would refuse them). Any other status (iteration limit, stall, ray, singular, numerical failure, a
+// refusal such as kNotApplicable) passes the problem on. kInfeasible from a backend that is not exact is never
+// reported as such: it becomes kNumericalFailure. When a later candidate solved the problem, later calls on the
+// same matrix start with it ("what the last call showed"); DelegateFor returns that same backend.
+//
+// Details: "chosen" = the AutoCandidate index (AutoCandidateName) of the backend whose answer is returned,
+// "fallbacks" = how many candidates failed before it; the chosen backend's own details are kept. The result's
+// solver name is "auto".
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <string_view>
+
+#include "solvers/core/solver.h"
+
+namespace smcbench {
+
+// The backends auto chooses from, in a fixed order: detail "chosen" is this index, so values are never renumbered
+// (new candidates are appended).
+enum class AutoCandidate : int {
+  kEnum = 0,
+  kPsor = 1,
+  kLemke = 2,
+  kNewton = 3,
+};
+inline constexpr int kAutoCandidateCount = 4;
+
+// Registry name of candidate `index` ("enum", "psor", "lemke", "newton"); "" outside [0, kAutoCandidateCount).
+std::string_view AutoCandidateName(int index);
+
+struct AutoOptions {
+  // Dense problems with at most this many rows with a choice of state go to enum (exact; its search grows as
+  // 2^k or 3^k in this number k, the guided first phase makes it fastest at small k). At most enum's size_limit.
+  int enum_max_choice_rows = 8;
+  // Dense symmetric positive definite M goes to psor when lemke's predicted time is at least this many times
+  // psor's. The prediction (docs/auto.md) uses M's reciprocal condition estimate from its Cholesky factor: PSOR's
+  // sweeps grow with the condition number, lemke's pivots do not. 0: psor on every SPD M; inf: never.
+  double psor_min_speedup = 1.0;
+  // Pass the problem to the next candidate when the chosen one fails without a proof.
+  bool fallback = true;
+
+  // True if every field is usable; otherwise *why names the field and the accepted range.
+  bool IsValid(std::string* why) const;
+};
+
+// The candidates auto tries on one problem, in order.
+struct AutoChoice {
+  std::array<AutoCandidate, kAutoCandidateCount> order{};
+  int count = 0;
+  // Where the chain starts: 0, or the candidate that answered after a fallback on this matrix.
+  int first = 0;
+
+  AutoCandidate chosen() const { return order[first]; }
+};
+
+class AutoSolver final : public Solver {
+ public:
+  AutoSolver();
+  explicit AutoSolver(const AutoOptions& options);
+  ~AutoSolver() override;
+  AutoSolver(const AutoSolver&) = delete;
+  AutoSolver& operator=(const AutoSolver&) = delete;
+
+  const SolverInfo& info() const override;
+  const AutoOptions& options() const { return options_; }
+  // Replaces the options; they are validated when Solve runs (invalid → kInvalidOptions).
+  void set_options(const AutoOptions& options) {
+    options_ = options;
+    OptionsChanged();
+  }
+
+  // The backend auto would hand this problem to first (owned by this AutoSolver), without solving; nullptr while
+  // auto's own options are invalid (Solve then reports them).
+  Solver* DelegateFor(const BoxMLCP& problem, const SolverOptions& options) override;
+  // The candidates auto tries on this problem, in order (cached per matrix_id; may cost a Cholesky of M once).
+  const AutoChoice& ChoiceFor(const BoxMLCP& problem);
+  // The instance auto uses for one candidate (its options can be changed there).
+  Solver& candidate(AutoCandidate c) { return *candidates_[static_cast<int>(c)]; }
+  const Solver& candidate(AutoCandidate c) const { return *candidates_[static_cast<int>(c)]; }
+
+ protected:
+  void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
+  void DoSolveMCP(const MCP& problem, const SolverOptions& options, SolveResult* result) override;
+  void BindOptions(OptionBinder* binder) override;
+  bool ValidateBackendOptions(std::string* why) const override;
+
+ private:
+  // The rule above, for a problem not seen before.
+  AutoChoice Classify(const BoxMLCP& problem) const;
+  // The options the candidate gets: the caller's, with measure_time off (the base times auto's call; the
+  // candidate's own two clock reads would only add to it).
+  const SolverOptions& UntimedOptions(const SolverOptions& options);
+
+  AutoOptions options_;
+  std::array<std::unique_ptr<Solver>, kAutoCandidateCount> candidates_;
+  // ChoiceFor's cache: the last matrix seen (0: none) and the option generations (auto's, enum's) it was decided
+  // under.
+  std::uint64_t choice_matrix_id_ = 0;
+  std::uint64_t choice_generation_ = 0;
+  std::uint64_t choice_enum_generation_ = 0;
+  AutoChoice choice_;
+  // UntimedOptions' copy, kept to avoid allocating per solve.
+  SolverOptions delegate_options_;
+};
+
+}  // namespace smcbench

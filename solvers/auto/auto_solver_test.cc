@@ -1,0 +1,352 @@
+// Tests of the `auto` backend: which backend it picks on each problem class, answers judged against planted
+// solutions (problems/generators, or built here with z* first), the fallback path, and that it never reports
+// "infeasible" unless an exact backend proved it.
+#include "solvers/auto/auto_solver.h"
+
+#include <gtest/gtest.h>
+
+#include <Eigen/QR>
+#include <cmath>
+#include <string>
+
+#include "problems/generators/random_problems.h"
+#include "problems/generators/seeded_random.h"
+#include "solvers/psor/psor_solver.h"
+
+namespace smcbench {
+namespace {
+
+constexpr double kTol = 1e-10;
+
+// The natural residual recomputed here from M, q, l, u, relative to 1 + ‖q‖∞.
+double IndependentResidual(const BoxMLCP& p, const Vector& z) {
+  const DenseMatrix M = p.ToDense();
+  const Vector w = M * z + p.q();
+  double r = 0.0;
+  for (int i = 0; i < p.size(); ++i) {
+    r = std::max(r, std::abs(z[i] - std::min(std::max(z[i] - w[i], p.l()[i]), p.u()[i])));
+  }
+  return r / (1.0 + p.q().cwiseAbs().maxCoeff());
+}
+
+GeneratedProblem Generate(MatrixFamily family, BoundKind bounds, int size, bool sparse = false) {
+  GeneratorOptions g;
+  g.family = family;
+  g.bounds = bounds;
+  g.size = size;
+  g.seed = 13;
+  g.sparse = sparse;
+  return GenerateProblem(g);
+}
+
+AutoCandidate Chosen(const SolveResult& r) {
+  return static_cast<AutoCandidate>(static_cast<int>(r.GetDetail("chosen")));
+}
+
+// Solves a planted problem and checks the answer against z*, the backend auto reports, and that DelegateFor names
+// the backend whose answer came back.
+void ExpectChoice(const GeneratedProblem& gen, AutoCandidate expected) {
+  AutoSolver solver;
+  SolverOptions options;
+  options.tolerance = kTol;
+  const SolveResult r = solver.Solve(gen.problem, options);
+  const std::string where = gen.problem.name();
+  ASSERT_TRUE(r.solved()) << where << ": " << ToString(r.status) << " " << r.message;
+  EXPECT_EQ(r.solver, "auto") << where;
+  EXPECT_EQ(Chosen(r), expected) << where << " went to " << AutoCandidateName(static_cast<int>(r.GetDetail("chosen")));
+  EXPECT_EQ(r.GetDetail("fallbacks"), 0.0) << where;
+  EXPECT_LE(IndependentResidual(gen.problem, r.z), kTol) << where;
+  // P-matrix families: z* is the only solution.
+  EXPECT_LE((r.z - gen.z_star).cwiseAbs().maxCoeff(), 1e-8 * (1.0 + gen.z_star.cwiseAbs().maxCoeff())) << where;
+  Solver* delegate = solver.DelegateFor(gen.problem, options);
+  ASSERT_NE(delegate, nullptr);
+  EXPECT_EQ(delegate, &solver.candidate(expected)) << where;
+  EXPECT_EQ(delegate->info().name, AutoCandidateName(static_cast<int>(expected))) << where;
+}
+
+TEST(AutoSolver, InfoAndCandidateNames) {
+  AutoSolver solver;
+  EXPECT_EQ(solver.info().name, "auto");
+  EXPECT_TRUE(solver.info().dense);
+  EXPECT_TRUE(solver.info().sparse);
+  EXPECT_TRUE(solver.info().mcp);
+  EXPECT_FALSE(solver.info().exact);  // its answer may come from psor or newton
+  EXPECT_FALSE(solver.info().equilibrate);  // the chosen backend equilibrates
+  for (int i = 0; i < kAutoCandidateCount; ++i) {
+    EXPECT_EQ(solver.candidate(static_cast<AutoCandidate>(i)).info().name, AutoCandidateName(i)) << i;
+  }
+  EXPECT_EQ(AutoCandidateName(0), "enum");
+  EXPECT_EQ(AutoCandidateName(3), "newton");
+  EXPECT_EQ(AutoCandidateName(-1), "");
+  EXPECT_EQ(AutoCandidateName(kAutoCandidateCount), "");
+}
+
+TEST(AutoSolver, SmallDenseRelayGoesToEnum) {
+  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 2), AutoCandidate::kEnum);
+  ExpectChoice(Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 1), AutoCandidate::kEnum);
+  ExpectChoice(Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 4), AutoCandidate::kEnum);
+  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 8), AutoCandidate::kEnum);
+}
+
+// SPD relay at m = 64 (condition ≈ 100): psor is predicted (and measured, docs/auto.md) several times faster than
+// lemke, whose LCP has 2m variables. The same matrix with LCP bounds gives lemke an LCP of size m: no longer
+// predicted slower, so lemke.
+TEST(AutoSolver, DenseSpdGoesToPsorWhenPredictedFaster) {
+  ExpectChoice(Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 64), AutoCandidate::kPsor);
+  ExpectChoice(Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 64), AutoCandidate::kLemke);
+}
+
+TEST(AutoSolver, DenseNonsymmetricPMatrixGoesToLemke) {
+  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 64), AutoCandidate::kLemke);
+  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 64), AutoCandidate::kLemke);
+  // Diagonally dominant but nonsymmetric: not SPD, so not psor.
+  ExpectChoice(Generate(MatrixFamily::kDiagonallyDominant, BoundKind::kBox, 12), AutoCandidate::kLemke);
+}
+
+TEST(AutoSolver, SparseGoesToNewton) {
+  ExpectChoice(Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 200, true),
+               AutoCandidate::kNewton);
+  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kMixed, 3, true), AutoCandidate::kNewton);
+}
+
+// Rows without a choice (free, fixed) do not count towards enum's size: 40 rows of which 3 are bounded.
+TEST(AutoSolver, FreeAndFixedRowsDoNotCountTowardsEnum) {
+  const GeneratedProblem gen = Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 40);
+  Vector l = Vector::Constant(40, -kInf), u = Vector::Constant(40, kInf);
+  for (int i : {3, 17, 31}) l[i] = 0.0;
+  l[5] = u[5] = 0.25;  // fixed
+  Vector z_star = gen.z_star;
+  z_star[5] = 0.25;
+  // Planted: z* with the bounded rows at their lower bound (w > 0) or inside (w = 0); free rows w = 0.
+  Vector w = Vector::Zero(40);
+  z_star[3] = 0.0, w[3] = 0.7;
+  z_star[17] = 1.5;
+  z_star[31] = 0.0, w[31] = 0.2;
+  w[5] = 3.0;  // a fixed row's w is unconstrained
+  const DenseMatrix& M = gen.problem.dense_matrix();
+  GeneratedProblem planted{BoxMLCP(M, w - M * z_star, l, u, "mostly-free"), z_star, gen.options};
+  ExpectChoice(planted, AutoCandidate::kEnum);
+}
+
+TEST(AutoSolver, NonlinearMcpGoesToNewton) {
+  // F(x) = (x − 1)² − 1.01, x ≥ 0: solution 1 + √1.01 (Billups 1995).
+  const FunctionMCP mcp(
+      Vector::Zero(1), Vector::Constant(1, kInf),
+      [](const Vector& x, Vector* F) { (*F)[0] = (x[0] - 1.0) * (x[0] - 1.0) - 1.01; },
+      [](const Vector& x, DenseMatrix* J) { (*J)(0, 0) = 2.0 * (x[0] - 1.0); }, "billups");
+  AutoSolver solver;
+  const SolveResult r = solver.Solve(mcp);
+  ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
+  EXPECT_EQ(Chosen(r), AutoCandidate::kNewton);
+  EXPECT_NEAR(r.z[0], 1.0 + std::sqrt(1.01), 1e-9);
+}
+
+// An SPD problem with eigenvalues from 1 down to 1/condition (M = Q diag(λ) Qᵀ, Q orthogonal from a seeded random
+// matrix) and a planted solution. LCP: even rows positive with w = 0, odd rows at 0 with w > 0. Relay: rows at
+// 1 (w < 0), at −1 (w > 0) and inside (w = 0) in turn.
+GeneratedProblem SpdWithCondition(int n, double condition, BoundKind bounds) {
+  SeededRandom random(29);
+  DenseMatrix A(n, n);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) A(i, j) = random.Uniform(-1.0, 1.0);
+  }
+  const DenseMatrix Q = Eigen::HouseholderQR<DenseMatrix>(A).householderQ();
+  Vector lambda(n);
+  for (int i = 0; i < n; ++i) lambda[i] = std::pow(condition, -static_cast<double>(i) / (n - 1));
+  DenseMatrix M = Q * lambda.asDiagonal() * Q.transpose();
+  M = 0.5 * (M + M.transpose()).eval();
+  Vector z_star = Vector::Zero(n), w = Vector::Zero(n);
+  for (int i = 0; i < n; ++i) {
+    if (bounds == BoundKind::kRelay) {
+      if (i % 3 == 0) z_star[i] = 1.0, w[i] = -random.Uniform(0.1, 1.1);
+      if (i % 3 == 1) z_star[i] = -1.0, w[i] = random.Uniform(0.1, 1.1);
+      if (i % 3 == 2) z_star[i] = random.Uniform(-0.9, 0.9);
+    } else if (i % 2 == 0) {
+      z_star[i] = random.Uniform(0.5, 1.5);
+    } else {
+      w[i] = random.Uniform(0.1, 1.1);
+    }
+  }
+  GeneratorOptions g;
+  g.size = n;
+  g.bounds = bounds;
+  const std::string name = "spd-cond" + std::to_string(static_cast<long>(condition));
+  const Vector q = w - M * z_star;
+  return {bounds == BoundKind::kRelay ? BoxMLCP::Relay(M, q, -1.0, 1.0, name) : BoxMLCP::LCP(M, q, name), z_star, g};
+}
+
+// PSOR's sweeps grow with the condition number (docs/auto.md: 35 sweeps at 1e2, 3441 at 1e8 for this relay
+// problem at m = 64), lemke's pivots do not: an ill-conditioned SPD matrix goes to lemke.
+TEST(AutoSolver, IllConditionedSpdIsNotGivenToPsor) {
+  AutoSolver solver;
+  EXPECT_EQ(solver.ChoiceFor(SpdWithCondition(64, 1e2, BoundKind::kRelay).problem).chosen(), AutoCandidate::kPsor);
+  const GeneratedProblem ill = SpdWithCondition(64, 1e8, BoundKind::kRelay);
+  EXPECT_EQ(solver.ChoiceFor(ill.problem).chosen(), AutoCandidate::kLemke);
+  ExpectChoice(ill, AutoCandidate::kLemke);
+}
+
+// The fallback path: psor is chosen (psor_min_speedup 0 gives it an ill-conditioned SPD problem), fails within the
+// iteration budget without proving anything, and lemke, next in the chain, solves it within the same budget. Later
+// calls on the same matrix start with lemke, and DelegateFor says so.
+TEST(AutoSolver, FallsBackWhenTheChoiceFailsWithoutProof) {
+  AutoOptions o;
+  o.enum_max_choice_rows = 0;
+  o.psor_min_speedup = 0.0;  // psor on any SPD matrix
+  AutoSolver solver(o);
+  const GeneratedProblem gen = SpdWithCondition(12, 1e6, BoundKind::kLCP);
+  SolverOptions options;
+  options.tolerance = kTol;
+  options.max_iterations = 100;  // sweeps for psor (far too few at this condition), pivots for lemke (enough)
+  options.polish = false;        // the base's polish would finish psor's job from a good active set
+  ASSERT_EQ(solver.DelegateFor(gen.problem, options), &solver.candidate(AutoCandidate::kPsor));
+
+  // What psor alone does with this budget: no answer, and no proof either.
+  PsorSolver psor;
+  const SolveResult alone = psor.Solve(gen.problem, options);
+  ASSERT_FALSE(alone.solved());
+  ASSERT_NE(alone.status, SolveStatus::kInfeasible);
+
+  const SolveResult r = solver.Solve(gen.problem, options);
+  ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
+  EXPECT_EQ(Chosen(r), AutoCandidate::kLemke);
+  EXPECT_EQ(r.GetDetail("fallbacks"), 1.0);
+  EXPECT_LE(IndependentResidual(gen.problem, r.z), kTol);
+  EXPECT_LE((r.z - gen.z_star).cwiseAbs().maxCoeff(), 1e-4 * (1.0 + gen.z_star.cwiseAbs().maxCoeff()));
+
+  // What the last call showed: lemke answers directly from now on.
+  EXPECT_EQ(solver.DelegateFor(gen.problem, options), &solver.candidate(AutoCandidate::kLemke));
+  const SolveResult again = solver.Solve(gen.problem, options);
+  ASSERT_TRUE(again.solved());
+  EXPECT_EQ(Chosen(again), AutoCandidate::kLemke);
+  EXPECT_EQ(again.GetDetail("fallbacks"), 0.0);
+  EXPECT_EQ(again.z, r.z);
+}
+
+// An SPD relay problem on which psor refuses when its min_diagonal is raised: M is block diagonal with blocks
+// [[1, 2], [2, 10]] (SPD: determinant 6), so after row equilibration every other row has M_ii = 0.5. Planted z*
+// strictly inside the box (w* = 0), so q = −M z*.
+GeneratedProblem SmallDiagonalSpdRelay() {
+  const int n = 10;
+  DenseMatrix M = DenseMatrix::Zero(n, n);
+  Vector z_star(n);
+  for (int b = 0; b < n; b += 2) {
+    M(b, b) = 1.0, M(b, b + 1) = M(b + 1, b) = 2.0, M(b + 1, b + 1) = 10.0;
+    z_star[b] = 0.5, z_star[b + 1] = -0.25;
+  }
+  GeneratorOptions g;
+  g.size = n;
+  return {BoxMLCP::Relay(M, -(M * z_star), -1.0, 1.0, "small-diagonal-spd-relay"), z_star, g};
+}
+
+// psor refuses a row whose diagonal is below min_diagonal · max|M_jk| (of the row-equilibrated problem).
+PsorOptions StrictPsor() {
+  PsorOptions strict;
+  strict.min_diagonal = 0.6;
+  return strict;
+}
+
+// A refusal of the chosen backend (psor: kNotApplicable) passes the problem on too.
+TEST(AutoSolver, FallsBackOnARefusal) {
+  AutoSolver solver;
+  static_cast<PsorSolver&>(solver.candidate(AutoCandidate::kPsor)).set_options(StrictPsor());
+  const GeneratedProblem gen = SmallDiagonalSpdRelay();
+  ASSERT_EQ(solver.ChoiceFor(gen.problem).chosen(), AutoCandidate::kPsor);
+  const SolveResult r = solver.Solve(gen.problem);
+  ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
+  EXPECT_EQ(Chosen(r), AutoCandidate::kLemke);
+  EXPECT_EQ(r.GetDetail("fallbacks"), 1.0);
+  EXPECT_LE((r.z - gen.z_star).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+// With fallback off, the first choice's answer is returned as it is.
+TEST(AutoSolver, FallbackCanBeSwitchedOff) {
+  AutoSolver solver;
+  std::string error;
+  ASSERT_TRUE(solver.SetOption("fallback", "false", &error)) << error;
+  static_cast<PsorSolver&>(solver.candidate(AutoCandidate::kPsor)).set_options(StrictPsor());
+  const SolveResult r = solver.Solve(SmallDiagonalSpdRelay().problem);
+  EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << r.message;
+  EXPECT_EQ(Chosen(r), AutoCandidate::kPsor);
+  EXPECT_EQ(r.GetDetail("fallbacks"), 0.0);
+}
+
+// LCP(M = [[-1]], q = [-1]): w = −z − 1 < 0 for every z ≥ 0, so there is no solution. enum (exact) proves it and
+// auto reports it; when enum is not chosen, lemke ends on a ray (no proof) and newton fails, and auto does not
+// claim infeasibility.
+TEST(AutoSolver, InfeasibleOnlyFromAnExactBackend) {
+  const BoxMLCP p = BoxMLCP::LCP(DenseMatrix::Constant(1, 1, -1.0), Vector::Constant(1, -1.0), "no-solution");
+  AutoSolver solver;
+  const SolveResult proved = solver.Solve(p);
+  EXPECT_EQ(proved.status, SolveStatus::kInfeasible) << proved.message;
+  EXPECT_EQ(Chosen(proved), AutoCandidate::kEnum);
+  EXPECT_EQ(proved.GetDetail("fallbacks"), 0.0);
+  EXPECT_TRUE(solver.candidate(AutoCandidate::kEnum).info().exact);
+
+  AutoOptions no_enum;
+  no_enum.enum_max_choice_rows = 0;
+  AutoSolver without_enum(no_enum);
+  const SolveResult r = without_enum.Solve(p);
+  EXPECT_FALSE(r.solved());
+  EXPECT_NE(r.status, SolveStatus::kInfeasible) << r.message;
+  EXPECT_EQ(Chosen(r), AutoCandidate::kNewton);
+  EXPECT_EQ(r.GetDetail("fallbacks"), 1.0);
+  EXPECT_NE(r.message.find("lemke"), std::string::npos) << r.message;  // says what lemke reported first
+}
+
+// One-off solves through DelegateFor's backend give the answer auto gives (same backend, same algorithm).
+TEST(AutoSolver, DelegateAnswersLikeAuto) {
+  for (const GeneratedProblem& gen :
+       {Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 2),
+        Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 64),
+        Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 64)}) {
+    AutoSolver solver;
+    const SolveResult via_auto = solver.Solve(gen.problem);
+    Solver* delegate = solver.DelegateFor(gen.problem, SolverOptions{});
+    ASSERT_NE(delegate, nullptr);
+    const SolveResult direct = delegate->Solve(gen.problem);
+    ASSERT_TRUE(direct.solved()) << gen.problem.name();
+    EXPECT_EQ(direct.solver, AutoCandidateName(static_cast<int>(via_auto.GetDetail("chosen"))));
+    EXPECT_EQ(via_auto.status, direct.status) << gen.problem.name();
+    EXPECT_EQ(via_auto.iterations, direct.iterations) << gen.problem.name();
+    EXPECT_LE((via_auto.z - direct.z).cwiseAbs().maxCoeff(), 1e-14 * (1.0 + direct.z.cwiseAbs().maxCoeff()))
+        << gen.problem.name();
+  }
+}
+
+// The decision is per matrix: a new matrix is classified afresh, and options changed through SetOption apply.
+TEST(AutoSolver, ChoiceFollowsTheMatrixAndTheOptions) {
+  AutoSolver solver;
+  const GeneratedProblem small = Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 4);
+  const GeneratedProblem large = Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 64);
+  EXPECT_EQ(solver.ChoiceFor(small.problem).chosen(), AutoCandidate::kEnum);
+  EXPECT_EQ(solver.ChoiceFor(large.problem).chosen(), AutoCandidate::kPsor);
+  EXPECT_EQ(solver.ChoiceFor(small.problem).chosen(), AutoCandidate::kEnum);
+  std::string error;
+  ASSERT_TRUE(solver.SetOption("enum_max_choice_rows", "0", &error)) << error;
+  EXPECT_NE(solver.ChoiceFor(small.problem).chosen(), AutoCandidate::kEnum);
+  ASSERT_TRUE(solver.SetOption("psor_min_speedup", "inf", &error)) << error;
+  EXPECT_EQ(solver.ChoiceFor(large.problem).chosen(), AutoCandidate::kLemke);
+  ASSERT_TRUE(solver.SetOption("psor_min_speedup", "0", &error)) << error;
+  EXPECT_EQ(solver.ChoiceFor(large.problem).chosen(), AutoCandidate::kPsor);
+}
+
+TEST(AutoSolver, RejectsBadOptionsNamingTheField) {
+  AutoSolver solver;
+  std::string error;
+  EXPECT_FALSE(solver.SetOption("enum_max_choice_rows", "21", &error));
+  EXPECT_NE(error.find("enum_max_choice_rows"), std::string::npos) << error;
+  EXPECT_FALSE(solver.SetOption("psor_min_speedup", "-1", &error));
+  EXPECT_NE(error.find("psor_min_speedup"), std::string::npos) << error;
+  EXPECT_FALSE(solver.SetOption("omega", "1.5", &error));  // psor's, not auto's
+  AutoOptions bad;
+  bad.psor_min_speedup = std::nan("");
+  solver.set_options(bad);
+  const BoxMLCP p = Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 2).problem;
+  const SolveResult r = solver.Solve(p);
+  EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
+  EXPECT_NE(r.message.find("psor_min_speedup"), std::string::npos) << r.message;
+  EXPECT_EQ(solver.DelegateFor(p, SolverOptions{}), nullptr);  // a session then reports them too
+}
+
+}  // namespace
+}  // namespace smcbench

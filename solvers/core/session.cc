@@ -1,0 +1,275 @@
+#include "solvers/core/session.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+#include "solvers/core/polish.h"
+#include "solvers/core/solver.h"
+
+namespace smcbench {
+
+void ActiveSetFactors::Resize(int n) {
+  n_ = n;
+  nf_ = 0;
+  valid_ = false;
+  state_.assign(n, 0);
+  free_rows_.assign(n, 0);
+  perm_.assign(n, 0);
+  lu_.assign(static_cast<std::size_t>(n) * n, 0.0);
+  rhs_.assign(n, 0.0);
+}
+
+bool ActiveSetFactors::Factor(const DenseMatrix& M, const signed char* state) {
+  valid_ = false;
+  const int n = n_;
+  nf_ = 0;
+  for (int i = 0; i < n; ++i) {
+    state_[i] = state[i];
+    if (static_cast<RowState>(state[i]) == RowState::kFree) free_rows_[nf_++] = i;
+  }
+  const int nf = nf_;
+  double* a = lu_.data();
+  for (int r = 0; r < nf; ++r) {
+    for (int c = 0; c < nf; ++c) a[r * n + c] = M(free_rows_[r], free_rows_[c]);
+  }
+  // Gaussian elimination with partial pivoting; perm_[k] = the original row now in position k.
+  for (int k = 0; k < nf; ++k) perm_[k] = k;
+  double largest = 0.0, smallest = kInf;
+  for (int k = 0; k < nf; ++k) {
+    int p = k;
+    for (int r = k + 1; r < nf; ++r) {
+      if (std::abs(a[r * n + k]) > std::abs(a[p * n + k])) p = r;
+    }
+    const double pivot = a[p * n + k];
+    if (!(std::abs(pivot) > 0.0) || !std::isfinite(pivot)) return false;
+    if (p != k) {
+      for (int c = 0; c < nf; ++c) std::swap(a[k * n + c], a[p * n + c]);
+      std::swap(perm_[k], perm_[p]);
+    }
+    for (int r = k + 1; r < nf; ++r) {
+      const double m = a[r * n + k] / a[k * n + k];
+      a[r * n + k] = m;  // the multiplier, kept for the forward substitution
+      for (int c = k + 1; c < nf; ++c) a[r * n + c] -= m * a[k * n + c];
+    }
+    largest = std::max(largest, std::abs(a[k * n + k]));
+    smallest = std::min(smallest, std::abs(a[k * n + k]));
+  }
+  valid_ = nf == 0 || smallest >= kMinPivotRatio * largest;
+  return valid_;
+}
+
+template <int N>
+bool ActiveSetFactors::Solve(const DenseMatrix& M, const double* q, const double* l, const double* u,
+                             double* z) const {
+  const int n = N > 0 ? N : n_;
+  const int nf = nf_;
+  const double* m = M.data();
+  const signed char* state = state_.data();
+  for (int i = 0; i < n; ++i) {
+    const auto s = static_cast<RowState>(state[i]);
+    z[i] = s == RowState::kFree ? 0.0 : (s == RowState::kLower ? l[i] : u[i]);
+  }
+  if (nf == 0) return true;
+  // b = −(q_F + M_FB z_B), in pivoted order (z is 0 on the free rows, so a full row times z is the bound part).
+  double* b = const_cast<double*>(rhs_.data());  // scratch, sized in Resize; logically not state
+  for (int k = 0; k < nf; ++k) {
+    const int f = free_rows_[perm_[k]];
+    double sum = q[f];
+    for (int j = 0; j < n; ++j) sum += m[f + j * n] * z[j];
+    b[k] = -sum;
+  }
+  const double* a = lu_.data();
+  for (int k = 1; k < nf; ++k) {
+    double sum = b[k];
+    for (int c = 0; c < k; ++c) sum -= a[k * n + c] * b[c];
+    b[k] = sum;
+  }
+  for (int k = nf - 1; k >= 0; --k) {
+    double sum = b[k];
+    for (int c = k + 1; c < nf; ++c) sum -= a[k * n + c] * b[c];
+    b[k] = sum / a[k * n + k];
+  }
+  for (int k = 0; k < nf; ++k) {
+    const int i = free_rows_[k];
+    const double x = b[k];
+    if (!(x >= l[i] && x <= u[i])) return false;  // also false for NaN
+    z[i] = x;
+  }
+  return true;
+}
+
+void ActiveSetFactors::AffineMap(const DenseMatrix& M, const double* l, const double* u, double* A, double* c,
+                                 int* free_row) const {
+  const int n = n_, nf = nf_;
+  *free_row = nf == 1 ? free_rows_[0] : -1;
+  std::fill(A, A + n * n, 0.0);
+  for (int i = 0; i < n; ++i) {
+    const auto s = static_cast<RowState>(state_[i]);
+    c[i] = s == RowState::kFree ? 0.0 : (s == RowState::kLower ? l[i] : u[i]);
+  }
+  // Column j of A restricted to F is −M_FF⁻¹ e_j (j ∈ F); c_F = −M_FF⁻¹ M_FB c_B. One LU solve per column.
+  double* b = const_cast<double*>(rhs_.data());
+  const double* a = lu_.data();
+  const auto solve = [&] {
+    for (int k = 1; k < nf; ++k) {
+      for (int p = 0; p < k; ++p) b[k] -= a[k * n + p] * b[p];
+    }
+    for (int k = nf - 1; k >= 0; --k) {
+      for (int p = k + 1; p < nf; ++p) b[k] -= a[k * n + p] * b[p];
+      b[k] /= a[k * n + k];
+    }
+  };
+  for (int col = 0; col <= nf; ++col) {  // col < nf: e_{F[col]}; col = nf: the bound part
+    for (int k = 0; k < nf; ++k) {
+      const int f = free_rows_[perm_[k]];
+      if (col < nf) {
+        b[k] = f == free_rows_[col] ? -1.0 : 0.0;
+      } else {
+        double sum = 0.0;
+        for (int j = 0; j < n; ++j) sum += M(f, j) * c[j];
+        b[k] = -sum;
+      }
+    }
+    solve();
+    for (int k = 0; k < nf; ++k) {
+      const int i = free_rows_[k];
+      if (col < nf) {
+        A[i + free_rows_[col] * n] = b[k];
+      } else {
+        c[i] = b[k];
+      }
+    }
+  }
+}
+
+template bool ActiveSetFactors::Solve<0>(const DenseMatrix&, const double*, const double*, const double*,
+                                         double*) const;
+
+SolveSession::SolveSession(Solver* backend, const BoxMLCP& problem, const SolverOptions& options,
+                           const SessionOptions& session)
+    : backend_(backend), problem_(problem), options_(options), session_(session) {
+  if (Solver* delegate = backend->DelegateFor(problem, options)) {
+    meta_ = backend;
+    backend_ = delegate;
+  }
+  backend_name_ = backend_->info().name;
+  const int n = problem_.size();
+  reuse_ = session_.reuse_active_set && !problem_.is_sparse() && n <= kMaxReusedSize;
+  if (reuse_) {
+    factors_.Resize(n);
+    state_.assign(n, 0);
+  }
+  checked_generation_ = backend_->option_generation();
+  fast_ = backend_->ChecksPass(problem_, options_);
+}
+
+void SolveSession::CheckBackendOptions() {
+  checked_generation_ = backend_->option_generation();
+  fast_ = backend_->ChecksPass(problem_, options_);
+}
+
+void SolveSession::Solve(const Eigen::Ref<const Vector>& q, SolveResult* result, const Vector* warm_start) {
+  problem_.set_q(q);
+  if (warm_start != nullptr) options_.warm_start = *warm_start;
+  if (checked_generation_ != backend_->option_generation()) CheckBackendOptions();
+  ++calls_;
+  if (fast_) {
+    switch (problem_.size()) {
+      case 1: return SolveFixed<1>(result);
+      case 2: return SolveFixed<2>(result);
+      case 3: return SolveFixed<3>(result);
+      case 4: return SolveFixed<4>(result);
+      default: break;
+    }
+  }
+  SolveGeneral(result);
+}
+
+template <int N>
+void SolveSession::SolveFixed(SolveResult* result) {
+  if (reuse_ && factors_.valid() && TryReusedActiveSet<N>(result)) return;
+  backend_->SolveValidated<N>(problem_, options_, result);
+  if (meta_ != nullptr && !result->solved()) meta_->Solve(problem_, options_, result);
+  result->SetDetail("path", static_cast<double>(SessionPath::kBackend));
+  if (reuse_ && result->solved()) RememberActiveSet(*result);
+}
+
+void SolveSession::SolveGeneral(SolveResult* result) {
+  if (fast_ && reuse_ && factors_.valid() && TryReusedActiveSet<0>(result)) return;
+  backend_->Solve(problem_, options_, result);
+  if (meta_ != nullptr && !result->solved()) meta_->Solve(problem_, options_, result);
+  result->SetDetail("path", static_cast<double>(SessionPath::kBackend));
+  if (reuse_ && result->solved()) RememberActiveSet(*result);
+}
+
+template <int N>
+bool SolveSession::TryReusedActiveSet(SolveResult* result) {
+  using Clock = std::chrono::steady_clock;
+  const auto start = options_.measure_time ? Clock::now() : Clock::time_point{};
+  const int n = problem_.size();
+  result->Reset();
+  result->solver = backend_name_;
+  if (result->z.size() != n) result->z.resize(n);
+  if (result->w.size() != n) result->w.resize(n);
+  const double *q = problem_.q().data(), *l = problem_.l().data(), *u = problem_.u().data();
+  double* z = result->z.data();
+  const DenseMatrix& M = problem_.dense_matrix();
+  if constexpr (N > 0) {
+    // z = A q + c; a single free row by one division, as the polish computes it (same bits).
+    const SmallMap& map = small_;
+    bool inside = true;
+    for (int i = 0; i < N; ++i) {
+      double zi = map.c[i];
+      for (int j = 0; j < N; ++j) zi += map.A[i + j * N] * q[j];
+      z[i] = zi;
+    }
+    if (map.free_row >= 0) {
+      const int f = map.free_row;
+      const double* m = M.data();
+      double b = -q[f];
+      for (int j = 0; j < N; ++j) b -= j == f ? 0.0 : m[f + j * N] * z[j];
+      z[f] = b / m[f + f * N];
+    }
+    for (int i = 0; i < N; ++i) inside = inside && z[i] >= l[i] && z[i] <= u[i];
+    if (!inside) return false;
+  } else {
+    if (!factors_.Solve<0>(M, q, l, u, z)) return false;
+  }
+  Residual r;
+  if constexpr (N > 0) {
+    r = problem_.template NaturalResidualFixed<N>(result->z, &result->w);
+  } else {
+    r = problem_.NaturalResidual(result->z, &result->w);
+  }
+  // The verdict's two tests, as Solver::Finish applies them to every backend's answer.
+  if (!(r.rel <= options_.tolerance && r.scaled <= options_.tolerance)) return false;
+  result->status = SolveStatus::kSolved;
+  result->residual_abs = r.abs;
+  result->residual_rel = r.rel;
+  result->residual_scaled = r.scaled;
+  result->SetDetail("path", static_cast<double>(SessionPath::kReusedActiveSet));
+  if (options_.measure_time) result->solve_seconds = std::chrono::duration<double>(Clock::now() - start).count();
+  ++reused_;
+  return true;
+}
+
+void SolveSession::RememberActiveSet(const SolveResult& result) {
+  const int n = problem_.size();
+  if (result.z.size() != n || result.w.size() != n) return;
+  const double *z = result.z.data(), *w = result.w.data(), *inv_d = problem_.inv_row_scale().data();
+  const double *l = problem_.l().data(), *u = problem_.u().data();
+  bool same = factors_.valid();
+  const signed char* known = factors_.state();
+  for (int i = 0; i < n; ++i) {
+    // In units of z (the equilibrated w), as the polish classifies rows.
+    state_[i] = static_cast<signed char>(ClassifyRow(z[i], w[i] * inv_d[i], l[i], u[i]));
+    same = same && state_[i] == known[i];
+  }
+  if (same) return;
+  if (factors_.Factor(problem_.dense_matrix(), state_.data()) && n <= BoxMLCP::kSmallSize) {
+    factors_.AffineMap(problem_.dense_matrix(), l, u, small_.A, small_.c, &small_.free_row);
+  }
+}
+
+}  // namespace smcbench

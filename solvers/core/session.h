@@ -1,0 +1,133 @@
+// Prepare once, solve many (the shape of OSQP's setup/solve/update): a time-stepper or a benchmark solves one
+// problem's M, l, u again and again with a new q. The session checks the options and the backend's capability
+// once, keeps its own copies, and on each call tries the previous answer's active set before the backend.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+#include "solvers/core/options.h"
+#include "solvers/core/problem.h"
+#include "solvers/core/result.h"
+
+namespace smcbench {
+
+class Solver;
+
+// How a session may answer.
+struct SessionOptions {
+  // Warm active-set reuse: try the last solved answer's active set first (bound rows at their bound, the free block
+  // solved with its stored LU factors), accept it when the merit function passes both tests of the verdict, else
+  // call the backend. Off: every call goes to the backend (to time or study the backend's own algorithm).
+  bool reuse_active_set = true;
+};
+
+// Which path produced a session's answer: SolveResult detail "path".
+enum class SessionPath : int {
+  kBackend = 0,          // the backend's own algorithm (then the base's polish and merit function)
+  kReusedActiveSet = 1,  // the previous answer's active set, re-solved for the new q; iterations = 0
+};
+
+// The LU factors (partial pivoting) of one active set's free block M_FF, for dense n×n M: what the warm path
+// re-solves with. Storage is sized once (n), so refactoring for a new active set allocates nothing.
+class ActiveSetFactors {
+ public:
+  void Resize(int n);
+  // Factors M_FF for the row states in `state` (RowState values). False when M_FF is singular or its pivots span
+  // more than the ratio below (then the warm path is not tried for this set).
+  bool Factor(const DenseMatrix& M, const signed char* state);
+  // z for right-hand side q: bound rows at their bound, z_F = −M_FF⁻¹(q_F + M_FB z_B). False unless every z_F is
+  // finite and inside [l_F, u_F]. N = n when known at compile time (the small-solve path), else 0.
+  template <int N>
+  bool Solve(const DenseMatrix& M, const double* q, const double* l, const double* u, double* z) const;
+  // For n ≤ BoxMLCP::kSmallSize: the same solution as an affine map of q, z = A q + c (A column-major n×n, zero on
+  // bound rows; c the bounds there), so the warm path of a small problem is n² multiply-adds and no substitution.
+  // Requires valid(). free_row: the only free row when there is exactly one (then z_f is computed by one division
+  // instead, as the polish does, to keep its bits), else −1.
+  void AffineMap(const DenseMatrix& M, const double* l, const double* u, double* A, double* c, int* free_row) const;
+  bool valid() const { return valid_; }
+  void Invalidate() { valid_ = false; }
+  const signed char* state() const { return state_.data(); }
+
+  // Smallest |pivot| / largest |pivot| accepted: below it the block is too close to singular for a stored
+  // factorization to be trusted, and the backend (whose own safeguards handle it) answers instead.
+  static constexpr double kMinPivotRatio = 1e-13;
+
+ private:
+  int n_ = 0;
+  int nf_ = 0;
+  bool valid_ = false;
+  std::vector<signed char> state_;
+  std::vector<int> free_rows_, perm_;
+  std::vector<double> lu_, rhs_;  // lu_: nf×nf row-major with leading dimension n
+};
+
+// A prepared solve of one problem (M, l, u fixed; q per call) by one backend. Made by Solver::Prepare; holds a
+// pointer to the backend, which must outlive it. Not thread-safe (the backend is not). Movable.
+//
+// Guarantees of Solve are those of Solver::Solve: result->w = M z + q, residual_* is the merit function at z,
+// status kSolved ⇒ residual_rel ≤ tolerance and residual_scaled ≤ tolerance. Options that fail validation, or a
+// backend that cannot take the problem, give the same status and message on every call as Solver::Solve would.
+class SolveSession {
+ public:
+  SolveSession(Solver* backend, const BoxMLCP& problem, const SolverOptions& options,
+               const SessionOptions& session = {});
+
+  // Solves with this q (size n, finite; else InvalidInputError naming q) into *result (storage reused: no
+  // allocation after the first call, for every backend but ipopt and siconos-*). warm_start: the start point for
+  // the backend (nullptr or empty: the options' warm start, else cold). Detail "path" = SessionPath.
+  void Solve(const Eigen::Ref<const Vector>& q, SolveResult* result, const Vector* warm_start = nullptr);
+
+  // The problem as last solved (q of the last call).
+  const BoxMLCP& problem() const { return problem_; }
+  const SolverOptions& options() const { return options_; }
+  // The backend that solves: the one given to Prepare, or its delegate (Solver::DelegateFor, e.g. auto's choice;
+  // a call the delegate does not solve goes to the backend given to Prepare, whose rule — auto's fallbacks —
+  // decides).
+  Solver& backend() const { return *backend_; }
+  // Calls answered by the reused active set, and in all.
+  std::int64_t reused() const { return reused_; }
+  std::int64_t calls() const { return calls_; }
+
+ private:
+  template <int N>
+  void SolveFixed(SolveResult* result);
+  void SolveGeneral(SolveResult* result);
+  // The warm path; true when it answered (result filled, solved).
+  template <int N>
+  bool TryReusedActiveSet(SolveResult* result);
+  // After a solved answer from the backend: store its active set (natural map in units of z) and factor M_FF.
+  void RememberActiveSet(const SolveResult& result);
+  // Re-runs the checks Prepare made when the backend's options changed since (Solver::option_generation).
+  void CheckBackendOptions();
+
+  Solver* backend_;
+  // The backend given to Prepare when backend_ is its delegate (auto's choice), else null: a call the delegate does
+  // not solve is handed to it, so its own rule (auto's fallback chain) still decides.
+  Solver* meta_ = nullptr;
+  std::string_view backend_name_;  // backend_->info().name, read once (a virtual call per solve otherwise)
+  BoxMLCP problem_;
+  SolverOptions options_;
+  SessionOptions session_;
+  std::uint64_t checked_generation_ = 0;
+  // The per-call part only (options, backend options, dense, capability checked): the fixed-size fast path.
+  bool fast_ = false;
+  // The warm path applies: dense, at most kMaxReusedSize rows, reuse on.
+  bool reuse_ = false;
+  ActiveSetFactors factors_;
+  std::vector<signed char> state_;
+  // factors_ as an affine map of q, for n ≤ BoxMLCP::kSmallSize (ActiveSetFactors::AffineMap).
+  struct SmallMap {
+    double A[BoxMLCP::kSmallSize * BoxMLCP::kSmallSize];
+    double c[BoxMLCP::kSmallSize];
+    int free_row = -1;
+  };
+  SmallMap small_{};
+  std::int64_t reused_ = 0, calls_ = 0;
+
+  // Dense problems up to this size get the warm path (its factorization is O(n³) on an active-set change).
+  static constexpr int kMaxReusedSize = 512;
+};
+
+}  // namespace smcbench
