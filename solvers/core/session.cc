@@ -190,17 +190,13 @@ template <int N>
 void SolveSession::SolveFixed(SolveResult* result) {
   if (reuse_ && factors_.valid() && TryReusedActiveSet<N>(result)) return;
   backend_->SolveValidated<N>(problem_, options_, result);
-  if (meta_ != nullptr && !result->solved()) meta_->Solve(problem_, options_, result);
-  result->SetDetail("path", static_cast<double>(SessionPath::kBackend));
-  if (reuse_ && result->solved()) RememberActiveSet(*result);
+  ConcludeBackendCall(result);
 }
 
 void SolveSession::SolveGeneral(SolveResult* result) {
   if (fast_ && reuse_ && factors_.valid() && TryReusedActiveSet<0>(result)) return;
   backend_->Solve(problem_, options_, result);
-  if (meta_ != nullptr && !result->solved()) meta_->Solve(problem_, options_, result);
-  result->SetDetail("path", static_cast<double>(SessionPath::kBackend));
-  if (reuse_ && result->solved()) RememberActiveSet(*result);
+  ConcludeBackendCall(result);
 }
 
 template <int N>
@@ -252,6 +248,12 @@ bool SolveSession::TryReusedActiveSet(SolveResult* result) {
   if (options_.measure_time) result->solve_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   ++reused_;
   return true;
+}
+
+void SolveSession::ConcludeBackendCall(SolveResult* result) {
+  if (meta_ != nullptr && !result->solved()) meta_->Solve(problem_, options_, result);
+  result->SetDetail("path", static_cast<double>(SessionPath::kBackend));
+  if (reuse_ && result->solved()) RememberActiveSet(*result);
 }
 
 void SolveSession::RememberActiveSet(const SolveResult& result) {

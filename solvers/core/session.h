@@ -97,6 +97,9 @@ class SolveSession {
   // The warm path; true when it answered (result filled, solved).
   template <int N>
   bool TryReusedActiveSet(SolveResult* result);
+  // After the backend's call: the meta-backend's rule when the delegate did not solve, detail "path", and the
+  // answer's active set for the next call.
+  void ConcludeBackendCall(SolveResult* result);
   // After a solved answer from the backend: store its active set (natural map in units of z) and factor M_FF.
   void RememberActiveSet(const SolveResult& result);
   // Re-runs the checks Prepare made when the backend's options changed since (Solver::option_generation).

@@ -336,6 +336,13 @@ TEST(SolverBase, FixedSizeMeritNeverStandsInForTheBasesMerit) {
   EXPECT_EQ(r.status, SolveStatus::kSolved);
 }
 
+// A session whose every call runs the backend (no warm active-set path).
+SessionOptions BackendOnly() {
+  SessionOptions o;
+  o.reuse_active_set = false;
+  return o;
+}
+
 // Solver::Prepare / SolveSession (session.h): what is checked once, what is still checked per call, and the warm
 // active-set path.
 TEST(Session, RefusesWhatSolveWouldRefuseWithTheSameMessage) {
@@ -363,9 +370,7 @@ TEST(Session, NonFiniteWarmStartIsStillRefusedPerCall) {
   ScriptedSolver solver;
   solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
   const BoxMLCP p = SimpleLCP();
-  SessionOptions no_reuse;
-  no_reuse.reuse_active_set = false;
-  SolveSession session = solver.Prepare(p, SolverOptions{}, no_reuse);
+  SolveSession session = solver.Prepare(p, SolverOptions{}, BackendOnly());
   SolveResult r;
   Vector warm = Vector::Zero(2);
   session.Solve(p.q(), &r, &warm);
@@ -385,9 +390,7 @@ TEST(Session, BackendOptionsChangedAfterPrepareAreCheckedOnTheNextCall) {
   ScriptedSolver solver;
   solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
   const BoxMLCP p = SimpleLCP();
-  SessionOptions no_reuse;
-  no_reuse.reuse_active_set = false;
-  SolveSession session = solver.Prepare(p, SolverOptions{}, no_reuse);
+  SolveSession session = solver.Prepare(p, SolverOptions{}, BackendOnly());
   SolveResult r;
   session.Solve(p.q(), &r);
   ASSERT_EQ(r.status, SolveStatus::kSolved);
@@ -468,9 +471,7 @@ TEST(Session, ReuseOffAlwaysCallsTheBackend) {
   ScriptedSolver solver;
   solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();
   const BoxMLCP p = SimpleLCP();
-  SessionOptions no_reuse;
-  no_reuse.reuse_active_set = false;
-  SolveSession session = solver.Prepare(p, SolverOptions{}, no_reuse);
+  SolveSession session = solver.Prepare(p, SolverOptions{}, BackendOnly());
   SolveResult r;
   for (int k = 0; k < 3; ++k) {
     session.Solve(p.q(), &r);
