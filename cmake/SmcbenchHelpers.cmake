@@ -2,7 +2,7 @@
 
 # Applied to every smcbench target: warnings (errors in CI), optional sanitizers.
 add_library(smcbench_build_flags INTERFACE)
-target_compile_options(smcbench_build_flags INTERFACE -Wall -Wextra
+target_compile_options(smcbench_build_flags INTERFACE -Wall -Wextra -fno-semantic-interposition
   $<$<BOOL:${SMCBENCH_WERROR}>:-Werror>
   $<$<BOOL:${SMCBENCH_NATIVE}>:-march=native>)
 if(SMCBENCH_FUZZ)
@@ -17,13 +17,26 @@ elseif(SMCBENCH_SANITIZE)
   target_link_options(smcbench_build_flags INTERFACE -fsanitize=address,undefined)
 endif()
 
-# smcbench_library(NAME SOURCES ... DEPS ...) → target smcbench_NAME with alias smcbench::NAME.
+# The static libraries link it PRIVATE, which an installed static library still records ($<LINK_ONLY:...>, for the
+# sanitizer link options): it is exported with them as smcbench::build_flags (cmake/SmcbenchInstall.cmake).
+set_target_properties(smcbench_build_flags PROPERTIES EXPORT_NAME build_flags)
+set_property(GLOBAL APPEND PROPERTY SMCBENCH_INSTALLED_TARGETS smcbench_build_flags)
+
+# Headers are included by their path from the checkout's root ("solvers/core/solver.h"); installed, that root is
+# <prefix>/include/smcbench, and <prefix>/include gives <smcbench/smcbench.h> (the umbrella header, include/).
+set(SMCBENCH_INCLUDE_DIRS $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}> $<BUILD_INTERFACE:${PROJECT_SOURCE_DIR}/include>
+  $<INSTALL_INTERFACE:include/smcbench> $<INSTALL_INTERFACE:include>)
+
+# smcbench_library(NAME SOURCES ... DEPS ...) → target smcbench_NAME with alias smcbench::NAME, installed and
+# exported as smcbench::NAME (cmake/SmcbenchInstall.cmake installs every target this function made).
 function(smcbench_library name)
   cmake_parse_arguments(ARG "" "" "SOURCES;DEPS" ${ARGN})
   add_library(smcbench_${name} STATIC ${ARG_SOURCES})
   add_library(smcbench::${name} ALIAS smcbench_${name})
-  target_include_directories(smcbench_${name} PUBLIC ${PROJECT_SOURCE_DIR})
+  set_target_properties(smcbench_${name} PROPERTIES EXPORT_NAME ${name})
+  target_include_directories(smcbench_${name} PUBLIC ${SMCBENCH_INCLUDE_DIRS})
   target_link_libraries(smcbench_${name} PUBLIC ${ARG_DEPS} PRIVATE smcbench_build_flags)
+  set_property(GLOBAL APPEND PROPERTY SMCBENCH_INSTALLED_TARGETS smcbench_${name})
 endfunction()
 
 # smcbench_test(NAME SOURCES ... DEPS ... [LABELS ...] [ENVIRONMENT VAR=VALUE ...]) → a GoogleTest binary

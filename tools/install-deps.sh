@@ -7,7 +7,8 @@ set -euo pipefail
 # libsiconos-numerics-dev is optional for the build (without it the siconos-* backends are not built) but is
 # installed so that the default report compares against Siconos.
 packages=(cmake make g++ pkg-config libeigen3-dev libsuitesparse-dev coinor-libipopt-dev libbenchmark-dev
-          libgtest-dev libgmock-dev nlohmann-json3-dev libcli11-dev gnuplot-nox libsiconos-numerics-dev)
+          libgtest-dev libgmock-dev nlohmann-json3-dev libcli11-dev gnuplot-nox libsiconos-numerics-dev
+          pybind11-dev python3-dev python3-numpy python3-scipy python3-pandas python3-pytest)
 case "${1:-}" in
   "") ;;
   test) packages+=(valgrind clang libclang-rt-14-dev) ;;

@@ -63,8 +63,12 @@ void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& opt
   // Warm-up: sizes the workspace, tells how long one solve takes, and is a siconos-* backend's probe (its first
   // solve of a problem runs in its isolation worker; the timed ones then run in process, unless the probe crashed
   // or timed out, in which case every solve stays in the worker).
+  SessionOptions session_options;
+  session_options.reuse_active_set = replay.reuse_active_set;
+  SolveSession session = solver->Prepare(problem, options, session_options);
+  const Eigen::Ref<const Vector> q = problem.q();
   const auto t0 = Clock::now();
-  solver->Solve(problem, options, result);
+  session.Solve(q, result);
   const double first = std::chrono::duration<double>(Clock::now() - t0).count();
   const auto pair_start = Clock::now();
   std::int64_t count = 1;
@@ -85,7 +89,7 @@ void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& opt
   }
   while (static_cast<int>(samples.size()) < wanted) {
     const auto s0 = Clock::now();
-    for (std::int64_t i = 0; i < count; ++i) solver->Solve(problem, options, result);
+    for (std::int64_t i = 0; i < count; ++i) session.Solve(q, result);
     samples.push_back(std::chrono::duration<double>(Clock::now() - s0).count() / static_cast<double>(count));
     record->timed_in_worker = record->timed_in_worker || answered_in_worker();
     if (std::chrono::duration<double>(Clock::now() - pair_start).count() > replay.max_seconds_per_pair) break;

@@ -22,6 +22,10 @@ struct ReplayOptions {
   double tolerance = 1e-10;          // on the relative and the row-equilibrated natural residual
   // SolverOptions::polish: false times the raw algorithms (no exact polish of their answers in the base layer).
   bool polish = true;
+  // The timed solves run through one solve session per problem × backend (solvers/core/session.h). Off (the
+  // default): every solve runs the backend's own algorithm, what the report compares; on: each repeat may be answered
+  // by the previous answer's active set (what a time-stepper gets).
+  bool reuse_active_set = false;
   double time_limit_seconds = 10.0;  // per solve; a backend over it gets kTimeLimit (and is timed once)
   int repetitions = 7;               // timing samples per problem × backend (median and spread over these)
   // Each sample repeats the solve until it lasts at least this long (so a 100 ns solve is not timed by a
@@ -84,7 +88,8 @@ struct ReplayResults {
 // backend that fails on a problem is a record, never an exception.
 ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& options);
 
-// Times one solve configuration: repeated cold solves of problem with solver/options into *result, honouring
+// Times one solve configuration: repeated solves of problem with solver/options through one session (cold unless
+// replay.reuse_active_set) into *result, honouring
 // min_sample_seconds, repetitions and max_seconds (writes median/min/max/mad/samples/solves_per_sample and
 // timed_in_worker). An untimed warm-up solve comes first: it sizes the workspace and, for a siconos-* backend, is
 // the probe in its isolation worker, after which the timed solves of that problem run in process.

@@ -4,6 +4,8 @@
 // calls, but unlike them we check everything: a corrupt or hostile file is an InvalidInputError, never a crash,
 // a giant allocation or a silently wrong problem.
 #include "problems/io/siconos_format.h"
+
+#include "problems/io/read_text.h"
 #include "solvers/core/number_text.h"
 
 #include <algorithm>
@@ -28,7 +30,6 @@ namespace smcbench {
 namespace {
 
 // The largest peer file is 3.2 MB; 1 GiB leaves room for real problems while refusing to slurp a device.
-constexpr std::size_t kMaxInputBytes = std::size_t{1} << 30;
 // Caps every declared dimension so that products of two sizes fit in int64 and Eigen::Index. The real guard
 // against a corrupt size is Parser::Reserve, which compares the declared count with the bytes left.
 constexpr std::int64_t kMaxDimension = std::int64_t{1} << 28;
@@ -597,21 +598,6 @@ std::string Source(SiconosKind kind, const std::string& where) {
   return std::string("Siconos ") + KindName(kind) + " '" + where + "'";
 }
 
-std::string ReadAll(std::istream& in, const std::string& source) {
-  std::string text;
-  std::vector<char> buffer(std::size_t{1} << 16);
-  while (in) {
-    in.read(buffer.data(), static_cast<std::streamsize>(buffer.size()));
-    const std::streamsize got = in.gcount();
-    if (got <= 0) break;
-    if (text.size() + static_cast<std::size_t>(got) > kMaxInputBytes) {
-      throw InvalidInputError(source + ": input larger than " + std::to_string(kMaxInputBytes) + " bytes");
-    }
-    text.append(buffer.data(), static_cast<std::size_t>(got));
-  }
-  if (in.bad()) throw InvalidInputError(source + ": read error");
-  return text;
-}
 
 std::string Lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -622,7 +608,7 @@ std::string Lower(std::string s) {
 
 BoxMLCP ReadSiconosStream(std::istream& in, SiconosKind kind, const std::string& name) {
   const std::string source = Source(kind, name);
-  const std::string text = ReadAll(in, source);
+  const std::string text = ReadBoundedText(in, source);
   return Parse(text, kind, source, name);
 }
 
@@ -634,7 +620,7 @@ BoxMLCP ReadSiconosFile(const std::string& path, SiconosKind kind) {
   if (!in) {
     throw InvalidInputError(source + ": cannot open file: " + std::generic_category().message(errno));
   }
-  const std::string text = ReadAll(in, source);
+  const std::string text = ReadBoundedText(in, source);
   return Parse(text, kind, source, std::filesystem::path(path).stem().string());
 }
 

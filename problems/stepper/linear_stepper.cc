@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <optional>
 #include <type_traits>
 #include <utility>
 
@@ -249,10 +250,9 @@ class KernelImpl final : public LinearStepper::Kernel {
     if (stream) stream_.Add(0, t0, x, s, y, 0, 0.0, SolveStatus::kNotRun, n, m);
     if (forced) d.forcing(t0, g_prev);
 
-    // The fixed kernels solve through Solver::SolveRepeated: the checks that cannot change during the run are
-    // made once, here (the generic Solve reports a refusal step by step, as the dynamic kernel does).
-    bool repeated = false;
-    if constexpr (kFixed) repeated = implicit && solver->BeginRepeatedSolves(*problem, solver_options_);
+    // Every step solves through one session (solvers/core/session.h): the checks that cannot change during the run
+    // are made once, and each step first tries the previous step's active set (on a sliding surface, the same).
+    SolveSession* const session = implicit ? &SessionFor(solver, *problem, options.session) : nullptr;
 
     Counters counters;
     std::int64_t k = 0;
@@ -276,18 +276,13 @@ class KernelImpl final : public LinearStepper::Kernel {
           status = SolveStatus::kNumericalFailure;
           residual = kInf;
         } else {
-          problem->set_q(q);  // the fixed-size overload for the fixed kernels: unrolled, inlined
           // Plain loops (unrolled for fixed m): Eigen's fixed ↔ dynamic assignments are out-of-line calls.
           if (warm) {
             double* ws = solver_options_.warm_start.data();
             for (int i = 0; i < m; ++i) ws[i] = s[i];
           }
-          if (!repeated) {
-            solver->Solve(*problem, solver_options_, &result_);
-          } else if constexpr (kFixed) {
-            solver->SolveRepeated<M>(*problem, solver_options_, &result_);
-          }
-          if (observer) observer->OnStep(k + 1, 0, *problem, result_);
+          session->Solve(q, &result_, warm ? &solver_options_.warm_start : nullptr);
+          if (observer) observer->OnStep(k + 1, 0, session->problem(), result_);
           const double* z = result_.z.data();
           for (int i = 0; i < m; ++i) s[i] = z[i];
           status = result_.status;
@@ -341,12 +336,26 @@ class KernelImpl final : public LinearStepper::Kernel {
       y = D;
       y.noalias() += C * x;
     }
+    if (session != nullptr && k > 0) problem->set_q(session->problem().q());  // LinearStepper::problem(): the last q
     stream_.Flush();
     counters.Store(out);
     FinishTrajectory(k, x, s, y, out);
   }
 
  private:
+  // The session of this run: the previous run's when the backend and the problem are the same (its options replaced,
+  // the remembered active set kept: a second run allocates nothing), else a new one.
+  SolveSession& SessionFor(Solver* solver, const BoxMLCP& problem, const SessionOptions& session_options) {
+    if (session_ && session_solver_ == solver && session_->problem().matrix_id() == problem.matrix_id() &&
+        session_->session_options().reuse_active_set == session_options.reuse_active_set) {
+      session_->set_options(solver_options_);
+    } else {
+      session_.emplace(solver->Prepare(problem, solver_options_, session_options));
+      session_solver_ = solver;
+    }
+    return *session_;
+  }
+
   template <typename X, typename S, typename Y>
   static void Record(std::int64_t k, double t, const X& x, const S& s, const Y& y, int iterations, double residual,
                      SolveStatus status, Trajectory* out) {
@@ -363,6 +372,8 @@ class KernelImpl final : public LinearStepper::Kernel {
   SolverOptions solver_options_;
   SolveResult result_;
   TrajectoryStream stream_;
+  std::optional<SolveSession> session_;
+  Solver* session_solver_ = nullptr;  // the backend session_ was prepared with
 };
 
 // Fixed-size kernels for n ≤ 4, m ≤ 2 (every linear scene of SCENES.md); the dynamic kernel otherwise.

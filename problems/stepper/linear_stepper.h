@@ -2,7 +2,7 @@
 // `eq:TDS3` (z = s_{k+1}, M = C S, q = −(C R x_k + C p_k + D), l = −1, u = 1) solved by whichever backend the
 // caller passes. Two paths:
 //   LinearStepper: M, C R, C p + D (and the BoxMLCP itself) are built once; a step is a few small mat-vecs, an
-//     in-place q update (BoxMLCP::set_q) and the solve, warm-started from s_k (fixed kernels: Solver::SolveRepeated,
+//     in-place q update (BoxMLCP::set_q) and the solve, warm-started from s_k (a solve session, SolveSession,
 //     whose checks that cannot change during the run are made once before the loop). Fixed-size Eigen kernels serve
 //     n ≤ 4, m ≤ 2 (every linear scene of SCENES.md); larger systems use a dynamic kernel with preallocated
 //     buffers. Neither allocates per step. A run either records its history (O(N) memory) or hands its rows to a
@@ -63,6 +63,9 @@ struct StepperOptions {
   // Passed to the backend at every step. The stepper overrides two fields: warm_start (s_k when warm_start below
   // is on, else empty) and measure_time (false: the clock costs as much as a small solve).
   SolverOptions solver;
+  // The run's solve session (solvers/core/session.h): by default each step first tries the previous step's active
+  // set; reuse_active_set = false sends every step to the backend's own algorithm (to time or study it).
+  SessionOptions session;
   bool warm_start = true;
   FailurePolicy on_failure = FailurePolicy::kStop;
   // false: keep only x_final/s_final/y_final and the counters (benchmarks; no O(N) memory).

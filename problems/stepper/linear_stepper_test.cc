@@ -191,6 +191,50 @@ TEST(LemmaYahoo, EveryBackendReachesExactlyZeroAndStays) {
   }
 }
 
+// Counts the steps each session path answered (SolveResult detail "path", SessionPath).
+class PathCounter final : public StepObserver {
+ public:
+  void OnStep(std::int64_t, int, const BoxMLCP&, const SolveResult& result) override {
+    ++(result.GetDetail("path") == static_cast<double>(SessionPath::kReusedActiveSet) ? reused : by_backend);
+  }
+  int reused = 0, by_backend = 0;
+};
+
+// The session's reused active set (StepperOptions::session, on by default) answers the steps whose active set did not
+// change — the whole sliding phase — with the trajectory the backend gives when it answers every step: S1 (m = 1)
+// and the 2-surface scene S2 (m = 2), against a run with reuse off.
+TEST(StepperSession, ReusedActiveSetAnswersTheSlidingPhaseWithTheBackendsTrajectory) {
+  struct Case {
+    const char* name;
+    LinearSignSystem scene;
+    double h;
+    Vector x0;
+  };
+  const std::vector<Case> cases = {{"S1", stepper_test::SignScene(), 0.01, Vec({1.01})},
+                                   {"S2", stepper_test::GaliasYuScene(), 0.05, Vec({0.0, 2.21})}};
+  for (const Case& c : cases) {
+    for (std::string_view name : {"enum", "lemke", "psor"}) {
+      SCOPED_TRACE(std::string(c.name) + " " + std::string(name));
+      auto solver = CreateSolver(name);
+      LinearStepper stepper(DiscretizeTheta(c.scene, c.h, 1.0, SignTreatment::kImplicit));
+      PathCounter off_paths, on_paths;
+      StepperOptions on, off;
+      off.session.reuse_active_set = false;
+      off.observer = &off_paths;
+      on.observer = &on_paths;
+      const Trajectory by_backend = stepper.Run(c.x0, 400, solver.get(), off);
+      const Trajectory reused = stepper.Run(c.x0, 400, solver.get(), on);
+      ASSERT_TRUE(by_backend.ok() && reused.ok()) << reused.first_failure_message;
+      EXPECT_EQ(off_paths.reused, 0);
+      EXPECT_EQ(off_paths.by_backend, 400);
+      EXPECT_GT(on_paths.reused, 300);
+      EXPECT_EQ(on_paths.reused + on_paths.by_backend, 400);
+      EXPECT_LT((reused.s - by_backend.s).cwiseAbs().maxCoeff(), 1e-12);
+      EXPECT_LT((reused.x - by_backend.x).cwiseAbs().maxCoeff(), 1e-12);
+    }
+  }
+}
+
 // Why StepperOptions::zero_rounding_residue exists: with the plain update and an exact backend, the rounding
 // residue after the arrival shrinks by ~2⁻⁵³ per step but stays nonzero for many steps on these h. The residue is
 // checked against the arithmetic it comes from: x_{k+1} = fl(x_k − fl(h·fl(x_k/h))).
@@ -490,6 +534,7 @@ TEST(LinearStepper, TrajectoryLayout) {
   LinearStepper stepper(DiscretizeTheta(stepper_test::GaliasYuScene(), h, 1.0, SignTreatment::kImplicit));
   StepperOptions options;
   options.t0 = 1.0;
+  options.session.reuse_active_set = false;  // every step by the backend: its iteration counts are recorded
   const Trajectory tr = stepper.Run(Vec({0.0, 2.21}), 5, &solver, options);
   ASSERT_EQ(tr.steps_taken, 5);
   EXPECT_EQ(tr.x.cols(), 6);
@@ -604,6 +649,7 @@ TEST(LinearStepper, StopsOnTheFirstFailedStepByDefault) {
   LinearStepper stepper(DiscretizeTheta(stepper_test::SignScene(), 0.2, 1.0, SignTreatment::kImplicit));
   StepperOptions options;
   options.solver.polish = false;
+  options.session.reuse_active_set = false;  // the failing backend answers every step, none is reused
   const Trajectory tr = stepper.Run(Vec({1.01}), 10, &solver, options);
   EXPECT_FALSE(tr.ok());
   EXPECT_TRUE(tr.stopped_early);
@@ -625,6 +671,7 @@ TEST(LinearStepper, ContinuesPastFailuresWhenAsked) {
   StepperOptions options;
   options.on_failure = FailurePolicy::kContinue;
   options.solver.polish = false;
+  options.session.reuse_active_set = false;  // the failing backend answers every step, none is reused
   const Trajectory tr = stepper.Run(Vec({1.01}), 10, &solver, options);
   EXPECT_FALSE(tr.ok());
   EXPECT_FALSE(tr.stopped_early);
@@ -845,6 +892,7 @@ TEST(LinearStepperStreaming, AFailedStepIsStreamedWithItsFinalStatus) {
   LinearStepper stepper(DiscretizeTheta(stepper_test::SignScene(), 0.2, 1.0, SignTreatment::kImplicit));
   StepperOptions options;
   options.solver.polish = false;
+  options.session.reuse_active_set = false;  // the failing backend answers every step, none is reused
   FailingSolver first({3}), second({3});
   const Trajectory recorded = stepper.Run(Vec({1.01}), 10, &first, options);
   stepper_test::CollectingSink sink;

@@ -72,6 +72,13 @@ std::string_view AutoCandidateName(int index) {
   return index >= 0 && index < kAutoCandidateCount ? kCandidateNames[index] : std::string_view();
 }
 
+int AutoCandidateIndex(std::string_view name) {
+  for (int i = 0; i < kAutoCandidateCount; ++i) {
+    if (kCandidateNames[i] == name) return i;
+  }
+  return -1;
+}
+
 bool AutoOptions::IsValid(std::string* why) const {
   const int enum_limit = EnumerativeOptions{}.size_limit;
   if (enum_max_choice_rows < 0 || enum_max_choice_rows > enum_limit) {

@@ -47,6 +47,8 @@ inline constexpr int kAutoCandidateCount = 4;
 
 // Registry name of candidate `index` ("enum", "psor", "lemke", "newton"); "" outside [0, kAutoCandidateCount).
 std::string_view AutoCandidateName(int index);
+// The inverse: the candidate index of a registry name, −1 for a name that is not a candidate.
+int AutoCandidateIndex(std::string_view name);
 
 struct AutoOptions {
   // Dense problems with at most this many rows with a choice of state go to enum (exact; its search grows as

@@ -81,6 +81,11 @@ class BoxMLCP {
   [[gnu::always_inline]] inline void set_q(const Eigen::Matrix<double, N, 1, Options, N, 1>& q) {
     SetQ<N>(q.data(), q.size());
   }
+  // The same for a caller that knows size() == N at compile time (a solve session's small-problem path).
+  template <int N>
+  [[gnu::always_inline]] inline void set_q(const double* q) {
+    SetQ<N>(q, N);
+  }
   // Replaces M (same size and storage kind; validated like the constructor) and gives it a new matrix_id().
   void set_M(DenseMatrix M);
   void set_M(SparseMatrix M);

@@ -149,19 +149,31 @@ template bool ActiveSetFactors::Solve<0>(const DenseMatrix&, const double*, cons
 SolveSession::SolveSession(Solver* backend, const BoxMLCP& problem, const SolverOptions& options,
                            const SessionOptions& session)
     : backend_(backend), problem_(problem), options_(options), session_(session) {
-  if (Solver* delegate = backend->DelegateFor(problem, options)) {
-    meta_ = backend;
-    backend_ = delegate;
-  }
-  backend_name_ = backend_->info().name;
+  ResolveDelegate(backend);
   const int n = problem_.size();
-  reuse_ = session_.reuse_active_set && !problem_.is_sparse() && n <= kMaxReusedSize;
+  small_dense_ = !problem_.is_sparse() && n <= BoxMLCP::kSmallSize;
+  reuse_ = session_.reuse_active_set && !backend_->info().external && !problem_.is_sparse() && n <= kMaxReusedSize;
   if (reuse_) {
     factors_.Resize(n);
     state_.assign(n, 0);
   }
-  checked_generation_ = backend_->option_generation();
-  fast_ = backend_->ChecksPass(problem_, options_);
+  CheckBackendOptions();
+}
+
+void SolveSession::ResolveDelegate(Solver* prepared) {
+  meta_ = nullptr;
+  backend_ = prepared;
+  if (Solver* delegate = prepared->DelegateFor(problem_, options_)) {
+    meta_ = prepared;
+    backend_ = delegate;
+  }
+  backend_name_ = backend_->info().name;
+}
+
+void SolveSession::set_options(const SolverOptions& options) {
+  options_ = options;
+  ResolveDelegate(meta_ != nullptr ? meta_ : backend_);
+  CheckBackendOptions();
 }
 
 void SolveSession::CheckBackendOptions() {
@@ -170,33 +182,46 @@ void SolveSession::CheckBackendOptions() {
 }
 
 void SolveSession::Solve(const Eigen::Ref<const Vector>& q, SolveResult* result, const Vector* warm_start) {
-  problem_.set_q(q);
-  if (warm_start != nullptr) options_.warm_start = *warm_start;
   if (checked_generation_ != backend_->option_generation()) CheckBackendOptions();
   ++calls_;
-  if (fast_) {
+  // The warm start is copied into the options only when the backend is called (the reused active set needs none).
+  warm_start_ = warm_start;
+  if (fast_ && small_dense_ && q.size() == problem_.size()) {
     switch (problem_.size()) {
-      case 1: return SolveFixed<1>(result);
-      case 2: return SolveFixed<2>(result);
-      case 3: return SolveFixed<3>(result);
-      case 4: return SolveFixed<4>(result);
+      case 1: return SolveFixed<1>(q.data(), result);
+      case 2: return SolveFixed<2>(q.data(), result);
+      case 3: return SolveFixed<3>(q.data(), result);
+      case 4: return SolveFixed<4>(q.data(), result);
       default: break;
     }
   }
+  problem_.set_q(q);  // throws for a wrong size or a non-finite entry
   SolveGeneral(result);
 }
 
 template <int N>
-void SolveSession::SolveFixed(SolveResult* result) {
+void SolveSession::SolveFixed(const double* q, SolveResult* result) {
+  problem_.set_q<N>(q);
   if (reuse_ && factors_.valid() && TryReusedActiveSet<N>(result)) return;
+  TakeWarmStart();
   backend_->SolveValidated<N>(problem_, options_, result);
   ConcludeBackendCall(result);
 }
 
 void SolveSession::SolveGeneral(SolveResult* result) {
   if (fast_ && reuse_ && factors_.valid() && TryReusedActiveSet<0>(result)) return;
+  TakeWarmStart();
   backend_->Solve(problem_, options_, result);
   ConcludeBackendCall(result);
+}
+
+void SolveSession::TakeWarmStart() {
+  if (warm_start_ == nullptr) return;
+  const Vector& from = *warm_start_;
+  Vector& to = options_.warm_start;
+  if (to.size() != from.size()) to.resize(from.size());
+  // Plain loop: Eigen's dynamic-size assignment is an out-of-line call costing more than n ≤ 4 copies.
+  for (Eigen::Index i = 0; i < from.size(); ++i) to[i] = from[i];
 }
 
 template <int N>
@@ -237,6 +262,16 @@ bool SolveSession::TryReusedActiveSet(SolveResult* result) {
     r = problem_.template NaturalResidualFixed<N>(result->z, &result->w);
   } else {
     r = problem_.NaturalResidual(result->z, &result->w);
+  }
+  // The sign check of the active set, exact: a bound row's F = M z + q must push against its bound (≥ 0 at the
+  // lower, ≤ 0 at the upper). The merit function alone would accept a wrong sign of rounding size, i.e. keep a row
+  // at its bound whose exact solution has just left it (s = x/h = 1 − ε on the sliding surface, not 1).
+  const signed char* state = factors_.state();
+  const double* w = result->w.data();
+  for (int i = 0; i < n; ++i) {
+    const auto row = static_cast<RowState>(state[i]);
+    const bool fixed = l[i] == u[i];  // any F is complementary to a fixed row
+    if (!fixed && ((row == RowState::kLower && w[i] < 0.0) || (row == RowState::kUpper && w[i] > 0.0))) return false;
   }
   // The verdict's two tests, as Solver::Finish applies them to every backend's answer.
   if (!(r.rel <= options_.tolerance && r.scaled <= options_.tolerance)) return false;

@@ -19,7 +19,8 @@ class Solver;
 struct SessionOptions {
   // Warm active-set reuse: try the last solved answer's active set first (bound rows at their bound, the free block
   // solved with its stored LU factors), accept it when the merit function passes both tests of the verdict, else
-  // call the backend. Off: every call goes to the backend (to time or study the backend's own algorithm).
+  // call the backend. Off: every call goes to the backend (to time or study the backend's own algorithm). Never
+  // for an external backend (SolverInfo::external: siconos-*), whose own warm behaviour is what is measured.
   bool reuse_active_set = true;
 };
 
@@ -79,9 +80,15 @@ class SolveSession {
   // the backend (nullptr or empty: the options' warm start, else cold). Detail "path" = SessionPath.
   void Solve(const Eigen::Ref<const Vector>& q, SolveResult* result, const Vector* warm_start = nullptr);
 
+  // Replaces the options and checks them again, keeping the prepared problem and the remembered active set (the
+  // shape of OSQP's update_settings): a caller that runs the same problem again with other options. No allocation
+  // when warm_start keeps its size.
+  void set_options(const SolverOptions& options);
+
   // The problem as last solved (q of the last call).
   const BoxMLCP& problem() const { return problem_; }
   const SolverOptions& options() const { return options_; }
+  const SessionOptions& session_options() const { return session_; }
   // The backend that solves: the one given to Prepare, or its delegate (Solver::DelegateFor, e.g. auto's choice;
   // a call the delegate does not solve goes to the backend given to Prepare, whose rule — auto's fallbacks —
   // decides).
@@ -92,8 +99,10 @@ class SolveSession {
 
  private:
   template <int N>
-  void SolveFixed(SolveResult* result);
+  void SolveFixed(const double* q, SolveResult* result);
   void SolveGeneral(SolveResult* result);
+  // options_.warm_start ← the call's warm start, when it gave one.
+  void TakeWarmStart();
   // The warm path; true when it answered (result filled, solved).
   template <int N>
   bool TryReusedActiveSet(SolveResult* result);
@@ -104,6 +113,8 @@ class SolveSession {
   void RememberActiveSet(const SolveResult& result);
   // Re-runs the checks Prepare made when the backend's options changed since (Solver::option_generation).
   void CheckBackendOptions();
+  // backend_ = the delegate of the backend given to Prepare for these options (DelegateFor), or that backend.
+  void ResolveDelegate(Solver* prepared);
 
   Solver* backend_;
   // The backend given to Prepare when backend_ is its delegate (auto's choice), else null: a call the delegate does
@@ -114,9 +125,13 @@ class SolveSession {
   SolverOptions options_;
   SessionOptions session_;
   std::uint64_t checked_generation_ = 0;
+  const Vector* warm_start_ = nullptr;  // this call's, until the backend is called
   // The per-call part only (options, backend options, dense, capability checked): the fixed-size fast path.
   bool fast_ = false;
-  // The warm path applies: dense, at most kMaxReusedSize rows, reuse on.
+  // Dense with at most BoxMLCP::kSmallSize rows: the fixed-size path (SolveFixed) applies when fast_.
+  bool small_dense_ = false;
+  // The warm path applies: dense, at most kMaxReusedSize rows, reuse on, not an external backend
+  // (SolverInfo::external).
   bool reuse_ = false;
   ActiveSetFactors factors_;
   std::vector<signed char> state_;

@@ -35,6 +35,9 @@ struct SolverInfo {
   // A meta-backend (auto) whose DoSolve hands the problem to another backend's Solve, which already did the shared
   // work (equilibration, polish, merit function, the rule for "solved"): the base does not do it a second time.
   bool delegates = false;
+  // An adapter to another library (siconos-*): timed and studied as that library runs, so a solve session never
+  // answers for it from a reused active set (its own warm behaviour, e.g. a direct solver's cache, is what counts).
+  bool external = false;
 };
 
 // Not thread-safe: a Solver owns its workspace. Use one instance per thread.
@@ -61,20 +64,6 @@ class Solver {
   // active set first. The session points to this backend, which must outlive it.
   SolveSession Prepare(const BoxMLCP& problem, const SolverOptions& options = {},
                        const SessionOptions& session = {});
-
-  // TEMPORARY (removed once problems/stepper uses sessions): the pre-session form of the same fast path.
-  bool BeginRepeatedSolves(const BoxMLCP& problem, const SolverOptions& options) {
-    repeated_matrix_id_ = ChecksPass(problem, options) ? problem.matrix_id() : 0;
-    repeated_options_ = &options;
-    return repeated_matrix_id_ != 0;
-  }
-  template <int N>
-  void SolveRepeated(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
-    if (repeated_matrix_id_ != problem.matrix_id() || repeated_options_ != &options) {
-      return Solve(problem, options, result);
-    }
-    SolveValidated<N>(problem, options, result);
-  }
 
   // A meta-backend (`auto`) that hands a problem to another backend returns that backend here (owned by this one,
   // valid while it lives); a solve session and the time-steppers then call it directly, so the choice costs
@@ -162,8 +151,6 @@ class Solver {
   Vector polish_z_, polish_w_;  // the polished candidate, kept to avoid allocating per solve
   PolishWorkspace polish_workspace_;
   std::uint64_t option_generation_ = 1;
-  std::uint64_t repeated_matrix_id_ = 0;  // TEMPORARY, see BeginRepeatedSolves
-  const SolverOptions* repeated_options_ = nullptr;
   std::chrono::steady_clock::time_point deadline_{};
   bool has_deadline_ = false;
   Vector scale_point_;  // Π(0) for the MCP relative scale, kept to avoid allocating per solve

@@ -481,6 +481,47 @@ TEST(Session, ReuseOffAlwaysCallsTheBackend) {
   EXPECT_EQ(session.reused(), 0);
 }
 
+// A backend that takes sparse M natively (as newton does), answering z = (1, 0).
+class SparseScriptedSolver final : public Solver {
+ public:
+  const SolverInfo& info() const override {
+    static const SolverInfo kInfo{"sparse-scripted", "returns (1, 0)", "none", /*dense=*/true, /*sparse=*/true};
+    return kInfo;
+  }
+
+ protected:
+  void DoSolve(const BoxMLCP& problem, const SolverOptions&, SolveResult* result) override {
+    EXPECT_TRUE(problem.is_sparse());
+    result->z = (Vector(2) << 1.0, 0.0).finished();
+    result->status = SolveStatus::kSolved;
+    result->iterations = 1;
+  }
+};
+
+// A small sparse problem never takes the fixed-size dense path (which reads M's dense storage: a sparse problem
+// has none — `smcbench bench` crashed on the paper suite's sparse copies solved by newton), and never the reused
+// active set (dense only): every call goes to the backend, and answers as Solve does.
+TEST(Session, SmallSparseProblemGoesToTheBackendThroughTheGeneralPath) {
+  SparseScriptedSolver solver;
+  Vector q(2);
+  q << -1.0, 2.0;
+  const SparseMatrix M = DenseMatrix::Identity(2, 2).sparseView();
+  const BoxMLCP p(M, q, Vector::Zero(2), Vector::Constant(2, kInf));
+  for (bool reuse : {true, false}) {
+    SessionOptions session_options;
+    session_options.reuse_active_set = reuse;
+    SolveSession session = solver.Prepare(p, SolverOptions{}, session_options);
+    SolveResult r;
+    for (int k = 0; k < 3; ++k) {
+      session.Solve(q, &r);
+      EXPECT_EQ(r.status, SolveStatus::kSolved) << r.message;
+      EXPECT_EQ(r.z, (Vector(2) << 1.0, 0.0).finished());
+      EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+    }
+    EXPECT_EQ(session.reused(), 0);
+  }
+}
+
 // A block too close to singular is not stored: the backend answers (its own safeguards handle it).
 TEST(Session, NearlySingularFreeBlockIsNotReused) {
   DenseMatrix M(2, 2);

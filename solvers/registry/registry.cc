@@ -1,6 +1,8 @@
+// The backend registry: a fixed table of ours, the external adapters built in, and the run-time additions.
 #include "solvers/registry/registry.h"
 
-#include <functional>
+#include <deque>
+#include <mutex>
 #include <string>
 #include <utility>
 
@@ -15,15 +17,13 @@
 namespace smcbench {
 namespace {
 
-using Factory = std::unique_ptr<Solver> (*)();
-
 template <typename T>
 std::unique_ptr<Solver> Make() {
   return std::make_unique<T>();
 }
 
 // The registry: one line per backend, in the order `smcbench list` prints them.
-constexpr std::pair<std::string_view, Factory> kBackends[] = {
+constexpr std::pair<std::string_view, std::unique_ptr<Solver> (*)()> kBackends[] = {
     {"lemke", &Make<LemkeSolver>},
     {"psor", &Make<PsorSolver>},
     {"newton", &Make<SemismoothNewtonSolver>},
@@ -33,13 +33,42 @@ constexpr std::pair<std::string_view, Factory> kBackends[] = {
     {"auto", &Make<AutoSolver>},
 };
 
-// Ours, then the optional external ones that were built in (siconos-*; none without Siconos).
-std::vector<std::pair<std::string_view, Factory>> AllBackends() {
-  std::vector<std::pair<std::string_view, Factory>> all(std::begin(kBackends), std::end(kBackends));
+// A backend added with RegisterSolver. The deque never moves its elements, so the string_views SolverNames hands
+// out stay valid for the life of the process.
+struct RunTimeEntry {
+  std::string name;
+  SolverFactory create;
+};
+
+// The process-wide table of run-time additions (see RegisterSolver for why it is global), behind its mutex.
+struct RunTimeTable {
+  std::mutex mutex;
+  std::deque<RunTimeEntry> entries;
+};
+
+RunTimeTable& RunTimeBackends() {
+  static RunTimeTable table;  // constructed on first use: safe to call from other static initializers
+  return table;
+}
+
+// Ours, then the optional external ones that were built in (siconos-*; none without Siconos), then the run-time
+// additions.
+std::vector<std::pair<std::string_view, SolverFactory>> AllBackends() {
+  std::vector<std::pair<std::string_view, SolverFactory>> all;
+  for (const auto& [name, make] : kBackends) all.emplace_back(name, make);
   std::vector<ExternalBackend> external;
   AppendExternalBackends(&external);
   for (const ExternalBackend& e : external) all.emplace_back(e.name, e.create);
+  RunTimeTable& table = RunTimeBackends();
+  const std::lock_guard<std::mutex> lock(table.mutex);
+  for (const RunTimeEntry& e : table.entries) all.emplace_back(e.name, e.create);
   return all;
+}
+
+std::string KnownNames(const std::vector<std::pair<std::string_view, SolverFactory>>& all) {
+  std::string list;
+  for (const auto& [known, factory] : all) list += (list.empty() ? "" : ", ") + std::string(known);
+  return list;
 }
 
 }  // namespace
@@ -55,9 +84,39 @@ std::unique_ptr<Solver> CreateSolver(std::string_view name) {
   for (const auto& [known, factory] : all) {
     if (known == name) return factory();
   }
-  std::string list;
-  for (const auto& [known, factory] : all) list += (list.empty() ? "" : ", ") + std::string(known);
-  throw InvalidInputError("unknown solver '" + std::string(name) + "' (known: " + list + ")");
+  throw InvalidInputError("unknown solver '" + std::string(name) + "' (known: " + KnownNames(all) + ")");
+}
+
+void RegisterSolver(std::string name, SolverFactory factory) {
+  const std::string what = "RegisterSolver('" + name + "')";
+  if (name.empty()) throw InvalidInputError("RegisterSolver: name is empty");
+  if (!factory) throw InvalidInputError(what + ": factory is empty");
+  const auto all = AllBackends();
+  for (const auto& [known, existing] : all) {
+    if (known == name) throw InvalidInputError(what + ": name is already registered (known: " + KnownNames(all) + ")");
+  }
+  // Outside the lock: the factory is user code.
+  const std::unique_ptr<Solver> probe = factory();
+  if (!probe) throw InvalidInputError(what + ": factory returned no backend");
+  if (probe->info().name != name) {
+    throw InvalidInputError(what + ": the backend's info().name is '" + std::string(probe->info().name) +
+                            "'; it must equal the registered name");
+  }
+  RunTimeTable& table = RunTimeBackends();
+  const std::lock_guard<std::mutex> lock(table.mutex);
+  for (const RunTimeEntry& e : table.entries) {  // a concurrent registration of the same name won the race
+    if (e.name == name) throw InvalidInputError(what + ": name is already registered");
+  }
+  table.entries.push_back({std::move(name), std::move(factory)});
+}
+
+bool IsRegisteredAtRunTime(std::string_view name) {
+  RunTimeTable& table = RunTimeBackends();
+  const std::lock_guard<std::mutex> lock(table.mutex);
+  for (const RunTimeEntry& e : table.entries) {
+    if (e.name == name) return true;
+  }
+  return false;
 }
 
 }  // namespace smcbench

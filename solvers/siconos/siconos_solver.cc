@@ -59,72 +59,72 @@ const Spec& SpecOf(SiconosMethod method) {
         "needs finite bounds on every row",
         "Siconos Numerics 4.4 relay_lexicolemke; Cottle, Pang & Stone 1992, The Linear Complementarity Problem, "
         "ch. 4",
-        true, false, false, true, false, 0, /*equilibrate=*/false}},
+        true, false, false, true, false, 0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
       {SiconosMethod::kRelayPgs, SICONOS_RELAY_PGS, Family::kRelay, Algorithm::kPgs, false,
        {"siconos-relay-pgs",
         "Siconos relay_pgs: projected Gauss-Seidel sweeps on the box problem; needs finite bounds on every row",
         "Siconos Numerics 4.4 relay_pgs; Cottle, Pang & Stone 1992, sec. 5.2", true, false, false, false, false,
-        0, /*equilibrate=*/false}},
+        0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
       {SiconosMethod::kRelayEnum, SICONOS_RELAY_ENUM, Family::kRelay, Algorithm::kEnum, false,
        {"siconos-relay-enum",
         "Siconos relay_enum: relay -> LCP (2n unknowns), enumeration of complementary bases; needs finite bounds",
         "Siconos Numerics 4.4 relay_enum / lcp_enum; Murty 1988, Linear Complementarity, ch. 1", true, false,
-        false, true, false, 8, /*equilibrate=*/false}},
+        false, true, false, 8, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
       {SiconosMethod::kRelayAvi, SICONOS_RELAY_AVI_CAOFERRIS, Family::kRelay, Algorithm::kAvi, false,
        {"siconos-relay-avi",
         "Siconos relay_avi_caoferris (its default relay solver): the relay as an affine variational inequality "
         "over the box, solved by Cao & Ferris' pivotal method; needs finite bounds",
         "Siconos Numerics 4.4 relay_avi_caoferris; Cao & Ferris 1996, A pivotal method for affine variational "
         "inequalities, Math. Oper. Res. 21(1)",
-        true, false, false, true, false, 0, /*equilibrate=*/false}},
+        true, false, false, true, false, 0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
       {SiconosMethod::kLcpLemke, SICONOS_LCP_LEMKE, Family::kLcp, Algorithm::kLemke, false,
        {"siconos-lcp-lemke",
         "Siconos lcp_lexicolemke on the box -> LCP rewriting (shifted / negated one-sided rows, doubled box "
         "rows); no free rows",
         "Siconos Numerics 4.4 lcp_lexicolemke; Cottle, Pang & Stone 1992, ch. 4", true, false, false, true, false,
-        0, /*equilibrate=*/false}},
+        0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
       {SiconosMethod::kLcpNewtonFb, SICONOS_LCP_NEWTON_FB_FBLSA, Family::kLcp, Algorithm::kNewton, false,
        {"siconos-lcp-newton-fb",
         "Siconos lcp_newton_FB: nonsmooth Newton on the Fischer-Burmeister reformulation with a line search on "
         "its merit function, on the box -> LCP rewriting; no free rows",
         "Siconos Numerics 4.4 lcp_newton_FB; De Luca, Facchinei & Kanzow 1996, Math. Program. 75; Facchinei & "
         "Pang 2003, ch. 9",
-        true, false, false, false, false, 0, /*equilibrate=*/false}},
+        true, false, false, false, false, 0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
       {SiconosMethod::kLcpNewtonMin, SICONOS_LCP_NEWTON_MIN_FBLSA, Family::kLcp, Algorithm::kNewton, false,
        {"siconos-lcp-newton-min",
         "Siconos lcp_newton_minFB: nonsmooth Newton on the min reformulation, line search on the "
         "Fischer-Burmeister merit function, on the box -> LCP rewriting; no free rows",
         "Siconos Numerics 4.4 lcp_newton_minFB; Facchinei & Pang 2003, Finite-Dimensional Variational "
         "Inequalities and Complementarity Problems, ch. 9",
-        true, false, false, false, false, 0, /*equilibrate=*/false}},
+        true, false, false, false, false, 0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
       {SiconosMethod::kMlcpEnum, SICONOS_MLCP_ENUM, Family::kMlcp, Algorithm::kEnum, false,
        {"siconos-mlcp-enum",
         "Siconos mlcp_enum: enumeration of the complementarity configurations of the standard MLCP (free rows "
         "as equalities, the rest as the box -> LCP rewriting)",
-        "Siconos Numerics 4.4 mlcp_enum; Murty 1988, ch. 1", true, false, false, true, false, 16, /*equilibrate=*/false}},
+        "Siconos Numerics 4.4 mlcp_enum; Murty 1988, ch. 1", true, false, false, true, false, 16, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
       {SiconosMethod::kMlcpLemke, SICONOS_MLCP_LCP_LEMKE, Family::kMlcp, Algorithm::kLemke, false,
        {"siconos-mlcp-lemke",
         "Siconos mlcp_lcp_lemke: eliminates the equality block by its Schur complement (needs it invertible), "
         "then lexicographic Lemke; needs at least one free and one sign-constrained row",
         "Siconos Numerics 4.4 mlcp_lcp_lemke; Cottle, Pang & Stone 1992, sec. 1.5 and ch. 4", true, false,
-        false, true, false, 0, /*equilibrate=*/false}},
+        false, true, false, 0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
       {SiconosMethod::kMlcpFb, SICONOS_MLCP_FB, Family::kMlcp, Algorithm::kNewton, false,
        {"siconos-mlcp-fb",
         "Siconos mlcp_FB: nonsmooth Newton with line search on the Fischer-Burmeister reformulation of the "
         "standard MLCP",
         "Siconos Numerics 4.4 mlcp_FB (NonSmoothNewton); De Luca, Facchinei & Kanzow 1996", true, false, false,
-        false, false, 0, /*equilibrate=*/false}},
+        false, false, 0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
       {SiconosMethod::kMlcpDirectEnum, SICONOS_MLCP_DIRECT_ENUM, Family::kMlcp, Algorithm::kEnum, true,
        {"siconos-mlcp-direct-enum",
         "Siconos mlcp_direct_enum: solves with the last active sets that worked (up to 3, cached per worker "
         "process) and falls back to mlcp_enum",
-        "Siconos Numerics 4.4 mlcp_direct_enum; Murty 1988, ch. 1", true, false, false, true, false, 16, /*equilibrate=*/false}},
+        "Siconos Numerics 4.4 mlcp_direct_enum; Murty 1988, ch. 1", true, false, false, true, false, 16, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
       {SiconosMethod::kMlcpDirectFb, SICONOS_MLCP_DIRECT_FB, Family::kMlcp, Algorithm::kNewton, true,
        {"siconos-mlcp-direct-fb",
         "Siconos mlcp_direct_FB: solves with the last active sets that worked (up to 3, cached per worker "
         "process) and falls back to mlcp_FB",
         "Siconos Numerics 4.4 mlcp_direct_FB; De Luca, Facchinei & Kanzow 1996", true, false, false, false,
-        false, 0, /*equilibrate=*/false}},
+        false, 0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
   };
   return kSpecs[static_cast<int>(method)];
 }

@@ -6,8 +6,11 @@
 #include <algorithm>
 #include <chrono>
 #include <cstdio>
+#include <ctime>
+#include <fstream>
 #include <iostream>
 #include <map>
+#include <nlohmann/json.hpp>
 #include <ostream>
 
 #include "bench/replay/replay.h"
@@ -24,6 +27,7 @@
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_report.h"
 #include "tools/smcbench/history_report.h"
+#include "tools/smcbench/solve_report.h"
 
 namespace smcbench {
 
@@ -163,13 +167,21 @@ bool GlobMatch(std::string_view pattern, std::string_view text) {
 
 const char* const kGenericSparsePath = "newton-sparse-path";
 
+// The suites `bench` knows by name (anything else must be a problem-set file).
+const char* const kSuiteNames[] = {"paper", "families", "hard", "siconos", "scale", "tiny", "all"};
+
 struct BenchCommand::Flags {
   std::vector<std::string> suites, solvers, sets, allow_wrong;
-  std::string out = "results/bench", siconos_dir = "../shared/peer-data/siconos", report_dir, history;
+  // Empty: a fresh folder ./smcbench-bench-YYYYMMDD-HHMMSS (DefaultOutputFolder), so a run without --out never
+  // replaces earlier results, the committed results/bench included.
+  std::string out, siconos_dir = "../shared/peer-data/siconos", report_dir, history;
   int repetitions = 7;
   double tol = 1e-10, time_limit = 10.0;
-  bool no_stepper = false, quick = false, report = false, no_plots = false, report_no_plots = false,
-       no_polish = false;
+  // Seconds one backend may spend on one suite before its remaining problems there are skipped (0: no limit).
+  double backend_budget = 60.0;
+  double progress_every = 5.0;  // seconds between progress lines when stderr is not a terminal (0: none)
+  bool overwrite = false, no_stepper = false, quick = false, report = false, no_plots = false,
+       report_no_plots = false, no_polish = false;
 };
 
 BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
@@ -184,12 +196,20 @@ BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
                      "families hard siconos)");
   bench_->add_option("--solver", f.solvers, "backend (repeatable; default: every registered backend)");
   bench_->add_option("--set", f.sets, "typed backend option BACKEND.OPTION=VALUE (see `smcbench list`)");
-  bench_->add_option("--out", f.out, "output folder (default results/bench)");
+  bench_->add_option("--out", f.out, "output folder (default: a fresh ./smcbench-bench-YYYYMMDD-HHMMSS); a folder "
+                                     "that already holds results.json is refused unless --overwrite");
+  bench_->add_flag("--overwrite", f.overwrite, "let --out name a folder with earlier results (tools/bench.sh "
+                                               "passes it for results/bench)");
   bench_->add_option("--siconos-dir", f.siconos_dir, "the Siconos collection (default ../shared/peer-data/siconos)");
   bench_->add_option("--repetitions", f.repetitions, "timing samples per problem x backend (default 7)");
   bench_->add_option("--tol", f.tol, "tolerance on the relative and the row-equilibrated natural residual "
                                      "(default 1e-10)");
   bench_->add_option("--time-limit", f.time_limit, "seconds per solve (default 10)");
+  bench_->add_option("--backend-budget", f.backend_budget,
+                     "seconds one backend may spend on one suite (default 60, 0: no limit); past it the backend's "
+                     "remaining problems of that suite are skipped and recorded as time limit, with a message");
+  bench_->add_option("--progress-every", f.progress_every, "seconds between progress lines on stderr when it is "
+                                                           "not a terminal (default 5, 0: none)");
   bench_->add_flag("--no-stepper", f.no_stepper, "skip the time-stepper studies (warm/cold, work-precision)");
   bench_->add_flag("--quick", f.quick, "smaller suites and fewer samples (CI)");
   bench_->add_flag("--report", f.report, "also write DIR/report.md (as `smcbench report DIR`)");
@@ -215,19 +235,35 @@ bool BenchCommand::report_parsed() const { return report_->parsed(); }
 
 namespace {
 
-// A one-line progress bar on a terminal (nothing when err is not a terminal or the run is short).
+// A one-line progress bar on a terminal; elsewhere (a log, CI) a plain line every `every` seconds, so a long run
+// is seen to move. Short runs stay quiet either way.
 class Progress {
  public:
-  Progress(std::ostream& err, bool terminal) : err_(err), terminal_(terminal), start_(Clock::now()) {}
+  Progress(std::ostream& err, bool terminal, double every)
+      : err_(err), terminal_(terminal), every_(every), start_(Clock::now()), last_line_(start_) {}
   void Update(std::size_t done, std::size_t total, const std::string& what) {
-    if (!terminal_ || total == 0) return;
+    if (total == 0) return;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    if (!terminal_) {
+      if (!(every_ > 0.0) || std::chrono::duration<double>(Clock::now() - last_line_).count() < every_) return;
+      last_line_ = Clock::now();
+      char line[240];
+      std::snprintf(line, sizeof line, "bench: %zu/%zu (%zu%%) after %.0f s: %.160s", done, total,
+                    100 * done / total, elapsed, what.c_str());
+      err_ << line << "\n" << std::flush;
+      return;
+    }
     if (elapsed < 2.0 && done < total) return;  // short runs stay quiet
     const int width = 30, filled = static_cast<int>(width * done / total);
     char line[160];
     std::snprintf(line, sizeof line, "\r[%s%s] %3zu%% %.0fs %-60.60s", std::string(filled, '#').c_str(),
                   std::string(width - filled, '.').c_str(), 100 * done / total, elapsed, what.c_str());
     err_ << line << std::flush;
+  }
+  // A phase with no count (the time-stepper studies): the bar shows it half way, a line says what runs.
+  void Note(const std::string& what) {
+    if (terminal_) return Update(1, 2, what);
+    Update(0, 1, what);
   }
   void Finish() {
     if (terminal_) err_ << "\r" << std::string(110, ' ') << "\r" << std::flush;
@@ -237,7 +273,8 @@ class Progress {
   using Clock = std::chrono::steady_clock;
   std::ostream& err_;
   bool terminal_;
-  Clock::time_point start_;
+  double every_;
+  Clock::time_point start_, last_line_;
 };
 
 // One line on err when any answer is wrong (none: nothing), and the exit status: kExitWrongAnswers when a wrong
@@ -274,6 +311,197 @@ int SummarizeWrongAnswers(const BenchResults& results, const std::vector<std::st
   return wrong > excused ? kExitWrongAnswers : 0;
 }
 
+// Everything `bench` can check before it builds a suite or solves anything, so a typo fails in a second, not after
+// an hour: suite names (or readable problem-set files), the Siconos folder when its suites are asked for, backend
+// names, --set values (tried on a fresh instance of the backend), numbers, and the output folder.
+void CheckBenchRequest(const BenchCommand::Flags& f, const std::vector<std::string>& suites) {
+  for (const std::string& name : suites) {
+    const bool known = std::find(std::begin(kSuiteNames), std::end(kSuiteNames), name) != std::end(kSuiteNames);
+    std::error_code ec;
+    if (!known && !fs::is_regular_file(name, ec)) {
+      throw InvalidInputError("bench: unknown suite '" + name +
+                              "' (known: paper, families, hard, siconos, scale, tiny, all, or a problem-set file)");
+    }
+    if ((name == "siconos" || name == "hard") && !fs::is_directory(f.siconos_dir, ec)) {
+      throw InvalidInputError("bench: suite " + name + " needs the Siconos collection: --siconos-dir '" +
+                              f.siconos_dir + "' is not a folder");
+    }
+  }
+  for (const auto& name : f.solvers) CreateSolver(name);  // InvalidInputError listing the known names
+  for (const std::string& set : f.sets) {
+    const auto dot = set.find('.'), eq = set.find('=');
+    if (dot == std::string::npos || eq == std::string::npos || eq < dot) {
+      throw InvalidInputError("bench: --set expects BACKEND.OPTION=VALUE, got '" + set + "'");
+    }
+    std::string error;
+    if (!CreateSolver(set.substr(0, dot))->SetOption(set.substr(dot + 1, eq - dot - 1), set.substr(eq + 1), &error)) {
+      throw InvalidInputError("bench: --set " + set + ": " + error);
+    }
+  }
+  if (!(f.tol > 0.0) || !(f.time_limit > 0.0) || f.repetitions < 1 || !(f.backend_budget >= 0.0) ||
+      !(f.progress_every >= 0.0)) {
+    throw InvalidInputError("bench: --tol, --time-limit and --repetitions must be positive, --backend-budget and "
+                            "--progress-every at least 0");
+  }
+  for (const std::string& pattern : f.allow_wrong) {
+    if (pattern.empty()) throw InvalidInputError("bench: --allow-wrong needs a non-empty PATTERN");
+  }
+  std::error_code ec;
+  if (!f.overwrite && fs::exists(fs::path(f.out) / "results.json", ec)) {
+    throw InvalidInputError("bench: '" + f.out + "' already holds results.json: choose another --out, or add "
+                            "--overwrite to replace them");
+  }
+}
+
+// ./smcbench-bench-YYYYMMDD-HHMMSS (local time), with -2, -3, ... if that exists already.
+std::string DefaultOutputFolder() {
+  const std::time_t now = std::time(nullptr);
+  char stamp[32];
+  std::strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", std::localtime(&now));
+  std::string name = std::string("smcbench-bench-") + stamp;
+  std::error_code ec;
+  for (int k = 2; fs::exists(name, ec); ++k) name = std::string("smcbench-bench-") + stamp + "-" + std::to_string(k);
+  return name;
+}
+
+// ReplayProblemSet with a time budget per backend over the whole suite: each backend runs alone over chunks of
+// the problems (one problem first, then chunks sized to a quarter of what is left of its budget at its pace so
+// far), and once it has spent the budget its remaining problems get a record with status time limit and a message
+// saying so, without being solved. A backend overshoots by at most one chunk (≥ one problem with its tolerance
+// sweep). The records come back in ReplayProblemSet's order (problem, then backend). budget ≤ 0: no limit.
+ReplayResults ReplayWithBackendBudget(const ProblemSet& set, const ReplayOptions& options, double budget,
+                                      std::ostream& err) {
+  if (!(budget > 0.0)) return ReplayProblemSet(set, options);
+  std::vector<std::string> names = options.solvers;
+  if (names.empty()) {
+    for (auto n : SolverNames()) names.emplace_back(n);
+  }
+  const std::size_t n = set.problems.size();
+  const std::size_t sweep_problems = std::min<std::size_t>(std::max(0, options.tolerance_sweep_problems), n);
+  std::size_t iterative = 0;
+  for (const auto& name : names) iterative += !CreateSolver(name)->info().exact;
+  const std::size_t total = n * names.size() + sweep_problems * iterative;
+  std::size_t done = 0;
+  std::map<std::string, std::size_t> index_of;
+  for (std::size_t i = 0; i < n; ++i) index_of[set.problems[i].id] = i;
+
+  struct Keyed {
+    std::size_t problem, backend;
+    ReplayRecord record;
+  };
+  std::vector<Keyed> records, sweep;
+  for (std::size_t b = 0; b < names.size(); ++b) {
+    const bool exact = CreateSolver(names[b])->info().exact;
+    double spent = 0.0;
+    std::size_t chunk = 1;
+    for (std::size_t first = 0; first < n;) {
+      if (spent >= budget) {
+        for (std::size_t i = first; i < n; ++i) {
+          const LibraryProblem& p = set.problems[i];
+          ReplayRecord r;
+          r.suite = set.name;
+          r.problem = p.id;
+          r.solver = names[b];
+          r.size = p.size();
+          r.sparse = p.sparse();
+          for (const auto& t : p.tags) r.tags += (r.tags.empty() ? "" : ",") + t;
+          r.expected = p.expected;
+          r.status = SolveStatus::kTimeLimit;
+          char message[160];
+          std::snprintf(message, sizeof message, "not run: %s spent its budget of %g s on suite %s (--backend-budget)",
+                        names[b].c_str(), budget, set.name.c_str());
+          r.message = message;
+          r.verdict = Verdict::kFailed;  // not run is no answer, even on a problem with no solution
+          r.residual_abs = r.residual_rel = r.residual_scaled = kInf;
+          r.certificate = std::string(ToString(p.reference.certificate));
+          r.tolerance = options.tolerance;
+          records.push_back({i, b, std::move(r)});
+          done += 1 + (i < sweep_problems && !exact);
+        }
+        err << "bench: " << names[b] << " skipped " << (n - first) << " of " << n << " problems of suite "
+            << set.name << " after spending its budget of " << budget << " s (--backend-budget)\n";
+        break;
+      }
+      const std::size_t last = std::min(n, first + chunk);
+      ProblemSet part;
+      part.name = set.name;
+      part.description = set.description;
+      part.problems.assign(set.problems.begin() + static_cast<std::ptrdiff_t>(first),
+                           set.problems.begin() + static_cast<std::ptrdiff_t>(last));
+      ReplayOptions o = options;
+      o.solvers = {names[b]};
+      o.tolerance_sweep_problems = static_cast<int>(first < sweep_problems ? std::min(last, sweep_problems) - first : 0);
+      const std::size_t done_before = done;
+      o.progress = [&](std::size_t local_done, std::size_t, const std::string& what) {
+        done = done_before + local_done;
+        if (options.progress) options.progress(done, total, what);
+      };
+      const auto start = std::chrono::steady_clock::now();
+      ReplayResults part_results = ReplayProblemSet(part, o);
+      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      spent += seconds;
+      for (ReplayRecord& r : part_results.records) records.push_back({index_of[r.problem], b, std::move(r)});
+      for (ReplayRecord& r : part_results.sweep) sweep.push_back({index_of[r.problem], b, std::move(r)});
+      // Next chunk: a quarter of the budget left at this backend's pace, at most twice the last one.
+      const double per_problem = seconds / static_cast<double>(last - first);
+      const double fits = per_problem > 0.0 ? (budget - spent) / 4.0 / per_problem : 1e9;
+      chunk = std::max<std::size_t>(1, std::min<std::size_t>(2 * chunk, static_cast<std::size_t>(std::max(0.0, fits))));
+      first = last;
+    }
+  }
+  const auto by_problem_then_backend = [](const Keyed& a, const Keyed& b) {
+    return a.problem != b.problem ? a.problem < b.problem : a.backend < b.backend;
+  };
+  std::stable_sort(records.begin(), records.end(), by_problem_then_backend);
+  std::stable_sort(sweep.begin(), sweep.end(), by_problem_then_backend);
+  ReplayResults out;
+  for (Keyed& k : records) out.records.push_back(std::move(k.record));
+  for (Keyed& k : sweep) out.sweep.push_back(std::move(k.record));
+  return out;
+}
+
+// The run at a glance on stdout: per suite and backend the verdict counts and the shifted geometric mean time.
+void PrintSummaryTable(const BenchResults& results, double time_limit, std::ostream& out) {
+  out << "| suite | backend | problems | solved | refused | failed | wrongly claimed | inaccurate | wrongly refused "
+         "| SGM time |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const SuiteResults& suite : results.suites) {
+    for (const BackendSummary& b : SummarizeSuite(suite, time_limit)) {
+      out << "| " << suite.suite << " | " << b.solver << " | " << b.problems << " | " << b.solved << " | "
+          << b.correctly_refused << " | " << b.failed << " | " << b.wrongly_claimed << " | " << b.inaccurate << " | "
+          << b.wrongly_refused << " | " << FormatDuration(1e9 * b.shifted_geomean) << " |\n";
+    }
+  }
+}
+
+// The Siconos Numerics version the siconos-* backends were built against (the Debian package's, found by CMake:
+// the headers carry no version macro), or empty when this build has none.
+std::string SiconosVersion() {
+#ifdef SMCBENCH_SICONOS_VERSION
+  return SMCBENCH_SICONOS_VERSION;
+#else
+  return {};
+#endif
+}
+
+// results.json's environment.libraries gets "siconos_numerics" when a siconos-* backend ran.
+void RecordSiconosVersion(const BenchResults& results, const std::string& dir) {
+  bool ran = false;
+  for (const SuiteResults& s : results.suites) {
+    for (const ReplayRecord& r : s.replay.records) ran = ran || r.solver.rfind("siconos-", 0) == 0;
+  }
+  const std::string version = SiconosVersion();
+  if (!ran || version.empty()) return;
+  const fs::path path = fs::path(dir) / "results.json";
+  std::ifstream in(path);
+  nlohmann::json document = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
+  if (document.is_discarded()) throw InvalidInputError("bench: cannot read back '" + path.string() + "'");
+  in.close();
+  document["environment"]["libraries"]["siconos_numerics"] = version;
+  std::ofstream rewritten(path, std::ios::trunc);
+  rewritten << document.dump(1) << "\n";
+  if (!rewritten) throw InvalidInputError("bench: cannot write '" + path.string() + "'");
+}
+
 }  // namespace
 
 int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, std::ostream& err) const {
@@ -293,9 +521,16 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
     options.max_seconds_per_pair = 0.2;
     options.tolerance_sweep_problems = 2;
   }
-  for (const auto& s : f.solvers) CreateSolver(s);  // fail early on an unknown name
+  CheckBenchRequest(f, suites);
+  const std::string out_dir = f.out.empty() ? DefaultOutputFolder() : f.out;
+  {
+    std::error_code ec;
+    fs::create_directories(out_dir, ec);
+    if (ec) throw InvalidInputError("bench: cannot create --out '" + out_dir + "': " + ec.message());
+  }
+  err << "bench: writing to " << out_dir << "\n";
   const bool terminal = &err == &std::cerr && ::isatty(2);
-  Progress progress(err, terminal);
+  Progress progress(err, terminal, f.progress_every);
   options.progress = [&](std::size_t done, std::size_t total, const std::string& what) {
     progress.Update(done, total, what);
   };
@@ -332,7 +567,7 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
     suite.suite = set.name;
     suite.description = set.description;
     suite.problems = static_cast<int>(set.problems.size());
-    suite.replay = ReplayProblemSet(set, options);
+    suite.replay = ReplayWithBackendBudget(set, options, f.backend_budget, err);
     if (set.name == "paper" && (f.solvers.empty() ||
                                 std::find(f.solvers.begin(), f.solvers.end(), "newton") != f.solvers.end())) {
       // The generic path the report compares against: the same problems with M stored sparse, solved by the
@@ -352,7 +587,7 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
       o.solvers = {"newton"};
       o.settings = {"newton.linear_solver=2"};  // UMFPACK even where the auto rule would factorize densely
       o.tolerance_sweep_problems = 0;
-      for (ReplayRecord& r : ReplayProblemSet(sparse, o).records) {
+      for (ReplayRecord& r : ReplayWithBackendBudget(sparse, o, f.backend_budget, err).records) {
         r.solver = kGenericSparsePath;
         suite.replay.records.push_back(std::move(r));
       }
@@ -376,7 +611,7 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
       so.refinements = 3;
       so.min_seconds = 0.002;
     }
-    so.progress = [&](const std::string& what) { progress.Update(1, 2, what); };
+    so.progress = [&](const std::string& what) { progress.Note(what); };
     so.polish = options.polish;
     // Per-step forward error of s in the work-precision runs: each step's one-step problem certified from the
     // backend's own answer (the cheapest candidate: usually its active set verifies at once). Its cost is
@@ -401,10 +636,12 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
                   certify_seconds, static_cast<long long>(certified_steps));
     err << line << "\n";
   }
-  WriteBenchResults(results, f.out);
-  out << "bench: wrote " << (fs::path(f.out) / "results.json").string() << " and results.csv";
+  WriteBenchResults(results, out_dir);
+  RecordSiconosVersion(results, out_dir);
+  PrintSummaryTable(results, f.time_limit, out);
+  out << "bench: wrote " << (fs::path(out_dir) / "results.json").string() << " and results.csv";
   if (f.report) {
-    WriteBenchReport(f.out, !f.no_plots);
+    WriteBenchReport(out_dir, !f.no_plots);
     out << ", report.md";
   }
   out << "\n";

@@ -3,10 +3,13 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <set>
 #include <unistd.h>
 
 #include "problems/library/problem_set_io.h"
@@ -21,6 +24,7 @@ namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
+using ::testing::Not;
 using test_support::CliRun;
 using test_support::RunSmcbench;
 
@@ -93,6 +97,29 @@ TEST(Bench, TinySuiteEndToEndWithReport) {
     ASSERT_EQ(rep.code, 0) << rep.err;
     EXPECT_TRUE(fs::is_regular_file(dir / "profile-tiny.png"));
     EXPECT_TRUE(fs::is_regular_file(dir / "work-precision-galias-yu-2007.png"));
+    // Issue 14: every figure also as SVG, with its data and gnuplot script beside it, which remake it from there.
+    for (const char* file : {"profile-tiny.svg", "profile-tiny.dat", "profile-tiny.gp",
+                             "work-precision-galias-yu-2007.svg", "work-precision-galias-yu-2007.gp"}) {
+      EXPECT_TRUE(fs::is_regular_file(dir / file)) << file;
+    }
+    const std::string script = ReadText(dir / "profile-tiny.gp");
+    EXPECT_THAT(script, HasSubstr("'profile-tiny.dat' index 0"));
+    EXPECT_THAT(script, HasSubstr("set output 'profile-tiny.svg'"));
+    EXPECT_THAT(script, Not(HasSubstr(dir.string())));  // relocatable: no absolute path
+    EXPECT_THAT(ReadText(dir / "profile-tiny.dat"), HasSubstr("# lemke\n1 0\n"));
+    EXPECT_THAT(ReadText(dir / "report.md"), HasSubstr("([SVG](profile-tiny.svg), [data](profile-tiny.dat), "
+                                                       "[gnuplot script](profile-tiny.gp))"));
+    // Our three backends: solid lines, three different colours.
+    std::set<std::string> colours;
+    for (std::size_t at = script.find("lc rgb '"); at != std::string::npos; at = script.find("lc rgb '", at + 1)) {
+      colours.insert(script.substr(at + 8, 7));
+      EXPECT_EQ(script.substr(script.find(' ', at + 16) + 1, 4), "dt 1") << script.substr(at, 40);
+    }
+    EXPECT_EQ(colours.size(), 3u) << script;
+    fs::remove(dir / "profile-tiny.svg");
+    const std::string remake = "cd '" + dir.string() + "' && gnuplot profile-tiny.gp 2>/dev/null";
+    EXPECT_EQ(std::system(remake.c_str()), 0);
+    EXPECT_GT(fs::file_size(dir / "profile-tiny.svg"), 1000u);
   }
   fs::remove_all(dir);
 }
@@ -125,7 +152,8 @@ TEST(Bench, ExitsThreeOnAWrongAnswerUnlessTheBackendIsAllowed) {
   const fs::path dir = fs::temp_directory_path() / ("smcbench-bench-wrong-" + std::to_string(::getpid()));
   const fs::path suite = WriteContradictorySuite(dir);
   const std::vector<std::string> base = {"bench", "--suite", suite.string(), "--solver", "lemke", "--quick",
-                                         "--no-stepper", "--out", (dir / "out").string(), "--report", "--no-plots"};
+                                         "--no-stepper", "--out", (dir / "out").string(), "--overwrite", "--report",
+                                         "--no-plots"};
   const CliRun wrong = RunSmcbench(base);
   EXPECT_EQ(wrong.code, 3) << wrong.err;
   EXPECT_THAT(wrong.err, HasSubstr("bench: 1 wrong answer (INACCURATE 1; lemke 1)"));
@@ -304,6 +332,145 @@ TEST(Bench, BadInputIsAOneLineError) {
   r = RunSmcbench({"report", "/nonexistent/folder"});
   EXPECT_EQ(r.code, 1);
   EXPECT_THAT(r.err, HasSubstr("cannot read"));
+}
+
+// Issue 14: names and options are checked before any suite is built or any folder made, so a typo costs a second.
+TEST(Bench, ChecksSuitesAndOptionsBeforeAnyWork) {
+  const fs::path out = fs::temp_directory_path() / ("smcbench-bench-early-" + std::to_string(::getpid()));
+  fs::remove_all(out);
+  const auto start = std::chrono::steady_clock::now();
+  // The paper suite comes first and takes tens of seconds to capture: the unknown second suite must fail before it.
+  CliRun r = RunSmcbench({"bench", "--suite", "paper", "--suite", "papr", "--out", out.string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("unknown suite 'papr'"));
+  r = RunSmcbench({"bench", "--suite", "paper", "--set", "psor.omega=abc", "--out", out.string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--set psor.omega=abc"));
+  r = RunSmcbench({"bench", "--suite", "paper", "--set", "psor-omega", "--out", out.string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("BACKEND.OPTION=VALUE"));
+  r = RunSmcbench({"bench", "--suite", "siconos", "--siconos-dir", "/nonexistent", "--out", out.string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--siconos-dir '/nonexistent' is not a folder"));
+  r = RunSmcbench({"bench", "--suite", "paper", "--backend-budget", "-1", "--out", out.string()});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
+  EXPECT_FALSE(fs::exists(out)) << "no folder is made for a request that fails its checks";
+}
+
+// Runs `bench` on the tiny suite (4 planted-solution P-matrix problems and one infeasible LCP) into dir.
+CliRun BenchTiny(const fs::path& dir, std::vector<std::string> extra) {
+  std::vector<std::string> args{"bench", "--suite", "tiny", "--quick", "--no-stepper", "--solver", "lemke",
+                                "--solver", "enum", "--out", dir.string()};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return RunSmcbench(args);
+}
+
+TEST(Bench, EndsWithASummaryTableAndKeepsEarlierResults) {
+  const fs::path dir = fs::temp_directory_path() / ("smcbench-bench-table-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  CliRun r = BenchTiny(dir, {});
+  ASSERT_EQ(r.code, 0) << r.err;
+  // Both exact backends solve the four P-matrix problems and refuse the infeasible LCP (TinySuite's construction).
+  EXPECT_THAT(r.out, HasSubstr("| suite | backend | problems | solved | refused | failed | wrongly claimed | "
+                               "inaccurate | wrongly refused | SGM time |"));
+  EXPECT_THAT(r.out, HasSubstr("| tiny | lemke | 5 | 4 | 1 | 0 | 0 | 0 | 0 | "));
+  EXPECT_THAT(r.out, HasSubstr("| tiny | enum | 5 | 4 | 1 | 0 | 0 | 0 | 0 | "));
+  const auto results = nlohmann::json::parse(ReadText(dir / "results.json"));
+  // Only our backends ran: no Siconos version is claimed.
+  EXPECT_FALSE(results["environment"]["libraries"].contains("siconos_numerics"));
+
+  r = BenchTiny(dir, {});  // the same folder again: refused, the earlier results kept
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("already holds results.json"));
+  EXPECT_THAT(r.err, HasSubstr("--overwrite"));
+  EXPECT_EQ(nlohmann::json::parse(ReadText(dir / "results.json"))["environment"]["date"],
+            results["environment"]["date"]);
+  r = BenchTiny(dir, {"--overwrite"});
+  EXPECT_EQ(r.code, 0) << r.err;
+  fs::remove_all(dir);
+}
+
+TEST(Bench, WithoutOutWritesAFreshFolder) {
+  const fs::path cwd = fs::current_path();
+  const fs::path scratch = fs::temp_directory_path() / ("smcbench-bench-default-" + std::to_string(::getpid()));
+  fs::remove_all(scratch);
+  fs::create_directories(scratch);
+  fs::current_path(scratch);
+  const CliRun a = RunSmcbench({"bench", "--suite", "tiny", "--quick", "--no-stepper", "--solver", "lemke"});
+  const CliRun b = RunSmcbench({"bench", "--suite", "tiny", "--quick", "--no-stepper", "--solver", "lemke"});
+  fs::current_path(cwd);
+  ASSERT_EQ(a.code, 0) << a.err;
+  ASSERT_EQ(b.code, 0) << b.err;
+  std::vector<std::string> folders;
+  for (const auto& entry : fs::directory_iterator(scratch)) {
+    folders.push_back(entry.path().filename().string());
+    EXPECT_TRUE(fs::exists(entry.path() / "results.json")) << entry.path();
+  }
+  ASSERT_EQ(folders.size(), 2u) << "two runs, two folders";
+  for (const std::string& name : folders) {
+    EXPECT_EQ(name.rfind("smcbench-bench-", 0), 0u) << name;
+    EXPECT_THAT(a.out + b.out, HasSubstr(name + "/results.json"));
+  }
+  fs::remove_all(scratch);
+}
+
+// A backend past its per-suite budget is not run on the suite's remaining problems: they are recorded as time
+// limit with a message, and one line on stderr says so. Progress lines appear when stderr is not a terminal.
+TEST(Bench, BackendBudgetSkipsTheRestAndProgressLinesAreWritten) {
+  const fs::path dir = fs::temp_directory_path() / ("smcbench-bench-budget-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const CliRun r = BenchTiny(dir, {"--backend-budget", "1e-9", "--progress-every", "1e-9"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("bench: lemke skipped 4 of 5 problems of suite tiny after spending its budget"));
+  EXPECT_THAT(r.err, HasSubstr("bench: enum skipped 4 of 5 problems"));
+  EXPECT_THAT(r.err, HasSubstr("bench: 1/10 (10%) after "));
+  EXPECT_THAT(r.out, HasSubstr("| tiny | lemke | 5 | 1 | 0 | 4 | 0 | 0 | 0 | "));  // skipped = failed, not refused
+  const auto j = nlohmann::json::parse(ReadText(dir / "results.json"));
+  const auto& records = j["suites"][0]["records"];
+  ASSERT_EQ(records.size(), 10u);
+  int skipped = 0;
+  for (std::size_t k = 0; k < records.size(); ++k) {
+    // The order is ReplayProblemSet's: problem by problem, lemke then enum.
+    EXPECT_EQ(records[k]["solver"], k % 2 == 0 ? "lemke" : "enum") << k;
+    if (records[k]["message"].get<std::string>().find("not run: ") == 0) {
+      ++skipped;
+      EXPECT_EQ(records[k]["status"], "time_limit") << records[k].dump();
+      EXPECT_EQ(records[k]["samples"], 0);
+    }
+  }
+  EXPECT_EQ(skipped, 8);
+  EXPECT_EQ(records[0]["problem"], records[1]["problem"]);
+  EXPECT_EQ(records[0]["status"], "solved");  // the first problem ran before the budget was spent
+  fs::remove_all(dir);
+}
+
+// With Siconos in the build, results.json names the version its backends came from (the Debian package's).
+TEST(Bench, RecordsTheSiconosVersionWhenItsBackendsRan) {
+  std::string siconos;
+  for (auto name : SolverNames()) {
+    if (std::string(name).rfind("siconos-lcp-", 0) == 0 && siconos.empty()) siconos = std::string(name);
+  }
+  if (siconos.empty()) GTEST_SKIP() << "this build has no siconos-* backends";
+  std::string package;
+  if (FILE* pipe = ::popen("dpkg-query -W -f='${Version}' libsiconos-numerics-dev 2>/dev/null", "r")) {
+    char buffer[128] = {};
+    if (std::fgets(buffer, sizeof buffer, pipe)) package = buffer;
+    ::pclose(pipe);
+  }
+  const fs::path dir = fs::temp_directory_path() / ("smcbench-bench-siconos-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const CliRun r = RunSmcbench({"bench", "--suite", "tiny", "--quick", "--no-stepper", "--solver", siconos, "--out",
+                                dir.string(), "--allow-wrong", "siconos-*"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto j = nlohmann::json::parse(ReadText(dir / "results.json"));
+  ASSERT_TRUE(j["environment"]["libraries"].contains("siconos_numerics")) << j["environment"].dump();
+  const std::string version = j["environment"]["libraries"]["siconos_numerics"];
+  EXPECT_FALSE(version.empty());
+  if (!package.empty()) {
+    EXPECT_EQ(package.rfind(version, 0), 0u) << package << " vs " << version;
+  }
+  fs::remove_all(dir);
 }
 
 ReplayRecord Rec(const std::string& problem, const std::string& solver, Verdict v, double t, int size = 1) {

@@ -1,7 +1,5 @@
 #include "tools/smcbench/bench_report.h"
 
-#include <unistd.h>
-
 #include <algorithm>
 #include <cctype>
 #include <cmath>
@@ -14,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "solvers/registry/registry.h"
 #include "tools/smcbench/simulate.h"
 
 namespace smcbench {
@@ -70,16 +69,83 @@ double Slope(const std::vector<double>& x, const std::vector<double>& y) {
   return d > 0 ? (n * sxy - sx * sy) / d : std::nan("");
 }
 
-// gnuplot data file in the temporary folder, removed with the object.
-struct DataFile {
-  fs::path path;
-  explicit DataFile(const std::string& stem)
-      : path(fs::temp_directory_path() / ("smcbench-report-" + std::to_string(::getpid()) + "-" + stem + ".dat")) {}
-  ~DataFile() {
-    std::error_code ec;
-    fs::remove(path, ec);
+// Each backend its own look in every figure, so 18 curves stay readable: ours solid, the external siconos-* ones
+// dashed (colour and dash both vary among them), each from its own palette; the registry's order decides who gets
+// which, so a backend looks the same in every figure. A label that names no known backend ("newton implicit" is
+// newton's) gets a colour from its name.
+std::string BackendStyle(const std::string& label) {
+  static const char* const kOurs[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#000000", "#56B4E9",
+                                      "#8C564B"};
+  static const char* const kExternal[] = {"#1B9E77", "#D95F02", "#7570B3", "#E7298A", "#66A61E", "#E6AB02",
+                                          "#A6761D", "#666666", "#17BECF", "#BCBD22", "#9467BD", "#FF7F0E"};
+  std::vector<std::string> known;
+  for (auto name : SolverNames()) known.emplace_back(name);
+  known.emplace_back("newton-sparse-path");
+  std::string backend = label;
+  std::string token;
+  for (char c : label + " ") {
+    if (c == ' ' || c == '/' || c == '(' || c == ')' || c == ',') {
+      if (!token.empty() && std::find(known.begin(), known.end(), token) != known.end()) {
+        backend = token;
+        break;
+      }
+      token.clear();
+    } else {
+      token.push_back(c);
+    }
   }
-};
+  const bool external = backend.rfind("siconos-", 0) == 0;
+  std::size_t index = 0;
+  const auto it = std::find(known.begin(), known.end(), backend);
+  if (it == known.end()) {
+    index = std::hash<std::string>{}(backend);
+  } else {
+    for (auto k = known.begin(); k != it; ++k) index += (k->rfind("siconos-", 0) == 0) == external;
+  }
+  char style[96];
+  if (external) {
+    std::snprintf(style, sizeof style, "lw 2 lc rgb '%s' dt %zu pt %zu", kExternal[index % 12], 2 + index % 4,
+                  4 + 2 * (index % 4));
+  } else {
+    std::snprintf(style, sizeof style, "lw 2.5 lc rgb '%s' dt 1 pt %zu", kOurs[index % 8], 5 + 2 * (index % 3));
+  }
+  return style;
+}
+
+// A figure a user can restyle: dir/STEM.dat (the data), dir/STEM.gp (the gnuplot script, reading STEM.dat and
+// writing STEM.png and STEM.svg; `cd DIR && gnuplot STEM.gp` remakes both) kept beside STEM.png and STEM.svg.
+// body: the settings and the plot command, naming the data file as 'STEM.dat'.
+void WriteFigure(const std::string& dir, const std::string& stem, const std::string& data, const std::string& body,
+                 int width, int height) {
+  const fs::path folder(dir);
+  const auto write = [](const fs::path& path, const std::string& text) {
+    std::ofstream out(path);
+    out << text;
+    if (!out) throw InvalidInputError("report: cannot write '" + path.string() + "'");
+  };
+  write(folder / (stem + ".dat"), data);
+  const std::string size = std::to_string(width) + "," + std::to_string(height);
+  std::ostringstream script;
+  script << "# Made by `smcbench report`; remake " << stem << ".png and " << stem << ".svg with `gnuplot " << stem
+         << ".gp` in this folder.\n# Data: " << stem << ".dat (one block per curve, in the order of the plot "
+         << "command). Ours are solid lines, the external siconos-* backends dashed.\n"
+         << GnuplotPngPreamble(width, height, stem + ".png") << body
+         << "set terminal svg size " << size << " dynamic noenhanced font 'sans,11'\nset output "
+         << GnuplotQuote(stem + ".svg") << "\nreplot\nunset output\n";
+  write(folder / (stem + ".gp"), script.str());
+  RunGnuplot("cd " + GnuplotQuote(fs::absolute(folder).string()) + "\n" + script.str(),
+             (folder / (stem + ".png")).string(), "report");
+  std::error_code ec;
+  if (!fs::is_regular_file(folder / (stem + ".svg"), ec)) {
+    throw InvalidInputError("report: gnuplot wrote no '" + (folder / (stem + ".svg")).string() + "'");
+  }
+}
+
+// The markdown of a figure: the PNG, with its SVG, data and script linked below it.
+std::string FigureMarkdown(const std::string& alt, const std::string& stem) {
+  return "![" + alt + "](" + stem + ".png)\n\n(" + "[SVG](" + stem + ".svg), [data](" + stem + ".dat), [gnuplot script](" +
+         stem + ".gp))\n\n";
+}
 
 std::string Safe(const std::string& text) {
   std::string out;
@@ -101,29 +167,26 @@ double MedianDefined(std::vector<double> v) {
 std::string Count(int n) { return n ? "**" + std::to_string(n) + "**" : std::string("0"); }
 
 // One curve per label of (x, time) points on log axes, joined in x order when sort_by_x (else in the given order,
-// e.g. of decreasing h): writes the data file and plots it to dir/png.
+// e.g. of decreasing h): the figure dir/STEM.{png,svg,dat,gp} (WriteFigure).
 void PlotCurves(const std::map<std::string, std::vector<std::pair<double, double>>>& curves, const std::string& dir,
-                const std::string& png, const std::string& stem, const std::string& xlabel,
-                const std::string& ylabel, const std::string& title, bool sort_by_x = true) {
-  DataFile data(stem);
-  std::ofstream out(data.path);
-  std::ostringstream g;
-  g << GnuplotPngPreamble(900, 600, (fs::path(dir) / png).string())
-    << "set logscale xy\nset grid\nset key top right\nset xlabel " << GnuplotQuote(xlabel) << "\nset ylabel "
+                const std::string& stem, const std::string& xlabel, const std::string& ylabel,
+                const std::string& title, bool sort_by_x = true) {
+  std::ostringstream data, g;
+  g << "set logscale xy\nset grid\nset key outside right top\nset xlabel " << GnuplotQuote(xlabel) << "\nset ylabel "
     << GnuplotQuote(ylabel) << "\nset title " << GnuplotQuote(title) << "\nplot ";
   int index = 0;
   for (const auto& [label, points] : curves) {
     auto sorted = points;
     if (sort_by_x) std::sort(sorted.begin(), sorted.end());
-    for (auto [x, y] : sorted) out << x << ' ' << y << '\n';
-    out << "\n\n";
-    g << (index ? ", " : "") << GnuplotQuote(data.path.string()) << " index " << index
-      << " using 1:2 with linespoints pt 7 lw 2 title " << GnuplotQuote(label);
+    data << "# " << label << "\n";
+    for (auto [x, y] : sorted) data << x << ' ' << y << '\n';
+    data << "\n\n";
+    g << (index ? ", " : "") << GnuplotQuote(stem + ".dat") << " index " << index << " using 1:2 with linespoints "
+      << BackendStyle(label) << " title " << GnuplotQuote(label);
     ++index;
   }
-  out.close();
   g << "\n";
-  RunGnuplot(g.str(), (fs::path(dir) / png).string(), "report");
+  WriteFigure(dir, stem, data.str(), g.str(), 1100, 600);
 }
 
 }  // namespace
@@ -390,8 +453,7 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
     // Performance profile.
     const auto ratios = PerformanceRatios(suite);
     if (plots && !ratios.empty()) {
-      DataFile data("profile-" + Safe(suite.suite));
-      std::ofstream out(data.path);
+      std::ostringstream data;
       double tau_max = 2.0;
       for (const auto& [solver, r] : ratios) {
         for (double v : r) {
@@ -400,31 +462,30 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
       }
       tau_max = std::min(tau_max * 1.5, 1e6);
       std::ostringstream g;
-      const std::string png = "profile-" + Safe(suite.suite) + ".png";
-      g << GnuplotPngPreamble(900, 600, (fs::path(dir) / png).string())
-        << "set logscale x 2\nset grid\nset key bottom right\nset xlabel 'tau (time / best time)'\n"
+      const std::string stem = "profile-" + Safe(suite.suite);
+      // The key outside the plot: with 18 backends it would cover the curves.
+      g << "set logscale x 2\nset grid\nset key outside right top\nset xlabel 'tau (time / best time)'\n"
         << "set ylabel 'fraction of problems'\nset yrange [0:1.02]\nset xrange [1:" << tau_max << "]\n"
         << "set title " << GnuplotQuote("Performance profile, suite " + suite.suite) << "\nplot ";
       int index = 0;
       for (const auto& [solver, r] : ratios) {
         // Step function: (τ_i, i/N), extended to τ_max.
         const double n = static_cast<double>(r.size());
-        out << "1 0\n";
+        data << "# " << solver << "\n1 0\n";
         int k = 0;
         for (double v : r) {
           if (!std::isfinite(v)) break;
           ++k;
-          out << v << ' ' << k / n << '\n';
+          data << v << ' ' << k / n << '\n';
         }
-        out << tau_max << ' ' << k / n << "\n\n\n";
-        g << (index ? ", " : "") << GnuplotQuote(data.path.string()) << " index " << index
-          << " using 1:2 with steps lw 2 title " << GnuplotQuote(solver);
+        data << tau_max << ' ' << k / n << "\n\n\n";
+        g << (index ? ", " : "") << GnuplotQuote(stem + ".dat") << " index " << index << " using 1:2 with steps "
+          << BackendStyle(solver) << " title " << GnuplotQuote(solver);
         ++index;
       }
-      out.close();
       g << "\n";
-      RunGnuplot(g.str(), (fs::path(dir) / png).string(), "report");
-      md << "![performance profile, " << suite.suite << "](" << png << ")\n\n";
+      WriteFigure(dir, stem, data.str(), g.str(), 1100, 600);
+      md << FigureMarkdown("performance profile, " + suite.suite, stem);
     }
 
     // Speed against error: the tolerance sweep. Two errors: the forward error ‖z − z*‖∞ (what a user reads, on the
@@ -463,18 +524,16 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
       }
       md << "\n";
       if (plots && !by_forward.empty()) {
-        const std::string png = "speed-forward-error-" + Safe(suite.suite) + ".png";
-        PlotCurves(by_forward, dir, png, "sweep-forward-" + Safe(suite.suite),
-                   "forward error |z - z*|inf (median; problems with a unique certified z*)", "time per solve [s]",
-                   "Speed against forward error, suite " + suite.suite);
-        md << "![speed against forward error, " << suite.suite << "](" << png << ")\n\n";
+        const std::string stem = "speed-forward-error-" + Safe(suite.suite);
+        PlotCurves(by_forward, dir, stem, "forward error |z - z*|inf (median; problems with a unique certified z*)",
+                   "time per solve [s]", "Speed against forward error, suite " + suite.suite);
+        md << FigureMarkdown("speed against forward error, " + suite.suite, stem);
       }
       if (plots) {
-        const std::string png = "speed-residual-" + Safe(suite.suite) + ".png";
-        PlotCurves(by_residual, dir, png, "sweep-residual-" + Safe(suite.suite),
-                   "achieved relative natural residual (median)", "time per solve [s]",
+        const std::string stem = "speed-residual-" + Safe(suite.suite);
+        PlotCurves(by_residual, dir, stem, "achieved relative natural residual (median)", "time per solve [s]",
                    "Speed against residual, suite " + suite.suite);
-        md << "![speed against residual, " << suite.suite << "](" << png << ")\n\n";
+        md << FigureMarkdown("speed against residual, " + suite.suite, stem);
       }
     }
 
@@ -558,16 +617,15 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
             }
           }
         }
-        const std::string png = "work-precision-" + Safe(scene) + ".png";
-        PlotCurves(by_x, dir, png, "wp-" + Safe(scene), "trajectory error of x against a finer reference run (max)",
-                   "run time [s]", "Work-precision (trajectory error of x), " + scene, /*sort_by_x=*/false);
-        md << "![work-precision, " << scene << "](" << png << ")\n\n";
+        const std::string stem = "work-precision-" + Safe(scene);
+        PlotCurves(by_x, dir, stem, "trajectory error of x against a finer reference run (max)", "run time [s]",
+                   "Work-precision (trajectory error of x), " + scene, /*sort_by_x=*/false);
+        md << FigureMarkdown("work-precision, " + scene, stem);
         if (!by_s.empty()) {
-          const std::string png_s = "work-precision-s-" + Safe(scene) + ".png";
-          PlotCurves(by_s, dir, png_s, "wps-" + Safe(scene),
-                     "per-step forward error of s against certified solutions (max; 1e-17 = exact)", "run time [s]",
-                     "Work-precision (per-step forward error of s), " + scene, /*sort_by_x=*/false);
-          md << "![work-precision against the per-step error of s, " << scene << "](" << png_s << ")\n\n";
+          const std::string stem_s = "work-precision-s-" + Safe(scene);
+          PlotCurves(by_s, dir, stem_s, "per-step forward error of s against certified solutions (max; 1e-17 = exact)",
+                     "run time [s]", "Work-precision (per-step forward error of s), " + scene, /*sort_by_x=*/false);
+          md << FigureMarkdown("work-precision against the per-step error of s, " + scene, stem_s);
         }
       }
     }

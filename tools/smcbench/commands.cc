@@ -19,6 +19,7 @@
 #include "tools/smcbench/bench_command.h"
 #include "tools/smcbench/library_command.h"
 #include "tools/smcbench/paper.h"
+#include "tools/smcbench/problem_files.h"
 #include "tools/smcbench/simulate.h"
 #include "tools/smcbench/solve_report.h"
 
@@ -38,6 +39,7 @@ struct SolveSettings {
   std::vector<std::string> sets;  // "backend.option=value"
   bool no_polish = false;         // SolverOptions::polish = false
   bool warm = false;              // repeats through a session, each from the previous answer (docs/session.md)
+  std::optional<ProblemFormat> format;  // --format; unset: guessed from the file (tools/smcbench/problem_files.h)
 };
 
 // CLI11's PositiveNumber prints its range with DBL_MAX in full (300 digits): a short message instead.
@@ -57,6 +59,21 @@ CLI::Validator PositiveNumber() {
         return {};
       },
       "POSITIVE");
+}
+
+// --format lcp|relay|mlcp|smcps|mtx into settings->format (only the Siconos kinds where allowed says so).
+void AddFormatFlag(CLI::App* app, std::optional<ProblemFormat>* format, const std::vector<std::string>& allowed,
+                   const std::string& help) {
+  std::string choices;
+  for (const std::string& name : allowed) choices += (choices.empty() ? "" : "|") + name;
+  app->add_option_function<std::string>(
+         "--format",
+         [format](const std::string& text) {
+           format->emplace(*ParseProblemFormat(text));  // the check below admits known names only
+         },
+         help + " (" + choices + "; default: guessed from the extension, the folder, the name, then the content)")
+      ->check(CLI::IsMember(allowed))
+      ->type_name("KIND");
 }
 
 void AddSolveFlags(CLI::App* app, SolveSettings* s) {
@@ -146,52 +163,86 @@ int RunList(std::ostream& out) {
   return 0;
 }
 
-// `solve FILE`: every chosen backend on one file; with reference, the problem is also certified
-// (solvers/reference/certify.h) from every backend's answer and the cold point Π(0), and each answer judged against
-// z* (forward error, verdict with an unknown expected outcome).
-int RunSolve(const std::string& path, const SolveSettings& s, bool json, bool reference, std::ostream& out) {
-  const BoxMLCP problem = ReadSiconosFile(path);
-  auto solvers = MakeSolvers(s);
-  const SolverOptions options = MakeOptions(s);
+// `solve FILE`: every chosen backend on each problem of the file (one, or a .smcps set's selected ones); with
+// reference, each problem is also certified (solvers/reference/certify.h) from every backend's answer and the cold
+// point Π(0) — or judged against the reference a .smcps problem carries — and each answer judged against z*
+// (forward error, verdict against the problem's expected outcome, unknown outside a .smcps set).
+struct SolvedProblem {
   std::vector<SolveRecord> records;
-  for (auto& solver : solvers) records.push_back(TimedSolve(*solver, problem, options, s.repeat, s.warm));
-
   ReferenceSolution certified;
-  if (reference) {
+};
+
+SolvedProblem SolveOne(const LibraryProblem& library_problem, std::vector<std::unique_ptr<Solver>>& solvers,
+                       const SolverOptions& options, const SolveSettings& s, bool reference) {
+  const BoxMLCP& problem = library_problem.problem;
+  SolvedProblem solved;
+  for (auto& solver : solvers) solved.records.push_back(TimedSolve(*solver, problem, options, s.repeat, s.warm));
+  if (!reference) return solved;
+  if (library_problem.reference.verified()) {
+    solved.certified = library_problem.reference;
+  } else {
     std::vector<Vector> candidates;
-    for (const SolveRecord& r : records) {
+    for (const SolveRecord& r : solved.records) {
       if (r.result.z.size() == problem.size()) candidates.push_back(r.result.z);
     }
     Vector cold;
     ProjectZeroOntoBox(problem.l(), problem.u(), &cold);
     candidates.push_back(cold);
-    certified = Certify(problem, candidates);
-    for (SolveRecord& r : records) {
-      r.has_judgement = true;
-      r.judgement =
-          Judge(problem, ExpectedOutcome::kUnknown, &certified, r.result.status, r.result.z, options.tolerance);
-    }
+    solved.certified = Certify(problem, candidates);
   }
+  for (SolveRecord& r : solved.records) {
+    r.has_judgement = true;
+    r.judgement = Judge(problem, library_problem.expected, &solved.certified, r.result.status, r.result.z,
+                        options.tolerance);
+  }
+  return solved;
+}
 
-  if (json) {
-    nlohmann::json array = nlohmann::json::array();
-    for (const SolveRecord& r : records) array.push_back(RecordToJson(r));
-    if (reference) {
-      out << nlohmann::json{{"reference", ReferenceToJson(certified)}, {"results", std::move(array)}}.dump(2) << "\n";
-    } else {
-      out << array.dump(2) << "\n";
-    }
-    return 0;
-  }
-  out << problem.name() << " (n = " << problem.size() << ")\n";
+void PrintSolved(const LibraryProblem& p, const SolvedProblem& solved, bool reference, std::ostream& out) {
+  out << (p.id.empty() ? p.problem.name() : p.id) << " (n = " << p.problem.size() << ")\n";
   if (reference) {
+    const ReferenceSolution& certified = solved.certified;
     char line[160];
     std::snprintf(line, sizeof line, "reference: certificate %s, condition %.3g, |z*|inf %.3g",
                   std::string(ToString(certified.certificate)).c_str(), certified.condition,
                   certified.z.size() ? certified.z.cwiseAbs().maxCoeff() : 0.0);
     out << line << (certified.unique() ? "" : " (forward error not defined: z* not proven unique)") << "\n";
   }
-  for (const SolveRecord& r : records) out << "  " << FormatRecordLine(r) << "\n";
+  for (const SolveRecord& r : solved.records) out << "  " << FormatRecordLine(r) << "\n";
+}
+
+int RunSolve(const std::string& path, const std::vector<std::string>& ids, const SolveSettings& s, bool json,
+             bool reference, std::ostream& out) {
+  const bool problem_set = ChooseProblemFormat(path, s.format).format == ProblemFormat::kSmcps;
+  const std::vector<LibraryProblem> problems = ReadProblemFile(path, s.format, ids);
+  auto solvers = MakeSolvers(s);
+  const SolverOptions options = MakeOptions(s);
+  nlohmann::json all = nlohmann::json::array();
+  for (const LibraryProblem& p : problems) {
+    SolvedProblem solved = SolveOne(p, solvers, options, s, reference);
+    if (!json) {
+      PrintSolved(p, solved, reference, out);
+      continue;
+    }
+    nlohmann::json array = nlohmann::json::array();
+    for (SolveRecord& r : solved.records) {
+      if (problem_set) r.problem = p.id;
+      array.push_back(RecordToJson(r));
+    }
+    // One problem file: as before (an array, or {reference, results}); a .smcps set: one object per problem.
+    if (!problem_set) {
+      if (!reference) {
+        all = std::move(array);
+      } else {
+        all = nlohmann::json{{"reference", ReferenceToJson(solved.certified)}, {"results", std::move(array)}};
+      }
+      continue;
+    }
+    nlohmann::json entry{{"problem", p.id}, {"n", p.problem.size()}, {"results", std::move(array)}};
+    if (reference) entry["reference"] = ReferenceToJson(solved.certified);
+    all.push_back(std::move(entry));
+  }
+  if (json) out << all.dump(2) << "\n";
   return 0;
 }
 
@@ -222,7 +273,7 @@ int RunCollection(const std::string& dir, const SolveSettings& s, const std::str
     const std::string label = file.parent_path().filename().string() + "/" + file.filename().string();
     std::optional<BoxMLCP> problem;
     try {
-      problem.emplace(ReadSiconosFile(file.string()));
+      problem.emplace(std::move(ReadProblemFile(file.string(), s.format).front().problem));
     } catch (const InvalidInputError& e) {
       ++unreadable;
       table << "| " << label << " | – | rejected by the reader: " << e.what() << " |\n";
@@ -354,8 +405,17 @@ int RunBenchTable(const std::string& path, std::ostream& out) {
   return 0;
 }
 
-int RunConvert(const std::string& input, const std::string& output) {
-  WriteSiconosRelayFile(ReadSiconosFile(input), output);
+// `convert INPUT OUTPUT`: one problem from any readable kind to the kind OUTPUT's extension names (.mtx, .smcps,
+// else Siconos relay).
+int RunConvert(const std::string& input, std::optional<ProblemFormat> format, const std::string& id,
+               const std::string& output) {
+  std::vector<LibraryProblem> problems = ReadProblemFile(input, format, id.empty() ? std::vector<std::string>{}
+                                                                                   : std::vector<std::string>{id});
+  if (problems.size() != 1) {
+    throw InvalidInputError("convert writes one problem; '" + input + "' gives " + std::to_string(problems.size()) +
+                            ": choose one with --id");
+  }
+  WriteProblemFile(problems.front(), output);
   return 0;
 }
 
@@ -368,12 +428,18 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
   auto* list = app.add_subcommand("list", "list the backends with their capabilities, references and options");
 
-  auto* solve = app.add_subcommand("solve", "solve one Siconos LCP/Relay/MLCP file with the default backend "
-                                             "(auto), or the ones named by --solver (all: every backend)");
+  auto* solve = app.add_subcommand("solve", "solve a problem file (Siconos LCP/Relay/MLCP, Matrix Market, or the "
+                                             "problems of a .smcps set) with the default backend (auto), or the "
+                                             "ones named by --solver (all: every backend)");
   std::string solve_file;
+  std::vector<std::string> solve_ids;
   bool solve_json = false, solve_reference = false;
   SolveSettings solve_settings;
-  solve->add_option("FILE", solve_file, "problem file (Siconos LCP, Relay or MLCP format)")->required();
+  solve->add_option("FILE", solve_file, "problem file (docs/formats.md)")->required();
+  AddFormatFlag(solve, &solve_settings.format, {"lcp", "relay", "mlcp", "smcps", "mtx"}, "the kind of FILE");
+  solve->add_option("--id", solve_ids, "problems of a .smcps set to solve, by id ('PREFIX*': every id with that "
+                                       "prefix; default: all)")
+      ->expected(1, -1);
   AddSolveFlags(solve, &solve_settings);
   solve->add_flag("--warm", solve_settings.warm, "time the repeats through a prepared session, each starting from "
                                                 "the previous answer with the warm active-set path on "
@@ -391,13 +457,20 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   collection_settings.repeat = 3;
   collection->add_option("DIR", collection_dir, "folder holding lcp/, relay/, mlcp/")->required();
   AddSolveFlags(collection, &collection_settings);
+  AddFormatFlag(collection, &collection_settings.format, {"lcp", "relay", "mlcp"},
+                "read every file as this Siconos kind");
   collection->add_option("--markdown", markdown_path, "also write the table to this markdown file");
   collection->add_option("--json", json_path, "also write every record as JSON to this file");
 
-  auto* convert = app.add_subcommand("convert", "write a problem file in Siconos relay format");
-  std::string convert_in, convert_out;
-  convert->add_option("INPUT", convert_in, "problem file")->required();
-  convert->add_option("OUTPUT", convert_out, "relay file to write")->required();
+  auto* convert = app.add_subcommand("convert", "write one problem in the kind OUTPUT's extension names: NAME.mtx "
+                                                 "(Matrix Market: NAME.mtx + NAME_q/_l/_u.mtx), NAME.smcps, else "
+                                                 "Siconos relay");
+  std::string convert_in, convert_out, convert_id;
+  std::optional<ProblemFormat> convert_format;
+  convert->add_option("INPUT", convert_in, "problem file (docs/formats.md)")->required();
+  convert->add_option("OUTPUT", convert_out, "file to write")->required();
+  AddFormatFlag(convert, &convert_format, {"lcp", "relay", "mlcp", "smcps", "mtx"}, "the kind of INPUT");
+  convert->add_option("--id", convert_id, "the problem of a .smcps INPUT to write (needed if it holds several)");
 
   auto* bench_table = app.add_subcommand(
       "bench-table", "turn backend_benchmark JSON output into the README's markdown table (median ± CV vs goal)");
@@ -437,11 +510,11 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   for (int i = 1; i < argc; ++i) command_line += std::string(" ") + argv[i];
   try {
     if (list->parsed()) return RunList(out);
-    if (solve->parsed()) return RunSolve(solve_file, solve_settings, solve_json, solve_reference, out);
+    if (solve->parsed()) return RunSolve(solve_file, solve_ids, solve_settings, solve_json, solve_reference, out);
     if (collection->parsed()) {
       return RunCollection(collection_dir, collection_settings, markdown_path, json_path, command_line, out, err);
     }
-    if (convert->parsed()) return RunConvert(convert_in, convert_out);
+    if (convert->parsed()) return RunConvert(convert_in, convert_format, convert_id, convert_out);
     if (bench_table->parsed()) return RunBenchTable(bench_json, out);
     if (simulate.parsed()) return simulate.Run(out, err);
     if (scenes.parsed()) return scenes.Run(out, err);

@@ -18,6 +18,7 @@ struct SolveRecord {
   double time_ns_min = 0.0;
   double time_ns_max = 0.0;
   int repeats = 0;
+  int solves_per_sample = 1;  // the repeats are timed in batches of this many solves (TimedSolve)
   bool warm = false;  // timed through a session, each repeat from the previous answer
   // Some timed solve was answered by a siconos-* backend's isolation worker (detail "in_process" = 0), so the times
   // include its inter-process round trip (≈ 7 µs): `--repeat 1` (the one solve is the probe), isolate=always, or a
@@ -30,13 +31,15 @@ struct SolveRecord {
   Judgement judgement;
 };
 
-// Solves problem `repeat` times from a cold start with one reused result (the workspace is reused too) and
-// records the median, min and max solve time (SolveResult::solve_seconds, the base class's own timer). With
-// repeat > 1 an untimed warm-up solve comes first: it sizes the workspace and, for a siconos-* backend, is the
-// probe in its isolation worker, so that the timed solves run in process (solvers/siconos/siconos_solver.h). A
-// warm-up that hit the time limit is not repeated: its time is the record's (repeats 1).
-// warm: the repeats go through a prepared session (Solver::Prepare, docs/session.md), each starting from the
-// previous answer with the warm active-set path on, as a time-stepper's steps do; the warm-up is its first call.
+// Solves problem `repeat` times through one session (Solver::Prepare, docs/session.md) with one reused result, and
+// records the median, min and max time per solve. The first solve is untimed by the batches: it sizes the workspace
+// and, for a siconos-* backend, is the probe in its isolation worker, so that the timed solves run in process
+// (solvers/siconos/siconos_solver.h); a first solve that hit the time limit, or repeat 1, is the record by itself
+// (its own clock). The repeats are timed in batches of solves_per_sample solves between two clock reads (a clock
+// read costs as much as a small solve), each sample a batch's time over its size.
+// warm false (cold): every repeat runs the backend's own algorithm from the options' start point. warm: each repeat
+// starts from the previous answer with the session's reused active set on, as a time-stepper's steps do (never for
+// an external backend, SolverInfo::external: Siconos' own warm behaviour is timed).
 SolveRecord TimedSolve(Solver& solver, const BoxMLCP& problem, const SolverOptions& options, int repeat,
                        bool warm = false);
 
@@ -44,7 +47,7 @@ SolveRecord TimedSolve(Solver& solver, const BoxMLCP& problem, const SolverOptio
 // "   fwd err 1.11e-16 (rel 1.11e-16, allowed 2.00e-09)   solved" (or "fwd err n/a") when judged.
 std::string FormatRecordLine(const SolveRecord& record);
 // The stable JSON keys scripts depend on: solver, status, iterations, residual_abs, residual_rel,
-// residual_scaled, time_ns_median, z (plus problem, message, time_ns_min/max, repeats, timed_in_worker, details);
+// residual_scaled, time_ns_median, z (plus problem, message, time_ns_min/max, repeats, solves_per_sample, timed_in_worker, details);
 // when judged against a reference also forward_error, forward_error_rel (null when not defined), forward_allowance,
 // verdict.
 nlohmann::json RecordToJson(const SolveRecord& record);

@@ -1,0 +1,66 @@
+# `cmake --install <build> --prefix P`: the static libraries with their headers, the smcbench command, the scenes, and
+# a relocatable CMake package (find_package(smcbench CONFIG) → smcbench::<library>, smcbench::smcbench). Tests and
+# benchmarks are not installed. Included at the end of the top-level CMakeLists.txt, once every target exists.
+# Layout (GNUInstallDirs): bin/smcbench, lib/libsmcbench_*.a, include/smcbench/{smcbench.h,version.h,solvers/,
+# problems/,bench/,tools/}, share/smcbench/scenes/*.json, lib/cmake/smcbench/.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+set(SMCBENCH_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/smcbench CACHE STRING
+  "Where the CMake package of smcbench is installed, relative to the prefix")
+
+# The umbrella target: the library API (every backend, the conformance checks, problems, scenes, steppers, the
+# problem library and the replay engine). smcbench::cli (the commands) is separate: only a program that runs the
+# command line needs it.
+add_library(smcbench_all INTERFACE)
+add_library(smcbench::smcbench ALIAS smcbench_all)
+set_target_properties(smcbench_all PROPERTIES EXPORT_NAME smcbench)
+target_link_libraries(smcbench_all INTERFACE smcbench::solvers smcbench::conformance smcbench::reference
+  smcbench::problems smcbench::library smcbench::references smcbench::capture smcbench::scenes smcbench::stepper
+  smcbench::suites smcbench::replay smcbench::version)
+target_include_directories(smcbench_all INTERFACE ${SMCBENCH_INCLUDE_DIRS})
+
+get_property(installed_targets GLOBAL PROPERTY SMCBENCH_INSTALLED_TARGETS)
+install(TARGETS ${installed_targets} smcbench_all EXPORT smcbenchTargets
+  ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development)
+install(TARGETS smcbench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
+
+# Headers keep their paths from the checkout's root, under include/smcbench (so "solvers/core/solver.h" never
+# collides with another package's headers in <prefix>/include). Tests' helpers are left out.
+foreach(dir solvers problems bench/replay bench/perf tools/smcbench)
+  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/smcbench/${dir}
+    COMPONENT development
+    FILES_MATCHING PATTERN "*.h"
+    PATTERN "*test*" EXCLUDE PATTERN "testdata" EXCLUDE)
+endforeach()
+install(FILES ${PROJECT_SOURCE_DIR}/include/smcbench/smcbench.h ${PROJECT_SOURCE_DIR}/include/smcbench/version.h
+  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/smcbench COMPONENT development)
+
+# The scene files. The installed smcbench finds them beside itself (<bin>/../share/smcbench/scenes, main.cc).
+file(GLOB scene_files ${PROJECT_SOURCE_DIR}/problems/scenes/*.json)
+install(FILES ${scene_files} DESTINATION ${CMAKE_INSTALL_DATADIR}/smcbench/scenes COMPONENT runtime)
+install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/CITATION.cff
+  DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/smcbench COMPONENT runtime)
+
+# The package: targets, version, and the find modules of dependencies that ship no CMake config of their own.
+install(EXPORT smcbenchTargets NAMESPACE smcbench:: DESTINATION ${SMCBENCH_INSTALL_CMAKEDIR} COMPONENT development)
+get_property(SMCBENCH_PACKAGE_WITH_SICONOS GLOBAL PROPERTY SMCBENCH_HAVE_SICONOS)
+configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/smcbenchConfig.cmake.in
+  ${PROJECT_BINARY_DIR}/package/smcbenchConfig.cmake
+  INSTALL_DESTINATION ${SMCBENCH_INSTALL_CMAKEDIR}
+  PATH_VARS CMAKE_INSTALL_DATADIR)
+# 0.x: a minor release may change the API, so a consumer asking for 0.1 accepts 0.1.* only.
+write_basic_package_version_file(${PROJECT_BINARY_DIR}/package/smcbenchConfigVersion.cmake
+  VERSION ${PROJECT_VERSION} COMPATIBILITY SameMinorVersion)
+install(FILES ${PROJECT_BINARY_DIR}/package/smcbenchConfig.cmake
+  ${PROJECT_BINARY_DIR}/package/smcbenchConfigVersion.cmake
+  ${PROJECT_SOURCE_DIR}/cmake/FindSuiteSparseLibs.cmake ${PROJECT_SOURCE_DIR}/cmake/FindSiconosNumerics.cmake
+  DESTINATION ${SMCBENCH_INSTALL_CMAKEDIR} COMPONENT development)
+
+# Everything `cmake --install` copies, as one target: tools/install-check.sh builds it instead of `all` (which
+# would also build every test and benchmark).
+add_custom_target(smcbench_installables)
+add_dependencies(smcbench_installables ${installed_targets} smcbench)
+if(TARGET _smcbench)
+  add_dependencies(smcbench_installables _smcbench)  # the Python module (python/CMakeLists.txt installs it)
+endif()

@@ -1,0 +1,26 @@
+# The ctest test of `smcbench --version` (tools/CMakeLists.txt): exit 0, one line "smcbench VERSION (git REV)" where
+# REV starts with the commit git reports for the checkout now (short hash), or is "unknown" without git.
+# Inputs (-D): SMCBENCH (the program), SOURCE_DIR, VERSION.
+execute_process(COMMAND "${SMCBENCH}" --version OUTPUT_VARIABLE out ERROR_VARIABLE err RESULT_VARIABLE rc)
+if(NOT rc EQUAL 0)
+  message(FATAL_ERROR "smcbench --version exited ${rc}: ${err}")
+endif()
+find_package(Git QUIET)
+set(expected_revision "unknown")
+if(GIT_FOUND)
+  execute_process(COMMAND "${GIT_EXECUTABLE}" -C "${SOURCE_DIR}" rev-parse --short=12 HEAD
+                  OUTPUT_VARIABLE head OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_QUIET RESULT_VARIABLE git_rc)
+  if(git_rc EQUAL 0)
+    set(expected_revision "${head}")
+  endif()
+endif()
+string(REPLACE "." "\\." version_pattern "${VERSION}")
+if(NOT out MATCHES "^smcbench ${version_pattern} \\(git ([^)]+)\\)\n$")
+  message(FATAL_ERROR "unexpected output of smcbench --version: '${out}' (expected 'smcbench ${VERSION} (git ...)')")
+endif()
+set(revision "${CMAKE_MATCH_1}")
+string(FIND "${revision}" "${expected_revision}" at)
+if(NOT at EQUAL 0)
+  message(FATAL_ERROR "smcbench --version reports revision '${revision}', git reports HEAD ${expected_revision}")
+endif()
+message(STATUS "smcbench --version: ${out}")

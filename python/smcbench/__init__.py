@@ -1,0 +1,303 @@
+"""smcbench from Python: solve box-MLCPs and nonlinear MCPs with smcbench's backends, simulate the sliding-mode
+scenes of Acary & Brogliato (2009), read and write .smcps problem sets, load `smcbench bench` results.
+
+numpy in, numpy out. The C++ core is the extension `smcbench._smcbench`; this file turns Python's conventions
+(None bounds, scalars, scipy.sparse, keyword options) into its arguments and its dicts into result objects.
+Invalid input raises `smcbench.InvalidInputError`, a `ValueError` carrying the C++ library's message.
+See docs/python.md.
+"""
+
+from __future__ import annotations
+
+import json
+import os
+from dataclasses import dataclass, field
+from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional
+
+import numpy as np
+
+from . import _smcbench
+from ._smcbench import InvalidInputError, scenes, scenes_directory
+
+__all__ = [
+    "InvalidInputError", "SolveResult", "Simulation", "Problem", "solvers", "solve", "solve_mcp", "simulate",
+    "scenes", "scenes_directory", "read_problem_set", "write_problem_set", "load_bench_results",
+]
+
+
+@dataclass
+class SolveResult:
+    """What one solve returned (the fields of the C++ SolveResult).
+
+    status: the status name ("solved", "iteration_limit", "infeasible", ...); solved: status == "solved".
+    z, w: the returned point and F(z) (M z + q for a box-MLCP). residual_*: the merit function at z
+    (docs/verdict.md). time_seconds: wall time of the C++ Solve call. details: backend-specific numbers.
+    solver: the backend that was asked; chosen: for "auto", the backend whose answer this is (else None).
+    """
+
+    status: str
+    solved: bool
+    z: np.ndarray
+    w: np.ndarray
+    iterations: int
+    residual_abs: float
+    residual_rel: float
+    residual_scaled: float
+    time_seconds: float
+    details: Dict[str, float]
+    solver: str
+    chosen: Optional[str]
+    message: str
+
+
+def _result(raw: dict) -> SolveResult:
+    return SolveResult(solved=raw["status"] == "solved", **raw)
+
+
+def solvers() -> List[dict]:
+    """The registered backends: dicts with name, algorithm, reference, dense, sparse, symmetric_only, exact, mcp,
+    default_size_limit and options (the help text of their backend options)."""
+    return _smcbench.solvers()
+
+
+def _is_sparse(matrix: Any) -> bool:
+    try:
+        import scipy.sparse
+    except ImportError:  # no scipy: nothing can be a scipy matrix
+        return False
+    return scipy.sparse.issparse(matrix)
+
+
+def _csc_tuple(matrix: Any, what: str) -> tuple:
+    """A scipy.sparse matrix as (rows, cols, indptr, indices, data) of its CSC form, int32 indices."""
+    csc = matrix.tocsc()
+    if csc.nnz > np.iinfo(np.int32).max:
+        raise InvalidInputError(f"{what}: {csc.nnz} stored entries exceed the int32 indices of the C++ core")
+    return (csc.shape[0], csc.shape[1], np.asarray(csc.indptr, dtype=np.int32),
+            np.asarray(csc.indices, dtype=np.int32), np.asarray(csc.data, dtype=np.float64))
+
+
+def _bound(value: Any, default: float, size: int, what: str) -> np.ndarray:
+    """A bound vector: None → default everywhere, a scalar → that value everywhere, else the array itself."""
+    if value is None:
+        return np.full(size, default)
+    array = np.asarray(value, dtype=np.float64)
+    if array.ndim == 0:
+        return np.full(size, float(array))
+    return array  # its size is checked by the C++ core (message names l or u)
+
+
+def _size_of(q: Any) -> int:
+    return int(np.asarray(q).reshape(-1).shape[0]) if np.ndim(q) == 1 else -1
+
+
+def solve(M, q, l=None, u=None, solver: str = "auto", tol: float = 1e-10, time_limit: Optional[float] = None, *,
+          z0=None, max_iterations: Optional[int] = None, polish: bool = True, **backend_options) -> SolveResult:
+    """Solve the box-MLCP  M z + q = w − v,  l ≤ z ≤ u,  w, v ≥ 0,  (z − l)ᵀw = 0,  (u − z)ᵀv = 0.
+
+    M: a dense array (any float dtype or contiguity; copied) or a scipy.sparse matrix (as CSC; backends that
+    take sparse M natively: see solvers(), e.g. newton; dense-only ones solve a dense copy up to 4096 rows).
+    q: the vector q. l, u: bounds; None means l = 0 and u = +inf (the standard LCP), a scalar is used on every
+    row (l=-1, u=1: the relay problem), np.inf / -np.inf are allowed (l = -inf, u = inf: a free row).
+    solver: a name from solvers(); "auto" picks per problem (docs/auto.md). tol: the relative and scaled merit
+    tolerance of "solved". time_limit: seconds (None: no limit). z0: warm start. max_iterations: None = the
+    backend's default. polish: the exact polish of the answer (on by default, as in the CLI).
+    backend_options: the backend's typed options by name (solvers()[i]["options"]; `--set` in the CLI), e.g.
+    solve(M, q, solver="psor", omega=1.2).
+
+    Raises InvalidInputError (a ValueError) for NaN/inf in M or q, NaN bounds, l > u, size mismatches, an
+    unknown solver or option, or an invalid option value.
+    """
+    m = _size_of(q)
+    matrix = _csc_tuple(M, "M") if _is_sparse(M) else M
+    return _result(_smcbench._solve(matrix, q, _bound(l, 0.0, max(m, 0), "l"), _bound(u, np.inf, max(m, 0), "u"),
+                                    solver, float(tol), time_limit, z0, max_iterations, polish, backend_options))
+
+
+def solve_mcp(F: Callable, J: Callable, l, u, z0=None, solver: str = "newton", tol: float = 1e-10,
+              time_limit: Optional[float] = None, *, max_iterations: Optional[int] = None,
+              **backend_options) -> SolveResult:
+    """Solve the nonlinear MCP: z in [l, u] with −F(z) in the normal cone of [l, u] at z, i.e. per row
+    F_i(z) ≥ 0 at z_i = l_i, F_i(z) ≤ 0 at z_i = u_i, F_i(z) = 0 strictly inside.
+
+    F(z) -> array of shape (n,); J(z) -> the Jacobian dF/dz, a dense (n, n) array or a scipy.sparse matrix.
+    Both are called with a float64 array z of shape (n,) while the backend runs (it releases the GIL and takes it
+    back for each call). l, u: bound vectors (scalars are used on every row; ±np.inf allowed); z0: the start
+    point (default: the projection of 0 onto the box). An exception raised by F or J stops the solve and is
+    raised from solve_mcp; a result of the wrong shape raises InvalidInputError.
+    The Jacobian's kind (dense or sparse) is taken from J's value at the start point: a sparse J is handed to
+    newton's sparse path (UMFPACK).
+    """
+    l_vec = np.asarray(l, dtype=np.float64)
+    u_vec = np.asarray(u, dtype=np.float64)
+    if l_vec.ndim == 0 and u_vec.ndim == 0:
+        raise InvalidInputError("solve_mcp: l and u are both scalars: give at least one bound vector (size n)")
+    n = l_vec.shape[0] if l_vec.ndim == 1 else u_vec.shape[0]
+    l_vec = _bound(l_vec, 0.0, n, "l")
+    u_vec = _bound(u_vec, 0.0, n, "u")
+    start = np.asarray(z0, dtype=np.float64) if z0 is not None else np.clip(0.0, l_vec, u_vec)
+    sparse_jacobian = _is_sparse(J(start.copy()))
+
+    def jacobian(z: np.ndarray):
+        value = J(z)
+        return _csc_tuple(value, "solve_mcp: J(z)") if _is_sparse(value) else value
+
+    return _result(_smcbench._solve_mcp(F, jacobian, sparse_jacobian, l_vec, u_vec, z0, solver, float(tol),
+                                        time_limit, max_iterations, backend_options))
+
+
+@dataclass
+class Simulation:
+    """A recorded run of a scene. Rows are steps k = 0 .. steps: t (steps+1,), x (steps+1, n), s and y
+    (steps+1, m); row 0 is the initial state (s_0 = 0). iterations, residual and status describe the one-step
+    problem that produced row k (row 0: none). summary: the JSON summary of `smcbench simulate --summary`
+    (steps, x_final, reaching_step, s_error_max / y_error_max against a certified reference run, ...)."""
+
+    scene: str
+    description: str
+    solver: Optional[str]
+    t: np.ndarray
+    x: np.ndarray
+    s: np.ndarray
+    y: np.ndarray
+    iterations: np.ndarray
+    residual: np.ndarray
+    status: List[str]
+    summary: dict
+    wall_seconds: float
+
+
+_SIMULATE_OVERRIDES = ("method", "h", "T", "theta", "gamma", "x0", "parameters", "solver", "tol", "max_iterations",
+                       "warm_start", "polish", "on_failure", "algorithm", "newton_tol", "newton_max_iterations",
+                       "reach_tol", "reference")
+
+
+def simulate(scene, *, backend_options: Optional[dict] = None, **overrides) -> Simulation:
+    """Run a scene with implicit (or explicit / ZOH) Euler, as `smcbench simulate` does.
+
+    scene: a registered name (smcbench.scenes()), the path of a scene file, or a dict in the scene JSON format
+    (problems/scenes/README.md). overrides (each default: the scene's own value): method ("implicit",
+    "explicit", "zoh", "zoh-explicit"), h, T, theta, gamma, x0, parameters (dict name → value), solver (default:
+    the scene's, else "auto"), tol (1e-10), max_iterations, warm_start (True), polish (True), on_failure
+    ("stop" | "continue"), algorithm ("newton-mlcp" | "mcp", nonlinear scenes), newton_tol,
+    newton_max_iterations, reach_tol (10·tol), reference (True: run the certified reference run for the
+    summary's s_error_max / y_error_max; False skips that second run). backend_options: the backend's typed
+    options (the CLI's --set). An unknown override raises TypeError; a bad value InvalidInputError.
+    """
+    unknown = sorted(set(overrides) - set(_SIMULATE_OVERRIDES))
+    if unknown:
+        raise TypeError(f"simulate: unknown override(s) {', '.join(unknown)} (known: {', '.join(_SIMULATE_OVERRIDES)})")
+    settings = _smcbench._SimulateOverrides()
+    for name, value in overrides.items():
+        if name == "parameters":
+            value = {str(k): float(v) for k, v in value.items()}
+        elif name in ("h", "T", "theta", "gamma", "tol", "newton_tol", "reach_tol"):
+            value = float(value)
+        elif name == "x0":
+            value = np.asarray(value, dtype=np.float64)
+        setattr(settings, name, value)
+    if isinstance(scene, dict):
+        raw = _smcbench._simulate(json.dumps(scene), True, settings, backend_options or {})
+    elif isinstance(scene, (str, os.PathLike)):
+        raw = _smcbench._simulate(os.fspath(scene), False, settings, backend_options or {})
+    else:
+        raise TypeError(f"simulate: scene must be a name, a path or a dict, got {type(scene).__name__}")
+    raw["summary"] = json.loads(raw.pop("summary_json"))
+    return Simulation(**raw)
+
+
+@dataclass
+class Problem:
+    """One problem of a .smcps set: the box-MLCP (M dense ndarray or scipy.sparse.csc_matrix; q, l, u) with the
+    library's metadata: id (unique in the set), source, tags, seed, expected ("unknown", "solvable",
+    "infeasible"), solution (a known z, or None), metadata (str → str), matrix (symmetric / positive_definite /
+    p_matrix: "yes", "no", "unknown") and reference (certificate, z, condition of the certified reference)."""
+
+    id: str
+    M: Any
+    q: np.ndarray
+    l: np.ndarray
+    u: np.ndarray
+    source: str = "python"
+    tags: List[str] = field(default_factory=list)
+    seed: Optional[int] = None
+    expected: str = "unknown"
+    solution: Optional[np.ndarray] = None
+    metadata: Dict[str, str] = field(default_factory=dict)
+    matrix: Dict[str, str] = field(default_factory=dict)
+    reference: Dict[str, Any] = field(default_factory=dict)
+
+    def solve(self, solver: str = "auto", **kwargs) -> SolveResult:
+        """smcbench.solve on this problem."""
+        return solve(self.M, self.q, self.l, self.u, solver=solver, **kwargs)
+
+
+def read_problem_set(path) -> List[Problem]:
+    """The problems of a .smcps file (problems/library/README.md), in file order. The set's name, description and
+    format version are on the returned list as attributes .name, .description, .version."""
+    raw = _smcbench._read_problem_set(os.fspath(path))
+    problems = _ProblemList(_problem_from_dict(d) for d in raw["problems"])
+    problems.name, problems.description, problems.version = raw["name"], raw["description"], raw["version"]
+    return problems
+
+
+class _ProblemList(list):
+    """A list of Problem with the set's name, description and version."""
+
+    name: str = ""
+    description: str = ""
+    version: int = 0
+
+
+def _problem_from_dict(d: dict) -> Problem:
+    if isinstance(d["M"], tuple):
+        import scipy.sparse
+        rows, cols, indptr, indices, data = d["M"]
+        d["M"] = scipy.sparse.csc_matrix((data, indices, indptr), shape=(rows, cols))
+    return Problem(**d)
+
+
+def write_problem_set(path, problems: Iterable, name: str = "python", description: str = "") -> None:
+    """Write problems (Problem objects, or dicts with at least id, M, q, l, u) as a .smcps file. Bounds may be
+    None (l = 0, u = +inf) or scalars as in solve(). Raises InvalidInputError for an invalid problem or a duplicate
+    id; the file is written under a temporary name and renamed, so a failed write leaves no partial file."""
+    dicts = []
+    for p in problems:
+        d = dict(p.__dict__) if isinstance(p, Problem) else dict(p)
+        m = _size_of(d.get("q"))
+        d["l"] = _bound(d.get("l"), 0.0, max(m, 0), "l")
+        d["u"] = _bound(d.get("u"), np.inf, max(m, 0), "u")
+        if _is_sparse(d.get("M")):
+            d["M"] = _csc_tuple(d["M"], "M")
+        for key in ("reference", "matrix"):
+            if key in d and not d[key]:
+                del d[key]
+        dicts.append(d)
+    _smcbench._write_problem_set(os.fspath(path), dicts, name, description)
+
+
+def load_bench_results(path, include_sweep: bool = True):
+    """A pandas DataFrame of a `smcbench bench` results.json (format smcbench-bench/1): one row per problem ×
+    backend record, with the columns of results.csv (suite, problem, solver, mode, size, sparse, expected, status,
+    verdict, iterations, residual_abs/rel/scaled, tolerance, time_median/min/max/mad, samples, solves_per_sample,
+    forward_error, forward_error_rel, forward_allowance, certificate, tags, message). include_sweep adds the
+    tolerance-sweep records (mode "sweep"). The run's command, environment and format are in df.attrs.
+    path: the results.json file or the folder holding it."""
+    import pandas as pd  # imported here: the rest of the module does not need pandas
+
+    path = os.fspath(path)
+    if os.path.isdir(path):
+        path = os.path.join(path, "results.json")
+    with open(path, encoding="utf-8") as f:
+        document = json.load(f)
+    if not str(document.get("format", "")).startswith("smcbench-bench/"):
+        raise InvalidInputError(f"'{path}': not a smcbench bench results file (format {document.get('format')!r}, "
+                                "expected smcbench-bench/1)")
+    rows = []
+    for suite in document.get("suites", []):
+        rows.extend(suite.get("records", []))
+        if include_sweep:
+            rows.extend(suite.get("sweep", []))
+    frame = pd.DataFrame.from_records(rows)
+    frame.attrs.update({key: document.get(key) for key in ("format", "command", "environment", "polish")})
+    return frame

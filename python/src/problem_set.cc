@@ -1,0 +1,154 @@
+// .smcps problem sets from Python (problems/library/problem_set_io.h): read a set into plain dicts of numpy arrays
+// and metadata, write a set from such dicts. __init__.py wraps the dicts in smcbench.Problem.
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <string>
+#include <utility>
+
+#include "convert.h"
+#include "problems/library/problem_set_io.h"
+
+namespace smcbench::python {
+namespace {
+
+Tristate TristateFromText(const std::string& text, const std::string& field) {
+  for (Tristate value : {Tristate::kUnknown, Tristate::kNo, Tristate::kYes}) {
+    if (text == ToString(value)) return value;
+  }
+  throw InvalidInputError(field + ": expected 'yes', 'no' or 'unknown', got '" + text + "'");
+}
+
+py::object MatrixToPython(const BoxMLCP& problem) {
+  if (!problem.is_sparse()) return ToNumpyRows(problem.dense_matrix());
+  // (rows, cols, indptr, indices, data): __init__.py makes a scipy.sparse.csc_matrix of it.
+  const SparseMatrix& M = problem.sparse_matrix();
+  const int nnz = static_cast<int>(M.nonZeros());
+  py::array_t<std::int32_t> indptr(M.outerSize() + 1), indices(nnz);
+  py::array_t<double> data(nnz);
+  std::copy(M.outerIndexPtr(), M.outerIndexPtr() + M.outerSize() + 1, indptr.mutable_data());
+  std::copy(M.innerIndexPtr(), M.innerIndexPtr() + nnz, indices.mutable_data());
+  std::copy(M.valuePtr(), M.valuePtr() + nnz, data.mutable_data());
+  return py::make_tuple(M.rows(), M.cols(), indptr, indices, data);
+}
+
+py::dict ProblemToDict(const LibraryProblem& p) {
+  py::dict out;
+  out["id"] = p.id;
+  out["source"] = p.source;
+  out["M"] = MatrixToPython(p.problem);
+  out["q"] = ToNumpy(p.problem.q());
+  out["l"] = ToNumpy(p.problem.l());
+  out["u"] = ToNumpy(p.problem.u());
+  out["tags"] = p.tags;
+  out["seed"] = p.seed ? py::object(py::int_(*p.seed)) : py::object(py::none());
+  out["expected"] = std::string(ToString(p.expected));
+  out["solution"] = p.solution.size() ? py::object(ToNumpy(p.solution)) : py::object(py::none());
+  out["metadata"] = p.metadata;
+  py::dict matrix;
+  matrix["symmetric"] = std::string(ToString(p.matrix.symmetric));
+  matrix["positive_definite"] = std::string(ToString(p.matrix.positive_definite));
+  matrix["p_matrix"] = std::string(ToString(p.matrix.p_matrix));
+  out["matrix"] = matrix;
+  py::dict reference;
+  reference["certificate"] = std::string(ToString(p.reference.certificate));
+  reference["z"] = p.reference.z.size() ? py::object(ToNumpy(p.reference.z)) : py::object(py::none());
+  reference["condition"] = p.reference.condition;
+  out["reference"] = reference;
+  return out;
+}
+
+py::dict ReadSet(const std::string& path) {
+  ProblemSetFileInfo info;
+  ProblemSet set;
+  {
+    py::gil_scoped_release release;
+    set = ReadProblemSetFile(path, &info);
+  }
+  py::dict out;
+  out["name"] = set.name;
+  out["description"] = set.description;
+  out["version"] = info.version;
+  py::list problems;
+  for (const LibraryProblem& p : set.problems) problems.append(ProblemToDict(p));
+  out["problems"] = problems;
+  return out;
+}
+
+// One dict (keys as ProblemToDict; id, M, q, l, u required, the rest optional) as a LibraryProblem.
+LibraryProblem ProblemFromDict(const py::dict& d, std::size_t index) {
+  const std::string where = "problems[" + std::to_string(index) + "]";
+  for (const char* key : {"id", "M", "q", "l", "u"}) {
+    if (!d.contains(key)) throw InvalidInputError(where + ": missing '" + key + "'");
+  }
+  const py::object M = d["M"];
+  const std::string id = d["id"].cast<std::string>();
+  const std::string source = d.contains("source") && !d["source"].is_none() ? d["source"].cast<std::string>() : "python";
+  Vector q = ToVector(d["q"], where + ".q"), l = ToVector(d["l"], where + ".l"), u = ToVector(d["u"], where + ".u");
+  LibraryProblem p =
+      IsCscTuple(M) ? MakeLibraryProblem(id, source,
+                                         BoxMLCP(ToSparseMatrix(M.cast<py::tuple>(), where + ".M"), std::move(q),
+                                                 std::move(l), std::move(u), id))
+                    : MakeLibraryProblem(id, source,
+                                         BoxMLCP(ToDenseMatrix(M, where + ".M"), std::move(q), std::move(l),
+                                                 std::move(u), id));
+  const auto has = [&](const char* key) { return d.contains(key) && !d[key].is_none(); };
+  if (has("tags")) p.tags = d["tags"].cast<std::vector<std::string>>();
+  if (has("seed")) p.seed = d["seed"].cast<std::uint64_t>();
+  if (has("expected")) {
+    const std::string text = d["expected"].cast<std::string>();
+    const auto expected = ExpectedOutcomeFromString(text);
+    if (!expected) {
+      throw InvalidInputError(where + ".expected: expected 'unknown', 'solvable' or 'infeasible', got '" + text + "'");
+    }
+    p.expected = *expected;
+  }
+  if (has("solution")) p.solution = ToVector(d["solution"], where + ".solution");
+  if (has("metadata")) p.metadata = d["metadata"].cast<std::map<std::string, std::string>>();
+  if (has("matrix")) {
+    const py::dict matrix = d["matrix"].cast<py::dict>();
+    const auto tristate = [&](const char* key, Tristate* field) {
+      if (matrix.contains(key)) *field = TristateFromText(matrix[key].cast<std::string>(), where + ".matrix." + key);
+    };
+    tristate("symmetric", &p.matrix.symmetric);
+    tristate("positive_definite", &p.matrix.positive_definite);
+    tristate("p_matrix", &p.matrix.p_matrix);
+  }
+  if (has("reference")) {
+    const py::dict reference = d["reference"].cast<py::dict>();
+    if (reference.contains("certificate")) {
+      const std::string text = reference["certificate"].cast<std::string>();
+      const auto certificate = CertificateFromString(text);
+      if (!certificate) throw InvalidInputError(where + ".reference.certificate: unknown certificate '" + text + "'");
+      p.reference.certificate = *certificate;
+    }
+    if (reference.contains("z") && !reference["z"].is_none()) {
+      p.reference.z = ToVector(reference["z"], where + ".reference.z");
+    }
+    if (reference.contains("condition")) p.reference.condition = reference["condition"].cast<double>();
+  }
+  return p;
+}
+
+void WriteSet(const std::string& path, const py::list& problems, const std::string& name,
+              const std::string& description) {
+  ProblemSet set;
+  set.name = name;
+  set.description = description;
+  for (std::size_t i = 0; i < problems.size(); ++i) {
+    set.problems.push_back(ProblemFromDict(problems[i].cast<py::dict>(), i));
+  }
+  py::gil_scoped_release release;
+  WriteProblemSetFile(set, path);  // validates the set (ids unique, sizes) first
+}
+
+}  // namespace
+
+void BindProblemSet(py::module_& m) {
+  using namespace pybind11::literals;
+  m.def("_read_problem_set", &ReadSet, "path"_a, "Read a .smcps file into dicts (see smcbench.read_problem_set).");
+  m.def("_write_problem_set", &WriteSet, "path"_a, "problems"_a, "name"_a, "description"_a,
+        "Write dicts as a .smcps file (see smcbench.write_problem_set).");
+}
+
+}  // namespace smcbench::python

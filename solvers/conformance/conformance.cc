@@ -1,0 +1,289 @@
+// The conformance checks (conformance.h), moved here from tests/conformance_test.cc so that users run the same ones.
+#include "solvers/conformance/conformance.h"
+
+#include <algorithm>
+#include <cmath>
+#include <exception>
+#include <memory>
+#include <sstream>
+#include <utility>
+
+#include "solvers/enumerative/enumerative_solver.h"
+
+namespace smcbench {
+namespace {
+
+// Collects failures of one check in the form the report keeps.
+class Findings {
+ public:
+  Findings(std::string check, ConformanceReport* report) : check_(std::move(check)), report_(report) {}
+  void Fail(const std::string& problem, const std::string& message) {
+    report_->failures.push_back({check_, problem, message});
+  }
+
+ private:
+  std::string check_;
+  ConformanceReport* report_;
+};
+
+std::string Num(double x) {
+  std::ostringstream s;
+  s.precision(3);
+  s << x;
+  return s.str();
+}
+
+// The independent check: natural residual recomputed here from M, q, l, u, relative to 1 + ‖q‖∞.
+double IndependentResidual(const BoxMLCP& p, const Vector& z) {
+  const DenseMatrix M = p.ToDense();
+  const Vector w = M * z + p.q();
+  double r = 0;
+  for (int i = 0; i < p.size(); ++i) {
+    const double proj = std::min(std::max(z[i] - w[i], p.l()[i]), p.u()[i]);
+    r = std::max(r, std::abs(z[i] - proj));
+  }
+  return r / (1.0 + p.q().cwiseAbs().maxCoeff());
+}
+
+std::unique_ptr<Solver> Make(const SolverFactory& create) {
+  std::unique_ptr<Solver> solver = create();
+  if (!solver) throw InvalidInputError("CheckConformance: the factory returned no backend");
+  return solver;
+}
+
+void CheckKnownSolutions(const SolverFactory& create, const ConformanceOptions& options, ConformanceReport* report) {
+  Findings findings("known-solution", report);
+  const std::unique_ptr<Solver> solver = Make(create);
+  EnumerativeSolver reference;
+  const ConformanceCase cases[] = {
+      {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 0.0, 0},
+      {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 0.0, 0},
+      {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kMixed, 0.0, 0},
+      {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 0.0, 0},
+      {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kBox, 0.0, 0},
+      {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kMixed, 0.0, 0},
+      {MatrixFamily::kDiagonallyDominant, BoundKind::kRelay, 0.0, 0},
+      {MatrixFamily::kDiagonallyDominant, BoundKind::kMixed, 0.0, 0},
+      // Degenerate: z* at a bound with w* = 0 on a third (half) of the rows.
+      {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 0.34, 0},
+      {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 0.34, 0},
+      {MatrixFamily::kDiagonallyDominant, BoundKind::kBox, 0.5, 0},
+  };
+  int solved = 0;
+  for (ConformanceCase c : cases) {
+    for (int n : {1, 2, 3, 5, 8, 10, 30}) {
+      if (n > options.max_size) continue;
+      c.size = n;
+      for (std::uint64_t seed : {1u, 2u}) {
+        GeneratorOptions g;
+        g.family = c.family;
+        g.bounds = c.bounds;
+        g.degenerate_fraction = c.degenerate_fraction;
+        g.size = n;
+        g.seed = seed;
+        const GeneratedProblem gen = GenerateProblem(g);
+        const BoxMLCP& p = gen.problem;
+        SolverOptions solve_options;
+        solve_options.tolerance = options.tolerance;
+        solve_options.time_limit_seconds = options.time_limit_seconds;
+        const SolveResult r = solver->Solve(p, solve_options);
+        ++report->solves;
+        const bool must_solve = !options.must_solve || options.must_solve(c);
+        if (!r.solved()) {
+          if (must_solve) {
+            findings.Fail(p.name(), "not solved: " + std::string(ToString(r.status)) + " " + r.message + " (residual " +
+                                        Num(r.residual_rel) + ")");
+          }
+          continue;
+        }
+        // The invariant for every backend and every problem: "solved" is true.
+        ++solved;
+        ++report->solved_checked;
+        const double residual = IndependentResidual(p, r.z);
+        if (!(residual <= options.tolerance)) {
+          findings.Fail(p.name(), "claimed solved, but the recomputed natural residual is " + Num(residual) +
+                                      " > tolerance " + Num(options.tolerance));
+        }
+        // P-matrices have a unique solution: it must be z*, and the enumerative one.
+        const double scale = 1.0 + gen.z_star.cwiseAbs().maxCoeff();
+        const double error = (r.z - gen.z_star).cwiseAbs().maxCoeff();
+        if (!(error <= 1e-6 * scale)) findings.Fail(p.name(), "z differs from the planted z* by " + Num(error));
+        if (n <= 10) {
+          const SolveResult e = reference.Solve(p, solve_options);
+          if (!e.solved()) {
+            findings.Fail(p.name(), "the enumerative reference did not solve it: " + e.message);
+          } else if (const double gap = (r.z - e.z).cwiseAbs().maxCoeff(); !(gap <= 1e-6 * scale)) {
+            findings.Fail(p.name(), "z differs from the enumerative backend's answer by " + Num(gap));
+          }
+        }
+      }
+    }
+  }
+  if (solved == 0) findings.Fail("(all)", "solved no problem");
+}
+
+// A seeded symmetric positive definite problem of n rows with the given bounds (a unique solution: a P-matrix).
+BoxMLCP SpdProblem(BoundKind bounds, int n, int seed) {
+  GeneratorOptions g;
+  g.family = MatrixFamily::kSymmetricPositiveDefinite;
+  g.bounds = bounds;
+  g.size = n;
+  g.seed = seed;
+  return GenerateProblem(g).problem;
+}
+
+// A session without the warm active-set path (the time-stepper's path, the backend's own algorithm) is Solve
+// without the per-call re-checks: over a sequence of one-step problems (q replaced, warm start = the previous
+// answer) two instances of the backend, one driven by each, must return the same bits (the session adds only the
+// detail "path").
+void CheckSessionBits(const SolverFactory& create, const ConformanceOptions& options, ConformanceReport* report) {
+  Findings findings("session-bits", report);
+  std::unique_ptr<Solver> plain = Make(create);
+  const std::unique_ptr<Solver> prepared = Make(create);
+  for (BoundKind bounds : {BoundKind::kRelay, BoundKind::kLCP, BoundKind::kBox}) {
+    for (int n : {1, 2, 3, 4, 6}) {
+      BoxMLCP p = SpdProblem(bounds, n, 7);
+      const Vector q0 = p.q();
+      SolverOptions solve_options;
+      solve_options.tolerance = options.tolerance;
+      SessionOptions no_reuse;
+      no_reuse.reuse_active_set = false;
+      SolveSession session = prepared->Prepare(p, solve_options, no_reuse);
+      // A meta-backend's session calls its choice directly: compare with that backend's own Solve.
+      if (prepared->DelegateFor(p, solve_options) != nullptr) plain = CreateSolver(session.backend().info().name);
+      SolveResult a, b;
+      Vector warm_a, warm_b;
+      for (int k = 0; k < 12; ++k) {
+        // A slowly turning right side, as along a trajectory.
+        Vector q = q0;
+        for (int i = 0; i < n; ++i) q[i] *= std::cos(0.4 * k + i);
+        p.set_q(q);
+        solve_options.warm_start = warm_a;
+        plain->Solve(p, solve_options, &a);
+        session.Solve(q, &b, &warm_b);
+        report->solves += 2;
+        const std::string where = p.name() + ", step " + std::to_string(k);
+        if (a.status != b.status) {
+          findings.Fail(where, "status " + std::string(ToString(b.status)) + " from the session, " + std::string(ToString(a.status)) +
+                                   " from Solve");
+          break;
+        }
+        std::string differs;
+        if (a.message != b.message) differs += " message";
+        if (a.solver != b.solver) differs += " solver";
+        if (a.z != b.z) differs += " z";
+        if (a.w != b.w) differs += " w";
+        if (a.residual_abs != b.residual_abs || a.residual_rel != b.residual_rel ||
+            a.residual_scaled != b.residual_scaled) {
+          differs += " residuals";
+        }
+        if (a.iterations != b.iterations) differs += " iterations";
+        if (b.GetDetail("path") != static_cast<double>(SessionPath::kBackend)) differs += " path";
+        if (a.num_details + 1 != b.num_details) {
+          differs += " details(count)";
+        } else {
+          for (int d = 0; d < a.num_details; ++d) {
+            if (std::string_view(a.details[d].name) != b.details[d].name || a.details[d].value != b.details[d].value) {
+              differs += std::string(" detail:") + a.details[d].name;
+            }
+          }
+        }
+        if (!differs.empty()) findings.Fail(where, "the session's result differs from Solve's in:" + differs);
+        if (a.solved()) {
+          warm_a = a.z;
+          warm_b = b.z;
+        }
+      }
+    }
+  }
+}
+
+// With the warm active-set path on (the default), every answer still satisfies the verdict and agrees with the
+// backend's own answer to rounding, and along a slowly moving q most calls are answered by the reused set.
+void CheckSessionReuse(const SolverFactory& create, const ConformanceOptions& options, ConformanceReport* report) {
+  Findings findings("session-reuse", report);
+  const std::unique_ptr<Solver> plain = Make(create);
+  const std::unique_ptr<Solver> prepared = Make(create);
+  int reused = 0, calls = 0;
+  for (BoundKind bounds : {BoundKind::kRelay, BoundKind::kLCP, BoundKind::kBox}) {
+    for (int n : {1, 2, 4, 8}) {
+      BoxMLCP p = SpdProblem(bounds, n, 11);
+      const Vector q0 = p.q();
+      SolverOptions solve_options;
+      solve_options.tolerance = options.tolerance;
+      SolveSession session = prepared->Prepare(p, solve_options);
+      SolveResult a, b;
+      for (int k = 0; k < 40; ++k) {
+        Vector q = q0;
+        for (int i = 0; i < n; ++i) q[i] *= 1.0 + 0.3 * std::sin(0.05 * k + i);
+        p.set_q(q);
+        plain->Solve(p, solve_options, &a);
+        session.Solve(q, &b);
+        report->solves += 2;
+        ++calls;
+        if (!a.solved()) continue;
+        const std::string where = p.name() + ", step " + std::to_string(k);
+        if (!b.solved()) {
+          findings.Fail(where, "Solve solved it, the session did not: " + b.message);
+          break;
+        }
+        if (!(b.residual_rel <= options.tolerance && b.residual_scaled <= options.tolerance)) {
+          findings.Fail(where, "the session's solved answer has residuals " + Num(b.residual_rel) + " / " +
+                                   Num(b.residual_scaled) + " above the tolerance");
+        }
+        const double gap = (a.z - b.z).lpNorm<Eigen::Infinity>();
+        if (!(gap <= 1e-9 * (1.0 + a.z.lpNorm<Eigen::Infinity>()))) {
+          findings.Fail(where, "the session's z differs from Solve's by " + Num(gap));
+        }
+        if (b.GetDetail("path") == static_cast<double>(SessionPath::kReusedActiveSet)) {
+          if (b.iterations != 0) findings.Fail(where, "a reused active set reports iterations");
+          ++reused;
+        }
+      }
+    }
+  }
+  if (!(reused > calls / 2)) {
+    findings.Fail("(all)", "the reused active set answered " + std::to_string(reused) + " of " +
+                               std::to_string(calls) + " calls (expected more than half)");
+  }
+}
+
+}  // namespace
+
+ConformanceReport CheckConformance(const SolverFactory& create, const ConformanceOptions& options) {
+  if (!create) throw InvalidInputError("CheckConformance: the factory is empty");
+  Make(create);  // a null backend is a usage error, not a failed check
+  ConformanceReport report;
+  using Check = void (*)(const SolverFactory&, const ConformanceOptions&, ConformanceReport*);
+  const std::pair<const char*, Check> checks[] = {
+      {"known-solution", &CheckKnownSolutions},
+      {"session-bits", &CheckSessionBits},
+      {"session-reuse", &CheckSessionReuse},
+  };
+  for (const auto& [name, check] : checks) {
+    try {
+      check(create, options, &report);
+    } catch (const std::exception& e) {
+      report.failures.push_back({name, "(during the check)", std::string("threw: ") + e.what()});
+    }
+  }
+  return report;
+}
+
+ConformanceReport CheckConformance(std::string_view registered_name, const ConformanceOptions& options) {
+  CreateSolver(registered_name);  // unknown name: InvalidInputError listing the known ones
+  const std::string name(registered_name);
+  return CheckConformance(SolverFactory([name] { return CreateSolver(name); }), options);
+}
+
+std::string ToString(const ConformanceReport& report) {
+  if (report.passed()) {
+    return "passed (" + std::to_string(report.solves) + " solves, " + std::to_string(report.solved_checked) +
+           " solved answers checked against the planted solution)";
+  }
+  std::string text;
+  for (const ConformanceFailure& f : report.failures) text += f.check + ": " + f.problem + ": " + f.message + "\n";
+  return text;
+}
+
+}  // namespace smcbench

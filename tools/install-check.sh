@@ -1,0 +1,93 @@
+#!/usr/bin/env bash
+# The installed package end to end (docs/install.md): install smcbench to a temporary prefix, then — against that
+# prefix alone — build the smallest consumer (examples/consumer) and the out-of-tree backend
+# (examples/custom-backend), run the consumer, the backend's conformance checks and a small `bench` that shows
+# the backend beside ours; check that no installed text file names the source or build tree, and that the installed
+# program reads the installed scenes after the prefix is moved.
+#
+#   bash tools/install-check.sh [BUILD_DIR]
+# BUILD_DIR: an existing build tree to install from (only what is installed gets built in it); without it a
+# library-only build is configured in the temporary directory. Set KEEP=1 to keep the temporary directory.
+# JOBS (default 2) is the build parallelism.
+set -euo pipefail
+
+source_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+jobs=${JOBS:-2}
+work=$(mktemp -d "${TMPDIR:-/tmp}/smcbench-install-check.XXXXXX")
+if [[ "${KEEP:-0}" != 1 ]]; then trap 'rm -rf "$work"' EXIT; fi
+step() { echo "== install-check: $*"; }
+fail() { echo "install-check: FAILED: $*" >&2; exit 1; }
+
+if [[ $# -ge 1 && -n "$1" ]]; then
+  build_dir=$(cd "$1" && pwd)
+else
+  build_dir="$work/build"
+  step "configuring a library-only build in $build_dir"
+  cmake -S "$source_dir" -B "$build_dir" -DCMAKE_BUILD_TYPE=Release -DSMCBENCH_BUILD_TESTS=OFF \
+    -DSMCBENCH_BUILD_BENCHMARKS=OFF -DSMCBENCH_BUILD_PYTHON=OFF >/dev/null
+fi
+
+step "building what is installed (target smcbench_installables) in $build_dir"
+cmake --build "$build_dir" --target smcbench_installables -j "$jobs" >"$work/build.log" 2>&1 ||
+  { tail -40 "$work/build.log"; fail "build"; }
+
+prefix="$work/prefix"
+step "cmake --install $build_dir --prefix $prefix"
+cmake --install "$build_dir" --prefix "$prefix" >"$work/install.log" || fail "install"
+for f in bin/smcbench include/smcbench/smcbench.h include/smcbench/solvers/core/solver.h \
+         lib/cmake/smcbench/smcbenchConfig.cmake lib/cmake/smcbench/smcbenchTargets.cmake \
+         share/smcbench/scenes/galias-yu-2007.json share/doc/smcbench/LICENSE; do
+  [[ -e "$prefix/$f" ]] || fail "not installed: $f"
+done
+if compgen -G "$prefix/bin/*_test" >/dev/null || compgen -G "$prefix/lib/*test_support*" >/dev/null; then
+  fail "tests were installed: $(ls "$prefix/bin" "$prefix/lib")"
+fi
+
+step "no installed text file names the source or build tree"
+if leaks=$(grep -rIl -e "$source_dir" -e "$build_dir" "$prefix"); then
+  echo "$leaks" >&2
+  fail "installed text files name $source_dir or $build_dir"
+fi
+
+step "the installed program reads its own scenes, from a moved prefix, with SMCBENCH_SCENES_DIR unset"
+moved="$work/moved-prefix"
+cp -a "$prefix" "$moved"
+(cd "$work" && env -u SMCBENCH_SCENES_DIR "$moved/bin/smcbench" simulate galias-yu-2007 --T 0.01 >"$work/simulate.txt") ||
+  fail "moved prefix: smcbench simulate galias-yu-2007"
+# Proof that the scene came from the moved prefix and not from the source tree: a scene file changed there only
+# is what the program reads.
+sed -i 's/"name": *"sign"/"name": "changed-in-the-moved-prefix"/' "$moved/share/smcbench/scenes/sign.json"
+if (cd "$work" && env -u SMCBENCH_SCENES_DIR "$moved/bin/smcbench" simulate sign --T 0.01 >/dev/null 2>"$work/sign.err"); then
+  fail "moved prefix: the changed sign.json was not read (the scenes came from somewhere else)"
+fi
+grep -q "changed-in-the-moved-prefix" "$work/sign.err" || { cat "$work/sign.err"; fail "unexpected error"; }
+"$prefix/bin/smcbench" --version
+
+# The examples are copied out of the checkout, so that nothing but the prefix can supply a header or a library.
+cp -r "$source_dir/examples" "$work/examples"
+configure_example() {  # NAME
+  cmake -S "$work/examples/$1" -B "$work/$1-build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
+    -DCMAKE_EXPORT_COMPILE_COMMANDS=ON >"$work/$1-configure.log" 2>&1 || { cat "$work/$1-configure.log"; fail "configure $1"; }
+  cmake --build "$work/$1-build" -j "$jobs" >"$work/$1-build.log" 2>&1 || { tail -40 "$work/$1-build.log"; fail "build $1"; }
+  if grep -l -e "$source_dir" -e "$build_dir" "$work/$1-build/compile_commands.json" "$work/$1-build/CMakeCache.txt"; then
+    fail "$1 was built with paths into the source or build tree"
+  fi
+}
+
+step "examples/consumer against the prefix: CreateSolver(\"lemke\")->Solve(BoxMLCP::Relay(M, q))"
+configure_example consumer
+"$work/consumer-build/consumer" || fail "consumer"
+
+step "examples/custom-backend against the prefix: conformance checks of the projected Jacobi backend"
+configure_example custom-backend
+"$work/custom-backend-build/pjacobi-conformance" || fail "pjacobi conformance"
+
+step "pjacobi in smcbench list and in a small bench run beside lemke"
+"$work/custom-backend-build/pjacobi-smcbench" list | grep -q "pjacobi" || fail "pjacobi not listed"
+(cd "$work" && env -u SMCBENCH_SCENES_DIR "$work/custom-backend-build/pjacobi-smcbench" bench --suite tiny \
+  --solver pjacobi --solver lemke --out "$work/bench" --report) >"$work/bench.log" 2>&1 ||
+  { tail -30 "$work/bench.log"; fail "bench with pjacobi"; }
+grep -q "pjacobi" "$work/bench/results.csv" || fail "pjacobi missing from results.csv"
+grep -q "pjacobi" "$work/bench/report.md" || fail "pjacobi missing from report.md"
+grep "pjacobi" "$work/bench/report.md" | head -5
+echo "install-check: passed (prefix $prefix)"
