@@ -78,6 +78,21 @@ TEST(Cli, SolveDefaultsToAutoAndRecordsTheChoice) {
   EXPECT_THAT(help.out, HasSubstr("default: auto"));
 }
 
+// CLI11's own usage errors (an unknown flag, a missing argument) read like ours: one line on stderr with the
+// `smcbench:` prefix and where to look, exit status 2; --help still prints the help and exits 0.
+TEST(Cli, UsageErrorsAreOneLinePrefixedAndExitTwo) {
+  for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{{"solve", "--bogus"}, {"solve"}}) {
+    const CliRun r = RunSmcbench(args);
+    EXPECT_EQ(r.code, 2) << r.err;
+    EXPECT_THAT(r.err, ::testing::StartsWith("smcbench: "));
+    EXPECT_THAT(r.err, HasSubstr("(see 'smcbench solve --help')"));
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  }
+  const CliRun help = RunSmcbench({"solve", "--help"});
+  EXPECT_EQ(help.code, 0);
+  EXPECT_THAT(help.out, HasSubstr("--repeat"));
+}
+
 // --set BACKEND.OPTION reaches auto's own instance of that backend: with enum limited to 1 row with a choice,
 // relay_2x2 goes elsewhere. A bad option of a backend that is not selected is still an error.
 TEST(Cli, SetReachesAutosInstanceOfTheBackend) {

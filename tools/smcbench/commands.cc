@@ -500,11 +500,20 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    std::ostringstream o, e2;
-    const int code = app.exit(e, o, e2);
-    out << o.str();
-    err << e2.str();
-    return code == 0 ? 0 : 2;
+    if (e.get_exit_code() == 0) {  // --help, --help-all: CLI11 prints them
+      std::ostringstream o, e2;
+      app.exit(e, o, e2);
+      out << o.str();
+      err << e2.str();
+      return 0;
+    }
+    // CLI11's own usage errors as ours: one line with the program's prefix, where to look, exit status 2.
+    std::string where = "smcbench";
+    for (const CLI::App* sub : app.get_subcommands()) where += " " + sub->get_name();
+    std::string what = e.what();
+    std::replace(what.begin(), what.end(), '\n', ' ');
+    err << "smcbench: " << what << " (see '" << where << " --help')\n";
+    return 2;
   }
   std::string command_line = "smcbench";
   for (int i = 1; i < argc; ++i) command_line += std::string(" ") + argv[i];
