@@ -8,8 +8,10 @@
 // unless the compiler contracts a*b+c into FMAs (-ffp-contract=fast with an FMA-capable -march).
 #include "problems/generators/random_problems.h"
 
+#include <Eigen/QR>
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "problems/generators/seeded_random.h"
@@ -409,6 +411,37 @@ GeneratedProblem GenerateProblem(const GeneratorOptions& options) {
   }
   return GeneratedProblem{BoxMLCP(std::move(D), std::move(q), std::move(l), std::move(u), std::move(name)),
                           std::move(z_star), options};
+}
+
+GeneratedProblem GenerateSpdWithCondition(int n, double condition, BoundKind bounds) {
+  SeededRandom random(29);
+  DenseMatrix A(n, n);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) A(i, j) = random.Uniform(-1.0, 1.0);
+  }
+  const DenseMatrix Q = Eigen::HouseholderQR<DenseMatrix>(A).householderQ();
+  Vector lambda(n);
+  for (int i = 0; i < n; ++i) lambda[i] = std::pow(condition, -static_cast<double>(i) / (n - 1));
+  DenseMatrix M = Q * lambda.asDiagonal() * Q.transpose();
+  M = 0.5 * (M + M.transpose()).eval();
+  Vector z_star = Vector::Zero(n), w = Vector::Zero(n);
+  for (int i = 0; i < n; ++i) {
+    if (bounds == BoundKind::kRelay) {
+      if (i % 3 == 0) z_star[i] = 1.0, w[i] = -random.Uniform(0.1, 1.1);
+      if (i % 3 == 1) z_star[i] = -1.0, w[i] = random.Uniform(0.1, 1.1);
+      if (i % 3 == 2) z_star[i] = random.Uniform(-0.9, 0.9);
+    } else if (i % 2 == 0) {
+      z_star[i] = random.Uniform(0.5, 1.5);
+    } else {
+      w[i] = random.Uniform(0.1, 1.1);
+    }
+  }
+  GeneratorOptions g;
+  g.size = n;
+  g.bounds = bounds;
+  const std::string name = "spd-cond" + std::to_string(static_cast<long>(condition));
+  const Vector q = w - M * z_star;
+  return {bounds == BoundKind::kRelay ? BoxMLCP::Relay(M, q, -1.0, 1.0, name) : BoxMLCP::LCP(M, q, name), z_star, g};
 }
 
 }  // namespace smcbench

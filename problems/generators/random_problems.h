@@ -57,6 +57,13 @@ struct GeneratedProblem {
 // an out-of-range enum value).
 GeneratedProblem GenerateProblem(const GeneratorOptions& options);
 
+// An SPD problem of n rows with eigenvalues from 1 down to 1/condition (M = Q diag(λ) Qᵀ, Q orthogonal from a
+// seeded random matrix, seed 29) and a planted solution. LCP (bounds kLCP): even rows positive with w = 0, odd rows
+// at 0 with w > 0. Relay: rows at 1 (w < 0), at −1 (w > 0) and inside (w = 0) in turn. For the condition-dependent
+// choice of the auto backend (docs/auto.md). Unlike GenerateProblem it uses Eigen's QR and products, so its bits may
+// differ between builds. n ≥ 2, condition ≥ 1.
+GeneratedProblem GenerateSpdWithCondition(int n, double condition, BoundKind bounds);
+
 std::string ToString(MatrixFamily family);
 std::string ToString(BoundKind bounds);
 

@@ -6,7 +6,6 @@
 //   auto_rule_measure overhead    a one-off solve through auto against the same solve by the backend it chose
 //                                 (fastest of 15 samples each, taken in turn)
 #include <Eigen/Cholesky>
-#include <Eigen/QR>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -17,7 +16,6 @@
 #include <vector>
 
 #include "problems/generators/random_problems.h"
-#include "problems/generators/seeded_random.h"
 #include "solvers/auto/auto_solver.h"
 
 namespace smcbench {
@@ -80,35 +78,6 @@ std::string Ns(double ns) {
     std::snprintf(text, sizeof text, "%.1f ms", ns / 1e6);
   }
   return text;
-}
-
-// An SPD problem with eigenvalues 1 … 1/condition (M = Q diag(λ) Qᵀ) and a planted solution (as in
-// auto_solver_test.cc): LCP rows alternately positive (w = 0) and at 0 (w > 0); relay rows at 1, −1, inside.
-BoxMLCP SpdWithCondition(int n, double condition, bool relay) {
-  SeededRandom random(29);
-  DenseMatrix A(n, n);
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) A(i, j) = random.Uniform(-1.0, 1.0);
-  }
-  const DenseMatrix Q = Eigen::HouseholderQR<DenseMatrix>(A).householderQ();
-  Vector lambda(n);
-  for (int i = 0; i < n; ++i) lambda[i] = std::pow(condition, -static_cast<double>(i) / (n - 1));
-  DenseMatrix M = Q * lambda.asDiagonal() * Q.transpose();
-  M = 0.5 * (M + M.transpose()).eval();
-  Vector z = Vector::Zero(n), w = Vector::Zero(n);
-  for (int i = 0; i < n; ++i) {
-    if (relay) {
-      if (i % 3 == 0) z[i] = 1.0, w[i] = -random.Uniform(0.1, 1.1);
-      if (i % 3 == 1) z[i] = -1.0, w[i] = random.Uniform(0.1, 1.1);
-      if (i % 3 == 2) z[i] = random.Uniform(-0.9, 0.9);
-    } else if (i % 2 == 0) {
-      z[i] = random.Uniform(0.5, 1.5);
-    } else {
-      w[i] = random.Uniform(0.1, 1.1);
-    }
-  }
-  const Vector q = w - M * z;
-  return relay ? BoxMLCP::Relay(M, q) : BoxMLCP::LCP(M, q);
 }
 
 SolverOptions TimedOptions() {
@@ -180,7 +149,7 @@ void Condition() {
   for (int m : {16, 64, 256}) {
     for (bool relay : {false, true}) {
       for (double condition : {1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8}) {
-        const BoxMLCP problem = SpdWithCondition(m, condition, relay);
+        const BoxMLCP problem = GenerateSpdWithCondition(m, condition, relay ? BoundKind::kRelay : BoundKind::kLCP).problem;
         const Eigen::LLT<DenseMatrix> cholesky(problem.dense_matrix());
         SolveResult p, l;
         const double tp = MedianNs([&] { psor.Solve(problem, options, &p); });

@@ -5,12 +5,10 @@
 
 #include <gtest/gtest.h>
 
-#include <Eigen/QR>
 #include <cmath>
 #include <string>
 
 #include "problems/generators/random_problems.h"
-#include "problems/generators/seeded_random.h"
 #include "solvers/psor/psor_solver.h"
 
 namespace smcbench {
@@ -141,46 +139,12 @@ TEST(AutoSolver, NonlinearMcpGoesToNewton) {
   EXPECT_NEAR(r.z[0], 1.0 + std::sqrt(1.01), 1e-9);
 }
 
-// An SPD problem with eigenvalues from 1 down to 1/condition (M = Q diag(λ) Qᵀ, Q orthogonal from a seeded random
-// matrix) and a planted solution. LCP: even rows positive with w = 0, odd rows at 0 with w > 0. Relay: rows at
-// 1 (w < 0), at −1 (w > 0) and inside (w = 0) in turn.
-GeneratedProblem SpdWithCondition(int n, double condition, BoundKind bounds) {
-  SeededRandom random(29);
-  DenseMatrix A(n, n);
-  for (int j = 0; j < n; ++j) {
-    for (int i = 0; i < n; ++i) A(i, j) = random.Uniform(-1.0, 1.0);
-  }
-  const DenseMatrix Q = Eigen::HouseholderQR<DenseMatrix>(A).householderQ();
-  Vector lambda(n);
-  for (int i = 0; i < n; ++i) lambda[i] = std::pow(condition, -static_cast<double>(i) / (n - 1));
-  DenseMatrix M = Q * lambda.asDiagonal() * Q.transpose();
-  M = 0.5 * (M + M.transpose()).eval();
-  Vector z_star = Vector::Zero(n), w = Vector::Zero(n);
-  for (int i = 0; i < n; ++i) {
-    if (bounds == BoundKind::kRelay) {
-      if (i % 3 == 0) z_star[i] = 1.0, w[i] = -random.Uniform(0.1, 1.1);
-      if (i % 3 == 1) z_star[i] = -1.0, w[i] = random.Uniform(0.1, 1.1);
-      if (i % 3 == 2) z_star[i] = random.Uniform(-0.9, 0.9);
-    } else if (i % 2 == 0) {
-      z_star[i] = random.Uniform(0.5, 1.5);
-    } else {
-      w[i] = random.Uniform(0.1, 1.1);
-    }
-  }
-  GeneratorOptions g;
-  g.size = n;
-  g.bounds = bounds;
-  const std::string name = "spd-cond" + std::to_string(static_cast<long>(condition));
-  const Vector q = w - M * z_star;
-  return {bounds == BoundKind::kRelay ? BoxMLCP::Relay(M, q, -1.0, 1.0, name) : BoxMLCP::LCP(M, q, name), z_star, g};
-}
-
 // PSOR's sweeps grow with the condition number (docs/auto.md: 35 sweeps at 1e2, 3441 at 1e8 for this relay
 // problem at m = 64), lemke's pivots do not: an ill-conditioned SPD matrix goes to lemke.
 TEST(AutoSolver, IllConditionedSpdIsNotGivenToPsor) {
   AutoSolver solver;
-  EXPECT_EQ(solver.ChoiceFor(SpdWithCondition(64, 1e2, BoundKind::kRelay).problem).chosen(), AutoCandidate::kPsor);
-  const GeneratedProblem ill = SpdWithCondition(64, 1e8, BoundKind::kRelay);
+  EXPECT_EQ(solver.ChoiceFor(GenerateSpdWithCondition(64, 1e2, BoundKind::kRelay).problem).chosen(), AutoCandidate::kPsor);
+  const GeneratedProblem ill = GenerateSpdWithCondition(64, 1e8, BoundKind::kRelay);
   EXPECT_EQ(solver.ChoiceFor(ill.problem).chosen(), AutoCandidate::kLemke);
   ExpectChoice(ill, AutoCandidate::kLemke);
 }
@@ -193,7 +157,7 @@ TEST(AutoSolver, FallsBackWhenTheChoiceFailsWithoutProof) {
   o.enum_max_choice_rows = 0;
   o.psor_min_speedup = 0.0;  // psor on any SPD matrix
   AutoSolver solver(o);
-  const GeneratedProblem gen = SpdWithCondition(12, 1e6, BoundKind::kLCP);
+  const GeneratedProblem gen = GenerateSpdWithCondition(12, 1e6, BoundKind::kLCP);
   SolverOptions options;
   options.tolerance = kTol;
   options.max_iterations = 100;  // sweeps for psor (far too few at this condition), pivots for lemke (enough)
