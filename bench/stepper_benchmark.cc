@@ -1,4 +1,4 @@
-// Steps per second of the linear time-stepper on every linear scene of SCENES.md with every backend: the
+// Steps per second of the linear time-stepper on every linear scene of docs/scenes.md with every backend: the
 // pre-factored LinearStepper (M = CS built once, record = false) against the generic path that re-discretizes and
 // rebuilds the one-step problem at every step (SimulateRebuildingEachStep), plus the explicit scheme (no solve) as
 // the floor of the per-step bookkeeping. One benchmark iteration is one whole run of the scene (N steps); the

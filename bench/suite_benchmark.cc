@@ -6,7 +6,7 @@
 // a problem whose expected outcome is "infeasible" is the right answer and is timed.
 // Suites: SMCBENCH_SUITES (comma-separated names `smcbench bench --suite` takes: paper, families, hard, siconos,
 // scale, tiny or a .smcps file; default "paper,families,hard"; "siconos" and "hard" read SMCBENCH_SICONOS_DIR,
-// default ../shared/peer-data/siconos).
+// default tests/data/siconos).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -18,7 +18,7 @@
 #include <vector>
 
 #include "solvers/registry/registry.h"
-#include "tools/smcbench/bench_command.h"
+#include "problems/suites/catalogue.h"
 
 namespace smcbench {
 namespace {
@@ -63,7 +63,7 @@ void SolveBenchmark(benchmark::State& state, const LibraryProblem* problem, std:
 void RegisterAll() {
   const char* env = std::getenv("SMCBENCH_SUITES");
   const char* dir = std::getenv("SMCBENCH_SICONOS_DIR");
-  const std::string siconos_dir = dir ? dir : "../shared/peer-data/siconos";
+  const std::string siconos_dir = dir ? dir : "tests/data/siconos";
   SuiteRequest request;
   request.siconos_dir = siconos_dir;
   std::stringstream names(env ? env : "paper,families,hard");

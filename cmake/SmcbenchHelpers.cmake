@@ -50,7 +50,7 @@ function(smcbench_test name)
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} GTest::gmock GTest::gtest GTest::gtest_main smcbench_build_flags)
   target_compile_definitions(${name} PRIVATE
     SMCBENCH_SOURCE_DIR="${PROJECT_SOURCE_DIR}"
-    SMCBENCH_PEER_DATA_DIR="${PROJECT_SOURCE_DIR}/../shared/peer-data")
+    SMCBENCH_PEER_DATA_DIR="${PROJECT_SOURCE_DIR}/tests/data")  # holds siconos/ (vendored, tests/data/README.md)
   include(GoogleTest)
   set(properties LABELS "${ARG_LABELS}")
   if(ARG_ENVIRONMENT)

@@ -1,7 +1,7 @@
 // The bad-input table: every kind of bad input a user can give, through the entry points a user meets (the
 // smcbench command line run in-process, and the library API), and what they get back. Each case asserts no crash,
 // a one-line error naming the defect, and the exit code; with SMCBENCH_BAD_INPUT_TABLE=<path> the table checked
-// here is also written as markdown (the README's "What bad input gives" table is this output).
+// here is also written as markdown (the table of docs/bad-input.md is this output).
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -368,7 +368,7 @@ TEST(BadInputTable, EveryCaseHasAKnownKind) {
   }
 }
 
-// Runs every case and, if SMCBENCH_BAD_INPUT_TABLE names a file, writes the README table there.
+// Runs every case and, if SMCBENCH_BAD_INPUT_TABLE names a file, writes the table of docs/bad-input.md there.
 TEST(BadInputTable, WritesTheMarkdownTableWhenAsked) {
   const char* path = std::getenv("SMCBENCH_BAD_INPUT_TABLE");
   if (!path || !*path) GTEST_SKIP() << "set SMCBENCH_BAD_INPUT_TABLE=<file> to write the table";

@@ -1,4 +1,4 @@
-// The Siconos collection (../shared/peer-data/siconos): every file read, every backend run on every file.
+// The Siconos collection (tests/data/siconos): every file read, every backend run on every file.
 // No backend may report "solved" with a residual above tolerance (recomputed here); a file that some backend
 // certifiably solved must be solved by the exact enumerative method within its size limit.
 #include <gtest/gtest.h>

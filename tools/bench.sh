@@ -18,12 +18,14 @@ smcbench=./build/release/tools/smcbench
 # --out results/bench --overwrite: `bench` writes to a fresh folder unless told otherwise; the main job's results are
 # the committed ones. --backend-budget 300: one backend may spend 5 min on one suite (the slowest measured, a
 # siconos-mlcp-* backend on the siconos suite, takes about 65 s), so the main job's tables stay complete while a
-# runaway backend is still bounded; `bench`'s own default is 60 s.
+# runaway backend is still bounded; `bench`'s own default is 60 s. --siconos-dir: the collection vendored in this
+# repository (tests/data/siconos), so the job needs nothing outside the checkout.
 bench_status=0
-"$smcbench" bench --out results/bench --overwrite --backend-budget 300 --report --allow-wrong 'siconos-*' "$@" ||
+"$smcbench" bench --out results/bench --overwrite --backend-budget 300 --report --allow-wrong 'siconos-*' \
+  --siconos-dir tests/data/siconos "$@" ||
   bench_status=$?
 if [ "$bench_status" -ne 0 ] && [ "$bench_status" -ne 3 ]; then exit "$bench_status"; fi
-"$smcbench" collection ../shared/peer-data/siconos --time-limit 10 --markdown results/siconos-collection.md \
+"$smcbench" collection tests/data/siconos --time-limit 10 --markdown results/siconos-collection.md \
   --json results/siconos-collection.json >/dev/null
 "$smcbench" paper --out results/paper
 echo "report: results/bench/report.md, results/siconos-collection.md, results/paper/README.md"

@@ -7,6 +7,7 @@
 #include <map>
 #include <sstream>
 
+#include "solvers/core/duration_text.h"
 #include "solvers/core/problem.h"
 
 namespace smcbench {
@@ -31,12 +32,7 @@ std::string Number(double value, const char* format) {
   return buffer;
 }
 
-std::string Nanoseconds(double value) {
-  if (value < 0.0) return "-";
-  if (value >= 1e6) return Number(value / 1e6, "%.2f ms");
-  if (value >= 1e3) return Number(value / 1e3, "%.2f µs");
-  return Number(value, "%.0f ns");
-}
+std::string Nanoseconds(double value) { return DurationText(value * 1e-9); }
 
 std::string EnvironmentText(const json& env, const char* key) {
   const auto it = env.find(key);

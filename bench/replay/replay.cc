@@ -5,6 +5,7 @@
 #include <cmath>
 #include <memory>
 
+#include "solvers/registry/backend_settings.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {
@@ -104,69 +105,65 @@ void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& opt
   record->time_mad = Median(dev);
 }
 
-ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& options) {
-  std::vector<std::string> names = options.solvers;
-  if (names.empty()) {
-    for (auto n : SolverNames()) names.emplace_back(n);
+std::vector<std::unique_ptr<Solver>> CreateReplaySolvers(const ReplayOptions& options,
+                                                         std::vector<std::string>* names) {
+  if (names->empty()) {
+    for (auto n : SolverNames()) names->emplace_back(n);
   }
   std::vector<std::unique_ptr<Solver>> solvers;
-  for (const auto& n : names) solvers.push_back(CreateSolver(n));  // unknown: InvalidInputError listing names
-  for (const std::string& setting : options.settings) {
-    const auto dot = setting.find('.'), eq = setting.find('=');
-    if (dot == std::string::npos || eq == std::string::npos || eq < dot) {
-      throw InvalidInputError("bench: --set expects BACKEND.OPTION=VALUE, got '" + setting + "'");
-    }
-    for (std::size_t b = 0; b < names.size(); ++b) {
-      if (names[b] != setting.substr(0, dot)) continue;
-      std::string error;
-      if (!solvers[b]->SetOption(setting.substr(dot + 1, eq - dot - 1), setting.substr(eq + 1), &error)) {
-        throw InvalidInputError("bench: " + names[b] + ": " + error);
-      }
-    }
+  for (const auto& n : *names) solvers.push_back(CreateSolver(n));  // unknown: InvalidInputError listing names
+  try {
+    ApplyBackendSettings(options.settings, solvers);  // the one --set parser: solvers/registry/backend_settings.h
+  } catch (const InvalidInputError& e) {
+    throw InvalidInputError(std::string("bench: ") + e.what());
   }
   if (!(options.tolerance > 0.0) || !(options.time_limit_seconds > 0.0) || options.repetitions < 1 ||
       !(options.min_sample_seconds >= 0.0) || !(options.max_seconds_per_pair > 0.0)) {
     throw InvalidInputError("bench: tolerance, time limit, repetitions and sample times must be positive");
   }
-  SolverOptions solve_options;
-  solve_options.tolerance = options.tolerance;
-  solve_options.time_limit_seconds = options.time_limit_seconds;
-  solve_options.measure_time = false;  // timed from outside, around many solves
-  solve_options.polish = options.polish;
+  return solvers;
+}
 
+ReplayRecord ReplayOne(const ProblemSet& set, const LibraryProblem& p, Solver* solver, const std::string& solver_name,
+                       const ReplayOptions& options, const std::string& mode, double tolerance) {
+  SolverOptions o;
+  o.tolerance = tolerance;
+  o.time_limit_seconds = options.time_limit_seconds;
+  o.measure_time = false;  // timed from outside, around many solves
+  o.polish = options.polish;
+  ReplayRecord r = Describe(set, p, solver_name);
+  r.mode = mode;
+  ReplayOptions timing = options;
+  if (mode == "sweep") timing.repetitions = std::min(options.repetitions, 3);
+  SolveResult result;
+  TimeSolves(solver, p.problem, o, timing, &result, &r);
+  Fill(p, result, tolerance, &r);
+  return r;
+}
+
+ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& options) {
+  std::vector<std::string> names = options.solvers;
+  std::vector<std::unique_ptr<Solver>> solvers = CreateReplaySolvers(options, &names);
   ReplayResults out;
   const int sweep_problems = std::min<int>(options.tolerance_sweep_problems, static_cast<int>(set.problems.size()));
   std::size_t iterative = 0;
   for (const auto& s : solvers) iterative += !s->info().exact;
   const std::size_t total = set.problems.size() * solvers.size() + sweep_problems * iterative;
   std::size_t done = 0;
-  SolveResult result;
   for (const LibraryProblem& p : set.problems) {
     for (std::size_t b = 0; b < solvers.size(); ++b) {
-      ReplayRecord r = Describe(set, p, names[b]);
-      TimeSolves(solvers[b].get(), p.problem, solve_options, options, &result, &r);
-      Fill(p, result, options.tolerance, &r);
-      out.records.push_back(std::move(r));
+      out.records.push_back(ReplayOne(set, p, solvers[b].get(), names[b], options, "cold", options.tolerance));
       if (options.progress) options.progress(++done, total, set.name + " " + p.id + " " + names[b]);
     }
   }
   // Tolerance sweep: time against the error actually reached (residuals, and the forward error where the problem
   // has a unique reference), for the iterative backends.
-  constexpr double kSweep[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
   for (int i = 0; i < sweep_problems; ++i) {
     const LibraryProblem& p = set.problems[i];
     for (std::size_t b = 0; b < solvers.size(); ++b) {
       if (solvers[b]->info().exact) continue;
-      for (const double tol : kSweep) {
-        SolverOptions o = solve_options;
-        o.tolerance = tol;
-        ReplayRecord r = Describe(set, p, names[b]);
-        r.mode = "sweep";
-        ReplayOptions quick = options;
-        quick.repetitions = std::min(options.repetitions, 3);
-        TimeSolves(solvers[b].get(), p.problem, o, quick, &result, &r);
-        Fill(p, result, tol, &r);
-        out.sweep.push_back(std::move(r));
+      for (const double tol : kSweepTolerances) {
+        out.sweep.push_back(ReplayOne(set, p, solvers[b].get(), names[b], options, "sweep", tol));
       }
       if (options.progress) options.progress(++done, total, set.name + " sweep " + p.id + " " + names[b]);
     }

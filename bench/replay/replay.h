@@ -7,6 +7,7 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -76,6 +77,11 @@ struct ReplayRecord {
   // solved in process). False for every backend of ours, and for siconos-* ones by default: the untimed warm-up
   // solve is the probe, the timed ones run in process (detail "in_process" of solvers/siconos/siconos_solver.h).
   bool timed_in_worker = false;
+  // Where it ran (gethostname) and the most bench jobs that ran on that host at once while it ran, itself included
+  // (HostActivity, bench/replay/jobs.h): times measured beside other jobs disturb each other. Empty / 0 in results
+  // written before sharding (issue 17).
+  std::string host;
+  int concurrent_jobs = 0;
 };
 
 struct ReplayResults {
@@ -87,6 +93,21 @@ struct ReplayResults {
 // setting, or invalid options; a
 // backend that fails on a problem is a record, never an exception.
 ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& options);
+
+// The tolerances of the tolerance sweep (ReplayOptions::tolerance_sweep_problems), loosest first.
+inline constexpr double kSweepTolerances[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
+
+// The backends by name (empty: every registered one) with options.settings applied, in the order of *names (filled
+// in when empty). InvalidInputError for an unknown name or a rejected setting (a setting must reach one of the
+// backends: solvers/registry/backend_settings.h).
+std::vector<std::unique_ptr<Solver>> CreateReplaySolvers(const ReplayOptions& options, std::vector<std::string>* names);
+
+// One problem × backend: cold (mode "cold", at options.tolerance) or one step of the tolerance sweep (mode "sweep",
+// at tolerance, at most 3 samples), timed (TimeSolves) and judged. What ReplayProblemSet does for each pair; what
+// one job of a sharded `bench` runs.
+ReplayRecord ReplayOne(const ProblemSet& set, const LibraryProblem& problem, Solver* solver,
+                       const std::string& solver_name, const ReplayOptions& options, const std::string& mode,
+                       double tolerance);
 
 // Times one solve configuration: repeated solves of problem with solver/options through one session (cold unless
 // replay.reuse_active_set) into *result, honouring

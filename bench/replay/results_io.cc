@@ -90,7 +90,9 @@ json RecordJson(const ReplayRecord& r) {
           {"samples", r.samples},
           {"solves_per_sample", r.solves_per_sample},
           {"mode", r.mode},
-          {"timed_in_worker", r.timed_in_worker}};
+          {"timed_in_worker", r.timed_in_worker},
+          {"host", r.host},
+          {"concurrent_jobs", r.concurrent_jobs}};
 }
 
 template <typename Enum, typename Values>
@@ -144,6 +146,9 @@ ReplayRecord RecordFromJson(const json& j) {
   // siconos-* solve through the isolation worker.
   r.timed_in_worker = j.contains("timed_in_worker") ? j.at("timed_in_worker").get<bool>()
                                                     : r.solver.rfind("siconos-", 0) == 0;
+  // Written since sharded runs (issue 17).
+  r.host = j.value("host", std::string());
+  r.concurrent_jobs = j.value("concurrent_jobs", 0);
   return r;
 }
 
@@ -156,8 +161,73 @@ std::string CsvField(const std::string& text) {
 
 }  // namespace
 
-json BenchEnvironment() {
+json ReplayRecordToJson(const ReplayRecord& record) { return RecordJson(record); }
+
+ReplayRecord ReplayRecordFromJson(const json& record) {
+  try {
+    return RecordFromJson(record);
+  } catch (const json::exception& e) {
+    throw InvalidInputError(std::string("record: malformed: ") + e.what());
+  }
+}
+
+json StepperStudyToJson(const StepperStudy& study) {
+  json st;
+  st["reference_h_factor"] = study.reference_h_factor;
+  st["warm_start"] = json::array();
+  for (const auto& r : study.warm_start) {
+    st["warm_start"].push_back({{"scene", r.scene}, {"solver", r.solver}, {"mode", r.mode}, {"steps", r.steps},
+                                {"seconds_per_step", r.seconds_per_step},
+                                {"iterations_per_step", r.iterations_per_step}, {"ok", r.ok}});
+  }
+  st["work_precision"] = json::array();
+  for (const auto& r : study.work_precision) {
+    st["work_precision"].push_back({{"scene", r.scene}, {"method", r.method}, {"solver", r.solver}, {"h", r.h},
+                                    {"steps", r.steps}, {"seconds", r.seconds}, {"error", Finite(r.error)},
+                                    {"s_forward_error", Finite(r.s_forward_error)},
+                                    {"s_certified_steps", r.s_certified_steps}, {"ok", r.ok}});
+  }
+  return st;
+}
+
+StepperStudy StepperStudyFromJson(const json& st) {
+  StepperStudy out;
+  out.reference_h_factor = st.at("reference_h_factor").get<double>();
+  for (const json& r : st.at("warm_start")) {
+    out.warm_start.push_back({r.at("scene").get<std::string>(), r.at("solver").get<std::string>(),
+                              r.at("mode").get<std::string>(), r.at("steps").get<std::int64_t>(),
+                              r.at("seconds_per_step").get<double>(), r.at("iterations_per_step").get<double>(),
+                              r.at("ok").get<bool>()});
+  }
+  for (const json& r : st.at("work_precision")) {
+    WorkPrecisionRecord w;
+    w.scene = r.at("scene").get<std::string>();
+    w.method = r.at("method").get<std::string>();
+    w.solver = r.at("solver").get<std::string>();
+    w.h = r.at("h").get<double>();
+    w.steps = r.at("steps").get<std::int64_t>();
+    w.seconds = r.at("seconds").get<double>();
+    w.error = Number(r.at("error"));
+    w.s_forward_error = OptionalNumber(r, "s_forward_error");
+    w.s_certified_steps = r.value("s_certified_steps", std::int64_t{0});
+    w.ok = r.at("ok").get<bool>();
+    out.work_precision.push_back(std::move(w));
+  }
+  return out;
+}
+
+json BuildIdentity(const json& environment) {
+  json build = json::object();
+  for (const char* key : {"build_revision", "version", "compiler", "cxx_flags", "build_type", "assertions",
+                          "libraries"}) {
+    if (environment.contains(key)) build[key] = environment.at(key);
+  }
+  return build;
+}
+
+json BenchEnvironment(const std::string& build_revision) {
   json env;
+  env["build_revision"] = build_revision;
   env["git_sha"] = CommandOutput(std::string("git -C '") + SMCBENCH_SOURCE_DIR_FOR_GIT + "' rev-parse HEAD 2>/dev/null");
   env["git_dirty"] =
       !CommandOutput(std::string("git -C '") + SMCBENCH_SOURCE_DIR_FOR_GIT + "' status --porcelain 2>/dev/null").empty();
@@ -202,31 +272,15 @@ json ToJson(const BenchResults& results, const json& environment) {
   j["environment"] = environment;
   j["suites"] = json::array();
   for (const SuiteResults& s : results.suites) {
-    json suite = {{"suite", s.suite}, {"description", s.description}, {"problems", s.problems}};
+    json suite = {{"suite", s.suite}, {"description", s.description}, {"problems", s.problems},
+                  {"checksum", s.checksum}};
     suite["records"] = json::array();
     for (const auto& r : s.replay.records) suite["records"].push_back(RecordJson(r));
     suite["sweep"] = json::array();
     for (const auto& r : s.replay.sweep) suite["sweep"].push_back(RecordJson(r));
     j["suites"].push_back(suite);
   }
-  if (results.has_stepper) {
-    json st;
-    st["reference_h_factor"] = results.stepper.reference_h_factor;
-    st["warm_start"] = json::array();
-    for (const auto& r : results.stepper.warm_start) {
-      st["warm_start"].push_back({{"scene", r.scene}, {"solver", r.solver}, {"mode", r.mode}, {"steps", r.steps},
-                                  {"seconds_per_step", r.seconds_per_step},
-                                  {"iterations_per_step", r.iterations_per_step}, {"ok", r.ok}});
-    }
-    st["work_precision"] = json::array();
-    for (const auto& r : results.stepper.work_precision) {
-      st["work_precision"].push_back({{"scene", r.scene}, {"method", r.method}, {"solver", r.solver}, {"h", r.h},
-                                      {"steps", r.steps}, {"seconds", r.seconds}, {"error", Finite(r.error)},
-                                      {"s_forward_error", Finite(r.s_forward_error)},
-                                      {"s_certified_steps", r.s_certified_steps}, {"ok", r.ok}});
-    }
-    j["stepper"] = st;
-  }
+  if (results.has_stepper) j["stepper"] = StepperStudyToJson(results.stepper);
   return j;
 }
 
@@ -243,34 +297,14 @@ BenchResults BenchResultsFromJson(const json& j) {
       suite.suite = s.at("suite").get<std::string>();
       suite.description = s.at("description").get<std::string>();
       suite.problems = s.at("problems").get<int>();
+      suite.checksum = s.value("checksum", std::string());
       for (const json& r : s.at("records")) suite.replay.records.push_back(RecordFromJson(r));
       for (const json& r : s.at("sweep")) suite.replay.sweep.push_back(RecordFromJson(r));
       out.suites.push_back(std::move(suite));
     }
     if (j.contains("stepper")) {
       out.has_stepper = true;
-      const json& st = j.at("stepper");
-      out.stepper.reference_h_factor = st.at("reference_h_factor").get<double>();
-      for (const json& r : st.at("warm_start")) {
-        out.stepper.warm_start.push_back({r.at("scene").get<std::string>(), r.at("solver").get<std::string>(),
-                                          r.at("mode").get<std::string>(), r.at("steps").get<std::int64_t>(),
-                                          r.at("seconds_per_step").get<double>(),
-                                          r.at("iterations_per_step").get<double>(), r.at("ok").get<bool>()});
-      }
-      for (const json& r : st.at("work_precision")) {
-        WorkPrecisionRecord w;
-        w.scene = r.at("scene").get<std::string>();
-        w.method = r.at("method").get<std::string>();
-        w.solver = r.at("solver").get<std::string>();
-        w.h = r.at("h").get<double>();
-        w.steps = r.at("steps").get<std::int64_t>();
-        w.seconds = r.at("seconds").get<double>();
-        w.error = Number(r.at("error"));
-        w.s_forward_error = OptionalNumber(r, "s_forward_error");
-        w.s_certified_steps = r.value("s_certified_steps", std::int64_t{0});
-        w.ok = r.at("ok").get<bool>();
-        out.stepper.work_precision.push_back(std::move(w));
-      }
+      out.stepper = StepperStudyFromJson(j.at("stepper"));
     }
     return out;
   } catch (const json::exception& e) {
@@ -279,12 +313,16 @@ BenchResults BenchResultsFromJson(const json& j) {
 }
 
 void WriteBenchResults(const BenchResults& results, const std::string& dir) {
+  WriteBenchResults(results, dir, BenchEnvironment());
+}
+
+void WriteBenchResults(const BenchResults& results, const std::string& dir, const json& environment) {
   std::error_code ec;
   fs::create_directories(dir, ec);
   if (!fs::is_directory(dir)) throw InvalidInputError("bench: cannot create the output folder '" + dir + "'");
   {
     std::ofstream out(fs::path(dir) / "results.json");
-    out << ToJson(results, BenchEnvironment()).dump(1) << "\n";
+    out << ToJson(results, environment).dump(1) << "\n";
     if (!out) throw InvalidInputError("bench: cannot write " + (fs::path(dir) / "results.json").string());
   }
   // Numbers in shortest round-trip form (NumberText: reads back to the same double; "inf", "nan" when not finite).
@@ -293,7 +331,7 @@ void WriteBenchResults(const BenchResults& results, const std::string& dir) {
   std::ofstream csv(fs::path(dir) / "results.csv");
   csv << "suite,problem,solver,mode,size,sparse,expected,status,verdict,iterations,residual_abs,residual_rel,"
          "tolerance,time_median,time_min,time_max,time_mad,samples,solves_per_sample,residual_scaled,"
-         "forward_error,forward_error_rel,forward_allowance,certificate,timed_in_worker\n";
+         "forward_error,forward_error_rel,forward_allowance,certificate,timed_in_worker,host,concurrent_jobs\n";
   for (const SuiteResults& s : results.suites) {
     for (const auto* records : {&s.replay.records, &s.replay.sweep}) {
       for (const ReplayRecord& r : *records) {
@@ -305,7 +343,7 @@ void WriteBenchResults(const BenchResults& results, const std::string& dir) {
             << r.samples << ',' << r.solves_per_sample << ',' << NumberText(r.residual_scaled) << ','
             << NumberText(r.forward_error) << ',' << NumberText(r.forward_error_rel) << ','
             << NumberText(r.forward_allowance) << ',' << CsvField(r.certificate) << ','
-            << (r.timed_in_worker ? 1 : 0) << '\n';
+            << (r.timed_in_worker ? 1 : 0) << ',' << CsvField(r.host) << ',' << r.concurrent_jobs << '\n';
       }
     }
   }

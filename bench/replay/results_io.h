@@ -14,12 +14,28 @@ namespace smcbench {
 
 // What produced the numbers: git SHA, compiler and flags, build type, machine (CPU model, cores, kernel), library
 // versions (Eigen, SuiteSparse/UMFPACK, Ipopt, nlohmann-json, Siconos if built), date. Never throws.
-nlohmann::json BenchEnvironment();
+// build_revision: the revision the running binary was built from (the CLI's GitRevision(), passed down as data so
+// bench/ needs nothing from tools/), recorded as "build_revision"; "git_sha" is the checkout's HEAD at run time.
+nlohmann::json BenchEnvironment(const std::string& build_revision = "");
+
+// The fields of an environment that say which build made the numbers (build_revision, version, compiler, flags,
+// build type, assertions, libraries), leaving out the machine and the date: results to be merged must agree on them.
+nlohmann::json BuildIdentity(const nlohmann::json& environment);
+
+// One replay record as results.json holds it, and back (InvalidInputError naming the field).
+nlohmann::json ReplayRecordToJson(const ReplayRecord& record);
+ReplayRecord ReplayRecordFromJson(const nlohmann::json& record);
+// The time-stepper studies as results.json holds them, and back.
+nlohmann::json StepperStudyToJson(const StepperStudy& study);
+StepperStudy StepperStudyFromJson(const nlohmann::json& study);
 
 struct SuiteResults {
   std::string suite;        // "paper", "families", ...
   std::string description;
   int problems = 0;
+  // ProblemSetContentChecksum (problems/suites/catalogue.h) of the problems run, references attached; empty in
+  // results written before issue 17.
+  std::string checksum;
   ReplayResults replay;
 };
 
@@ -34,8 +50,10 @@ struct BenchResults {
 nlohmann::json ToJson(const BenchResults& results, const nlohmann::json& environment);
 // Inverse of ToJson (environment ignored). InvalidInputError naming the field on a malformed document.
 BenchResults BenchResultsFromJson(const nlohmann::json& document);
-// Writes dir/results.json and dir/results.csv (dir created). InvalidInputError if it cannot.
+// Writes dir/results.json and dir/results.csv (dir created). InvalidInputError if it cannot. Without environment:
+// BenchEnvironment() of this process.
 void WriteBenchResults(const BenchResults& results, const std::string& dir);
+void WriteBenchResults(const BenchResults& results, const std::string& dir, const nlohmann::json& environment);
 // Reads dir/results.json. InvalidInputError naming the file if missing or malformed.
 BenchResults ReadBenchResults(const std::string& dir, nlohmann::json* environment = nullptr);
 

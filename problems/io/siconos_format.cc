@@ -1,4 +1,4 @@
-// Siconos Numerics text formats (../shared/peer-data/siconos/README.md; Siconos' own readers are
+// Siconos Numerics text formats (tests/data/siconos/README.md; Siconos' own readers are
 // linearComplementarity_newFromFile, relay_newFromFile, mixedLinearComplementarity_newFromFile and
 // NM_new_from_file / SBM_new_from_file). We read whitespace-separated numbers, never lines, like their fscanf
 // calls, but unlike them we check everything: a corrupt or hostile file is an InvalidInputError, never a crash,

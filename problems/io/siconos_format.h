@@ -1,4 +1,4 @@
-// Readers for the Siconos Numerics LCP, Relay and MLCP text files (../shared/peer-data/siconos/README.md),
+// Readers for the Siconos Numerics LCP, Relay and MLCP text files (tests/data/siconos/README.md),
 // and a writer of any box-MLCP in Siconos relay format so our problems can be handed to Siconos.
 #pragma once
 

@@ -102,7 +102,7 @@ struct PaperSuiteOptions {
   int reaching_window = 2;        // steps kept on either side of the reaching step
 };
 
-// The "paper" suite: every linear scene of SCENES.md (S1–S8, S11: LinearScene in the registry) run with its own
+// The "paper" suite: every linear scene of docs/scenes.md (S1–S8, S11: LinearScene in the registry) run with its own
 // settings (h, T, θ, x0, method; implicit or ZOH) and every step's box-MLCP captured, then SubsampleSteps with the
 // reaching step of the run (|y| ≤ 10·tolerance); plus the inner MLCPs of Algorithm 2 for the nonlinear scenes S9
 // (hypomonotone) and S10 (arctan), every Newton iteration of the kept steps. Deterministic: same binary, same ids

@@ -1,5 +1,5 @@
 // Arithmetic on scene parameters, so a scene file can write an entry of E as "1/tau^2" and a user can change τ
-// with `--param tau=0.5` instead of editing four matrix entries (S8 `observer`, S11 `parasitic` of SCENES.md).
+// with `--param tau=0.5` instead of editing four matrix entries (S8 `observer`, S11 `parasitic` of docs/scenes.md).
 #pragma once
 
 #include <map>

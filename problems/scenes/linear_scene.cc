@@ -4,6 +4,7 @@
 #include <fstream>
 #include <initializer_list>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <sstream>
 #include <utility>
 #include <vector>
@@ -72,6 +73,21 @@ struct SinTerm {
   double amplitude, omega, phase;
 };
 
+// One sinusoid of a disturbance: amplitude (q entries) sin(omega t + phase).
+struct SinusoidSpec {
+  std::vector<Scalar> amplitude;
+  Scalar omega, phase;
+};
+
+// A plant disturbance W d(t) (linear_system.h: Disturbance); no matrix means W = G (matched).
+struct DisturbanceSpec {
+  bool present = false;
+  bool matched = true;
+  ScalarMatrix W;
+  std::vector<Scalar> constant;  // empty: 0
+  std::vector<SinusoidSpec> sinusoids;
+};
+
 // S1's closed form needs x' ∈ −b sgn(c x) with bc > 0: |x| decreases at rate |b| until t* = |x0|/|b|.
 constexpr std::string_view kExactSign = "sign";
 
@@ -87,6 +103,9 @@ struct LinearScene::Spec {
   std::vector<ForcingEntry> forcing;  // empty: none
   Scalar alpha;
   std::string exact;             // "" or "sign"
+  bool control_input = false;    // sign: u = −s through B is reported
+  std::optional<Scalar> equivalent_control_theta;  // zoh: Siconos' scheme when present
+  DisturbanceSpec disturbance;   // zoh
 };
 
 namespace {
@@ -276,6 +295,76 @@ std::vector<ForcingEntry> ReadForcing(const Reader& r, const json& node, int n, 
   return out;
 }
 
+// system.equivalent_control = {"theta": θ}, θ ∈ [0, 1].
+Scalar ReadEquivalentControl(const Reader& r, const json& node, const SceneParameters& parameters) {
+  const std::string field = "system.equivalent_control";
+  if (!node.is_object()) {
+    r.Fail(field, std::string("expected an object {\"theta\": number in [0, 1]}, got ") + node.type_name());
+  }
+  r.CheckKeys(node, field, {"theta"});
+  Scalar theta = r.ScalarValue(r.Require(node, field, "theta"), field + ".theta", parameters);
+  if (!(theta.value >= 0.0 && theta.value <= 1.0)) {
+    r.Fail(field + ".theta", "must lie in [0, 1], got " + NumberText(theta.value));
+  }
+  return theta;
+}
+
+// system.disturbance = {"matrix": n×q (default G), "constant": [q], "sinusoids": [{"amplitude": [q], "omega", "phase"}]}.
+DisturbanceSpec ReadDisturbance(const Reader& r, const json& node, int n, int m, const SceneParameters& parameters) {
+  const std::string field = "system.disturbance";
+  if (!node.is_object()) {
+    r.Fail(field, std::string("expected an object {matrix, constant, sinusoids}, got ") + node.type_name());
+  }
+  r.CheckKeys(node, field, {"matrix", "constant", "sinusoids"});
+  DisturbanceSpec d;
+  d.present = true;
+  int q = m;
+  if (const json* W = r.Optional(node, "matrix")) {
+    d.matched = false;
+    d.W = r.Matrix(*W, field + ".matrix", parameters);
+    q = d.W.cols;
+    r.CheckShape(d.W, field + ".matrix", n, q, "the disturbance enters as W d(t) with W n x q, n = " +
+                                                   std::to_string(n) + " the size of F");
+  }
+  const std::string q_text = d.matched ? "m = " + std::to_string(m) + " (matched: W = G)"
+                                       : "q = " + std::to_string(q) + " (the columns of " + field + ".matrix)";
+  const auto check_size = [&](const std::vector<Scalar>& v, const std::string& f) {
+    if (static_cast<int>(v.size()) != q) {
+      r.FailSentence(f + " has " + std::to_string(v.size()) + " entries but the disturbance has " + q_text);
+    }
+  };
+  if (const json* c = r.Optional(node, "constant")) {
+    d.constant = r.ScalarVector(*c, field + ".constant", parameters);
+    check_size(d.constant, field + ".constant");
+  }
+  if (const json* list = r.Optional(node, "sinusoids")) {
+    if (!list->is_array()) {
+      r.Fail(field + ".sinusoids", std::string("expected an array of {amplitude, omega, phase}, got ") +
+                                       list->type_name());
+    }
+    for (std::size_t j = 0; j < list->size(); ++j) {
+      const std::string f = field + ".sinusoids[" + std::to_string(j) + "]";
+      const json& term = (*list)[j];
+      if (!term.is_object()) r.Fail(f, std::string("expected an object {amplitude, omega, phase}, got ") + term.type_name());
+      r.CheckKeys(term, f, {"amplitude", "omega", "phase"});
+      SinusoidSpec spec;
+      spec.amplitude = r.ScalarVector(r.Require(term, f, "amplitude"), f + ".amplitude", parameters);
+      check_size(spec.amplitude, f + ".amplitude");
+      spec.omega = r.ScalarValue(r.Require(term, f, "omega"), f + ".omega", parameters);
+      if (const json* phase = r.Optional(term, "phase")) {
+        spec.phase = r.ScalarValue(*phase, f + ".phase", parameters);
+      } else {
+        spec.phase.field = f + ".phase";
+      }
+      d.sinusoids.push_back(std::move(spec));
+    }
+  }
+  if (d.constant.empty() && d.sinusoids.empty()) {
+    r.Fail(field, "has neither 'constant' nor 'sinusoids': nothing disturbs the plant");
+  }
+  return d;
+}
+
 }  // namespace
 
 std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::string& source) {
@@ -302,7 +391,11 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
   spec->type = r.String(r.Require(system, "system", "type"), "system.type");
   int n = 0, m = 0;
   if (spec->type == "sign") {
-    r.CheckKeys(system, "system", {"type", "E", "B", "C", "D", "forcing"});
+    r.CheckKeys(system, "system", {"type", "E", "B", "C", "D", "forcing", "control_input"});
+    if (const json* input = r.Optional(system, "control_input")) {
+      if (!input->is_boolean()) r.Fail("system.control_input", std::string("expected true or false, got ") + input->type_name());
+      spec->control_input = input->get<bool>();
+    }
     spec->E = r.Matrix(r.Require(system, "system", "E"), "system.E", parameters);
     n = spec->E.rows;
     r.CheckShape(spec->E, "system.E", n, n, "E must be square, n x n");
@@ -322,7 +415,7 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
     }
     if (const json* forcing = r.Optional(system, "forcing")) spec->forcing = ReadForcing(r, *forcing, n, parameters);
   } else if (spec->type == "zoh") {
-    r.CheckKeys(system, "system", {"type", "F", "G", "C", "alpha"});
+    r.CheckKeys(system, "system", {"type", "F", "G", "C", "alpha", "equivalent_control", "disturbance"});
     spec->E = r.Matrix(r.Require(system, "system", "F"), "system.F", parameters);
     n = spec->E.rows;
     r.CheckShape(spec->E, "system.F", n, n, "F must be square, n x n");
@@ -338,6 +431,10 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
       spec->alpha.value = 1.0;
     }
     spec->alpha.field = "system.alpha";
+    if (const json* ec = r.Optional(system, "equivalent_control")) {
+      spec->equivalent_control_theta = ReadEquivalentControl(r, *ec, parameters);
+    }
+    if (const json* dist = r.Optional(system, "disturbance")) spec->disturbance = ReadDisturbance(r, *dist, n, m, parameters);
   } else {
     r.Fail("system.type", "unknown system type '" + spec->type + "' (known: sign, zoh)");
   }
@@ -453,6 +550,16 @@ LinearModel LinearScene::ModelWithoutName(const SceneParameters& overrides) cons
     z.G = s.B.Evaluate(values);
     z.C = s.C.Evaluate(values);
     z.alpha = s.alpha.Evaluate(values);
+    if (s.equivalent_control_theta) z.equivalent_control = EquivalentControl{s.equivalent_control_theta->Evaluate(values)};
+    if (s.disturbance.present) {
+      const DisturbanceSpec& d = s.disturbance;
+      z.disturbance.W = d.matched ? z.G : d.W.Evaluate(values);
+      if (!d.constant.empty()) z.disturbance.constant = EvaluateVector(d.constant, values);
+      for (const SinusoidSpec& term : d.sinusoids) {
+        z.disturbance.sinusoids.push_back(
+            {EvaluateVector(term.amplitude, values), term.omega.Evaluate(values), term.phase.Evaluate(values)});
+      }
+    }
     z.Validate();
     return z;
   }
@@ -461,6 +568,7 @@ LinearModel LinearScene::ModelWithoutName(const SceneParameters& overrides) cons
   sys.B = s.B.Evaluate(values);
   sys.C = s.C.Evaluate(values);
   if (!s.D.empty()) sys.D = EvaluateVector(s.D, values);
+  sys.control_input = s.control_input;
   if (!s.forcing.empty()) {
     const int n = s.info.n;
     sys.g = Vector::Zero(n);

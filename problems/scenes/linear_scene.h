@@ -1,7 +1,7 @@
 // Linear scenes as data: a JSON file describes a class-(2) system x' ∈ E x + g(t) − B Sgn(C x + D) or a ZOH
 // plant x' = F x + G u with the ECB-SMC, its parameters, x0, h, T, θ and method, so a user can write a new
 // linear sliding-mode system without recompiling. The format is documented in problems/scenes/README.md; an
-// example (S8 of SCENES.md, abridged):
+// example (S8 of docs/scenes.md, abridged):
 //
 //   {
 //     "format": "smcbench-scene/1",
@@ -21,6 +21,7 @@
 // Matrix entries, D, alpha and forcing values are numbers or expressions over the parameters (expression.h).
 // Every defect is an InvalidInputError naming the file and the field: "scene file 'x.json': system.B has 3
 // rows, expected n = 2 (the size of E)".
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #pragma once
 
 #include <memory>

@@ -1,7 +1,8 @@
-// The nonlinear scenes of SCENES.md (S9 `hypomonotone`, S10 `arctan`) behind the same Scene interface as the
+// The nonlinear scenes of docs/scenes.md (S9 `hypomonotone`, S10 `arctan`) behind the same Scene interface as the
 // linear ones, so `simulate`, the paper report and the benchmarks run them by name. Their g and h are code
 // (problems/stepper/nonlinear_scenes.h); this adapter maps SimulationSettings onto the θ/γ/ρ scheme and the
 // two solution paths (Algorithm 1 MCP, Algorithm 2 Newton + any MLCP backend).
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #pragma once
 
 #include <functional>

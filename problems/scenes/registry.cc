@@ -24,7 +24,7 @@ struct Entry {
   Factory make;           // the C++ scene, or null for a file
 };
 
-// The registry, in the order of SCENES.md. Nonlinear scenes (S9 hypomonotone, S10 arctan) are C++ scenes.
+// The registry, in the order of docs/scenes.md. Nonlinear scenes (S9 hypomonotone, S10 arctan) are C++ scenes.
 constexpr Entry kScenes[] = {
     {"sign", "sign.json", nullptr},                      // S1
     {"galias-yu-2007", "galias-yu-2007.json", nullptr},  // S2

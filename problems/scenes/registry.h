@@ -1,4 +1,4 @@
-// The scenes of SCENES.md by name. An explicit list (no static registration): a linear scene is a JSON file in
+// The scenes of docs/scenes.md by name. An explicit list (no static registration): a linear scene is a JSON file in
 // this folder; a scene that needs code is a factory function. Adding one is one line in registry.cc.
 #pragma once
 
@@ -11,7 +11,7 @@
 
 namespace smcbench {
 
-// Registered names in the order of SCENES.md (S1 sign, S2 galias-yu-2007, ...).
+// Registered names in the order of docs/scenes.md (S1 sign, S2 galias-yu-2007, ...).
 std::vector<std::string_view> SceneNames();
 
 // The folder holding the scene files: $SMCBENCH_SCENES_DIR if set, else the installed <prefix>/share/smcbench/scenes

@@ -1,6 +1,7 @@
-// A scene: one sliding-mode system of the report (SCENES.md S1–S11) with its numerical settings, runnable on any
+// A scene: one sliding-mode system of the report (docs/scenes.md S1–S11) with its numerical settings, runnable on any
 // backend. Linear scenes are data (JSON files, linear_scene.h); scenes that need code (nonlinear g, h) implement
 // this interface in C++ and are added to the registry (registry.cc) by one line.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #pragma once
 
 #include <optional>
@@ -17,7 +18,7 @@
 namespace smcbench {
 
 // Everything a run needs besides the scene and the backend. A scene's defaults() gives its own values (those of
-// SCENES.md); a caller overrides fields one by one.
+// docs/scenes.md); a caller overrides fields one by one.
 struct SimulationSettings {
   Method method = Method::kImplicit;
   double h = 0.0;       // time step, > 0

@@ -1,5 +1,6 @@
 // Scene files and the registry: every registered scene parses and runs; every kind of malformed file is an error
 // naming the field; parameters, forcing and the exact solution of S1 do what the format says.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -564,6 +565,107 @@ TEST(SceneFuzzRegression, DeeplyNestedExpressionIsAnErrorNotAStackOverflow) {
   doc["system"]["E"][0][0] = parens;
   ExpectError([&] { LinearScene::FromText(doc.dump(), "deep.json"); },
               {"deep.json", "system.E[0][0]", "nested deeper than 200 levels"});
+}
+
+
+// ---------------------------------------------------------------------------------------------------------------
+// Issue 15: Siconos' equivalent control, the plant disturbance and the control input in scene files.
+
+TEST(SceneFormat, DisturbedSmcSceneReadsItsControllerAndDisturbance) {
+  const auto scene = LoadScene(std::string(SMCBENCH_SCENES_TEST_DIR) + "/smc-disturbed.json");
+  const auto* linear = dynamic_cast<const LinearScene*>(scene.get());
+  ASSERT_NE(linear, nullptr);
+  const LinearModel model = linear->Model({});
+  const auto& z = std::get<ZohSmcSystem>(model);
+  ASSERT_TRUE(z.equivalent_control);
+  EXPECT_EQ(z.equivalent_control->theta, 0.5);
+  EXPECT_TRUE(z.disturbance.W == z.G);  // matched: no matrix given
+  ASSERT_EQ(z.disturbance.sinusoids.size(), 1u);
+  EXPECT_EQ(z.disturbance.sinusoids[0].amplitude[0], 0.5);
+  EXPECT_EQ(z.disturbance.sinusoids[0].omega, 50.0);
+  // Parameters reach the controller and the disturbance.
+  const LinearModel model2 = linear->Model({{"theta", 1.0}, {"amplitude", 0.25}});
+  const auto& z2 = std::get<ZohSmcSystem>(model2);
+  EXPECT_EQ(z2.equivalent_control->theta, 1.0);
+  EXPECT_EQ(z2.disturbance.sinusoids[0].amplitude[0], 0.25);
+  ExpectError([&] { linear->Model({{"theta", 1.5}}); }, {"equivalent_control.theta must lie in [0, 1]", "1.5"});
+  // Runs with every ZOH method and reports its input.
+  stepper_test::ReferenceSolver reference;
+  for (Method method : {Method::kZoh, Method::kZohExplicit, Method::kImplicit}) {
+    SimulationSettings s = scene->defaults();
+    s.method = method;
+    const Trajectory tr = scene->Run(s, &reference);
+    EXPECT_TRUE(tr.ok()) << ToString(method);
+    EXPECT_EQ(tr.has_input, method != Method::kImplicit) << ToString(method);
+  }
+  // S1 reports u = −s; the other class-(2) scenes report no input.
+  const auto sign = LoadScene("sign");
+  EXPECT_TRUE(sign->Run(sign->defaults(), &reference).has_input);
+  const auto galias_yu = LoadScene("galias-yu-2007");
+  EXPECT_FALSE(galias_yu->Run(galias_yu->defaults(), &reference).has_input);
+}
+
+TEST_F(MalformedScene, ControllerAndDisturbanceDefectsNameTheField) {
+  const auto zoh = [] {
+    return nlohmann::json::parse(R"({
+      "name": "z", "description": "zoh",
+      "system": {"type": "zoh", "F": [[0, 1], [2, -2]], "G": [[0], [1]], "C": [[1, 1]],
+                 "equivalent_control": {"theta": 0.5},
+                 "disturbance": {"constant": [0.1], "sinusoids": [{"amplitude": [0.5], "omega": 50, "phase": 0}]}},
+      "simulation": {"method": "zoh", "h": 0.05, "T": 1, "x0": [0.5, 0.5]}
+    })");
+  };
+  {
+    const fs::path path = dir_ / "scene.json";
+    std::ofstream(path) << zoh().dump();
+    EXPECT_EQ(LoadScene(path.string())->info().name, "z");
+  }
+  auto doc = zoh();
+  doc["system"]["equivalent_control"] = 0.5;
+  ExpectFileError(doc, {"system.equivalent_control: expected an object {\"theta\""});
+  doc = zoh();
+  doc["system"]["equivalent_control"]["theta"] = 2;
+  ExpectFileError(doc, {"system.equivalent_control.theta: must lie in [0, 1], got 2"});
+  doc = zoh();
+  doc["system"]["equivalent_control"]["gain"] = 1;
+  ExpectFileError(doc, {"system.equivalent_control: unknown key 'gain' (allowed: theta)"});
+  doc = zoh();
+  doc["system"]["equivalent_control"].erase("theta");
+  ExpectFileError(doc, {"missing key 'system.equivalent_control.theta'"});
+  doc = zoh();
+  doc["system"]["disturbance"]["matrix"] = {{1.0, 0.0}};
+  ExpectFileError(doc, {"system.disturbance.matrix is 1x2 but must be 2x2"});
+  doc = zoh();
+  doc["system"]["disturbance"]["constant"] = {0.1, 0.2};
+  ExpectFileError(doc, {"system.disturbance.constant has 2 entries but the disturbance has m = 1 (matched: W = G)"});
+  doc = zoh();
+  doc["system"]["disturbance"]["matrix"] = {{1.0, 0.0}, {0.0, 1.0}};
+  ExpectFileError(doc, {"system.disturbance.constant has 1 entries", "q = 2"});
+  doc = zoh();
+  doc["system"]["disturbance"]["sinusoids"][0]["amplitude"] = 0.5;
+  ExpectFileError(doc, {"system.disturbance.sinusoids[0].amplitude: expected an array"});
+  doc = zoh();
+  doc["system"]["disturbance"]["sinusoids"][0].erase("omega");
+  ExpectFileError(doc, {"missing key 'system.disturbance.sinusoids[0].omega'"});
+  doc = zoh();
+  doc["system"]["disturbance"]["sinusoids"][0]["frequency"] = 3;
+  ExpectFileError(doc, {"system.disturbance.sinusoids[0]: unknown key 'frequency'"});
+  doc = zoh();
+  doc["system"]["disturbance"]["sinusoids"] = {{"amplitude", {1}}};
+  ExpectFileError(doc, {"system.disturbance.sinusoids: expected an array"});
+  doc = zoh();
+  doc["system"]["disturbance"] = nlohmann::json::object();
+  ExpectFileError(doc, {"system.disturbance: has neither 'constant' nor 'sinusoids'"});
+  doc = zoh();
+  doc["system"]["disturbance"]["sinusoids"][0]["omega"] = "w";
+  ExpectFileError(doc, {"system.disturbance.sinusoids[0].omega", "unknown name 'w'"});
+  // Keys of one system type on the other.
+  doc = Valid();
+  doc["system"]["equivalent_control"] = {{"theta", 0.5}};
+  ExpectFileError(doc, {"system: unknown key 'equivalent_control'"});
+  doc = Valid();
+  doc["system"]["control_input"] = "yes";
+  ExpectFileError(doc, {"system.control_input: expected true or false, got string"});
 }
 
 }  // namespace

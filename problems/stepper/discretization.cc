@@ -1,6 +1,8 @@
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #include "problems/stepper/discretization.h"
 
 #include <cmath>
+#include <utility>
 #include <unsupported/Eigen/MatrixFunctions>
 
 #include "problems/stepper/discretization_detail.h"
@@ -50,6 +52,24 @@ void OneStepData::Validate() const {
       Fail(kOwner, "forcing_theta must lie in [0, 1], got " + NumberText(forcing_theta));
     }
   }
+  if (input_x.size() || input_s.size()) {
+    stepper_detail::CheckShape(kOwner, "input_x", input_x, m(), n());
+    stepper_detail::CheckShape(kOwner, "input_s", input_s, m(), m());
+    stepper_detail::CheckFinite(kOwner, "input_x", input_x);
+    stepper_detail::CheckFinite(kOwner, "input_s", input_s);
+  }
+  if (has_disturbance()) {
+    const Eigen::Index J = disturbance_omega.size();
+    stepper_detail::CheckSize(kOwner, "disturbance_constant", disturbance_constant, n());
+    stepper_detail::CheckShape(kOwner, "disturbance_cos", disturbance_cos, n(), J);
+    stepper_detail::CheckShape(kOwner, "disturbance_sin", disturbance_sin, n(), J);
+    stepper_detail::CheckSize(kOwner, "disturbance_phase", disturbance_phase, J);
+    stepper_detail::CheckFinite(kOwner, "disturbance_cos", disturbance_cos);
+    stepper_detail::CheckFinite(kOwner, "disturbance_sin", disturbance_sin);
+    ValidateFinite(kOwner, "disturbance_constant", disturbance_constant);
+    ValidateFinite(kOwner, "disturbance_omega", disturbance_omega);
+    ValidateFinite(kOwner, "disturbance_phase", disturbance_phase);
+  }
 }
 
 namespace stepper_detail {
@@ -72,29 +92,92 @@ OneStepData DiscretizeThetaUnchecked(const LinearSignSystem& system, double h, d
     d.forcing = system.forcing;
     d.forcing_theta = theta;
   }
+  if (system.control_input) {  // u_k = −s_{k+1} through B
+    d.input_x = DenseMatrix::Zero(system.m(), n);
+    d.input_s = -DenseMatrix::Identity(system.m(), system.m());
+  }
   return d;
 }
+
+namespace {
+
+// [e^{Fh}, ∫₀ʰ e^{Fτ}dτ K] from ONE exponential of h [[F, K], [0, 0]] (Van Loan 1978).
+std::pair<DenseMatrix, DenseMatrix> ExpAndIntegral(const DenseMatrix& F, const DenseMatrix& K, double h) {
+  const auto n = F.rows(), m = K.cols();
+  DenseMatrix block = DenseMatrix::Zero(n + m, n + m);
+  block.topLeftCorner(n, n) = h * F;
+  block.topRightCorner(n, m) = h * K;
+  const DenseMatrix expo = block.exp();
+  return {expo.topLeftCorner(n, n), expo.topRightCorner(n, m)};
+}
+
+// The disturbance terms of OneStepData (discretization.h): per sinusoid j, the forced response over one step to
+// v cos(ωτ) and v sin(ωτ) (v = W a_j) from ONE exponential of h [[F, v, 0], [0, 0, −ω], [0, ω, 0]] (Van Loan
+// again, with the harmonic oscillator generating (cos ωτ, sin ωτ) from (1, 0) and (−sin ωτ, cos ωτ) from (0, 1)).
+void DiscretizeDisturbance(const DenseMatrix& F, const Disturbance& d, double h, OneStepData* out) {
+  const auto n = F.rows();
+  out->disturbance_constant = Vector::Zero(n);
+  if (d.constant.size()) {
+    const DenseMatrix v = d.W * d.constant;
+    out->disturbance_constant = ExpAndIntegral(F, v, h).second.col(0);
+  }
+  const auto J = static_cast<Eigen::Index>(d.sinusoids.size());
+  out->disturbance_cos = DenseMatrix::Zero(n, J);
+  out->disturbance_sin = DenseMatrix::Zero(n, J);
+  out->disturbance_omega = Vector::Zero(J);
+  out->disturbance_phase = Vector::Zero(J);
+  for (Eigen::Index j = 0; j < J; ++j) {
+    const DisturbanceSinusoid& term = d.sinusoids[static_cast<std::size_t>(j)];
+    DenseMatrix block = DenseMatrix::Zero(n + 2, n + 2);
+    block.topLeftCorner(n, n) = h * F;
+    block.block(0, n, n, 1) = h * (d.W * term.amplitude);
+    block(n, n + 1) = -h * term.omega;
+    block(n + 1, n) = h * term.omega;
+    const DenseMatrix expo = block.exp();
+    out->disturbance_cos.col(j) = expo.block(0, n, n, 1);
+    out->disturbance_sin.col(j) = -expo.block(0, n + 1, n, 1);
+    out->disturbance_omega[j] = term.omega;
+    out->disturbance_phase[j] = term.phase;
+  }
+}
+
+}  // namespace
 
 OneStepData DiscretizeZohUnchecked(const ZohSmcSystem& system, double h, SignTreatment sign) {
   const int n = system.n();
   const int m = system.m();
   const DenseMatrix CG = system.C * system.G;
-  // K = G (CG)⁻¹, solved as (CG)ᵀ Kᵀ = Gᵀ.
-  const DenseMatrix K = CG.transpose().partialPivLu().solve(system.G.transpose()).transpose();
-  // Van Loan: exp(h [[F, K], [0, 0]]) = [[e^{Fh}, ∫₀ʰ e^{Fτ}dτ K], [0, I]].
-  DenseMatrix block = DenseMatrix::Zero(n + m, n + m);
-  block.topLeftCorner(n, n) = h * system.F;
-  block.topRightCorner(n, m) = h * K;
-  const DenseMatrix expo = block.exp();
-  const DenseMatrix Gamma = expo.topRightCorner(n, m);  // `eq:ZOHGAMMA`
+  const Eigen::PartialPivLU<DenseMatrix> cg_lu(CG);
   OneStepData d;
   d.h = h;
   d.sign = sign;
-  d.R = expo.topLeftCorner(n, n) - Gamma * (system.C * system.F);  // Φ
-  d.S = system.alpha * Gamma;
   d.C = system.C;
   d.D = Vector::Zero(m);
   d.p = Vector::Zero(n);
+  if (!system.equivalent_control) {
+    // K = G (CG)⁻¹, solved as (CG)ᵀ Kᵀ = Gᵀ.
+    const DenseMatrix K = CG.transpose().partialPivLu().solve(system.G.transpose()).transpose();
+    // Van Loan: exp(h [[F, K], [0, 0]]) = [[e^{Fh}, ∫₀ʰ e^{Fτ}dτ K], [0, I]].
+    const auto [expFh, Gamma] = ExpAndIntegral(system.F, K, h);  // Γ: `eq:ZOHGAMMA`
+    d.R = expFh - Gamma * (system.C * system.F);                  // Φ
+    d.S = system.alpha * Gamma;
+    d.input_x = -cg_lu.solve(system.C * system.F);  // u_k = −(CG)⁻¹(CF x_k + α s_{k+1})
+    d.input_s = -system.alpha * cg_lu.inverse();
+  } else {
+    // Siconos' θ-weighted equivalent control (see the header).
+    const double theta = system.equivalent_control->theta;
+    const DenseMatrix I = DenseMatrix::Identity(n, n);
+    const auto [expFh, PsiG] = ExpAndIntegral(system.F, system.G, h);
+    const DenseMatrix K = cg_lu.solve(system.C * system.F);  // (CG)⁻¹CF
+    const DenseMatrix PsiGK = PsiG * K;
+    const DenseMatrix predictor = (I + theta * PsiGK).partialPivLu().solve(expFh - (1.0 - theta) * PsiGK);  // Ã
+    const DenseMatrix L = (1.0 - theta) * K + theta * (K * predictor);
+    d.R = expFh - PsiG * L;
+    d.S = system.alpha * PsiG;
+    d.input_x = -L;
+    d.input_s = -system.alpha * DenseMatrix::Identity(m, m);
+  }
+  if (!system.disturbance.empty()) DiscretizeDisturbance(system.F, system.disturbance, h, &d);
   return d;
 }
 
@@ -144,6 +227,15 @@ OneStepData DiscretizeZoh(const ZohSmcSystem& system, double h, SignTreatment si
     Fail(kOwner, "exp(h*[[F, G(CG)^-1], [0, 0]]) overflowed (h*||F|| too large), h = " + NumberText(h));
   }
   d.description = sign == SignTreatment::kImplicit ? "zoh, implicit sign" : "zoh, explicit sign";
+  if (system.equivalent_control) {
+    d.description += ", equivalent control theta=" + NumberText(system.equivalent_control->theta);
+  }
+  if (!system.disturbance.empty()) d.description += ", disturbed";
+  if (!d.input_x.allFinite() || !d.input_s.allFinite() ||
+      (d.has_disturbance() && (!d.disturbance_cos.allFinite() || !d.disturbance_sin.allFinite() ||
+                               !d.disturbance_constant.allFinite()))) {
+    Fail(kOwner, "the equivalent control or the disturbance's discretization is not finite at h = " + NumberText(h));
+  }
   d.Validate();
   return d;
 }

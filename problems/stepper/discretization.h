@@ -4,8 +4,10 @@
 // or, for the classical schemes that chatter, s_{k+1} := sgn(y_k) with sgn(0) := 0 (explicit sign).
 // With the implicit sign each step is the box-MLCP `eq:TDS3`: z = s_{k+1}, M = C S, q = −(C R x_k + C p_k + D),
 // l = −1, u = 1.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -46,9 +48,40 @@ struct OneStepData {
   SignTreatment sign = SignTreatment::kImplicit;
   std::string description;    // e.g. "theta=1, implicit sign", "zoh, explicit sign"
 
+  // The control input applied over [t_k, t_{k+1}): u_k = input_x x_k + input_s s_{k+1} (m inputs). Empty (0×0)
+  // when the system reports none. ZOH: x_{k+1} = e^{Fh} x_k + Ψ G u_k (+ the disturbance); a class-(2) system with
+  // control_input: u_k = −s_{k+1}, x_{k+1} = R x_k + p_k + S u_k.
+  DenseMatrix input_x;  // m×n
+  DenseMatrix input_s;  // m×m
+
+  // A disturbance the controller does not know (ZOH plants): it enters x_{k+1}, never q. Exact for the piecewise
+  // definition of d(t) (linear_system.h):
+  //   w_k = disturbance_constant + Σ_j sin(ω_j t_k + φ_j) disturbance_cos.col(j) + cos(ω_j t_k + φ_j) disturbance_sin.col(j),
+  // with disturbance_cos.col(j) = ∫₀ʰ e^{F(h−τ)} W a_j cos(ω_j τ) dτ and disturbance_sin.col(j) the same with sin
+  // (sin(ω(t_k + τ) + φ) = sin(ωt_k + φ) cos ωτ + cos(ωt_k + φ) sin ωτ), and disturbance_constant = Ψ W c.
+  Vector disturbance_constant;    // n; empty: none
+  DenseMatrix disturbance_cos;    // n×J
+  DenseMatrix disturbance_sin;    // n×J
+  Vector disturbance_omega;       // J
+  Vector disturbance_phase;       // J
+
   int n() const { return static_cast<int>(R.rows()); }
   int m() const { return static_cast<int>(C.rows()); }
   bool has_forcing() const { return static_cast<bool>(forcing); }
+  bool has_input() const { return input_s.rows() > 0; }
+  bool has_disturbance() const { return disturbance_constant.size() > 0; }
+  // w_k at t_k into w (size n), allocation-free; 0 without a disturbance.
+  template <typename W>
+  void AddDisturbance(double t_k, W& w) const {
+    if (!has_disturbance()) return;
+    const Eigen::Index n = disturbance_constant.size();
+    for (Eigen::Index i = 0; i < n; ++i) w[i] += disturbance_constant[i];
+    for (Eigen::Index j = 0; j < disturbance_omega.size(); ++j) {
+      const double angle = disturbance_omega[j] * t_k + disturbance_phase[j];
+      const double sn = std::sin(angle), cs = std::cos(angle);
+      for (Eigen::Index i = 0; i < n; ++i) w[i] += sn * disturbance_cos(i, j) + cs * disturbance_sin(i, j);
+    }
+  }
   // M = C S of `eq:TDS3` (allocates; the stepper calls it once).
   DenseMatrix OneStepMatrix() const { return C * S; }
   // Sizes, finiteness, h > 0, θ ∈ [0, 1]; InvalidInputError naming the field.
@@ -67,7 +100,12 @@ OneStepData DiscretizeTheta(const LinearSignSystem& system, double h, double the
 OneStepData DiscretizeExplicitEuler(const LinearSignSystem& system, double h);
 
 // ZOH discretization of x' = Fx + Gu with the ECB-SMC (`ZOH1`, `eq:ZOHGAMMA`):
-//   Γ = ∫₀ʰ e^{Fτ}dτ G(CG)⁻¹,  Φ = e^{Fh} − Γ C F,  R = Φ, S = α Γ, p = 0, D = 0.
+//   Γ = ∫₀ʰ e^{Fτ}dτ G(CG)⁻¹,  Φ = e^{Fh} − Γ C F,  R = Φ, S = α Γ, p = 0, D = 0;
+//   u_k = −(CG)⁻¹(C F x_k + α s_{k+1}).
+// With system.equivalent_control (Siconos' LinearSMC / ExplicitLinearSMC, linear_system.h), K = (CG)⁻¹CF,
+// Ψ = ∫₀ʰ e^{Fτ}dτ: the prediction x̃_{k+1} = e^{Fh}x_k + ΨG u_eq with u_eq = −K((1−θ)x_k + θx̃_{k+1}) gives
+// x̃_{k+1} = (I + θΨGK)⁻¹(e^{Fh} − (1−θ)ΨGK) x_k =: Ã x_k, u_eq = −L x_k with L = K((1−θ)I + θÃ), and
+//   R = e^{Fh} − ΨG L,  S = α ΨG,  u_k = −L x_k − α s_{k+1}.
 // e^{Fh} and Γ come from ONE exponential of the (n+m)×(n+m) block matrix h [[F, G(CG)⁻¹], [0, 0]] (Van Loan
 // 1978; Moler–Van Loan 2003, method 10), whose top blocks are [e^{Fh}, Γ]; Eigen's MatrixFunctions module
 // computes it by scaling and squaring with Padé approximants.
@@ -80,7 +118,7 @@ using LinearModel = std::variant<LinearSignSystem, ZohSmcSystem>;
 //   LinearSignSystem: kImplicit / kExplicit → DiscretizeTheta with the given θ; kZoh* → InvalidInputError
 //     (ZOH needs the open-loop plant F, G).
 //   ZohSmcSystem: kZoh / kZohExplicit → DiscretizeZoh (θ unused); kImplicit / kExplicit → DiscretizeTheta on
-//     ClosedLoop(system) (the Euler discretization of the same closed loop, S5 of SCENES.md).
+//     ClosedLoop(system) (the Euler discretization of the same closed loop, S5 of docs/scenes.md).
 OneStepData Discretize(const LinearModel& model, Method method, double h, double theta);
 
 // N = round(T / h) steps for a horizon T. InvalidInputError for T < 0 or non-finite, h ≤ 0, or N ≥ 2⁴⁰.

@@ -1,5 +1,6 @@
 // Discretizations: θ-method R, p, S by hand on 1-D cases (and the report's missing factor h in p), forcing
 // weighting, ZOH Φ/Γ against an independent quadrature, and clear errors on bad input.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #include "problems/stepper/discretization.h"
 
 #include <gmock/gmock.h>

@@ -1,7 +1,7 @@
 // Opt-in flush of subnormal numbers for a time-stepping run: a state that decays to the origin passes through the
 // subnormal range (|x| < 2.2e-308), where every operation costs 10–100× more. SubnormalPolicy::kFlushToZero
 // (linear_stepper.h) turns it on for one Run(); the default, kZeroState, zeroes the subnormal state components
-// instead, which is portable and, measured, faster (README "Long runs and subnormal numbers").
+// instead, which is portable and, measured, faster (docs/benchmarks.md, "Long runs and subnormal numbers").
 #pragma once
 
 #if defined(__SSE__) || defined(__x86_64__)

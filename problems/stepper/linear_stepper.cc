@@ -1,3 +1,4 @@
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #include "problems/stepper/linear_stepper.h"
 
 #include <algorithm>
@@ -65,6 +66,9 @@ void PrepareTrajectory(const OneStepData& d, std::int64_t num_steps, const Stepp
   out->iterations.resize(columns);
   out->residual.resize(columns);
   out->status.resize(columns);
+  out->has_input = d.has_input();
+  out->u.resize(d.has_input() ? d.m() : 0, columns);
+  out->u.setConstant(std::numeric_limits<double>::quiet_NaN());  // the last row's stays NaN (no step applied it)
   out->max_residual = 0.0;
   out->total_iterations = 0;
   out->max_iterations = 0;
@@ -89,6 +93,7 @@ void FinishTrajectory(std::int64_t steps_taken, const X& x, const S& s, const Y&
     out->iterations.resize(columns);
     out->residual.resize(columns);
     out->status.resize(columns);
+    if (out->has_input) out->u.conservativeResize(Eigen::NoChange, columns);
   }
   out->x_final = x;
   out->s_final = s;
@@ -172,6 +177,7 @@ class KernelImpl final : public LinearStepper::Kernel {
   using MatNN = Eigen::Matrix<double, N, N>;
   using MatNM = Eigen::Matrix<double, N, M>;
   using MatMN = Eigen::Matrix<double, M, N>;
+  using MatMM = Eigen::Matrix<double, M, M>;
 
   explicit KernelImpl(const OneStepData& d) {
     const int n = d.n(), m = d.m();
@@ -189,15 +195,25 @@ class KernelImpl final : public LinearStepper::Kernel {
       P_.setZero(n, n);
       CP_.setZero(m, n);
     }
+    if (d.has_input()) {
+      Ux_ = d.input_x;
+      Us_ = d.input_s;
+    } else {
+      Ux_.setZero(m, n);
+      Us_.setZero(m, m);
+    }
     x_.resize(n), xn_.resize(n), b_.resize(n), g_prev_.resize(n), g_next_.resize(n), gbar_.resize(n);
-    s_.resize(m), q_.resize(m), y_.resize(m);
+    s_.resize(m), q_.resize(m), y_.resize(m), u_.resize(m);
   }
 
   bool fixed_size() const override { return N != Eigen::Dynamic && M != Eigen::Dynamic; }
 
-  // K·u of StepperOptions::zero_rounding_residue: K = n + m + 1 terms per component (+ n with forcing), u = ε/2.
-  static double ResidueFactor(int n, int m, bool forced) {
-    return static_cast<double>(n + m + 1 + (forced ? n : 0)) * 0.5 * std::numeric_limits<double>::epsilon();
+  // K·u of StepperOptions::zero_rounding_residue: K = n + m + 1 terms per component (+ n with forcing, + 2J + 1
+  // with a disturbance of J sinusoids), u = ε/2.
+  static double ResidueFactor(int n, int m, bool forced, const OneStepData& d) {
+    const int disturbance_terms = d.has_disturbance() ? 2 * static_cast<int>(d.disturbance_omega.size()) + 1 : 0;
+    return static_cast<double>(n + m + 1 + (forced ? n : 0) + disturbance_terms) * 0.5 *
+           std::numeric_limits<double>::epsilon();
   }
 
   void Run(const OneStepData& d, BoxMLCP* problem, const Vector& x0, std::int64_t num_steps, Solver* solver,
@@ -214,17 +230,22 @@ class KernelImpl final : public LinearStepper::Kernel {
     using WVecM = std::conditional_t<kFixed, VecM, VecM&>;
     CMatNN R = R_, P = P_;
     CMatNM S = S_;
-    CMatMN C = C_, CR = CR_, CP = CP_;
+    CMatMN C = C_, CR = CR_, CP = CP_, Ux = Ux_;
+    using CMatMM = std::conditional_t<kFixed, const MatMM, const MatMM&>;
+    CMatMM Us = Us_;
     CVecN p = p_;
     CVecM D = D_, c0 = c0_;
     WVecN x = x_, xn = xn_, b = b_, g_prev = g_prev_, g_next = g_next_, gbar = gbar_;
-    WVecM s = s_, q = q_, y = y_;
+    WVecM s = s_, q = q_, y = y_, u = u_;
 
     const bool implicit = d.sign == SignTreatment::kImplicit;
     const bool forced = d.has_forcing();
     const bool record = options.record;
     const bool stream = options.sink != nullptr;
     const bool need_y = record || stream || !implicit;
+    // u_k = Ux x_k + Us s_{k+1} for the outputs only: a run that reports nothing computes no input.
+    const bool report_input = d.has_input() && (record || stream);
+    const bool disturbed = d.has_disturbance();
     const bool warm = options.warm_start;
     const double h = d.h;
     const double t0 = options.t0;
@@ -232,10 +253,10 @@ class KernelImpl final : public LinearStepper::Kernel {
     const int m = M != Eigen::Dynamic ? M : d.m();  // a compile-time constant for the fixed kernels
     const int n = N != Eigen::Dynamic ? N : d.n();
     const bool zero_residue = implicit && options.zero_rounding_residue;
-    const double residue_factor = ResidueFactor(n, m, forced);
+    const double residue_factor = ResidueFactor(n, m, forced, d);
     const double zero_below = ZeroStateBelow(options, implicit);
     StepObserver* const observer = options.observer;
-    stream_.Start(n, m, options.sink);
+    stream_.Start(n, m, options.sink, d.has_input());
 
     // The backend's options: copied once; per step only warm_start's values change (same size: no allocation).
     solver_options_ = options.solver;
@@ -295,10 +316,19 @@ class KernelImpl final : public LinearStepper::Kernel {
         // Branch-free: the sign alternates every step once the scheme chatters.
         s = (y.array() > 0.0).template cast<double>() - (y.array() < 0.0).template cast<double>();
       }
+      if (report_input) {
+        // Row k's input, applied over [t_k, t_{k+1}): known now that s_{k+1} is.
+        u.noalias() = Ux * x;
+        u.noalias() += Us * s;
+        if (record) out->u.col(static_cast<Eigen::Index>(k)) = u;
+        if (stream) stream_.SetLastInput(u, m);
+      }
       // x_{k+1} = R x_k + p_k − S s_{k+1}, `eq:TDS1`.
       xn = p;
       xn.noalias() += R * x;
       if (forced) xn.noalias() += P * gbar;
+      // The disturbance acts on the plant only: it never entered q above.
+      if (disturbed) d.AddDisturbance(t0 + static_cast<double>(k) * h, xn);
       if (zero_residue) {
         // a = xn, b = S s: a component within the rounding bound of a − b is 0 (StepperOptions).
         b.noalias() = S * s;
@@ -364,11 +394,12 @@ class KernelImpl final : public LinearStepper::Kernel {
 
   MatNN R_, P_;
   MatNM S_;
-  MatMN C_, CR_, CP_;
+  MatMN C_, CR_, CP_, Ux_;
+  MatMM Us_;
   VecN p_;
   VecM D_, c0_;
   VecN x_, xn_, b_, g_prev_, g_next_, gbar_;
-  VecM s_, q_, y_;
+  VecM s_, q_, y_, u_;
   SolverOptions solver_options_;
   SolveResult result_;
   TrajectoryStream stream_;
@@ -376,7 +407,7 @@ class KernelImpl final : public LinearStepper::Kernel {
   Solver* session_solver_ = nullptr;  // the backend session_ was prepared with
 };
 
-// Fixed-size kernels for n ≤ 4, m ≤ 2 (every linear scene of SCENES.md); the dynamic kernel otherwise.
+// Fixed-size kernels for n ≤ 4, m ≤ 2 (every linear scene of docs/scenes.md); the dynamic kernel otherwise.
 template <int N>
 std::unique_ptr<LinearStepper::Kernel> MakeForM(const OneStepData& d) {
   if (d.m() == 1) return std::make_unique<KernelImpl<N, 1>>(d);
@@ -450,7 +481,7 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
   Vector g_prev(n), g_next(n), gbar(n);
   if (first.has_forcing()) first.forcing(options.t0, g_prev);
   TrajectoryStream stream;
-  stream.Start(n, m, options.sink);
+  stream.Start(n, m, options.sink, first.has_input());
   const auto record = [&](std::int64_t k, double t, int iterations, double residual, SolveStatus status) {
     if (options.record) out->SetRow(k, t, x, s, y, iterations, residual, status);
     if (stream.active()) stream.Add(k, t, x, s, y, iterations, residual, status, n, m);
@@ -493,11 +524,19 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
     } else {
       for (int i = 0; i < m; ++i) s[i] = y[i] > 0.0 ? 1.0 : (y[i] < 0.0 ? -1.0 : 0.0);
     }
+    if (d.has_input() && (options.record || stream.active())) {
+      const Vector u = d.input_x * x + d.input_s * s;
+      if (options.record) out->u.col(static_cast<Eigen::Index>(k)) = u;
+      if (stream.active()) stream.SetLastInput(u, m);
+    }
+    // The disturbance acts on the plant only (never on q).
+    if (d.has_disturbance()) d.AddDisturbance(options.t0 + static_cast<double>(k) * h, p);
     if (implicit && options.zero_rounding_residue) {
       // The same rule as the prefactored kernels (StepperOptions::zero_rounding_residue); p holds P ḡ here.
       const Vector a = d.R * x + p;
       const Vector b = d.S * s;
-      const double factor = static_cast<double>(n + m + 1 + (d.has_forcing() ? n : 0)) * 0.5 *
+      const int disturbance_terms = d.has_disturbance() ? 2 * static_cast<int>(d.disturbance_omega.size()) + 1 : 0;
+      const double factor = static_cast<double>(n + m + 1 + (d.has_forcing() ? n : 0) + disturbance_terms) * 0.5 *
                             std::numeric_limits<double>::epsilon();
       for (int i = 0; i < n; ++i) {
         const double v = a[i] - b[i];

@@ -4,12 +4,13 @@
 //   LinearStepper: M, C R, C p + D (and the BoxMLCP itself) are built once; a step is a few small mat-vecs, an
 //     in-place q update (BoxMLCP::set_q) and the solve, warm-started from s_k (a solve session, SolveSession,
 //     whose checks that cannot change during the run are made once before the loop). Fixed-size Eigen kernels serve
-//     n ≤ 4, m ≤ 2 (every linear scene of SCENES.md); larger systems use a dynamic kernel with preallocated
+//     n ≤ 4, m ≤ 2 (every linear scene of docs/scenes.md); larger systems use a dynamic kernel with preallocated
 //     buffers. Neither allocates per step. A run either records its history (O(N) memory) or hands its rows to a
 //     TrajectorySink as it goes (StepperOptions::sink: one bounded block), or keeps only the final state.
 //   SimulateRebuildingEachStep: what a general simulator does: every step re-discretizes (LU of I − hθE or the
 //     matrix exponential), rebuilds M = C S and a fresh BoxMLCP, then solves. Same trajectory up to rounding;
 //     benchmarks compare the two to show what precomputation buys.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #pragma once
 
 #include <cstdint>
@@ -46,7 +47,7 @@ class StepObserver {
 // What a run does about subnormal numbers (|v| < 2.2e-308, float_mode.h): a state decaying to the origin enters
 // that range and, in IEEE arithmetic, stays there for good (the smallest subnormal divided by 1.3 rounds back to
 // itself), and every operation on a subnormal costs 10–100× more (measured: zoh-mimo's 1000×-horizon run at half
-// the steps per second, README "Long runs and subnormal numbers").
+// the steps per second, docs/benchmarks.md, "Long runs and subnormal numbers").
 //   kZeroState (default): after each implicit step, a state component whose magnitude is below the smallest normal
 //     double (std::numeric_limits<double>::min(), 2.2e-308) is set to exactly 0. The state then reaches the origin
 //     exactly instead of parking on subnormals, and 0 is a fixed point. It changes a component by less than

@@ -8,6 +8,8 @@
 #include <cstdio>
 #include <cstdlib>
 #include <new>
+#include <string>
+#include <utility>
 
 #include "problems/stepper/linear_stepper.h"
 #include "problems/stepper/stepper_test_util.h"
@@ -93,6 +95,53 @@ TEST(StepperAllocation, RepeatedRunsDoNotAllocate) {
       const long count = CountAllocations([&] { stepper.Run(c.x0, 5000, &solver, options, &tr); });
       EXPECT_EQ(count, 0);
       EXPECT_TRUE(tr.ok());
+    }
+  }
+}
+
+// Issue 15: runs that report their control input (u columns, set one step late through the stream) and carry a plant
+// disturbance (sines evaluated per step) allocate nothing either.
+class InputSummingSink final : public TrajectorySink {
+ public:
+  void OnRows(const TrajectoryBlock& block) override {
+    for (std::int64_t j = 0; j < block.rows; ++j) sum += block.u(0, static_cast<Eigen::Index>(j));
+  }
+  double sum = 0.0;
+};
+
+TEST(StepperAllocation, InputAndDisturbanceRunsDoNotAllocate) {
+  stepper_test::ReferenceSolver solver;
+  InputSummingSink sink;
+  ZohSmcSystem siso = stepper_test::ZohSisoScene();
+  siso.equivalent_control = EquivalentControl{0.5};
+  siso.disturbance.W = siso.G;
+  siso.disturbance.constant = Vec({0.1});
+  siso.disturbance.sinusoids = {{Vec({0.5}), 50.0, 0.0}};
+  ZohSmcSystem mimo = stepper_test::ZohMimoScene();
+  mimo.disturbance.W = mimo.G;
+  mimo.disturbance.sinusoids = {{Vec({0.2, -0.1}), 20.0, 0.5}};
+  LinearSignSystem s1 = stepper_test::SignScene();
+  s1.control_input = true;
+  const std::pair<const char*, OneStepData> cases[] = {
+      {"S5 siconos implicit", DiscretizeZoh(siso, 0.01, SignTreatment::kImplicit)},
+      {"S5 siconos explicit", DiscretizeZoh(siso, 0.01, SignTreatment::kExplicit)},
+      {"S6 paper implicit", DiscretizeZoh(mimo, 0.01, SignTreatment::kImplicit)},
+      {"S1 input", DiscretizeTheta(s1, 0.01, 1.0, SignTreatment::kImplicit)},
+  };
+  for (const auto& [name, data] : cases) {
+    for (const char* mode : {"recorded", "streamed"}) {
+      SCOPED_TRACE(std::string(name) + " " + mode);
+      LinearStepper stepper(data);
+      StepperOptions options;
+      options.record = std::string(mode) == "recorded";
+      if (!options.record) options.sink = &sink;
+      const Vector x0 = Vector::Constant(data.n(), 0.3);
+      Trajectory tr;
+      stepper.Run(x0, 5000, &solver, options, &tr);
+      const long count = CountAllocations([&] { stepper.Run(x0, 5000, &solver, options, &tr); });
+      EXPECT_EQ(count, 0);
+      EXPECT_TRUE(tr.ok());
+      EXPECT_TRUE(tr.has_input);
     }
   }
 }

@@ -1,5 +1,6 @@
 // The time loop against the report's claims (Lemma yahoo on S1, Lemma oups on S2/S3, the period-2 orbit of
 // the explicit Galias–Yu scheme), cross-backend agreement, the rebuild-every-step path, failure handling.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #include "problems/stepper/linear_stepper.h"
 
 #include <gmock/gmock.h>

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <string>
 #include <utility>
 
 #include "solvers/core/problem.h"
@@ -284,6 +286,85 @@ ReferenceErrors CompareWithReference(const Trajectory& run, const Trajectory& re
     }
   }
   return out;
+}
+
+// ------------------------------------------------------------------------------------------------------------
+// ChatteringAccumulator
+
+ChatteringAccumulator::ChatteringAccumulator(int m, double tol, double sign_dead_zone)
+    : tol_(tol), dead_zone_(sign_dead_zone), m_(m) {
+  if (!(tol >= 0.0)) throw InvalidInputError("ChatteringAccumulator: tol must be >= 0");
+  if (!(sign_dead_zone >= 0.0)) throw InvalidInputError("ChatteringAccumulator: sign_dead_zone must be >= 0");
+  if (m < 1) throw InvalidInputError("ChatteringAccumulator: m must be >= 1, got " + std::to_string(m));
+  on_surface_.assign(static_cast<std::size_t>(m), 0);
+  previous_y_.assign(static_cast<std::size_t>(m), 0.0);
+  last_sign_.assign(static_cast<std::size_t>(m), 0);
+  previous_u_.assign(static_cast<std::size_t>(m), std::numeric_limits<double>::quiet_NaN());
+}
+
+void ChatteringAccumulator::OnRows(const TrajectoryBlock& block) {
+  ChatteringMetrics& r = result_;
+  r.has_input = block.has_input();
+  const auto m = static_cast<std::size_t>(m_);
+  for (std::int64_t j = 0; j < block.rows; ++j) {
+    const auto c = static_cast<Eigen::Index>(j);
+    const std::int64_t row = block.row(j);
+    // Reaching: every σ_i on its surface at some row so far.
+    if (r.from_step < 0) {
+      bool all = true;
+      for (std::size_t i = 0; i < m; ++i) {
+        const double y = block.y(static_cast<Eigen::Index>(i), c);
+        const bool crossed = have_previous_row_ && ((y > 0.0 && previous_y_[i] < 0.0) || (y < 0.0 && previous_y_[i] > 0.0));
+        if (std::abs(y) <= tol_ || crossed) on_surface_[i] = 1;
+        previous_y_[i] = y;
+        all = all && on_surface_[i];
+      }
+      have_previous_row_ = true;
+      if (all) r.from_step = row;
+    }
+    // The input's magnitude over the whole run.
+    bool u_known = r.has_input;
+    for (std::size_t i = 0; u_known && i < m; ++i) u_known = !std::isnan(block.u(static_cast<Eigen::Index>(i), c));
+    if (u_known) {
+      for (std::size_t i = 0; i < m; ++i) r.u_max_abs = std::max(r.u_max_abs, std::abs(block.u(static_cast<Eigen::Index>(i), c)));
+    }
+    if (r.from_step < 0) continue;
+    // After reaching.
+    ++r.rows;
+    double y_norm = 0.0;
+    for (std::size_t i = 0; i < m; ++i) y_norm = std::max(y_norm, std::abs(block.y(static_cast<Eigen::Index>(i), c)));
+    r.sigma_band = std::isnan(y_norm) ? kInf : std::max(r.sigma_band, y_norm);
+    for (std::size_t i = 0; i < m && row >= 1; ++i) {
+      const int sign = Sign(block.s(static_cast<Eigen::Index>(i), c), dead_zone_);
+      if (sign == 0) continue;
+      if (row > r.from_step && last_sign_[i] != 0 && sign != last_sign_[i]) ++r.switching_sign_changes;
+      last_sign_[i] = sign;
+    }
+    if (!u_known) {
+      previous_u_[0] = std::numeric_limits<double>::quiet_NaN();
+      continue;
+    }
+    if (!std::isnan(previous_u_[0])) {
+      double jump_sum = 0.0, jump_max = 0.0;
+      for (std::size_t i = 0; i < m; ++i) {
+        const double jump = std::abs(block.u(static_cast<Eigen::Index>(i), c) - previous_u_[i]);
+        jump_sum += jump;
+        jump_max = std::max(jump_max, jump);
+      }
+      r.u_total_variation += jump_sum;
+      r.u_max_jump = std::max(r.u_max_jump, jump_max);
+    }
+    for (std::size_t i = 0; i < m; ++i) previous_u_[i] = block.u(static_cast<Eigen::Index>(i), c);
+  }
+}
+
+ChatteringMetrics ComputeChattering(const Trajectory& trajectory, double tol, double sign_dead_zone) {
+  RequireRecorded(trajectory, "ComputeChattering");
+  ChatteringAccumulator accumulator(trajectory.m, tol, sign_dead_zone);
+  FeedRecorded(trajectory, &accumulator);
+  ChatteringMetrics result = accumulator.Result();
+  result.has_input = trajectory.has_input;
+  return result;
 }
 
 }  // namespace smcbench

@@ -1,3 +1,4 @@
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #include "problems/stepper/nonlinear_scenes.h"
 
 #include <cmath>

@@ -1,6 +1,7 @@
-// The nonlinear scenes of SCENES.md as C++ builders (their g and h are code, not data): S9 `hypomonotone` (class
+// The nonlinear scenes of docs/scenes.md as C++ builders (their g and h are code, not data): S9 `hypomonotone` (class
 // (3), section "A simple hypomonotone case", `sixe`/`neuf`) and S10 `arctan` (class (4), Example `example4`).
-// Each carries its system, the numerical parameters of SCENES.md and, where one is known, the exact solution.
+// Each carries its system, the numerical parameters of docs/scenes.md and, where one is known, the exact solution.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #pragma once
 
 #include <cstdint>

@@ -21,6 +21,7 @@
 // The report's `eq:JacMCLP` prints the lower-left block as +∇h; F's second block is −h(x), so it is −∇h.
 // `eq:disctrois`/`eq:discquatre` print the ρ-shift with the signs swapped (−ρ x_k, +ρ x_{k+1} on the right-hand
 // side, which makes the hypomonotone part worse); `neuf` has them right and is what is implemented.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #pragma once
 
 #include <cstdint>

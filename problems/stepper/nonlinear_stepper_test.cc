@@ -2,6 +2,7 @@
 // (youpi) on S9, finite-time arrival on S10, Algorithm 1 (MCP) against Algorithm 2 (Newton + MLCP) with every
 // backend, agreement with the linear stepper on class-(2) systems, Newton failure reporting and bad input.
 // Residuals and closed forms are recomputed here, never taken from the stepper's own statuses.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #include <gtest/gtest.h>
 
 #include <algorithm>

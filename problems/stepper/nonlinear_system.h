@@ -2,6 +2,7 @@
 //     x' ∈ f(t, x) − g(x) Sgn(h(x)),   g: Rⁿ → R^{n×m},  h: Rⁿ → Rᵐ,
 // given by callables with their Jacobians, and class (3), `eq:trois`, g_i(x) = A_i x + B_i, h_i(x) = C_i x + D_i,
 // as a special case built from matrices.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #pragma once
 
 #include <functional>

@@ -1,5 +1,6 @@
 // Test helpers for the stepper: a reference box-MLCP solver that does not depend on any backend in progress, and
-// the linear scenes of SCENES.md as systems.
+// the linear scenes of docs/scenes.md as systems.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #pragma once
 
 #include <cmath>

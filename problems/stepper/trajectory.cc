@@ -19,18 +19,21 @@ void Append(long long value, std::string* line) {
   line->append(buffer, result.ptr);
 }
 
-std::string CsvHeader(int n, int m) {
+std::string CsvHeader(int n, int m, bool has_input) {
   std::string line = "t";
   for (int i = 1; i <= n; ++i) line += ",x" + std::to_string(i);
   for (int i = 1; i <= m; ++i) line += ",s" + std::to_string(i);
   for (int i = 1; i <= m; ++i) line += ",y" + std::to_string(i);
-  line += ",iterations,residual\n";
+  line += ",iterations,residual";
+  // After the columns of issue 3, so that readers by position keep working.
+  for (int i = 1; has_input && i <= m; ++i) line += ",u" + std::to_string(i);
+  line += "\n";
   return line;
 }
 
 // One CSV row from column c of the history matrices (a recorded trajectory or a streamed block).
-void AppendCsvRow(double t, const DenseMatrix& x, const DenseMatrix& s, const DenseMatrix& y, Eigen::Index c,
-                  int iterations, double residual, std::string* line) {
+void AppendCsvRow(double t, const DenseMatrix& x, const DenseMatrix& s, const DenseMatrix& y, const DenseMatrix& u,
+                  Eigen::Index c, int iterations, double residual, std::string* line) {
   Append(t, line);
   for (Eigen::Index i = 0; i < x.rows(); ++i) line->push_back(','), Append(x(i, c), line);
   for (Eigen::Index i = 0; i < s.rows(); ++i) line->push_back(','), Append(s(i, c), line);
@@ -39,6 +42,7 @@ void AppendCsvRow(double t, const DenseMatrix& x, const DenseMatrix& s, const De
   Append(static_cast<long long>(iterations), line);
   line->push_back(',');
   Append(residual, line);
+  for (Eigen::Index i = 0; i < u.rows(); ++i) line->push_back(','), Append(u(i, c), line);
   line->push_back('\n');
 }
 
@@ -52,12 +56,15 @@ void WriteTrajectoryCsv(const Trajectory& trajectory, std::ostream& out) {
   if (!tr.recorded) {
     throw InvalidInputError("WriteTrajectoryCsv: the trajectory was not recorded (StepperOptions::record = false)");
   }
-  out << CsvHeader(tr.n, tr.m);
+  const bool has_input = tr.has_input && tr.u.cols() == static_cast<Eigen::Index>(tr.steps_taken + 1);
+  const DenseMatrix no_input;
+  out << CsvHeader(tr.n, tr.m, has_input);
   std::string line;
   const std::int64_t rows = tr.steps_taken + 1;
   for (std::int64_t k = 0; k < rows; ++k) {
     line.clear();
-    AppendCsvRow(tr.t[k], tr.x, tr.s, tr.y, static_cast<Eigen::Index>(k), tr.iterations[k], tr.residual[k], &line);
+    AppendCsvRow(tr.t[k], tr.x, tr.s, tr.y, has_input ? tr.u : no_input, static_cast<Eigen::Index>(k),
+                 tr.iterations[k], tr.residual[k], &line);
     out << line;
   }
   if (!out) throw InvalidInputError("WriteTrajectoryCsv: writing to the stream failed");
@@ -93,6 +100,11 @@ void FeedRecorded(const Trajectory& trajectory, TrajectorySink* sink, std::int64
     block.iterations.assign(tr.iterations.begin() + first, tr.iterations.begin() + first + count);
     block.residual.assign(tr.residual.begin() + first, tr.residual.begin() + first + count);
     block.status.assign(tr.status.begin() + first, tr.status.begin() + first + count);
+    if (tr.has_input) {
+      block.u = tr.u.middleCols(f, c);
+    } else {
+      block.u.resize(0, c);
+    }
     sink->OnRows(block);
   }
 }
@@ -120,11 +132,11 @@ void TrajectoryCsvWriter::Drain() {
 
 void TrajectoryCsvWriter::OnRows(const TrajectoryBlock& block) {
   if (!header_written_) {
-    buffer_ += CsvHeader(block.n, block.m);
+    buffer_ += CsvHeader(block.n, block.m, block.has_input());
     header_written_ = true;
   }
   for (std::int64_t j = 0; j < block.rows; ++j) {
-    AppendCsvRow(block.t[j], block.x, block.s, block.y, static_cast<Eigen::Index>(j), block.iterations[j],
+    AppendCsvRow(block.t[j], block.x, block.s, block.y, block.u, static_cast<Eigen::Index>(j), block.iterations[j],
                  block.residual[j], &buffer_);
     if (buffer_.size() >= kCsvBufferBytes) Drain();
   }

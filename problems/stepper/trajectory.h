@@ -1,12 +1,13 @@
 // What a time-stepper run produces: the discrete trajectory (t_k, x_k, s_k, y_k) and, per step, what the
 // backend reported; the streaming hook that hands the rows out while the run goes (TrajectorySink: outputs of
 // long runs in constant memory, issue 13); and the CSV writer of issue 3 (`t,x1..xn,s1..sm,y1..ym,iterations,
-// residual`), for a recorded trajectory or streamed.
+// residual`, then u1..um when the run has a control input: issue 15), for a recorded trajectory or streamed.
 #pragma once
 
 #include <algorithm>
 #include <cstdint>
 #include <iosfwd>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,6 +38,10 @@ struct Trajectory {
   std::vector<int> iterations;       // backend iterations of the step producing x_k
   std::vector<double> residual;      // its relative natural residual (what options.tolerance judges)
   std::vector<SolveStatus> status;   // its status
+  // The control input u_k applied over [t_k, t_{k+1}) (OneStepData::input_x/input_s), m × (steps_taken + 1) when
+  // has_input and recorded; the last row's (no step applied it) is NaN.
+  bool has_input = false;
+  DenseMatrix u;
 
   // Always filled, recorded or not.
   Vector x_final, s_final, y_final;  // x_N, s_N, y_N (of the last step taken)
@@ -82,7 +87,11 @@ struct TrajectoryBlock {
   std::vector<int> iterations;
   std::vector<double> residual;
   std::vector<SolveStatus> status;  // the step's final status (a non-finite state: kNumericalFailure/kDiverged)
+  // m × capacity when the run has a control input (row j: u applied from t_j on; NaN until the next step sets it,
+  // and for the run's last row); 0 rows otherwise.
+  DenseMatrix u;
 
+  bool has_input() const { return u.rows() > 0; }
   std::int64_t row(std::int64_t j) const { return first_row + j; }
 };
 
@@ -120,11 +129,12 @@ inline constexpr std::int64_t kTrajectoryBlockMaxRows = 4096;
 // run by Start(); Add() never allocates.
 class TrajectoryStream {
  public:
-  // sink may be null: then the stream is inactive and Add() must not be called.
-  void Start(int n, int m, TrajectorySink* sink) {
+  // sink may be null: then the stream is inactive and Add() must not be called. has_input: the rows carry u
+  // (SetLastInput).
+  void Start(int n, int m, TrajectorySink* sink, bool has_input = false) {
     sink_ = sink;
     if (!sink_) return;
-    const std::size_t row_bytes = sizeof(double) * static_cast<std::size_t>(1 + n + 2 * m) + sizeof(int) +
+    const std::size_t row_bytes = sizeof(double) * static_cast<std::size_t>(1 + n + (has_input ? 3 : 2) * m) + sizeof(int) +
                                   sizeof(double) + sizeof(SolveStatus);
     capacity_ = std::clamp<std::int64_t>(static_cast<std::int64_t>(kTrajectoryBlockBytes / row_bytes), 1,
                                          kTrajectoryBlockMaxRows);
@@ -140,6 +150,7 @@ class TrajectoryStream {
     block_.iterations.resize(capacity_);
     block_.residual.resize(capacity_);
     block_.status.resize(capacity_);
+    block_.u.resize(has_input ? m : 0, c);
   }
   bool active() const { return sink_ != nullptr; }
 
@@ -161,7 +172,19 @@ class TrajectoryStream {
     block_.iterations[c] = iterations_k;
     block_.residual[c] = residual_k;
     block_.status[c] = status_k;
+    if (block_.u.rows() > 0) {
+      double* u = block_.u.data() + col * m;
+      for (int i = 0; i < m; ++i) u[i] = std::numeric_limits<double>::quiet_NaN();
+    }
     block_.rows = c + 1;
+  }
+  // The input applied from the row added last on (known one step later; the block is handed out only at the next
+  // Add, so the row is still here).
+  template <typename U>
+  void SetLastInput(const U& u_k, int m) {
+    if (block_.rows == 0 || block_.u.rows() == 0) return;
+    double* u = block_.u.data() + static_cast<Eigen::Index>(block_.rows - 1) * m;
+    for (int i = 0; i < m; ++i) u[i] = u_k[i];
   }
   // The status of the row added last (a failed step's final status).
   void SetLastStatus(SolveStatus status) {
@@ -185,7 +208,8 @@ class TrajectoryStream {
 void FeedRecorded(const Trajectory& trajectory, TrajectorySink* sink,
                   std::int64_t block_rows = kTrajectoryBlockMaxRows);
 
-// Header `t,x1..xn,s1..sm,y1..ym,iterations,residual`, then one row per recorded step, numbers in shortest
+// Header `t,x1..xn,s1..sm,y1..ym,iterations,residual` (then `,u1..um` when the run has a control input; the last
+// row's u is `nan`: no step applied it), then one row per recorded step, numbers in shortest
 // round-trip form. Throws InvalidInputError if the trajectory was not recorded or the stream fails.
 void WriteTrajectoryCsv(const Trajectory& trajectory, std::ostream& out);
 void WriteTrajectoryCsvFile(const Trajectory& trajectory, const std::string& path);

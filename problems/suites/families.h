@@ -1,6 +1,7 @@
 // Generated problem families for the benchmark suites "families" and "scale": seeded, feasible by construction
 // (z* and a complementary w* first, then q = w* − M z*), each returned as a LibraryProblem with its id, seed,
 // matrix-class tags and expected outcome filled in from the construction (proved in families.cc), never guessed.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #pragma once
 
 #include <cstdint>

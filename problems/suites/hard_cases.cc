@@ -1,5 +1,6 @@
 // The hard-case suite. Every case states why it is hard and why its expected outcome is right; the generated ones
 // reuse the families (families.h) under their own ids, the Siconos ones are read from the peer collection.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #include "problems/suites/hard_cases.h"
 
 #include <algorithm>

@@ -202,7 +202,7 @@ void BindSimulate(py::module_& m) {
       .def_readwrite("reference", &SimulateOverrides::reference);
   m.def("_simulate", &Simulate, "scene"_a, "is_document"_a, "overrides"_a, "backend_options"_a,
         "Run a scene (see smcbench.simulate); returns a dict.");
-  m.def("scenes", &Scenes, "The registered scene names, in the order of SCENES.md.");
+  m.def("scenes", &Scenes, "The registered scene names, in the order of docs/scenes.md.");
   m.def("scenes_directory", &ScenesDirectory,
         "The folder the registered scene files are read from ($SMCBENCH_SCENES_DIR overrides it).");
 }

@@ -1,5 +1,6 @@
 """smcbench.simulate on the paper's scene S1 (sign): the finite-time arrival of Lemma (yahoo) of Acary &
 Brogliato 2009, from the scene's name, its file and a dict."""
+# The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 
 import json
 import math

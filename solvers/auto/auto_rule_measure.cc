@@ -17,6 +17,7 @@
 
 #include "problems/generators/random_problems.h"
 #include "solvers/auto/auto_solver.h"
+#include "solvers/core/duration_text.h"
 
 namespace smcbench {
 namespace {
@@ -68,17 +69,7 @@ std::pair<double, double> FastestInTurnNs(F f, G g) {
   return {best_f, best_g};
 }
 
-std::string Ns(double ns) {
-  char text[32];
-  if (ns < 1e4) {
-    std::snprintf(text, sizeof text, "%.0f ns", ns);
-  } else if (ns < 1e7) {
-    std::snprintf(text, sizeof text, "%.1f µs", ns / 1e3);
-  } else {
-    std::snprintf(text, sizeof text, "%.1f ms", ns / 1e6);
-  }
-  return text;
-}
+std::string Ns(double ns) { return DurationText(ns * 1e-9); }
 
 SolverOptions TimedOptions() {
   SolverOptions options;

@@ -46,7 +46,8 @@ struct SolverOptions {
 };
 
 // One accepted spelling of an enum option: `--set backend.name=NAME` stores value. Several names may map to one
-// value (an old spelling); the first listed for a value is the one printed.
+// value (an old spelling, such as the number an integer-coded option used to take: list those last); the first
+// listed for a value is the one ValueText and Help print as the current value.
 struct OptionChoice {
   std::string_view name;
   int value;

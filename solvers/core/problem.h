@@ -1,5 +1,6 @@
 // The two problem types every backend solves: the box-constrained MLCP (Dirkse–Ferris, `eq:MLCP1`) and the
 // nonlinear MCP. Each owns its validation and the one merit function by which every backend is judged.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #pragma once
 
 #include <algorithm>

@@ -1,6 +1,8 @@
 // Exhaustive active-set enumeration for the box-MLCP (see enumerative_solver.h for the method and references).
 #include "solvers/enumerative/enumerative_solver.h"
 
+#include "solvers/core/dense_lu.h"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -84,57 +86,6 @@ constexpr int kIntVectors = 8;    // piv … offset; then choice (3n) and histor
 
 // ---------------------------------------------------------------------------------------------------------
 // Dense kernels on a k×k column-major block with leading dimension ld (no allocation, any k ≤ ld).
-
-// LU with partial pivoting in place (P A = L U). False if a pivot is ≤ small (numerically singular) or NaN.
-// K > 0 fixes k at compile time (fully unrolled small blocks), K = 0 reads it at run time.
-template <int K = 0>
-bool LuFactor(double* a, int ld, int k_runtime, int* piv, double small) {
-  const int k = K > 0 ? K : k_runtime;
-  for (int j = 0; j < k; ++j) {
-    double* cj = a + static_cast<std::ptrdiff_t>(j) * ld;
-    int p = j;
-    double pmax = std::abs(cj[j]);
-    for (int i = j + 1; i < k; ++i) {
-      const double v = std::abs(cj[i]);
-      if (v > pmax) pmax = v, p = i;
-    }
-    piv[j] = p;
-    if (!(pmax > small)) return false;
-    if (p != j) {
-      for (std::ptrdiff_t c = 0; c < k; ++c) std::swap(a[j + c * ld], a[p + c * ld]);
-    }
-    const double inv = 1.0 / cj[j];
-    for (int i = j + 1; i < k; ++i) cj[i] *= inv;
-    for (int c = j + 1; c < k; ++c) {
-      double* cc = a + static_cast<std::ptrdiff_t>(c) * ld;
-      const double f = cc[j];
-      if (f == 0.0) continue;
-      for (int i = j + 1; i < k; ++i) cc[i] -= cj[i] * f;
-    }
-  }
-  return true;
-}
-
-// Solves A x = b from LuFactor's output; b is overwritten by x.
-template <int K = 0>
-void LuSolve(const double* a, int ld, int k_runtime, const int* piv, double* b) {
-  const int k = K > 0 ? K : k_runtime;
-  for (int j = 0; j < k; ++j) {
-    if (piv[j] != j) std::swap(b[j], b[piv[j]]);
-  }
-  for (int j = 0; j < k; ++j) {
-    const double bj = b[j];
-    if (bj == 0.0) continue;
-    const double* cj = a + static_cast<std::ptrdiff_t>(j) * ld;
-    for (int i = j + 1; i < k; ++i) b[i] -= cj[i] * bj;
-  }
-  for (int j = k - 1; j >= 0; --j) {
-    const double* cj = a + static_cast<std::ptrdiff_t>(j) * ld;
-    b[j] /= cj[j];
-    const double bj = b[j];
-    for (int i = 0; i < j; ++i) b[i] -= cj[i] * bj;
-  }
-}
 
 // ‖x‖₂ without overflow or harmful underflow.
 double StableNorm(const double* x, int len) {
@@ -262,9 +213,9 @@ inline bool FactorBlock(double* a, int ld, int k, int* piv, double small) {
     a[0] = a00, a[1] = m, a[ld] = a01, a[ld + 1] = u11;
     return true;
   }
-  if (k == 3) return LuFactor<3>(a, ld, k, piv, small);
-  if (k == 4) return LuFactor<4>(a, ld, k, piv, small);
-  return LuFactor(a, ld, k, piv, small);
+  if (k == 3) return dense_lu::Factor<3>(a, ld, k, piv, small);
+  if (k == 4) return dense_lu::Factor<4>(a, ld, k, piv, small);
+  return dense_lu::Factor(a, ld, k, piv, small);
 }
 
 // Solves A x = b (b becomes x) from FactorBlock's output.
@@ -277,11 +228,11 @@ inline void SolveFactored(const double* a, int ld, int k, const int* piv, double
     b[1] = (r1 - a[1] * r0) / a[ld + 1];
     b[0] = (r0 - a[ld] * b[1]) / a[0];
   } else if (k == 3) {
-    LuSolve<3>(a, ld, k, piv, b);
+    dense_lu::Solve<3>(a, ld, k, piv, b);
   } else if (k == 4) {
-    LuSolve<4>(a, ld, k, piv, b);
+    dense_lu::Solve<4>(a, ld, k, piv, b);
   } else {
-    LuSolve(a, ld, k, piv, b);
+    dense_lu::Solve(a, ld, k, piv, b);
   }
 }
 
@@ -617,6 +568,81 @@ void Trace(long long index, const int* state, int n, const char* what, double va
   for (int i = 0; i < shown; ++i) pattern[i] = kStateChar[state[i]];
   pattern[shown] = '\0';
   std::fprintf(stderr, "enum: set %lld %s%s: %s %.3g\n", index, pattern, n > shown ? "..." : "", what, value);
+}
+
+// What a search that found no solution saw, for its message.
+struct SearchTally {
+  long long examined = 0, guided = 0, exhaustive = 0, singular = 0, singular_skipped = 0, nonfinite = 0,
+            near_misses = 0, unresolved = 0;
+  double total = 0.0;          // active sets in the full search
+  double best_merit = kInf;    // smallest merit value among the candidates that reached the merit test
+  double closest = kInf;       // the closest refutation, relative to its threshold closest_tau
+  double closest_tau = 1.0;
+  bool one_sign = false;       // det M_FF of one sign with clear pivots over the exhaustive phase
+};
+
+// The end of a search that found no solution (result->z already holds the best candidate or the start): the
+// merit function's last word, then the status and the message that says why — a proof of infeasibility only with
+// every active set refuted with a margin.
+void ReportUnsolved(const BoxMLCP& problem, const SolverOptions& options, SolveStatus stop, const SearchTally& t,
+                    SolveResult* result) {
+  const bool have_best = std::isfinite(t.best_merit);
+  // The merit function has the last word: a point it accepts is an answer, whatever the search's own tests said.
+  if (have_best && Passes(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
+    result->status = SolveStatus::kSolved;
+    return;
+  }
+  std::ostringstream s;
+  s.precision(3);
+  if (stop == SolveStatus::kIterationLimit || stop == SolveStatus::kTimeLimit) {
+    result->status = stop;
+    s << "enum: " << (stop == SolveStatus::kTimeLimit ? "time limit" : "iteration limit (max_iterations)")
+      << " reached after " << t.examined << " active sets (" << t.guided << " guided, " << t.exhaustive << " of the "
+      << CountText(t.total) << " of the full search) without a solution";
+  } else {
+    // Every active set was examined. "No solution exists" needs a certificate: each set refuted with a margin, no
+    // singular block left unresolved, and a problem of a class that can lack a solution. Anything else is a
+    // failure of the method, and says why.
+    std::ostringstream why;
+    const char* sep = "";
+    const auto reason = [&]() -> std::ostringstream& {
+      why << sep;
+      sep = "; ";
+      return why;
+    };
+    why.precision(3);
+    if (t.near_misses > 0) {
+      reason() << t.near_misses << " active sets pass the sign tests at roundoff level (ill-conditioned blocks)";
+    }
+    if (t.nonfinite > 0) reason() << t.nonfinite << " block solves overflowed";
+    if (t.singular_skipped > 0) {
+      reason() << t.singular_skipped << " singular free blocks were skipped (solve_singular_blocks is off)";
+    }
+    if (t.unresolved > 0) {
+      reason() << t.unresolved << " active sets have a singular free block whose solution set was not searched (only "
+               << "its least-norm point was tried)";
+    }
+    if (std::isfinite(t.closest) && t.closest <= kCertifyMargin * t.closest_tau) {
+      reason() << "the closest refutation misses by " << t.closest << " against a threshold of " << t.closest_tau
+               << " (a certificate needs " << kCertifyMargin << "x)";
+    }
+    if (const char* exists = SolutionExistsReason(problem, t.one_sign)) {
+      reason() << exists << ", so a solution exists";
+    }
+    if (why.str().empty()) {
+      result->status = SolveStatus::kInfeasible;
+      s << "enum: no solution exists: all " << t.exhaustive << " active sets examined (after " << t.guided
+        << " guided), each refuted with a margin of at least " << kCertifyMargin << "x the rounding threshold";
+      if (t.singular > 0) s << " (" << t.singular << " singular free blocks, each refuted on its whole solution set)";
+    } else {
+      result->status = SolveStatus::kNumericalFailure;
+      s << "enum: enumeration found no verified active set (all " << t.exhaustive << " examined); not a proof of "
+        << "infeasibility: " << why.str();
+    }
+  }
+  if (have_best) s << "; best candidate's natural residual " << t.best_merit << " (absolute)";
+  result->message = s.str();
+  if (options.verbosity >= 1) std::fprintf(stderr, "%s\n", result->message.c_str());
 }
 
 }  // namespace
@@ -1248,62 +1274,13 @@ template <int N>
   // No solution found. Return the best candidate by merit value if there was one, else the starting point.
   const bool have_best = std::isfinite(best_merit);
   for (int i = 0; i < n; ++i) result->z[i] = have_best ? b.best[i] : b.start[i];
-  // The merit function has the last word: a point it accepts is an answer, whatever the search's own tests said.
-  if (have_best && Passes(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
-    result->status = SolveStatus::kSolved;
-    return;
-  }
-  std::ostringstream s;
-  s.precision(3);
-  if (stop == SolveStatus::kIterationLimit || stop == SolveStatus::kTimeLimit) {
-    result->status = stop;
-    s << "enum: " << (stop == SolveStatus::kTimeLimit ? "time limit" : "iteration limit (max_iterations)")
-      << " reached after " << examined << " active sets (" << guided << " guided, " << exhaustive << " of the "
-      << CountText(total) << " of the full search) without a solution";
-  } else {
-    // Every active set was examined. "No solution exists" needs a certificate: each set refuted with a margin, no
-    // singular block left unresolved, and a problem of a class that can lack a solution. Anything else is a
-    // failure of the method, and says why.
-    std::ostringstream why;
-    const char* sep = "";
-    const auto reason = [&]() -> std::ostringstream& {
-      why << sep;
-      sep = "; ";
-      return why;
-    };
-    why.precision(3);
-    if (near_misses > 0) {
-      reason() << near_misses << " active sets pass the sign tests at roundoff level (ill-conditioned blocks)";
-    }
-    if (nonfinite > 0) reason() << nonfinite << " block solves overflowed";
-    if (singular_skipped > 0) {
-      reason() << singular_skipped << " singular free blocks were skipped (solve_singular_blocks is off)";
-    }
-    if (unresolved > 0) {
-      reason() << unresolved << " active sets have a singular free block whose solution set was not searched (only "
-               << "its least-norm point was tried)";
-    }
-    if (std::isfinite(closest) && closest <= kCertifyMargin * closest_tau) {
-      reason() << "the closest refutation misses by " << closest << " against a threshold of " << closest_tau
-               << " (a certificate needs " << kCertifyMargin << "x)";
-    }
-    const bool one_sign = det_unclear == 0 && (det_positive == 0 || det_negative == 0);
-    if (const char* exists = SolutionExistsReason(problem, one_sign)) {
-      reason() << exists << ", so a solution exists";
-    }
-    if (why.str().empty()) {
-      result->status = SolveStatus::kInfeasible;
-      s << "enum: no solution exists: all " << exhaustive << " active sets examined (after " << guided
-        << " guided), each refuted with a margin of at least " << kCertifyMargin << "x the rounding threshold";
-      if (singular > 0) s << " (" << singular << " singular free blocks, each refuted on its whole solution set)";
-    } else {
-      result->status = SolveStatus::kNumericalFailure;
-      s << "enum: enumeration found no verified active set (all " << exhaustive << " examined); not a proof of "
-        << "infeasibility: " << why.str();
-    }
-  }
-  if (have_best) s << "; best candidate's natural residual " << best_merit << " (absolute)";
-  result->message = s.str();
+  SearchTally tally;
+  tally.examined = examined, tally.guided = guided, tally.exhaustive = exhaustive, tally.singular = singular;
+  tally.singular_skipped = singular_skipped, tally.nonfinite = nonfinite, tally.near_misses = near_misses;
+  tally.unresolved = unresolved, tally.total = total, tally.best_merit = best_merit, tally.closest = closest;
+  tally.closest_tau = closest_tau;
+  tally.one_sign = det_unclear == 0 && (det_positive == 0 || det_negative == 0);
+  ReportUnsolved(problem, options, stop, tally, result);
   if (options.verbosity >= 1) std::fprintf(stderr, "%s\n", result->message.c_str());
 }
 

@@ -117,6 +117,10 @@ class EnumerativeSolver final : public Solver {
     OptionsChanged();
     return options_;
   }
+  void set_options(const EnumerativeOptions& options) {
+    options_ = options;
+    OptionsChanged();
+  }
 
  protected:
   void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;

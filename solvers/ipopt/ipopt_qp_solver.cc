@@ -191,7 +191,28 @@ class Session {
   Session(const Session&) = delete;
   Session& operator=(const Session&) = delete;
 
+  // The phases, in order: reset the per-solve state, accept the start (or its polish) if it already solves the
+  // problem, choose and set up the formulation, run Ipopt, take its point (polished), and explain a failure.
   void Solve(const BoxMLCP& problem, const SolverOptions& options, const IpoptOptions& ipopt, SolveResult* result);
+
+ private:
+  void ResetForSolve(const BoxMLCP& p, const SolverOptions& options, const IpoptOptions& o, const Vector& start);
+  bool SolvedAtStart(const SolverOptions& options, const IpoptOptions& o, SolveResult* result);
+  // kConvexQp, kForcedQp or kGapNlp, with its TNLP set up; −1 (result kNotApplicable) for qp on a nonsymmetric M.
+  int ChooseFormulation(const BoxMLCP& p, const IpoptOptions& o, SolveResult* result);
+  Ipopt::ApplicationReturnStatus RunIpopt(const SolverOptions& options, const IpoptOptions& o, int formulation);
+  // Ipopt's point, polished when that helps, into result->z; its residual, and the polish's.
+  struct Answer {
+    double ipopt_residual = kInf;
+    double polished_residual = kNaN;
+    bool accepted = false;  // the polished point replaced Ipopt's
+  };
+  Answer TakeIpoptPoint(const IpoptOptions& o, SolveResult* result);
+  // Status and message of an answer above the tolerance: what Ipopt's status means for this problem.
+  void ExplainFailure(const BoxMLCP& p, const IpoptOptions& o, Ipopt::ApplicationReturnStatus status, bool gap,
+                      const Answer& answer, SolveResult* result);
+
+ public:
 
   // Called by the TNLPs.
   bool OnIteration(Ipopt::AlgorithmMode mode, Index iter);
@@ -1034,7 +1055,8 @@ bool Session::CertifyInfeasible(const BoxMLCP& p) const {
   return FarkasCertificateHolds(p, c) || FarkasCertificateHolds(p, sign);
 }
 
-void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptOptions& o, SolveResult* result) {
+void Session::ResetForSolve(const BoxMLCP& p, const SolverOptions& options, const IpoptOptions& o,
+                            const Vector& start) {
   problem_ = &p;
   n_ = p.size();
   ipopt_options_ = &o;
@@ -1048,14 +1070,16 @@ void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptO
   tried_state_.clear();
   if (product_.size() != n_) product_.resize(n_);
   if (product_t_.size() != n_) product_t_.resize(n_);
-  start_ = result->z;
+  start_ = start;
+}
 
-  // The starting point may already be a solution (re-solve from a previous result, or all rows fixed).
+// The starting point may already be a solution (re-solve from a previous result, or all rows fixed), or its polish.
+bool Session::SolvedAtStart(const SolverOptions& options, const IpoptOptions& o, SolveResult* result) {
   const double start_residual = RelResidual(start_, &iter_w_);
   if (start_residual <= target_) {
     result->status = SolveStatus::kSolved;
     result->SetDetail("formulation", kNone);
-    return;
+    return true;
   }
   if (o.polish && o.polish_warm_start && options.warm_start.size() == n_) {
     const double polished = Polish(start_, &pol_best_);
@@ -1066,10 +1090,13 @@ void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptO
       result->SetDetail("polished_residual", polished);
       result->SetDetail("polish_accepted", 1.0);
       result->SetDetail("early_stop", kWarmPolish);
-      return;
+      return true;
     }
   }
+  return false;
+}
 
+int Session::ChooseFormulation(const BoxMLCP& p, const IpoptOptions& o, SolveResult* result) {
   Classify(p, o);
   int formulation;
   if (o.formulation == IpoptOptions::kGap) {
@@ -1079,7 +1106,7 @@ void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptO
       result->status = SolveStatus::kNotApplicable;
       result->message =
           "formulation=qp needs a symmetric M, up to a positive row scaling (the QP's KKT system uses (S+S')/2)";
-      return;
+      return -1;
     }
     formulation = psd_ ? kConvexQp : kForcedQp;
   } else {
@@ -1087,17 +1114,20 @@ void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptO
   }
   result->SetDetail("formulation", formulation);
   result->SetDetail("symmetric_psd", (symmetric_ && psd_) ? 1.0 : 0.0);
-  const bool gap = formulation == kGapNlp;
-  if (gap) {
+  if (formulation == kGapNlp) {
     SetupGap(p);
   } else {
     SetupQp(p);
     weighted_q_ = weights_.cwiseProduct(p.q());
   }
+  return formulation;
+}
 
+// Ipopt never throws through here: its exceptions become statuses.
+Ipopt::ApplicationReturnStatus Session::RunIpopt(const SolverOptions& options, const IpoptOptions& o,
+                                                 int formulation) {
   ConfigureOutput(options.verbosity, o.print_level);
   Ipopt::ApplicationReturnStatus status = Ipopt::Internal_Error;
-  bool options_ok = true;
   try {
     if (!initialized_) {
       std::istringstream no_options;  // never read an ipopt.opt from the working directory
@@ -1105,23 +1135,25 @@ void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptO
       initialized_ = status == Ipopt::Solve_Succeeded;
     }
     if (initialized_) {
-      options_ok = SetIpoptOptions(options, o, formulation == kConvexQp);
-      status = options_ok ? app_->OptimizeTNLP(gap ? gap_holder_ : qp_holder_) : Ipopt::Invalid_Option;
+      const bool options_ok = SetIpoptOptions(options, o, formulation == kConvexQp);
+      status = options_ok ? app_->OptimizeTNLP(formulation == kGapNlp ? gap_holder_ : qp_holder_)
+                          : Ipopt::Invalid_Option;
     }
   } catch (const std::exception&) {
     status = Ipopt::NonIpopt_Exception_Thrown;
   } catch (...) {
     status = Ipopt::Unrecoverable_Exception;
   }
-  result->SetDetail("ipopt_status", static_cast<double>(status));
-  result->iterations = iterations_;
+  return status;
+}
 
+Session::Answer Session::TakeIpoptPoint(const IpoptOptions& o, SolveResult* result) {
   // Ipopt's point: the iterate that met the merit function or fed a successful early polish, else its final x.
+  Answer answer;
   const Vector* ipopt_z = nullptr;
-  double ipopt_residual = kInf;
   if (stop_ == kStopMerit || stop_ == kStopPolished) {
     ipopt_z = &early_ipopt_z_;
-    ipopt_residual = early_ipopt_residual_;
+    answer.ipopt_residual = early_ipopt_residual_;
   } else if (have_ipopt_x_) {
     ipopt_z = &ipopt_x_;
   } else if (have_last_x_) {
@@ -1129,46 +1161,59 @@ void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptO
     ipopt_z = &ipopt_x_;
   }
   if (ipopt_z != nullptr && stop_ != kStopMerit && stop_ != kStopPolished) {
-    ipopt_residual = RelResidual(*ipopt_z, &iter_w_);
+    answer.ipopt_residual = RelResidual(*ipopt_z, &iter_w_);
   }
-  if (ipopt_z != nullptr) result->SetDetail("ipopt_residual", ipopt_residual);
+  if (ipopt_z != nullptr) result->SetDetail("ipopt_residual", answer.ipopt_residual);
   // Ipopt's objective at its final point (finalize_solution runs on early stops too): QP value or gap G.
   result->SetDetail("objective", objective_);
 
-  double polished_residual = kNaN;
-  bool accepted = false;
   if (stop_ == kStopPolished) {
-    polished_residual = early_polished_residual_;
-    accepted = true;
+    answer.polished_residual = early_polished_residual_;
+    answer.accepted = true;
     result->z = early_z_;
     result->SetDetail("early_stop", kEarlyPolish);
   } else if (ipopt_z != nullptr) {
     result->z = *ipopt_z;
     if (stop_ == kStopMerit) result->SetDetail("early_stop", kMeritAtIterate);
-    if (o.polish && ipopt_residual > target_) {
-      polished_residual = Polish(*ipopt_z, &pol_best_);
-      if (polished_residual < ipopt_residual) {
-        accepted = true;
+    if (o.polish && answer.ipopt_residual > target_) {
+      answer.polished_residual = Polish(*ipopt_z, &pol_best_);
+      if (answer.polished_residual < answer.ipopt_residual) {
+        answer.accepted = true;
         result->z = pol_best_;
       }
     }
   }
   if (o.polish) {
-    result->SetDetail("polished_residual", polished_residual);
-    result->SetDetail("polish_accepted", accepted ? 1.0 : 0.0);
+    result->SetDetail("polished_residual", answer.polished_residual);
+    result->SetDetail("polish_accepted", answer.accepted ? 1.0 : 0.0);
   }
-  const double final_residual = accepted ? polished_residual : ipopt_residual;
+  return answer;
+}
 
+void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptOptions& o, SolveResult* result) {
+  ResetForSolve(p, options, o, result->z);
+  if (SolvedAtStart(options, o, result)) return;
+  const int formulation = ChooseFormulation(p, o, result);
+  if (formulation < 0) return;
+  const Ipopt::ApplicationReturnStatus status = RunIpopt(options, o, formulation);
+  result->SetDetail("ipopt_status", static_cast<double>(status));
+  result->iterations = iterations_;
+  const Answer answer = TakeIpoptPoint(o, result);
   if (options.verbosity > 0) {
     std::fprintf(stderr, "ipopt: formulation %d, Ipopt %s (%d) after %d iterations, residual %.3e, polished %.3e%s\n",
-                 formulation, IpoptStatusName(status), static_cast<int>(status), iterations_, ipopt_residual,
-                 polished_residual, accepted ? " (kept)" : "");
+                 formulation, IpoptStatusName(status), static_cast<int>(status), iterations_, answer.ipopt_residual,
+                 answer.polished_residual, answer.accepted ? " (kept)" : "");
   }
-
+  const double final_residual = answer.accepted ? answer.polished_residual : answer.ipopt_residual;
   if (final_residual <= target_) {
     result->status = SolveStatus::kSolved;
     return;
   }
+  ExplainFailure(p, o, status, formulation == kGapNlp, answer, result);
+}
+
+void Session::ExplainFailure(const BoxMLCP& p, const IpoptOptions& o, Ipopt::ApplicationReturnStatus status, bool gap,
+                             const Answer& answer, SolveResult* result) {
   std::ostringstream msg;
   msg.precision(3);
   const double scaled_gap = objective_ / p.residual_scale();
@@ -1244,8 +1289,10 @@ void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptO
       break;
   }
   msg << "; Ipopt status " << static_cast<int>(status) << ", " << iterations_ << " iterations, relative natural "
-      << "residual " << ipopt_residual;
-  if (o.polish) msg << " (polished " << polished_residual << (accepted ? ", kept" : ", rejected") << ")";
+      << "residual " << answer.ipopt_residual;
+  if (o.polish) {
+    msg << " (polished " << answer.polished_residual << (answer.accepted ? ", kept" : ", rejected") << ")";
+  }
   msg << " > tolerance " << target_;
   result->message = msg.str();
 }
@@ -1255,22 +1302,22 @@ void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptO
 bool IpoptOptions::IsValid(std::string* why) const {
   std::ostringstream s;
   if (formulation < kAuto || formulation > kGap) {
-    s << "formulation must be 0 (auto), 1 (qp) or 2 (gap), got " << formulation;
+    s << "formulation must be auto, qp or gap, got the code " << static_cast<int>(formulation);
   } else if (!(tol > 0.0) || !std::isfinite(tol)) {
     s << "tol must be a positive finite number, got " << tol;
   } else if (max_iter < 1) {
     s << "max_iter must be >= 1, got " << max_iter;
   } else if (mu_strategy != kMonotone && mu_strategy != kAdaptive) {
-    s << "mu_strategy must be 0 (monotone) or 1 (adaptive), got " << mu_strategy;
+    s << "mu_strategy must be monotone or adaptive, got the code " << static_cast<int>(mu_strategy);
   } else if (linear_solver < kMumps || linear_solver > kPardiso) {
-    s << "linear_solver must be 0 (mumps), 1 (ma27), 2 (ma57), 3 (ma77), 4 (ma86), 5 (ma97) or 6 (pardiso), got "
-      << linear_solver;
+    s << "linear_solver must be mumps, ma27, ma57, ma77, ma86, ma97 or pardiso, got the code "
+      << static_cast<int>(linear_solver);
   } else if (const char* library = linear_solver == kPardiso ? "libpardiso.so" : "libhsl.so";
              linear_solver != kMumps && !RuntimeLibraryLoadable(library)) {
     // Checked here, not left to Ipopt: Ipopt 3.11 loads these at run time and, for some of them (ma97), calls
     // exit() when the library is missing, which would end the whole program.
-    s << "linear_solver " << linear_solver << " (" << LinearSolverName(linear_solver) << ") needs " << library
-      << ", which cannot be loaded here (Debian's Ipopt ships MUMPS only: use 0)";
+    s << "linear_solver " << LinearSolverName(linear_solver) << " needs " << library
+      << ", which cannot be loaded here (Debian's Ipopt ships MUMPS only: use mumps)";
   } else if (print_level < 0 || print_level > 12) {
     s << "print_level must be in 0..12, got " << print_level;
   } else if (!(symmetry_tolerance >= 0.0) || !std::isfinite(symmetry_tolerance)) {
@@ -1316,12 +1363,26 @@ void IpoptQpSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
 }
 
 void IpoptQpSolver::BindOptions(OptionBinder* binder) {
-  binder->Add("formulation", &options_.formulation, "0 auto (QP if M symmetric PSD, else gap NLP), 1 qp, 2 gap");
+  // The numbers after the names are the options' old spellings, still read so that old command lines work.
+  binder->Add("formulation", &options_.formulation,
+              {{"auto", IpoptOptions::kAuto}, {"qp", IpoptOptions::kQp}, {"gap", IpoptOptions::kGap},
+               {"0", IpoptOptions::kAuto}, {"1", IpoptOptions::kQp}, {"2", IpoptOptions::kGap}},
+              "auto (QP if M symmetric PSD, else gap NLP), qp, gap (old numbers 0-2 still read)");
   binder->Add("tol", &options_.tol, "Ipopt tol (scaled NLP error)");
   binder->Add("max_iter", &options_.max_iter, "Ipopt max_iter when max_iterations <= 0");
-  binder->Add("mu_strategy", &options_.mu_strategy, "0 monotone, 1 adaptive");
+  binder->Add("mu_strategy", &options_.mu_strategy,
+              {{"monotone", IpoptOptions::kMonotone}, {"adaptive", IpoptOptions::kAdaptive},
+               {"0", IpoptOptions::kMonotone}, {"1", IpoptOptions::kAdaptive}},
+              "Ipopt mu_strategy: monotone or adaptive (old numbers 0, 1 still read)");
   binder->Add("mehrotra", &options_.mehrotra, "Mehrotra predictor-corrector for the convex QP");
-  binder->Add("linear_solver", &options_.linear_solver, "0 mumps, 1 ma27, 2 ma57, 3 ma77, 4 ma86, 5 ma97, 6 pardiso");
+  binder->Add("linear_solver", &options_.linear_solver,
+              {{"mumps", IpoptOptions::kMumps}, {"ma27", IpoptOptions::kMa27}, {"ma57", IpoptOptions::kMa57},
+               {"ma77", IpoptOptions::kMa77}, {"ma86", IpoptOptions::kMa86}, {"ma97", IpoptOptions::kMa97},
+               {"pardiso", IpoptOptions::kPardiso}, {"0", IpoptOptions::kMumps}, {"1", IpoptOptions::kMa27},
+               {"2", IpoptOptions::kMa57}, {"3", IpoptOptions::kMa77}, {"4", IpoptOptions::kMa86},
+               {"5", IpoptOptions::kMa97}, {"6", IpoptOptions::kPardiso}},
+              "Ipopt linear_solver: mumps (Debian's), or ma27/ma57/ma77/ma86/ma97 (libhsl.so), pardiso "
+              "(libpardiso.so) (old numbers 0-6 still read)");
   binder->Add("print_level", &options_.print_level, "Ipopt print_level (0..12) when verbosity >= 2");
   binder->Add("symmetry_tolerance", &options_.symmetry_tolerance, "relative asymmetry still called symmetric");
   binder->Add("psd_tolerance", &options_.psd_tolerance, "PSD if lambda_min > -psd_tolerance*||M||_inf");

@@ -22,15 +22,16 @@ struct IpoptOptions {
   enum LinearSolver : int { kMumps = 0, kMa27 = 1, kMa57 = 2, kMa77 = 3, kMa86 = 4, kMa97 = 5, kPardiso = 6 };
   enum MuStrategy : int { kMonotone = 0, kAdaptive = 1 };
 
-  int formulation = kAuto;
+  // The options with named values (`--set ipopt.formulation=gap`; the old numbers are still read).
+  Formulation formulation = kAuto;
   // Ipopt "tol": its scaled NLP error. The solve also stops as soon as our merit function holds at an iterate.
   double tol = 1e-10;
   // Ipopt "max_iter", used when SolverOptions::max_iterations <= 0. Iterations counted are Ipopt's.
   int max_iter = 3000;
-  int mu_strategy = kAdaptive;
+  MuStrategy mu_strategy = kAdaptive;
   // Ipopt "mehrotra_algorithm" for the convex-QP formulation only (Ipopt recommends it for convex QPs).
   bool mehrotra = false;
-  int linear_solver = kMumps;
+  LinearSolver linear_solver = kMumps;
   // Ipopt "print_level" (0..12) used when SolverOptions::verbosity >= 2; verbosity 1 caps it at 3 (summary),
   // verbosity 0 silences Ipopt completely (no journal at all, banner suppressed).
   int print_level = 5;
@@ -61,8 +62,16 @@ class IpoptQpSolver final : public Solver {
   IpoptQpSolver& operator=(const IpoptQpSolver&) = delete;
 
   const SolverInfo& info() const override;
-  IpoptOptions& options() { return options_; }
   const IpoptOptions& options() const { return options_; }
+  // The options, to change in place; sessions check them again on their next call.
+  IpoptOptions& mutable_options() {
+    OptionsChanged();
+    return options_;
+  }
+  void set_options(const IpoptOptions& options) {
+    options_ = options;
+    OptionsChanged();
+  }
 
  protected:
   void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;

@@ -158,16 +158,16 @@ TEST(IpoptQpSolverTest, PolishReportsBothResiduals) {
   const BoxMLCP p = BoxMLCP::LCP(M, g.q);
 
   IpoptQpSolver plain;
-  plain.options().polish = false;
-  plain.options().tol = 1e-6;  // a loose Ipopt tolerance: the interior-point point alone is not accurate
+  plain.mutable_options().polish = false;
+  plain.mutable_options().tol = 1e-6;  // a loose Ipopt tolerance: the interior-point point alone is not accurate
   SolverOptions strict;
   const SolveResult a = plain.Solve(p, strict);
   EXPECT_TRUE(std::isnan(a.GetDetail("polished_residual")));
   EXPECT_NEAR(a.residual_rel, Residual(p, a.z), 1e-14);
 
   IpoptQpSolver polished;
-  polished.options().tol = 1e-6;
-  polished.options().early_polish = false;
+  polished.mutable_options().tol = 1e-6;
+  polished.mutable_options().early_polish = false;
   const SolveResult b = polished.Solve(p, strict);
   ASSERT_EQ(b.status, SolveStatus::kSolved) << b.message;
   EXPECT_LE(Residual(p, b.z), kTol);
@@ -435,21 +435,21 @@ TEST(IpoptQpSolverTest, InvalidOptions) {
   SolveResult r = solver.Solve(p);
   EXPECT_EQ(r.status, SolveStatus::kSolved) << r.message;
 
-  solver.options() = IpoptOptions();
-  solver.options().psd_tolerance = -1.0;
+  solver.set_options(IpoptOptions());
+  solver.mutable_options().psd_tolerance = -1.0;
   r = solver.Solve(p);
   EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
   EXPECT_NE(r.message.find("psd_tolerance"), std::string::npos);
-  solver.options() = IpoptOptions();
-  solver.options().linear_solver = 42;
+  solver.set_options(IpoptOptions());
+  solver.mutable_options().linear_solver = static_cast<IpoptOptions::LinearSolver>(42);
   r = solver.Solve(p);
   EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
-  solver.options().formulation = 5;
+  solver.mutable_options().formulation = static_cast<IpoptOptions::Formulation>(5);
   EXPECT_EQ(solver.Solve(p).status, SolveStatus::kInvalidOptions);
 
   // A valid code for a linear solver this Ipopt cannot load (HSL is not in Debian) is a status, not a crash.
-  solver.options() = IpoptOptions();
-  solver.options().linear_solver = IpoptOptions::kMa27;
+  solver.set_options(IpoptOptions());
+  solver.mutable_options().linear_solver = IpoptOptions::kMa27;
   r = solver.Solve(p);
   if (r.status != SolveStatus::kSolved) {
     EXPECT_EQ(r.status, SolveStatus::kInvalidOptions) << r.message;
@@ -457,7 +457,7 @@ TEST(IpoptQpSolverTest, InvalidOptions) {
   }
 
   // The instance is usable again once the options are fixed.
-  solver.options() = IpoptOptions();
+  solver.set_options(IpoptOptions());
   r = solver.Solve(p);
   EXPECT_EQ(r.status, SolveStatus::kSolved) << r.message;
 }
@@ -504,7 +504,7 @@ TEST(IpoptQpSolverTest, WarmStartFromSolutionNeedsNoIterations) {
   warm.warm_start = cold.z + Vector::Constant(n, 1e-3);
   const SolveResult near = solver.Solve(p, warm);
   EXPECT_EQ(near.status, SolveStatus::kSolved) << near.message;
-  solver.options().polish_warm_start = true;
+  solver.mutable_options().polish_warm_start = true;
   const SolveResult polished = solver.Solve(p, warm);
   EXPECT_EQ(polished.status, SolveStatus::kSolved) << polished.message;
   EXPECT_EQ(polished.iterations, 0);
@@ -518,7 +518,7 @@ TEST(IpoptQpSolverTest, LimitsAreStatuses) {
   const Generated g = MakeSolution(M, Vector::Zero(n), Vector::Constant(n, kInf), &rng);
   const BoxMLCP p = BoxMLCP::LCP(M, g.q);
   IpoptQpSolver solver;
-  solver.options().polish = false;
+  solver.mutable_options().polish = false;
   SolverOptions options;
   options.max_iterations = 1;
   SolveResult r = solver.Solve(p, options);
@@ -569,7 +569,7 @@ TEST(IpoptQpSolverTest, ForcedQpOnSymmetricIndefiniteRelay) {
   ASSERT_FALSE(IsPsd(M));
   const BoxMLCP p = BoxMLCP::Relay(M, RandomMatrix(n, 1, &rng).col(0));
   IpoptQpSolver solver;
-  solver.options().formulation = IpoptOptions::kQp;
+  solver.mutable_options().formulation = IpoptOptions::kQp;
   const SolveResult r = solver.Solve(p);
   ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
   EXPECT_LE(Residual(p, r.z), kTol);
@@ -591,7 +591,7 @@ TEST(IpoptFuzzRegression, Ma97WithoutHslIsAnInvalidOptionNotAProcessExit) {
   std::string error;
   EXPECT_FALSE(solver.SetOption("linear_solver", "5", &error));
   EXPECT_NE(error.find("libhsl.so"), std::string::npos) << error;
-  solver.options().linear_solver = IpoptOptions::kMa97;  // set directly: Solve must still refuse it
+  solver.mutable_options().linear_solver = IpoptOptions::kMa97;  // set directly: Solve must still refuse it
   const BoxMLCP p = BoxMLCP::LCP((DenseMatrix(2, 2) << 2, 1, 1, 2).finished(), (Vector(2) << -1, -1).finished());
   const SolveResult r = solver.Solve(p);
   EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);

@@ -3,11 +3,14 @@
 // kept basic, or split x⁺ − x⁻) and the numerical safeguards are documented at the top of lemke_solver.h.
 #include "solvers/lemke/lemke_solver.h"
 
+#include "solvers/core/dense_lu.h"
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <limits>
 #include <sstream>
+#include <string>
 
 namespace smcbench {
 namespace {
@@ -22,112 +25,6 @@ enum class FreeMode { kNone = 0, kSchur = 1, kBasic = 2, kSplit = 3 };
 template <typename T>
 void Ensure(std::vector<T>* v, size_t n) {
   if (v->size() < n) v->resize(n);
-}
-
-// ---------------------------------------------------------------------------------------------------------------
-// Dense LU with partial pivoting on a row-major f×f array (PA = LU), used for the free block. Own code rather than
-// Eigen::PartialPivLU so that the factorization, the solves and the condition estimate run in preallocated storage.
-
-// Returns false if a pivot is below f·ε·max|A| (numerically singular).
-bool LuFactor(double* a, int f, int* perm) {
-  double amax = 0.0;
-  for (int i = 0; i < f * f; ++i) amax = std::max(amax, std::abs(a[i]));
-  const double tiny = std::max(f, 1) * kEps * amax;
-  if (!(amax > 0.0)) return false;
-  for (int k = 0; k < f; ++k) {
-    int piv = k;
-    double best = std::abs(a[k * f + k]);
-    for (int i = k + 1; i < f; ++i) {
-      const double v = std::abs(a[i * f + k]);
-      if (v > best) best = v, piv = i;
-    }
-    perm[k] = piv;
-    if (!(best > tiny)) return false;
-    if (piv != k) std::swap_ranges(a + k * f, a + (k + 1) * f, a + piv * f);
-    const double inv = 1.0 / a[k * f + k];
-    const double* rk = a + k * f;
-    for (int i = k + 1; i < f; ++i) {
-      double* ri = a + i * f;
-      const double l = (ri[k] *= inv);
-      if (l == 0.0) continue;
-      for (int j = k + 1; j < f; ++j) ri[j] -= l * rk[j];
-    }
-  }
-  return true;
-}
-
-// Solves A X = B in place for a row-major f×m right-hand side B (m = 1: a vector).
-void LuSolveRows(const double* lu, int f, const int* perm, double* b, int m) {
-  for (int k = 0; k < f; ++k) {
-    if (perm[k] != k) std::swap_ranges(b + k * m, b + (k + 1) * m, b + perm[k] * m);
-  }
-  for (int i = 1; i < f; ++i) {  // L (unit diagonal)
-    double* bi = b + i * m;
-    for (int k = 0; k < i; ++k) {
-      const double l = lu[i * f + k];
-      if (l == 0.0) continue;
-      const double* bk = b + k * m;
-      for (int j = 0; j < m; ++j) bi[j] -= l * bk[j];
-    }
-  }
-  for (int i = f - 1; i >= 0; --i) {  // U
-    double* bi = b + i * m;
-    for (int k = i + 1; k < f; ++k) {
-      const double u = lu[i * f + k];
-      if (u == 0.0) continue;
-      const double* bk = b + k * m;
-      for (int j = 0; j < m; ++j) bi[j] -= u * bk[j];
-    }
-    const double inv = 1.0 / lu[i * f + i];
-    for (int j = 0; j < m; ++j) bi[j] *= inv;
-  }
-}
-
-// Solves Aᵀ x = b in place: Aᵀ = Uᵀ Lᵀ P.
-void LuSolveTransposed(const double* lu, int f, const int* perm, double* b) {
-  for (int i = 0; i < f; ++i) {  // Uᵀ t = b
-    double s = b[i];
-    for (int k = 0; k < i; ++k) s -= lu[k * f + i] * b[k];
-    b[i] = s / lu[i * f + i];
-  }
-  for (int i = f - 1; i >= 0; --i) {  // Lᵀ s = t
-    double s = b[i];
-    for (int k = i + 1; k < f; ++k) s -= lu[k * f + i] * b[k];
-    b[i] = s;
-  }
-  for (int k = f - 1; k >= 0; --k) {
-    if (perm[k] != k) std::swap(b[k], b[perm[k]]);
-  }
-}
-
-// Hager's estimate of ‖A⁻¹‖₁ (Hager 1984; Higham, Accuracy and Stability of Numerical Algorithms, §15.3), at most
-// five solve pairs. A lower bound that is almost always within a small factor of the truth.
-double HagerInverseNorm1(const double* lu, int f, const int* perm, double* x, double* y) {
-  for (int i = 0; i < f; ++i) x[i] = 1.0 / f;
-  double estimate = 0.0;
-  int last_j = -1;
-  for (int iter = 0; iter < 5; ++iter) {
-    std::copy(x, x + f, y);
-    LuSolveRows(lu, f, perm, y, 1);
-    double norm = 0.0;
-    for (int i = 0; i < f; ++i) norm += std::abs(y[i]);
-    if (!std::isfinite(norm)) return kInf;
-    if (iter > 0 && norm <= estimate) break;
-    estimate = norm;
-    for (int i = 0; i < f; ++i) y[i] = y[i] >= 0.0 ? 1.0 : -1.0;
-    LuSolveTransposed(lu, f, perm, y);
-    int j = 0;
-    for (int i = 1; i < f; ++i) {
-      if (std::abs(y[i]) > std::abs(y[j])) j = i;
-    }
-    double ztx = 0.0;
-    for (int i = 0; i < f; ++i) ztx += y[i] * x[i];
-    if (iter > 0 && (std::abs(y[j]) <= ztx || j == last_j)) break;
-    last_j = j;
-    std::fill(x, x + f, 0.0);
-    x[j] = 1.0;
-  }
-  return estimate;
 }
 
 // ---------------------------------------------------------------------------------------------------------------
@@ -465,14 +362,14 @@ bool IsPMatrix(const DenseMatrix& M) {
     double amax = 0.0;
     for (int r = 0; r < k; ++r) {
       for (int c = 0; c < k; ++c) {
-        a[size_t(r) * k + c] = M(idx[r], idx[c]);
-        amax = std::max(amax, std::abs(a[size_t(r) * k + c]));
+        a[r + size_t(c) * k] = M(idx[r], idx[c]);
+        amax = std::max(amax, std::abs(a[r + size_t(c) * k]));
       }
     }
-    if (!LuFactor(a.data(), k, perm.data())) return false;
+    if (!dense_lu::FactorRelative(a.data(), k, k, perm.data())) return false;
     double sign = 1.0, pmin = kInf;
     for (int r = 0; r < k; ++r) {
-      const double d = a[size_t(r) * k + r];
+      const double d = a[r + size_t(r) * k];
       sign *= d > 0.0 ? 1.0 : -1.0;
       if (perm[r] != r) sign = -sign;
       pmin = std::min(pmin, std::abs(d));
@@ -511,7 +408,7 @@ const char* SolutionExistsReason(const BoxMLCP& problem) {
 
 // Builds LCP(N, r) from the classified rows for the given free-row mode (Schur data already in ws). Returns p and
 // sets *nx, the number of x slots (the y slots of the box rows follow them).
-int BuildLcp(const BoxMLCP& problem, FreeMode mode, int covering, Workspace* ws_ptr, int* c_out, int* nx_out) {
+int BuildLcp(const BoxMLCP& problem, FreeMode mode, LemkeOptions::Covering covering, Workspace* ws_ptr, int* c_out, int* nx_out) {
   Workspace& ws = *ws_ptr;
   const DenseMatrix& M = problem.dense_matrix();
   const Vector& l = problem.l();
@@ -539,8 +436,8 @@ int BuildLcp(const BoxMLCP& problem, FreeMode mode, int covering, Workspace* ws_
       ws.g[k] = ws.qhat[i];
       for (int b = 0; b < c; ++b) ws.G[size_t(k) * c + b] = M(i, ws.core[b]);
     }
-    if (c > 0) LuSolveRows(ws.lu.data(), f, ws.lu_perm.data(), ws.G.data(), c);
-    LuSolveRows(ws.lu.data(), f, ws.lu_perm.data(), ws.g.data(), 1);
+    if (c > 0) dense_lu::SolveRows(ws.lu.data(), f, f, ws.lu_perm.data(), ws.G.data(), c);
+    dense_lu::SolveRows(ws.lu.data(), f, f, ws.lu_perm.data(), ws.g.data(), 1);
     for (int a = 0; a < c; ++a) {
       const int i = ws.core[a];
       double* row = ws.Mc.data() + size_t(a) * c;
@@ -597,7 +494,7 @@ int BuildLcp(const BoxMLCP& problem, FreeMode mode, int covering, Workspace* ws_
   }
   for (int i = 0; i < p; ++i) {
     double di = 1.0;
-    if (covering == 1) {
+    if (covering == LemkeOptions::Covering::kRowScaled) {
       double m = 0.0;
       for (int j = 0; j < p; ++j) m = std::max(m, std::abs(ws.N[size_t(j) * p + i]));
       if (m > 0.0) di = m;
@@ -609,72 +506,42 @@ int BuildLcp(const BoxMLCP& problem, FreeMode mode, int covering, Workspace* ws_
   return p;
 }
 
-}  // namespace
+// ---------------------------------------------------------------------------------------------------------------
+// The phases of LemkeSolver::DoSolve, in the order it runs them: classify rows, reduce free rows, the pivot path
+// (with the free-variable start and its split fallback), recover z, polish, report.
 
-bool LemkeOptions::IsValid(std::string* why) const {
-  // Cheap checks first: this runs on every solve, the message is only built on failure.
-  const bool ok = pivot_tolerance > 0.0 && pivot_tolerance <= 1e-3 && (covering_vector == 0 || covering_vector == 1) &&
-                  refactor_interval >= 0 && free_block_min_rcond >= 0.0 && free_block_min_rcond < 1.0 &&
-                  free_row_method >= 0 && free_row_method <= 3;
-  if (ok) return true;
-  std::ostringstream s;
-  if (!(pivot_tolerance > 0.0 && pivot_tolerance <= 1e-3)) {
-    s << "pivot_tolerance must be in (0, 1e-3], got " << pivot_tolerance;
-  } else if (covering_vector != 0 && covering_vector != 1) {
-    s << "covering_vector must be 0 (ones) or 1 (row-scaled), got " << covering_vector;
-  } else if (refactor_interval < 0) {
-    s << "refactor_interval must be >= 0 (0 = automatic), got " << refactor_interval;
-  } else if (!(free_block_min_rcond >= 0.0 && free_block_min_rcond < 1.0)) {
-    s << "free_block_min_rcond must be in [0, 1), got " << free_block_min_rcond;
-  } else {
-    s << "free_row_method must be 0 (auto), 1 (Schur), 2 (basic) or 3 (split), got " << free_row_method;
-  }
-  if (why) *why = s.str();
-  return false;
-}
+// One solve's state, handed from phase to phase.
+struct LemkeRun {
+  LemkeRun(const BoxMLCP& p, const SolverOptions& o, const LemkeOptions& lo, Workspace& w, Vector& zr)
+      : problem(p), options(o), lemke(lo), ws(w), z(zr) {}
+  const BoxMLCP& problem;
+  const SolverOptions& options;
+  const LemkeOptions& lemke;
+  Workspace& ws;
+  Vector& z;
+  int n = 0;  // rows of the problem
+  int f = 0;  // free rows (both bounds infinite)
+  FreeMode mode = FreeMode::kNone;
+  double rcond = std::numeric_limits<double>::quiet_NaN();  // of the free block, when a Schur complement was tried
+  int c = 0, nx = 0, p = 0;                                 // core rows, x slots, LCP size
+  int pivot_budget = 0;  // SolverOptions::max_iterations if positive, else 0 (the default, which needs p)
+  int pivots = 0, reinversions = 0, max_pivots = 0;
+  const char* failure = nullptr;  // why the path stopped, for kNumericalFailure / kSingular
+  double z0_value = 0.0;          // the artificial variable where the path stopped
+  bool z0_exit = false;           // accepted at a negligible z₀ (exit_residual is then the answer's residual)
+  bool polished = false;          // the polish replaced z
+  bool split_fallback = false;    // the free-variable start failed and the split took over
+  Residual exit_residual;
+};
 
-const SolverInfo& LemkeSolver::info() const {
-  static const SolverInfo kInfo{
-      "lemke",
-      "Lemke complementary pivoting (covering vector e, lexicographic ratio test, explicit basis inverse with "
-      "periodic reinversion) on the exact LCP reduction of the box-MLCP (bound shifts, [[M,I],[-I,0]] split of "
-      "box rows, free rows by Schur complement or kept basic); warm start ignored",
-      "C.E. Lemke, Bimatrix equilibrium points and mathematical programming, Management Science 11 (1965); "
-      "R.W. Cottle, J.-S. Pang, R.E. Stone, The Linear Complementarity Problem (1992), ch. 4 (lexicographic rule); "
-      "box-to-LCP split as in V. Acary, B. Brogliato, Numerical Methods for Nonsmooth Dynamical Systems (2008)",
-      /*dense=*/true,
-      /*sparse=*/false,
-      /*symmetric_only=*/false,
-      /*exact=*/true,
-      /*mcp=*/false,
-      /*default_size_limit=*/0};
-  return kInfo;
-}
-
-void LemkeSolver::BindOptions(OptionBinder* binder) {
-  binder->Add("pivot_tolerance", &options_.pivot_tolerance,
-              "pivot candidates need c_i > pivot_tolerance * max|c| (relative)");
-  binder->Add("covering_vector", &options_.covering_vector, "0 = e (ones), 1 = row infinity norms of N");
-  binder->Add("refactor_interval", &options_.refactor_interval,
-              "recompute the basis inverse every this many pivots (0 = max(64, LCP size))");
-  binder->Add("free_block_min_rcond", &options_.free_block_min_rcond,
-              "Schur-eliminate free rows only if the rcond estimate of M_FF is at least this");
-  binder->Add("free_row_method", &options_.free_row_method,
-              "free rows: 0 auto (Schur, else basic, else split), 1 Schur, 2 basic free variables, 3 x+ - x- split");
-}
-
-bool LemkeSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }
-
-void LemkeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
-  Workspace& ws = ws_;
-  const DenseMatrix& M = problem.dense_matrix();  // info().sparse is false: the base class refuses sparse M
-  const Vector& q = problem.q();
-  const Vector& l = problem.l();
-  const Vector& u = problem.u();
-  const int n = problem.size();
-  Vector& z = result->z;
-
-  // --- 1. Classify rows, base point z̄, q̂ = q + M z̄. ---
+// 1. Classifies every row by its bounds, sets the base point z̄ and q̂ = q + M z̄; lists the free rows in run->f.
+void ClassifyRows(LemkeRun* run) {
+  Workspace& ws = run->ws;
+  const Vector& q = run->problem.q();
+  const Vector& l = run->problem.l();
+  const Vector& u = run->problem.u();
+  const DenseMatrix& M = run->problem.dense_matrix();  // info().sparse is false: the base class refuses sparse M
+  const int n = run->n;
   Ensure(&ws.kind, n);
   Ensure(&ws.zbar, n);
   Ensure(&ws.qhat, n);
@@ -705,294 +572,520 @@ void LemkeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, 
     const double* mj = M.data() + size_t(j) * n;
     for (int i = 0; i < n; ++i) ws.qhat[i] += zb * mj[i];
   }
+  run->f = f;
+}
 
-  // --- 2. Free rows: Schur complement if the free block is well conditioned, else kept basic, else split. ---
-  FreeMode mode = FreeMode::kNone;
-  double rcond = std::numeric_limits<double>::quiet_NaN();
-  const int method = options_.free_row_method;
-  if (f > 0) {
-    mode = method == 2 ? FreeMode::kBasic : method == 3 ? FreeMode::kSplit : FreeMode::kBasic;
-    if (method <= 1) {
-      Ensure(&ws.lu, size_t(f) * f);
-      Ensure(&ws.lu_perm, f);
-      Ensure(&ws.g, f);
-      Ensure(&ws.hager_x, f);
-      Ensure(&ws.hager_y, f);
-      double anorm1 = 0.0;
-      for (int b = 0; b < f; ++b) {
-        double colsum = 0.0;
-        for (int a = 0; a < f; ++a) {
-          const double v = M(ws.free_rows[a], ws.free_rows[b]);
-          ws.lu[size_t(a) * f + b] = v;
-          colsum += std::abs(v);
-        }
-        anorm1 = std::max(anorm1, colsum);
-      }
-      rcond = 0.0;
-      if (LuFactor(ws.lu.data(), f, ws.lu_perm.data())) {
-        rcond = 1.0 / (anorm1 * HagerInverseNorm1(ws.lu.data(), f, ws.lu_perm.data(), ws.hager_x.data(),
-                                                  ws.hager_y.data()));
-      }
-      if (rcond >= options_.free_block_min_rcond) {
-        mode = FreeMode::kSchur;
-      } else if (method == 1) {
-        result->status = SolveStatus::kSingular;
-        Append(&result->message, "the free block M_FF is singular or ill-conditioned (rcond estimate %.3e < %.3e); "
-               "free_row_method = 0 or 2 keeps the free variables basic instead", rcond,
-               options_.free_block_min_rcond);
-        result->SetDetail("free_block_rcond", rcond);
-        return;
-      }
+// 2. Chooses how the free rows enter the LCP: a Schur complement when the free block is well conditioned (its LU
+// stays in ws for BuildLcp and Recover), else kept basic, else split. False, with result set to kSingular, when
+// the method is Schur only and the block is singular or ill-conditioned.
+bool ReduceFreeRows(LemkeRun* run, SolveResult* result) {
+  using FreeRows = LemkeOptions::FreeRows;
+  const int f = run->f;
+  if (f == 0) return true;
+  const FreeRows method = run->lemke.free_row_method;
+  run->mode = method == FreeRows::kSplit ? FreeMode::kSplit : FreeMode::kBasic;
+  if (method != FreeRows::kAutomatic && method != FreeRows::kSchur) return true;
+  Workspace& ws = run->ws;
+  const DenseMatrix& M = run->problem.dense_matrix();
+  Ensure(&ws.lu, size_t(f) * f);
+  Ensure(&ws.lu_perm, f);
+  Ensure(&ws.g, f);
+  Ensure(&ws.hager_x, f);
+  Ensure(&ws.hager_y, f);
+  double anorm1 = 0.0;
+  for (int b = 0; b < f; ++b) {
+    double colsum = 0.0;
+    for (int a = 0; a < f; ++a) {
+      const double v = M(ws.free_rows[a], ws.free_rows[b]);
+      ws.lu[a + size_t(b) * f] = v;
+      colsum += std::abs(v);
+    }
+    anorm1 = std::max(anorm1, colsum);
+  }
+  run->rcond = 0.0;
+  if (dense_lu::FactorRelative(ws.lu.data(), f, f, ws.lu_perm.data())) {
+    run->rcond = 1.0 / (anorm1 * dense_lu::InverseNorm1Estimate(ws.lu.data(), f, f, ws.lu_perm.data(),
+                                                                ws.hager_x.data(), ws.hager_y.data()));
+  }
+  if (run->rcond >= run->lemke.free_block_min_rcond) {
+    run->mode = FreeMode::kSchur;
+  } else if (method == FreeRows::kSchur) {
+    result->status = SolveStatus::kSingular;
+    Append(&result->message, "the free block M_FF is singular or ill-conditioned (rcond estimate %.3e < %.3e); "
+           "free_row_method = auto or basic keeps the free variables basic instead", run->rcond,
+           run->lemke.free_block_min_rcond);
+    result->SetDetail("free_block_rcond", run->rcond);
+    return false;
+  }
+  return true;
+}
+
+// Back to z: x from the basis (z₀ ignored), z_C = z̄_C + S x clipped to the box, z_F from the Schur relation.
+void Recover(LemkeRun* run, bool have_basis) {
+  Workspace& ws = run->ws;
+  const Vector& l = run->problem.l();
+  const Vector& u = run->problem.u();
+  Vector& z = run->z;
+  const int c = run->c, p = run->p;
+  std::fill(ws.xcore.begin(), ws.xcore.begin() + c, 0.0);
+  if (have_basis) {
+    for (int a = 0; a < run->nx; ++a) {
+      const int row = ws.where[p + a];
+      if (row >= 0) ws.xcore[ws.slot_core[a]] += ws.slot_sign[a] * ws.beta[row];
     }
   }
+  for (int i = 0; i < run->n; ++i) {
+    if (ws.kind[i] == kFixed) z[i] = l[i];
+  }
+  for (int a = 0; a < c; ++a) {
+    const int i = ws.core[a];
+    z[i] = std::min(std::max(ws.zbar[i] + ws.xcore[a], l[i]), u[i]);
+    ws.xcore[a] = z[i] - ws.zbar[i];
+  }
+  if (run->mode == FreeMode::kSchur) {
+    for (int k = 0; k < run->f; ++k) {
+      double s = ws.g[k];
+      const double* gk = ws.G.data() + size_t(k) * c;
+      for (int b = 0; b < c; ++b) s += gk[b] * ws.xcore[b];
+      z[ws.free_rows[k]] = -s;
+    }
+  }
+}
 
-  // --- 3. Lemke's method on LCP(N, r); in automatic mode, a failed free-variable start falls back to the split. ---
-  int c = 0, nx = 0, p = 0, pivots = 0, reinversions = 0, max_pivots = 0;
-  const char* failure = nullptr;
-  double z0_value = 0.0;
-  bool z0_exit = false, polished = false;
-  Residual exit_residual;
-  SolveStatus status = SolveStatus::kSolved;
-  // Back to z: x from the basis (z₀ ignored), z_C = z̄_C + S x clipped to the box, z_F from the Schur relation.
-  const auto recover = [&](bool have_basis) {
-    std::fill(ws.xcore.begin(), ws.xcore.begin() + c, 0.0);
-    if (have_basis) {
-      for (int a = 0; a < nx; ++a) {
-        const int row = ws.where[p + a];
-        if (row >= 0) ws.xcore[ws.slot_core[a]] += ws.slot_sign[a] * ws.beta[row];
-      }
+// Where a row sits in the polish's active set.
+enum PolishState : signed char { kInE = 0, kAtLower = 1, kAtUpper = 2, kPinned = 3 };
+
+// The polish's first active set: from the final basis (x basic: in E; y basic: at u; else at its base bound).
+void ActiveSetOfBasis(const LemkeRun& run, signed char* state) {
+  const Workspace& ws = run.ws;
+  for (int i = 0; i < run.n; ++i) state[i] = ws.kind[i] == kFixed ? kPinned : ws.kind[i] == kFree ? kInE : kAtLower;
+  for (int a = 0; a < run.nx && run.p > 0; ++a) {
+    const int i = ws.core[ws.slot_core[a]];
+    const signed char k = ws.kind[i];
+    if (k == kFree) continue;
+    const bool x_basic = ws.where[run.p + a] >= 0;
+    const bool y_basic = ws.slot_y[a] >= 0 && ws.where[run.p + ws.slot_y[a]] >= 0;
+    state[i] = y_basic ? kAtUpper : x_basic ? kInE : k == kUpper ? kAtUpper : kAtLower;
+  }
+}
+
+// Solves M_EE z_E = −(q_E + M_EN z_N) in ws.z_polish for the rows E in state kInE (LU of M_EE, one refinement step
+// in the original data). False if M_EE is numerically singular.
+bool SolveActiveRows(LemkeRun* run, const signed char* state) {
+  Workspace& ws = run->ws;
+  const BoxMLCP& problem = run->problem;
+  const DenseMatrix& M = problem.dense_matrix();
+  const Vector& l = problem.l();
+  const Vector& u = problem.u();
+  int e = 0;
+  for (int i = 0; i < run->n; ++i) {
+    if (state[i] == kInE) {
+      ws.active_list[e++] = i;
+      ws.z_polish[i] = 0.0;
+    } else {
+      ws.z_polish[i] = state[i] == kAtUpper ? u[i] : l[i];
     }
+  }
+  Ensure(&ws.active_lu, size_t(e) * e);
+  Ensure(&ws.active_perm, e);
+  Ensure(&ws.active_res, e);
+  if (e == 0) return true;
+  const int* E = ws.active_list.data();
+  problem.Affine(ws.z_polish, &ws.w);  // with z_E = 0: w_E = q_E + M_EN z_N
+  for (int a = 0; a < e; ++a) {
+    ws.active_res[a] = -ws.w[E[a]];
+    for (int b = 0; b < e; ++b) ws.active_lu[a + size_t(b) * e] = M(E[a], E[b]);
+  }
+  if (!dense_lu::FactorRelative(ws.active_lu.data(), e, e, ws.active_perm.data())) return false;
+  dense_lu::SolveRows(ws.active_lu.data(), e, e, ws.active_perm.data(), ws.active_res.data(), 1);
+  for (int a = 0; a < e; ++a) ws.z_polish[E[a]] = ws.active_res[a];
+  // One refinement step in the original data: −w_E = rhs − M_EE z_E, solved again.
+  problem.Affine(ws.z_polish, &ws.w);
+  for (int a = 0; a < e; ++a) ws.active_res[a] = -ws.w[E[a]];
+  dense_lu::SolveRows(ws.active_lu.data(), e, e, ws.active_perm.data(), ws.active_res.data(), 1);
+  for (int a = 0; a < e; ++a) ws.z_polish[E[a]] += ws.active_res[a];
+  return true;
+}
+
+// Polish, for when rounding leaves the merit function above the tolerance (an ill-conditioned reduction, or a
+// base-point shift M·l much larger than q). The active set of the final basis is solved in the original variables;
+// rows whose result leaves the box, or whose pinned w has the wrong sign, then switch sides, for at most
+// kPolishRounds rounds (primal-dual active-set steps started from Lemke's answer, Hintermüller, Ito & Kunisch
+// 2002). The best point replaces z if it beats the current one; returns its residual.
+Residual PolishActiveSet(LemkeRun* run, Residual current) {
+  constexpr int kPolishRounds = 5;
+  Workspace& ws = run->ws;
+  const BoxMLCP& problem = run->problem;
+  const Vector& l = problem.l();
+  const Vector& u = problem.u();
+  const int n = run->n;
+  Ensure(&ws.active, n);
+  Ensure(&ws.active_list, n);
+  signed char* state = ws.active.data();
+  ActiveSetOfBasis(*run, state);
+  if (ws.z_polish.size() != n) ws.z_polish.resize(n);
+  Residual best = current;
+  for (int round = 0; round < kPolishRounds; ++round) {
+    if (!SolveActiveRows(run, state)) break;
+    // Next active set, judged on the unclipped point: E rows outside the box go to the bound they cross,
+    // pinned rows whose w pushes into the box join E.
+    problem.Affine(ws.z_polish, &ws.w);
+    bool changed = false;
     for (int i = 0; i < n; ++i) {
-      if (ws.kind[i] == kFixed) z[i] = l[i];
-    }
-    for (int a = 0; a < c; ++a) {
-      const int i = ws.core[a];
-      z[i] = std::min(std::max(ws.zbar[i] + ws.xcore[a], l[i]), u[i]);
-      ws.xcore[a] = z[i] - ws.zbar[i];
-    }
-    if (mode == FreeMode::kSchur) {
-      for (int k = 0; k < f; ++k) {
-        double s = ws.g[k];
-        const double* gk = ws.G.data() + size_t(k) * c;
-        for (int b = 0; b < c; ++b) s += gk[b] * ws.xcore[b];
-        z[ws.free_rows[k]] = -s;
+      const double zi = ws.z_polish[i], wi = ws.w[i];
+      if (state[i] == kInE && zi < l[i]) {
+        state[i] = kAtLower, changed = true;
+      } else if (state[i] == kInE && zi > u[i]) {
+        state[i] = kAtUpper, changed = true;
+      } else if ((state[i] == kAtLower && wi < 0.0) || (state[i] == kAtUpper && wi > 0.0)) {
+        state[i] = kInE, changed = true;
       }
+      ws.z_polish[i] = std::min(std::max(zi, l[i]), u[i]);
     }
-  };
-  // Polish, for when rounding leaves the merit function above the tolerance (an ill-conditioned reduction, or a
-  // base-point shift M·l much larger than q). The active set of the final basis is solved in the original variables
-  // (LU of M_EE, one refinement step); rows whose result leaves the box, or whose pinned w has the wrong sign, then
-  // switch sides, for at most kPolishRounds rounds (primal-dual active-set steps started from Lemke's answer,
-  // Hintermüller, Ito & Kunisch 2002). The best point is kept if it beats the current one; returns its residual.
-  enum : signed char { kInE = 0, kAtLower = 1, kAtUpper = 2, kPinned = 3 };
-  const auto polish = [&](Residual current) -> Residual {
-    constexpr int kPolishRounds = 5;
-    Ensure(&ws.active, n);
-    Ensure(&ws.active_list, n);
-    signed char* state = ws.active.data();
-    for (int i = 0; i < n; ++i) state[i] = ws.kind[i] == kFixed ? kPinned : ws.kind[i] == kFree ? kInE : kAtLower;
-    for (int a = 0; a < nx && p > 0; ++a) {
-      const int i = ws.core[ws.slot_core[a]];
-      const signed char k = ws.kind[i];
-      if (k == kFree) continue;
-      const bool x_basic = ws.where[p + a] >= 0;
-      const bool y_basic = ws.slot_y[a] >= 0 && ws.where[p + ws.slot_y[a]] >= 0;
-      state[i] = y_basic ? kAtUpper : x_basic ? kInE : k == kUpper ? kAtUpper : kAtLower;
+    const Residual r = problem.NaturalResidual(ws.z_polish, &ws.w);
+    if (Worst(r) < Worst(best)) {
+      run->z = ws.z_polish;
+      best = r;
+      run->polished = true;
     }
-    if (ws.z_polish.size() != n) ws.z_polish.resize(n);
-    Residual best = current;
-    for (int round = 0; round < kPolishRounds; ++round) {
-      int e = 0;
-      for (int i = 0; i < n; ++i) {
-        if (state[i] == kInE) {
-          ws.active_list[e++] = i;
-          ws.z_polish[i] = 0.0;
-        } else {
-          ws.z_polish[i] = state[i] == kAtUpper ? u[i] : l[i];
-        }
-      }
-      Ensure(&ws.active_lu, size_t(e) * e);
-      Ensure(&ws.active_perm, e);
-      Ensure(&ws.active_res, e);
-      const int* E = ws.active_list.data();
-      if (e > 0) {
-        problem.Affine(ws.z_polish, &ws.w);  // with z_E = 0: w_E = q_E + M_EN z_N
-        for (int a = 0; a < e; ++a) {
-          ws.active_res[a] = -ws.w[E[a]];
-          for (int b = 0; b < e; ++b) ws.active_lu[size_t(a) * e + b] = M(E[a], E[b]);
-        }
-        if (!LuFactor(ws.active_lu.data(), e, ws.active_perm.data())) break;
-        LuSolveRows(ws.active_lu.data(), e, ws.active_perm.data(), ws.active_res.data(), 1);
-        for (int a = 0; a < e; ++a) ws.z_polish[E[a]] = ws.active_res[a];
-        // One refinement step in the original data: −w_E = rhs − M_EE z_E, solved again.
-        problem.Affine(ws.z_polish, &ws.w);
-        for (int a = 0; a < e; ++a) ws.active_res[a] = -ws.w[E[a]];
-        LuSolveRows(ws.active_lu.data(), e, ws.active_perm.data(), ws.active_res.data(), 1);
-        for (int a = 0; a < e; ++a) ws.z_polish[E[a]] += ws.active_res[a];
-      }
-      // Next active set, judged on the unclipped point: E rows outside the box go to the bound they cross,
-      // pinned rows whose w pushes into the box join E.
-      problem.Affine(ws.z_polish, &ws.w);
-      bool changed = false;
-      for (int i = 0; i < n; ++i) {
-        const double zi = ws.z_polish[i], wi = ws.w[i];
-        if (state[i] == kInE && zi < l[i]) {
-          state[i] = kAtLower, changed = true;
-        } else if (state[i] == kInE && zi > u[i]) {
-          state[i] = kAtUpper, changed = true;
-        } else if ((state[i] == kAtLower && wi < 0.0) || (state[i] == kAtUpper && wi > 0.0)) {
-          state[i] = kInE, changed = true;
-        }
-        ws.z_polish[i] = std::min(std::max(zi, l[i]), u[i]);
-      }
-      const Residual r = problem.NaturalResidual(ws.z_polish, &ws.w);
-      if (Worst(r) < Worst(best)) {
-        z = ws.z_polish;
-        best = r;
-        polished = true;
-      }
-      if (Passes(best, options.tolerance) || !changed) break;
+    if (Passes(best, run->options.tolerance) || !changed) break;
+  }
+  return best;
+}
+
+// The first pivot: z₀ enters at the level that makes every sign-constrained basic variable nonnegative. With
+// c = B⁻¹d this is the lexicographic minimum of [β_i, B⁻¹_i·]/c_i, the same test as later (for B = I, d = e: the
+// largest index among the most negative r_i). Returns the variable that left, or −1 (run->failure set).
+int EnterArtificial(LemkeRun* run, Engine& engine) {
+  Workspace& ws = run->ws;
+  const int p = run->p;
+  engine.Column(engine.z0());
+  double cmax = 0.0;
+  for (int i = 0; i < p; ++i) ws.col[i] = -ws.col[i], cmax = std::max(cmax, std::abs(ws.col[i]));
+  const int r0 = engine.RatioTest(run->lemke.pivot_tolerance * cmax, /*clamp=*/false);
+  for (int i = 0; i < p; ++i) ws.col[i] = -ws.col[i];
+  if (r0 < 0) {
+    run->failure = "the covering direction does not reach the infeasible rows";
+    return -1;
+  }
+  const int leaving = ws.basis[r0];
+  engine.Pivot(r0, engine.z0());
+  ++run->pivots;
+  return leaving;
+}
+
+// Recomputes B⁻¹ every refactor interval. False (run->failure set) when the basis became singular or lost
+// feasibility; rounding that left degenerate basic values at −1e-17 is cleared.
+bool ReinvertChecked(LemkeRun* run, Engine& engine) {
+  Workspace& ws = run->ws;
+  const int p = run->p;
+  ++run->reinversions;
+  if (!engine.Reinvert()) {
+    run->failure = "the basis became numerically singular at a reinversion";
+    return false;
+  }
+  double bmax = 0.0, bmin = 0.0;
+  for (int i = 0; i < p; ++i) {
+    if (engine.FreeRow(i)) continue;
+    bmax = std::max(bmax, std::abs(ws.beta[i]));
+    bmin = std::min(bmin, ws.beta[i]);
+  }
+  if (bmin < -1e-6 * (1.0 + bmax)) {
+    run->failure = "the basis lost feasibility at a reinversion (ill-conditioned basis)";
+    return false;
+  }
+  for (int i = 0; i < p; ++i) {
+    if (!engine.FreeRow(i)) ws.beta[i] = std::max(ws.beta[i], 0.0);
+  }
+  return true;
+}
+
+// Once z₀ is negligible, the almost-complementary point without it: accepted (run->z0_exit) only if the merit
+// function says it solves the problem, which includes every sign condition (w ≥ 0 on rows at l, ≤ 0 at u) to
+// tol·(1 + ‖z‖∞) in units of z. A point that misses only by rounding is polished, at most three times per solve
+// (a degenerate stretch may keep z₀ tiny for long).
+bool AcceptWithoutArtificial(LemkeRun* run, double dmax, int* exit_polishes) {
+  const double tolerance = run->options.tolerance;
+  Recover(run, true);
+  run->exit_residual = run->problem.NaturalResidual(run->z, &run->ws.w);
+  const bool negligible_in_z = run->z0_value * dmax <= tolerance * (1.0 + run->z.cwiseAbs().maxCoeff());
+  if (!Passes(run->exit_residual, tolerance) && negligible_in_z && *exit_polishes < 3) {
+    ++*exit_polishes;
+    run->exit_residual = PolishActiveSet(run, run->exit_residual);
+  }
+  run->z0_exit = Passes(run->exit_residual, tolerance);
+  return run->z0_exit;
+}
+
+// One verbosity-2 line per pivot.
+void TracePivot(const LemkeRun& run, const Engine& engine, int entering, int leaving, int row, double cmax) {
+  const int p = run.p;
+  const Workspace& ws = run.ws;
+  double bmin = 0.0;
+  for (int i = 0; i < p; ++i) {
+    if (!engine.FreeRow(i)) bmin = std::min(bmin, ws.beta[i]);
+  }
+  const char* out = leaving == engine.z0() ? "z" : leaving < p ? "w" : "x";
+  std::fprintf(stderr, "lemke: pivot %d: in %c%d, out %s%d, z0 = %.6e, pivot %.2e (relative %.2e), min basic %.2e\n",
+               run.pivots + 1, entering < p ? 'w' : 'x', entering % p, out, leaving == engine.z0() ? 0 : leaving % p,
+               run.z0_value, ws.col[row], ws.col[row] / cmax, bmin);
+}
+
+// 3. Lemke's complementary path from the start basis in engine, until z₀ leaves (or is negligible), a secondary
+// ray, the pivot or time budget, or a numerical failure.
+template <typename TimeUp>
+SolveStatus PivotPath(LemkeRun* run, Engine& engine, const TimeUp& time_up) {
+  Workspace& ws = run->ws;
+  const int p = run->p;
+  bool feasible = true;
+  for (int i = 0; i < p; ++i) feasible = feasible && (engine.FreeRow(i) || ws.beta[i] >= 0.0);
+  if (feasible) return SolveStatus::kSolved;  // the start basis already solves the LCP
+  int leaving = EnterArtificial(run, engine);
+  if (leaving < 0) return SolveStatus::kNumericalFailure;
+  const int refactor = run->lemke.refactor_interval > 0 ? run->lemke.refactor_interval : std::max(64, p);
+  double dmax = 0.0;
+  for (int i = 0; i < p; ++i) dmax = std::max(dmax, std::abs(ws.d[i]));
+  // Dropping z₀ moves w (of the equilibrated problem: units of z) by up to z₀·‖d‖∞, so the point without z₀ can
+  // only pass the merit function once z₀·‖d‖∞ is within its tolerance: tol·(1 + ‖q‖∞) for the relative residual
+  // (a cheap first filter) and tol·(1 + ‖z‖∞) for the residual in units of z (checked on the recovered z).
+  const double z0_negligible = run->options.tolerance * run->problem.residual_scale() / dmax;
+  int exit_polishes = 0;
+  while (true) {
+    const int entering = engine.Complement(leaving);
+    run->z0_value = ws.beta[ws.where[engine.z0()]];
+    if (run->z0_value <= z0_negligible && AcceptWithoutArtificial(run, dmax, &exit_polishes)) {
+      return SolveStatus::kSolved;
     }
-    return best;
-  };
-  const auto run_path = [&](Engine& engine) -> SolveStatus {
-    bool feasible = true;
-    for (int i = 0; i < p; ++i) feasible = feasible && (engine.FreeRow(i) || ws.beta[i] >= 0.0);
-    if (feasible) return SolveStatus::kSolved;  // the start basis already solves the LCP
-    // First step: z₀ enters at the level that makes every sign-constrained basic variable nonnegative. With
-    // c = B⁻¹d this is the lexicographic minimum of [β_i, B⁻¹_i·]/c_i, the same test as below (for B = I, d = e:
-    // the largest index among the most negative r_i).
-    engine.Column(engine.z0());
+    if (run->pivots >= run->max_pivots) return SolveStatus::kIterationLimit;
+    if ((run->pivots & 31) == 0 && time_up()) return SolveStatus::kTimeLimit;
+    engine.Column(entering);
     double cmax = 0.0;
-    for (int i = 0; i < p; ++i) ws.col[i] = -ws.col[i], cmax = std::max(cmax, std::abs(ws.col[i]));
-    const int r0 = engine.RatioTest(options_.pivot_tolerance * cmax, /*clamp=*/false);
-    for (int i = 0; i < p; ++i) ws.col[i] = -ws.col[i];
-    if (r0 < 0) {
-      failure = "the covering direction does not reach the infeasible rows";
+    bool finite = true;
+    for (int i = 0; i < p; ++i) {
+      cmax = std::max(cmax, std::abs(ws.col[i]));
+      finite = finite && std::isfinite(ws.col[i]) && std::isfinite(ws.beta[i]);
+    }
+    if (!finite) {
+      run->failure = "NaN or Inf in the basis inverse";
       return SolveStatus::kNumericalFailure;
     }
-    int leaving = ws.basis[r0];
-    engine.Pivot(r0, engine.z0());
-    ++pivots;
-    const int refactor = options_.refactor_interval > 0 ? options_.refactor_interval : std::max(64, p);
-    double dmax = 0.0;
-    for (int i = 0; i < p; ++i) dmax = std::max(dmax, std::abs(ws.d[i]));
-    // Dropping z₀ moves w (of the equilibrated problem: units of z) by up to z₀·‖d‖∞, so the point without z₀ can
-    // only pass the merit function once z₀·‖d‖∞ is within its tolerance: tol·(1 + ‖q‖∞) for the relative residual
-    // (a cheap first filter) and tol·(1 + ‖z‖∞) for the residual in units of z (checked on the recovered z).
-    const double z0_negligible = options.tolerance * problem.residual_scale() / dmax;
-    int exit_polishes = 0;
-    while (true) {
-      const int entering = engine.Complement(leaving);
-      z0_value = ws.beta[ws.where[engine.z0()]];
-      if (z0_value <= z0_negligible) {
-        // z₀ may be zero up to rounding (degenerate end of the path, where tiny pivots would follow): accept the
-        // almost-complementary point without z₀ only if the merit function says it solves the problem, which
-        // includes every sign condition (w ≥ 0 on rows at l, ≤ 0 at u) to tol·(1 + ‖z‖∞) in units of z.
-        recover(true);
-        exit_residual = problem.NaturalResidual(z, &ws.w);
-        const bool negligible_in_z = z0_value * dmax <= options.tolerance * (1.0 + z.cwiseAbs().maxCoeff());
-        if (!Passes(exit_residual, options.tolerance) && negligible_in_z && exit_polishes < 3) {
-          ++exit_polishes;  // bounded: a degenerate stretch may keep z₀ tiny for long
-          exit_residual = polish(exit_residual);
-        }
-        if (Passes(exit_residual, options.tolerance)) {
-          z0_exit = true;
-          return SolveStatus::kSolved;
-        }
-      }
-      if (pivots >= max_pivots) return SolveStatus::kIterationLimit;
-      if ((pivots & 31) == 0 && TimeLimitReached()) return SolveStatus::kTimeLimit;
-      engine.Column(entering);
-      cmax = 0.0;
-      bool finite = true;
-      for (int i = 0; i < p; ++i) {
-        cmax = std::max(cmax, std::abs(ws.col[i]));
-        finite = finite && std::isfinite(ws.col[i]) && std::isfinite(ws.beta[i]);
-      }
-      if (!finite) {
-        failure = "NaN or Inf in the basis inverse";
-        return SolveStatus::kNumericalFailure;
-      }
-      const int row = cmax > 0.0 ? engine.RatioTest(options_.pivot_tolerance * cmax) : -1;
-      if (row < 0) return SolveStatus::kRayTermination;
-      leaving = ws.basis[row];
-      if (options.verbosity > 1) {
-        double bmin = 0.0;
-        for (int i = 0; i < p; ++i) {
-          if (!engine.FreeRow(i)) bmin = std::min(bmin, ws.beta[i]);
-        }
-        const char* out = leaving == engine.z0() ? "z" : leaving < p ? "w" : "x";
-        std::fprintf(stderr, "lemke: pivot %d: in %c%d, out %s%d, z0 = %.6e, pivot %.2e (relative %.2e), "
-                     "min basic %.2e\n", pivots + 1, entering < p ? 'w' : 'x', entering % p, out,
-                     leaving == engine.z0() ? 0 : leaving % p, z0_value, ws.col[row], ws.col[row] / cmax, bmin);
-      }
-      engine.Pivot(row, entering);
-      ++pivots;
-      if (leaving == engine.z0()) return SolveStatus::kSolved;  // complementary basis
-      if (pivots % refactor == 0) {
-        ++reinversions;
-        if (!engine.Reinvert()) {
-          failure = "the basis became numerically singular at a reinversion";
-          return SolveStatus::kNumericalFailure;
-        }
-        // Rounding can leave degenerate basic values at −1e-17; a real loss of feasibility is a failure.
-        double bmax = 0.0, bmin = 0.0;
-        for (int i = 0; i < p; ++i) {
-          if (engine.FreeRow(i)) continue;
-          bmax = std::max(bmax, std::abs(ws.beta[i]));
-          bmin = std::min(bmin, ws.beta[i]);
-        }
-        if (bmin < -1e-6 * (1.0 + bmax)) {
-          failure = "the basis lost feasibility at a reinversion (ill-conditioned basis)";
-          return SolveStatus::kNumericalFailure;
-        }
-        for (int i = 0; i < p; ++i) {
-          if (!engine.FreeRow(i)) ws.beta[i] = std::max(ws.beta[i], 0.0);
-        }
-      }
-    }
-  };
-  bool split_fallback = false;
+    const int row = cmax > 0.0 ? engine.RatioTest(run->lemke.pivot_tolerance * cmax) : -1;
+    if (row < 0) return SolveStatus::kRayTermination;
+    leaving = ws.basis[row];
+    if (run->options.verbosity > 1) TracePivot(*run, engine, entering, leaving, row, cmax);
+    engine.Pivot(row, entering);
+    ++run->pivots;
+    if (leaving == engine.z0()) return SolveStatus::kSolved;  // complementary basis
+    if (run->pivots % refactor == 0 && !ReinvertChecked(run, engine)) return SolveStatus::kNumericalFailure;
+  }
+}
+
+// Builds the LCP and runs the path; with free variables kept basic, pivots them into the start basis first. In
+// automatic mode a failed free-variable start (dependent free columns) falls back to the split.
+template <typename TimeUp>
+SolveStatus BuildAndPivot(LemkeRun* run, const TimeUp& time_up) {
+  Workspace& ws = run->ws;
   for (int attempt = 0; attempt < 2; ++attempt) {
-    p = BuildLcp(problem, mode, options_.covering_vector, &ws, &c, &nx);
-    max_pivots = IterationBudget(options, std::max(kLemkeDefaultMinPivots, 50 * p));
-    if (p == 0) break;
-    Engine engine(&ws, p, nx, ws.y_owner.data());
+    run->p = BuildLcp(run->problem, run->mode, run->lemke.covering_vector, &ws, &run->c, &run->nx);
+    run->max_pivots = run->pivot_budget > 0 ? run->pivot_budget : std::max(kLemkeDefaultMinPivots, 50 * run->p);
+    if (run->p == 0) return SolveStatus::kSolved;
+    Engine engine(&ws, run->p, run->nx, ws.y_owner.data());
     engine.SlackBasis();
-    if (mode == FreeMode::kBasic) {
-      if (!engine.BringFreeVariablesIn(&pivots)) {
-        if (method == 0) {
-          mode = FreeMode::kSplit;
-          split_fallback = true;
+    if (run->mode == FreeMode::kBasic) {
+      if (!engine.BringFreeVariablesIn(&run->pivots)) {
+        if (run->lemke.free_row_method == LemkeOptions::FreeRows::kAutomatic) {
+          run->mode = FreeMode::kSplit;
+          run->split_fallback = true;
           continue;
         }
-        status = SolveStatus::kSingular;
-        failure = "the free columns are linearly dependent: no complementary basis holds every free variable";
-        break;
+        run->failure = "the free columns are linearly dependent: no complementary basis holds every free variable";
+        return SolveStatus::kSingular;
       }
       engine.CoverFromBasis();
     }
-    status = run_path(engine);
-    break;
+    return PivotPath(run, engine, time_up);
   }
+  return SolveStatus::kSolved;  // not reached: the split always builds
+}
+
+// The message of an unsolved result: why the method stopped, with z₀ and the residual where it did.
+std::string FailureMessage(const LemkeRun& run, SolveStatus status, const char* exists, const Residual& res) {
+  const std::string pivots = std::to_string(run.pivots);
+  std::string msg;
+  switch (status) {
+    case SolveStatus::kRayTermination:
+      msg = "Lemke's method ended on a secondary ray after " + pivots +
+            " pivots (the entering column has no blocking row): no solution found by this method";
+      Append(&msg, " (z0 = %.3e, residual %.3e)", run.z0_value, Worst(res));
+      msg += "; this proves infeasibility only for a copositive-plus M in exact arithmetic, which was not checked";
+      if (run.mode == FreeMode::kSplit || run.mode == FreeMode::kBasic) {
+        msg += std::string("; free rows handled by the ") + FreeModeName(run.mode) + " method";
+        if (run.split_fallback) msg += " (the free columns are dependent)";
+      }
+      break;
+    case SolveStatus::kIterationLimit:
+      msg = "pivot limit " + std::to_string(run.max_pivots) + " reached";
+      Append(&msg, " (z0 = %.3e, residual %.3e)", run.z0_value, Worst(res));
+      break;
+    case SolveStatus::kTimeLimit:
+      msg = "time limit reached after " + pivots + " pivots";
+      Append(&msg, " (residual %.3e)", Worst(res));
+      break;
+    default:
+      if (exists) {
+        msg = std::string("a solution exists (") + exists + ") but Lemke's method failed: it ended on a secondary "
+              "ray after " + pivots + " pivots";
+        Append(&msg, " (z0 = %.3e, residual %.3e)", run.z0_value, Worst(res));
+        break;
+      }
+      msg = std::string(run.failure ? run.failure : "numerical failure") + " after " + pivots + " pivots";
+      Append(&msg, " (residual %.3e)", Worst(res));
+      break;
+  }
+  return msg;
+}
+
+// Status, iterations, details and message of the result.
+void Report(const LemkeRun& run, SolveStatus status, const char* exists, const Residual& res, SolveResult* result) {
+  result->status = status;
+  result->iterations = run.pivots;
+  // Details (few, since each costs a name search): the optional ones only when they carry information.
+  result->SetDetail("lcp_size", run.p);
+  result->SetDetail("reinversions", run.reinversions);
+  if (run.f > 0) {
+    result->SetDetail("free_row_mode", static_cast<double>(run.mode));  // 1 Schur, 2 basic, 3 split
+    const LemkeOptions::FreeRows method = run.lemke.free_row_method;
+    if (method == LemkeOptions::FreeRows::kAutomatic || method == LemkeOptions::FreeRows::kSchur) {
+      result->SetDetail("free_block_rcond", run.rcond);
+    }
+  }
+  if (run.polished) result->SetDetail("polished", 1.0);
+  if (run.z0_exit) result->SetDetail("z0_negligible_exit", 1.0);
+  if (status != SolveStatus::kSolved) result->message = FailureMessage(run, status, exists, res);
+  if (run.options.verbosity > 0) {
+    std::fprintf(stderr, "lemke: n = %d, LCP size %d, %d free rows (%s), %d pivots, %d reinversions%s: %s %s\n", run.n,
+                 run.p, run.f, FreeModeName(run.mode), run.pivots, run.reinversions, run.polished ? ", polished" : "",
+                 std::string(ToString(status)).c_str(), result->message.c_str());
+  }
+}
+
+}  // namespace
+
+std::string_view ToString(LemkeOptions::Covering covering) {
+  switch (covering) {
+    case LemkeOptions::Covering::kOnes: return "ones";
+    case LemkeOptions::Covering::kRowScaled: return "row-scaled";
+  }
+  return "?";
+}
+
+std::string_view ToString(LemkeOptions::FreeRows method) {
+  switch (method) {
+    case LemkeOptions::FreeRows::kAutomatic: return "auto";
+    case LemkeOptions::FreeRows::kSchur: return "schur";
+    case LemkeOptions::FreeRows::kBasic: return "basic";
+    case LemkeOptions::FreeRows::kSplit: return "split";
+  }
+  return "?";
+}
+
+bool LemkeOptions::IsValid(std::string* why) const {
+  // Cheap checks first: this runs on every solve, the message is only built on failure.
+  const int covering = static_cast<int>(covering_vector), method = static_cast<int>(free_row_method);
+  const bool ok = pivot_tolerance > 0.0 && pivot_tolerance <= 1e-3 && (covering == 0 || covering == 1) &&
+                  refactor_interval >= 0 && free_block_min_rcond >= 0.0 && free_block_min_rcond < 1.0 &&
+                  method >= 0 && method <= 3;
+  if (ok) return true;
+  std::ostringstream s;
+  if (!(pivot_tolerance > 0.0 && pivot_tolerance <= 1e-3)) {
+    s << "pivot_tolerance must be in (0, 1e-3], got " << pivot_tolerance;
+  } else if (covering != 0 && covering != 1) {
+    s << "covering_vector must be ones or row-scaled, got the code " << covering;
+  } else if (refactor_interval < 0) {
+    s << "refactor_interval must be >= 0 (0 = automatic), got " << refactor_interval;
+  } else if (!(free_block_min_rcond >= 0.0 && free_block_min_rcond < 1.0)) {
+    s << "free_block_min_rcond must be in [0, 1), got " << free_block_min_rcond;
+  } else {
+    s << "free_row_method must be auto, schur, basic or split, got the code " << method;
+  }
+  if (why) *why = s.str();
+  return false;
+}
+
+const SolverInfo& LemkeSolver::info() const {
+  static const SolverInfo kInfo{
+      "lemke",
+      "Lemke complementary pivoting (covering vector e, lexicographic ratio test, explicit basis inverse with "
+      "periodic reinversion) on the exact LCP reduction of the box-MLCP (bound shifts, [[M,I],[-I,0]] split of "
+      "box rows, free rows by Schur complement or kept basic); warm start ignored",
+      "C.E. Lemke, Bimatrix equilibrium points and mathematical programming, Management Science 11 (1965); "
+      "R.W. Cottle, J.-S. Pang, R.E. Stone, The Linear Complementarity Problem (1992), ch. 4 (lexicographic rule); "
+      "box-to-LCP split as in V. Acary, B. Brogliato, Numerical Methods for Nonsmooth Dynamical Systems (2008)",
+      /*dense=*/true,
+      /*sparse=*/false,
+      /*symmetric_only=*/false,
+      /*exact=*/true,
+      /*mcp=*/false,
+      /*default_size_limit=*/0};
+  return kInfo;
+}
+
+void LemkeSolver::BindOptions(OptionBinder* binder) {
+  using Covering = LemkeOptions::Covering;
+  using FreeRows = LemkeOptions::FreeRows;
+  binder->Add("pivot_tolerance", &options_.pivot_tolerance,
+              "pivot candidates need c_i > pivot_tolerance * max|c| (relative)");
+  // The numbers are the option's old spellings, still read so that old command lines keep working.
+  binder->Add("covering_vector", &options_.covering_vector,
+              {{"ones", static_cast<int>(Covering::kOnes)},
+               {"row-scaled", static_cast<int>(Covering::kRowScaled)},
+               {"0", static_cast<int>(Covering::kOnes)},
+               {"1", static_cast<int>(Covering::kRowScaled)}},
+              "ones: d = e; row-scaled: d_i = max_j |N_ij| (old numbers 0, 1 still read)");
+  binder->Add("refactor_interval", &options_.refactor_interval,
+              "recompute the basis inverse every this many pivots (0 = max(64, LCP size))");
+  binder->Add("free_block_min_rcond", &options_.free_block_min_rcond,
+              "Schur-eliminate free rows only if the rcond estimate of M_FF is at least this");
+  binder->Add("free_row_method", &options_.free_row_method,
+              {{"auto", static_cast<int>(FreeRows::kAutomatic)},
+               {"schur", static_cast<int>(FreeRows::kSchur)},
+               {"basic", static_cast<int>(FreeRows::kBasic)},
+               {"split", static_cast<int>(FreeRows::kSplit)},
+               {"0", static_cast<int>(FreeRows::kAutomatic)},
+               {"1", static_cast<int>(FreeRows::kSchur)},
+               {"2", static_cast<int>(FreeRows::kBasic)},
+               {"3", static_cast<int>(FreeRows::kSplit)}},
+              "free rows: auto (Schur, else basic, else split), schur, basic (free variables kept basic), split "
+              "(x+ - x-) (old numbers 0-3 still read)");
+}
+
+bool LemkeSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }
+
+// The phases in order; each is a function above.
+void LemkeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  LemkeRun run(problem, options, options_, ws_, result->z);
+  run.n = problem.size();
+  run.pivot_budget = IterationBudget(options, 0);
+  ClassifyRows(&run);
+  if (!ReduceFreeRows(&run, result)) return;
+  SolveStatus status = BuildAndPivot(&run, [this] { return TimeLimitReached(); });
 
   Residual res;
-  if (z0_exit) {
-    res = exit_residual;
+  if (run.z0_exit) {
+    res = run.exit_residual;
   } else {
-    recover(p > 0 && status != SolveStatus::kSingular);
-    res = problem.NaturalResidual(z, &ws.w);
+    Recover(&run, run.p > 0 && status != SolveStatus::kSingular);
+    res = problem.NaturalResidual(run.z, &ws_.w);
   }
   // The pivots accumulate rounding of order ε·max|β|, and β holds q̂ (a huge multiplier on one row, a base-point
   // shift M·l): an answer that is not at the rounding level in units of z has its active set solved again.
-  const double rounding_level = 1e3 * n * kEps;
+  const double rounding_level = 1e3 * run.n * kEps;
   if (status == SolveStatus::kSolved && !(Passes(res, options.tolerance) && res.scaled <= rounding_level)) {
-    res = polish(res);
+    res = PolishActiveSet(&run, res);
   }
   if (status == SolveStatus::kSolved && !std::isfinite(res.abs)) {
     status = SolveStatus::kNumericalFailure;
-    failure = "the solution contains NaN or Inf";
+    run.failure = "the solution contains NaN or Inf";
   }
   // The merit function decides: wherever the method stopped, a point it accepts is a solution.
   if (status != SolveStatus::kSolved && Passes(res, options.tolerance)) status = SolveStatus::kSolved;
@@ -1000,57 +1093,7 @@ void LemkeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, 
   // known to have a solution it is a failure of the method.
   const char* exists = status == SolveStatus::kRayTermination ? SolutionExistsReason(problem) : nullptr;
   if (exists) status = SolveStatus::kNumericalFailure;
-
-  result->status = status;
-  result->iterations = pivots;
-  // Details (few, since each costs a name search): the optional ones only when they carry information.
-  result->SetDetail("lcp_size", p);
-  result->SetDetail("reinversions", reinversions);
-  if (f > 0) {
-    result->SetDetail("free_row_mode", static_cast<double>(mode));  // 1 Schur, 2 basic, 3 split
-    if (method <= 1) result->SetDetail("free_block_rcond", rcond);
-  }
-  if (polished) result->SetDetail("polished", 1.0);
-  if (z0_exit) result->SetDetail("z0_negligible_exit", 1.0);
-
-  if (status != SolveStatus::kSolved) {
-    std::string& msg = result->message;
-    switch (status) {
-      case SolveStatus::kRayTermination:
-        msg = "Lemke's method ended on a secondary ray after " + std::to_string(pivots) +
-              " pivots (the entering column has no blocking row): no solution found by this method";
-        Append(&msg, " (z0 = %.3e, residual %.3e)", z0_value, Worst(res));
-        msg += "; this proves infeasibility only for a copositive-plus M in exact arithmetic, which was not checked";
-        if (mode == FreeMode::kSplit || mode == FreeMode::kBasic) {
-          msg += std::string("; free rows handled by the ") + FreeModeName(mode) + " method";
-          if (split_fallback) msg += " (the free columns are dependent)";
-        }
-        break;
-      case SolveStatus::kIterationLimit:
-        msg = "pivot limit " + std::to_string(max_pivots) + " reached";
-        Append(&msg, " (z0 = %.3e, residual %.3e)", z0_value, Worst(res));
-        break;
-      case SolveStatus::kTimeLimit:
-        msg = "time limit reached after " + std::to_string(pivots) + " pivots";
-        Append(&msg, " (residual %.3e)", Worst(res));
-        break;
-      default:
-        if (exists) {
-          msg = std::string("a solution exists (") + exists + ") but Lemke's method failed: it ended on a secondary "
-                "ray after " + std::to_string(pivots) + " pivots";
-          Append(&msg, " (z0 = %.3e, residual %.3e)", z0_value, Worst(res));
-          break;
-        }
-        msg = failure ? failure : "numerical failure";
-        Append(&msg, " after %.0f pivots (residual %.3e)", pivots, Worst(res));
-        break;
-    }
-  }
-  if (options.verbosity > 0) {
-    std::fprintf(stderr, "lemke: n = %d, LCP size %d, %d free rows (%s), %d pivots, %d reinversions%s: %s %s\n", n,
-                 p, f, FreeModeName(mode), pivots, reinversions, polished ? ", polished" : "",
-                 std::string(ToString(status)).c_str(), result->message.c_str());
-  }
+  Report(run, status, exists, res, result);
 }
 
 }  // namespace smcbench

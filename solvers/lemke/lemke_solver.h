@@ -8,7 +8,7 @@
 //   upper  (l = −∞, u finite): z = u − x, x ≥ 0, row negated:   x ⊥ −(Mz + q) ≥ 0  (column and row sign flip).
 //   box    (both finite, l < u): z = l + x plus a multiplier y ≥ 0 for the upper bound (the relay → LCP split):
 //                               x ⊥ (Mz + q + y) ≥ 0,  y ⊥ (u − l − x) ≥ 0,  so the LCP block is [[M, I], [−I, 0]].
-//   free   (both infinite): handled by the first of these that applies (free_row_method = 0, automatic):
+//   free   (both infinite): handled by the first of these that applies (free_row_method = auto):
 //     1. Schur complement of the free block A = M_FF (LU with partial pivoting) when Hager's estimate of its
 //        reciprocal 1-norm condition number is ≥ free_block_min_rcond. With C the remaining rows:
 //        z_F = −A⁻¹(q̂_F + M_FC (z_C − z̄_C)),  M_C ← M_CC − M_CF A⁻¹ M_FC,  q_C ← q̂_C − M_CF A⁻¹ q̂_F.
@@ -60,6 +60,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "solvers/core/solver.h"
@@ -67,23 +68,38 @@
 namespace smcbench {
 
 struct LemkeOptions {
+  // The covering vector d of the artificial column z₀ (`--set lemke.covering_vector=NAME`; the old numbers 0 and
+  // 1 are still read).
+  enum class Covering : int {
+    kOnes = 0,       // "ones": d = e, Lemke's choice
+    kRowScaled = 1,  // "row-scaled": d_i = ‖N_i·‖∞, so the pivot sequence is invariant to positive row scaling
+  };
+  // How free rows (l = −∞, u = +∞) enter the LCP (`--set lemke.free_row_method=NAME`; old numbers 0–3 still read).
+  enum class FreeRows : int {
+    kAutomatic = 0,  // "auto": Schur complement, else free variables kept basic, else the x⁺ − x⁻ split
+    kSchur = 1,      // "schur": Schur complement only (kSingular if the free block is singular)
+    kBasic = 2,      // "basic": free variables kept basic
+    kSplit = 3,      // "split": z_F = x⁺ − x⁻
+  };
+
   // An entry c_i of the entering column B⁻¹a may be a pivot only if c_i > pivot_tolerance · ‖c‖∞.
   double pivot_tolerance = 1e-9;
-  // Covering vector d of the artificial column: 0 = e (all ones, Lemke's choice); 1 = d_i = ‖N_i·‖∞ (row scaled:
-  // the pivot sequence becomes invariant to positive row scaling of the LCP). Free variables kept basic: d = Bê.
-  int covering_vector = 0;
+  // Free variables kept basic use d = Bê whatever this says.
+  Covering covering_vector = Covering::kOnes;
   // Recompute B⁻¹ from the basis columns every this many pivots; 0 = automatic, max(64, p).
   int refactor_interval = 0;
   // Free rows are eliminated by a Schur complement only when the reciprocal 1-norm condition estimate of the free
   // block is at least this.
   double free_block_min_rcond = 1e-12;
-  // Free rows: 0 = automatic (Schur → basic free variables → split, see above); 1 = Schur complement only
-  // (kSingular if the free block is singular); 2 = free variables kept basic; 3 = x⁺ − x⁻ split.
-  int free_row_method = 0;
+  FreeRows free_row_method = FreeRows::kAutomatic;
 
   // True if every field is usable; otherwise *why says which and why.
   bool IsValid(std::string* why) const;
 };
+
+// The names `--set` accepts and `smcbench list` prints ("ones", "auto", ...).
+std::string_view ToString(LemkeOptions::Covering covering);
+std::string_view ToString(LemkeOptions::FreeRows method);
 
 // Default pivot budget when SolverOptions::max_iterations ≤ 0: max(2^17, 50·p). 2^17 covers Murty's exponential
 // examples (2^n pivots) up to n = 16; 50·p is far beyond the O(p) pivots Lemke usually needs.
@@ -127,8 +143,16 @@ class LemkeSolver final : public Solver {
   explicit LemkeSolver(const LemkeOptions& options) : options_(options) {}
 
   const SolverInfo& info() const override;
-  LemkeOptions& options() { return options_; }
   const LemkeOptions& options() const { return options_; }
+  // The options, to change in place; sessions check them again on their next call.
+  LemkeOptions& mutable_options() {
+    OptionsChanged();
+    return options_;
+  }
+  void set_options(const LemkeOptions& options) {
+    options_ = options;
+    OptionsChanged();
+  }
 
  protected:
   void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;

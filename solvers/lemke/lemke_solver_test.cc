@@ -103,7 +103,7 @@ Known Generate(int n, Family family, Bounds bounds, unsigned seed) {
   return {BoxMLCP(M, q, l, u, "gen_n" + std::to_string(n) + "_s" + std::to_string(seed)), z};
 }
 
-// --- Minimal reader for the Siconos LCP and MLCP (storage type 1, dense) files; see the peer-data README. ---
+// --- Minimal reader for the Siconos LCP and MLCP (storage type 1, dense) files; see tests/data/siconos/README.md. ---
 std::vector<double> ReadNumbers(const std::string& path) {
   std::ifstream in(path);
   std::vector<double> v;
@@ -252,9 +252,22 @@ TEST(LemkeSolver, InfoAndOptions) {
   EXPECT_FALSE(solver.SetOption("covering_vector", "7", &error));
   EXPECT_FALSE(solver.SetOption("lexicographic", "0", &error));  // always on, not an option
   EXPECT_NE(solver.OptionsHelp().find("refactor_interval"), std::string::npos);
+  // Named values, with the old numbers still read; the help prints the names.
+  EXPECT_TRUE(solver.SetOption("free_row_method", "split", &error)) << error;
+  EXPECT_EQ(solver.options().free_row_method, LemkeOptions::FreeRows::kSplit);
+  EXPECT_TRUE(solver.SetOption("free_row_method", "1", &error)) << error;
+  EXPECT_EQ(solver.options().free_row_method, LemkeOptions::FreeRows::kSchur);
+  EXPECT_TRUE(solver.SetOption("covering_vector", "row-scaled", &error)) << error;
+  EXPECT_EQ(solver.options().covering_vector, LemkeOptions::Covering::kRowScaled);
+  EXPECT_TRUE(solver.SetOption("covering_vector", "0", &error)) << error;
+  EXPECT_EQ(solver.options().covering_vector, LemkeOptions::Covering::kOnes);
+  EXPECT_FALSE(solver.SetOption("free_row_method", "schur-only", &error));
+  EXPECT_NE(error.find("auto, schur, basic, split"), std::string::npos) << error;
+  EXPECT_NE(solver.OptionsHelp().find("free_row_method = schur (one of auto schur basic split 0 1 2 3)"), std::string::npos)
+      << solver.OptionsHelp();
 
   LemkeSolver bad;
-  bad.options().free_block_min_rcond = 2.0;
+  bad.mutable_options().free_block_min_rcond = 2.0;
   const SolveResult r = bad.Solve(BoxMLCP::LCP(DenseMatrix::Identity(1, 1), Vector::Constant(1, -1.0)));
   EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
   EXPECT_FALSE(r.message.empty());
@@ -346,7 +359,7 @@ TEST(LemkeSolver, RayClaimedAProofOnProblemsThatHaveASolution) {
     ASSERT_EQ(M.llt().info(), Eigen::Success);
     const BoxMLCP p = BoxMLCP::LCP(M, Vector{{-1.0, 0.5}}, "spd_coarse_pivots");
     LemkeSolver coarse;
-    coarse.options().pivot_tolerance = 1e-3;
+    coarse.mutable_options().pivot_tolerance = 1e-3;
     const SolveResult r = coarse.Solve(p, raw);
     EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
     EXPECT_NE(r.message.find("a solution exists"), std::string::npos) << r.message;
@@ -512,9 +525,10 @@ TEST(LemkeSolver, UpperOnlyRows) {
 }
 
 TEST(LemkeSolver, MixedBoundsWithFreeRows) {
-  for (int method : {0, 1, 2, 3}) {
+  using FreeRows = LemkeOptions::FreeRows;
+  for (FreeRows method : {FreeRows::kAutomatic, FreeRows::kSchur, FreeRows::kBasic, FreeRows::kSplit}) {
     LemkeSolver solver;
-    solver.options().free_row_method = method;
+    solver.mutable_options().free_row_method = method;
     for (unsigned seed = 1; seed <= 20; ++seed) {
       for (int n : {1, 3, 6, 16, 40}) {
         for (Family family : {Family::kSpd, Family::kNonsymmetricPd}) {
@@ -523,7 +537,7 @@ TEST(LemkeSolver, MixedBoundsWithFreeRows) {
           ExpectSolved(k.problem, r);
           if (r.solved()) {
             EXPECT_LE((r.z - k.z_star).cwiseAbs().maxCoeff(), 1e-8 * (1.0 + k.z_star.cwiseAbs().maxCoeff()))
-                << k.problem.name() << " method=" << method;
+                << k.problem.name() << " method=" << ToString(method);
           }
         }
       }
@@ -592,7 +606,7 @@ TEST(LemkeSolver, SchurOnlyReportsSingularFreeBlock) {
   M << 0, 1, -1, 1;
   const BoxMLCP p(M, Vector{{-2.0, 1.0}}, Vector{{-kInf, 0.0}}, Vector{{kInf, kInf}}, "saddle");
   LemkeSolver solver;
-  solver.options().free_row_method = 1;
+  solver.mutable_options().free_row_method = LemkeOptions::FreeRows::kSchur;
   const SolveResult r = solver.Solve(p);
   EXPECT_EQ(r.status, SolveStatus::kSingular);
   EXPECT_NE(r.message.find("free block"), std::string::npos) << r.message;
@@ -652,9 +666,10 @@ TEST(LemkeSolver, SiconosMlcpFiles) {
                          "deudeu_mlcp.dat",       "diodeBridge20_mlcp.dat", "diodeBridge40_mlcp.dat",
                          "diodeBridge_mlcp.dat",  "m2n1_mlcp.dat",          "m3n2_mlcp.dat",
                          "relay2_mlcp.dat",       "relay3_mlcp.dat"};
-  for (int method : {0, 2, 3}) {  // automatic, always basic, always split
+  using FreeRows = LemkeOptions::FreeRows;
+  for (FreeRows method : {FreeRows::kAutomatic, FreeRows::kBasic, FreeRows::kSplit}) {
     LemkeSolver solver;
-    solver.options().free_row_method = method;
+    solver.mutable_options().free_row_method = method;
     int solved = 0;
     for (const char* file : files) {
       DenseMatrix M;
@@ -662,7 +677,7 @@ TEST(LemkeSolver, SiconosMlcpFiles) {
       ASSERT_TRUE(ReadSiconosMlcp(std::string("mlcp/") + file, &M, &q, &l, &u)) << file;
       const BoxMLCP p(M, q, l, u, file);
       const SolveResult r = solver.Solve(p);
-      if (method != 3) {
+      if (method != FreeRows::kSplit) {
         ExpectSolved(p, r);
       }
       if (r.solved()) {
@@ -673,7 +688,7 @@ TEST(LemkeSolver, SiconosMlcpFiles) {
       }
     }
     // The x⁺ − x⁻ split loses the structure of these non-monotone circuits: it is only the last resort.
-    if (method == 3) {
+    if (method == FreeRows::kSplit) {
       EXPECT_GE(solved, 4);
     }
   }
@@ -711,7 +726,7 @@ TEST(LemkeSolver, WarmStartIsIgnored) {
 
 TEST(LemkeSolver, RowScaledCoveringVector) {
   LemkeSolver solver;
-  solver.options().covering_vector = 1;
+  solver.mutable_options().covering_vector = LemkeOptions::Covering::kRowScaled;
   for (unsigned seed = 1; seed <= 5; ++seed) {
     const Known k = Generate(20, Family::kNonsymmetricPd, Bounds::kMixed, seed);
     ExpectSolved(k.problem, solver.Solve(k.problem));
@@ -721,7 +736,7 @@ TEST(LemkeSolver, RowScaledCoveringVector) {
 
 TEST(LemkeSolver, ReinversionKeepsAccuracy) {
   LemkeSolver solver;
-  solver.options().refactor_interval = 3;
+  solver.mutable_options().refactor_interval = 3;
   for (unsigned seed = 1; seed <= 5; ++seed) {
     const Known k = Generate(30, Family::kNonsymmetricPd, Bounds::kRelay, seed);
     const SolveResult r = solver.Solve(k.problem);

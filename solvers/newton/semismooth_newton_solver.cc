@@ -171,7 +171,7 @@ bool NewtonOptions::IsValid(std::string* why) const {
   if (!(descent_power > 2.0) || !std::isfinite(descent_power))
     return fail("descent_power must be > 2 (DFK 1996 require p > 2), got ", descent_power);
   if (linear_solver < kAutoLinearSolver || linear_solver > kSparseLinearSolver)
-    return fail("linear_solver must be 0 (auto), 1 (dense) or 2 (sparse), got ", linear_solver);
+    return fail("linear_solver must be auto, dense or sparse, got the code ", static_cast<int>(linear_solver));
   if (dense_max_size < 0) return fail("dense_max_size must be >= 0, got ", dense_max_size);
   if (!(reduction_threshold >= 0.0 && reduction_threshold <= 1e-2))
     return fail("reduction_threshold must be in [0, 1e-2], got ", reduction_threshold);
@@ -941,7 +941,12 @@ void SemismoothNewtonSolver::BindOptions(OptionBinder* b) {
   b->Add("descent_rho", &o.descent_rho, "DFK descent test grad'd <= -rho ||d||^p: rho");
   b->Add("descent_power", &o.descent_power, "DFK descent test: p (> 2)");
   b->Add("gradient_fallback", &o.gradient_fallback, "use -grad Psi when the Newton direction fails");
-  b->Add("linear_solver", &o.linear_solver, "0 auto, 1 dense reduced LU, 2 sparse UMFPACK");
+  b->Add("linear_solver", &o.linear_solver,
+         {{"auto", NewtonOptions::kAutoLinearSolver}, {"dense", NewtonOptions::kDenseLinearSolver},
+          {"sparse", NewtonOptions::kSparseLinearSolver}, {"0", NewtonOptions::kAutoLinearSolver},
+          {"1", NewtonOptions::kDenseLinearSolver}, {"2", NewtonOptions::kSparseLinearSolver}},
+         "auto (dense LU for dense and small sparse data, else UMFPACK), dense (reduced LU), sparse (UMFPACK) "
+         "(old numbers 0-2 still read)");
   b->Add("dense_max_size", &o.dense_max_size, "auto: sparse data up to this size are factorized densely");
   b->Add("reduction_threshold", &o.reduction_threshold,
          "dense: rows with |Db| <= threshold |Da| leave the LU (0 = exact zeros only)");

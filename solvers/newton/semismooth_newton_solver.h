@@ -13,10 +13,12 @@
 namespace smcbench {
 
 struct NewtonOptions {
-  // Values of linear_solver (an int so the text option binder can set it).
-  static constexpr int kAutoLinearSolver = 0;    // dense LU for dense data and small sparse data, else UMFPACK
-  static constexpr int kDenseLinearSolver = 1;   // always dense (sparse data are copied to a dense matrix)
-  static constexpr int kSparseLinearSolver = 2;  // always UMFPACK (dense data converted per solve / MCP iteration)
+  // Values of linear_solver (`--set newton.linear_solver=NAME`; the old numbers 0–2 are still read).
+  enum LinearSolver : int {
+    kAutoLinearSolver = 0,    // "auto": dense LU for dense data and small sparse data, else UMFPACK
+    kDenseLinearSolver = 1,   // "dense": always dense (sparse data are copied to a dense matrix)
+    kSparseLinearSolver = 2,  // "sparse": always UMFPACK (dense data converted per solve / MCP iteration)
+  };
   static constexpr int kMaxNonmonotoneMemory = 32;
 
   // Armijo constant σ in Psi(z + t d) ≤ Psi_ref + σ t ∇Psiᵀd (DFK 1996 use 1e-4).
@@ -36,7 +38,7 @@ struct NewtonOptions {
   // the solve (kSingular if no direction passed its descent test, kStalled if the line search failed).
   bool gradient_fallback = true;
   // kAutoLinearSolver, kDenseLinearSolver or kSparseLinearSolver.
-  int linear_solver = kAutoLinearSolver;
+  LinearSolver linear_solver = kAutoLinearSolver;
   // kAutoLinearSolver: sparse data with at most this many unknowns are factorized densely.
   int dense_max_size = 64;
   // Dense only: rows with |Db_i| ≤ threshold·|Da_i| are treated as trivially active (Db_i := 0), so their
@@ -81,8 +83,16 @@ class SemismoothNewtonSolver final : public Solver {
   SemismoothNewtonSolver& operator=(const SemismoothNewtonSolver&) = delete;
 
   const SolverInfo& info() const override;
-  NewtonOptions& options() { return options_; }
   const NewtonOptions& options() const { return options_; }
+  // The options, to change in place; sessions check them again on their next call.
+  NewtonOptions& mutable_options() {
+    OptionsChanged();
+    return options_;
+  }
+  void set_options(const NewtonOptions& options) {
+    options_ = options;
+    OptionsChanged();
+  }
 
   static constexpr int kDefaultMaxIterations = 200;
 

@@ -136,10 +136,171 @@ inline int Sweep(const Columns& M, const double* step, const double* l, const do
   return updates;
 }
 
-void SetMessage(SolveResult* result, const char* format, double a = 0, double b = 0, double c = 0) {
-  char buffer[320];
-  std::snprintf(buffer, sizeof buffer, format, a, b, c);
+// The message of an unsolved result, printf-style (counts as %d, values as %g/%e).
+template <typename... Args>
+void SetMessage(SolveResult* result, const char* format, Args... args) {
+  char buffer[400];
+  std::snprintf(buffer, sizeof buffer, format, args...);
   result->message.assign(buffer);
+}
+
+// One solve's state, shared by the phases of PsorSolver::Iterate.
+template <typename Columns>
+struct PsorRun {
+  PsorRun(const Columns& m, const PsorOptions& o, const SolverOptions& so, const BoxMLCP& problem, double* z_data,
+          double* w_data, double* step_data)
+      : M(m), opt(o), options(so), l(problem.l().data()), u(problem.u().data()), q(problem.q().data()), z(z_data),
+        w(w_data), step(step_data) {}
+  const Columns& M;
+  const PsorOptions& opt;
+  const SolverOptions& options;
+  const double* l;
+  const double* u;
+  const double* q;
+  double* z;
+  double* w;
+  double* step;
+  int n = 0;
+  double q_norm = 0.0;        // ‖q‖∞
+  double z0_norm = 0.0;       // ‖z⁰‖∞ of the projected start
+  double min_diagonal = kInf;  // smallest M_ii over the rows that move
+  int sweeps = 0, refreshes = 0, budget = 0;
+  long long column_updates = 0;
+  double rel = kInf;   // Merit::relative at the last merit evaluation
+  double best = kInf;  // smallest rel seen
+  bool w_exact = true;  // no incremental update since the last refresh
+  int since_refresh = 0;
+  double window_best = kInf;  // best residual when the current stall window opened
+  int window_start = 0;
+  double divergence_limit = kInf;
+
+  // w = M z + q exactly (a cold start at 0: w = q without a product).
+  [[gnu::always_inline]] void Refresh() {
+    if (z0_norm == 0.0 && refreshes == 0) {
+      std::copy(q, q + n, w);
+    } else {
+      M.Affine(z, q, w);
+    }
+    ++refreshes;
+    w_exact = true;
+    since_refresh = 0;
+  }
+};
+
+// Safeguard before any sweep: the update divides by M_ii and is a descent step only for M_ii > 0. Rows with
+// l_i = u_i are fixed by the projection whatever M_ii is, so they are exempt. Sets the steps ω / M_ii; false with
+// the message when some row's diagonal is below min_diagonal · max|M|.
+template <typename Columns>
+[[gnu::always_inline]] inline bool SetSteps(PsorRun<Columns>* run, SolveResult* result) {
+  const double diagonal_floor = run->opt.min_diagonal > 0.0 ? run->opt.min_diagonal * run->M.MaxAbs() : 0.0;
+  int first_bad = -1, num_bad = 0;
+  for (int i = 0; i < run->n; ++i) {
+    if (run->l[i] == run->u[i]) {
+      run->step[i] = 0.0;
+      continue;
+    }
+    const double d = run->M.Diagonal(i);
+    if (!(d > diagonal_floor)) {
+      if (first_bad < 0) first_bad = i;
+      ++num_bad;
+      continue;
+    }
+    run->step[i] = run->opt.omega / d;
+    run->min_diagonal = std::min(run->min_diagonal, d);
+  }
+  if (first_bad < 0) return true;
+  SetMessage(result,
+             "PSOR needs M_ii > %g (min_diagonal * max|M|) on every row with l_i < u_i, but M(%d,%d) = %g "
+             "(%d such row(s)); zero, tiny or negative diagonals are outside the method's scope",
+             diagonal_floor, first_bad, first_bad, run->M.Diagonal(first_bad), num_bad);
+  result->status = SolveStatus::kNotApplicable;
+  result->iterations = 0;
+  return false;
+}
+
+// The stall message: a residual already at rounding level (tolerance too tight) and a genuinely nonconvergent M
+// (cycling) look alike here; it says which one it is. Takes values, not the run: a run whose address escapes
+// stays in memory, which costs the m ≤ 4 sweep loop ~15 % (measured with callgrind).
+[[gnu::noinline]] void StallMessage(double best, double rel, int sweeps, int n, const PsorOptions& opt,
+                                    SolveResult* result) {
+  const bool at_rounding_level = best <= 100.0 * n * std::numeric_limits<double>::epsilon();
+  SetMessage(result,
+             "PSOR stalled: best scaled residual %.3e did not fall by a factor %g within %d sweeps (now %.3e after "
+             "%d sweeps); %s",
+             best, opt.stall_factor, opt.stall_sweeps, rel, sweeps,
+             at_rounding_level ? "the residual is at rounding level, the tolerance is below the attainable accuracy"
+                               : "M may be outside PSOR's convergence classes (symmetric PD, H-matrix)");
+}
+
+// The merit test after a sweep: kNotRun to sweep on, else the status the solve ends with (message set).
+// fixed_point: the sweep moved nothing; swept_with_exact_w: it started from an exact w.
+// Inlined into the sweep loop: on the m ≤ 4 problems of the time-steppers a call here costs ~15 % of a solve.
+template <typename Columns, typename TimeUp>
+[[gnu::always_inline]] inline SolveStatus Checkpoint(PsorRun<Columns>* run, int updates, bool swept_with_exact_w, const TimeUp& time_up,
+                       SolveResult* result) {
+  const double tolerance = run->options.tolerance;
+  const bool fixed_point = updates == 0;
+  Merit merit = EvaluateMerit(run->n, run->z, run->w, run->l, run->u);
+  run->rel = merit.relative(run->q_norm);
+  if (!merit.finite) {
+    SetMessage(result,
+               "PSOR diverged: non-finite iterate after %d sweeps (best scaled residual %.3e); M is likely outside "
+               "PSOR's convergence classes or omega = %g is too large",
+               run->sweeps, run->best, run->opt.omega);
+    return SolveStatus::kDiverged;
+  }
+  if (run->rel <= tolerance && !run->w_exact) {
+    // Confirm against an exact w before claiming success: the incremental one carries rounding drift.
+    run->Refresh();
+    merit = EvaluateMerit(run->n, run->z, run->w, run->l, run->u);
+    run->rel = merit.relative(run->q_norm);
+  }
+  run->best = std::min(run->best, run->rel);
+  if (run->rel <= tolerance) return SolveStatus::kSolved;
+  if (merit.z_norm > run->divergence_limit) {
+    SetMessage(result, "PSOR diverged: |z|inf = %.3e exceeds the divergence limit %.3e (scaled residual %.3e)",
+               merit.z_norm, run->divergence_limit, run->rel);
+    return SolveStatus::kDiverged;
+  }
+  if (fixed_point && swept_with_exact_w) {
+    SetMessage(result,
+               "PSOR stalled at a floating-point fixed point (no coordinate moves) with scaled residual %.3e > "
+               "tolerance %.1e: the tolerance is below the accuracy attainable for this scaling",
+               run->rel, tolerance);
+    return SolveStatus::kStalled;
+  }
+  if (run->best <= run->opt.stall_factor * run->window_best) {
+    run->window_best = run->best;
+    run->window_start = run->sweeps;
+  } else if (run->opt.stall_sweeps > 0 && run->sweeps - run->window_start >= run->opt.stall_sweeps) {
+    StallMessage(run->best, run->rel, run->sweeps, run->n, run->opt, result);
+    return SolveStatus::kStalled;
+  }
+  if (run->options.verbosity > 1) {
+    std::fprintf(stderr, "psor: sweep %6d  residual %.3e  moved %d/%d\n", run->sweeps, run->rel, updates, run->n);
+  }
+  if (run->options.time_limit_seconds < kInf && time_up()) {
+    SetMessage(result, "PSOR hit the time limit after %d sweeps with scaled residual %.3e (best %.3e)", run->sweeps,
+               run->rel, run->best);
+    return SolveStatus::kTimeLimit;
+  }
+  return SolveStatus::kNotRun;
+}
+
+// Status, iterations and details of the result.
+template <typename Columns>
+[[gnu::always_inline]] inline void FinishRun(const PsorRun<Columns>& run, SolveStatus status, SolveResult* result) {
+  result->status = status;
+  result->iterations = run.sweeps;
+  result->SetDetail("column_updates", static_cast<double>(run.column_updates));
+  result->SetDetail("w_refreshes", run.refreshes);
+  if (run.options.verbosity > 0) {
+    std::fprintf(stderr,
+                 "psor: %s after %d sweeps, scaled residual %.3e (best %.3e, tolerance %.1e), %lld column updates, "
+                 "%d exact refreshes of w\n",
+                 std::string(ToString(status)).c_str(), run.sweeps, run.rel, run.best, run.options.tolerance,
+                 run.column_updates, run.refreshes);
+  }
 }
 
 }  // namespace
@@ -212,193 +373,60 @@ void PsorSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, S
   }
 }
 
+// The phases in order: the diagonal safeguard, the projected start, then sweeps with a merit checkpoint every
+// check_interval sweeps (and at a fixed point or the last sweep), refreshing the incremental w to bound its drift.
 template <typename Columns>
 void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverOptions& options,
                          SolveResult* result) {
-  const int n = M.size();
-  const PsorOptions& opt = options_;
-  const double* l = problem.l().data();
-  const double* u = problem.u().data();
-  const double* q = problem.q().data();
-  double* z = result->z.data();
-  double* w = w_.data();
-  double* step = step_.data();
-  const double tolerance = options.tolerance;
-  const double q_norm = problem.residual_scale() - 1.0;  // ‖q‖∞
-
-  // Safeguard before any sweep: the update divides by M_ii and is a descent step only for M_ii > 0. Rows with
-  // l_i = u_i are fixed by the projection whatever M_ii is, so they are exempt.
-  const double diagonal_floor = opt.min_diagonal > 0.0 ? opt.min_diagonal * M.MaxAbs() : 0.0;
-  double min_diagonal = kInf;
-  int first_bad = -1, num_bad = 0;
-  for (int i = 0; i < n; ++i) {
-    if (l[i] == u[i]) {
-      step[i] = 0.0;
-      continue;
-    }
-    const double d = M.Diagonal(i);
-    if (!(d > diagonal_floor)) {
-      if (first_bad < 0) first_bad = i;
-      ++num_bad;
-      continue;
-    }
-    step[i] = opt.omega / d;
-    min_diagonal = std::min(min_diagonal, d);
-  }
-  if (first_bad >= 0) {
-    char buffer[320];
-    std::snprintf(buffer, sizeof buffer,
-                  "PSOR needs M_ii > %g (min_diagonal * max|M|) on every row with l_i < u_i, but M(%d,%d) = %g "
-                  "(%d such row(s)); zero, tiny or negative diagonals are outside the method's scope",
-                  diagonal_floor, first_bad, first_bad, M.Diagonal(first_bad), num_bad);
-    result->message.assign(buffer);
-    result->status = SolveStatus::kNotApplicable;
-    result->iterations = 0;
-    return;
-  }
-
+  PsorRun<Columns> run(M, options_, options, problem, result->z.data(), w_.data(), step_.data());
+  run.n = M.size();
+  run.q_norm = problem.residual_scale() - 1.0;
+  if (!SetSteps(&run, result)) return;
   // Start from the projection of the warm start (or of Π(0), which it already is).
-  double z0_norm = 0.0;
-  for (int i = 0; i < n; ++i) {
-    z[i] = Clamp(z[i], l[i], u[i]);
-    z0_norm = std::max(z0_norm, std::abs(z[i]));
+  for (int i = 0; i < run.n; ++i) {
+    run.z[i] = Clamp(run.z[i], run.l[i], run.u[i]);
+    run.z0_norm = std::max(run.z0_norm, std::abs(run.z[i]));
   }
-
-  int refreshes = 0;
-  const auto refresh = [&]() {
-    if (z0_norm == 0.0 && refreshes == 0) {
-      std::copy(q, q + n, w);  // cold start at 0: w = q without a product
-    } else {
-      M.Affine(z, q, w);
-    }
-    ++refreshes;
-  };
-
-  const int budget = IterationBudget(options, kDefaultMaxSweeps);
-  int sweeps = 0;
-  long long column_updates = 0;
-  double rel = kInf;   // Merit::relative at the last merit evaluation
-  double best = kInf;  // smallest rel seen
-  const auto finish = [&](SolveStatus status) {
-    result->status = status;
-    result->iterations = sweeps;
-    result->SetDetail("column_updates", static_cast<double>(column_updates));
-    result->SetDetail("w_refreshes", refreshes);
-    if (options.verbosity > 0) {
-      std::fprintf(stderr,
-                   "psor: %s after %d sweeps, scaled residual %.3e (best %.3e, tolerance %.1e), %lld column "
-                   "updates, %d exact refreshes of w\n",
-                   std::string(ToString(status)).c_str(), sweeps, rel, best, tolerance, column_updates, refreshes);
-    }
-  };
-
-  refresh();
-  bool w_exact = true;  // no incremental update since the last refresh
-  Merit merit = EvaluateMerit(n, z, w, l, u);
-  rel = merit.relative(q_norm);
-  best = rel;
+  run.budget = IterationBudget(options, kDefaultMaxSweeps);
+  run.Refresh();
+  const Merit merit = EvaluateMerit(run.n, run.z, run.w, run.l, run.u);
+  run.rel = run.best = merit.relative(run.q_norm);
   if (!merit.finite) {
-    SetMessage(result, "PSOR: M z0 + q is not finite at the starting point (|z0|inf = %.3e): overflow", z0_norm);
-    return finish(SolveStatus::kNumericalFailure);
+    SetMessage(result, "PSOR: M z0 + q is not finite at the starting point (|z0|inf = %.3e): overflow", run.z0_norm);
+    return FinishRun(run, SolveStatus::kNumericalFailure, result);
   }
-  if (rel <= tolerance) return finish(SolveStatus::kSolved);  // the (warm) start already solves it
+  if (run.rel <= options.tolerance) return FinishRun(run, SolveStatus::kSolved, result);  // the (warm) start solves it
 
   // Only needed once sweeping (time-steppers' warm starts usually return above): no division before that.
-  const double divergence_limit =
-      opt.divergence_threshold * (1.0 + z0_norm + (min_diagonal < kInf ? q_norm / min_diagonal : 0.0));
-
-  double window_best = rel;  // best residual when the current stall window opened
-  int window_start = 0;
-  int since_refresh = 0;
-  int until_check = opt.check_interval;  // a countdown: no integer division per sweep
-  const bool has_time_limit = options.time_limit_seconds < kInf;
-
+  run.divergence_limit = options_.divergence_threshold *
+                         (1.0 + run.z0_norm + (run.min_diagonal < kInf ? run.q_norm / run.min_diagonal : 0.0));
+  run.window_best = run.rel;
+  int until_check = options_.check_interval;  // a countdown: no integer division per sweep
+  const auto time_up = [this] { return TimeLimitReached(); };
   while (true) {
-    if (sweeps >= budget) {
+    if (run.sweeps >= run.budget) {
       SetMessage(result,
-                 "PSOR reached the sweep limit (%.0f) with scaled residual %.3e (best %.3e); raise "
-                 "max_iterations, or M is ill-conditioned or outside PSOR's convergence classes (symmetric PD, "
-                 "H-matrix)",
-                 budget, rel, best);
-      return finish(SolveStatus::kIterationLimit);
+                 "PSOR reached the sweep limit (%d) with scaled residual %.3e (best %.3e); raise max_iterations, or M "
+                 "is ill-conditioned or outside PSOR's convergence classes (symmetric PD, H-matrix)",
+                 run.budget, run.rel, run.best);
+      return FinishRun(run, SolveStatus::kIterationLimit, result);
     }
-    const int updates = Sweep(M, step, l, u, z, w);
-    ++sweeps;
-    ++since_refresh;
-    column_updates += updates;
-    const bool swept_with_exact_w = w_exact;
-    if (updates > 0) w_exact = false;
-
+    const int updates = Sweep(M, run.step, run.l, run.u, run.z, run.w);
+    ++run.sweeps;
+    ++run.since_refresh;
+    run.column_updates += updates;
+    const bool swept_with_exact_w = run.w_exact;
+    if (updates > 0) run.w_exact = false;
     // A sweep that moves nothing is a fixed point of the PSOR map. With an exact w this means every row
     // satisfies its 1-D complementarity condition up to rounding, so the residual cannot improve further.
     const bool fixed_point = updates == 0;
-    if (fixed_point || --until_check == 0 || sweeps == budget) {
-      until_check = opt.check_interval;
-      merit = EvaluateMerit(n, z, w, l, u);
-      rel = merit.relative(q_norm);
-      if (!merit.finite) {
-        SetMessage(result,
-                   "PSOR diverged: non-finite iterate after %.0f sweeps (best scaled residual %.3e); "
-                   "M is likely outside PSOR's convergence classes or omega = %g is too large",
-                   sweeps, best, opt.omega);
-        return finish(SolveStatus::kDiverged);
-      }
-      if (rel <= tolerance && !w_exact) {
-        // Confirm against an exact w before claiming success: the incremental one carries rounding drift.
-        refresh();
-        w_exact = true;
-        since_refresh = 0;
-        merit = EvaluateMerit(n, z, w, l, u);
-        rel = merit.relative(q_norm);
-      }
-      best = std::min(best, rel);
-      if (rel <= tolerance) return finish(SolveStatus::kSolved);
-      if (merit.z_norm > divergence_limit) {
-        SetMessage(result,
-                   "PSOR diverged: |z|inf = %.3e exceeds the divergence limit %.3e (scaled residual %.3e)",
-                   merit.z_norm, divergence_limit, rel);
-        return finish(SolveStatus::kDiverged);
-      }
-      if (fixed_point && swept_with_exact_w) {
-        SetMessage(result,
-                   "PSOR stalled at a floating-point fixed point (no coordinate moves) with scaled residual "
-                   "%.3e > tolerance %.1e: the tolerance is below the accuracy attainable for this scaling",
-                   rel, tolerance);
-        return finish(SolveStatus::kStalled);
-      }
-      if (best <= opt.stall_factor * window_best) {
-        window_best = best;
-        window_start = sweeps;
-      } else if (opt.stall_sweeps > 0 && sweeps - window_start >= opt.stall_sweeps) {
-        // Two different reasons look alike here: a residual already at rounding level (tolerance too tight)
-        // and a genuinely nonconvergent M (cycling). Say which one it is.
-        const bool at_rounding_level = best <= 100.0 * n * std::numeric_limits<double>::epsilon();
-        char buffer[400];
-        std::snprintf(buffer, sizeof buffer,
-                      "PSOR stalled: best scaled residual %.3e did not fall by a factor %g within %d sweeps "
-                      "(now %.3e after %d sweeps); %s",
-                      best, opt.stall_factor, opt.stall_sweeps, rel, sweeps,
-                      at_rounding_level ? "the residual is at rounding level, the tolerance is below the attainable "
-                                          "accuracy"
-                                        : "M may be outside PSOR's convergence classes (symmetric PD, H-matrix)");
-        result->message.assign(buffer);
-        return finish(SolveStatus::kStalled);
-      }
-      if (options.verbosity > 1) {
-        std::fprintf(stderr, "psor: sweep %6d  residual %.3e  moved %d/%d\n", sweeps, rel, updates, n);
-      }
-      if (has_time_limit && TimeLimitReached()) {
-        SetMessage(result, "PSOR hit the time limit after %.0f sweeps with scaled residual %.3e (best %.3e)",
-                   sweeps, rel, best);
-        return finish(SolveStatus::kTimeLimit);
-      }
+    if (fixed_point || --until_check == 0 || run.sweeps == run.budget) {
+      until_check = options_.check_interval;
+      const SolveStatus status = Checkpoint(&run, updates, swept_with_exact_w, time_up, result);
+      if (status != SolveStatus::kNotRun) return FinishRun(run, status, result);
     }
     // Bound the rounding drift of the incremental w; also makes a fixed point found on a drifted w be re-tested.
-    if (!w_exact && (since_refresh >= opt.refresh_interval || fixed_point)) {
-      refresh();
-      w_exact = true;
-      since_refresh = 0;
-    }
+    if (!run.w_exact && (run.since_refresh >= options_.refresh_interval || fixed_point)) run.Refresh();
   }
 }
 

@@ -74,6 +74,11 @@ class PsorSolver final : public Solver {
 
   const SolverInfo& info() const override;
   const PsorOptions& options() const { return options_; }
+  // The options, to change in place; sessions check them again on their next call.
+  PsorOptions& mutable_options() {
+    OptionsChanged();
+    return options_;
+  }
   // Replaces the options; they are validated when Solve runs (invalid → kInvalidOptions).
   void set_options(const PsorOptions& options) {
     options_ = options;

@@ -13,39 +13,8 @@
 #include <vector>
 
 #include "solvers/core/verdict.h"
+#include "tests/support/malloc_counter.h"
 #include "tests/support/small_h_relay.h"
-
-// ---- Heap-allocation counter (malloc level, so Eigen's aligned_malloc and operator new are both seen). ------
-// Interposes glibc's malloc in this executable; skipped under AddressSanitizer, which owns malloc itself.
-#if defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define PSOR_TEST_ASAN 1
-#endif
-#endif
-#if defined(__SANITIZE_ADDRESS__)
-#define PSOR_TEST_ASAN 1
-#endif
-#if defined(__GLIBC__) && !defined(PSOR_TEST_ASAN)
-#define PSOR_TEST_COUNT_MALLOC 1
-#endif
-
-namespace {
-#if defined(PSOR_TEST_COUNT_MALLOC)
-constexpr bool kCanCountMallocs = true;
-#else
-constexpr bool kCanCountMallocs = false;
-#endif
-long g_malloc_count = 0;
-bool g_counting = false;
-}  // namespace
-
-#if defined(PSOR_TEST_COUNT_MALLOC)
-extern "C" void* __libc_malloc(std::size_t size);
-extern "C" void* malloc(std::size_t size) noexcept {
-  if (g_counting) ++g_malloc_count;
-  return __libc_malloc(size);
-}
-#endif
 
 namespace smcbench {
 namespace {
@@ -548,14 +517,12 @@ TEST(PsorSolver, SetOptionRejectsBadValuesWithAMessage) {
 // ---- Hot path -------------------------------------------------------------------------------------------------
 
 TEST(PsorSolver, RepeatedSolvesDoNotTouchTheHeap) {
-  if (!kCanCountMallocs) GTEST_SKIP() << "malloc is owned by the sanitizer runtime";
+  if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc is owned by the sanitizer runtime";
   {  // the counter itself must see Eigen's and operator new's allocations, or the test below proves nothing
-    g_malloc_count = 0;
-    g_counting = true;
+    test_support::StartCountingMallocs();
     Vector probe = Vector::Ones(100);
     std::string text(200, 'x');
-    g_counting = false;
-    EXPECT_GE(g_malloc_count, 2) << probe.sum() << text.size();
+    EXPECT_GE(test_support::StopCountingMallocs(), 2) << probe.sum() << text.size();
   }
   const Planted small = SpdLcp(2, 8);
   const Planted mid = SpdRelay(16, 8);
@@ -570,11 +537,9 @@ TEST(PsorSolver, RepeatedSolvesDoNotTouchTheHeap) {
     options.polish = problem->size() <= BoxMLCP::kSmallSize;
     solver.Solve(*problem, options, &result);  // sizes the workspace
     ASSERT_EQ(result.status, SolveStatus::kSolved) << result.message;
-    g_malloc_count = 0;
-    g_counting = true;
+    test_support::StartCountingMallocs();
     for (int k = 0; k < 5; ++k) solver.Solve(*problem, options, &result);
-    g_counting = false;
-    EXPECT_EQ(g_malloc_count, 0) << problem->name();
+    EXPECT_EQ(test_support::StopCountingMallocs(), 0) << problem->name();
     EXPECT_EQ(result.status, SolveStatus::kSolved);
   }
 }

@@ -451,7 +451,7 @@ bool SameBits(const Vector& a, const Vector& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * a.size()) == 0;
 }
 
-// Every file of the Siconos collection (../shared/peer-data/siconos) the reader accepts.
+// Every file of the Siconos collection (tests/data/siconos) the reader accepts.
 std::vector<std::filesystem::path> CollectionFiles() {
   namespace fs = std::filesystem;
   const fs::path collection = SMCBENCH_PEER_DATA_DIR "/siconos";

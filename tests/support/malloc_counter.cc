@@ -2,6 +2,8 @@
 
 #include <atomic>
 #include <cstddef>
+#include <cstdlib>
+#include <new>
 
 #if defined(__SANITIZE_ADDRESS__)
 #define SMCBENCH_SANITIZED 1
@@ -15,6 +17,7 @@ namespace {
 std::atomic<bool> g_counting{false};
 std::atomic<long> g_count{0};
 std::atomic<std::size_t> g_largest{0};
+std::atomic<long> g_news{0};
 [[maybe_unused]] inline void Count(std::size_t size) {  // unused in sanitized builds (the allocator is ASan's)
   if (!g_counting.load(std::memory_order_relaxed)) return;
   g_count.fetch_add(1, std::memory_order_relaxed);
@@ -58,6 +61,21 @@ int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept
   return *out ? 0 : 12 /* ENOMEM */;
 }
 }
+
+// Replaceable global operator new (the throwing forms; the others call these): counted on top of the malloc it
+// makes, so that "our code did not allocate" can be told apart from a library's own mallocs (UMFPACK).
+// GCC pairs the inlined replacement new/delete with malloc/free and warns; they are matched by construction.
+#pragma GCC diagnostic ignored "-Wmismatched-new-delete"
+void* operator new(std::size_t size) {
+  if (g_counting.load(std::memory_order_relaxed)) g_news.fetch_add(1, std::memory_order_relaxed);
+  if (void* p = std::malloc(size == 0 ? 1 : size)) return p;
+  throw std::bad_alloc();
+}
+void* operator new[](std::size_t size) { return ::operator new(size); }
+void operator delete(void* p) noexcept { std::free(p); }
+void operator delete[](void* p) noexcept { std::free(p); }
+void operator delete(void* p, std::size_t) noexcept { std::free(p); }
+void operator delete[](void* p, std::size_t) noexcept { std::free(p); }
 #endif
 
 namespace smcbench::test_support {
@@ -72,6 +90,7 @@ bool CanCountMallocs() {
 
 void StartCountingMallocs() {
   g_count = 0;
+  g_news = 0;
   g_largest = 0;
   g_counting = true;
 }
@@ -82,5 +101,7 @@ long StopCountingMallocs() {
 }
 
 unsigned long LargestMallocRequest() { return g_largest.load(); }
+
+long OperatorNewCalls() { return g_news.load(); }
 
 }  // namespace smcbench::test_support

@@ -16,6 +16,9 @@ void StartCountingMallocs();
 long StopCountingMallocs();
 // The largest single request (bytes) since the last StartCountingMallocs, while counting was on.
 unsigned long LargestMallocRequest();
+// Calls of the global operator new (new, new[]) since the last StartCountingMallocs, while counting was on: the
+// allocations of C++ code, without the mallocs of C libraries (UMFPACK factorizes with its own malloc).
+long OperatorNewCalls();
 
 // Largest single allocation while fn runs (0 when allocations cannot be observed).
 template <typename Fn>

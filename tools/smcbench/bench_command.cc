@@ -12,136 +12,25 @@
 #include <map>
 #include <nlohmann/json.hpp>
 #include <ostream>
+#include <sstream>
 
+#include "bench/replay/jobs.h"
 #include "bench/replay/replay.h"
 #include "bench/replay/results_io.h"
 #include "bench/replay/stepper_study.h"
-#include "problems/generators/random_problems.h"
-#include "problems/io/siconos_format.h"
-#include "problems/library/capture.h"
-#include "problems/library/problem_set_io.h"
 #include "problems/library/references.h"
-#include "problems/suites/families.h"
-#include "problems/suites/hard_cases.h"
 #include "solvers/reference/certify.h"
+#include "solvers/registry/backend_settings.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_report.h"
 #include "tools/smcbench/history_report.h"
 #include "tools/smcbench/solve_report.h"
+#include "smcbench/version.h"
 
 namespace smcbench {
 
 namespace fs = std::filesystem;
 
-
-std::vector<fs::path> SiconosCollectionFiles(const fs::path& dir) {
-  if (!fs::is_directory(dir)) throw InvalidInputError("collection: '" + dir.string() + "' is not a directory");
-  std::vector<fs::path> files;
-  for (const char* sub : {"lcp", "relay", "mlcp"}) {
-    if (!fs::is_directory(dir / sub)) continue;
-    std::vector<fs::path> found;
-    for (const auto& entry : fs::directory_iterator(dir / sub)) {
-      const fs::path& p = entry.path();
-      // The `_block` LCP files duplicate their dense twins in another storage: solving both adds nothing.
-      if (p.extension() == ".dat" && p.stem().string().find("_block") == std::string::npos) found.push_back(p);
-    }
-    std::sort(found.begin(), found.end());
-    files.insert(files.end(), found.begin(), found.end());
-  }
-  if (files.empty()) throw InvalidInputError("collection: no .dat files under " + dir.string() + "/{lcp,relay,mlcp}");
-  return files;
-}
-
-ProblemSet SiconosSuite(const std::string& dir, std::vector<std::string>* rejected) {
-  ProblemSet set;
-  set.name = "siconos";
-  set.description = "the Siconos Numerics test collection (LCP, relay, MLCP files of " + dir + ")";
-  for (const fs::path& file : SiconosCollectionFiles(dir)) {
-    const std::string kind = file.parent_path().filename().string();
-    try {
-      BoxMLCP problem = ReadSiconosFile(file.string());
-      LibraryProblem p = MakeLibraryProblem("siconos/" + kind + "/" + file.stem().string(),
-                                     "siconos:" + kind + "/" + file.filename().string(), std::move(problem));
-      p.tags = {kind};
-      set.problems.push_back(std::move(p));
-    } catch (const InvalidInputError& e) {
-      if (rejected) rejected->push_back(file.string() + ": " + e.what());
-    }
-  }
-  return set;
-}
-
-ProblemSet TinySuite() {
-  ProblemSet set;
-  set.name = "tiny";
-  set.description = "five small generated problems (CI's end-to-end run of bench and report)";
-  const auto add = [&](MatrixFamily family, BoundKind bounds, int m, std::uint64_t seed) {
-    GeneratorOptions g;
-    g.family = family;
-    g.bounds = bounds;
-    g.size = m;
-    g.seed = seed;
-    GeneratedProblem gen = GenerateProblem(g);
-    std::string id = "tiny/" + gen.problem.name();
-    LibraryProblem p = MakeLibraryProblem(std::move(id), "generated:random_problems", std::move(gen.problem));
-    p.seed = seed;
-    p.expected = ExpectedOutcome::kSolvable;
-    p.solution = gen.z_star;
-    p.matrix.p_matrix = Tristate::kYes;
-    p.matrix.symmetric = family == MatrixFamily::kSymmetricPositiveDefinite ? Tristate::kYes : Tristate::kNo;
-    set.problems.push_back(std::move(p));
-  };
-  add(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 2, 1);
-  add(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 8, 2);
-  add(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 4, 3);
-  add(MatrixFamily::kDiagonallyDominant, BoundKind::kMixed, 6, 4);
-  // Infeasible LCP: w_1 = −x_1 − x_2 − 1 < 0 for every z ≥ 0, so no z ≥ 0 has w ≥ 0.
-  DenseMatrix M(2, 2);
-  M << -1.0, -1.0, 0.0, 1.0;
-  Vector q(2);
-  q << -1.0, 1.0;
-  LibraryProblem infeasible =
-      MakeLibraryProblem("tiny/infeasible-lcp", "handmade", BoxMLCP::LCP(M, q, "infeasible-lcp"));
-  infeasible.expected = ExpectedOutcome::kInfeasible;
-  infeasible.tags = {"infeasible"};
-  set.problems.push_back(std::move(infeasible));
-  return set;
-}
-
-namespace {
-
-ProblemSet BuildSuiteProblems(const std::string& name, const SuiteRequest& request) {
-  if (name == "tiny") return TinySuite();
-  if (name == "siconos") return SiconosSuite(request.siconos_dir);
-  if (name == "paper") {
-    PaperSuiteOptions o;
-    if (request.quick) o.max_steps_per_scene = 8;
-    return CapturePaperSuite(o);
-  }
-  if (name == "families") {
-    FamiliesOptions o;
-    if (request.quick) o.seeds = 1, o.max_size = 16;
-    return FamiliesSuite(o);
-  }
-  if (name == "hard") return HardSuite(request.siconos_dir);
-  if (name == "scale") {
-    ScaleOptions o;
-    if (request.quick) o.max_size = 1000;
-    return ScaleSuite(o);
-  }
-  std::error_code ec;
-  if (fs::is_regular_file(name, ec)) return ReadProblemSetFile(name);
-  throw InvalidInputError("bench: unknown suite '" + name +
-                          "' (known: paper, families, hard, siconos, scale, tiny, all, or a problem-set file)");
-}
-
-}  // namespace
-
-ProblemSet BuildSuite(const std::string& name, const SuiteRequest& request) {
-  ProblemSet set = BuildSuiteProblems(name, request);
-  if (request.references) AttachReferences(&set);
-  return set;
-}
 
 bool GlobMatch(std::string_view pattern, std::string_view text) {
   // Iterative wildcard matching with one backtrack point (the last '*'): linear in practice, no recursion.
@@ -165,21 +54,22 @@ bool GlobMatch(std::string_view pattern, std::string_view text) {
 
 // ------------------------------------------------------------------------------------------------------------
 
-const char* const kGenericSparsePath = "newton-sparse-path";
-
 // The suites `bench` knows by name (anything else must be a problem-set file).
-const char* const kSuiteNames[] = {"paper", "families", "hard", "siconos", "scale", "tiny", "all"};
+const char* const kBenchSuiteNames[] = {"paper", "families", "hard", "siconos", "scale", "tiny", "all"};
 
 struct BenchCommand::Flags {
   std::vector<std::string> suites, solvers, sets, allow_wrong;
   // Empty: a fresh folder ./smcbench-bench-YYYYMMDD-HHMMSS (DefaultOutputFolder), so a run without --out never
   // replaces earlier results, the committed results/bench included.
-  std::string out, siconos_dir = "../shared/peer-data/siconos", report_dir, history;
+  std::string out, siconos_dir = "tests/data/siconos", report_dir, history;
   int repetitions = 7;
   double tol = 1e-10, time_limit = 10.0;
   // Seconds one backend may spend on one suite before its remaining problems there are skipped (0: no limit).
   double backend_budget = 60.0;
   double progress_every = 5.0;  // seconds between progress lines when stderr is not a terminal (0: none)
+  // --shard K/N (empty: the whole run), --resume DIR (empty: a fresh run), --list-jobs.
+  std::string shard, resume;
+  bool list_jobs = false;
   bool overwrite = false, no_stepper = false, quick = false, report = false, no_plots = false,
        report_no_plots = false, no_polish = false;
 };
@@ -200,7 +90,7 @@ BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
                                      "that already holds results.json is refused unless --overwrite");
   bench_->add_flag("--overwrite", f.overwrite, "let --out name a folder with earlier results (tools/bench.sh "
                                                "passes it for results/bench)");
-  bench_->add_option("--siconos-dir", f.siconos_dir, "the Siconos collection (default ../shared/peer-data/siconos)");
+  bench_->add_option("--siconos-dir", f.siconos_dir, "the Siconos collection (default tests/data/siconos)");
   bench_->add_option("--repetitions", f.repetitions, "timing samples per problem x backend (default 7)");
   bench_->add_option("--tol", f.tol, "tolerance on the relative and the row-equilibrated natural residual "
                                      "(default 1e-10)");
@@ -219,6 +109,17 @@ BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
   bench_->add_option("--allow-wrong", f.allow_wrong, "glob PATTERN of backends whose wrong answers do not set exit "
                                                      "status 3 (still reported), e.g. 'siconos-*' (repeatable)")
       ->type_name("PATTERN");
+
+  bench_->add_option("--shard", f.shard, "run only shard K of N (1 <= K <= N): a deterministic share of the jobs "
+                                         "(problem x backend x tolerance x mode), balanced by estimated cost; "
+                                         "combine the shards' folders with `smcbench merge`")
+      ->type_name("K/N");
+  bench_->add_option("--resume", f.resume, "continue the run in DIR (the same command that started it, --out "
+                                           "replaced by --resume): run only the jobs missing from "
+                                           "DIR/records.jsonl")
+      ->type_name("DIR");
+  bench_->add_flag("--list-jobs", f.list_jobs, "print the jobs (of --shard's share) with their estimated seconds, "
+                                               "run nothing");
 
   report_ = app->add_subcommand("report", "turn DIR/results.json into DIR/report.md with PNG plots; with --history, "
                                           "plot the perf gate's history");
@@ -316,7 +217,8 @@ int SummarizeWrongAnswers(const BenchResults& results, const std::vector<std::st
 // names, --set values (tried on a fresh instance of the backend), numbers, and the output folder.
 void CheckBenchRequest(const BenchCommand::Flags& f, const std::vector<std::string>& suites) {
   for (const std::string& name : suites) {
-    const bool known = std::find(std::begin(kSuiteNames), std::end(kSuiteNames), name) != std::end(kSuiteNames);
+    const bool known =
+        std::find(std::begin(kBenchSuiteNames), std::end(kBenchSuiteNames), name) != std::end(kBenchSuiteNames);
     std::error_code ec;
     if (!known && !fs::is_regular_file(name, ec)) {
       throw InvalidInputError("bench: unknown suite '" + name +
@@ -328,15 +230,14 @@ void CheckBenchRequest(const BenchCommand::Flags& f, const std::vector<std::stri
     }
   }
   for (const auto& name : f.solvers) CreateSolver(name);  // InvalidInputError listing the known names
-  for (const std::string& set : f.sets) {
-    const auto dot = set.find('.'), eq = set.find('=');
-    if (dot == std::string::npos || eq == std::string::npos || eq < dot) {
-      throw InvalidInputError("bench: --set expects BACKEND.OPTION=VALUE, got '" + set + "'");
-    }
-    std::string error;
-    if (!CreateSolver(set.substr(0, dot))->SetOption(set.substr(dot + 1, eq - dot - 1), set.substr(eq + 1), &error)) {
-      throw InvalidInputError("bench: --set " + set + ": " + error);
-    }
+  std::vector<std::string> selected = f.solvers;  // none named: every backend
+  if (selected.empty()) {
+    for (auto n : SolverNames()) selected.emplace_back(n);
+  }
+  try {
+    CheckBackendSettings(f.sets, selected);  // the one --set parser: solvers/registry/backend_settings.h
+  } catch (const InvalidInputError& e) {
+    throw InvalidInputError(std::string("bench: ") + e.what());
   }
   if (!(f.tol > 0.0) || !(f.time_limit > 0.0) || f.repetitions < 1 || !(f.backend_budget >= 0.0) ||
       !(f.progress_every >= 0.0)) {
@@ -346,10 +247,23 @@ void CheckBenchRequest(const BenchCommand::Flags& f, const std::vector<std::stri
   for (const std::string& pattern : f.allow_wrong) {
     if (pattern.empty()) throw InvalidInputError("bench: --allow-wrong needs a non-empty PATTERN");
   }
+  if (!f.shard.empty()) ParseShard(f.shard);
   std::error_code ec;
-  if (!f.overwrite && fs::exists(fs::path(f.out) / "results.json", ec)) {
-    throw InvalidInputError("bench: '" + f.out + "' already holds results.json: choose another --out, or add "
-                            "--overwrite to replace them");
+  if (!f.resume.empty()) {
+    if (!f.out.empty() || f.overwrite) {
+      throw InvalidInputError("bench: --resume DIR continues DIR: give neither --out nor --overwrite with it");
+    }
+    if (!fs::exists(fs::path(f.resume) / "manifest.json", ec)) {
+      throw InvalidInputError("bench: --resume '" + f.resume + "' holds no manifest.json (not a folder bench started)");
+    }
+    return;
+  }
+  if (f.list_jobs) return;
+  for (const char* file : {"results.json", "manifest.json"}) {
+    if (!f.overwrite && !f.out.empty() && fs::exists(fs::path(f.out) / file, ec)) {
+      throw InvalidInputError("bench: '" + f.out + "' already holds " + file + ": choose another --out, --resume "
+                              "it, or add --overwrite to replace it");
+    }
   }
 }
 
@@ -362,102 +276,6 @@ std::string DefaultOutputFolder() {
   std::error_code ec;
   for (int k = 2; fs::exists(name, ec); ++k) name = std::string("smcbench-bench-") + stamp + "-" + std::to_string(k);
   return name;
-}
-
-// ReplayProblemSet with a time budget per backend over the whole suite: each backend runs alone over chunks of
-// the problems (one problem first, then chunks sized to a quarter of what is left of its budget at its pace so
-// far), and once it has spent the budget its remaining problems get a record with status time limit and a message
-// saying so, without being solved. A backend overshoots by at most one chunk (≥ one problem with its tolerance
-// sweep). The records come back in ReplayProblemSet's order (problem, then backend). budget ≤ 0: no limit.
-ReplayResults ReplayWithBackendBudget(const ProblemSet& set, const ReplayOptions& options, double budget,
-                                      std::ostream& err) {
-  if (!(budget > 0.0)) return ReplayProblemSet(set, options);
-  std::vector<std::string> names = options.solvers;
-  if (names.empty()) {
-    for (auto n : SolverNames()) names.emplace_back(n);
-  }
-  const std::size_t n = set.problems.size();
-  const std::size_t sweep_problems = std::min<std::size_t>(std::max(0, options.tolerance_sweep_problems), n);
-  std::size_t iterative = 0;
-  for (const auto& name : names) iterative += !CreateSolver(name)->info().exact;
-  const std::size_t total = n * names.size() + sweep_problems * iterative;
-  std::size_t done = 0;
-  std::map<std::string, std::size_t> index_of;
-  for (std::size_t i = 0; i < n; ++i) index_of[set.problems[i].id] = i;
-
-  struct Keyed {
-    std::size_t problem, backend;
-    ReplayRecord record;
-  };
-  std::vector<Keyed> records, sweep;
-  for (std::size_t b = 0; b < names.size(); ++b) {
-    const bool exact = CreateSolver(names[b])->info().exact;
-    double spent = 0.0;
-    std::size_t chunk = 1;
-    for (std::size_t first = 0; first < n;) {
-      if (spent >= budget) {
-        for (std::size_t i = first; i < n; ++i) {
-          const LibraryProblem& p = set.problems[i];
-          ReplayRecord r;
-          r.suite = set.name;
-          r.problem = p.id;
-          r.solver = names[b];
-          r.size = p.size();
-          r.sparse = p.sparse();
-          for (const auto& t : p.tags) r.tags += (r.tags.empty() ? "" : ",") + t;
-          r.expected = p.expected;
-          r.status = SolveStatus::kTimeLimit;
-          char message[160];
-          std::snprintf(message, sizeof message, "not run: %s spent its budget of %g s on suite %s (--backend-budget)",
-                        names[b].c_str(), budget, set.name.c_str());
-          r.message = message;
-          r.verdict = Verdict::kFailed;  // not run is no answer, even on a problem with no solution
-          r.residual_abs = r.residual_rel = r.residual_scaled = kInf;
-          r.certificate = std::string(ToString(p.reference.certificate));
-          r.tolerance = options.tolerance;
-          records.push_back({i, b, std::move(r)});
-          done += 1 + (i < sweep_problems && !exact);
-        }
-        err << "bench: " << names[b] << " skipped " << (n - first) << " of " << n << " problems of suite "
-            << set.name << " after spending its budget of " << budget << " s (--backend-budget)\n";
-        break;
-      }
-      const std::size_t last = std::min(n, first + chunk);
-      ProblemSet part;
-      part.name = set.name;
-      part.description = set.description;
-      part.problems.assign(set.problems.begin() + static_cast<std::ptrdiff_t>(first),
-                           set.problems.begin() + static_cast<std::ptrdiff_t>(last));
-      ReplayOptions o = options;
-      o.solvers = {names[b]};
-      o.tolerance_sweep_problems = static_cast<int>(first < sweep_problems ? std::min(last, sweep_problems) - first : 0);
-      const std::size_t done_before = done;
-      o.progress = [&](std::size_t local_done, std::size_t, const std::string& what) {
-        done = done_before + local_done;
-        if (options.progress) options.progress(done, total, what);
-      };
-      const auto start = std::chrono::steady_clock::now();
-      ReplayResults part_results = ReplayProblemSet(part, o);
-      const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      spent += seconds;
-      for (ReplayRecord& r : part_results.records) records.push_back({index_of[r.problem], b, std::move(r)});
-      for (ReplayRecord& r : part_results.sweep) sweep.push_back({index_of[r.problem], b, std::move(r)});
-      // Next chunk: a quarter of the budget left at this backend's pace, at most twice the last one.
-      const double per_problem = seconds / static_cast<double>(last - first);
-      const double fits = per_problem > 0.0 ? (budget - spent) / 4.0 / per_problem : 1e9;
-      chunk = std::max<std::size_t>(1, std::min<std::size_t>(2 * chunk, static_cast<std::size_t>(std::max(0.0, fits))));
-      first = last;
-    }
-  }
-  const auto by_problem_then_backend = [](const Keyed& a, const Keyed& b) {
-    return a.problem != b.problem ? a.problem < b.problem : a.backend < b.backend;
-  };
-  std::stable_sort(records.begin(), records.end(), by_problem_then_backend);
-  std::stable_sort(sweep.begin(), sweep.end(), by_problem_then_backend);
-  ReplayResults out;
-  for (Keyed& k : records) out.records.push_back(std::move(k.record));
-  for (Keyed& k : sweep) out.sweep.push_back(std::move(k.record));
-  return out;
 }
 
 // The run at a glance on stdout: per suite and backend the verdict counts and the shifted geometric mean time.
@@ -483,25 +301,269 @@ std::string SiconosVersion() {
 #endif
 }
 
-// results.json's environment.libraries gets "siconos_numerics" when a siconos-* backend ran.
-void RecordSiconosVersion(const BenchResults& results, const std::string& dir) {
-  bool ran = false;
-  for (const SuiteResults& s : results.suites) {
-    for (const ReplayRecord& r : s.replay.records) ran = ran || r.solver.rfind("siconos-", 0) == 0;
-  }
-  const std::string version = SiconosVersion();
-  if (!ran || version.empty()) return;
-  const fs::path path = fs::path(dir) / "results.json";
-  std::ifstream in(path);
-  nlohmann::json document = nlohmann::json::parse(in, nullptr, /*allow_exceptions=*/false);
-  if (document.is_discarded()) throw InvalidInputError("bench: cannot read back '" + path.string() + "'");
-  in.close();
-  document["environment"]["libraries"]["siconos_numerics"] = version;
-  std::ofstream rewritten(path, std::ios::trunc);
-  rewritten << document.dump(1) << "\n";
-  if (!rewritten) throw InvalidInputError("bench: cannot write '" + path.string() + "'");
+// What produced the numbers, with the build's own revision (not the checkout's HEAD at run time) and, when a
+// siconos-* backend is among the backends, the Siconos version.
+nlohmann::json RunEnvironment(const std::vector<std::string>& solvers) {
+  nlohmann::json environment = BenchEnvironment(std::string(GitRevision()));
+  environment["version"] = std::string(Version());
+  const bool siconos = std::any_of(solvers.begin(), solvers.end(),
+                                   [](const std::string& n) { return n.rfind("siconos-", 0) == 0; });
+  if (siconos && !SiconosVersion().empty()) environment["libraries"]["siconos_numerics"] = SiconosVersion();
+  return environment;
 }
 
+// The options that change what a run measures: shards and resumed runs must agree on them (merge refuses others).
+nlohmann::json RunOptionsJson(const BenchCommand::Flags& f, const ReplayOptions& options,
+                              const std::vector<std::string>& solvers) {
+  return {{"solvers", solvers},
+          {"settings", f.sets},
+          {"tolerance", options.tolerance},
+          {"time_limit", options.time_limit_seconds},
+          {"repetitions", options.repetitions},
+          {"max_seconds_per_pair", options.max_seconds_per_pair},
+          {"tolerance_sweep_problems", options.tolerance_sweep_problems},
+          {"polish", options.polish},
+          {"quick", f.quick},
+          {"stepper", !f.no_stepper},
+          {"backend_budget", f.backend_budget}};
+}
+
+// The suites of a run, built, validated and (with references) certified, one line each on err with the time taken.
+std::vector<ProblemSet> BuildBenchSuites(const std::vector<std::string>& names, const SuiteRequest& request,
+                                         bool references, std::ostream& err) {
+  std::vector<ProblemSet> sets;
+  for (const std::string& name : names) {
+    const auto build_start = std::chrono::steady_clock::now();
+    ProblemSet set = BuildSuite(name, request);
+    set.Validate();
+    if (!references) {
+      sets.push_back(std::move(set));
+      continue;
+    }
+    const auto references_start = std::chrono::steady_clock::now();
+    AttachReferences(&set);
+    const double references_seconds =
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - references_start).count();
+    std::map<Certificate, int> certificates;
+    for (const LibraryProblem& p : set.problems) ++certificates[p.reference.certificate];
+    std::string certified;
+    for (const auto& [certificate, count] : certificates) {
+      certified += (certified.empty() ? "" : ", ") + std::to_string(count) + " " + std::string(ToString(certificate));
+    }
+    // Built (captured suites certify their problems while capturing), then the remaining references attached.
+    char seconds[96];
+    std::snprintf(seconds, sizeof seconds, "built in %.2f s; certified references in %.2f s",
+                  std::chrono::duration<double>(references_start - build_start).count(), references_seconds);
+    err << "bench: suite " << set.name << " (" << set.problems.size() << " problems, " << seconds << ": "
+        << certified << ")\n";
+    sets.push_back(std::move(set));
+  }
+  return sets;
+}
+
+// The generic path the report compares against: the same problems with M stored sparse, solved by the semismooth
+// Newton backend through UMFPACK (what a general sparse complementarity code does), judged against the same
+// certified solutions.
+ProblemSet SparseCopy(const ProblemSet& set) {
+  ProblemSet sparse;
+  sparse.name = set.name;
+  sparse.description = set.description;
+  for (const LibraryProblem& p : set.problems) {
+    const SparseMatrix S = p.problem.dense_matrix().sparseView();
+    LibraryProblem copy = MakeLibraryProblem(p.id, p.source, BoxMLCP(S, p.problem.q(), p.problem.l(), p.problem.u()));
+    copy.expected = p.expected;
+    copy.reference = p.reference;
+    sparse.problems.push_back(std::move(copy));
+  }
+  return sparse;
+}
+
+// The run's job list (ListBenchJobs) for these suites and backends.
+std::vector<BenchJob> RunJobs(const BenchCommand::Flags& f, const std::vector<ProblemSet>& sets,
+                              const ReplayOptions& options, const std::vector<std::string>& solvers) {
+  JobListRequest request;
+  request.solvers = solvers;
+  for (const std::string& name : solvers) request.iterative.push_back(!CreateSolver(name)->info().exact);
+  request.generic_sparse_path =
+      f.solvers.empty() || std::find(f.solvers.begin(), f.solvers.end(), "newton") != f.solvers.end();
+  request.stepper = !f.no_stepper;
+  return ListBenchJobs(sets, options, request);
+}
+
+// Runs the jobs of one folder one at a time, each timed, judged and appended to records.jsonl as it finishes. A
+// backend past its --backend-budget on a suite (in this process) gets its remaining cold jobs there recorded as
+// not run (time limit, a message) and its sweep jobs skipped.
+class ShardRunner {
+ public:
+  ShardRunner(const BenchCommand::Flags& flags, const std::vector<ProblemSet>& sets, const ReplayOptions& options,
+              const std::string& records_path, std::ostream& err)
+      : flags_(flags), sets_(sets), options_(options), writer_(records_path), err_(err) {}
+
+  JobLine Run(const BenchJob& job) {
+    const int before = activity_.Count();
+    JobLine line;
+    line.job = job.index;
+    line.id = job.id;
+    line.host = activity_.host();
+    if (job.kind == JobKind::kStepper) {
+      line.has_stepper = true;
+      line.stepper = RunStepper();
+    } else if (OverBudget(job)) {
+      line.skipped = job.kind == JobKind::kSweep;
+      line.has_record = !line.skipped;
+      if (line.has_record) line.record = NotRunRecord(job);
+      ++skipped_[{job.suite, job.solver}];
+    } else {
+      const auto start = std::chrono::steady_clock::now();
+      line.has_record = true;
+      line.record = Replay(job);
+      spent_[{job.suite, job.solver}] += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    }
+    line.concurrent_jobs = std::max(before, activity_.Count());
+    if (line.has_record) line.record.host = line.host, line.record.concurrent_jobs = line.concurrent_jobs;
+    writer_.Write(line);
+    return line;
+  }
+
+  // One line per backend that ran out of budget on a suite.
+  void ReportSkipped() const {
+    for (const auto& [key, count] : skipped_) {
+      err_ << "bench: " << key.second << " skipped " << count << " of " << sets_[key.first].problems.size()
+           << " problems of suite " << sets_[key.first].name << " after spending its budget of "
+           << flags_.backend_budget << " s (--backend-budget)\n";
+    }
+  }
+
+  std::function<void(const std::string&)> stepper_progress;
+
+ private:
+  bool OverBudget(const BenchJob& job) const {
+    const auto it = spent_.find({job.suite, job.solver});
+    return flags_.backend_budget > 0.0 && it != spent_.end() && it->second >= flags_.backend_budget;
+  }
+
+  Solver* SolverFor(const std::string& name) {
+    auto it = solvers_.find(name);
+    if (it == solvers_.end()) {
+      ReplayOptions o = options_;
+      std::vector<std::string> names{name};
+      if (name == kGenericSparsePath) {
+        names = {"newton"};
+        o.settings = {"newton.linear_solver=sparse"};
+      } else {
+        o.settings = SettingsReaching(name, options_.settings);  // checked against the whole selection up front
+      }
+      it = solvers_.emplace(name, std::move(CreateReplaySolvers(o, &names).front())).first;
+    }
+    return it->second.get();
+  }
+
+  ReplayRecord Replay(const BenchJob& job) {
+    const ProblemSet& set = sets_[job.suite];
+    if (job.kind != JobKind::kGenericSparse) {
+      return ReplayOne(set, set.problems[job.problem], SolverFor(job.solver), job.solver, options_,
+                       job.kind == JobKind::kSweep ? "sweep" : "cold", job.tolerance);
+    }
+    auto it = sparse_.find(job.suite);
+    if (it == sparse_.end()) it = sparse_.emplace(job.suite, SparseCopy(set)).first;
+    return ReplayOne(it->second, it->second.problems[job.problem], SolverFor(job.solver), job.solver, options_,
+                     "cold", job.tolerance);
+  }
+
+  ReplayRecord NotRunRecord(const BenchJob& job) const {
+    const LibraryProblem& p = sets_[job.suite].problems[job.problem];
+    ReplayRecord r;
+    r.suite = sets_[job.suite].name;
+    r.problem = p.id;
+    r.solver = job.solver;
+    r.size = p.size();
+    r.sparse = p.sparse() || job.kind == JobKind::kGenericSparse;
+    for (const auto& t : p.tags) r.tags += (r.tags.empty() ? "" : ",") + t;
+    r.expected = p.expected;
+    r.status = SolveStatus::kTimeLimit;
+    char message[160];
+    std::snprintf(message, sizeof message, "not run: %s spent its budget of %g s on suite %s (--backend-budget)",
+                  job.solver.c_str(), flags_.backend_budget, r.suite.c_str());
+    r.message = message;
+    r.verdict = Verdict::kFailed;  // not run is no answer, even on a problem with no solution
+    r.residual_abs = r.residual_rel = r.residual_scaled = kInf;
+    r.certificate = std::string(ToString(p.reference.certificate));
+    r.tolerance = job.tolerance;
+    return r;
+  }
+
+  StepperStudy RunStepper() {
+    StepperStudyOptions so;
+    so.solvers = flags_.solvers;
+    if (so.solvers.empty()) {
+      // External adapters run each solve in a child process: along 10⁴-step trajectories that is minutes; they
+      // are timed on the replay suites instead (name them with --solver to include them here).
+      for (auto n : SolverNames()) {
+        if (n.rfind("siconos-", 0) != 0) so.solvers.emplace_back(n);
+      }
+    }
+    if (flags_.quick) {
+      so.warm_scenes = {"sign", "galias-yu-2007"};
+      so.precision_scenes = {"galias-yu-2007"};
+      so.refinements = 3;
+      so.min_seconds = 0.002;
+    }
+    so.progress = stepper_progress;
+    so.polish = options_.polish;
+    // Per-step forward error of s in the work-precision runs: each step's one-step problem certified from the
+    // backend's own answer (the cheapest candidate: usually its active set verifies at once). Its cost is
+    // reported, since it adds to the main job's time.
+    double certify_seconds = 0.0;
+    std::int64_t certified_steps = 0;
+    so.step_forward_error = [&](const BoxMLCP& problem, const Vector& z) {
+      const auto start = std::chrono::steady_clock::now();
+      const ReferenceSolution reference = Certify(problem, {z});
+      certify_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      ++certified_steps;
+      return reference.unique() ? (z - reference.z).cwiseAbs().maxCoeff() : kNaN;
+    };
+    err_ << "bench: time-stepper studies\n";
+    const auto stepper_start = std::chrono::steady_clock::now();
+    StepperStudy study = RunStepperStudy(so);
+    char line[160];
+    std::snprintf(line, sizeof line, "bench: time-stepper studies took %.1f s, of which %.1f s certifying %lld steps",
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - stepper_start).count(),
+                  certify_seconds, static_cast<long long>(certified_steps));
+    err_ << line << "\n";
+    return study;
+  }
+
+  const BenchCommand::Flags& flags_;
+  const std::vector<ProblemSet>& sets_;
+  ReplayOptions options_;
+  JobLineWriter writer_;
+  std::ostream& err_;
+  HostActivity activity_;
+  std::map<std::string, std::unique_ptr<Solver>> solvers_;
+  std::map<std::size_t, ProblemSet> sparse_;
+  std::map<std::pair<std::size_t, std::string>, double> spent_;
+  std::map<std::pair<std::size_t, std::string>, int> skipped_;
+};
+
+// `bench --list-jobs`: one line per job (of the shard with --shard): index, shard, estimated seconds, kind, id.
+void PrintJobs(const std::vector<BenchJob>& jobs, const std::vector<int>& shard, int only_shard, int shards,
+               std::ostream& out) {
+  double total = 0.0;
+  std::size_t listed = 0;
+  out << "# job\tshard\test_seconds\tkind\tid\n";
+  for (const BenchJob& job : jobs) {
+    if (only_shard >= 0 && shard[job.index] != only_shard) continue;
+    char cost[32];
+    std::snprintf(cost, sizeof cost, "%.3g", job.cost);
+    out << job.index + 1 << '\t' << shard[job.index] + 1 << '/' << shards << '\t' << cost << '\t'
+        << ToString(job.kind) << '\t' << job.id << '\n';
+    total += job.cost;
+    ++listed;
+  }
+  char line[160];
+  std::snprintf(line, sizeof line, "# %zu of %zu jobs, estimated %.3g s\n", listed, jobs.size(), total);
+  out << line;
+}
 }  // namespace
 
 int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, std::ostream& err) const {
@@ -521,125 +583,88 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
     options.max_seconds_per_pair = 0.2;
     options.tolerance_sweep_problems = 2;
   }
+  options.polish = !f.no_polish;
   CheckBenchRequest(f, suites);
-  const std::string out_dir = f.out.empty() ? DefaultOutputFolder() : f.out;
+  const auto [shard, shards] = f.shard.empty() ? std::pair<int, int>{0, 1} : ParseShard(f.shard);
+  std::vector<std::string> solvers = f.solvers;
+  CreateReplaySolvers(options, &solvers);  // resolves the default (every backend) and checks the settings
+  SuiteRequest request;
+  request.siconos_dir = f.siconos_dir;
+  request.quick = f.quick;
+  request.references = false;  // attached by BuildBenchSuites, timed
+  if (f.list_jobs) {
+    std::ostringstream quiet;
+    const std::vector<ProblemSet> sets = BuildBenchSuites(suites, request, false, quiet);
+    const std::vector<BenchJob> jobs = RunJobs(f, sets, options, solvers);
+    PrintJobs(jobs, AssignShards(jobs, shards), f.shard.empty() ? -1 : shard, shards, out);
+    return 0;
+  }
+  const std::string out_dir = !f.resume.empty() ? f.resume : f.out.empty() ? DefaultOutputFolder() : f.out;
   {
     std::error_code ec;
     fs::create_directories(out_dir, ec);
     if (ec) throw InvalidInputError("bench: cannot create --out '" + out_dir + "': " + ec.message());
   }
   err << "bench: writing to " << out_dir << "\n";
-  const bool terminal = &err == &std::cerr && ::isatty(2);
-  Progress progress(err, terminal, f.progress_every);
-  options.progress = [&](std::size_t done, std::size_t total, const std::string& what) {
-    progress.Update(done, total, what);
-  };
-  options.polish = !f.no_polish;
-  SuiteRequest request;
-  request.siconos_dir = f.siconos_dir;
-  request.quick = f.quick;
-  request.references = false;  // attached below, timed
+  const std::vector<ProblemSet> sets = BuildBenchSuites(suites, request, true, err);
 
-  BenchResults results;
-  results.command = command_line;
-  results.polish = options.polish;
-  for (const std::string& name : suites) {
-    const auto build_start = std::chrono::steady_clock::now();
-    ProblemSet set = BuildSuite(name, request);
-    set.Validate();
-    const auto references_start = std::chrono::steady_clock::now();
-    AttachReferences(&set);
-    const double references_seconds =
-        std::chrono::duration<double>(std::chrono::steady_clock::now() - references_start).count();
-    std::map<Certificate, int> certificates;
-    for (const LibraryProblem& p : set.problems) ++certificates[p.reference.certificate];
-    std::string certified;
-    for (const auto& [certificate, count] : certificates) {
-      certified += (certified.empty() ? "" : ", ") + std::to_string(count) + " " + std::string(ToString(certificate));
-    }
-    // Built (captured suites certify their problems while capturing), then the remaining references attached.
-    char seconds[96];
-    std::snprintf(seconds, sizeof seconds, "built in %.2f s; certified references in %.2f s",
-                  std::chrono::duration<double>(references_start - build_start).count(), references_seconds);
-    err << "bench: suite " << set.name << " (" << set.problems.size() << " problems, " << seconds << ": "
-        << certified << ")\n";
+  RunManifest manifest;
+  manifest.command = command_line;
+  manifest.environment = RunEnvironment(solvers);
+  manifest.options = RunOptionsJson(f, options, solvers);
+  for (const ProblemSet& set : sets) {
     SuiteResults suite;
     suite.suite = set.name;
     suite.description = set.description;
     suite.problems = static_cast<int>(set.problems.size());
-    suite.replay = ReplayWithBackendBudget(set, options, f.backend_budget, err);
-    if (set.name == "paper" && (f.solvers.empty() ||
-                                std::find(f.solvers.begin(), f.solvers.end(), "newton") != f.solvers.end())) {
-      // The generic path the report compares against: the same problems with M stored sparse, solved by the
-      // semismooth Newton backend through UMFPACK (what a general sparse complementarity code does).
-      ProblemSet sparse;
-      sparse.name = set.name;
-      for (const LibraryProblem& p : set.problems) {
-        const DenseMatrix& M = p.problem.dense_matrix();
-        const SparseMatrix S = M.sparseView();
-        LibraryProblem copy =
-            MakeLibraryProblem(p.id, p.source, BoxMLCP(S, p.problem.q(), p.problem.l(), p.problem.u()));
-        copy.expected = p.expected;
-        copy.reference = p.reference;  // the same problem: judged against the same certified solution
-        sparse.problems.push_back(std::move(copy));
-      }
-      ReplayOptions o = options;
-      o.solvers = {"newton"};
-      o.settings = {"newton.linear_solver=2"};  // UMFPACK even where the auto rule would factorize densely
-      o.tolerance_sweep_problems = 0;
-      for (ReplayRecord& r : ReplayWithBackendBudget(sparse, o, f.backend_budget, err).records) {
-        r.solver = kGenericSparsePath;
-        suite.replay.records.push_back(std::move(r));
-      }
-    }
-    progress.Finish();
-    results.suites.push_back(std::move(suite));
+    suite.checksum = ProblemSetContentChecksum(set);
+    manifest.suites.push_back(std::move(suite));
   }
-  if (!f.no_stepper) {
-    StepperStudyOptions so;
-    so.solvers = f.solvers;
-    if (so.solvers.empty()) {
-      // External adapters run each solve in a child process: along 10⁴-step trajectories that is minutes; they
-      // are timed on the replay suites instead (name them with --solver to include them here).
-      for (auto n : SolverNames()) {
-        if (n.rfind("siconos-", 0) != 0) so.solvers.emplace_back(n);
-      }
+  manifest.jobs = RunJobs(f, sets, options, solvers);
+  manifest.shard = shard;
+  manifest.shards = shards;
+  manifest.job_shard = AssignShards(manifest.jobs, shards);
+  const std::string records_path = (fs::path(out_dir) / "records.jsonl").string();
+  std::map<std::size_t, JobLine> done;
+  if (!f.resume.empty()) {
+    const RunManifest earlier = ReadRunManifest(out_dir);
+    std::string why = ManifestMismatch(earlier, manifest);
+    if (why.empty() && earlier.shard != shard) {
+      why = "another shard (" + std::to_string(earlier.shard + 1) + " vs " + std::to_string(shard + 1) + ")";
     }
-    if (f.quick) {
-      so.warm_scenes = {"sign", "galias-yu-2007"};
-      so.precision_scenes = {"galias-yu-2007"};
-      so.refinements = 3;
-      so.min_seconds = 0.002;
-    }
-    so.progress = [&](const std::string& what) { progress.Note(what); };
-    so.polish = options.polish;
-    // Per-step forward error of s in the work-precision runs: each step's one-step problem certified from the
-    // backend's own answer (the cheapest candidate: usually its active set verifies at once). Its cost is
-    // reported, since it adds to the main job's time.
-    double certify_seconds = 0.0;
-    std::int64_t certified_steps = 0;
-    so.step_forward_error = [&](const BoxMLCP& problem, const Vector& z) {
-      const auto start = std::chrono::steady_clock::now();
-      const ReferenceSolution reference = Certify(problem, {z});
-      certify_seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-      ++certified_steps;
-      return reference.unique() ? (z - reference.z).cwiseAbs().maxCoeff() : kNaN;
-    };
-    err << "bench: time-stepper studies\n";
-    const auto stepper_start = std::chrono::steady_clock::now();
-    results.stepper = RunStepperStudy(so);
-    results.has_stepper = true;
-    progress.Finish();
-    char line[160];
-    std::snprintf(line, sizeof line, "bench: time-stepper studies took %.1f s, of which %.1f s certifying %lld steps",
-                  std::chrono::duration<double>(std::chrono::steady_clock::now() - stepper_start).count(),
-                  certify_seconds, static_cast<long long>(certified_steps));
-    err << line << "\n";
+    if (!why.empty()) throw InvalidInputError("bench: --resume " + out_dir + ": not the same run: " + why);
+    manifest.command = earlier.command;
+    manifest.environment = earlier.environment;
+    for (JobLine& line : ReadJobLines(records_path, /*truncate_partial=*/true)) done[line.job] = std::move(line);
+  } else {
+    std::error_code ec;
+    fs::remove(records_path, ec);  // --overwrite: a fresh run
+    WriteRunManifest(manifest, out_dir);
   }
-  WriteBenchResults(results, out_dir);
-  RecordSiconosVersion(results, out_dir);
+  std::vector<const BenchJob*> todo;
+  for (const BenchJob& job : manifest.jobs) {
+    if (manifest.job_shard[job.index] == shard && !done.count(job.index)) todo.push_back(&job);
+  }
+  if (!f.resume.empty()) {
+    err << "bench: resuming " << out_dir << ": " << done.size() << " jobs done, " << todo.size() << " to run\n";
+  }
+  const bool terminal = &err == &std::cerr && ::isatty(2);
+  Progress progress(err, terminal, f.progress_every);
+  ShardRunner runner(f, sets, options, records_path, err);
+  runner.stepper_progress = [&](const std::string& what) { progress.Note(what); };
+  for (std::size_t k = 0; k < todo.size(); ++k) {
+    const BenchJob& job = *todo[k];
+    done[job.index] = runner.Run(job);
+    progress.Update(k + 1, todo.size(), job.suite_name + " " + job.problem_id + " " + job.solver);
+  }
+  progress.Finish();
+  runner.ReportSkipped();
+
+  const BenchResults results = AssembleResults(manifest, done);
+  WriteBenchResults(results, out_dir, manifest.environment);
   PrintSummaryTable(results, f.time_limit, out);
   out << "bench: wrote " << (fs::path(out_dir) / "results.json").string() << " and results.csv";
+  if (shards > 1) out << " (shard " << shard + 1 << "/" << shards << "; combine the shards with `smcbench merge`)";
   if (f.report) {
     WriteBenchReport(out_dir, !f.no_plots);
     out << ", report.md";

@@ -6,12 +6,15 @@
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
+#include <sstream>
 #include <unistd.h>
 
+#include "bench/replay/jobs.h"
 #include "problems/library/problem_set_io.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_command.h"
@@ -82,7 +85,7 @@ TEST(Bench, TinySuiteEndToEndWithReport) {
   const std::string csv = ReadText(dir / "results.csv");
   EXPECT_EQ(csv.rfind("suite,problem,solver,mode,size", 0), 0u);
   EXPECT_THAT(csv, HasSubstr(",residual_scaled,forward_error,forward_error_rel,forward_allowance,certificate,"
-                             "timed_in_worker\n"));
+                             "timed_in_worker,host,concurrent_jobs\n"));
   const std::string md = ReadText(dir / "report.md");
   EXPECT_THAT(md, HasSubstr("## Suite `tiny`"));
   // solved, correctly refused, failed, wrongly claimed, inaccurate, wrongly refused, success.
@@ -570,6 +573,276 @@ TEST(Report, InaccurateAndWronglyRefusedAreCountedAsWrong) {
   EXPECT_EQ(summary[0].wrong(), 2);
   EXPECT_NEAR(summary[0].success_rate, 1.0 / 3.0, 1e-15);
   EXPECT_TRUE(std::isnan(summary[0].worst_forward_error));  // the inaccurate one is not a solved answer
+}
+
+
+// ------------------------------------------------------------------------------------------------------------
+// Issue 17: sharded runs, merge, resume, frozen suites.
+
+// A record of results.json without what depends on the clock or the machine (times, sample counts, host, how many
+// jobs shared it): what a sharded run must reproduce exactly.
+nlohmann::json WithoutTimes(nlohmann::json record) {
+  for (const char* key : {"time_median", "time_min", "time_max", "time_mad", "samples", "solves_per_sample", "host",
+                          "concurrent_jobs"}) {
+    record.erase(key);
+  }
+  return record;
+}
+
+// Every suite's records and sweep of a results.json, without times, in file order.
+std::vector<nlohmann::json> TimelessRecords(const fs::path& dir) {
+  const auto j = nlohmann::json::parse(ReadText(dir / "results.json"));
+  std::vector<nlohmann::json> out;
+  for (const auto& suite : j["suites"]) {
+    out.push_back({{"suite", suite["suite"]}, {"problems", suite["problems"]}, {"checksum", suite["checksum"]}});
+    for (const char* part : {"records", "sweep"}) {
+      for (const auto& r : suite[part]) out.push_back(WithoutTimes(r));
+    }
+  }
+  return out;
+}
+
+// lemke and enum (exact) and psor (iterative: it gets the tolerance sweep), tiny suite, no stepper study.
+std::vector<std::string> ShardArgs(const std::vector<std::string>& extra) {
+  std::vector<std::string> args{"bench", "--suite", "tiny", "--quick", "--no-stepper", "--solver", "lemke",
+                                "--solver", "psor", "--solver", "enum"};
+  args.insert(args.end(), extra.begin(), extra.end());
+  return args;
+}
+
+std::vector<std::string> Lines(const std::string& text) {
+  std::vector<std::string> lines;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) lines.push_back(line);
+  return lines;
+}
+
+TEST(Shards, ThreeShardsMergedEqualTheSingleRunAndAKilledShardResumes) {
+  const fs::path root = fs::temp_directory_path() / ("smcbench-shards-" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  CliRun single = RunSmcbench(ShardArgs({"--out", (root / "single").string()}));
+  ASSERT_EQ(single.code, 0) << single.err;
+
+  // --list-jobs: 5 problems × 3 backends cold + 2 problems × psor × 6 tolerances = 27 jobs, each in one shard.
+  const CliRun listed = RunSmcbench(ShardArgs({"--list-jobs"}));
+  ASSERT_EQ(listed.code, 0) << listed.err;
+  EXPECT_THAT(listed.out, HasSubstr("# 27 of 27 jobs"));
+  std::set<std::string> in_shards;
+  std::size_t listed_in_shards = 0;
+  for (int k = 1; k <= 3; ++k) {
+    const std::string shard = std::to_string(k) + "/3";
+    const CliRun part = RunSmcbench(ShardArgs({"--list-jobs", "--shard", shard}));
+    ASSERT_EQ(part.code, 0) << part.err;
+    for (const std::string& line : Lines(part.out)) {
+      if (line.empty() || line[0] == '#') continue;
+      EXPECT_THAT(line, HasSubstr("\t" + shard + "\t"));
+      in_shards.insert(line.substr(line.rfind('\t') + 1));
+      ++listed_in_shards;
+    }
+    EXPECT_EQ(RunSmcbench(ShardArgs({"--list-jobs", "--shard", shard})).out, part.out) << "deterministic";
+  }
+  EXPECT_EQ(listed_in_shards, 27u);
+  EXPECT_EQ(in_shards.size(), 27u) << "every job in exactly one shard";
+
+  std::vector<std::string> dirs;
+  for (int k = 1; k <= 3; ++k) {
+    dirs.push_back((root / ("shard-" + std::to_string(k))).string());
+    const CliRun r = RunSmcbench(ShardArgs({"--shard", std::to_string(k) + "/3", "--out", dirs.back()}));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::is_regular_file(fs::path(dirs.back()) / "records.jsonl"));
+  }
+  std::vector<std::string> merge{"merge", (root / "merged").string()};
+  merge.insert(merge.end(), dirs.begin(), dirs.end());
+  CliRun merged = RunSmcbench(merge);
+  ASSERT_EQ(merged.code, 0) << merged.err;
+  EXPECT_EQ(merged.err, "");  // nothing missing, nothing duplicated
+  const std::vector<nlohmann::json> expected = TimelessRecords(root / "single");
+  ASSERT_EQ(expected.size(), 1u + 15u + 12u);
+  EXPECT_EQ(TimelessRecords(root / "merged"), expected);
+  const CliRun report = RunSmcbench({"report", (root / "merged").string(), "--no-plots"});
+  EXPECT_EQ(report.code, 0) << report.err;
+
+  // Shard 2 killed half-way: half its lines kept, the next one cut in the middle, no results.json. Resumed, it
+  // runs only the missing jobs, and the merge is the same.
+  const fs::path killed = fs::path(dirs[1]) / "records.jsonl";
+  const std::vector<std::string> lines = Lines(ReadText(killed));
+  ASSERT_GE(lines.size(), 4u);
+  const std::size_t kept = lines.size() / 2;
+  {
+    std::ofstream cut(killed, std::ios::trunc);
+    for (std::size_t i = 0; i < kept; ++i) cut << lines[i] << "\n";
+    cut << lines[kept].substr(0, lines[kept].size() / 2);
+  }
+  fs::remove(fs::path(dirs[1]) / "results.json");
+  const CliRun resumed = RunSmcbench(ShardArgs({"--shard", "2/3", "--resume", dirs[1]}));
+  ASSERT_EQ(resumed.code, 0) << resumed.err;
+  EXPECT_THAT(resumed.err, HasSubstr("resuming " + dirs[1] + ": " + std::to_string(kept) + " jobs done, " +
+                                     std::to_string(lines.size() - kept) + " to run"));
+  EXPECT_EQ(Lines(ReadText(killed)).size(), lines.size());
+  merge[1] = (root / "merged-after-resume").string();
+  merged = RunSmcbench(merge);
+  ASSERT_EQ(merged.code, 0) << merged.err;
+  EXPECT_EQ(TimelessRecords(root / "merged-after-resume"), expected);
+
+  // Resuming with other options is refused (the folder's run is another).
+  const CliRun other = RunSmcbench({"bench", "--suite", "tiny", "--quick", "--no-stepper", "--solver", "lemke",
+                                    "--shard", "2/3", "--resume", dirs[1]});
+  EXPECT_EQ(other.code, 1);
+  EXPECT_THAT(other.err, HasSubstr("not the same run: other options (options.solvers"));
+
+  // A shard missing: listed, refused (exit 2) unless --partial.
+  const CliRun missing = RunSmcbench({"merge", (root / "two").string(), dirs[0], dirs[2]});
+  EXPECT_EQ(missing.code, 2);
+  EXPECT_THAT(missing.err, HasSubstr("jobs missing: "));
+  // The same folder twice: its jobs are listed as duplicated, the first kept.
+  const CliRun twice = RunSmcbench({"merge", (root / "twice").string(), dirs[0], dirs[1], dirs[2], dirs[2]});
+  EXPECT_EQ(twice.code, 0) << twice.err;
+  EXPECT_THAT(twice.err, HasSubstr("jobs finished more than once (the first kept): "));
+  EXPECT_EQ(TimelessRecords(root / "twice"), expected);
+  fs::remove_all(root);
+}
+
+// Issue 16 item 7: every number of results.csv reads back to the double results.json holds.
+TEST(Shards, ResultsCsvNumbersRoundTrip) {
+  const fs::path dir = fs::temp_directory_path() / ("smcbench-csv-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  ASSERT_EQ(RunSmcbench(ShardArgs({"--out", dir.string()})).code, 0);
+  const auto j = nlohmann::json::parse(ReadText(dir / "results.json"));
+  std::vector<nlohmann::json> records;
+  for (const char* part : {"records", "sweep"}) {
+    for (const auto& r : j["suites"][0][part]) records.push_back(r);
+  }
+  const std::vector<std::string> rows = Lines(ReadText(dir / "results.csv"));
+  ASSERT_EQ(rows.size(), records.size() + 1);
+  std::vector<std::string> header;
+  {
+    std::istringstream in(rows[0]);
+    for (std::string cell; std::getline(in, cell, ',');) header.push_back(cell);
+  }
+  int compared = 0;
+  for (std::size_t i = 0; i < records.size(); ++i) {
+    std::vector<std::string> cells;
+    std::istringstream in(rows[i + 1]);
+    for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    ASSERT_EQ(cells.size(), header.size()) << rows[i + 1];
+    for (std::size_t c = 0; c < header.size(); ++c) {
+      const auto& value = records[i][header[c]];
+      if (!value.is_number_float()) continue;
+      const double read = std::strtod(cells[c].c_str(), nullptr);
+      EXPECT_EQ(read, value.get<double>()) << header[c] << " " << cells[c];
+      ++compared;
+    }
+  }
+  EXPECT_GT(compared, 100);
+  fs::remove_all(dir);
+}
+
+// Frozen inputs: a suite written by `library --write-suite` runs with the built-in suite's checksum; shards of
+// different problems, or of another build, are not merged (one line, exit status 2).
+TEST(Shards, FrozenSuitesKeepTheirChecksumAndMergeRefusesOtherSuitesOrBuilds) {
+  const fs::path root = fs::temp_directory_path() / ("smcbench-frozen-" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  fs::create_directories(root);
+  const std::string frozen = (root / "tiny.smcps").string();
+  const CliRun written = RunSmcbench({"library", "--write-suite", "tiny", frozen});
+  ASSERT_EQ(written.code, 0) << written.err;
+  ASSERT_THAT(written.out, HasSubstr("wrote suite tiny (5 problems, checksum "));
+  const std::string checksum = written.out.substr(written.out.find("checksum ") + 9, 16);
+
+  const std::vector<std::string> run{"bench", "--quick", "--no-stepper", "--solver", "lemke", "--shard", "1/2"};
+  const auto bench = [&](const std::string& suite, const std::string& dir) {
+    std::vector<std::string> args = run;
+    args.insert(args.end(), {"--suite", suite, "--out", (root / dir).string()});
+    return RunSmcbench(args);
+  };
+  ASSERT_EQ(bench("tiny", "built").code, 0);
+  ASSERT_EQ(bench(frozen, "frozen").code, 0);
+  for (const char* dir : {"built", "frozen"}) {
+    const auto j = nlohmann::json::parse(ReadText(root / dir / "results.json"));
+    EXPECT_EQ(j["suites"][0]["checksum"], checksum) << dir;
+    EXPECT_FALSE(j["environment"]["build_revision"].get<std::string>().empty());
+  }
+
+  // The same suite with one number changed: another checksum, and merge refuses it.
+  ProblemSet changed = ReadProblemSetFile(frozen);
+  Vector q = changed.problems[0].problem.q();
+  q[0] += 1e-3;
+  const BoxMLCP& p = changed.problems[0].problem;
+  LibraryProblem edited = MakeLibraryProblem(changed.problems[0].id, changed.problems[0].source,
+                                             BoxMLCP(p.dense_matrix(), q, p.l(), p.u()));
+  edited.expected = changed.problems[0].expected;
+  changed.problems[0] = std::move(edited);
+  const std::string other = (root / "tiny-changed.smcps").string();
+  WriteProblemSetFile(changed, other);
+  ASSERT_EQ(bench(other, "changed").code, 0);
+  const CliRun suites = RunSmcbench({"merge", (root / "m1").string(), (root / "built").string(),
+                                     (root / "changed").string()});
+  EXPECT_EQ(suites.code, 2);
+  EXPECT_THAT(suites.err, HasSubstr("other problems in suite tiny (checksum " + checksum + " vs "));
+  EXPECT_EQ(Lines(suites.err).size(), 1u) << suites.err;
+  EXPECT_FALSE(fs::exists(root / "m1" / "results.json"));
+
+  // Another build: the same shard with the build revision of its manifest changed.
+  fs::copy(root / "frozen", root / "rebuilt");
+  auto manifest = nlohmann::json::parse(ReadText(root / "rebuilt" / "manifest.json"));
+  manifest["environment"]["build_revision"] = "0123456789ab";
+  std::ofstream(root / "rebuilt" / "manifest.json") << manifest.dump(1);
+  const CliRun builds = RunSmcbench({"merge", (root / "m2").string(), (root / "built").string(),
+                                     (root / "rebuilt").string()});
+  EXPECT_EQ(builds.code, 2);
+  EXPECT_THAT(builds.err, HasSubstr("another build (build.build_revision: "));
+  EXPECT_THAT(builds.err, HasSubstr("vs '\"0123456789ab\"'"));
+  EXPECT_EQ(Lines(builds.err).size(), 1u) << builds.err;
+  fs::remove_all(root);
+}
+
+// Shards: each job in exactly one, the same every time, and balanced: no shard's estimated work exceeds another's
+// by more than the largest job (the greedy bound), checked on 200 jobs of uneven cost.
+TEST(Shards, AssignmentIsDeterministicCompleteAndBalanced) {
+  std::vector<BenchJob> jobs(200);
+  for (std::size_t i = 0; i < jobs.size(); ++i) {
+    jobs[i].index = i;
+    jobs[i].id = "suite|p" + std::to_string(i) + "|lemke|cold|1e-10";
+    jobs[i].cost = 1e-3 * static_cast<double>((i * 7919) % 97 + 1);
+  }
+  for (int shards : {1, 3, 7}) {
+    const std::vector<int> a = AssignShards(jobs, shards);
+    EXPECT_EQ(AssignShards(jobs, shards), a);
+    std::vector<double> load(shards, 0.0);
+    for (std::size_t i = 0; i < jobs.size(); ++i) {
+      ASSERT_GE(a[i], 0);
+      ASSERT_LT(a[i], shards);
+      load[a[i]] += jobs[i].cost;
+    }
+    EXPECT_LE(*std::max_element(load.begin(), load.end()) - *std::min_element(load.begin(), load.end()), 0.097 + 1e-12);
+  }
+  EXPECT_EQ(ParseShard("2/3"), (std::pair<int, int>{1, 3}));
+  for (const char* bad : {"0/3", "4/3", "3", "1/0", "a/b", "1/3x"}) {
+    EXPECT_THROW(ParseShard(bad), InvalidInputError) << bad;
+  }
+  const CliRun r = RunSmcbench({"bench", "--suite", "tiny", "--shard", "4/3"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--shard expects K/N with 1 <= K <= N, got '4/3'"));
+}
+
+TEST(Report, WarnsWhenComparedTimesComeFromSharedHosts) {
+  BenchResults results;
+  SuiteResults s;
+  s.suite = "s";
+  for (int i = 0; i < 2; ++i) {
+    ReplayRecord r = Rec("p", i ? "enum" : "lemke", Verdict::kSolved, 1e-6);
+    r.samples = 3;
+    r.host = "node1";
+    r.concurrent_jobs = 1;
+    s.replay.records.push_back(r);
+  }
+  results.suites.push_back(s);
+  EXPECT_EQ(SharedHostWarning(results), "");
+  results.suites[0].replay.records[1].concurrent_jobs = 2;
+  EXPECT_THAT(SharedHostWarning(results), HasSubstr("1 of 2 timed records were measured while other"));
+  results.suites[0].replay.records[1].concurrent_jobs = 1;
+  results.suites[0].replay.records[1].host = "node2";
+  EXPECT_THAT(SharedHostWarning(results), HasSubstr("The times come from 2 hosts"));
 }
 
 }  // namespace

@@ -12,6 +12,7 @@
 #include <set>
 #include <sstream>
 
+#include "solvers/core/duration_text.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/simulate.h"
 
@@ -30,20 +31,7 @@ std::string G(double v, int digits = 3) {
   return b;
 }
 
-std::string Seconds(double s) {
-  if (std::isnan(s) || std::isinf(s)) return G(s);
-  char b[40];
-  if (s < 1e-6) {
-    std::snprintf(b, sizeof b, "%.0f ns", s * 1e9);
-  } else if (s < 1e-3) {
-    std::snprintf(b, sizeof b, "%.2f µs", s * 1e6);
-  } else if (s < 1.0) {
-    std::snprintf(b, sizeof b, "%.2f ms", s * 1e3);
-  } else {
-    std::snprintf(b, sizeof b, "%.2f s", s);
-  }
-  return b;
-}
+std::string Seconds(double s) { return DurationText(s); }
 
 bool Correct(const ReplayRecord& r) {
   return r.verdict == Verdict::kSolved || r.verdict == Verdict::kCorrectlyRefused;
@@ -117,28 +105,7 @@ std::string BackendStyle(const std::string& label) {
 // body: the settings and the plot command, naming the data file as 'STEM.dat'.
 void WriteFigure(const std::string& dir, const std::string& stem, const std::string& data, const std::string& body,
                  int width, int height) {
-  const fs::path folder(dir);
-  const auto write = [](const fs::path& path, const std::string& text) {
-    std::ofstream out(path);
-    out << text;
-    if (!out) throw InvalidInputError("report: cannot write '" + path.string() + "'");
-  };
-  write(folder / (stem + ".dat"), data);
-  const std::string size = std::to_string(width) + "," + std::to_string(height);
-  std::ostringstream script;
-  script << "# Made by `smcbench report`; remake " << stem << ".png and " << stem << ".svg with `gnuplot " << stem
-         << ".gp` in this folder.\n# Data: " << stem << ".dat (one block per curve, in the order of the plot "
-         << "command). Ours are solid lines, the external siconos-* backends dashed.\n"
-         << GnuplotPngPreamble(width, height, stem + ".png") << body
-         << "set terminal svg size " << size << " dynamic noenhanced font 'sans,11'\nset output "
-         << GnuplotQuote(stem + ".svg") << "\nreplot\nunset output\n";
-  write(folder / (stem + ".gp"), script.str());
-  RunGnuplot("cd " + GnuplotQuote(fs::absolute(folder).string()) + "\n" + script.str(),
-             (folder / (stem + ".png")).string(), "report");
-  std::error_code ec;
-  if (!fs::is_regular_file(folder / (stem + ".svg"), ec)) {
-    throw InvalidInputError("report: gnuplot wrote no '" + (folder / (stem + ".svg")).string() + "'");
-  }
+  WriteGnuplotFigure(dir, stem, data, body, width, height, "report");  // the one figure writer (simulate.h)
 }
 
 // The markdown of a figure: the PNG, with its SVG, data and script linked below it.
@@ -286,6 +253,37 @@ double GrowthExponent(const SuiteResults& suite, const std::string& solver) {
   return Slope(x, y);
 }
 
+std::string SharedHostWarning(const BenchResults& results) {
+  std::set<std::string> hosts;
+  std::size_t timed = 0, shared = 0;
+  int most = 0;
+  for (const SuiteResults& suite : results.suites) {
+    for (const auto* records : {&suite.replay.records, &suite.replay.sweep}) {
+      for (const ReplayRecord& r : *records) {
+        if (r.samples == 0) continue;  // not run: no time to compare
+        ++timed;
+        if (!r.host.empty()) hosts.insert(r.host);
+        if (r.concurrent_jobs > 1) ++shared, most = std::max(most, r.concurrent_jobs);
+      }
+    }
+  }
+  std::string warning;
+  if (shared > 0) {
+    warning += "**Warning: shared hosts.** " + std::to_string(shared) + " of " + std::to_string(timed) +
+               " timed records were measured while other `smcbench bench` jobs ran on the same host (up to " +
+               std::to_string(most) + " at once, column `concurrent_jobs` of results.csv): jobs that share a host "
+               "disturb each other's times, so compare those times with care (give each shard a whole node, e.g. "
+               "`sbatch --exclusive`, or run the shards one after another). ";
+  }
+  if (hosts.size() > 1) {
+    warning += "**Warning: several hosts.** The times come from " + std::to_string(hosts.size()) +
+               " hosts (column `host` of results.csv): times of different backends on one problem may have been "
+               "measured on different machines. ";
+  }
+  if (!warning.empty()) warning.back() = '\n';
+  return warning.empty() ? warning : warning + "\n";
+}
+
 std::string WriteBenchReport(const std::string& dir, bool plots) {
   json env;
   const BenchResults results = ReadBenchResults(dir, &env);
@@ -296,8 +294,12 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
   md << "# smcbench benchmark report\n\n"
      << "Made by `smcbench report " << dir << "` from `" << dir << "/results.json`, produced by\n\n    "
      << results.command << "\n\n"
-     << "Environment: git " << env.value("git_sha", std::string("?")).substr(0, 12)
-     << (env.value("git_dirty", false) ? " (dirty tree)" : "") << ", " << env.value("compiler", std::string("?"))
+     << "Environment: "
+     << (env.value("build_revision", std::string()).empty()
+             ? "git " + env.value("git_sha", std::string("?")).substr(0, 12) +
+                   (env.value("git_dirty", false) ? " (dirty tree)" : "")
+             : "build " + env.value("build_revision", std::string()))
+     << ", " << env.value("compiler", std::string("?"))
      << " " << env.value("build_type", std::string("")) << ", " << env.value("cpu", std::string("?")) << " ("
      << env.value("cores", 0) << " cores), " << env.value("date", std::string("")) << ".\n\n"
      << "**The verdict.** " << kVerdictInTwoSentences
@@ -317,7 +319,8 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
                           "active set, the reduced system solved directly), so an answer with the right active set "
                           "is exact whatever the tolerance; `smcbench bench --no-polish` times the raw algorithms."
                         : "**No polish** (`--no-polish`): the raw algorithms' answers.")
-     << "\n\n";
+     << "\n\n"
+     << SharedHostWarning(results);
 
   for (const SuiteResults& suite : results.suites) {
     // What the certified references prove, per problem (every backend's record carries its problem's).
@@ -566,7 +569,7 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
   if (results.has_stepper) {
     const StepperStudy& st = results.stepper;
     md << "## Time-stepper: warm against cold starts\n\n"
-       << "Each scene's own run (SCENES.md settings), every step's one-step problem started from the previous s "
+       << "Each scene's own run (docs/scenes.md settings), every step's one-step problem started from the previous s "
           "(warm) or from Π(0) (cold).\n\n| scene | backend | warm: time/step | cold: time/step | cold/warm | "
           "iterations/step warm | cold |\n|---|---|---|---|---|---|---|\n";
     for (std::size_t i = 0; i + 1 < st.warm_start.size(); i += 2) {

@@ -41,6 +41,10 @@ double GrowthExponent(const SuiteResults& suite, const std::string& solver);
 // The verdict in two sentences a user can check by hand (the report's text and `smcbench bench --help`).
 extern const char* const kVerdictInTwoSentences;
 
+// The report's warning when compared times come from shared hosts: records measured while other bench jobs ran on
+// their host (ReplayRecord::concurrent_jobs > 1) or records from more than one host. Empty when neither.
+std::string SharedHostWarning(const BenchResults& results);
+
 // Writes dir/report.md (and PNGs when plots is true and gnuplot is on PATH). Returns the markdown.
 // InvalidInputError if results are missing or gnuplot is required but absent.
 std::string WriteBenchReport(const std::string& dir, bool plots);

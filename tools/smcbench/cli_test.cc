@@ -17,6 +17,7 @@
 #include "problems/io/matrix_market.h"
 #include "problems/io/siconos_format.h"
 #include "problems/library/problem_set_io.h"
+#include "smcbench/version.h"
 #include "solvers/auto/auto_solver.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/cli_test_runner.h"
@@ -91,6 +92,18 @@ TEST(Cli, UsageErrorsAreOneLinePrefixedAndExitTwo) {
   const CliRun help = RunSmcbench({"solve", "--help"});
   EXPECT_EQ(help.code, 0);
   EXPECT_THAT(help.out, HasSubstr("--repeat"));
+}
+
+// --version is an option of the program like --help: listed by --help, printed on stdout with the revision the
+// build recorded, exit 0 (also from an out-of-tree program's main calling RunCli).
+TEST(Cli, VersionIsListedByHelpAndPrintsTheBuildsRevision) {
+  const CliRun help = RunSmcbench({"--help"});
+  EXPECT_EQ(help.code, 0);
+  EXPECT_THAT(help.out, HasSubstr("--version"));
+  const CliRun version = RunSmcbench({"--version"});
+  EXPECT_EQ(version.code, 0) << version.err;
+  EXPECT_EQ(version.out, "smcbench " + std::string(Version()) + " (git " + std::string(GitRevision()) + ")\n");
+  EXPECT_FALSE(std::string(GitRevision()).empty());
 }
 
 // --set BACKEND.OPTION reaches auto's own instance of that backend: with enum limited to 1 row with a choice,

@@ -15,12 +15,16 @@
 #include "problems/io/siconos_format.h"
 #include "solvers/auto/auto_solver.h"
 #include "solvers/reference/certify.h"
+#include "smcbench/version.h"
+#include "solvers/registry/backend_settings.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_command.h"
 #include "tools/smcbench/library_command.h"
+#include "tools/smcbench/merge_command.h"
 #include "tools/smcbench/paper.h"
 #include "tools/smcbench/problem_files.h"
 #include "tools/smcbench/simulate.h"
+#include "tools/smcbench/smc_sweep.h"
 #include "tools/smcbench/solve_report.h"
 
 namespace smcbench {
@@ -105,36 +109,12 @@ std::vector<std::string> ResolveSolverNames(const std::vector<std::string>& requ
   return names;
 }
 
-// Creates the backends and applies --set options; throws InvalidInputError on any bad name or value.
+// Creates the backends and applies --set options (solvers/registry/backend_settings.h: a setting must reach a
+// selected backend or auto's instance of it); throws InvalidInputError on any bad name or value.
 std::vector<std::unique_ptr<Solver>> MakeSolvers(const SolveSettings& s) {
   std::vector<std::unique_ptr<Solver>> solvers;
   for (const std::string& name : ResolveSolverNames(s.solvers)) solvers.push_back(CreateSolver(name));
-  for (const std::string& set : s.sets) {
-    const auto dot = set.find('.');
-    const auto eq = set.find('=');
-    if (dot == std::string::npos || eq == std::string::npos || eq < dot) {
-      throw InvalidInputError("--set expects BACKEND.OPTION=VALUE, got '" + set + "'");
-    }
-    const std::string backend = set.substr(0, dot), option = set.substr(dot + 1, eq - dot - 1);
-    const std::string value = set.substr(eq + 1);
-    // Unknown backends, options and values are errors even when the backend is not selected (the default, auto,
-    // selects none of the others by name).
-    std::string error;
-    if (!CreateSolver(backend)->SetOption(option, value, &error)) throw InvalidInputError(backend + ": " + error);
-    for (auto& solver : solvers) {
-      Solver* target = solver.get();
-      if (solver->info().name != backend) {
-        // auto's own instance of a backend it chooses from takes that backend's options too.
-        auto* automatic = dynamic_cast<AutoSolver*>(solver.get());
-        target = nullptr;
-        for (int i = 0; automatic && i < kAutoCandidateCount; ++i) {
-          if (AutoCandidateName(i) == backend) target = &automatic->candidate(static_cast<AutoCandidate>(i));
-        }
-        if (!target) continue;
-      }
-      if (!target->SetOption(option, value, &error)) throw InvalidInputError(backend + ": " + error);
-    }
-  }
+  ApplyBackendSettings(s.sets, solvers);
   return solvers;
 }
 
@@ -425,6 +405,8 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   CLI::App app{"smcbench: complementarity solvers benchmarked on implicit-Euler sliding-mode problems"};
   app.require_subcommand(1);
   app.set_help_all_flag("--help-all");
+  const std::string version = "smcbench " + std::string(Version()) + " (git " + std::string(GitRevision()) + ")";
+  app.set_version_flag("--version", version, "print the version and the git revision it was built from, then exit");
 
   auto* list = app.add_subcommand("list", "list the backends with their capabilities, references and options");
 
@@ -473,15 +455,17 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   convert->add_option("--id", convert_id, "the problem of a .smcps INPUT to write (needed if it holds several)");
 
   auto* bench_table = app.add_subcommand(
-      "bench-table", "turn backend_benchmark JSON output into the README's markdown table (median ± CV vs goal)");
+      "bench-table", "turn backend_benchmark JSON output into the markdown table of docs/benchmarks.md (median ± CV vs goal)");
   std::string bench_json;
   bench_table->add_option("FILE", bench_json, "Google Benchmark JSON (--benchmark_out)")->required();
 
   SimulateCommand simulate(&app);
   ScenesCommand scenes(&app);
   PaperCommand paper(&app);
+  SmcSweepCommand smc_sweep(&app);
   BenchCommand bench(&app);
   LibraryCommand library(&app);
+  MergeCommand merge(&app);
 
   // An unknown first word gets a message naming it and the commands (CLI11 would only say one is required).
   if (argc >= 2 && argv[1][0] != '-') {
@@ -500,7 +484,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    if (e.get_exit_code() == 0) {  // --help, --help-all: CLI11 prints them
+    if (e.get_exit_code() == 0) {  // --help, --help-all, --version: CLI11 prints them
       std::ostringstream o, e2;
       app.exit(e, o, e2);
       out << o.str();
@@ -528,9 +512,11 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (simulate.parsed()) return simulate.Run(out, err);
     if (scenes.parsed()) return scenes.Run(out, err);
     if (paper.parsed()) return paper.Run(out, err);
+    if (smc_sweep.parsed()) return smc_sweep.Run(out, err);
     if (bench.bench_parsed()) return bench.RunBench(command_line, out, err);
     if (bench.report_parsed()) return bench.RunReport(out, err);
     if (library.parsed()) return library.Run(out, err);
+    if (merge.parsed()) return merge.Run(out, err);
   } catch (const InvalidInputError& e) {
     err << "smcbench: " << e.what() << "\n";
     return 1;

@@ -15,6 +15,7 @@
 
 #include "problems/library/references.h"
 #include "problems/library/siconos_export.h"
+#include "problems/suites/catalogue.h"
 
 namespace smcbench {
 namespace {
@@ -164,6 +165,10 @@ std::size_t ExportProblemSetRelay(const ProblemSet& set, const std::string& dir,
 
 struct LibraryCommand::Flags {
   std::string file, export_dir, certify_out;
+  // --write-suite NAME FILE: a built-in suite frozen to a file (what shards of a sharded run can all read).
+  std::vector<std::string> write_suite;
+  std::string siconos_dir = SuiteRequest{}.siconos_dir;
+  bool quick = false;
   bool list = false;
   int certify_max_size = ReferenceOptions{}.max_size;
 };
@@ -171,8 +176,16 @@ struct LibraryCommand::Flags {
 LibraryCommand::LibraryCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
   command_ = app->add_subcommand("library", "summarize a problem-set file (.smcps, see problems/library/README.md), "
                                             "attach certified reference solutions, export it to Siconos relay files");
-  command_->add_option("FILE", flags_->file, "problem-set file (written by simulate --record, bench, ...)")
-      ->required();
+  command_->add_option("FILE", flags_->file, "problem-set file (written by simulate --record, bench, ...)");
+  command_->add_option("--write-suite", flags_->write_suite,
+                       "write the built-in suite NAME (as `bench --suite NAME` builds it, certified references "
+                       "attached) to FILE.smcps and print its checksum; `bench --suite FILE.smcps` then runs the "
+                       "same problems with the same checksum in results.json")
+      ->expected(2)
+      ->type_name("NAME FILE");
+  command_->add_option("--siconos-dir", flags_->siconos_dir, "with --write-suite: the Siconos collection (default " +
+                                                                 SuiteRequest{}.siconos_dir + ")");
+  command_->add_flag("--quick", flags_->quick, "with --write-suite: the suite as `bench --quick` builds it");
   command_->add_flag("--list", flags_->list,
                      "also print one line per problem: id, n, storage, expected, matrix tags, the reference's "
                      "certificate and its condition mu (after --certify when both are given)");
@@ -199,6 +212,23 @@ bool LibraryCommand::parsed() const { return command_->parsed(); }
 
 int LibraryCommand::Run(std::ostream& out, std::ostream& err) const {
   const Flags& f = *flags_;
+  if (!f.write_suite.empty()) {
+    if (!f.file.empty()) throw InvalidInputError("library: --write-suite NAME FILE takes no other FILE");
+    SuiteRequest request;
+    request.siconos_dir = f.siconos_dir;
+    request.quick = f.quick;
+    ProblemSet set = BuildSuite(f.write_suite.at(0), request);
+    set.Validate();
+    WriteProblemSetFile(set, f.write_suite.at(1));
+    out << "wrote suite " << set.name << " (" << set.problems.size() << " problems, checksum "
+        << ProblemSetContentChecksum(set) << ") to " << f.write_suite.at(1) << "\n";
+    return 0;
+  }
+  if (f.file.empty()) {  // a usage error, like CLI11's own: exit status 2
+    err << "smcbench: library: FILE is required (a problem-set file), or --write-suite NAME FILE (see 'smcbench "
+           "library --help')\n";
+    return 2;
+  }
   ProblemSetFileInfo info;
   ProblemSet set = ReadProblemSetFile(f.file, &info);
   out << ProblemSetSummary(set, &info);

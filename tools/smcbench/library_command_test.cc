@@ -16,6 +16,7 @@
 
 #include "problems/io/siconos_format.h"
 #include "problems/library/problem_set_io.h"
+#include "problems/suites/catalogue.h"
 #include "tools/smcbench/cli_test_runner.h"
 
 namespace smcbench {
@@ -243,6 +244,34 @@ TEST_F(LibraryCommandTest, DamagedOrMissingFilesAreOneLineErrors) {
   EXPECT_THAT(r.err, HasSubstr("not a smcbench problem-set file"));
 
   EXPECT_EQ(RunSmcbench({"library"}).code, 2);  // FILE is required
+}
+
+
+// `library --write-suite NAME FILE`: the built-in suite frozen to a file, bit for bit the problems BuildSuite makes,
+// with their certified references; an unknown suite name is a one-line error.
+TEST_F(LibraryCommandTest, WriteSuiteFreezesABuiltInSuite) {
+  const std::string file = Path("tiny.smcps");
+  CliRun r = RunSmcbench({"library", "--write-suite", "tiny", file});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const ProblemSet built = BuildSuite("tiny", SuiteRequest{});
+  EXPECT_EQ(r.out, "wrote suite tiny (5 problems, checksum " + ProblemSetContentChecksum(built) + ") to " + file +
+                       "\n");
+  const ProblemSet read = ReadProblemSetFile(file);
+  EXPECT_EQ(read.name, "tiny");
+  ASSERT_EQ(read.problems.size(), built.problems.size());
+  for (std::size_t i = 0; i < read.problems.size(); ++i) {
+    EXPECT_EQ(read.problems[i].id, built.problems[i].id);
+    EXPECT_EQ(read.problems[i].problem.q(), built.problems[i].problem.q());
+    EXPECT_EQ(read.problems[i].reference.certificate, built.problems[i].reference.certificate);
+  }
+  EXPECT_NE(read.problems[0].reference.certificate, Certificate::kNone);  // references attached
+  EXPECT_EQ(ProblemSetContentChecksum(read), ProblemSetContentChecksum(built));
+
+  r = RunSmcbench({"library", "--write-suite", "nope", Path("nope.smcps")});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("unknown suite 'nope'"));
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1);
+  EXPECT_FALSE(fs::exists(Path("nope.smcps")));
 }
 
 }  // namespace

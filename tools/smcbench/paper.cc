@@ -1,3 +1,4 @@
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #include "tools/smcbench/paper.h"
 
 #include <CLI/CLI.hpp>
@@ -432,6 +433,9 @@ void StudySign(Studies& st) {
 // Explicit runs are continued to this horizon before looking for a cycle (transients of the explicit schemes die
 // out slowly: 10 s is not enough at h = 0.1 on S2).
 constexpr double kCycleHorizon = 100.0;
+// |σ| at or below this counts as on the surface for the input-chattering columns (ChatteringMetrics): far below
+// an explicit scheme's O(h) band, far above the rounding an implicit ZOH step leaves.
+constexpr double kInputReachTolerance = 1e-9;
 
 // period_two: the claim is a period-2 orbit (S2, S5); otherwise "the explicit scheme chatters" (S6: "as S5").
 void StudyChattering(Studies& st, const std::string& id, const std::string& name, const std::vector<double>& h_impl,
@@ -446,18 +450,25 @@ void StudyChattering(Studies& st, const std::string& id, const std::string& name
 
   md << "Implicit runs over T = " << G(base.T) << "; explicit runs continued to T = " << G(kCycleHorizon)
      << " before looking for a cycle in the last quarter. 'Switches' counts s jumping between the bounds ±1 after "
-        "the surface is reached (bang-bang chattering); an interior s that crosses 0 is the equivalent control.\n\n";
+        "the surface is reached (bang-bang chattering); an interior s that crosses 0 is the equivalent control. "
+        "The input chattering (ZOH: the control u applied over each step, docs/smc.md) is measured from the first "
+        "time σ reaches 0: total variation of u and its largest jump |u_{k+1} − u_k|.\n\n";
   TableHeader(md, {"scheme", "h", "reaching step (t)", "max abs y after", "switches ±1 after (sign changes)",
-                   "cycle at the end", "x_N"});
+                   "input after reaching: total variation, max jump", "cycle at the end", "x_N"});
   bool impl_ok = true;
   std::string impl_text;
-  const auto row = [&](const std::string& scheme, double h, const Sliding& sl, const Cycle& c, const Vector& x_final,
+  const auto row = [&](const std::string& scheme, double h, const Sliding& sl, const Cycle& c, const Trajectory& tr,
                        bool implicit) {
+    const ChatteringMetrics input = ComputeChattering(tr, kInputReachTolerance);
     md << "| " << scheme << " | " << G(h) << " | " << sl.reaching_step << " (" << G(sl.reaching_time) << ") | "
        << G(sl.max_abs_y_after) << " | "
        << (implicit ? std::to_string(sl.saturated_switches_after) + " (" + std::to_string(sl.sign_changes_after) + ")"
                     : "- (" + std::to_string(sl.sign_changes_total) + " over the run)")
-       << " | " << CycleText(c) << " | " << VecText(x_final) << " |\n";
+       << " | "
+       << (input.has_input && input.from_step >= 0 ? G(input.u_total_variation) + ", " + G(input.u_max_jump)
+                                                   : std::string("-"))
+       << " | " << CycleText(c) << " | " << VecText(tr.x_final) << " |\n";
+    return ChatteringJson(input, tr.t0, tr.h);
   };
   for (const double h : h_impl) {
     SimulationSettings s = base;
@@ -470,9 +481,10 @@ void StudyChattering(Studies& st, const std::string& id, const std::string& name
     impl_text += (impl_text.empty() ? "" : "; ") + std::string("h = ") + G(h) + ": on the surface from t = " +
                  G(sl.reaching_time) + ", max |y| after " + G(sl.max_abs_y_after) + ", " +
                  std::to_string(sl.saturated_switches_after) + " switches";
-    row(impl_name, h, sl, c, tr.x_final, true);
+    const json input = row(impl_name, h, sl, c, tr, true);
     d["implicit"].push_back({{"h", h}, {"ok", ok}, {"sliding", SlidingJson(sl)}, {"cycle", CycleJson(c)},
-                             {"x_final", VecJson(tr.x_final)}, {"max_residual", tr.max_residual}});
+                             {"x_final", VecJson(tr.x_final)}, {"max_residual", tr.max_residual},
+                             {"chattering", input}});
     if (h == base.h) {
       st.Figure(tr, id + "-" + name + "-implicit-h" + G(h), id + " " + name + ", " + impl_name + ", h = " + G(h));
     }
@@ -492,11 +504,11 @@ void StudyChattering(Studies& st, const std::string& id, const std::string& name
     const Cycle c = DetectCycle(tr);
     expl_ok = expl_ok && (period_two ? c.period == 2 : (c.period >= 2 || c.period == 0) && sl.reaching_step < 0);
     expl_text += (expl_text.empty() ? "" : "; ") + std::string("h = ") + G(h) + ": " + CycleText(c);
-    row(expl_name, h, sl, c, tr.x_final, false);
+    const json input = row(expl_name, h, sl, c, tr, false);
     d["explicit"].push_back({{"h", h}, {"T", s.T}, {"sliding", SlidingJson(sl)}, {"cycle", CycleJson(c)},
-                             {"x_final", VecJson(tr.x_final)}});
+                             {"x_final", VecJson(tr.x_final)}, {"chattering", input}});
   }
-  // ZOH scenes: the Euler discretization of the same closed loop, for comparison (SCENES.md S5).
+  // ZOH scenes: the Euler discretization of the same closed loop, for comparison (docs/scenes.md S5).
   if (zoh) {
     for (const bool implicit : {true, false}) {
       SimulationSettings s = base;
@@ -505,8 +517,7 @@ void StudyChattering(Studies& st, const std::string& id, const std::string& name
       const Trajectory tr = st.Run(name, s);
       const Sliding sl = Analyze(tr);
       const Cycle c = DetectCycle(tr);
-      row(std::string(implicit ? "implicit" : "explicit") + " Euler on the closed loop", s.h, sl, c, tr.x_final,
-          implicit);
+      row(std::string(implicit ? "implicit" : "explicit") + " Euler on the closed loop", s.h, sl, c, tr, implicit);
       d[implicit ? "euler_implicit" : "euler_explicit"] = {
           {"sliding", SlidingJson(sl)}, {"cycle", CycleJson(c)}, {"x_final", VecJson(tr.x_final)}};
     }
@@ -942,23 +953,24 @@ std::string Markdown(const Studies& st, const std::string& sections) {
   std::ostringstream md;
   md << "# The paper's claims, re-measured\n\n"
      << "Acary & Brogliato, *Implicit Euler numerical simulations of sliding mode systems* (INRIA RR-6886, 2009): "
-        "every claim that `../shared/paper/SCENES.md` lists, tested against what smcbench's time-stepper does. "
+        "every claim that `docs/scenes.md` lists, tested against what smcbench's time-stepper does. "
         "Generated by\n\n    "
      << st.options().command
-     << "\n\nwith the settings of SCENES.md (h, T, x0, parameters per scene), implicit steps solved by `"
+     << "\n\nwith the settings of docs/scenes.md (h, T, x0, parameters per scene), implicit steps solved by `"
      << st.options().solver
      << "` unless a row says otherwise, tolerance 1e-10 on each one-step problem's relative natural residual, "
         "'on the surface' meaning |y| ≤ 1e-9, and sign changes of s counted outside |s| ≤ 1e-6. Every number is in "
         "`paper.json`; every figure is a PNG in this folder. Nothing here is timed: the output is the same on every "
         "run.\n\n";
-  int holds = 0, fails = 0, partly = 0;
+  int holds = 0, fails = 0, partly = 0, measured = 0;
   for (const auto& c : st.claims()) {
     holds += c.verdict == kHolds;
     fails += c.verdict == kFails;
     partly += c.verdict == kPartly;
+    measured += c.verdict == kMeasured;
   }
-  md << "**" << holds << " claims hold, " << partly << " partly, " << fails << " do not** ("
-     << st.claims().size() << " rows).\n\n";
+  md << "**" << holds << " claims hold, " << partly << " partly, " << fails << " do not, " << measured
+     << " measured without a claim** (" << st.claims().size() << " rows).\n\n";
   TableHeader(md, {"scene", "claim", "measured", "verdict"});
   for (const auto& c : st.claims()) {
     md << "| " << c.scene << " | " << c.claim << " | " << c.measured << " | "
@@ -1017,7 +1029,7 @@ PaperReport RunPaperStudies(const PaperOptions& options, std::ostream& log) {
 
 PaperCommand::PaperCommand(CLI::App* app) : options_(std::make_unique<PaperOptions>()) {
   command_ = app->add_subcommand("paper",
-                                 "reproduce the paper: run every scene of SCENES.md implicit and explicit, test each "
+                                 "reproduce the paper: run every scene of docs/scenes.md implicit and explicit, test each "
                                  "claim, write a claims table, figures and paper.json");
   command_->add_option("--out", options_->out_dir, "output folder (default results/paper)");
   command_->add_option("--solver", options_->solver,
@@ -1036,9 +1048,15 @@ int PaperCommand::Run(std::ostream& out, std::ostream& err) const {
   options.command = "smcbench paper --out " + options.out_dir + (default_solver ? "" : " --solver " + options.solver) +
                     (no_plots_ ? " --no-plots" : "");
   const PaperReport report = RunPaperStudies(options, err);
-  int holds = 0, fails = 0;
-  for (const auto& c : report.claims) holds += c.verdict == std::string(kHolds), fails += c.verdict == std::string(kFails);
-  out << "paper: " << report.claims.size() << " claims: " << holds << " hold, " << fails << " do not; wrote "
+  int holds = 0, partly = 0, fails = 0, measured = 0;
+  for (const auto& c : report.claims) {
+    holds += c.verdict == std::string(kHolds);
+    partly += c.verdict == std::string(kPartly);
+    fails += c.verdict == std::string(kFails);
+    measured += c.verdict == std::string(kMeasured);
+  }
+  out << "paper: " << report.claims.size() << " rows: " << holds << " hold, " << partly << " partly, " << fails
+      << " do not, " << measured << " measured without a claim; wrote "
       << (fs::path(options.out_dir) / "README.md").string() << ", paper.json"
       << (options.plots ? " and the figures" : "") << "\n";
   return 0;

@@ -1,4 +1,4 @@
-// `smcbench paper`: re-runs every scene of SCENES.md with the report's settings, implicit and explicit, tests each
+// `smcbench paper`: re-runs every scene of docs/scenes.md with the report's settings, implicit and explicit, tests each
 // claim of Acary & Brogliato (2009) against what the code does, and writes results/paper/ (a markdown table
 // claim → measured → verdict, per-scene sections, PNG figures, and every number in paper.json).
 #pragma once
@@ -25,7 +25,7 @@ struct PaperOptions {
 // One row of the claims table.
 struct PaperClaim {
   std::string scene;     // "S1 sign"
-  std::string claim;     // what SCENES.md says the report claims
+  std::string claim;     // what docs/scenes.md says the report claims
   std::string measured;  // what the code did, with numbers
   std::string verdict;   // "holds", "partly", "does not hold", or "measured" (no claim: S11)
 };

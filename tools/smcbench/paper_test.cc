@@ -1,5 +1,6 @@
-// `smcbench paper` end to end (figures off): every claim row of SCENES.md is produced, the verdicts the code
+// `smcbench paper` end to end (figures off): every claim row of docs/scenes.md is produced, the verdicts the code
 // establishes are pinned (so a regression in a scheme shows up as a changed verdict), and the files are written.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 

@@ -22,8 +22,10 @@
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/nonlinear_scene.h"
 #include "problems/scenes/registry.h"
+#include "solvers/core/duration_text.h"
 #include "solvers/core/number_text.h"
 #include "solvers/reference/certify.h"
+#include "solvers/registry/backend_settings.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {
@@ -70,17 +72,7 @@ Vector ParseVector(const std::string& text, const char* option) {
   return Eigen::Map<const Vector>(values.data(), static_cast<Eigen::Index>(values.size()));
 }
 
-std::string FormatSeconds(double seconds) {
-  char buffer[48];
-  if (seconds < 1e-3) {
-    std::snprintf(buffer, sizeof buffer, "%.1f us", seconds * 1e6);
-  } else if (seconds < 1.0) {
-    std::snprintf(buffer, sizeof buffer, "%.2f ms", seconds * 1e3);
-  } else {
-    std::snprintf(buffer, sizeof buffer, "%.2f s", seconds);
-  }
-  return buffer;
-}
+std::string FormatSeconds(double seconds) { return DurationText(seconds); }
 
 std::string FormatRate(double per_second) {
   char buffer[48];
@@ -328,6 +320,7 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
                        const ReferenceComparison* reference) {
   RunMetrics metrics;
   metrics.metrics = ComputeMetrics(tr, reach_tol);
+  if (tr.m > 0) metrics.chattering = ComputeChattering(tr, reach_tol);
   try {
     if (const auto exact = scene.Exact(settings)) metrics.exact_errors = ComputeErrors(tr, *exact);
   } catch (const InvalidInputError& e) {
@@ -413,6 +406,7 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
   j["sign_changes_total"] = changes_total;
   j["total_variation_total"] = tv_total;
   j["surfaces"] = surfaces;
+  j["chattering"] = ChatteringJson(run_metrics.chattering, tr.t0, tr.h);
 
   // The error in s and y against the certified reference run (keys always present; null when there is none).
   if (reference != nullptr && reference->errors) {
@@ -448,6 +442,21 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
     j["errors"] = errors;
   }
   return j;
+}
+
+json ChatteringJson(const std::optional<ChatteringMetrics>& chattering, double t0, double h) {
+  if (!chattering) return nullptr;
+  const ChatteringMetrics& c = *chattering;
+  const auto input = [&](double v) { return c.has_input ? json(v) : json(nullptr); };
+  return {{"has_input", c.has_input},
+          {"from_step", c.from_step >= 0 ? json(c.from_step) : json(nullptr)},
+          {"from_time", c.from_step >= 0 ? json(t0 + static_cast<double>(c.from_step) * h) : json(nullptr)},
+          {"sigma_band", c.sigma_band},
+          {"u_total_variation", input(c.u_total_variation)},
+          {"u_max_jump", input(c.u_max_jump)},
+          {"u_max_abs", input(c.u_max_abs)},
+          {"switching_sign_changes", c.switching_sign_changes},
+          {"rows", c.rows}};
 }
 
 // ------------------------------------------------------------------------------------------------------------
@@ -561,19 +570,28 @@ void PlotTrajectory(const TrajectoryPlotData& plot_data, const std::string& titl
   if (!GnuplotAvailable()) {
     throw InvalidInputError("--plot needs gnuplot (Debian package gnuplot-nox), which is not on PATH");
   }
-  TempFile temp{TempPath("trajectory", ".dat")};
-  {
-    std::ofstream out(temp.path);
-    plot_data.WriteData(out);
+  // X.png: X.svg, X.dat and X.gp beside it (WriteGnuplotFigure, as the report's figures); another name: the PNG
+  // alone, its data in a temporary file.
+  const fs::path png(png_path);
+  const bool beside = png.extension() == ".png";
+  const std::string stem = png.stem().string();
+  std::ostringstream data_text;
+  plot_data.WriteData(data_text);
+  std::optional<TempFile> temp;
+  if (!beside) {
+    temp.emplace();
+    temp->path = TempPath("trajectory", ".dat");
+    std::ofstream out(temp->path);
+    out << data_text.str();
     out.flush();
-    if (!out) throw InvalidInputError("--plot: cannot write the plot data " + temp.path.string());
+    if (!out) throw InvalidInputError("--plot: cannot write the plot data " + temp->path.string());
   }
   const int n = plot_data.n(), m = plot_data.m();
-  const std::string data = GnuplotQuote(temp.path.string());
+  const std::string data = GnuplotQuote(beside ? stem + ".dat" : temp->path.string());
+  const int height = n >= 2 ? 900 : 1000;
   std::ostringstream g;
   // Series i of the data is its gnuplot "index i" (blocks two blank lines apart): x1..xn, s1..sm, y1..ym, phase.
-  g << GnuplotPngPreamble(1200, n >= 2 ? 900 : 1000, png_path)
-    << "set grid\nset key top right\n"
+  g << "set grid\nset key top right\n"
     << "set multiplot layout " << (n >= 2 ? "2,2" : "3,1") << " title " << GnuplotQuote(title) << "\n"
     << "set xlabel 't'\n"
     << "set title 'state x'\n"
@@ -593,7 +611,12 @@ void PlotTrajectory(const TrajectoryPlotData& plot_data, const std::string& titl
       << data << " index " << phase << " every ::0::0 using 1:2 with points pt 6 ps 2.5 lw 2 title 'x0'\n";
   }
   g << "unset multiplot\n";
-  RunGnuplot(g.str(), png_path, "--plot");
+  if (beside) {
+    const std::string dir = png.has_parent_path() ? png.parent_path().string() : std::string(".");
+    WriteGnuplotFigure(dir, stem, data_text.str(), g.str(), 1200, height, "simulate --plot");
+    return;
+  }
+  RunGnuplot(GnuplotPngPreamble(1200, height, png_path) + g.str(), png_path, "--plot");
 }
 
 void PlotTrajectory(const Trajectory& tr, const std::string& data_csv, const std::string& title,
@@ -616,6 +639,32 @@ std::string GnuplotQuote(const std::string& text) {
   std::string out = "'";
   for (char c : text) out += c == '\'' ? std::string("''") : std::string(1, c);
   return out + "'";
+}
+
+void WriteGnuplotFigure(const std::string& dir, const std::string& stem, const std::string& data,
+                        const std::string& body, int width, int height, const std::string& made_by) {
+  const fs::path folder(dir);
+  const auto write = [&](const fs::path& path, const std::string& text) {
+    std::ofstream out(path);
+    out << text;
+    if (!out) throw InvalidInputError(made_by + ": cannot write '" + path.string() + "'");
+  };
+  write(folder / (stem + ".dat"), data);
+  const std::string size = std::to_string(width) + "," + std::to_string(height);
+  std::ostringstream script;
+  script << "# Made by `smcbench " << made_by << "`; remake " << stem << ".png and " << stem << ".svg with `gnuplot "
+         << stem << ".gp` in this folder.\n# Data: " << stem << ".dat (one block per curve, in the order of the plot "
+         << "command).\n"
+         << GnuplotPngPreamble(width, height, stem + ".png") << body << "unset output\nset terminal svg size " << size
+         << " dynamic noenhanced font 'sans,11'\nset output " << GnuplotQuote(stem + ".svg") << "\n"
+         << body << "unset output\n";  // the body again, not replot: replot cannot redo a multiplot
+  write(folder / (stem + ".gp"), script.str());
+  RunGnuplot("cd " + GnuplotQuote(fs::absolute(folder).string()) + "\n" + script.str(),
+             (folder / (stem + ".png")).string(), made_by);
+  std::error_code ec;
+  if (!fs::is_regular_file(folder / (stem + ".svg"), ec)) {
+    throw InvalidInputError(made_by + ": gnuplot wrote no '" + (folder / (stem + ".svg")).string() + "'");
+  }
 }
 
 void RunGnuplot(const std::string& script_text, const std::string& png_path, const std::string& what) {
@@ -659,7 +708,7 @@ struct SimulateCommand::Flags {
 
 SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
   Flags& f = *flags_;
-  command_ = app->add_subcommand("simulate", "run a scene of SCENES.md (see `smcbench scenes`) or a scene file");
+  command_ = app->add_subcommand("simulate", "run a scene of docs/scenes.md (see `smcbench scenes`) or a scene file");
   command_->add_option("SCENE", f.scene, "registered scene name or path to a scene JSON file")->required();
   f.method_opt = command_->add_option("--method", f.method,
                                       "implicit | explicit | zoh | zoh-explicit (default: the scene's); explicit "
@@ -698,7 +747,8 @@ SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>
                      "2-18x slower; the default sets a state component below 2.2e-308 to 0)");
   f.reach_opt = command_->add_option("--reach-tol", f.reach_tol,
                                      "|y| bound defining 'on the surface' for the reaching step (default 10*tol)");
-  command_->add_option("--out", f.out, "write the trajectory CSV t,x1..xn,s1..sm,y1..ym,iterations,residual");
+  command_->add_option("--out", f.out, "write the trajectory CSV t,x1..xn,s1..sm,y1..ym,iterations,residual (then u1..um, the "
+                       "input applied over [t_k, t_k+1), for ZOH scenes and S1)");
   command_->add_option("--summary", f.summary,
                        "write the JSON summary (steps, x_final, reaching_step, s_error_max and y_error_max against a "
                        "certified reference run, ...)");
@@ -802,18 +852,10 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
       fail("--algorithm mcp needs a backend that solves nonlinear MCPs (newton); '" + solver_name +
            "' solves box-MLCPs only: use --algorithm newton-mlcp with it");
     }
-    for (const std::string& set : f.sets) {
-      const auto dot = set.find('.'), eq = set.find('=');
-      if (dot == std::string::npos || eq == std::string::npos || eq < dot) {
-        fail("--set expects BACKEND.OPTION=VALUE, got '" + set + "'");
-      }
-      if (set.substr(0, dot) != solver_name) {
-        fail("--set " + set + " names backend '" + set.substr(0, dot) + "' but the run uses '" + solver_name + "'");
-      }
-      std::string error;
-      if (!solver->SetOption(set.substr(dot + 1, eq - dot - 1), set.substr(eq + 1), &error)) {
-        fail(solver_name + ": " + error);
-      }
+    try {
+      ApplyBackendSettings(f.sets, {solver.get()});  // the one --set parser: solvers/registry/backend_settings.h
+    } catch (const InvalidInputError& e) {
+      fail(e.what());
     }
   } else if (f.solver_opt->count()) {
     err << "note: --solver is ignored: method " << ToString(s.method) << " solves no one-step problem\n";
@@ -859,11 +901,14 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
     sinks.Add(csv.get());
   }
   std::optional<MetricsAccumulator> metrics;
+  std::optional<ChatteringAccumulator> chattering;
   std::optional<ErrorsAccumulator> exact_errors;
   std::string exact_unavailable;
   if (outputs) {
     metrics.emplace(info.m, reach_tol);
     sinks.Add(&*metrics);
+    chattering.emplace(info.m, reach_tol);
+    sinks.Add(&*chattering);
   }
   std::unique_ptr<RunRowsForReference> run_rows;
   std::string no_run_rows;
@@ -918,6 +963,7 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
     run_metrics.metrics = metrics->Result(tr);
     if (exact_errors) run_metrics.exact_errors = exact_errors->Result();
     run_metrics.exact_unavailable = exact_unavailable;
+    run_metrics.chattering = chattering->Result();
     const json summary = SimulationSummary(*scene, s, solver_name, tr, run_metrics, reach_tol, wall, &*reference);
     std::ofstream js(f.summary);
     js << summary.dump(2) << "\n";
@@ -947,6 +993,16 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
           << "): max |y| after " << NumberText(max_y) << ", sign changes of s after " << changes << "\n";
     } else {
       out << "  not every surface is reached (|y| <= " << NumberText(reach_tol) << " to the end)\n";
+    }
+    const ChatteringMetrics& c = chattering->Result();
+    if (c.from_step >= 0) {
+      out << "  from the reaching time t = " << NumberText(tr.time(c.from_step)) << ": sigma band "
+          << NumberText(c.sigma_band);
+      if (c.has_input) {
+        out << ", input total variation " << NumberText(c.u_total_variation) << ", max jump "
+            << NumberText(c.u_max_jump) << ", max |u| " << NumberText(c.u_max_abs);
+      }
+      out << ", sign changes of the switching part " << c.switching_sign_changes << "\n";
     }
   }
   if (IsImplicit(s.method)) {
@@ -983,7 +1039,7 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
 // scenes
 
 ScenesCommand::ScenesCommand(CLI::App* app) {
-  command_ = app->add_subcommand("scenes", "list the registered scenes (SCENES.md) with one-line descriptions");
+  command_ = app->add_subcommand("scenes", "list the registered scenes (docs/scenes.md) with one-line descriptions");
 }
 
 bool ScenesCommand::parsed() const { return command_->parsed(); }

@@ -1,4 +1,4 @@
-// `smcbench simulate SCENE ...` and `smcbench scenes`: run a scene of SCENES.md (or a scene file) on any backend,
+// `smcbench simulate SCENE ...` and `smcbench scenes`: run a scene of docs/scenes.md (or a scene file) on any backend,
 // write its trajectory CSV, JSON summary of sliding-surface accuracy metrics and a gnuplot figure. Every output is
 // produced while the run goes (issue 13): memory does not grow with the number of steps.
 #pragma once
@@ -93,6 +93,12 @@ ReferenceComparison CompareWithReferenceRun(const Scene& scene, const Simulation
 // metrics from the history (ComputeMetrics, ComputeErrors: InvalidInputError if the trajectory was not recorded);
 // `simulate` itself uses the one below with metrics accumulated while the run went (the same numbers).
 //   reach_tol: a surface is "reached" from the first step after which |y_i| ≤ reach_tol at every later step.
+//   chattering                issue 15 (docs/smc.md): the input and its chattering once the surfaces are reached
+//                             (metrics.h ChatteringMetrics, the reaching time forwards: σ_i within reach_tol or
+//                             crossed 0): {has_input, from_step, from_time, sigma_band, u_total_variation,
+//                             u_max_jump, u_max_abs, switching_sign_changes, rows}; the u keys are null when the run
+//                             has no control input (class-(2) scenes without control_input, Euler runs of ZOH plants),
+//                             from_time null and the after-reaching keys 0 when a surface is never reached.
 nlohmann::json SimulationSummary(const Scene& scene, const SimulationSettings& settings, std::string_view solver,
                                  const Trajectory& trajectory, double reach_tol, double wall_seconds,
                                  const ReferenceComparison* reference = nullptr);
@@ -103,7 +109,10 @@ struct RunMetrics {
   TrajectoryMetrics metrics;
   std::optional<SolutionErrors> exact_errors;  // against the scene's exact solution, when it has one
   std::string exact_unavailable;               // why Exact() refused these settings (errors: null); else empty
+  std::optional<ChatteringMetrics> chattering; // null: the summary's chattering is null
 };
+// The summary's "chattering" object (null for nullopt); h and t0 give from_time.
+nlohmann::json ChatteringJson(const std::optional<ChatteringMetrics>& chattering, double t0, double h);
 // The summary from metrics computed elsewhere; run gives the counters, finals and sizes (it need not be recorded).
 nlohmann::json SimulationSummary(const Scene& scene, const SimulationSettings& settings, std::string_view solver,
                                  const Trajectory& run, const RunMetrics& metrics, double reach_tol,
@@ -166,6 +175,12 @@ void RunGnuplot(const std::string& script, const std::string& png_path, const st
 std::string GnuplotPngPreamble(int width, int height, const std::string& png_path);
 // A gnuplot single-quoted string ('' for a quote); InvalidInputError if text holds a newline.
 std::string GnuplotQuote(const std::string& text);
+// A figure a user can restyle: dir/STEM.dat (data), dir/STEM.gp (the gnuplot script: reads STEM.dat, writes STEM.png
+// and STEM.svg; `cd DIR && gnuplot STEM.gp` remakes both), then runs it. body: the settings and the plot command,
+// naming the data file 'STEM.dat'. made_by names the command in the script's first line and in errors
+// ("smc-sweep: gnuplot wrote no 'x.svg'"). The one figure writer of the commands (`report` has the same layout).
+void WriteGnuplotFigure(const std::string& dir, const std::string& stem, const std::string& data,
+                        const std::string& body, int width, int height, const std::string& made_by);
 
 // The `simulate` subcommand: registers its options on construction; Run executes it if it was parsed.
 class SimulateCommand {

@@ -1,5 +1,6 @@
 // End-to-end tests of `smcbench simulate` and `smcbench scenes`, run in-process: the CSV and summary formats
 // scripts rely on, the paper's S1 and S2 claims through the command line, one-line errors with exit status 1.
+// The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -191,7 +192,7 @@ TEST_F(Simulate, SignSceneWritesCsvAndSummary) {
   const auto lines = ReadLines(csv);
   ASSERT_EQ(lines.size(), 1u + 201u);  // header + rows k = 0..200 (T = 2)
   EXPECT_EQ(lines[0].rfind("t,x1,s1", 0), 0u) << lines[0];
-  EXPECT_EQ(lines[0], "t,x1,s1,y1,iterations,residual");
+  EXPECT_EQ(lines[0], "t,x1,s1,y1,iterations,residual,u1");  // S1 is a controller: u = −s (issue 15)
   const auto row0 = SplitNumbers(lines[1]);
   ASSERT_GE(row0.size(), 3u);
   EXPECT_EQ(row0[0], 0.0);
@@ -779,6 +780,53 @@ TEST(TrajectoryPlotData, KeepsExtremesPerBucketInBoundedMemory) {
   small.WriteData(short_out);
   const std::string text = short_out.str();
   EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 10 + 2 + 10 + 2 + 9 + 2 + 10 + 2 + 10);
+}
+
+// Issue 15: a ZOH scene's CSV carries u1..um, each row's u consistent with the next state (x_{k+1} − e^{Fh} x_k =
+// Ψ G u_k with e^{Fh}, Ψ by a Taylor series here: F = 0 for smc-disturbed, so e^{Fh} = I, Ψ = hI, plus the
+// disturbance ∫ G d = G·(0.5/50)(cos 50t_k − cos 50t_{k+1})), and the summary's chattering keys.
+TEST_F(Simulate, ZohSceneWritesItsInputAndChatteringKeys) {
+  const std::string scene = ScenesDirectory() + "/smc-disturbed.json";
+  for (const char* method : {"zoh", "zoh-explicit"}) {
+    SCOPED_TRACE(method);
+    const std::string csv = Path(std::string(method) + ".csv"), summary = Path(std::string(method) + ".json");
+    const CliRun r = RunSmcbench({"simulate", scene, "--method", method, "--out", csv, "--summary", summary});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto lines = ReadLines(csv);
+    ASSERT_EQ(lines.size(), 1u + 201u);
+    EXPECT_EQ(lines[0], "t,x1,x2,s1,y1,iterations,residual,u1");
+    EXPECT_EQ(lines.back().substr(lines.back().rfind(',') + 1), "nan");  // no step applies the last row's input
+    double worst = 0.0;
+    for (std::size_t k = 1; k + 1 < lines.size(); ++k) {
+      const auto row = SplitNumbers(lines[k]), next = SplitNumbers(lines[k + 1]);
+      const double t = row[0], t_next = next[0], u = row[7];
+      const double disturbance = 2.0 * 0.5 / 50.0 * (std::cos(50.0 * t) - std::cos(50.0 * t_next));
+      worst = std::max(worst, std::abs(next[2] - row[2] - (0.01 * 2.0 * u + disturbance)));
+      EXPECT_EQ(next[1], row[1]);  // x1' = 0
+    }
+    EXPECT_LE(worst, 1e-14);
+    const auto j = ReadJson(summary);
+    ASSERT_TRUE(j["chattering"].is_object());
+    for (const char* key : {"has_input", "from_step", "from_time", "sigma_band", "u_total_variation", "u_max_jump",
+                            "u_max_abs", "switching_sign_changes", "rows"}) {
+      EXPECT_TRUE(j["chattering"].contains(key)) << key;
+    }
+    EXPECT_TRUE(j["chattering"]["has_input"].get<bool>());
+    EXPECT_GT(j["chattering"]["from_step"].get<int>(), 0);
+    // The explicit scheme's switching part jumps by 2α = 2; the implicit one follows d (|Δd| ≤ 0.01·50·0.5).
+    const double jump = j["chattering"]["u_max_jump"].get<double>();
+    if (std::string(method) == "zoh") {
+      EXPECT_LE(jump, 0.3);
+    } else {
+      EXPECT_GE(jump, 1.5);
+    }
+  }
+  // A class-(2) scene without control_input: no u column, null input keys.
+  const std::string summary = Path("gy.json"), csv = Path("gy.csv");
+  const CliRun r = RunSmcbench({"simulate", "galias-yu-2007", "--out", csv, "--summary", summary});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_EQ(ReadLines(csv)[0], "t,x1,x2,s1,y1,iterations,residual");
+  EXPECT_TRUE(ReadJson(summary)["chattering"]["u_total_variation"].is_null());
 }
 
 }  // namespace

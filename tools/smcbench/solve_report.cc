@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "solvers/auto/auto_solver.h"
+#include "solvers/core/duration_text.h"
 
 namespace smcbench {
 
@@ -87,19 +88,7 @@ SolveRecord TimedSolve(Solver& solver, const BoxMLCP& problem, const SolverOptio
   return record;
 }
 
-std::string FormatDuration(double ns) {
-  char buffer[32];
-  if (ns < 1e3) {
-    std::snprintf(buffer, sizeof buffer, "%.0f ns", ns);
-  } else if (ns < 1e6) {
-    std::snprintf(buffer, sizeof buffer, "%.3g us", ns / 1e3);
-  } else if (ns < 1e9) {
-    std::snprintf(buffer, sizeof buffer, "%.3g ms", ns / 1e6);
-  } else {
-    std::snprintf(buffer, sizeof buffer, "%.3g s", ns / 1e9);
-  }
-  return buffer;
-}
+std::string FormatDuration(double ns) { return DurationText(ns * 1e-9); }
 
 std::string FormatRecordLine(const SolveRecord& record) {
   char buffer[256];

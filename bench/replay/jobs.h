@@ -1,0 +1,165 @@
+// A `bench` run cut into jobs (problem × backend × tolerance × mode, plus the time-stepper study as one job), so
+// that Slurm array tasks or GNU parallel can each run a deterministic share (--shard K/N), every finished job is on
+// disk at once (one JSON line, flushed: a killed shard keeps its work and --resume runs only what is missing), and
+// `smcbench merge` puts the shards back together into the results.json of a single run, refusing to mix builds,
+// suites or options.
+//
+// A run folder holds manifest.json (what the run is: build, options, suites with their checksums, the whole job
+// list and this folder's shard) and records.jsonl (one line per finished job, in the order they finished).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <cstdio>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "bench/replay/replay.h"
+#include "bench/replay/results_io.h"
+
+namespace smcbench {
+
+// What one job runs.
+enum class JobKind {
+  kCold,           // problem × backend at the run's tolerance (ReplayOne, mode "cold")
+  kGenericSparse,  // the paper suite's problems with M stored sparse, newton through UMFPACK ("newton-sparse-path")
+  kSweep,          // problem × iterative backend at one tolerance of kSweepTolerances (mode "sweep")
+  kStepper,        // the time-stepper studies (warm/cold starts, work-precision), one job
+};
+const char* ToString(JobKind kind);
+
+struct BenchJob {
+  std::size_t index = 0;    // position in the run's job list (the order of a single run's results)
+  JobKind kind = JobKind::kCold;
+  std::size_t suite = 0;    // index of the suite in the run (not used by kStepper)
+  std::size_t problem = 0;  // index of the problem in its suite
+  std::string suite_name, problem_id, solver;
+  double tolerance = 0.0;
+  // Estimated seconds, for balancing shards (EstimateJobSeconds).
+  double cost = 0.0;
+  // "suite|problem|solver|mode|tolerance" (tolerance in shortest round-trip form): the job's identity across
+  // processes, machines and resumed runs; "stepper" for the stepper job.
+  std::string id;
+};
+
+// The name the generic sparse path's records carry as their backend.
+inline constexpr const char* kGenericSparsePath = "newton-sparse-path";
+
+// Estimated seconds of one job: one solve is guessed at 1e-9·m·(m + nnz(M)) s (a dense pivoting method's m³ on a
+// dense M; m·nnz on a sparse one), the job at a warm-up solve (capped by the time limit) plus its samples (each at
+// least min_sample_seconds, together at most max_seconds_per_pair). Backends are not told apart. The stepper job
+// is a fixed 30 s (quick: 3 s). Only balances shards: never changes what runs.
+double EstimateJobSeconds(const LibraryProblem& problem, const ReplayOptions& options, JobKind kind);
+
+struct JobListRequest {
+  std::vector<std::string> solvers;  // resolved names (never empty)
+  std::vector<bool> iterative;       // per solver: SolverInfo::exact is false (it gets the tolerance sweep)
+  bool generic_sparse_path = false;  // add the newton-sparse-path jobs for a suite named "paper"
+  bool stepper = false;              // add the stepper job (last)
+};
+
+// Every job of a run, in the order a single run writes its results: per suite the cold jobs (problem, then
+// backend), the generic sparse path (problem), the sweep (problem, backend, tolerance); then the stepper job.
+std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites, const ReplayOptions& options,
+                                    const JobListRequest& request);
+
+// The shard (0-based, < shards) of every job: longest estimated job first (ties in the order of a stable hash of
+// the job's id, FNV-1a 64), each to the shard with the least estimated work so far (ties: the lowest shard).
+// Deterministic: the same job list gives the same shards on every machine.
+std::vector<int> AssignShards(const std::vector<BenchJob>& jobs, int shards);
+
+// FNV-1a 64 of text as 16 hex digits.
+std::string StableHashHex(const std::string& text);
+
+// "K/N" (1 ≤ K ≤ N) → {K−1, N}. InvalidInputError naming --shard otherwise.
+std::pair<int, int> ParseShard(const std::string& text);
+
+// How many `bench` processes run on this host now: each process holds a file named by its pid in a per-user
+// folder (SMCBENCH_ACTIVITY_DIR, default <tmp>/smcbench-activity-<uid>); Count() counts those whose process is
+// alive (removing stale ones). A Slurm node's array tasks, or GNU parallel's, see each other this way.
+class HostActivity {
+ public:
+  HostActivity();
+  ~HostActivity();
+  HostActivity(const HostActivity&) = delete;
+  HostActivity& operator=(const HostActivity&) = delete;
+  int Count() const;
+  const std::string& host() const { return host_; }
+
+ private:
+  std::string dir_, own_file_, host_;
+};
+
+// One finished job as records.jsonl holds it.
+struct JobLine {
+  std::size_t job = 0;
+  std::string id;
+  std::string host;
+  int concurrent_jobs = 0;
+  bool skipped = false;  // a sweep job of a backend past its --backend-budget: no record
+  bool has_record = false;
+  ReplayRecord record;
+  bool has_stepper = false;
+  StepperStudy stepper;
+};
+nlohmann::json JobLineToJson(const JobLine& line);
+
+// Appends one line per finished job to a records.jsonl and flushes it (fsync is not needed: a killed process's
+// written lines are in the page cache).
+class JobLineWriter {
+ public:
+  explicit JobLineWriter(const std::string& path);  // opened for appending; InvalidInputError if it cannot
+  ~JobLineWriter();
+  JobLineWriter(const JobLineWriter&) = delete;
+  JobLineWriter& operator=(const JobLineWriter&) = delete;
+  void Write(const JobLine& line);
+
+ private:
+  std::string path_;
+  std::FILE* file_ = nullptr;
+};
+
+// Reads a records.jsonl: every complete line; a last line without its newline (a process killed while writing it)
+// is dropped, and with truncate_partial the file is cut back to the last complete line so appending continues it.
+// A malformed complete line is an InvalidInputError naming the file and line. A missing file is no lines.
+std::vector<JobLine> ReadJobLines(const std::string& path, bool truncate_partial);
+
+// What a run is, for comparing runs and shards: manifest.json without the shard and the machine.
+struct RunManifest {
+  std::string command;
+  nlohmann::json environment;     // BenchEnvironment of the process that started the folder
+  nlohmann::json options;         // the options that change what is measured (BenchRunOptions)
+  std::vector<SuiteResults> suites;  // suite, description, problems, checksum; no records
+  std::vector<BenchJob> jobs;     // the whole run's job list
+  int shard = 0, shards = 1;      // this folder's share (0-based)
+  std::vector<int> job_shard;     // AssignShards(jobs, shards)
+};
+nlohmann::json RunManifestToJson(const RunManifest& manifest);
+RunManifest RunManifestFromJson(const nlohmann::json& document, const std::string& name_for_errors);
+void WriteRunManifest(const RunManifest& manifest, const std::string& dir);  // dir/manifest.json
+RunManifest ReadRunManifest(const std::string& dir);  // InvalidInputError naming the file
+
+// The first difference that forbids putting the two runs' results together (other build, options, suites or their
+// checksums, job list), as one line "<what>: '<a>' vs '<b>'", or empty when they may be merged.
+std::string ManifestMismatch(const RunManifest& a, const RunManifest& b);
+
+// The results of the finished jobs in lines, in the job list's order (what a single run of the same jobs writes):
+// suites as the manifest lists them, records of cold and generic jobs, sweep records, the stepper study when its
+// job finished. Lines for jobs not in the list are ignored.
+BenchResults AssembleResults(const RunManifest& manifest, const std::map<std::size_t, JobLine>& lines);
+
+struct MergeReport {
+  std::vector<std::string> missing;     // ids of jobs no folder finished
+  std::vector<std::string> duplicated;  // ids finished in more than one folder (or twice): the first is kept
+  std::vector<std::string> hosts;       // hosts the records came from
+  BenchResults results;
+  nlohmann::json environment;           // the first folder's, with "hosts"
+};
+// Reads dir/manifest.json and dir/records.jsonl of every folder and puts them together. InvalidInputError with one
+// line ("merge: <dir>: <what differs>") when two folders come from different builds, options, suites or job lists.
+MergeReport MergeRunFolders(const std::vector<std::string>& dirs);
+
+}  // namespace smcbench
