@@ -109,6 +109,8 @@ struct Case {
   std::vector<std::string> keywords;  // all in the first line of the message
 };
 
+// Every bad input and the error it must get, as one table (docs/bad-input.md is written from it): a long function
+// on purpose, since splitting a table would only scatter its rows.
 std::vector<Case> AllCases() {
   return {
       // Files.

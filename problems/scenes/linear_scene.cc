@@ -444,7 +444,7 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
   // The numerical settings.
   const json& sim = r.Require(doc, "", "simulation");
   r.RequireObject(sim, "simulation");
-  r.CheckKeys(sim, "simulation", {"method", "h", "T", "theta", "gamma", "x0", "solver"});
+  r.CheckKeys(sim, "simulation", {"method", "h", "T", "theta", "gamma", "x0", "solver", "plant_substeps"});
   SimulationSettings& d = spec->defaults;
   const std::string method = r.String(r.Require(sim, "simulation", "method"), "simulation.method");
   const auto parsed = MethodFromString(method);
@@ -468,6 +468,15 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
   }
   d.x0 = Eigen::Map<const Vector>(x0.data(), n);
   if (const json* solver = r.Optional(sim, "solver")) d.solver = r.String(*solver, "simulation.solver");
+  if (const json* substeps = r.Optional(sim, "plant_substeps")) {
+    // The plant between a ZOH controller's samples (problems/stepper/sampled_plant.h): a whole number of points.
+    const double value = r.Number(*substeps, "simulation.plant_substeps");
+    if (!(value >= 1.0 && value <= 1e6) || value != std::floor(value)) {
+      r.Fail("simulation.plant_substeps", "must be an integer in [1, 1000000], got " + NumberText(value));
+    }
+    if (spec->type != "zoh") r.Fail("simulation.plant_substeps", "needs a system of type 'zoh' (a ZOH-sampled plant)");
+    d.plant_substeps = static_cast<int>(value);
+  }
   d.parameters = parameters;
   try {
     NumSteps(d.T, d.h);

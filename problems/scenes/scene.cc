@@ -33,6 +33,7 @@ void SimulationSettings::Validate(int n) const {
   if (newton_max_iterations < 1) {
     Fail("newton iteration limit must be >= 1, got " + std::to_string(newton_max_iterations));
   }
+  if (plant_substeps < 1) Fail("plant_substeps must be an integer >= 1, got " + std::to_string(plant_substeps));
   NumSteps(T, h);  // rejects horizons of 2^40 steps or more
 }
 

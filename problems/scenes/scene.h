@@ -37,9 +37,14 @@ struct SimulationSettings {
   NonlinearAlgorithm algorithm = NonlinearAlgorithm::kNewtonMlcp;
   double newton_tolerance = 1e-10;
   int newton_max_iterations = 50;
+  // ZOH methods only: the plant between samples (problems/stepper/sampled_plant.h). The outputs that show the
+  // trajectory (`simulate --out`, `--plot`) get the exact plant state at s − 1 points between every two samples;
+  // the run and its metrics stay on the controller's samples. 1 (the default): the samples alone.
+  int plant_substeps = 1;
 
   // Throws InvalidInputError naming the field: h ≤ 0 or non-finite, T < 0 or non-finite, θ or γ outside [0, 1],
-  // x0 not of size n or not finite, invalid stepper options, Newton tolerance not in (0, ∞) or budget < 1.
+  // x0 not of size n or not finite, invalid stepper options, Newton tolerance not in (0, ∞) or budget < 1,
+  // plant_substeps < 1.
   void Validate(int n) const;
 };
 

@@ -605,6 +605,31 @@ TEST(SceneFormat, DisturbedSmcSceneReadsItsControllerAndDisturbance) {
   EXPECT_FALSE(galias_yu->Run(galias_yu->defaults(), &reference).has_input);
 }
 
+// Issue 15 item 4: simulation.plant_substeps, a whole number ≥ 1 on ZOH plants only.
+TEST_F(MalformedScene, PlantSubstepsIsAWholeNumberOnZohPlants) {
+  auto doc = nlohmann::json::parse(R"({
+    "name": "z", "description": "zoh",
+    "system": {"type": "zoh", "F": [[0, 1], [2, -2]], "G": [[0], [1]], "C": [[1, 1]]},
+    "simulation": {"method": "zoh", "h": 0.05, "T": 1, "x0": [0.5, 0.5], "plant_substeps": 8}
+  })");
+  EXPECT_EQ(LinearScene::FromText(doc.dump(), "z.json")->defaults().plant_substeps, 8);
+  EXPECT_EQ(LoadScene("zoh-siso")->defaults().plant_substeps, 1) << "absent: the samples alone";
+  for (const auto& [value, message] : std::vector<std::pair<nlohmann::json, const char*>>{
+           {0, "simulation.plant_substeps: must be an integer in [1, 1000000], got 0"},
+           {-2, "got -2"},
+           {1.5, "got 1.5"},
+           {2e6, "must be an integer in [1, 1000000]"},
+           {"4", "simulation.plant_substeps: expected a number"}}) {
+    doc["simulation"]["plant_substeps"] = value;
+    ExpectFileError(doc, {message});
+  }
+  doc = nlohmann::json::parse(R"({
+    "name": "s", "description": "sign", "system": {"type": "sign", "E": [[0]], "B": [[1]], "C": [[1]]},
+    "simulation": {"method": "implicit", "h": 0.05, "T": 1, "x0": [0.5], "plant_substeps": 2}
+  })");
+  ExpectFileError(doc, {"simulation.plant_substeps: needs a system of type 'zoh'"});
+}
+
 TEST_F(MalformedScene, ControllerAndDisturbanceDefectsNameTheField) {
   const auto zoh = [] {
     return nlohmann::json::parse(R"({

@@ -58,18 +58,21 @@ void OneStepData::Validate() const {
     stepper_detail::CheckFinite(kOwner, "input_x", input_x);
     stepper_detail::CheckFinite(kOwner, "input_s", input_s);
   }
-  if (has_disturbance()) {
-    const Eigen::Index J = disturbance_omega.size();
-    stepper_detail::CheckSize(kOwner, "disturbance_constant", disturbance_constant, n());
-    stepper_detail::CheckShape(kOwner, "disturbance_cos", disturbance_cos, n(), J);
-    stepper_detail::CheckShape(kOwner, "disturbance_sin", disturbance_sin, n(), J);
-    stepper_detail::CheckSize(kOwner, "disturbance_phase", disturbance_phase, J);
-    stepper_detail::CheckFinite(kOwner, "disturbance_cos", disturbance_cos);
-    stepper_detail::CheckFinite(kOwner, "disturbance_sin", disturbance_sin);
-    ValidateFinite(kOwner, "disturbance_constant", disturbance_constant);
-    ValidateFinite(kOwner, "disturbance_omega", disturbance_omega);
-    ValidateFinite(kOwner, "disturbance_phase", disturbance_phase);
-  }
+  if (has_disturbance()) disturbance.Validate(kOwner, n());
+}
+
+void DisturbanceResponse::Validate(const char* owner, int n) const {
+  if (!present()) return;
+  const Eigen::Index J = omega.size();
+  stepper_detail::CheckSize(owner, "disturbance.constant", constant, n);
+  stepper_detail::CheckShape(owner, "disturbance.cos_part", cos_part, n, J);
+  stepper_detail::CheckShape(owner, "disturbance.sin_part", sin_part, n, J);
+  stepper_detail::CheckSize(owner, "disturbance.phase", phase, J);
+  stepper_detail::CheckFinite(owner, "disturbance.cos_part", cos_part);
+  stepper_detail::CheckFinite(owner, "disturbance.sin_part", sin_part);
+  ValidateFinite(owner, "disturbance.constant", constant);
+  ValidateFinite(owner, "disturbance.omega", omega);
+  ValidateFinite(owner, "disturbance.phase", phase);
 }
 
 namespace stepper_detail {
@@ -99,9 +102,6 @@ OneStepData DiscretizeThetaUnchecked(const LinearSignSystem& system, double h, d
   return d;
 }
 
-namespace {
-
-// [e^{Fh}, ∫₀ʰ e^{Fτ}dτ K] from ONE exponential of h [[F, K], [0, 0]] (Van Loan 1978).
 std::pair<DenseMatrix, DenseMatrix> ExpAndIntegral(const DenseMatrix& F, const DenseMatrix& K, double h) {
   const auto n = F.rows(), m = K.cols();
   DenseMatrix block = DenseMatrix::Zero(n + m, n + m);
@@ -111,21 +111,22 @@ std::pair<DenseMatrix, DenseMatrix> ExpAndIntegral(const DenseMatrix& F, const D
   return {expo.topLeftCorner(n, n), expo.topRightCorner(n, m)};
 }
 
-// The disturbance terms of OneStepData (discretization.h): per sinusoid j, the forced response over one step to
-// v cos(ωτ) and v sin(ωτ) (v = W a_j) from ONE exponential of h [[F, v, 0], [0, 0, −ω], [0, ω, 0]] (Van Loan
-// again, with the harmonic oscillator generating (cos ωτ, sin ωτ) from (1, 0) and (−sin ωτ, cos ωτ) from (0, 1)).
-void DiscretizeDisturbance(const DenseMatrix& F, const Disturbance& d, double h, OneStepData* out) {
+// Per sinusoid j, the forced response over [0, h) to v cos(ωτ) and v sin(ωτ) (v = W a_j) comes from ONE exponential
+// of h [[F, v, 0], [0, 0, −ω], [0, ω, 0]] (Van Loan again, with the harmonic oscillator generating (cos ωτ, sin ωτ)
+// from (1, 0) and (−sin ωτ, cos ωτ) from (0, 1)).
+DisturbanceResponse DiscretizeDisturbance(const DenseMatrix& F, const Disturbance& d, double h) {
+  DisturbanceResponse response;
   const auto n = F.rows();
-  out->disturbance_constant = Vector::Zero(n);
+  response.constant = Vector::Zero(n);
   if (d.constant.size()) {
     const DenseMatrix v = d.W * d.constant;
-    out->disturbance_constant = ExpAndIntegral(F, v, h).second.col(0);
+    response.constant = ExpAndIntegral(F, v, h).second.col(0);
   }
   const auto J = static_cast<Eigen::Index>(d.sinusoids.size());
-  out->disturbance_cos = DenseMatrix::Zero(n, J);
-  out->disturbance_sin = DenseMatrix::Zero(n, J);
-  out->disturbance_omega = Vector::Zero(J);
-  out->disturbance_phase = Vector::Zero(J);
+  response.cos_part = DenseMatrix::Zero(n, J);
+  response.sin_part = DenseMatrix::Zero(n, J);
+  response.omega = Vector::Zero(J);
+  response.phase = Vector::Zero(J);
   for (Eigen::Index j = 0; j < J; ++j) {
     const DisturbanceSinusoid& term = d.sinusoids[static_cast<std::size_t>(j)];
     DenseMatrix block = DenseMatrix::Zero(n + 2, n + 2);
@@ -134,14 +135,13 @@ void DiscretizeDisturbance(const DenseMatrix& F, const Disturbance& d, double h,
     block(n, n + 1) = -h * term.omega;
     block(n + 1, n) = h * term.omega;
     const DenseMatrix expo = block.exp();
-    out->disturbance_cos.col(j) = expo.block(0, n, n, 1);
-    out->disturbance_sin.col(j) = -expo.block(0, n + 1, n, 1);
-    out->disturbance_omega[j] = term.omega;
-    out->disturbance_phase[j] = term.phase;
+    response.cos_part.col(j) = expo.block(0, n, n, 1);
+    response.sin_part.col(j) = -expo.block(0, n + 1, n, 1);
+    response.omega[j] = term.omega;
+    response.phase[j] = term.phase;
   }
+  return response;
 }
-
-}  // namespace
 
 OneStepData DiscretizeZohUnchecked(const ZohSmcSystem& system, double h, SignTreatment sign) {
   const int n = system.n();
@@ -177,7 +177,7 @@ OneStepData DiscretizeZohUnchecked(const ZohSmcSystem& system, double h, SignTre
     d.input_x = -L;
     d.input_s = -system.alpha * DenseMatrix::Identity(m, m);
   }
-  if (!system.disturbance.empty()) DiscretizeDisturbance(system.F, system.disturbance, h, &d);
+  if (!system.disturbance.empty()) d.disturbance = DiscretizeDisturbance(system.F, system.disturbance, h);
   return d;
 }
 
@@ -232,8 +232,8 @@ OneStepData DiscretizeZoh(const ZohSmcSystem& system, double h, SignTreatment si
   }
   if (!system.disturbance.empty()) d.description += ", disturbed";
   if (!d.input_x.allFinite() || !d.input_s.allFinite() ||
-      (d.has_disturbance() && (!d.disturbance_cos.allFinite() || !d.disturbance_sin.allFinite() ||
-                               !d.disturbance_constant.allFinite()))) {
+      (d.has_disturbance() && (!d.disturbance.cos_part.allFinite() || !d.disturbance.sin_part.allFinite() ||
+                               !d.disturbance.constant.allFinite()))) {
     Fail(kOwner, "the equivalent control or the disturbance's discretization is not finite at h = " + NumberText(h));
   }
   d.Validate();

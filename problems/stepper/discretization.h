@@ -32,6 +32,37 @@ enum class Method { kImplicit, kExplicit, kZoh, kZohExplicit };
 std::string_view ToString(Method method);
 std::optional<Method> MethodFromString(std::string_view name);
 
+// The exact forced response of a plant disturbance W d(t) (linear_system.h) over [t_k, t_k + τ) from x = 0, for one
+// fixed τ (the step h, or a point between samples: sampled_plant.h):
+//   w = constant + Σ_j sin(ω_j t_k + φ_j) cos_part.col(j) + cos(ω_j t_k + φ_j) sin_part.col(j),
+// with cos_part.col(j) = ∫₀^τ e^{F(τ−σ)} W a_j cos(ω_j σ) dσ and sin_part.col(j) the same with sin
+// (sin(ω(t_k + σ) + φ) = sin(ωt_k + φ) cos ωσ + cos(ωt_k + φ) sin ωσ), and constant = Ψ(τ) W c.
+struct DisturbanceResponse {
+  Vector constant;       // n; empty: no disturbance
+  DenseMatrix cos_part;  // n×J
+  DenseMatrix sin_part;  // n×J
+  Vector omega;          // J
+  Vector phase;          // J
+
+  bool present() const { return constant.size() > 0; }
+  // Terms summed per state component (for rounding bounds): the constant and two per sinusoid.
+  int terms() const { return present() ? 2 * static_cast<int>(omega.size()) + 1 : 0; }
+  // w += the response at t_k (w of size n), allocation-free; nothing when there is no disturbance.
+  template <typename W>
+  void Add(double t_k, W& w) const {
+    if (!present()) return;
+    const Eigen::Index n = constant.size();
+    for (Eigen::Index i = 0; i < n; ++i) w[i] += constant[i];
+    for (Eigen::Index j = 0; j < omega.size(); ++j) {
+      const double angle = omega[j] * t_k + phase[j];
+      const double sn = std::sin(angle), cs = std::cos(angle);
+      for (Eigen::Index i = 0; i < n; ++i) w[i] += sn * cos_part(i, j) + cs * sin_part(i, j);
+    }
+  }
+  // Sizes (n, J) and finiteness; InvalidInputError naming owner and the field.
+  void Validate(const char* owner, int n) const;
+};
+
 // The data of one step, `eq:TDS1`. Built once per (system, h, θ, method); the time loop only reads it.
 //   p_k = p + P (θ g(t_{k+1}) + (1 − θ) g(t_k))   when a time-dependent forcing is present (θ-weighted, as
 //   Siconos' Euler–Moreau integrator does); otherwise p_k = p.
@@ -54,33 +85,19 @@ struct OneStepData {
   DenseMatrix input_x;  // m×n
   DenseMatrix input_s;  // m×m
 
-  // A disturbance the controller does not know (ZOH plants): it enters x_{k+1}, never q. Exact for the piecewise
-  // definition of d(t) (linear_system.h):
-  //   w_k = disturbance_constant + Σ_j sin(ω_j t_k + φ_j) disturbance_cos.col(j) + cos(ω_j t_k + φ_j) disturbance_sin.col(j),
-  // with disturbance_cos.col(j) = ∫₀ʰ e^{F(h−τ)} W a_j cos(ω_j τ) dτ and disturbance_sin.col(j) the same with sin
-  // (sin(ω(t_k + τ) + φ) = sin(ωt_k + φ) cos ωτ + cos(ωt_k + φ) sin ωτ), and disturbance_constant = Ψ W c.
-  Vector disturbance_constant;    // n; empty: none
-  DenseMatrix disturbance_cos;    // n×J
-  DenseMatrix disturbance_sin;    // n×J
-  Vector disturbance_omega;       // J
-  Vector disturbance_phase;       // J
+  // A disturbance the controller does not know (ZOH plants): it enters x_{k+1}, never q (DisturbanceResponse over
+  // one step h; empty: none).
+  DisturbanceResponse disturbance;
 
   int n() const { return static_cast<int>(R.rows()); }
   int m() const { return static_cast<int>(C.rows()); }
   bool has_forcing() const { return static_cast<bool>(forcing); }
   bool has_input() const { return input_s.rows() > 0; }
-  bool has_disturbance() const { return disturbance_constant.size() > 0; }
-  // w_k at t_k into w (size n), allocation-free; 0 without a disturbance.
+  bool has_disturbance() const { return disturbance.present(); }
+  // w_k at t_k added into w (size n), allocation-free; nothing without a disturbance.
   template <typename W>
   void AddDisturbance(double t_k, W& w) const {
-    if (!has_disturbance()) return;
-    const Eigen::Index n = disturbance_constant.size();
-    for (Eigen::Index i = 0; i < n; ++i) w[i] += disturbance_constant[i];
-    for (Eigen::Index j = 0; j < disturbance_omega.size(); ++j) {
-      const double angle = disturbance_omega[j] * t_k + disturbance_phase[j];
-      const double sn = std::sin(angle), cs = std::cos(angle);
-      for (Eigen::Index i = 0; i < n; ++i) w[i] += sn * disturbance_cos(i, j) + cs * disturbance_sin(i, j);
-    }
+    disturbance.Add(t_k, w);
   }
   // M = C S of `eq:TDS3` (allocates; the stepper calls it once).
   DenseMatrix OneStepMatrix() const { return C * S; }

@@ -47,54 +47,16 @@ void CheckRunArguments(const char* owner, int n, SignTreatment sign, const Vecto
   if (!options.IsValid(&why)) Fail(owner, "options: " + why);
 }
 
-// Sizes *out for a run and resets its counters. Allocates only when the sizes grow.
+// Sizes *out for a run and resets its counters (Trajectory::Reset). Allocates only when the sizes grow.
 void PrepareTrajectory(const OneStepData& d, std::int64_t num_steps, const StepperOptions& options,
                        Trajectory* out) {
-  out->n = d.n();
-  out->m = d.m();
-  out->h = d.h;
-  out->t0 = options.t0;
-  out->description = d.description;
-  out->num_steps = num_steps;
-  out->steps_taken = 0;
-  out->recorded = options.record;
-  const Eigen::Index columns = options.record ? static_cast<Eigen::Index>(num_steps + 1) : 0;
-  out->t.resize(columns);
-  out->x.resize(d.n(), columns);
-  out->s.resize(d.m(), columns);
-  out->y.resize(d.m(), columns);
-  out->iterations.resize(columns);
-  out->residual.resize(columns);
-  out->status.resize(columns);
-  out->has_input = d.has_input();
-  out->u.resize(d.has_input() ? d.m() : 0, columns);
-  out->u.setConstant(std::numeric_limits<double>::quiet_NaN());  // the last row's stays NaN (no step applied it)
-  out->max_residual = 0.0;
-  out->total_iterations = 0;
-  out->max_iterations = 0;
-  out->failed_steps = 0;
-  out->first_failed_step = -1;
-  out->first_failure_status = SolveStatus::kNotRun;
-  out->first_failure_residual = 0.0;
-  out->first_failure_message.clear();
-  out->stopped_early = false;
+  out->Reset(d.n(), d.m(), d.h, options.t0, d.description, num_steps, options.record, d.has_input());
 }
 
 // Trims the history after an early stop and stores the final state.
 template <typename X, typename S, typename Y>
 void FinishTrajectory(std::int64_t steps_taken, const X& x, const S& s, const Y& y, Trajectory* out) {
-  out->steps_taken = steps_taken;
-  if (out->recorded && steps_taken < out->num_steps) {
-    const Eigen::Index columns = static_cast<Eigen::Index>(steps_taken + 1);
-    out->t.resize(columns);
-    out->x.conservativeResize(Eigen::NoChange, columns);
-    out->s.conservativeResize(Eigen::NoChange, columns);
-    out->y.conservativeResize(Eigen::NoChange, columns);
-    out->iterations.resize(columns);
-    out->residual.resize(columns);
-    out->status.resize(columns);
-    if (out->has_input) out->u.conservativeResize(Eigen::NoChange, columns);
-  }
+  out->Truncate(steps_taken);
   out->x_final = x;
   out->s_final = s;
   out->y_final = y;
@@ -211,8 +173,7 @@ class KernelImpl final : public LinearStepper::Kernel {
   // K·u of StepperOptions::zero_rounding_residue: K = n + m + 1 terms per component (+ n with forcing, + 2J + 1
   // with a disturbance of J sinusoids), u = ε/2.
   static double ResidueFactor(int n, int m, bool forced, const OneStepData& d) {
-    const int disturbance_terms = d.has_disturbance() ? 2 * static_cast<int>(d.disturbance_omega.size()) + 1 : 0;
-    return static_cast<double>(n + m + 1 + (forced ? n : 0) + disturbance_terms) * 0.5 *
+    return static_cast<double>(n + m + 1 + (forced ? n : 0) + d.disturbance.terms()) * 0.5 *
            std::numeric_limits<double>::epsilon();
   }
 
@@ -535,8 +496,7 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
       // The same rule as the prefactored kernels (StepperOptions::zero_rounding_residue); p holds P ḡ here.
       const Vector a = d.R * x + p;
       const Vector b = d.S * s;
-      const int disturbance_terms = d.has_disturbance() ? 2 * static_cast<int>(d.disturbance_omega.size()) + 1 : 0;
-      const double factor = static_cast<double>(n + m + 1 + (d.has_forcing() ? n : 0) + disturbance_terms) * 0.5 *
+      const double factor = static_cast<double>(n + m + 1 + (d.has_forcing() ? n : 0) + d.disturbance.terms()) * 0.5 *
                             std::numeric_limits<double>::epsilon();
       for (int i = 0; i < n; ++i) {
         const double v = a[i] - b[i];

@@ -645,13 +645,20 @@ class FailingSolver final : public Solver {
   stepper_test::ReferenceSolver reference_;
 };
 
-TEST(LinearStepper, StopsOnTheFirstFailedStepByDefault) {
-  FailingSolver solver({3});
+// 10 steps of S1 with a backend that fails where told, under a failure policy.
+Trajectory RunWithFailures(FailingSolver* solver, FailurePolicy policy) {
   LinearStepper stepper(DiscretizeTheta(stepper_test::SignScene(), 0.2, 1.0, SignTreatment::kImplicit));
   StepperOptions options;
+  options.on_failure = policy;
   options.solver.polish = false;
   options.session.reuse_active_set = false;  // the failing backend answers every step, none is reused
-  const Trajectory tr = stepper.Run(Vec({1.01}), 10, &solver, options);
+  return stepper.Run(Vec({1.01}), 10, solver, options);
+}
+
+TEST(LinearStepper, StopsOnTheFirstFailedStepByDefault) {
+  FailingSolver solver({3});
+  ASSERT_EQ(StepperOptions{}.on_failure, FailurePolicy::kStop);
+  const Trajectory tr = RunWithFailures(&solver, FailurePolicy::kStop);
   EXPECT_FALSE(tr.ok());
   EXPECT_TRUE(tr.stopped_early);
   EXPECT_EQ(tr.steps_taken, 3);
@@ -668,12 +675,7 @@ TEST(LinearStepper, StopsOnTheFirstFailedStepByDefault) {
 
 TEST(LinearStepper, ContinuesPastFailuresWhenAsked) {
   FailingSolver solver({3, 5});
-  LinearStepper stepper(DiscretizeTheta(stepper_test::SignScene(), 0.2, 1.0, SignTreatment::kImplicit));
-  StepperOptions options;
-  options.on_failure = FailurePolicy::kContinue;
-  options.solver.polish = false;
-  options.session.reuse_active_set = false;  // the failing backend answers every step, none is reused
-  const Trajectory tr = stepper.Run(Vec({1.01}), 10, &solver, options);
+  const Trajectory tr = RunWithFailures(&solver, FailurePolicy::kContinue);
   EXPECT_FALSE(tr.ok());
   EXPECT_FALSE(tr.stopped_early);
   EXPECT_EQ(tr.steps_taken, 10);

@@ -197,26 +197,19 @@ SolutionErrors ComputeErrors(const Trajectory& trajectory, const ExactSolution& 
   RequireRecorded(trajectory, "ComputeErrors");
   const Trajectory& tr = trajectory;
   const Eigen::Index last = static_cast<Eigen::Index>(tr.steps_taken);
+  // Norms over rows first..last of the largest error of one series (x from row 0; s from row 1: s_0 is no value).
+  const auto series_errors = [&](const auto& reference_at, const DenseMatrix& values, Eigen::Index first) {
+    Vector ref(values.rows());
+    std::vector<double> e;
+    for (Eigen::Index k = first; k <= last; ++k) {
+      reference_at(tr.t[k], ref);
+      e.push_back((values.col(k) - ref).cwiseAbs().maxCoeff());
+    }
+    return Norms(e, tr.h);
+  };
   SolutionErrors out;
-  std::vector<double> e;
-  if (exact.x) {
-    Vector ref(tr.n);
-    e.clear();
-    for (Eigen::Index k = 0; k <= last; ++k) {
-      exact.x(tr.t[k], ref);
-      e.push_back((tr.x.col(k) - ref).cwiseAbs().maxCoeff());
-    }
-    out.x = Norms(e, tr.h);
-  }
-  if (exact.s) {
-    Vector ref(tr.m);
-    e.clear();
-    for (Eigen::Index k = 1; k <= last; ++k) {
-      exact.s(tr.t[k], ref);
-      e.push_back((tr.s.col(k) - ref).cwiseAbs().maxCoeff());
-    }
-    out.s = Norms(e, tr.h);
-  }
+  if (exact.x) out.x = series_errors(exact.x, tr.x, 0);
+  if (exact.s) out.s = series_errors(exact.s, tr.s, 1);
   return out;
 }
 

@@ -216,6 +216,12 @@ struct NonlinearStepper::Workspace {
   void StepMcp(std::int64_t k, Solver* solver, const NonlinearStepperOptions& options, Step* step);
   void StepNewton(std::int64_t k, Solver* solver, bool implicit, const NonlinearStepperOptions& options,
                   Step* step);
+  // Run's arguments, and the callables at x0 (a NaN there is a modelling error, better reported now than as a
+  // failed step 1): InvalidInputError naming the field.
+  void CheckRunInputs(const Vector& x0, std::int64_t num_steps, const Solver* solver,
+                      const NonlinearStepperOptions& options);
+  // Bookkeeping of a failed step k (off the hot path); returns true if the run stops there.
+  bool RecordFailure(std::int64_t k, const Step& step, bool finite, FailurePolicy policy, Trajectory* out);
 
   OneStepMCP mcp;
   Eigen::PartialPivLU<DenseMatrix> lu;
@@ -390,6 +396,60 @@ void NonlinearStepper::Workspace::StepNewton(std::int64_t k, Solver* solver, boo
   finish(SolveStatus::kIterationLimit);
 }
 
+void NonlinearStepper::Workspace::CheckRunInputs(const Vector& x0, std::int64_t num_steps, const Solver* solver,
+                                                 const NonlinearStepperOptions& options) {
+  const NonlinearSignSystem& sys = mcp.system();
+  stepper_detail::CheckSize(kRunOwner, "x0", x0, sys.n);
+  ValidateFinite(kRunOwner, "x0", x0);
+  if (num_steps < 0) Fail(kRunOwner, "num_steps must be >= 0, got " + std::to_string(num_steps));
+  if (mcp.scheme().sign == SignTreatment::kImplicit && solver == nullptr) {
+    Fail(kRunOwner, "solver is null but the implicit scheme solves a one-step problem at every step");
+  }
+  std::string why;
+  if (!options.IsValid(&why)) Fail(kRunOwner, "options: " + why);
+  const double t0 = options.stepper.t0;
+  // The callables at x0.
+  if (sys.f) {
+    sys.f(t0, x0, probe_f);
+    CheckFiniteOutput("f(t0, x0)", probe_f);
+    sys.f_jacobian(t0, x0, probe_J);
+    CheckFiniteOutput("f_jacobian(t0, x0)", probe_J);
+  }
+  sys.g(x0, probe_G);
+  CheckFiniteOutput("g(x0)", probe_G);
+  if (sys.g_jacobian_s) {
+    sys.g_jacobian_s(x0, ones, probe_J);
+    CheckFiniteOutput("g_jacobian_s(x0, 1)", probe_J);
+  }
+  sys.h(x0, probe_y);
+  CheckFiniteOutput("h(x0)", probe_y);
+  sys.h_jacobian(x0, probe_H);
+  CheckFiniteOutput("h_jacobian(x0)", probe_H);
+}
+
+bool NonlinearStepper::Workspace::RecordFailure(std::int64_t k, const Step& step, bool finite, FailurePolicy policy,
+                                                Trajectory* out) {
+  SolveStatus status = step.status;
+  if (!finite) status = x.hasNaN() || s.hasNaN() ? SolveStatus::kNumericalFailure : SolveStatus::kDiverged;
+  if (out->recorded) out->status[static_cast<Eigen::Index>(k)] = status;
+  if (stream.active()) stream.SetLastStatus(status);
+  ++out->failed_steps;
+  if (out->first_failed_step < 0) {
+    out->first_failed_step = k;
+    out->first_failure_status = status;
+    out->first_failure_residual = step.residual;
+    out->first_failure_message =
+        finite ? message
+               : "step " + std::to_string(k) + ": state x_" + std::to_string(k) + " is not finite" +
+                     (step.status != SolveStatus::kSolved ? "; " + message : std::string());
+  }
+  if (!finite || policy == FailurePolicy::kStop) {
+    out->stopped_early = true;
+    return true;
+  }
+  return false;
+}
+
 NonlinearStepper::NonlinearStepper(NonlinearSignSystem system, const NonlinearScheme& scheme)
     : ws_(std::make_unique<Workspace>(std::move(system), scheme)) {}
 
@@ -411,58 +471,15 @@ void NonlinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* sol
   const bool implicit = scheme.sign == SignTreatment::kImplicit;
   const bool use_mcp = implicit && options.algorithm == NonlinearAlgorithm::kMcp;
 
-  // ---- arguments
-  stepper_detail::CheckSize(kRunOwner, "x0", x0, n);
-  ValidateFinite(kRunOwner, "x0", x0);
-  if (num_steps < 0) Fail(kRunOwner, "num_steps must be >= 0, got " + std::to_string(num_steps));
-  if (implicit && solver == nullptr) {
-    Fail(kRunOwner, "solver is null but the implicit scheme solves a one-step problem at every step");
-  }
-  std::string why;
-  if (!options.IsValid(&why)) Fail(kRunOwner, "options: " + why);
+  w.CheckRunInputs(x0, num_steps, solver, options);
   const double t0 = options.stepper.t0;
-  // The callables at x0: a NaN here is a modelling error, better reported now than as a failed step 1.
-  if (sys.f) {
-    sys.f(t0, x0, w.probe_f);
-    CheckFiniteOutput("f(t0, x0)", w.probe_f);
-    sys.f_jacobian(t0, x0, w.probe_J);
-    CheckFiniteOutput("f_jacobian(t0, x0)", w.probe_J);
-  }
-  sys.g(x0, w.probe_G);
-  CheckFiniteOutput("g(x0)", w.probe_G);
-  if (sys.g_jacobian_s) {
-    sys.g_jacobian_s(x0, w.ones, w.probe_J);
-    CheckFiniteOutput("g_jacobian_s(x0, 1)", w.probe_J);
-  }
-  sys.h(x0, w.probe_y);
-  CheckFiniteOutput("h(x0)", w.probe_y);
-  sys.h_jacobian(x0, w.probe_H);
-  CheckFiniteOutput("h_jacobian(x0)", w.probe_H);
 
   // ---- trajectory and per-run state
   const bool record = options.stepper.record;
-  out->n = n;
-  out->m = m;
-  out->h = scheme.h;
-  out->t0 = t0;
-  out->description = !implicit ? w.description_explicit : (use_mcp ? w.description_mcp : w.description_newton);
-  out->num_steps = num_steps;
-  out->steps_taken = 0;
-  out->recorded = record;
   const Eigen::Index columns = record ? static_cast<Eigen::Index>(num_steps + 1) : 0;
-  out->t.resize(columns);
-  out->x.resize(n, columns);
-  out->s.resize(m, columns);
-  out->y.resize(m, columns);
-  out->iterations.resize(columns);
-  out->residual.resize(columns);
-  out->status.resize(columns);
-  out->failed_steps = 0;
-  out->first_failed_step = -1;
-  out->first_failure_status = SolveStatus::kNotRun;
-  out->first_failure_residual = 0.0;
-  out->first_failure_message.clear();
-  out->stopped_early = false;
+  out->Reset(n, m, scheme.h, t0,
+             !implicit ? w.description_explicit : (use_mcp ? w.description_mcp : w.description_newton), num_steps,
+             record, /*input=*/false);
   NewtonStats& stats = w.stats;
   stats.iterations.assign(columns, 0);
   stats.total_iterations = 0;
@@ -526,44 +543,17 @@ void NonlinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* sol
       stream.Add(k, t_next, w.x, w.s, w.y, step.backend_iterations, step.residual, step.status, n, m);
     }
     const bool finite = w.x.allFinite() && w.s.allFinite();
-    if (!finite || step.status != SolveStatus::kSolved) {
-      // Off the hot path: only failed steps get here.
-      SolveStatus status = step.status;
-      if (!finite) status = w.x.hasNaN() || w.s.hasNaN() ? SolveStatus::kNumericalFailure : SolveStatus::kDiverged;
-      if (record) out->status[static_cast<Eigen::Index>(k)] = status;
-      if (stream.active()) stream.SetLastStatus(status);
-      ++out->failed_steps;
-      if (out->first_failed_step < 0) {
-        out->first_failed_step = k;
-        out->first_failure_status = status;
-        out->first_failure_residual = step.residual;
-        out->first_failure_message =
-            finite ? w.message
-                   : "step " + std::to_string(k) + ": state x_" + std::to_string(k) + " is not finite" +
-                         (step.status != SolveStatus::kSolved ? "; " + w.message : std::string());
-      }
-      if (!finite || options.stepper.on_failure == FailurePolicy::kStop) {
-        out->stopped_early = true;
-        break;
-      }
+    if ((!finite || step.status != SolveStatus::kSolved) &&
+        w.RecordFailure(k, step, finite, options.stepper.on_failure, out)) {
+      break;
     }
   }
   stream.Flush();
   out->max_residual = max_residual;
   out->total_iterations = total_iterations;
   out->max_iterations = max_iterations;
-  out->steps_taken = k;
-  if (record && k < num_steps) {
-    const Eigen::Index c = static_cast<Eigen::Index>(k + 1);
-    out->t.resize(c);
-    out->x.conservativeResize(Eigen::NoChange, c);
-    out->s.conservativeResize(Eigen::NoChange, c);
-    out->y.conservativeResize(Eigen::NoChange, c);
-    out->iterations.resize(c);
-    out->residual.resize(c);
-    out->status.resize(c);
-    stats.iterations.resize(c);
-  }
+  out->Truncate(k);
+  if (record && k < num_steps) stats.iterations.resize(static_cast<std::size_t>(k + 1));
   out->x_final = w.x;
   out->s_final = w.s;
   out->y_final = w.y;

@@ -29,11 +29,14 @@ class CollectingSink final : public TrajectorySink {
     rows.x.conservativeResize(block.n, old + add);
     rows.s.conservativeResize(block.m, old + add);
     rows.y.conservativeResize(block.m, old + add);
+    rows.has_input = block.has_input();
+    rows.u.conservativeResize(block.u.rows(), old + add);
     for (Eigen::Index j = 0; j < add; ++j) {
       rows.t.push_back(block.t[static_cast<std::size_t>(j)]);
       rows.x.col(old + j) = block.x.col(j);
       rows.s.col(old + j) = block.s.col(j);
       rows.y.col(old + j) = block.y.col(j);
+      if (rows.has_input) rows.u.col(old + j) = block.u.col(j);
       rows.iterations.push_back(block.iterations[static_cast<std::size_t>(j)]);
       rows.residual.push_back(block.residual[static_cast<std::size_t>(j)]);
       rows.status.push_back(block.status[static_cast<std::size_t>(j)]);

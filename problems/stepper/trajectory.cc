@@ -2,6 +2,7 @@
 
 #include <charconv>
 #include <fstream>
+#include <limits>
 #include <ostream>
 
 #include "solvers/core/number_text.h"
@@ -50,6 +51,52 @@ void AppendCsvRow(double t, const DenseMatrix& x, const DenseMatrix& s, const De
 constexpr std::size_t kCsvBufferBytes = std::size_t{1} << 16;
 
 }  // namespace
+
+void Trajectory::Reset(int n_states, int m_surfaces, double step, double start_time, const std::string& what,
+                       std::int64_t steps, bool record, bool input) {
+  n = n_states;
+  m = m_surfaces;
+  h = step;
+  t0 = start_time;
+  description = what;
+  num_steps = steps;
+  steps_taken = 0;
+  recorded = record;
+  const Eigen::Index columns = record ? static_cast<Eigen::Index>(steps + 1) : 0;
+  t.resize(static_cast<std::size_t>(columns));
+  x.resize(n, columns);
+  s.resize(m, columns);
+  y.resize(m, columns);
+  iterations.resize(static_cast<std::size_t>(columns));
+  residual.resize(static_cast<std::size_t>(columns));
+  status.resize(static_cast<std::size_t>(columns));
+  has_input = input;
+  u.resize(input ? m : 0, columns);
+  u.setConstant(std::numeric_limits<double>::quiet_NaN());
+  max_residual = 0.0;
+  total_iterations = 0;
+  max_iterations = 0;
+  failed_steps = 0;
+  first_failed_step = -1;
+  first_failure_status = SolveStatus::kNotRun;
+  first_failure_residual = 0.0;
+  first_failure_message.clear();
+  stopped_early = false;
+}
+
+void Trajectory::Truncate(std::int64_t taken) {
+  steps_taken = taken;
+  if (!recorded || taken >= num_steps) return;
+  const Eigen::Index columns = static_cast<Eigen::Index>(taken + 1);
+  t.resize(static_cast<std::size_t>(columns));
+  x.conservativeResize(Eigen::NoChange, columns);
+  s.conservativeResize(Eigen::NoChange, columns);
+  y.conservativeResize(Eigen::NoChange, columns);
+  iterations.resize(static_cast<std::size_t>(columns));
+  residual.resize(static_cast<std::size_t>(columns));
+  status.resize(static_cast<std::size_t>(columns));
+  if (has_input) u.conservativeResize(Eigen::NoChange, columns);
+}
 
 void WriteTrajectoryCsv(const Trajectory& trajectory, std::ostream& out) {
   const Trajectory& tr = trajectory;

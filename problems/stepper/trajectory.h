@@ -56,6 +56,14 @@ struct Trajectory {
   bool stopped_early = false;        // true when the run stopped at first_failed_step
 
   bool ok() const { return failed_steps == 0 && steps_taken == num_steps; }
+  // Prepares for a run of num_steps steps (every stepper's first act): sizes, h, t0, description, the counters and
+  // the failure fields reset; with record, the history sized for num_steps + 1 rows (u too when has_input, all NaN:
+  // the last row's stays NaN), else emptied. Reuses the storage: allocates only when a size grows.
+  void Reset(int n_states, int m_surfaces, double step, double start_time, const std::string& what,
+             std::int64_t steps, bool record, bool input);
+  // After the run: steps_taken = taken, and the history trimmed to taken + 1 rows when the run stopped early.
+  // The caller stores x_final, s_final, y_final and the counters.
+  void Truncate(std::int64_t taken);
   // Writes recorded row k (storage already sized by the stepper). Templated so fixed-size kernels write their
   // fixed-size vectors without a conversion.
   template <typename X, typename S, typename Y>

@@ -79,6 +79,12 @@ int AutoCandidateIndex(std::string_view name) {
   return -1;
 }
 
+void LabelAutoAnswer(AutoCandidate chosen, int fallbacks, SolveResult* result) {
+  result->solver = "auto";
+  result->SetDetail("chosen", static_cast<double>(static_cast<int>(chosen)));
+  result->SetDetail("fallbacks", static_cast<double>(fallbacks));
+}
+
 bool AutoOptions::IsValid(std::string* why) const {
   const int enum_limit = EnumerativeOptions{}.size_limit;
   if (enum_max_choice_rows < 0 || enum_max_choice_rows > enum_limit) {
@@ -96,7 +102,7 @@ bool AutoOptions::IsValid(std::string* why) const {
 
 AutoSolver::AutoSolver() : AutoSolver(AutoOptions{}) {}
 
-AutoSolver::AutoSolver(const AutoOptions& options) : options_(options) {
+AutoSolver::AutoSolver(const AutoOptions& options) : BackendWithOptions(options) {
   candidates_[static_cast<int>(AutoCandidate::kEnum)] = std::make_unique<EnumerativeSolver>();
   candidates_[static_cast<int>(AutoCandidate::kPsor)] = std::make_unique<PsorSolver>();
   candidates_[static_cast<int>(AutoCandidate::kLemke)] = std::make_unique<LemkeSolver>();
@@ -217,16 +223,12 @@ void AutoSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, S
                         result->message + ")");
     }
   }
-  result->solver = info().name;
-  result->SetDetail("chosen", static_cast<double>(static_cast<int>(choice.order[at])));
-  result->SetDetail("fallbacks", static_cast<double>(fallbacks));
+  LabelAutoAnswer(choice.order[at], fallbacks, result);
 }
 
 void AutoSolver::DoSolveMCP(const MCP& problem, const SolverOptions& options, SolveResult* result) {
   candidate(AutoCandidate::kNewton).Solve(problem, UntimedOptions(options), result);
-  result->solver = info().name;
-  result->SetDetail("chosen", static_cast<double>(static_cast<int>(AutoCandidate::kNewton)));
-  result->SetDetail("fallbacks", 0.0);
+  LabelAutoAnswer(AutoCandidate::kNewton, 0, result);
 }
 
 }  // namespace smcbench

@@ -31,6 +31,7 @@
 #include <string>
 #include <string_view>
 
+#include "solvers/core/backend_options.h"
 #include "solvers/core/solver.h"
 
 namespace smcbench {
@@ -49,6 +50,11 @@ inline constexpr int kAutoCandidateCount = 4;
 std::string_view AutoCandidateName(int index);
 // The inverse: the candidate index of a registry name, −1 for a name that is not a candidate.
 int AutoCandidateIndex(std::string_view name);
+
+// Labels an answer as auto's own Solve labels it: solver "auto", detail "chosen" = the candidate that answered,
+// "fallbacks" = how many candidates failed before it. Auto's Solve uses it, and so does a caller whose session or
+// time-stepper called auto's choice directly (DelegateFor) and reports the answer as auto's.
+void LabelAutoAnswer(AutoCandidate chosen, int fallbacks, SolveResult* result);
 
 struct AutoOptions {
   // Dense problems with at most this many rows with a choice of state go to enum (exact; its search grows as
@@ -75,7 +81,7 @@ struct AutoChoice {
   AutoCandidate chosen() const { return order[first]; }
 };
 
-class AutoSolver final : public Solver {
+class AutoSolver final : public BackendWithOptions<AutoOptions> {
  public:
   AutoSolver();
   explicit AutoSolver(const AutoOptions& options);
@@ -84,12 +90,6 @@ class AutoSolver final : public Solver {
   AutoSolver& operator=(const AutoSolver&) = delete;
 
   const SolverInfo& info() const override;
-  const AutoOptions& options() const { return options_; }
-  // Replaces the options; they are validated when Solve runs (invalid → kInvalidOptions).
-  void set_options(const AutoOptions& options) {
-    options_ = options;
-    OptionsChanged();
-  }
 
   // The backend auto would hand this problem to first (owned by this AutoSolver), without solving; nullptr while
   // auto's own options are invalid (Solve then reports them).
@@ -113,7 +113,6 @@ class AutoSolver final : public Solver {
   // candidate's own two clock reads would only add to it).
   const SolverOptions& UntimedOptions(const SolverOptions& options);
 
-  AutoOptions options_;
   std::array<std::unique_ptr<Solver>, kAutoCandidateCount> candidates_;
   // ChoiceFor's cache: the last matrix seen (0: none) and the option generations (auto's, enum's) it was decided
   // under.

@@ -292,6 +292,13 @@ TEST(AutoSolver, ChoiceFollowsTheMatrixAndTheOptions) {
   EXPECT_EQ(solver.ChoiceFor(large.problem).chosen(), AutoCandidate::kLemke);
   ASSERT_TRUE(solver.SetOption("psor_min_speedup", "0", &error)) << error;
   EXPECT_EQ(solver.ChoiceFor(large.problem).chosen(), AutoCandidate::kPsor);
+  // The typed accessors decide the cached choice again just as SetOption does (BackendWithOptions).
+  solver.mutable_options().enum_max_choice_rows = 8;
+  EXPECT_EQ(solver.ChoiceFor(small.problem).chosen(), AutoCandidate::kEnum);
+  AutoOptions no_enum;
+  no_enum.enum_max_choice_rows = 0;
+  solver.set_options(no_enum);
+  EXPECT_NE(solver.ChoiceFor(small.problem).chosen(), AutoCandidate::kEnum);
 }
 
 TEST(AutoSolver, RejectsBadOptionsNamingTheField) {

@@ -120,5 +120,31 @@ TEST(DenseLu, HagerEstimateIsALowerBoundWithinAFactorOfTheExactNorm) {
   }
 }
 
+// The multipliers are quotients, not products with a reciprocal: a 2×2 block gives the bits of elimination by hand
+// (m = a10 / a00, u11 = a11 − m·a01, back substitution by division), which the exact polish, a session's stored
+// active set and the enumerative fast path all rely on to agree bit for bit.
+TEST(DenseLu, TwoByTwoIsEliminationByHandBitForBit) {
+  for (unsigned seed = 0; seed < 200; ++seed) {
+    const DenseMatrix A = RandomMatrix(2, seed);
+    std::vector<double> a = Block(A, 2);
+    int piv[2];
+    ASSERT_TRUE(dense_lu::Factor(a.data(), 2, 2, piv, 0.0));
+    const bool swap = std::abs(A(1, 0)) > std::abs(A(0, 0));
+    const double a00 = swap ? A(1, 0) : A(0, 0), a10 = swap ? A(0, 0) : A(1, 0);
+    const double a01 = swap ? A(1, 1) : A(0, 1), a11 = swap ? A(0, 1) : A(1, 1);
+    const double m = a10 / a00, u11 = a11 - m * a01;
+    EXPECT_EQ(piv[0], swap ? 1 : 0);
+    EXPECT_EQ(a[1], m) << seed;
+    EXPECT_EQ(a[3], u11) << seed;
+    const double b0 = 0.25 + seed, b1 = -1.5;
+    double b[2] = {b0, b1};
+    dense_lu::Solve(a.data(), 2, 2, piv, b);
+    const double r0 = swap ? b1 : b0, r1 = swap ? b0 : b1;
+    const double x1 = (r1 - m * r0) / u11;
+    EXPECT_EQ(b[1], x1) << seed;
+    EXPECT_EQ(b[0], (r0 - a01 * x1) / a00) << seed;
+  }
+}
+
 }  // namespace
 }  // namespace smcbench

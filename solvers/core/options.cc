@@ -1,10 +1,12 @@
 #include "solvers/core/options.h"
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <sstream>
+#include <stdexcept>
 
 namespace smcbench {
 
@@ -65,16 +67,7 @@ bool OptionBinder::Set(std::string_view name, std::string_view value, std::strin
       }
       **i = static_cast<int>(v);
     } else if (auto* c = std::get_if<ChoiceField>(&e.field)) {
-      for (const auto& [choice, v] : c->choices) {
-        if (choice == text) {
-          c->set(c->field, v);
-          return true;
-        }
-      }
-      std::string names;
-      for (const auto& choice : c->choices) names += (names.empty() ? "" : ", ") + choice.first;
-      *error = "option '" + e.name + "' expects one of " + names + ", got '" + text + "'";
-      return false;
+      return c->Set(e.name, text, error);
     } else if (auto* b = std::get_if<bool*>(&e.field)) {
       if (text == "1" || text == "true" || text == "yes" || text == "on") {
         **b = true;
@@ -120,6 +113,54 @@ std::string OptionBinder::ChoiceField::Current() const {
   return "?";
 }
 
+int OptionBinder::ChoiceField::ValueOf(std::string_view option, std::string_view choice) const {
+  for (const auto& [name, v] : choices) {
+    if (name == choice) return v;
+  }
+  throw std::logic_error("option '" + std::string(option) + "': legacy number names '" + std::string(choice) +
+                         "', which is not one of its choices");
+}
+
+bool OptionBinder::ChoiceField::Set(const std::string& option, const std::string& text, std::string* error) const {
+  for (const auto& [name, v] : choices) {
+    if (name == text) {
+      set(field, v);
+      return true;
+    }
+  }
+  // An old number: digits only (no sign, no spaces), below the count of old numbers.
+  const bool digits = !text.empty() && text.size() <= 9 &&
+                      std::all_of(text.begin(), text.end(), [](char ch) { return ch >= '0' && ch <= '9'; });
+  if (digits) {
+    const std::size_t number = std::stoul(text);
+    if (number < legacy_values.size()) {
+      set(field, legacy_values[number]);
+      return true;
+    }
+  }
+  *error = "option '" + option + "' expects one of " + Accepted() + ", got '" + text + "'";
+  return false;
+}
+
+std::string OptionBinder::ChoiceField::Accepted() const {
+  std::string text;
+  for (const auto& choice : choices) text += (text.empty() ? "" : ", ") + choice.first;
+  return legacy_values.empty() ? text : text + ", or an " + LegacyNumbers();
+}
+
+std::string OptionBinder::ChoiceField::LegacyNumbers() const {
+  std::string text = "old number";
+  for (std::size_t i = 0; i < legacy_values.size(); ++i) {
+    for (const auto& [name, v] : choices) {
+      if (v == legacy_values[i]) {
+        text += " " + std::to_string(i) + "=" + name;
+        break;
+      }
+    }
+  }
+  return text;
+}
+
 std::string OptionBinder::Help() const {
   std::ostringstream s;
   for (const Entry& e : entries_) {
@@ -127,6 +168,7 @@ std::string OptionBinder::Help() const {
     if (auto* c = std::get_if<ChoiceField>(&e.field)) {
       s << c->Current() << " (one of";
       for (const auto& choice : c->choices) s << " " << choice.first;
+      if (!c->legacy_values.empty()) s << "; " << c->LegacyNumbers();
       s << ")";
     } else {
       std::visit(

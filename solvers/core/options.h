@@ -45,9 +45,8 @@ struct SolverOptions {
   bool Explain(std::string* why) const;
 };
 
-// One accepted spelling of an enum option: `--set backend.name=NAME` stores value. Several names may map to one
-// value (an old spelling, such as the number an integer-coded option used to take: list those last); the first
-// listed for a value is the one ValueText and Help print as the current value.
+// One accepted spelling of an enum option: `--set backend.name=NAME` stores value. The first name listed for a
+// value is the one ValueText and Help print as the current value.
 struct OptionChoice {
   std::string_view name;
   int value;
@@ -62,12 +61,21 @@ class OptionBinder {
   // A named-value (enum) option: only the listed names are accepted.
   template <typename Enum>
   void Add(std::string_view name, Enum* field, std::initializer_list<OptionChoice> choices, std::string_view help) {
+    Add(name, field, choices, {}, help);
+  }
+  // The same for an option that used to be integer-coded: legacy_numbers lists choice names in the order of their
+  // old numbers (number i means legacy_numbers[i]), so old command lines keep working. Throws std::logic_error
+  // if a legacy name is not one of the choices (a programming error, caught by any test that binds the options).
+  template <typename Enum>
+  void Add(std::string_view name, Enum* field, std::initializer_list<OptionChoice> choices,
+           std::initializer_list<std::string_view> legacy_numbers, std::string_view help) {
     static_assert(std::is_enum_v<Enum>);
     ChoiceField f;
     f.field = field;
     f.get = [](const void* p) { return static_cast<int>(*static_cast<const Enum*>(p)); };
     f.set = [](void* p, int v) { *static_cast<Enum*>(p) = static_cast<Enum>(v); };
     for (const OptionChoice& c : choices) f.choices.emplace_back(std::string(c.name), c.value);
+    for (std::string_view legacy : legacy_numbers) f.legacy_values.push_back(f.ValueOf(name, legacy));
     entries_.push_back({std::string(name), std::move(f), std::string(help)});
   }
   // Sets name to value. Returns false with *error naming the problem (unknown key, unparsable value).
@@ -83,8 +91,18 @@ class OptionBinder {
     int (*get)(const void*) = nullptr;
     void (*set)(void*, int) = nullptr;
     std::vector<std::pair<std::string, int>> choices;
+    // legacy_values[i]: the value the old number i stands for.
+    std::vector<int> legacy_values;
     // The first name listed for the field's current value ("?" if none).
     std::string Current() const;
+    // The value of choice `choice` of option `option`; throws std::logic_error if there is no such choice.
+    int ValueOf(std::string_view option, std::string_view choice) const;
+    // Sets the field from a name or an old number; false with *error listing what is accepted.
+    bool Set(const std::string& option, const std::string& text, std::string* error) const;
+    // "auto, schur, basic, split, or an old number 0=auto 1=schur 2=basic 3=split".
+    std::string Accepted() const;
+    // "old number 0=auto 1=schur 2=basic 3=split".
+    std::string LegacyNumbers() const;
   };
   struct Entry {
     std::string name;

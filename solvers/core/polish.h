@@ -7,6 +7,7 @@
 #include <cmath>
 #include <vector>
 
+#include "solvers/core/dense_lu.h"
 #include "solvers/core/problem.h"
 
 namespace smcbench {
@@ -23,28 +24,39 @@ inline RowState ClassifyRow(double z, double w, double l, double u) {
 // it crossed and the system solved again, at most this many times; then the polish gives up.
 inline constexpr int kPolishPasses = 3;
 
-// Storage for PolishDense on n rows: the pointers it needs, each of the documented length.
-struct PolishScratch {
-  double* block;       // n·n: the reduced matrix, row-major with leading dimension n
-  double* rhs;         // n
-  signed char* state;  // n: RowState per row
-  int* free_rows;      // n
-};
-
-// The polish of a dense n×n problem (N = n fixed at compile time for the time-stepper's small solves, N = 0 for a
-// run-time n): Gaussian elimination with partial pivoting on the free block, nothing allocated. Writes the polished
-// point to out (n entries); false if the free block is singular or the result is not finite or will not stay in
-// the box within kPolishPasses passes.
+// The active set the polish reads from z: ClassifyRow of every row of the dense equilibrated problem, with
+// w = M z + q summed as written (q first, then the columns in order). N = n, or 0 for a run-time n.
 template <int N>
-bool PolishDense(const BoxMLCP& equilibrated, const double* z, double* out, const PolishScratch& s) {
+inline void ClassifyRowsForPolish(const BoxMLCP& equilibrated, const double* z, signed char* state) {
   const int n = N > 0 ? N : equilibrated.size();
   const double* a = equilibrated.dense_matrix().data();
   const double *q = equilibrated.q().data(), *l = equilibrated.l().data(), *u = equilibrated.u().data();
   for (int i = 0; i < n; ++i) {
     double w = q[i];
     for (int j = 0; j < n; ++j) w += a[i + j * n] * z[j];
-    s.state[i] = static_cast<signed char>(ClassifyRow(z[i], w, l[i], u[i]));
+    state[i] = static_cast<signed char>(ClassifyRow(z[i], w, l[i], u[i]));
   }
+}
+
+// Storage for PolishDense on n rows: the pointers it needs, each of the documented length.
+struct PolishScratch {
+  double* block;       // n·n: the reduced matrix, column-major with leading dimension n (dense_lu.h)
+  double* rhs;         // n
+  signed char* state;  // n: RowState per row
+  int* free_rows;      // n
+  int* pivots;         // n: the LU's row swaps
+};
+
+// The polish of a dense n×n problem (N = n fixed at compile time for the time-stepper's small solves, N = 0 for a
+// run-time n): the free block factored by dense_lu (partial pivoting), nothing allocated. Writes the polished point
+// to out (n entries); false if the free block is singular or the result is not finite or will not stay in the box
+// within kPolishPasses passes.
+template <int N>
+bool PolishDense(const BoxMLCP& equilibrated, const double* z, double* out, const PolishScratch& s) {
+  const int n = N > 0 ? N : equilibrated.size();
+  const double* a = equilibrated.dense_matrix().data();
+  const double *q = equilibrated.q().data(), *l = equilibrated.l().data(), *u = equilibrated.u().data();
+  ClassifyRowsForPolish<N>(equilibrated, z, s.state);
   for (int pass = 0; pass < kPolishPasses; ++pass) {
     int nf = 0;
     for (int i = 0; i < n; ++i) {
@@ -60,29 +72,15 @@ bool PolishDense(const BoxMLCP& equilibrated, const double* z, double* out, cons
       double b = -q[f];
       for (int j = 0; j < n; ++j) b -= a[f + j * n] * out[j];
       s.rhs[k] = b;
-      for (int c = 0; c < nf; ++c) s.block[k * n + c] = a[f + s.free_rows[c] * n];
     }
-    for (int k = 0; k < nf; ++k) {
-      int p = k;
-      for (int r = k + 1; r < nf; ++r) {
-        if (std::abs(s.block[r * n + k]) > std::abs(s.block[p * n + k])) p = r;
-      }
-      if (!(s.block[p * n + k] != 0.0)) return false;
-      if (p != k) {
-        for (int c = 0; c < nf; ++c) std::swap(s.block[k * n + c], s.block[p * n + c]);
-        std::swap(s.rhs[k], s.rhs[p]);
-      }
-      for (int r = k + 1; r < nf; ++r) {
-        const double m = s.block[r * n + k] / s.block[k * n + k];
-        for (int c = k; c < nf; ++c) s.block[r * n + c] -= m * s.block[k * n + c];
-        s.rhs[r] -= m * s.rhs[k];
-      }
+    for (int c = 0; c < nf; ++c) {
+      for (int r = 0; r < nf; ++r) s.block[r + c * n] = a[s.free_rows[r] + s.free_rows[c] * n];
     }
+    if (!dense_lu::Factor(s.block, n, nf, s.pivots, 0.0)) return false;  // a zero (or NaN) pivot
+    dense_lu::Solve(s.block, n, nf, s.pivots, s.rhs);
     bool moved = false;
-    for (int k = nf - 1; k >= 0; --k) {
-      double sum = s.rhs[k];
-      for (int c = k + 1; c < nf; ++c) sum -= s.block[k * n + c] * out[s.free_rows[c]];
-      const double x = sum / s.block[k * n + k];
+    for (int k = 0; k < nf; ++k) {
+      const double x = s.rhs[k];
       if (!std::isfinite(x)) return false;
       const int i = s.free_rows[k];
       out[i] = x;
@@ -105,14 +103,15 @@ class PolishWorkspace {
       rhs_.assign(n, 0.0);
       state_.assign(n, 0);
       free_rows_.assign(n, 0);
+      pivots_.assign(n, 0);
     }
-    return {block_.data(), rhs_.data(), state_.data(), free_rows_.data()};
+    return {block_.data(), rhs_.data(), state_.data(), free_rows_.data(), pivots_.data()};
   }
 
  private:
   std::vector<double> block_, rhs_;
   std::vector<signed char> state_;
-  std::vector<int> free_rows_;
+  std::vector<int> free_rows_, pivots_;
 };
 
 // Dense problems above this size are not polished (the O(n³) solve and n² workspace would dominate an iterative

@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 
+#include "solvers/core/dense_lu.h"
 #include "solvers/core/polish.h"
 #include "solvers/core/solver.h"
 
@@ -15,7 +16,7 @@ void ActiveSetFactors::Resize(int n) {
   valid_ = false;
   state_.assign(n, 0);
   free_rows_.assign(n, 0);
-  perm_.assign(n, 0);
+  pivots_.assign(n, 0);
   lu_.assign(static_cast<std::size_t>(n) * n, 0.0);
   rhs_.assign(n, 0.0);
 }
@@ -30,30 +31,16 @@ bool ActiveSetFactors::Factor(const DenseMatrix& M, const signed char* state) {
   }
   const int nf = nf_;
   double* a = lu_.data();
-  for (int r = 0; r < nf; ++r) {
-    for (int c = 0; c < nf; ++c) a[r * n + c] = M(free_rows_[r], free_rows_[c]);
+  for (int c = 0; c < nf; ++c) {
+    for (int r = 0; r < nf; ++r) a[r + c * n] = M(free_rows_[r], free_rows_[c]);
   }
-  // Gaussian elimination with partial pivoting; perm_[k] = the original row now in position k.
-  for (int k = 0; k < nf; ++k) perm_[k] = k;
+  if (!dense_lu::Factor(a, n, nf, pivots_.data(), 0.0)) return false;  // a zero (or NaN) pivot
   double largest = 0.0, smallest = kInf;
   for (int k = 0; k < nf; ++k) {
-    int p = k;
-    for (int r = k + 1; r < nf; ++r) {
-      if (std::abs(a[r * n + k]) > std::abs(a[p * n + k])) p = r;
-    }
-    const double pivot = a[p * n + k];
-    if (!(std::abs(pivot) > 0.0) || !std::isfinite(pivot)) return false;
-    if (p != k) {
-      for (int c = 0; c < nf; ++c) std::swap(a[k * n + c], a[p * n + c]);
-      std::swap(perm_[k], perm_[p]);
-    }
-    for (int r = k + 1; r < nf; ++r) {
-      const double m = a[r * n + k] / a[k * n + k];
-      a[r * n + k] = m;  // the multiplier, kept for the forward substitution
-      for (int c = k + 1; c < nf; ++c) a[r * n + c] -= m * a[k * n + c];
-    }
-    largest = std::max(largest, std::abs(a[k * n + k]));
-    smallest = std::min(smallest, std::abs(a[k * n + k]));
+    const double pivot = std::abs(a[k + k * n]);
+    if (!std::isfinite(pivot)) return false;
+    largest = std::max(largest, pivot);
+    smallest = std::min(smallest, pivot);
   }
   valid_ = nf == 0 || smallest >= kMinPivotRatio * largest;
   return valid_;
@@ -71,25 +58,15 @@ bool ActiveSetFactors::Solve(const DenseMatrix& M, const double* q, const double
     z[i] = s == RowState::kFree ? 0.0 : (s == RowState::kLower ? l[i] : u[i]);
   }
   if (nf == 0) return true;
-  // b = −(q_F + M_FB z_B), in pivoted order (z is 0 on the free rows, so a full row times z is the bound part).
+  // b = −(q_F + M_FB z_B) (z is 0 on the free rows, so a full row times z is the bound part).
   double* b = const_cast<double*>(rhs_.data());  // scratch, sized in Resize; logically not state
   for (int k = 0; k < nf; ++k) {
-    const int f = free_rows_[perm_[k]];
+    const int f = free_rows_[k];
     double sum = q[f];
     for (int j = 0; j < n; ++j) sum += m[f + j * n] * z[j];
     b[k] = -sum;
   }
-  const double* a = lu_.data();
-  for (int k = 1; k < nf; ++k) {
-    double sum = b[k];
-    for (int c = 0; c < k; ++c) sum -= a[k * n + c] * b[c];
-    b[k] = sum;
-  }
-  for (int k = nf - 1; k >= 0; --k) {
-    double sum = b[k];
-    for (int c = k + 1; c < nf; ++c) sum -= a[k * n + c] * b[c];
-    b[k] = sum / a[k * n + k];
-  }
+  dense_lu::Solve(lu_.data(), n, nf, pivots_.data(), b);
   for (int k = 0; k < nf; ++k) {
     const int i = free_rows_[k];
     const double x = b[k];
@@ -110,28 +87,17 @@ void ActiveSetFactors::AffineMap(const DenseMatrix& M, const double* l, const do
   }
   // Column j of A restricted to F is −M_FF⁻¹ e_j (j ∈ F); c_F = −M_FF⁻¹ M_FB c_B. One LU solve per column.
   double* b = const_cast<double*>(rhs_.data());
-  const double* a = lu_.data();
-  const auto solve = [&] {
-    for (int k = 1; k < nf; ++k) {
-      for (int p = 0; p < k; ++p) b[k] -= a[k * n + p] * b[p];
-    }
-    for (int k = nf - 1; k >= 0; --k) {
-      for (int p = k + 1; p < nf; ++p) b[k] -= a[k * n + p] * b[p];
-      b[k] /= a[k * n + k];
-    }
-  };
   for (int col = 0; col <= nf; ++col) {  // col < nf: e_{F[col]}; col = nf: the bound part
     for (int k = 0; k < nf; ++k) {
-      const int f = free_rows_[perm_[k]];
       if (col < nf) {
-        b[k] = f == free_rows_[col] ? -1.0 : 0.0;
+        b[k] = k == col ? -1.0 : 0.0;
       } else {
         double sum = 0.0;
-        for (int j = 0; j < n; ++j) sum += M(f, j) * c[j];
+        for (int j = 0; j < n; ++j) sum += M(free_rows_[k], j) * c[j];
         b[k] = -sum;
       }
     }
-    solve();
+    dense_lu::Solve(lu_.data(), n, nf, pivots_.data(), b);
     for (int k = 0; k < nf; ++k) {
       const int i = free_rows_[k];
       if (col < nf) {

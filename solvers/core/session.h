@@ -60,8 +60,8 @@ class ActiveSetFactors {
   int nf_ = 0;
   bool valid_ = false;
   std::vector<signed char> state_;
-  std::vector<int> free_rows_, perm_;
-  std::vector<double> lu_, rhs_;  // lu_: nf×nf row-major with leading dimension n
+  std::vector<int> free_rows_, pivots_;  // pivots_: dense_lu's row swaps
+  std::vector<double> lu_, rhs_;  // lu_: dense_lu's factors of M_FF, nf×nf column-major with leading dimension n
 };
 
 // A prepared solve of one problem (M, l, u fixed; q per call) by one backend. Made by Solver::Prepare; holds a

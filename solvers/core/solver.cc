@@ -98,8 +98,10 @@ template <int N>
   if constexpr (N > 0) {
     double block[N * N], rhs[N];
     signed char state[N];
-    int free_rows[N];
-    if (!PolishDense<N>(equilibrated, result->z.data(), polish_z_.data(), {block, rhs, state, free_rows})) return;
+    int free_rows[N], pivots[N];
+    if (!PolishDense<N>(equilibrated, result->z.data(), polish_z_.data(), {block, rhs, state, free_rows, pivots})) {
+      return;
+    }
     candidate = problem.template NaturalResidualFixed<N>(polish_z_, &polish_w_);
   } else {
     if (equilibrated.is_sparse()) {

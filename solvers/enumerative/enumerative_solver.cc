@@ -197,22 +197,12 @@ int LeastNormSolve(double* a, double* t, int ld, int k, const double* xref, doub
   return r;
 }
 
-// Factors the k×k free block A in place for SolveFactored: closed forms for k ≤ 2 (k = 2: a holds a00, m below
-// it, a01, u11 after the row swap recorded in piv[0]), LU with partial pivoting above. False if a pivot is ≤ small
-// (numerically singular) or NaN. Split from the solve so the fast path can keep factors per active set.
+// Factors the k×k free block A in place for SolveFactored (dense_lu: partial pivoting, unrolled for k ≤ 4; k = 1
+// is its own pivot). False if a pivot is ≤ small (numerically singular) or NaN. Split from the solve so the fast
+// path can keep factors per active set.
 inline bool FactorBlock(double* a, int ld, int k, int* piv, double small) {
   if (k == 1) return std::abs(a[0]) > small;
-  if (k == 2) {  // 2×2 elimination with partial pivoting
-    double a00 = a[0], a10 = a[1], a01 = a[ld], a11 = a[ld + 1];
-    piv[0] = std::abs(a10) > std::abs(a00) ? 1 : 0;
-    if (piv[0] == 1) std::swap(a00, a10), std::swap(a01, a11);
-    if (!(std::abs(a00) > small)) return false;
-    const double m = a10 / a00;
-    const double u11 = a11 - m * a01;
-    if (!(std::abs(u11) > small)) return false;
-    a[0] = a00, a[1] = m, a[ld] = a01, a[ld + 1] = u11;
-    return true;
-  }
+  if (k == 2) return dense_lu::Factor<2>(a, ld, k, piv, small);
   if (k == 3) return dense_lu::Factor<3>(a, ld, k, piv, small);
   if (k == 4) return dense_lu::Factor<4>(a, ld, k, piv, small);
   return dense_lu::Factor(a, ld, k, piv, small);
@@ -223,10 +213,7 @@ inline void SolveFactored(const double* a, int ld, int k, const int* piv, double
   if (k == 1) {
     b[0] /= a[0];
   } else if (k == 2) {
-    double r0 = b[0], r1 = b[1];
-    if (piv[0] == 1) std::swap(r0, r1);
-    b[1] = (r1 - a[1] * r0) / a[ld + 1];
-    b[0] = (r0 - a[ld] * b[1]) / a[0];
+    dense_lu::Solve<2>(a, ld, k, piv, b);
   } else if (k == 3) {
     dense_lu::Solve<3>(a, ld, k, piv, b);
   } else if (k == 4) {
@@ -251,20 +238,11 @@ struct BlockPivots {
 };
 inline BlockPivots FactoredPivots(const double* a, int ld, int k, const int* piv) {
   BlockPivots p;
-  const auto take = [&](double d) {
+  for (int j = 0; j < k; ++j) {
+    const double d = a[j + static_cast<std::ptrdiff_t>(j) * ld];
     p.smallest = std::min(p.smallest, std::abs(d));
     if (d < 0.0) p.sign = -p.sign;
-  };
-  if (k == 1) {
-    take(a[0]);
-  } else if (k == 2) {
-    take(a[0]), take(a[ld + 1]);
-    if (piv[0] == 1) p.sign = -p.sign;
-  } else {
-    for (int j = 0; j < k; ++j) {
-      take(a[j + static_cast<std::ptrdiff_t>(j) * ld]);
-      if (piv[j] != j) p.sign = -p.sign;
-    }
+    if (k > 1 && piv[j] != j) p.sign = -p.sign;  // k = 1: FactorBlock records no swap
   }
   return p;
 }
@@ -772,438 +750,182 @@ void EnumerativeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& opt
   }
 }
 
-// Out of line: the search is the fast path's fallback, and inlined into DoSolve it would crowd out the inlining
-// of the fast path's own calls.
-template <int N>
-[[gnu::noinline]] void EnumerativeSolver::Search(const BoxMLCP& problem, const SolverOptions& options,
-                                                 SolveResult* result) {
-  const int n = N > 0 ? N : problem.size();
-  const int guided_max = options_.guided_steps;
-  FixedStorage<N> storage;
-  Buffers b;
-  if constexpr (N > 0) {
-    b = storage.View();
-    if (guided_max > FixedStorage<N>::kHistory) {  // a larger history than the stack holds: use the heap
-      Reserve(n, guided_max);
-      b.history = int_work_.data() + (kIntVectors + 3) * static_cast<std::size_t>(n);
-    }
-  } else {
-    Reserve(n, guided_max);
-    const std::size_t un = static_cast<std::size_t>(n);
-    double* r = real_work_.data();
-    double** reals[] = {&b.z, &b.w, &b.y, &b.rhs, &b.xref, &b.tau, &b.tau2, &b.v, &b.margin, &b.start, &b.best};
-    b.ld = n;
-    b.A = r, r += un * un;
-    b.T = r, r += un * un;
-    for (double** p : reals) *p = r, r += un;
-    int* k = int_work_.data();
-    int** ints[] = {&b.piv, &b.jpvt, &b.free_idx, &b.state, &b.radix, &b.order, &b.comb, &b.offset};
-    for (int** p : ints) *p = k, k += un;
-    b.choice = k, k += 3 * un;
-    b.history = k;
-  }
-  const double* M = problem.dense_matrix().data();
-  const double* q = problem.q().data();
-  const double* l = problem.l().data();
-  const double* u = problem.u().data();
-  const auto col = [&](int j) { return M + static_cast<std::ptrdiff_t>(j) * n; };
-  const auto affine = [&](const double* z, double* w) {  // w = M z + q, column by column
-    for (int i = 0; i < n; ++i) w[i] = q[i];
-    for (int j = 0; j < n; ++j) {
-      const double zj = z[j];
-      if (zj == 0.0) continue;
-      const double* mj = col(j);
-      for (int i = 0; i < n; ++i) w[i] += mj[i] * zj;
-    }
-  };
 
-  // The size of the full search depends only on the bounds: refuse before any work.
-  int nb = 0;          // rows with a choice of state
-  double total = 1.0;  // active sets in the full search
-  for (int i = 0; i < n; ++i) {
-    const int count = l[i] == u[i] ? 1 : 1 + (l[i] > -kInf) + (u[i] < kInf);
-    nb += count > 1;
-    total *= count;
+// ---------------------------------------------------------------------------------------------------------
+// The search, in named phases that share one state (N = 1..4 fixed at compile time, 0 read at run time). Run()
+// reads top to bottom: refuse an oversized problem, measure the scales, guess from the start point, the guided
+// phase, the exhaustive phase, record the answer. One object on the stack holds what the phases share, so the
+// compiler keeps inlining them into Run as it did the single function (a split passing many parameters cost 4 %).
+
+// How a candidate ended, and how a rejection counts. judge: kRefutes (it refutes the active set, at the threshold τ
+// widened by the block solve's error, growth = max|M_FF| over the smallest LU pivot), kUnresolved (it does not: a
+// point of a singular block's solution set), kAttempt (no bookkeeping: the caller tries more points of the same set).
+namespace {
+enum class Outcome { kSolution, kRejected, kBroken };
+enum class Refutation { kRefutes, kUnresolved, kAttempt };
+}  // namespace
+
+template <int N>
+class EnumerativeSolver::ActiveSetSearch {
+ public:
+  ActiveSetSearch(EnumerativeSolver& solver, const BoxMLCP& problem, const SolverOptions& options,
+                  SolveResult* result)
+      : solver(solver),
+        problem(problem),
+        options(options),
+        result(result),
+        n_runtime(N > 0 ? N : problem.size()),
+        M(problem.dense_matrix().data()),
+        q(problem.q().data()),
+        l(problem.l().data()),
+        u(problem.u().data()) {}
+
+  void Run() {
+    if (!WithinSizeLimit()) return;
+    AttachWorkspace();
+    MeasureScales();
+    GuessFromStart();
+    GuidedPhase();
+    if (stop == SolveStatus::kNotRun) ExhaustivePhase();
+    RecordOutcome();
   }
-  if (nb > options_.size_limit || total > static_cast<double>(options_.max_candidates)) {
+
+ private:
+  // ---- Phase: classify the bounds. The size of the full search depends only on them: refuse before any work.
+  bool WithinSizeLimit() {
+    const int n = N > 0 ? N : n_runtime;
+    int nb = 0;  // rows with a choice of state
+    for (int i = 0; i < n; ++i) {
+      const int count = l[i] == u[i] ? 1 : 1 + (l[i] > -kInf) + (u[i] < kInf);
+      nb += count > 1;
+      total *= count;
+    }
+    const EnumerativeOptions& limits = solver.options_;
+    if (nb <= limits.size_limit && total <= static_cast<double>(limits.max_candidates)) return true;
     std::ostringstream s;
     s << "enum: " << nb << " of the " << n << " rows have a choice of state, so the full search may need "
-      << CountText(total) << " active sets; limits are size_limit = " << options_.size_limit
-      << " rows and max_candidates = " << options_.max_candidates
+      << CountText(total) << " active sets; limits are size_limit = " << limits.size_limit
+      << " rows and max_candidates = " << limits.max_candidates
       << " sets (raise them with the options size_limit=N / max_candidates=N; the work grows as 2^n to 3^n)";
     result->status = SolveStatus::kSizeLimit;
     result->message = s.str();
     result->iterations = 0;
-    return;
+    return false;
   }
 
-  // Problem scales: the merit tolerance and the roundoff allowance of the sign tests (header, feasibility_scale).
-  const double tol_abs = options.tolerance * problem.residual_scale();
-  const double q_norm = problem.residual_scale() - 1.0;
-  for (int i = 0; i < n; ++i) b.w[i] = 0.0;
-  for (int j = 0; j < n; ++j) {
-    const double* mj = col(j);
-    for (int i = 0; i < n; ++i) b.w[i] += std::abs(mj[i]);
-  }
-  double m_norm = 0.0;
-  for (int i = 0; i < n; ++i) m_norm = std::max(m_norm, b.w[i]);
-  const double roundoff = options_.feasibility_scale * n * kEps;
-
-  // First guess: the natural-map active set at the starting point (GuessState).
-  const double* z0 = result->z.data();
-  for (int i = 0; i < n; ++i) b.start[i] = z0[i], b.xref[i] = std::min(std::max(0.0, l[i]), u[i]);
-  affine(z0, b.w);
-  for (int i = 0; i < n; ++i) {
-    b.y[i] = z0[i] - b.w[i] / JacobiScale(col(i)[i]);
-    b.state[i] = GuessState(b.y[i], l[i], u[i]);
-  }
-
-  const double small_rel = options_.rank_tolerance;
-  const bool verbose = options.verbosity >= 2;
-  const long long budget = options.max_iterations > 0 ? options.max_iterations : -1;
-  long long examined = 0, guided = 0, exhaustive = 0, singular = 0, singular_skipped = 0, nonfinite = 0,
-            near_misses = 0, unresolved = 0;
-  double best_merit = kInf;  // smallest merit value among the candidates that reached the merit test
-  // The closest refutation of any candidate (bound violation of z_F, or merit value) relative to its certificate
-  // threshold (τ, widened by the block's pivot growth).
-  double closest = kInf, closest_tau = 1.0;
-  const auto record_miss = [&](double miss, double tau) {
-    if (miss * closest_tau < closest * tau) closest = miss, closest_tau = tau;
-  };
-  // Signs of det M_FF over the exhaustive phase (every free set appears there): one sign throughout, with clear
-  // pivots, means the Schur complement of the always-free rows is a P-matrix, so a solution exists.
-  bool in_exhaustive = false;
-  long long det_positive = 0, det_negative = 0, det_unclear = 0;
-  SolveStatus stop = SolveStatus::kNotRun;  // kSolved, or why the search stopped early
-
-  // Judges the candidate with z_B in b.z and the free rows' values (unclipped) in b.rhs. How a rejection counts:
-  // kRefutes (it refutes the active set, at the threshold τ widened by the block solve's error, growth = max|M_FF|
-  // over the smallest LU pivot), kUnresolved (it does not: a point of a singular block's solution set), kAttempt
-  // (no bookkeeping: the caller tries more points of the same set).
-  enum class Outcome { kSolution, kRejected, kBroken };
-  enum class Refutation { kRefutes, kUnresolved, kAttempt };
-  const auto judge = [&](int k, double growth, Refutation refutation) -> Outcome {
-    double zmax = 0.0;
-    for (int i = 0; i < n; ++i) zmax = std::max(zmax, b.state[i] == kFree ? 0.0 : std::abs(b.z[i]));
-    for (int a = 0; a < k; ++a) {
-      if (!std::isfinite(b.rhs[a])) {
-        if (refutation == Refutation::kAttempt) return Outcome::kRejected;
-        ++nonfinite;
-        if (verbose) Trace(examined, b.state, n, "block solution overflowed", 0.0);
-        return Outcome::kBroken;
-      }
-      zmax = std::max(zmax, std::abs(b.rhs[a]));
-    }
-    const double roundoff_scale = roundoff * (m_norm * zmax + q_norm);
-    const double tau = std::max(roundoff_scale, tol_abs);
-    const double tau_certify = std::max(tau, roundoff_scale * growth);
-    const auto miss = [&](double value) {
-      if (refutation == Refutation::kRefutes) record_miss(value, tau_certify);
-      if (refutation == Refutation::kUnresolved) ++unresolved;
-    };
-    // z_F within its bounds up to τ, then clipped onto them.
-    double violation = 0.0;
-    for (int a = 0; a < k; ++a) {
-      const int i = b.free_idx[a];
-      violation = std::max(violation, std::max(l[i] - b.rhs[a], b.rhs[a] - u[i]));
-    }
-    if (violation > tau) {
-      miss(violation);
-      if (verbose) Trace(examined, b.state, n, "z_F outside its bounds by", violation);
-      return Outcome::kRejected;
-    }
-    double z_norm = 0.0;
-    for (int a = 0; a < k; ++a) {
-      const int i = b.free_idx[a];
-      b.z[i] = std::min(std::max(b.rhs[a], l[i]), u[i]);
-    }
-    for (int i = 0; i < n; ++i) z_norm = std::max(z_norm, std::abs(b.z[i]));
-    // The merit function decides: r = ‖z − Π(z − (M z + q))‖∞. On bound rows it is the sign violation of w, on
-    // free rows the equation residual, so it is also the sign test (at threshold τ). "Solved" (Solver::Finish)
-    // needs r ≤ tol·(1 + ‖q‖∞) and r ≤ tol·(1 + ‖z‖∞) (the problem is equilibrated): clearly below both, the
-    // candidate is accepted; near them, BoxMLCP::NaturalResidual, the function the base class applies, decides.
-    affine(b.z, b.w);
-    double merit = 0.0;
-    for (int i = 0; i < n; ++i) {
-      merit = std::max(merit, std::abs(b.z[i] - std::min(std::max(b.z[i] - b.w[i], l[i]), u[i])));
-    }
-    const double accept = options.tolerance * std::min(problem.residual_scale(), 1.0 + z_norm);
-    const double reject = options.tolerance * std::max(problem.residual_scale(), 1.0 + z_norm);
-    if (merit <= 2.0 * reject) {
-      for (int i = 0; i < n; ++i) result->z[i] = b.z[i];
-      if (merit <= 0.5 * accept || Passes(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
-        if (verbose) Trace(examined, b.state, n, "solves; merit", merit);
-        return Outcome::kSolution;
-      }
-    }
-    if (merit < best_merit) {
-      best_merit = merit;
-      for (int i = 0; i < n; ++i) b.best[i] = b.z[i];
-    }
-    if (refutation == Refutation::kAttempt) return Outcome::kRejected;
-    if (merit <= tau) ++near_misses;  // passes the sign tests at roundoff level only: ill-conditioned
-    if (verbose) Trace(examined, b.state, n, merit <= tau ? "near-solution; merit" : "sign test fails; merit", merit);
-    miss(merit);
-    return Outcome::kRejected;
-  };
-
-  // The free block of the active set in b.state (rows b.free_idx[0 .. k)): right-hand side −(q_F + M_FB z_B) into
-  // b.rhs, M_FF into b.A (returns max |M_FF|).
-  const auto build_rhs = [&](int k) {
-    for (int a = 0; a < k; ++a) b.rhs[a] = -q[b.free_idx[a]];
+  // ---- Phase: the problem's scales, for the merit tolerance and the roundoff allowance of the sign tests
+  // (header, feasibility_scale). Needs the workspace (AttachWorkspace).
+  void MeasureScales() {
+    const int n = N > 0 ? N : n_runtime;
+    tol_abs = options.tolerance * problem.residual_scale();
+    q_norm = problem.residual_scale() - 1.0;
+    for (int i = 0; i < n; ++i) b.w[i] = 0.0;  // the row sums of |M|, column by column (w is scratch here)
     for (int j = 0; j < n; ++j) {
-      const double zj = b.z[j];
-      if (zj == 0.0 || b.state[j] == kFree) continue;
       const double* mj = col(j);
-      for (int a = 0; a < k; ++a) b.rhs[a] -= mj[b.free_idx[a]] * zj;
+      for (int i = 0; i < n; ++i) b.w[i] += std::abs(mj[i]);
     }
-  };
-  const auto gather = [&](int k) {
-    double amax = 0.0;
-    for (int c = 0; c < k; ++c) {
-      const double* mj = col(b.free_idx[c]);
-      double* ac = b.A + static_cast<std::ptrdiff_t>(c) * b.ld;
-      for (int a = 0; a < k; ++a) {
-        ac[a] = mj[b.free_idx[a]];
-        amax = std::max(amax, std::abs(ac[a]));
-      }
-    }
-    return amax;
-  };
-  // The rest of examine for a numerically singular block (rare): out of line, so that it does not weigh on the
-  // inlining budget of the fixed-size paths.
-  const auto examine_singular = [&](int k) __attribute__((noinline)) -> Outcome {
-    // First the LU solution itself, when its pivots are nonzero: the merit function, not the size of a pivot,
-    // decides whether it solves the problem.
-    build_rhs(k);
-    gather(k);
-    if (SolveBlock(b.A, b.ld, k, b.rhs, b.piv, 0.0) && judge(k, kInf, Refutation::kAttempt) == Outcome::kSolution) {
-      return Outcome::kSolution;
-    }
-    // Then the least-norm solution about Π(0) of the rank-cut system (a consistent singular block has a whole
-    // affine set of solutions).
-    build_rhs(k);
-    gather(k);
-    for (int a = 0; a < k; ++a) b.w[a] = b.xref[b.free_idx[a]];  // w is scratch until the merit test
-    const int rank = LeastNormSolve(b.A, b.T, b.ld, k, b.w, b.rhs, b.tau, b.tau2, b.v, b.jpvt, small_rel);
-    // Rank k − 1: every solution of this active set (the whole line if the block is exactly singular and the
-    // system consistent, the one point if the cut direction was merely tiny, none if inconsistent) lies on the line
-    // x₀ + t·v, v spanning the cut direction of the QR. The set is refuted when no point of that line meets the
-    // equations, box and sign conditions; otherwise the best point of the line is the candidate.
-    LineOfSolutions line;
-    if (rank == k - 1) line = FitLine(b.A, b.ld, k, b.jpvt, b.T, b.v);  // T is free after LeastNormSolve
-    // Rows whose entries on the free columns are all exactly zero: their w does not depend on x at all, so their
-    // conditions hold or fail for every point of the block's solution set alike (b.margin is scratch here).
-    for (int i = 0; i < n; ++i) {
-      bool zero = true;
-      for (int a = 0; a < k && zero; ++a) zero = col(b.free_idx[a])[i] == 0.0;
-      b.margin[i] = zero ? 1.0 : 0.0;
-    }
-    if (!line.ok) {
-      // A larger rank deficiency: the least-norm point is one of many and refutes nothing; only a row that does not
-      // see x (above) can refute the set, for every x at once.
-      double zmax = 0.0;
-      for (int a = 0, i = 0; i < n; ++i) {
-        if (b.state[i] == kFree) b.z[i] = b.rhs[a++];
-        zmax = std::max(zmax, std::abs(b.z[i]));
-      }
-      affine(b.z, b.w);
-      double blind_violation = 0.0;  // the largest violated condition among the rows that do not see x
-      for (int i = 0; i < n; ++i) {
-        if (b.margin[i] == 0.0) continue;
-        const double wi = b.w[i];
-        const int st = b.state[i];
-        const double violated = st == kFree ? std::abs(wi) : st == kLower ? -wi : st == kUpper ? wi : 0.0;
-        blind_violation = std::max(blind_violation, violated);
-      }
-      for (int i = 0; i < n; ++i) {
-        if (b.state[i] == kFree) b.z[i] = 0.0;
-      }
-      if (judge(k, kInf, Refutation::kAttempt) == Outcome::kSolution) return Outcome::kSolution;
-      const double tau = std::max(roundoff * (m_norm * zmax + q_norm), tol_abs);
-      if (blind_violation > kCertifyMargin * tau) {
-        record_miss(blind_violation, tau);
-      } else {
-        ++unresolved;
-      }
-      if (verbose) Trace(examined, b.state, n, "singular block; violation independent of x", blind_violation);
-      return Outcome::kRejected;
-    }
-    // When M_FF v = 0 holds exactly (checked without rounding), v spans the exact null space: the solution set is
-    // exactly parallel to the line and a constant threshold suffices. The QR's v carries rounding, so v rounded to
-    // 20 bits (an exact null vector of a matrix of small integers and simple ratios, e.g. (1, 1)) is tried too.
-    const auto exact_null = [&](const double* vec) {
-      bool exact = true;
-      for (int c = 0; c < k && exact; ++c) {
-        const int i = b.free_idx[c];
-        exact = ExactlyZeroDot(k, [&](int a) { return col(b.free_idx[a])[i]; }, vec);
-      }
-      return exact;
-    };
-    bool null_exact = exact_null(b.v);
-    if (!null_exact) {
-      for (int a = 0; a < k; ++a) b.T[a] = std::ldexp(std::round(std::ldexp(b.v[a], 20)), -20);
-      null_exact = exact_null(b.T);
-      if (null_exact) std::copy(b.T, b.T + k, b.v);
-    }
-    // Constraints α_j + β_j t ≥ 0 on the line: the free rows' equations w_i = 0 (both signs: an inconsistent block
-    // violates them everywhere on the line) and bounds, the signs of w on the bound rows (w at x₀ in b.w, its change
-    // Δw = M_·F v per unit of t in b.y).
-    for (int i = 0; i < n; ++i) b.y[i] = 0.0;
-    for (int a = 0; a < k; ++a) {
-      const double* mj = col(b.free_idx[a]);
-      for (int i = 0; i < n; ++i) b.y[i] += mj[i] * b.v[a];
-    }
-    double bound_max = 0.0;  // largest |z_i| over the bound rows
-    for (int a = 0, i = 0; i < n; ++i) {
-      if (b.state[i] == kFree) {
-        b.z[i] = b.rhs[a++];
-      } else {
-        bound_max = std::max(bound_max, std::abs(b.z[i]));
-      }
-    }
-    affine(b.z, b.w);
-    // take(α, β, sees_x): sees_x is false for a row that does not see x, whose condition is exact along the line.
-    const auto constraints_flagged = [&](const auto& take) {
-      for (int a = 0; a < k; ++a) {
-        const int i = b.free_idx[a];
-        if (l[i] > -kInf) take(b.rhs[a] - l[i], b.v[a], true);
-        if (u[i] < kInf) take(u[i] - b.rhs[a], -b.v[a], true);
-      }
-      for (int i = 0; i < n; ++i) {
-        const bool sees_x = b.margin[i] == 0.0;
-        if (b.state[i] == kLower || b.state[i] == kFree) take(b.w[i], b.y[i], sees_x);
-        if (b.state[i] == kUpper || b.state[i] == kFree) take(-b.w[i], -b.y[i], sees_x);
-      }
-    };
-    const auto constraints = [&](const auto& take) {
-      constraints_flagged([&](double alpha, double beta, bool) { take(alpha, beta); });
-    };
-    // Refuted with a margin when no t meets every constraint to within kCertifyMargin·τ(t), where the rounding
-    // threshold τ(t) grows with ‖x(t)‖∞ (far along the line the computed Δw is mostly rounding: a nearly singular
-    // block's one solution can sit at |t| ~ 1/σ_min). τ(t) = tol·(1 + ‖q‖) + G·feasibility_scale·n·ε·(‖M‖‖x(t)‖∞
-    // + ‖q‖), G the growth of the kept part of the QR. ‖x(t)‖∞ is the largest of the pieces ±(x₀ + t v)_a and the bound rows'
-    // |z|: the constraints hold at some t for the largest piece iff they do for one piece, an interval test each.
-    // A row that does not see x keeps a constant threshold: its w is the same at every point.
-    const double growth = std::max(1.0, line.growth);
-    const double slack0 = kCertifyMargin * (tol_abs + growth * roundoff * q_norm);
-    const double slack1 = null_exact ? 0.0 : kCertifyMargin * growth * roundoff * m_norm;
-    const auto some_t_within_slack = [&](double piece0, double piece1) {
-      double lo = -kInf, hi = kInf;
-      bool ok = true;
-      constraints_flagged([&](double alpha, double beta, bool sees_x) {
-        const double grow = sees_x ? slack1 : 0.0;
-        const double a0 = alpha + slack0 + grow * piece0, a1 = beta + grow * piece1;
-        if (a1 > 0.0) {
-          lo = std::max(lo, -a0 / a1);
-        } else if (a1 < 0.0) {
-          hi = std::min(hi, -a0 / a1);
-        } else {
-          ok = ok && a0 >= 0.0;
-        }
-      });
-      return ok && lo <= hi;
-    };
-    bool refuted = !some_t_within_slack(bound_max, 0.0);
-    for (int a = 0; a < k && refuted; ++a) {
-      refuted = !some_t_within_slack(b.rhs[a], b.v[a]) && !some_t_within_slack(-b.rhs[a], -b.v[a]);
-    }
-    // The candidate: the point of the line with the least violation, nearest x₀.
-    const LeastViolation least = MinimizeWorstViolation(constraints);
-    for (int a = 0, i = 0; i < n; ++i) {
-      if (b.state[i] == kFree) b.z[i] = 0.0, b.rhs[a] += least.t * b.v[a], ++a;
-    }
-    if (judge(k, line.growth, Refutation::kAttempt) == Outcome::kSolution) return Outcome::kSolution;
-    if (!refuted) ++near_misses;  // some point of the line is within rounding of every condition
-    if (verbose) {
-      Trace(examined, b.state, n, refuted ? "singular block, no point of its line qualifies; least violation"
-                                          : "singular block, a point of its line is within rounding; violation",
-            least.violation);
-    }
-    return Outcome::kRejected;
-  };
+    for (int i = 0; i < n; ++i) m_norm = std::max(m_norm, b.w[i]);
+    roundoff = solver.options_.feasibility_scale * n * kEps;
+  }
 
-  // Examines the active set in b.state.
-  const auto examine = [&]() -> Outcome {
-    // Free block: M_FF z_F = −(q_F + M_FB z_B).
-    int k = 0;
-    for (int i = 0; i < n; ++i) {
-      const int s = b.state[i];
-      if (s == kFree) {
-        b.free_idx[k++] = i;
-        b.z[i] = 0.0;
-      } else {
-        b.z[i] = s == kUpper ? u[i] : l[i];
+  // The views of the workspace: the stack arrays for N > 0 (the heap for a history longer than they hold), the
+  // solver's vectors for N = 0.
+  void AttachWorkspace() {
+    const int n = N > 0 ? N : n_runtime;
+    const int guided_max = solver.options_.guided_steps;
+    if constexpr (N > 0) {
+      b = storage.View();
+      if (guided_max > FixedStorage<N>::kHistory) {  // a larger history than the stack holds: use the heap
+        solver.Reserve(n, guided_max);
+        b.history = solver.int_work_.data() + (kIntVectors + 3) * static_cast<std::size_t>(n);
       }
+    } else {
+      solver.Reserve(n, guided_max);
+      const std::size_t un = static_cast<std::size_t>(n);
+      double* r = solver.real_work_.data();
+      double** reals[] = {&b.z, &b.w, &b.y, &b.rhs, &b.xref, &b.tau, &b.tau2, &b.v, &b.margin, &b.start, &b.best};
+      b.ld = n;
+      b.A = r, r += un * un;
+      b.T = r, r += un * un;
+      for (double** p : reals) *p = r, r += un;
+      int* k = solver.int_work_.data();
+      int** ints[] = {&b.piv, &b.jpvt, &b.free_idx, &b.state, &b.radix, &b.order, &b.comb, &b.offset};
+      for (int** p : ints) *p = k, k += un;
+      b.choice = k, k += 3 * un;
+      b.history = k;
     }
-    if (k == 0) {
-      if (in_exhaustive) ++det_positive;  // the empty block: det = 1
-      return judge(0, 1.0, Refutation::kRefutes);
-    }
-    build_rhs(k);
-    const double amax = gather(k);
-    if (SolveBlock(b.A, b.ld, k, b.rhs, b.piv, small_rel * amax)) {
-      const BlockPivots pivots = FactoredPivots(b.A, b.ld, k, b.piv);
-      if (in_exhaustive) {
-        const bool clear = pivots.smallest > kDeterminantSignMargin * k * kEps * amax;
-        ++(!clear ? det_unclear : pivots.sign > 0 ? det_positive : det_negative);
-      }
-      return judge(k, amax / pivots.smallest, Refutation::kRefutes);
-    }
-    // Numerically singular M_FF (a pivot below rank_tolerance · max|M_FF|).
-    ++singular;
-    if (in_exhaustive) ++det_unclear;
-    if (!options_.solve_singular_blocks) {
-      ++singular_skipped;
-      if (verbose) Trace(examined, b.state, n, "singular block skipped", 0.0);
-      return Outcome::kBroken;
-    }
-    return examine_singular(k);
-  };
+  }
 
-  // Budget and clock, checked after each examined set that did not solve.
-  const auto out_of_budget = [&]() {
-    if (budget > 0 && examined >= budget) {
-      stop = SolveStatus::kIterationLimit;
-    } else if ((examined & 15) == 0 && TimeLimitReached()) {
-      stop = SolveStatus::kTimeLimit;
-    }
-    return stop != SolveStatus::kNotRun;
-  };
-
-  // Phase 1, guided: block principal pivoting (Júdice & Pires 1994), i.e. the primal-dual active-set step
-  // (Hintermüller, Ito & Kunisch 2002): the next set is the natural-map active set at the last candidate,
-  // y = z − D⁻¹(M z + q) with z_F unclipped. It usually ends in a few sets; it stops at a repeated set.
-  for (int step = 0; step < guided_max; ++step) {
-    int* seen = b.history + static_cast<std::ptrdiff_t>(step) * n;
-    for (int i = 0; i < n; ++i) seen[i] = b.state[i];
-    ++examined, ++guided;
-    const Outcome outcome = examine();
-    if (outcome == Outcome::kSolution) {
-      stop = SolveStatus::kSolved;
-      break;
-    }
-    if (outcome == Outcome::kBroken || out_of_budget()) break;
-    for (int a = 0, i = 0; i < n; ++i) {  // z with z_F unclipped, then y and the next set
-      if (b.state[i] == kFree) b.z[i] = b.rhs[a++];
-    }
-    affine(b.z, b.w);
+  // ---- Phase: the first guess, the natural-map active set at the starting point (GuessState).
+  void GuessFromStart() {
+    const int n = N > 0 ? N : n_runtime;
+    const double* z0 = result->z.data();
+    for (int i = 0; i < n; ++i) b.start[i] = z0[i], b.xref[i] = std::min(std::max(0.0, l[i]), u[i]);
+    Affine(z0, b.w);
     for (int i = 0; i < n; ++i) {
-      b.y[i] = b.z[i] - b.w[i] / JacobiScale(col(i)[i]);
+      b.y[i] = z0[i] - b.w[i] / JacobiScale(col(i)[i]);
       b.state[i] = GuessState(b.y[i], l[i], u[i]);
     }
-    bool repeated = false;
-    for (int s = 0; s <= step && !repeated; ++s) {
-      const int* old = b.history + static_cast<std::ptrdiff_t>(s) * n;
-      repeated = std::equal(old, old + n, b.state);
-    }
-    if (repeated) break;
   }
 
-  // Phase 2, exhaustive: every active set, nearest-first around the last guess (Hamming distance from it),
+  // ---- Phase 1, guided: block principal pivoting (Júdice & Pires 1994), i.e. the primal-dual active-set step
+  // (Hintermüller, Ito & Kunisch 2002): the next set is the natural-map active set at the last candidate,
+  // y = z − D⁻¹(M z + q) with z_F unclipped. It usually ends in a few sets; it stops at a repeated set.
+  void GuidedPhase() {
+    const int n = N > 0 ? N : n_runtime;
+    const int guided_max = solver.options_.guided_steps;
+    for (int step = 0; step < guided_max; ++step) {
+      int* seen = b.history + static_cast<std::ptrdiff_t>(step) * n;
+      for (int i = 0; i < n; ++i) seen[i] = b.state[i];
+      ++examined, ++guided;
+      const Outcome outcome = Examine();
+      if (outcome == Outcome::kSolution) {
+        stop = SolveStatus::kSolved;
+        return;
+      }
+      if (outcome == Outcome::kBroken || OutOfBudget()) return;
+      for (int a = 0, i = 0; i < n; ++i) {  // z with z_F unclipped, then y and the next set
+        if (b.state[i] == kFree) b.z[i] = b.rhs[a++];
+      }
+      Affine(b.z, b.w);
+      for (int i = 0; i < n; ++i) {
+        b.y[i] = b.z[i] - b.w[i] / JacobiScale(col(i)[i]);
+        b.state[i] = GuessState(b.y[i], l[i], u[i]);
+      }
+      bool repeated = false;
+      for (int s = 0; s <= step && !repeated; ++s) {
+        const int* old = b.history + static_cast<std::ptrdiff_t>(s) * n;
+        repeated = std::equal(old, old + n, b.state);
+      }
+      if (repeated) return;
+    }
+  }
+
+  // ---- Phase 2, exhaustive: every active set, nearest-first around the last guess (Hamming distance from it),
   // least confident rows (y nearest to a switch of state) first.
-  if (stop == SolveStatus::kNotRun) {
-    nb = 0;
+  void ExhaustivePhase() {
+    const int nb = OrderChoices();
+    NearestFirst order(nb, b.radix, b.comb, b.offset);
+    in_exhaustive = true;
+    while (true) {
+      for (int p = 0; p < nb; ++p) {
+        const int i = b.order[p];
+        b.state[i] = b.choice[3 * i + b.offset[p]];
+      }
+      ++examined, ++exhaustive;
+      if (Examine() == Outcome::kSolution) {
+        stop = SolveStatus::kSolved;
+        return;
+      }
+      if (!order.Next() || OutOfBudget()) return;
+    }
+  }
+
+  // The exhaustive phase's order: per row its states, the guess at b.y first, then the nearer bound; the rows
+  // with a choice (returned: how many) least confident first, with their number of states per position.
+  int OrderChoices() {
+    const int n = N > 0 ? N : n_runtime;
+    int nb = 0;
     for (int i = 0; i < n; ++i) {
       const double y = b.y[i];
       const int guess = GuessState(y, l[i], u[i]);
@@ -1243,45 +965,404 @@ template <int N>
     });
     for (int p = 0; p < nb; ++p) b.comb[p] = b.radix[b.order[p]];
     for (int p = 0; p < nb; ++p) b.radix[p] = b.comb[p];  // now per position
-    NearestFirst order(nb, b.radix, b.comb, b.offset);
-    in_exhaustive = true;
-    while (true) {
-      for (int p = 0; p < nb; ++p) {
-        const int i = b.order[p];
-        b.state[i] = b.choice[3 * i + b.offset[p]];
+    return nb;
+  }
+
+  // ---- Phase: record the answer, or say why there is none.
+  void RecordOutcome() {
+    const int n = N > 0 ? N : n_runtime;
+    result->iterations = examined > std::numeric_limits<int>::max() ? std::numeric_limits<int>::max()
+                                                                    : static_cast<int>(examined);
+    SetSearchDetails(total, static_cast<double>(guided), static_cast<double>(singular), result);
+    if (stop == SolveStatus::kSolved) {
+      result->status = SolveStatus::kSolved;
+      if (options.verbosity >= 1) {
+        std::fprintf(stderr, "enum: solved after %lld active sets (%lld guided) of %s\n", examined, guided,
+                     CountText(total).c_str());
       }
-      ++examined, ++exhaustive;
-      if (examine() == Outcome::kSolution) {
-        stop = SolveStatus::kSolved;
-        break;
+      return;
+    }
+    // No solution found. Return the best candidate by merit value if there was one, else the starting point.
+    const bool have_best = std::isfinite(best_merit);
+    for (int i = 0; i < n; ++i) result->z[i] = have_best ? b.best[i] : b.start[i];
+    SearchTally tally;
+    tally.examined = examined, tally.guided = guided, tally.exhaustive = exhaustive, tally.singular = singular;
+    tally.singular_skipped = singular_skipped, tally.nonfinite = nonfinite, tally.near_misses = near_misses;
+    tally.unresolved = unresolved, tally.total = total, tally.best_merit = best_merit, tally.closest = closest;
+    tally.closest_tau = closest_tau;
+    tally.one_sign = det_unclear == 0 && (det_positive == 0 || det_negative == 0);
+    ReportUnsolved(problem, options, stop, tally, result);
+  }
+
+  // ---- One active set (b.state): factor and solve its free block M_FF z_F = −(q_F + M_FB z_B), then judge.
+  [[gnu::always_inline]] inline Outcome Examine() {
+    const int n = N > 0 ? N : n_runtime;
+    int k = 0;
+    for (int i = 0; i < n; ++i) {
+      const int s = b.state[i];
+      if (s == kFree) {
+        b.free_idx[k++] = i;
+        b.z[i] = 0.0;
+      } else {
+        b.z[i] = s == kUpper ? u[i] : l[i];
       }
-      if (!order.Next() || out_of_budget()) break;
+    }
+    if (k == 0) {
+      if (in_exhaustive) ++det_positive;  // the empty block: det = 1
+      return Judge(0, 1.0, Refutation::kRefutes);
+    }
+    BuildRhs(k);
+    const double amax = Gather(k);
+    if (SolveBlock(b.A, b.ld, k, b.rhs, b.piv, solver.options_.rank_tolerance * amax)) {
+      const BlockPivots pivots = FactoredPivots(b.A, b.ld, k, b.piv);
+      if (in_exhaustive) {
+        const bool clear = pivots.smallest > kDeterminantSignMargin * k * kEps * amax;
+        ++(!clear ? det_unclear : pivots.sign > 0 ? det_positive : det_negative);
+      }
+      return Judge(k, amax / pivots.smallest, Refutation::kRefutes);
+    }
+    // Numerically singular M_FF (a pivot below rank_tolerance · max|M_FF|).
+    ++singular;
+    if (in_exhaustive) ++det_unclear;
+    if (!solver.options_.solve_singular_blocks) {
+      ++singular_skipped;
+      if (verbose) Trace(examined, b.state, n, "singular block skipped", 0.0);
+      return Outcome::kBroken;
+    }
+    return ExamineSingular(k);
+  }
+
+  // Judges the candidate with z_B in b.z and the free rows' values (unclipped) in b.rhs (Refutation: above).
+  inline Outcome Judge(int k, double growth, Refutation refutation) {
+    const int n = N > 0 ? N : n_runtime;
+    double zmax = 0.0;
+    for (int i = 0; i < n; ++i) zmax = std::max(zmax, b.state[i] == kFree ? 0.0 : std::abs(b.z[i]));
+    for (int a = 0; a < k; ++a) {
+      if (!std::isfinite(b.rhs[a])) {
+        if (refutation == Refutation::kAttempt) return Outcome::kRejected;
+        ++nonfinite;
+        if (verbose) Trace(examined, b.state, n, "block solution overflowed", 0.0);
+        return Outcome::kBroken;
+      }
+      zmax = std::max(zmax, std::abs(b.rhs[a]));
+    }
+    const double roundoff_scale = roundoff * (m_norm * zmax + q_norm);
+    const double tau = std::max(roundoff_scale, tol_abs);
+    const double tau_certify = std::max(tau, roundoff_scale * growth);
+    const auto miss = [&](double value) {
+      if (refutation == Refutation::kRefutes) RecordMiss(value, tau_certify);
+      if (refutation == Refutation::kUnresolved) ++unresolved;
+    };
+    // z_F within its bounds up to τ, then clipped onto them.
+    double violation = 0.0;
+    for (int a = 0; a < k; ++a) {
+      const int i = b.free_idx[a];
+      violation = std::max(violation, std::max(l[i] - b.rhs[a], b.rhs[a] - u[i]));
+    }
+    if (violation > tau) {
+      miss(violation);
+      if (verbose) Trace(examined, b.state, n, "z_F outside its bounds by", violation);
+      return Outcome::kRejected;
+    }
+    double z_norm = 0.0;
+    for (int a = 0; a < k; ++a) {
+      const int i = b.free_idx[a];
+      b.z[i] = std::min(std::max(b.rhs[a], l[i]), u[i]);
+    }
+    for (int i = 0; i < n; ++i) z_norm = std::max(z_norm, std::abs(b.z[i]));
+    // The merit function decides: r = ‖z − Π(z − (M z + q))‖∞. On bound rows it is the sign violation of w, on
+    // free rows the equation residual, so it is also the sign test (at threshold τ). "Solved" (Solver::Finish)
+    // needs r ≤ tol·(1 + ‖q‖∞) and r ≤ tol·(1 + ‖z‖∞) (the problem is equilibrated): clearly below both, the
+    // candidate is accepted; near them, BoxMLCP::NaturalResidual, the function the base class applies, decides.
+    Affine(b.z, b.w);
+    double merit = 0.0;
+    for (int i = 0; i < n; ++i) {
+      merit = std::max(merit, std::abs(b.z[i] - std::min(std::max(b.z[i] - b.w[i], l[i]), u[i])));
+    }
+    const double accept = options.tolerance * std::min(problem.residual_scale(), 1.0 + z_norm);
+    const double reject = options.tolerance * std::max(problem.residual_scale(), 1.0 + z_norm);
+    if (merit <= 2.0 * reject) {
+      for (int i = 0; i < n; ++i) result->z[i] = b.z[i];
+      if (merit <= 0.5 * accept || Passes(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
+        if (verbose) Trace(examined, b.state, n, "solves; merit", merit);
+        return Outcome::kSolution;
+      }
+    }
+    if (merit < best_merit) {
+      best_merit = merit;
+      for (int i = 0; i < n; ++i) b.best[i] = b.z[i];
+    }
+    if (refutation == Refutation::kAttempt) return Outcome::kRejected;
+    if (merit <= tau) ++near_misses;  // passes the sign tests at roundoff level only: ill-conditioned
+    if (verbose) Trace(examined, b.state, n, merit <= tau ? "near-solution; merit" : "sign test fails; merit", merit);
+    miss(merit);
+    return Outcome::kRejected;
+  }
+
+  // ---- A numerically singular free block (rare): out of line, so that it does not weigh on the inlining budget
+  // of the fixed-size paths. First the LU solution itself, when its pivots are nonzero (the merit function, not the
+  // size of a pivot, decides whether it solves the problem); then the least-norm solution about Π(0) of the
+  // rank-cut system (a consistent singular block has a whole affine set of solutions), and the set's refutation.
+  [[gnu::noinline]] Outcome ExamineSingular(int k) {
+    BuildRhs(k);
+    Gather(k);
+    if (SolveBlock(b.A, b.ld, k, b.rhs, b.piv, 0.0) && Judge(k, kInf, Refutation::kAttempt) == Outcome::kSolution) {
+      return Outcome::kSolution;
+    }
+    BuildRhs(k);
+    Gather(k);
+    for (int a = 0; a < k; ++a) b.w[a] = b.xref[b.free_idx[a]];  // w is scratch until the merit test
+    const int rank =
+        LeastNormSolve(b.A, b.T, b.ld, k, b.w, b.rhs, b.tau, b.tau2, b.v, b.jpvt, solver.options_.rank_tolerance);
+    // Rank k − 1: every solution of this active set (the whole line if the block is exactly singular and the
+    // system consistent, the one point if the cut direction was merely tiny, none if inconsistent) lies on the line
+    // x₀ + t·v, v spanning the cut direction of the QR. The set is refuted when no point of that line meets the
+    // equations, box and sign conditions; otherwise the best point of the line is the candidate.
+    LineOfSolutions line;
+    if (rank == k - 1) line = FitLine(b.A, b.ld, k, b.jpvt, b.T, b.v);  // T is free after LeastNormSolve
+    MarkRowsBlindToTheBlock(k);
+    return line.ok ? JudgeLineOfSolutions(k, line) : JudgeDeeplyDeficient(k);
+  }
+
+  // Rows whose entries on the free columns are all exactly zero: their w does not depend on x at all, so their
+  // conditions hold or fail for every point of the block's solution set alike (b.margin[i] = 1; scratch here).
+  void MarkRowsBlindToTheBlock(int k) {
+    const int n = N > 0 ? N : n_runtime;
+    for (int i = 0; i < n; ++i) {
+      bool zero = true;
+      for (int a = 0; a < k && zero; ++a) zero = col(b.free_idx[a])[i] == 0.0;
+      b.margin[i] = zero ? 1.0 : 0.0;
     }
   }
 
-  result->iterations = examined > std::numeric_limits<int>::max() ? std::numeric_limits<int>::max()
-                                                                  : static_cast<int>(examined);
-  SetSearchDetails(total, static_cast<double>(guided), static_cast<double>(singular), result);
-  if (stop == SolveStatus::kSolved) {
-    result->status = SolveStatus::kSolved;
-    if (options.verbosity >= 1) {
-      std::fprintf(stderr, "enum: solved after %lld active sets (%lld guided) of %s\n", examined, guided,
-                   CountText(total).c_str());
+  // A rank deficiency above one: the least-norm point (in b.rhs) is one of many and refutes nothing; only a row
+  // that does not see x (MarkRowsBlindToTheBlock) can refute the set, for every x at once.
+  Outcome JudgeDeeplyDeficient(int k) {
+    const int n = N > 0 ? N : n_runtime;
+    double zmax = 0.0;
+    for (int a = 0, i = 0; i < n; ++i) {
+      if (b.state[i] == kFree) b.z[i] = b.rhs[a++];
+      zmax = std::max(zmax, std::abs(b.z[i]));
     }
-    return;
+    Affine(b.z, b.w);
+    double blind_violation = 0.0;  // the largest violated condition among the rows that do not see x
+    for (int i = 0; i < n; ++i) {
+      if (b.margin[i] == 0.0) continue;
+      const double wi = b.w[i];
+      const int st = b.state[i];
+      const double violated = st == kFree ? std::abs(wi) : st == kLower ? -wi : st == kUpper ? wi : 0.0;
+      blind_violation = std::max(blind_violation, violated);
+    }
+    for (int i = 0; i < n; ++i) {
+      if (b.state[i] == kFree) b.z[i] = 0.0;
+    }
+    if (Judge(k, kInf, Refutation::kAttempt) == Outcome::kSolution) return Outcome::kSolution;
+    const double tau = std::max(roundoff * (m_norm * zmax + q_norm), tol_abs);
+    if (blind_violation > kCertifyMargin * tau) {
+      RecordMiss(blind_violation, tau);
+    } else {
+      ++unresolved;
+    }
+    if (verbose) Trace(examined, b.state, n, "singular block; violation independent of x", blind_violation);
+    return Outcome::kRejected;
   }
 
-  // No solution found. Return the best candidate by merit value if there was one, else the starting point.
-  const bool have_best = std::isfinite(best_merit);
-  for (int i = 0; i < n; ++i) result->z[i] = have_best ? b.best[i] : b.start[i];
-  SearchTally tally;
-  tally.examined = examined, tally.guided = guided, tally.exhaustive = exhaustive, tally.singular = singular;
-  tally.singular_skipped = singular_skipped, tally.nonfinite = nonfinite, tally.near_misses = near_misses;
-  tally.unresolved = unresolved, tally.total = total, tally.best_merit = best_merit, tally.closest = closest;
-  tally.closest_tau = closest_tau;
-  tally.one_sign = det_unclear == 0 && (det_positive == 0 || det_negative == 0);
-  ReportUnsolved(problem, options, stop, tally, result);
-  if (options.verbosity >= 1) std::fprintf(stderr, "%s\n", result->message.c_str());
+  // A rank k − 1 block: its solutions lie on the line x₀ + t·v (x₀ in b.rhs, v in b.v). The set is refuted with a
+  // margin when no point of the line comes within the rounding threshold of every condition; the point of least
+  // violation is judged as the candidate.
+  Outcome JudgeLineOfSolutions(int k, const LineOfSolutions& line) {
+    const int n = N > 0 ? N : n_runtime;
+    const bool null_exact = ExactNullDirection(k);
+    // Constraints α_j + β_j t ≥ 0 on the line: the free rows' equations w_i = 0 (both signs: an inconsistent block
+    // violates them everywhere on the line) and bounds, the signs of w on the bound rows (w at x₀ in b.w, its change
+    // Δw = M_·F v per unit of t in b.y).
+    for (int i = 0; i < n; ++i) b.y[i] = 0.0;
+    for (int a = 0; a < k; ++a) {
+      const double* mj = col(b.free_idx[a]);
+      for (int i = 0; i < n; ++i) b.y[i] += mj[i] * b.v[a];
+    }
+    double bound_max = 0.0;  // largest |z_i| over the bound rows
+    for (int a = 0, i = 0; i < n; ++i) {
+      if (b.state[i] == kFree) {
+        b.z[i] = b.rhs[a++];
+      } else {
+        bound_max = std::max(bound_max, std::abs(b.z[i]));
+      }
+    }
+    Affine(b.z, b.w);
+    // take(α, β, sees_x): sees_x is false for a row that does not see x, whose condition is exact along the line.
+    const auto constraints_flagged = [&](const auto& take) {
+      for (int a = 0; a < k; ++a) {
+        const int i = b.free_idx[a];
+        if (l[i] > -kInf) take(b.rhs[a] - l[i], b.v[a], true);
+        if (u[i] < kInf) take(u[i] - b.rhs[a], -b.v[a], true);
+      }
+      for (int i = 0; i < n; ++i) {
+        const bool sees_x = b.margin[i] == 0.0;
+        if (b.state[i] == kLower || b.state[i] == kFree) take(b.w[i], b.y[i], sees_x);
+        if (b.state[i] == kUpper || b.state[i] == kFree) take(-b.w[i], -b.y[i], sees_x);
+      }
+    };
+    const auto constraints = [&](const auto& take) {
+      constraints_flagged([&](double alpha, double beta, bool) { take(alpha, beta); });
+    };
+    // Refuted with a margin when no t meets every constraint to within kCertifyMargin·τ(t), where the rounding
+    // threshold τ(t) grows with ‖x(t)‖∞ (far along the line the computed Δw is mostly rounding: a nearly singular
+    // block's one solution can sit at |t| ~ 1/σ_min). τ(t) = tol·(1 + ‖q‖) + G·feasibility_scale·n·ε·(‖M‖‖x(t)‖∞
+    // + ‖q‖), G the growth of the kept part of the QR. ‖x(t)‖∞ is the largest of the pieces ±(x₀ + t v)_a and the
+    // bound rows' |z|: the constraints hold at some t for the largest piece iff they do for one piece, an interval
+    // test each. A row that does not see x keeps a constant threshold: its w is the same at every point.
+    const double growth = std::max(1.0, line.growth);
+    const double slack0 = kCertifyMargin * (tol_abs + growth * roundoff * q_norm);
+    const double slack1 = null_exact ? 0.0 : kCertifyMargin * growth * roundoff * m_norm;
+    const auto some_t_within_slack = [&](double piece0, double piece1) {
+      double lo = -kInf, hi = kInf;
+      bool ok = true;
+      constraints_flagged([&](double alpha, double beta, bool sees_x) {
+        const double grow = sees_x ? slack1 : 0.0;
+        const double a0 = alpha + slack0 + grow * piece0, a1 = beta + grow * piece1;
+        if (a1 > 0.0) {
+          lo = std::max(lo, -a0 / a1);
+        } else if (a1 < 0.0) {
+          hi = std::min(hi, -a0 / a1);
+        } else {
+          ok = ok && a0 >= 0.0;
+        }
+      });
+      return ok && lo <= hi;
+    };
+    bool refuted = !some_t_within_slack(bound_max, 0.0);
+    for (int a = 0; a < k && refuted; ++a) {
+      refuted = !some_t_within_slack(b.rhs[a], b.v[a]) && !some_t_within_slack(-b.rhs[a], -b.v[a]);
+    }
+    // The candidate: the point of the line with the least violation, nearest x₀.
+    const LeastViolation least = MinimizeWorstViolation(constraints);
+    for (int a = 0, i = 0; i < n; ++i) {
+      if (b.state[i] == kFree) b.z[i] = 0.0, b.rhs[a] += least.t * b.v[a], ++a;
+    }
+    if (Judge(k, line.growth, Refutation::kAttempt) == Outcome::kSolution) return Outcome::kSolution;
+    if (!refuted) ++near_misses;  // some point of the line is within rounding of every condition
+    if (verbose) {
+      Trace(examined, b.state, n, refuted ? "singular block, no point of its line qualifies; least violation"
+                                          : "singular block, a point of its line is within rounding; violation",
+            least.violation);
+    }
+    return Outcome::kRejected;
+  }
+
+  // Whether M_FF v = 0 holds exactly for the line's direction b.v (checked without rounding): then v spans the
+  // exact null space, the solution set is exactly parallel to the line and a constant threshold suffices. The QR's
+  // v carries rounding, so v rounded to 20 bits (an exact null vector of a matrix of small integers and simple
+  // ratios, e.g. (1, 1)) is tried too, and kept in b.v when it is exact.
+  bool ExactNullDirection(int k) {
+    const auto exact_null = [&](const double* vec) {
+      bool exact = true;
+      for (int c = 0; c < k && exact; ++c) {
+        const int i = b.free_idx[c];
+        exact = ExactlyZeroDot(k, [&](int a) { return col(b.free_idx[a])[i]; }, vec);
+      }
+      return exact;
+    };
+    if (exact_null(b.v)) return true;
+    for (int a = 0; a < k; ++a) b.T[a] = std::ldexp(std::round(std::ldexp(b.v[a], 20)), -20);
+    if (!exact_null(b.T)) return false;
+    std::copy(b.T, b.T + k, b.v);
+    return true;
+  }
+
+  // ---- Small shared steps.
+  const double* col(int j) const { return M + static_cast<std::ptrdiff_t>(j) * (N > 0 ? N : n_runtime); }
+
+  // w = M z + q, column by column.
+  [[gnu::always_inline]] inline void Affine(const double* z, double* w) const {
+    const int n = N > 0 ? N : n_runtime;
+    for (int i = 0; i < n; ++i) w[i] = q[i];
+    for (int j = 0; j < n; ++j) {
+      const double zj = z[j];
+      if (zj == 0.0) continue;
+      const double* mj = col(j);
+      for (int i = 0; i < n; ++i) w[i] += mj[i] * zj;
+    }
+  }
+
+  // The free block of the active set in b.state (rows b.free_idx[0 .. k)): right-hand side −(q_F + M_FB z_B)
+  // into b.rhs.
+  [[gnu::always_inline]] inline void BuildRhs(int k) {
+    const int n = N > 0 ? N : n_runtime;
+    for (int a = 0; a < k; ++a) b.rhs[a] = -q[b.free_idx[a]];
+    for (int j = 0; j < n; ++j) {
+      const double zj = b.z[j];
+      if (zj == 0.0 || b.state[j] == kFree) continue;
+      const double* mj = col(j);
+      for (int a = 0; a < k; ++a) b.rhs[a] -= mj[b.free_idx[a]] * zj;
+    }
+  }
+
+  // M_FF into b.A; returns max |M_FF|.
+  [[gnu::always_inline]] inline double Gather(int k) {
+    double amax = 0.0;
+    for (int c = 0; c < k; ++c) {
+      const double* mj = col(b.free_idx[c]);
+      double* ac = b.A + static_cast<std::ptrdiff_t>(c) * b.ld;
+      for (int a = 0; a < k; ++a) {
+        ac[a] = mj[b.free_idx[a]];
+        amax = std::max(amax, std::abs(ac[a]));
+      }
+    }
+    return amax;
+  }
+
+  // The closest refutation of any candidate (bound violation of z_F, or merit value) relative to its certificate
+  // threshold (τ, widened by the block's pivot growth).
+  void RecordMiss(double miss, double tau) {
+    if (miss * closest_tau < closest * tau) closest = miss, closest_tau = tau;
+  }
+
+  // Budget and clock, checked after each examined set that did not solve.
+  bool OutOfBudget() {
+    if (budget > 0 && examined >= budget) {
+      stop = SolveStatus::kIterationLimit;
+    } else if ((examined & 15) == 0 && solver.TimeLimitReached()) {
+      stop = SolveStatus::kTimeLimit;
+    }
+    return stop != SolveStatus::kNotRun;
+  }
+
+  // ---- The shared state.
+  EnumerativeSolver& solver;  // its options_, workspace and clock
+  const BoxMLCP& problem;     // the row-equilibrated problem
+  const SolverOptions& options;
+  SolveResult* result;
+  const int n_runtime;  // rows; the phases read N instead when it is fixed
+  const double* M;
+  const double* q;
+  const double* l;
+  const double* u;
+  FixedStorage<N> storage;  // the workspace of the fixed-size path (empty for N = 0)
+  Buffers b;
+  double total = 1.0;  // active sets in the full search
+  // Problem scales: the merit tolerance and the roundoff allowance of the sign tests.
+  double tol_abs = 0.0, q_norm = 0.0, m_norm = 0.0, roundoff = 0.0;
+  const bool verbose = options.verbosity >= 2;
+  const long long budget = options.max_iterations > 0 ? options.max_iterations : -1;
+  long long examined = 0, guided = 0, exhaustive = 0, singular = 0, singular_skipped = 0, nonfinite = 0,
+            near_misses = 0, unresolved = 0;
+  double best_merit = kInf;  // smallest merit value among the candidates that reached the merit test
+  double closest = kInf, closest_tau = 1.0;  // RecordMiss
+  // Signs of det M_FF over the exhaustive phase (every free set appears there): one sign throughout, with clear
+  // pivots, means the Schur complement of the always-free rows is a P-matrix, so a solution exists.
+  bool in_exhaustive = false;
+  long long det_positive = 0, det_negative = 0, det_unclear = 0;
+  SolveStatus stop = SolveStatus::kNotRun;  // kSolved, or why the search stopped early
+};
+
+// Out of line: the search is the fast path's fallback, and inlined into DoSolve it would crowd out the inlining
+// of the fast path's own calls.
+template <int N>
+[[gnu::noinline]] void EnumerativeSolver::Search(const BoxMLCP& problem, const SolverOptions& options,
+                                                 SolveResult* result) {
+  ActiveSetSearch<N> search(*this, problem, options, result);
+  search.Run();
 }
 
 }  // namespace smcbench

@@ -33,6 +33,7 @@
 #include <string>
 #include <vector>
 
+#include "solvers/core/backend_options.h"
 #include "solvers/core/solver.h"
 
 namespace smcbench {
@@ -81,10 +82,10 @@ struct EnumerativeOptions {
 // of the full search), guided_sets, singular_blocks.
 // Problems with m ≤ 4 rows first try the guessed set on a fixed-size fast path (loops unrolled at compile time,
 // values in registers, cached factors or inverses of the free blocks, division-free guess and acceptance tests).
-class EnumerativeSolver final : public Solver {
+class EnumerativeSolver final : public BackendWithOptions<EnumerativeOptions> {
  public:
   EnumerativeSolver() = default;
-  explicit EnumerativeSolver(const EnumerativeOptions& options) : options_(options) {}
+  explicit EnumerativeSolver(const EnumerativeOptions& options) : BackendWithOptions(options) {}
 
   // The fast path's factors of the free blocks M_FF, one per free set (bitmask of rows), for the M identified
   // by matrix_id (BoxMLCP::matrix_id()). Fixed size: m ≤ 4, no allocation.
@@ -111,16 +112,6 @@ class EnumerativeSolver final : public Solver {
   };
 
   const SolverInfo& info() const override;
-  const EnumerativeOptions& options() const { return options_; }
-  // The options, to change in place; sessions check them again on their next call.
-  EnumerativeOptions& mutable_options() {
-    OptionsChanged();
-    return options_;
-  }
-  void set_options(const EnumerativeOptions& options) {
-    options_ = options;
-    OptionsChanged();
-  }
 
  protected:
   void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
@@ -131,13 +122,15 @@ class EnumerativeSolver final : public Solver {
   // The search, with the row count fixed at compile time (N = 1..4) or read at run time (N = 0).
   template <int N>
   void Search(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
+  // The search's phases and the state they share (enumerative_solver.cc).
+  template <int N>
+  class ActiveSetSearch;
   // The fixed-size fast path (N = 1..4): only the guessed active set; false if it does not solve the problem.
   template <int N>
   bool SolveFast(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
   // Sizes the workspace for n rows and that many guided steps; allocates only when they grow or n changes.
   void Reserve(int n, int guided_steps);
 
-  EnumerativeOptions options_;
   // Workspace for the run-time-size path (the fixed-size path keeps its buffers on the stack).
   int workspace_n_ = -1;
   int workspace_history_ = 0;

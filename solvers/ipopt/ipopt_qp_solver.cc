@@ -316,10 +316,43 @@ class Session {
   bool use_sqr_ = false;
 };
 
-// Formulation 1: min 1/2 z'Mz + q'z on the box, no constraints.
-class QpTnlp final : public Ipopt::TNLP {
+// What both formulations share: the Hessian's pattern and values from the session (hess_row_/col_/val_, set up by
+// the formulation before the solve), the solution and the per-iteration callback handed back to the session.
+class SessionTnlp : public Ipopt::TNLP {
  public:
-  explicit QpTnlp(Session* s) : s_(s) {}
+  explicit SessionTnlp(Session* s) : s_(s) {}
+
+  bool eval_h(Index, const Number*, bool, Number obj_factor, Index, const Number*, bool, Index nele, Index* row,
+              Index* col, Number* values) override {
+    if (values == nullptr) {
+      std::copy(s_->hess_row_.begin(), s_->hess_row_.end(), row);
+      std::copy(s_->hess_col_.begin(), s_->hess_col_.end(), col);
+    } else {
+      for (Index k = 0; k < nele; ++k) values[k] = obj_factor * s_->hess_val_[k];
+    }
+    return true;
+  }
+
+  void finalize_solution(Ipopt::SolverReturn, Index n, const Number* x, const Number*, const Number*, Index,
+                         const Number*, const Number*, Number obj, const Ipopt::IpoptData*,
+                         Ipopt::IpoptCalculatedQuantities*) override {
+    s_->RecordSolution(x, n, obj);
+  }
+
+  bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iter, Number, Number, Number, Number, Number, Number,
+                             Number, Number, Index, const Ipopt::IpoptData*,
+                             Ipopt::IpoptCalculatedQuantities*) override {
+    return s_->OnIteration(mode, iter);
+  }
+
+ protected:
+  Session* s_;
+};
+
+// Formulation 1: min 1/2 z'Mz + q'z on the box, no constraints.
+class QpTnlp final : public SessionTnlp {
+ public:
+  explicit QpTnlp(Session* s) : SessionTnlp(s) {}
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& style) override {
     n = s_->n_;
@@ -374,38 +407,12 @@ class QpTnlp final : public Ipopt::TNLP {
 
   bool eval_g(Index, const Number*, bool, Index, Number*) override { return true; }
   bool eval_jac_g(Index, const Number*, bool, Index, Index, Index*, Index*, Number*) override { return true; }
-
-  bool eval_h(Index, const Number*, bool, Number obj_factor, Index, const Number*, bool, Index nele, Index* row,
-              Index* col, Number* values) override {
-    if (values == nullptr) {
-      std::copy(s_->hess_row_.begin(), s_->hess_row_.end(), row);
-      std::copy(s_->hess_col_.begin(), s_->hess_col_.end(), col);
-    } else {
-      for (Index k = 0; k < nele; ++k) values[k] = obj_factor * s_->hess_val_[k];
-    }
-    return true;
-  }
-
-  void finalize_solution(Ipopt::SolverReturn, Index n, const Number* x, const Number*, const Number*, Index,
-                         const Number*, const Number*, Number obj, const Ipopt::IpoptData*,
-                         Ipopt::IpoptCalculatedQuantities*) override {
-    s_->RecordSolution(x, n, obj);
-  }
-
-  bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iter, Number, Number, Number, Number, Number, Number,
-                             Number, Number, Index, const Ipopt::IpoptData*,
-                             Ipopt::IpoptCalculatedQuantities*) override {
-    return s_->OnIteration(mode, iter);
-  }
-
- private:
-  Session* s_;
 };
 
 // Formulation 2: the complementarity-gap NLP in x = (z, multipliers).
-class GapTnlp final : public Ipopt::TNLP {
+class GapTnlp final : public SessionTnlp {
  public:
-  explicit GapTnlp(Session* s) : s_(s) {}
+  explicit GapTnlp(Session* s) : SessionTnlp(s) {}
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& style) override {
     n = s_->n_ + static_cast<Index>(s_->mult_row_.size());
@@ -514,32 +521,6 @@ class GapTnlp final : public Ipopt::TNLP {
     }
     return true;
   }
-
-  bool eval_h(Index, const Number*, bool, Number obj_factor, Index, const Number*, bool, Index nele, Index* row,
-              Index* col, Number* values) override {
-    if (values == nullptr) {
-      std::copy(s_->hess_row_.begin(), s_->hess_row_.end(), row);
-      std::copy(s_->hess_col_.begin(), s_->hess_col_.end(), col);
-    } else {
-      for (Index k = 0; k < nele; ++k) values[k] = obj_factor * s_->hess_val_[k];
-    }
-    return true;
-  }
-
-  void finalize_solution(Ipopt::SolverReturn, Index n, const Number* x, const Number*, const Number*, Index,
-                         const Number*, const Number*, Number obj, const Ipopt::IpoptData*,
-                         Ipopt::IpoptCalculatedQuantities*) override {
-    s_->RecordSolution(x, n, obj);
-  }
-
-  bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iter, Number, Number, Number, Number, Number, Number,
-                             Number, Number, Index, const Ipopt::IpoptData*,
-                             Ipopt::IpoptCalculatedQuantities*) override {
-    return s_->OnIteration(mode, iter);
-  }
-
- private:
-  Session* s_;
 };
 
 Session::Session() {
@@ -1363,26 +1344,23 @@ void IpoptQpSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
 }
 
 void IpoptQpSolver::BindOptions(OptionBinder* binder) {
-  // The numbers after the names are the options' old spellings, still read so that old command lines work.
+  // The choice options were integer-coded: their old numbers are still read (the name lists after the choices).
   binder->Add("formulation", &options_.formulation,
-              {{"auto", IpoptOptions::kAuto}, {"qp", IpoptOptions::kQp}, {"gap", IpoptOptions::kGap},
-               {"0", IpoptOptions::kAuto}, {"1", IpoptOptions::kQp}, {"2", IpoptOptions::kGap}},
-              "auto (QP if M symmetric PSD, else gap NLP), qp, gap (old numbers 0-2 still read)");
+              {{"auto", IpoptOptions::kAuto}, {"qp", IpoptOptions::kQp}, {"gap", IpoptOptions::kGap}},
+              {"auto", "qp", "gap"}, "auto (QP if M symmetric PSD, else gap NLP), qp, gap");
   binder->Add("tol", &options_.tol, "Ipopt tol (scaled NLP error)");
   binder->Add("max_iter", &options_.max_iter, "Ipopt max_iter when max_iterations <= 0");
   binder->Add("mu_strategy", &options_.mu_strategy,
-              {{"monotone", IpoptOptions::kMonotone}, {"adaptive", IpoptOptions::kAdaptive},
-               {"0", IpoptOptions::kMonotone}, {"1", IpoptOptions::kAdaptive}},
-              "Ipopt mu_strategy: monotone or adaptive (old numbers 0, 1 still read)");
+              {{"monotone", IpoptOptions::kMonotone}, {"adaptive", IpoptOptions::kAdaptive}},
+              {"monotone", "adaptive"}, "Ipopt mu_strategy: monotone or adaptive");
   binder->Add("mehrotra", &options_.mehrotra, "Mehrotra predictor-corrector for the convex QP");
   binder->Add("linear_solver", &options_.linear_solver,
               {{"mumps", IpoptOptions::kMumps}, {"ma27", IpoptOptions::kMa27}, {"ma57", IpoptOptions::kMa57},
                {"ma77", IpoptOptions::kMa77}, {"ma86", IpoptOptions::kMa86}, {"ma97", IpoptOptions::kMa97},
-               {"pardiso", IpoptOptions::kPardiso}, {"0", IpoptOptions::kMumps}, {"1", IpoptOptions::kMa27},
-               {"2", IpoptOptions::kMa57}, {"3", IpoptOptions::kMa77}, {"4", IpoptOptions::kMa86},
-               {"5", IpoptOptions::kMa97}, {"6", IpoptOptions::kPardiso}},
+               {"pardiso", IpoptOptions::kPardiso}},
+              {"mumps", "ma27", "ma57", "ma77", "ma86", "ma97", "pardiso"},
               "Ipopt linear_solver: mumps (Debian's), or ma27/ma57/ma77/ma86/ma97 (libhsl.so), pardiso "
-              "(libpardiso.so) (old numbers 0-6 still read)");
+              "(libpardiso.so)");
   binder->Add("print_level", &options_.print_level, "Ipopt print_level (0..12) when verbosity >= 2");
   binder->Add("symmetry_tolerance", &options_.symmetry_tolerance, "relative asymmetry still called symmetric");
   binder->Add("psd_tolerance", &options_.psd_tolerance, "PSD if lambda_min > -psd_tolerance*||M||_inf");

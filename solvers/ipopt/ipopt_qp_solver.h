@@ -6,6 +6,7 @@
 #include <memory>
 #include <string>
 
+#include "solvers/core/backend_options.h"
 #include "solvers/core/solver.h"
 
 namespace smcbench {
@@ -54,7 +55,7 @@ struct IpoptOptions {
   bool IsValid(std::string* why) const;
 };
 
-class IpoptQpSolver final : public Solver {
+class IpoptQpSolver final : public BackendWithOptions<IpoptOptions> {
  public:
   IpoptQpSolver();
   ~IpoptQpSolver() override;
@@ -62,16 +63,6 @@ class IpoptQpSolver final : public Solver {
   IpoptQpSolver& operator=(const IpoptQpSolver&) = delete;
 
   const SolverInfo& info() const override;
-  const IpoptOptions& options() const { return options_; }
-  // The options, to change in place; sessions check them again on their next call.
-  IpoptOptions& mutable_options() {
-    OptionsChanged();
-    return options_;
-  }
-  void set_options(const IpoptOptions& options) {
-    options_ = options;
-    OptionsChanged();
-  }
 
  protected:
   void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
@@ -82,7 +73,6 @@ class IpoptQpSolver final : public Solver {
   struct Impl;  // Ipopt application, TNLPs, classification cache and polish workspace (Ipopt types stay in .cc)
   bool Expired() const { return TimeLimitReached(); }
 
-  IpoptOptions options_;
   std::unique_ptr<Impl> impl_;
 };
 

@@ -1035,13 +1035,10 @@ void LemkeSolver::BindOptions(OptionBinder* binder) {
   using FreeRows = LemkeOptions::FreeRows;
   binder->Add("pivot_tolerance", &options_.pivot_tolerance,
               "pivot candidates need c_i > pivot_tolerance * max|c| (relative)");
-  // The numbers are the option's old spellings, still read so that old command lines keep working.
+  // Both choice options were integer-coded: their old numbers are still read (the name lists after the choices).
   binder->Add("covering_vector", &options_.covering_vector,
-              {{"ones", static_cast<int>(Covering::kOnes)},
-               {"row-scaled", static_cast<int>(Covering::kRowScaled)},
-               {"0", static_cast<int>(Covering::kOnes)},
-               {"1", static_cast<int>(Covering::kRowScaled)}},
-              "ones: d = e; row-scaled: d_i = max_j |N_ij| (old numbers 0, 1 still read)");
+              {{"ones", static_cast<int>(Covering::kOnes)}, {"row-scaled", static_cast<int>(Covering::kRowScaled)}},
+              {"ones", "row-scaled"}, "ones: d = e; row-scaled: d_i = max_j |N_ij|");
   binder->Add("refactor_interval", &options_.refactor_interval,
               "recompute the basis inverse every this many pivots (0 = max(64, LCP size))");
   binder->Add("free_block_min_rcond", &options_.free_block_min_rcond,
@@ -1050,13 +1047,10 @@ void LemkeSolver::BindOptions(OptionBinder* binder) {
               {{"auto", static_cast<int>(FreeRows::kAutomatic)},
                {"schur", static_cast<int>(FreeRows::kSchur)},
                {"basic", static_cast<int>(FreeRows::kBasic)},
-               {"split", static_cast<int>(FreeRows::kSplit)},
-               {"0", static_cast<int>(FreeRows::kAutomatic)},
-               {"1", static_cast<int>(FreeRows::kSchur)},
-               {"2", static_cast<int>(FreeRows::kBasic)},
-               {"3", static_cast<int>(FreeRows::kSplit)}},
+               {"split", static_cast<int>(FreeRows::kSplit)}},
+              {"auto", "schur", "basic", "split"},
               "free rows: auto (Schur, else basic, else split), schur, basic (free variables kept basic), split "
-              "(x+ - x-) (old numbers 0-3 still read)");
+              "(x+ - x-)");
 }
 
 bool LemkeSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }

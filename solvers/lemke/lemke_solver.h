@@ -63,6 +63,7 @@
 #include <string_view>
 #include <vector>
 
+#include "solvers/core/backend_options.h"
 #include "solvers/core/solver.h"
 
 namespace smcbench {
@@ -137,22 +138,12 @@ struct Workspace {
 };
 }  // namespace lemke_internal
 
-class LemkeSolver final : public Solver {
+class LemkeSolver final : public BackendWithOptions<LemkeOptions> {
  public:
   LemkeSolver() = default;
-  explicit LemkeSolver(const LemkeOptions& options) : options_(options) {}
+  explicit LemkeSolver(const LemkeOptions& options) : BackendWithOptions(options) {}
 
   const SolverInfo& info() const override;
-  const LemkeOptions& options() const { return options_; }
-  // The options, to change in place; sessions check them again on their next call.
-  LemkeOptions& mutable_options() {
-    OptionsChanged();
-    return options_;
-  }
-  void set_options(const LemkeOptions& options) {
-    options_ = options;
-    OptionsChanged();
-  }
 
  protected:
   void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
@@ -160,7 +151,6 @@ class LemkeSolver final : public Solver {
   bool ValidateBackendOptions(std::string* why) const override;
 
  private:
-  LemkeOptions options_;
   lemke_internal::Workspace ws_;
 };
 

@@ -263,7 +263,9 @@ TEST(LemkeSolver, InfoAndOptions) {
   EXPECT_EQ(solver.options().covering_vector, LemkeOptions::Covering::kOnes);
   EXPECT_FALSE(solver.SetOption("free_row_method", "schur-only", &error));
   EXPECT_NE(error.find("auto, schur, basic, split"), std::string::npos) << error;
-  EXPECT_NE(solver.OptionsHelp().find("free_row_method = schur (one of auto schur basic split 0 1 2 3)"), std::string::npos)
+  EXPECT_NE(solver.OptionsHelp().find(
+                "free_row_method = schur (one of auto schur basic split; old number 0=auto 1=schur 2=basic 3=split)"),
+            std::string::npos)
       << solver.OptionsHelp();
 
   LemkeSolver bad;

@@ -911,7 +911,7 @@ struct SemismoothNewtonSolver::Workspace {
 
 SemismoothNewtonSolver::SemismoothNewtonSolver() : ws_(std::make_unique<Workspace>()) {}
 SemismoothNewtonSolver::SemismoothNewtonSolver(const NewtonOptions& options)
-    : options_(options), ws_(std::make_unique<Workspace>()) {}
+    : BackendWithOptions(options), ws_(std::make_unique<Workspace>()) {}
 SemismoothNewtonSolver::~SemismoothNewtonSolver() = default;
 
 const SolverInfo& SemismoothNewtonSolver::info() const {
@@ -943,10 +943,9 @@ void SemismoothNewtonSolver::BindOptions(OptionBinder* b) {
   b->Add("gradient_fallback", &o.gradient_fallback, "use -grad Psi when the Newton direction fails");
   b->Add("linear_solver", &o.linear_solver,
          {{"auto", NewtonOptions::kAutoLinearSolver}, {"dense", NewtonOptions::kDenseLinearSolver},
-          {"sparse", NewtonOptions::kSparseLinearSolver}, {"0", NewtonOptions::kAutoLinearSolver},
-          {"1", NewtonOptions::kDenseLinearSolver}, {"2", NewtonOptions::kSparseLinearSolver}},
-         "auto (dense LU for dense and small sparse data, else UMFPACK), dense (reduced LU), sparse (UMFPACK) "
-         "(old numbers 0-2 still read)");
+          {"sparse", NewtonOptions::kSparseLinearSolver}},
+         {"auto", "dense", "sparse"},  // its old numbers 0-2, still read
+         "auto (dense LU for dense and small sparse data, else UMFPACK), dense (reduced LU), sparse (UMFPACK)");
   b->Add("dense_max_size", &o.dense_max_size, "auto: sparse data up to this size are factorized densely");
   b->Add("reduction_threshold", &o.reduction_threshold,
          "dense: rows with |Db| <= threshold |Da| leave the LU (0 = exact zeros only)");
@@ -963,17 +962,16 @@ void SemismoothNewtonSolver::BindOptions(OptionBinder* b) {
          "Newton iterations per perturbed (proximal) solve");
 }
 
-void SemismoothNewtonSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+// What a box-MLCP solve and an MCP solve set up alike: the sizes, the bounds, and dense or sparse linear algebra
+// (native_sparse: ∇F arrives sparse).
+void SemismoothNewtonSolver::SetUpSolve(int n, const Vector& l, const Vector& u, bool native_sparse) {
   Workspace& ws = *ws_;
-  const int n = problem.size();
   ws.Resize(n);
   ws.owner = this;
   ws.opt = &options_;
-  ws.lcp = &problem;
-  ws.mcp = nullptr;
-  ws.l = &problem.l();
-  ws.u = &problem.u();
-  ws.native_sparse = problem.is_sparse();
+  ws.l = &l;
+  ws.u = &u;
+  ws.native_sparse = native_sparse;
   switch (options_.linear_solver) {
     case NewtonOptions::kDenseLinearSolver:
       ws.dense_la = true;
@@ -982,11 +980,32 @@ void SemismoothNewtonSolver::DoSolve(const BoxMLCP& problem, const SolverOptions
       ws.dense_la = false;
       break;
     default:
-      ws.dense_la = !problem.is_sparse() || n <= options_.dense_max_size;
+      ws.dense_la = !native_sparse || n <= options_.dense_max_size;
       break;
   }
   ws.Jd = nullptr;
   ws.Js = nullptr;
+}
+
+// The other half they share: the stopping test and budget, zeroed counters, the start in result->z; then Newton.
+void SemismoothNewtonSolver::RunAndConclude(const SolverOptions& options, SolveResult* result) {
+  Workspace& ws = *ws_;
+  ws.tolerance = options.tolerance;
+  ws.verbosity = options.verbosity;
+  ws.budget = IterationBudget(options, kDefaultMaxIterations);
+  ws.iterations = ws.backtracks = ws.gradient_steps = ws.factorizations = ws.max_system = 0;
+  ws.proximal_rounds = ws.regularized_steps = 0;
+  ws.safeguard_failed = false;
+  ws.failure_detail = "";
+  ws.z = result->z;
+  ws.Conclude(ws.Run(), result);
+}
+
+void SemismoothNewtonSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  SetUpSolve(problem.size(), problem.l(), problem.u(), problem.is_sparse());
+  Workspace& ws = *ws_;
+  ws.lcp = &problem;
+  ws.mcp = nullptr;
   if (problem.is_sparse()) {
     ws.Js = &problem.sparse_matrix();
     if (ws.dense_la) {
@@ -1003,42 +1022,15 @@ void SemismoothNewtonSolver::DoSolve(const BoxMLCP& problem, const SolverOptions
   ws.symmetric_jacobian = ws.dense_la && options_.use_cholesky && IsNumericallySymmetric(*ws.Jd);
   ws.scale = problem.residual_scale();
   ws.z_relative = true;
-  ws.tolerance = options.tolerance;
-  ws.verbosity = options.verbosity;
-  ws.budget = IterationBudget(options, kDefaultMaxIterations);
-  ws.iterations = ws.backtracks = ws.gradient_steps = ws.factorizations = ws.max_system = 0;
-  ws.proximal_rounds = ws.regularized_steps = 0;
-  ws.safeguard_failed = false;
-  ws.failure_detail = "";
-  ws.z = result->z;
-
-  ws.Conclude(ws.Run(), result);
+  RunAndConclude(options, result);
 }
 
 void SemismoothNewtonSolver::DoSolveMCP(const MCP& problem, const SolverOptions& options, SolveResult* result) {
-  Workspace& ws = *ws_;
   const int n = problem.size();
-  ws.Resize(n);
-  ws.owner = this;
-  ws.opt = &options_;
+  SetUpSolve(n, problem.l(), problem.u(), problem.jacobian_kind() == MCP::JacobianKind::kSparse);
+  Workspace& ws = *ws_;
   ws.lcp = nullptr;
   ws.mcp = &problem;
-  ws.l = &problem.l();
-  ws.u = &problem.u();
-  ws.native_sparse = problem.jacobian_kind() == MCP::JacobianKind::kSparse;
-  switch (options_.linear_solver) {
-    case NewtonOptions::kDenseLinearSolver:
-      ws.dense_la = true;
-      break;
-    case NewtonOptions::kSparseLinearSolver:
-      ws.dense_la = false;
-      break;
-    default:
-      ws.dense_la = !ws.native_sparse || n <= options_.dense_max_size;
-      break;
-  }
-  ws.Jd = nullptr;
-  ws.Js = nullptr;
   ws.symmetric_jacobian = false;  // an MCP Jacobian is not assumed symmetric
   // The base class measures an MCP relative to 1 + ‖F(Π(0))‖∞; use the same scale for the stopping test.
   for (int i = 0; i < n; ++i) ws.zt[i] = std::min(std::max(0.0, problem.l()[i]), problem.u()[i]);
@@ -1046,16 +1038,7 @@ void SemismoothNewtonSolver::DoSolveMCP(const MCP& problem, const SolverOptions&
   const double scale = 1.0 + ws.Ft.cwiseAbs().maxCoeff();
   ws.scale = std::isfinite(scale) ? scale : 1.0;
   ws.z_relative = false;
-  ws.tolerance = options.tolerance;
-  ws.verbosity = options.verbosity;
-  ws.budget = IterationBudget(options, kDefaultMaxIterations);
-  ws.iterations = ws.backtracks = ws.gradient_steps = ws.factorizations = ws.max_system = 0;
-  ws.proximal_rounds = ws.regularized_steps = 0;
-  ws.safeguard_failed = false;
-  ws.failure_detail = "";
-  ws.z = result->z;
-
-  ws.Conclude(ws.Run(), result);
+  RunAndConclude(options, result);
 }
 
 }  // namespace smcbench

@@ -8,6 +8,7 @@
 #include <memory>
 #include <string>
 
+#include "solvers/core/backend_options.h"
 #include "solvers/core/solver.h"
 
 namespace smcbench {
@@ -74,7 +75,7 @@ struct NewtonOptions {
 // (options.max_iterations ≤ 0). A failure returns the iterate with the smallest natural residual seen.
 // Details: "backtracks", "gradient_steps", "proximal_rounds", "regularized_steps",
 // "factorizations", "max_system_size".
-class SemismoothNewtonSolver final : public Solver {
+class SemismoothNewtonSolver final : public BackendWithOptions<NewtonOptions> {
  public:
   SemismoothNewtonSolver();
   explicit SemismoothNewtonSolver(const NewtonOptions& options);
@@ -83,16 +84,6 @@ class SemismoothNewtonSolver final : public Solver {
   SemismoothNewtonSolver& operator=(const SemismoothNewtonSolver&) = delete;
 
   const SolverInfo& info() const override;
-  const NewtonOptions& options() const { return options_; }
-  // The options, to change in place; sessions check them again on their next call.
-  NewtonOptions& mutable_options() {
-    OptionsChanged();
-    return options_;
-  }
-  void set_options(const NewtonOptions& options) {
-    options_ = options;
-    OptionsChanged();
-  }
 
   static constexpr int kDefaultMaxIterations = 200;
 
@@ -104,7 +95,9 @@ class SemismoothNewtonSolver final : public Solver {
 
  private:
   struct Workspace;  // vectors, dense LU buffer and UMFPACK state, reused across solves
-  NewtonOptions options_;
+  // The two halves DoSolve and DoSolveMCP share (the .cc file says what each sets up).
+  void SetUpSolve(int n, const Vector& l, const Vector& u, bool native_sparse);
+  void RunAndConclude(const SolverOptions& options, SolveResult* result);
   std::unique_ptr<Workspace> ws_;
 };
 

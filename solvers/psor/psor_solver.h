@@ -40,6 +40,7 @@
 
 #include <string>
 
+#include "solvers/core/backend_options.h"
 #include "solvers/core/solver.h"
 
 namespace smcbench {
@@ -64,26 +65,15 @@ struct PsorOptions {
   bool IsValid(std::string* why) const;
 };
 
-class PsorSolver final : public Solver {
+class PsorSolver final : public BackendWithOptions<PsorOptions> {
  public:
   // Default iteration budget (sweeps) when SolverOptions::max_iterations ≤ 0.
   static constexpr int kDefaultMaxSweeps = 10000;
 
   PsorSolver() = default;
-  explicit PsorSolver(const PsorOptions& options) : options_(options) {}
+  explicit PsorSolver(const PsorOptions& options) : BackendWithOptions(options) {}
 
   const SolverInfo& info() const override;
-  const PsorOptions& options() const { return options_; }
-  // The options, to change in place; sessions check them again on their next call.
-  PsorOptions& mutable_options() {
-    OptionsChanged();
-    return options_;
-  }
-  // Replaces the options; they are validated when Solve runs (invalid → kInvalidOptions).
-  void set_options(const PsorOptions& options) {
-    options_ = options;
-    OptionsChanged();
-  }
 
  protected:
   void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
@@ -94,7 +84,6 @@ class PsorSolver final : public Solver {
   template <typename Columns>
   void Iterate(const Columns& columns, const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
 
-  PsorOptions options_;
   Vector step_;  // ω / M_ii per row (0 for fixed rows l_i = u_i); sized once per n
   Vector w_;     // M z + q, updated incrementally
 };

@@ -47,6 +47,12 @@ TEST(BackendSettings, AppliesToTheSelectedBackendAndToAutosInstanceOfIt) {
   ApplyBackendSettings({"psor.omega=1.25", "lemke.free_row_method=split", "psor.omega=1.5"}, {&psor, &lemke});
   EXPECT_EQ(psor.options().omega, 1.5);  // the later setting wins
   EXPECT_EQ(lemke.options().free_row_method, LemkeOptions::FreeRows::kSplit);
+  // A choice option that was integer-coded reads its old number as the name it stood for (old command lines).
+  ApplyBackendSettings({"lemke.free_row_method=2"}, {&lemke});
+  EXPECT_EQ(lemke.options().free_row_method, LemkeOptions::FreeRows::kBasic);
+  ApplyBackendSettings({"lemke.free_row_method=split", "lemke.covering_vector=1"}, {&lemke});
+  EXPECT_EQ(lemke.options().free_row_method, LemkeOptions::FreeRows::kSplit);
+  EXPECT_EQ(lemke.options().covering_vector, LemkeOptions::Covering::kRowScaled);
 
   AutoSolver automatic;
   ApplyBackendSettings({"psor.omega=0.75", "auto.fallback=false"}, {&automatic});
@@ -72,7 +78,9 @@ TEST(BackendSettings, EachBadSettingIsOneLineNamingItAndNothingIsApplied) {
   // Bad value: the option and what it expects; a value out of range is refused by the backend's own check.
   EXPECT_THAT(ErrorOf({"psor.omega=fast"}, selected), HasSubstr("option 'omega' expects a number, got 'fast'"));
   EXPECT_THAT(ErrorOf({"psor.omega=2.5"}, selected), HasSubstr("invalid value for option 'omega'"));
-  EXPECT_THAT(ErrorOf({"lemke.free_row_method=7"}, {&psor}), HasSubstr("expects one of auto, schur, basic, split"));
+  EXPECT_THAT(ErrorOf({"lemke.free_row_method=7"}, {&psor}),
+              HasSubstr("option 'free_row_method' expects one of auto, schur, basic, split, or an old number 0=auto "
+                        "1=schur 2=basic 3=split, got '7'"));
   // Checked even when not selected: the error does not depend on --solver.
   EXPECT_THAT(ErrorOf({"lemke.no_such=1"}, selected), HasSubstr("lemke: unknown option 'no_such'"));
   for (const char* text : {"psor.omega=2.5", "nosuch.x=1", "lemke.x=1", "x"}) {

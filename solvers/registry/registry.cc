@@ -73,6 +73,12 @@ std::string KnownNames(const std::vector<std::pair<std::string_view, SolverFacto
 
 }  // namespace
 
+std::unique_ptr<Solver> CreateGenericSparsePathSolver() {
+  NewtonOptions sparse_lu;
+  sparse_lu.linear_solver = NewtonOptions::kSparseLinearSolver;
+  return std::make_unique<SemismoothNewtonSolver>(sparse_lu);
+}
+
 std::vector<std::string_view> SolverNames() {
   std::vector<std::string_view> names;
   for (const auto& [name, factory] : AllBackends()) names.push_back(name);

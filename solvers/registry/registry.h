@@ -23,6 +23,12 @@ std::vector<std::string_view> SolverNames();
 // A fresh backend with default options; throws InvalidInputError listing the known names if name is unknown.
 std::unique_ptr<Solver> CreateSolver(std::string_view name);
 
+// The benchmark's generic sparse path (`bench` records it as "newton-sparse-path"): newton with its UMFPACK sparse
+// LU forced at every size, i.e. what a general-purpose sparse complementarity solver does with these problems. Not
+// auto's rule (auto lets newton factorize small sparse problems densely) and not a registered name: a baseline the
+// fastest backend is measured against, defined here once.
+std::unique_ptr<Solver> CreateGenericSparsePathSolver();
+
 // The run-time extension point: adds a backend under name for the rest of the process, so that CreateSolver,
 // SolverNames and every command built on them (`smcbench bench`, `solve`, `list`, reports) see it. Call it at
 // the start of main, before any command runs. The factory is called once here to check that the backend it makes

@@ -536,30 +536,10 @@ std::string_view ToString(SiconosIsolation isolation) {
   return "?";
 }
 
-bool ParseSiconosIsolation(std::string_view text, SiconosIsolation* isolation) {
-  for (SiconosIsolation value : {SiconosIsolation::kNever, SiconosIsolation::kFirst, SiconosIsolation::kAlways}) {
-    if (text == ToString(value)) {
-      *isolation = value;
-      return true;
-    }
-  }
-  if (text == "0" || text == "1") {  // the option's old boolean spelling: isolate every solve, or none
-    *isolation = text == "1" ? SiconosIsolation::kAlways : SiconosIsolation::kNever;
-    return true;
-  }
-  return false;
-}
-
 SiconosSolver::SiconosSolver(SiconosMethod method) : SiconosSolver(method, SiconosOptions{}) {}
 
-SiconosSolver::SiconosSolver(SiconosMethod method, const SiconosOptions& options) : method_(method) {
-  set_options(options);
-}
-
-void SiconosSolver::set_options(const SiconosOptions& options) {
-  options_ = options;
-  OptionsChanged();
-}
+SiconosSolver::SiconosSolver(SiconosMethod method, const SiconosOptions& options)
+    : BackendWithOptions(options), method_(method) {}
 
 SiconosSolver::~SiconosSolver() {
   if (dev_null_ >= 0) close(dev_null_);
@@ -574,9 +554,8 @@ void SiconosSolver::BindOptions(OptionBinder* binder) {
   binder->Add("isolate", &options_.isolate,
               {{"first", static_cast<int>(SiconosIsolation::kFirst)},
                {"always", static_cast<int>(SiconosIsolation::kAlways)},
-               {"never", static_cast<int>(SiconosIsolation::kNever)},
-               {"1", static_cast<int>(SiconosIsolation::kAlways)},  // the option's old boolean spelling
-               {"0", static_cast<int>(SiconosIsolation::kNever)}},
+               {"never", static_cast<int>(SiconosIsolation::kNever)}},
+              {"never", "always"},  // the option's old boolean spelling: 0 isolated no solve, 1 every solve
               "where Siconos runs: first (default: a problem's first solve in this backend's worker process, "
               "later solves of the same problem in process once it came back), always (in the worker: "
               "crash/hang containment per solve, +7 us), never (in process, no protection)");
@@ -601,142 +580,84 @@ bool SiconosSolver::ValidateBackendOptions(std::string* why) const {
   return options_.IsValid(why);
 }
 
-void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
-  using Clock = std::chrono::steady_clock;
-  const Clock::time_point start = Clock::now();
-  const Spec& spec = SpecOf(method_);
-  result->SetDetail("siconos_id", spec.siconos_id);
+namespace {
 
-  // What the method can express.
-  const StandardForm::RowCounts rows = StandardForm::Count(problem.l(), problem.u());
-  if (rows.fixed == problem.size()) {  // every row fixed: z = l is the solution, nothing to ask Siconos
-    result->z = problem.l();
-    result->iterations = 0;
-    result->status = SolveStatus::kSolved;
-    return;
-  }
+// Complementarity variables of the rewritten problem: a relay row counts 2 (its two one-sided rows), and so does a
+// box row of the mixed form; free rows are equalities.
+int ComplementarityCount(const Spec& spec, const StandardForm::RowCounts& rows) {
+  return spec.family == Family::kRelay ? 2 * rows.box : rows.lower + rows.upper + 2 * rows.box;
+}
+
+// Phase 1: the problems this method cannot express, or that are over the size options, or on which Siconos is
+// known to crash. True (status and message set) when refused.
+bool Refused(SiconosMethod method, const Spec& spec, const StandardForm::RowCounts& rows, const SiconosOptions& o,
+             SolveResult* result) {
   if (spec.family == Family::kRelay && rows.unbounded() > 0) {
     result->status = SolveStatus::kNotApplicable;
     result->message = "Siconos' relay solvers need finite bounds on every row; this problem has " +
                       std::to_string(rows.free) + " free, " + std::to_string(rows.lower) + " lower-bounded and " +
                       std::to_string(rows.upper) + " upper-bounded rows (siconos-lcp-* / siconos-mlcp-* take them)";
-    return;
+    return true;
   }
   if (spec.family == Family::kLcp && rows.free > 0) {
     result->status = SolveStatus::kNotApplicable;
     result->message = "an LCP has no free rows and this problem has " + std::to_string(rows.free) +
                       " (l = -inf, u = +inf); siconos-mlcp-* keep them as equalities";
-    return;
+    return true;
   }
-  const int complementarity = spec.family == Family::kRelay ? 2 * rows.box : rows.lower + rows.upper + 2 * rows.box;
-  if (method_ == SiconosMethod::kMlcpLemke && !options_.allow_known_crashes &&
-      (rows.free == 0 || complementarity == 0)) {
+  const int complementarity = ComplementarityCount(spec, rows);
+  if (method == SiconosMethod::kMlcpLemke && !o.allow_known_crashes && (rows.free == 0 || complementarity == 0)) {
     result->status = SolveStatus::kNotApplicable;
     result->message = rows.free == 0
                           ? "Siconos' mlcp_lcp_lemke aborts (DGETRF on an empty equality block) on an MLCP without "
                             "free rows; siconos-lcp-lemke solves this problem"
                           : "Siconos' mlcp_lcp_lemke aborts (NM_gemm assertion) on an MLCP without "
                             "complementarity rows";
-    return;
+    return true;
   }
   const int standard_size = spec.family == Family::kRelay ? rows.box : rows.free + complementarity;
-  if (standard_size > options_.max_size) {
+  if (standard_size > o.max_size) {
     result->status = SolveStatus::kSizeLimit;
     result->message = "the rewritten problem has " + std::to_string(standard_size) +
-                      " unknowns, above max_size = " + std::to_string(options_.max_size) +
+                      " unknowns, above max_size = " + std::to_string(o.max_size) +
                       " (Siconos' dense methods: O(N^2) memory, O(N^3) time)";
-    return;
+    return true;
   }
-  if (spec.algorithm == Algorithm::kEnum && complementarity > options_.max_enumerated) {
+  if (spec.algorithm == Algorithm::kEnum && complementarity > o.max_enumerated) {
     result->status = SolveStatus::kSizeLimit;
     result->message = "enumeration over " + std::to_string(complementarity) +
-                      " complementarity variables exceeds max_enumerated = " + std::to_string(options_.max_enumerated);
-    return;
+                      " complementarity variables exceeds max_enumerated = " + std::to_string(o.max_enumerated);
+    return true;
   }
+  return false;
+}
 
-  form_.Build(problem, spec.family == Family::kRelay ? StandardForm::Kind::kBox : StandardForm::Kind::kMixed);
-  const int N = form_.size();
-  result->SetDetail("standard_size", N);
-  form_.FromBox(problem, result->z, &x_);
-
-  Outcome outcome;
-  Request& r = outcome.request;
-  r.method = static_cast<std::int32_t>(method_);
-  r.size = N;
-  r.num_equalities = form_.num_equalities();
-  r.max_iterations = options.max_iterations;
-  r.verbose = options.verbosity >= 2 ? 1 : 0;
-  r.has_bounds = spec.family == Family::kRelay ? 1 : 0;
-  // Our test is ‖r‖∞ ≤ tol·(1 + ‖q‖∞) on the box-MLCP and, row-equilibrated, |r_i(D⁻¹)| ≤ tol·(1 + ‖z‖∞), which
-  // ‖r‖∞ ≤ tol·min(1, min_i d_i) implies (|z_i − Π(z_i − t w_i)| grows with t, and at most linearly: a row with
-  // d_i < 1 can grow by 1/d_i); so the target is ‖r‖∞ ≤ tol·min(1 + ‖q‖∞, 1, min_i d_i). Siconos' test is
-  // ‖r_s‖₂ ≤ tol_s·(‖q_s‖₂ or 1 + ‖q_s‖₂) on the rewritten problem. This tol_s makes Siconos' test imply
-  // ‖r_s‖∞ ≤ that target whichever normalisation the driver uses, so a Siconos "success" is not routinely a hair
-  // above our tolerance; the floor 10·N·ε keeps it reachable in floating point (else Siconos' final check would
-  // reject every answer of a badly scaled problem).
+// Siconos' tolerance for our test. Ours is ‖r‖∞ ≤ tol·(1 + ‖q‖∞) on the box-MLCP and, row-equilibrated,
+// |r_i(D⁻¹)| ≤ tol·(1 + ‖z‖∞), which ‖r‖∞ ≤ tol·min(1, min_i d_i) implies (|z_i − Π(z_i − t w_i)| grows with t, and
+// at most linearly: a row with d_i < 1 can grow by 1/d_i); so the target is ‖r‖∞ ≤ tol·min(1 + ‖q‖∞, 1, min_i d_i).
+// Siconos' test is ‖r_s‖₂ ≤ tol_s·(‖q_s‖₂ or 1 + ‖q_s‖₂) on the rewritten problem. This tol_s makes Siconos' test
+// imply ‖r_s‖∞ ≤ that target whichever normalisation the driver uses, so a Siconos "success" is not routinely a
+// hair above our tolerance; the floor 10·N·ε keeps it reachable in floating point (else Siconos' final check would
+// reject every answer of a badly scaled problem).
+double SiconosTolerance(const BoxMLCP& problem, const StandardForm& form, double tolerance) {
+  const int N = form.size();
   const double target = std::min(problem.residual_scale(), std::min(1.0, problem.row_scale().minCoeff()));
-  r.tolerance = std::max(options.tolerance * target / ((1.0 + form_.q().norm()) * std::sqrt(static_cast<double>(N))),
-                         10.0 * N * std::numeric_limits<double>::epsilon());
-  // Where this call runs (siconos_solver.h, "Isolation"): in process when the policy says never, or says first
-  // and these exact bytes have come back from a probe before; else in the worker, a probe when the policy is first.
-  // A problem whose probe took longer than this call's time limit stays in the worker, where the limit is enforced.
-  const SiconosIsolation isolation = options_.isolate;
-  const double limit =
-      std::isfinite(options.time_limit_seconds) ? options.time_limit_seconds : options_.default_time_limit;
-  const ProbedProblems::Outcome* probed = nullptr;
-  if (isolation == SiconosIsolation::kFirst) {
-    probed_.set_limits(options_.remembered_problems,
-                       static_cast<std::size_t>(options_.remembered_megabytes * 1024.0 * 1024.0));
-    probed = probed_.Find(RequestParts(outcome));
-  }
-  const bool probe = isolation == SiconosIsolation::kFirst && probed == nullptr;
-  const bool in_process =
-      isolation == SiconosIsolation::kNever || (probed != nullptr && probed->seconds <= limit);
-  result->SetDetail("in_process", in_process ? 1.0 : 0.0);
-  if (in_process) {
-    // What to silence: the C streams always (free of system calls, and what Siconos prints may depend on its state,
-    // e.g. a direct solver's cache that is warm in the worker and cold here), the descriptors too when the probe
-    // saw output there or there was no probe (kNever).
-    using Console = ProbedProblems::Console;
-    const Console silence = !options_.quiet || options.verbosity >= 2                       ? Console::kSilent
-                            : probed != nullptr && probed->console != Console::kDescriptors ? Console::kStdio
-                                                                                            : Console::kDescriptors;
-    RunInProcess(silence, &outcome);
-  } else {
-    const Clock::time_point deadline =
-        start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit));
-    if (probe) probed_.Stage(RequestParts(outcome));  // before x_ is overwritten
-    if (!RunIsolated(options.verbosity >= 2, limit, deadline, &outcome, result)) {
-      probed_.Discard();  // a crash, a signal or the deadline: this problem never runs in process
-      form_.ToBox(problem, x_, &result->z);  // the start point: Siconos' answer never arrived
-      return;
-    }
-    if (probe) {
-      const int console = outcome.response.console;
-      probed_.Commit({console == 0   ? ProbedProblems::Console::kSilent
-                      : console == 1 ? ProbedProblems::Console::kStdio
-                                     : ProbedProblems::Console::kDescriptors,
-                      std::chrono::duration<double>(Clock::now() - start).count()});
-    }
-  }
+  return std::max(tolerance * target / ((1.0 + form.q().norm()) * std::sqrt(static_cast<double>(N))),
+                  10.0 * N * std::numeric_limits<double>::epsilon());
+}
 
-  const Response& out = outcome.response;
-  form_.ToBox(problem, x_, &result->z);
-  result->iterations = out.iterations;
-  result->SetDetail("siconos_info", out.info);
-  if (out.algorithm_info != out.info) result->SetDetail("siconos_algorithm_info", out.algorithm_info);
-  if (std::isfinite(out.error)) result->SetDetail("siconos_error", out.error);
-
-  // Siconos' verdict is a claim; ours below never upgrades it, and the base class checks every "solved".
-  // Siconos' verdict (info, after its driver's check) decides "solved or not"; the algorithm's own code (algo)
-  // says which failure it was. Neither ever upgrades a result, and the base class checks every "solved".
+// Phase 4: our status from Siconos' answer. Siconos' verdict (info, after its driver's check) decides "solved or
+// not"; the algorithm's own code (algorithm_info) says which failure it was. Neither ever upgrades a result, and the
+// base class checks every "solved". finite: the answer has no NaN/Inf; tolerance: what was sent to Siconos.
+void ClassifyAnswer(SiconosMethod method, const Spec& spec, const Response& out, bool finite, double tolerance,
+              int complementarity, const SolverOptions& options, SolveResult* result) {
   const int algo = out.algorithm_info;
   const bool at_budget = out.budget > 0 && out.iterations >= out.budget;
   const auto code = [&] {  // built on failure paths only: a solved call allocates nothing
     return "(info " + std::to_string(out.info) +
            (algo != out.info ? ", algorithm info " + std::to_string(algo) : std::string()) + ")";
   };
-  if (!AllFinite(x_)) {
+  if (!finite) {
     result->status = SolveStatus::kNumericalFailure;
     result->message = "Siconos returned a non-finite solution " + code();
   } else if (out.info == 0) {
@@ -746,9 +667,9 @@ void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
     result->status = SolveStatus::kInaccurate;
     char text[160];
     std::snprintf(text, sizeof text, "the Siconos solver finished but Siconos' accuracy check rejected its answer "
-                  "(error %.3g > %.3g) ", out.error, r.tolerance);
+                  "(error %.3g > %.3g) ", out.error, tolerance);
     result->message = text + code();
-  } else if (method_ == SiconosMethod::kMlcpLemke && algo == 1 && out.iterations == 0) {
+  } else if (method == SiconosMethod::kMlcpLemke && algo == 1 && out.iterations == 0) {
     // Lemke counts its first pivot as iteration 1: info 1 before any pivot is mlcp_to_lcp giving up.
     result->status = SolveStatus::kSingular;
     result->message =
@@ -789,6 +710,104 @@ void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
     result->status = SolveStatus::kNumericalFailure;
     result->message = "Siconos failed " + code();
   }
+}
+
+}  // namespace
+
+// The phases in order: refuse what the method cannot take (1), rewrite the problem and fill the request (2), run
+// Siconos where the isolation policy says (3), read its answer back and classify it (4).
+void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  const std::chrono::steady_clock::time_point start = std::chrono::steady_clock::now();
+  const Spec& spec = SpecOf(method_);
+  result->SetDetail("siconos_id", spec.siconos_id);
+  const StandardForm::RowCounts rows = StandardForm::Count(problem.l(), problem.u());
+  if (rows.fixed == problem.size()) {  // every row fixed: z = l is the solution, nothing to ask Siconos
+    result->z = problem.l();
+    result->iterations = 0;
+    result->status = SolveStatus::kSolved;
+    return;
+  }
+  if (Refused(method_, spec, rows, options_, result)) return;
+  Outcome outcome;
+  PrepareRequest(problem, options, &outcome, result);
+  if (!RunWherePolicySays(options, start, &outcome, result)) {
+    form_.ToBox(problem, x_, &result->z);  // the start point: Siconos' answer never arrived
+    return;
+  }
+  const Response& out = outcome.response;
+  form_.ToBox(problem, x_, &result->z);
+  result->iterations = out.iterations;
+  result->SetDetail("siconos_info", out.info);
+  if (out.algorithm_info != out.info) result->SetDetail("siconos_algorithm_info", out.algorithm_info);
+  if (std::isfinite(out.error)) result->SetDetail("siconos_error", out.error);
+  ClassifyAnswer(method_, spec, out, AllFinite(x_), outcome.request.tolerance, ComplementarityCount(spec, rows),
+                 options, result);
+}
+
+// Phase 2: the standard form Siconos takes (x_ holds the start), and the request: method, sizes, budget, tolerance.
+void SiconosSolver::PrepareRequest(const BoxMLCP& problem, const SolverOptions& options, Outcome* outcome,
+                                   SolveResult* result) {
+  const Spec& spec = SpecOf(method_);
+  form_.Build(problem, spec.family == Family::kRelay ? StandardForm::Kind::kBox : StandardForm::Kind::kMixed);
+  const int N = form_.size();
+  result->SetDetail("standard_size", N);
+  form_.FromBox(problem, result->z, &x_);
+  Request& r = outcome->request;
+  r.method = static_cast<std::int32_t>(method_);
+  r.size = N;
+  r.num_equalities = form_.num_equalities();
+  r.max_iterations = options.max_iterations;
+  r.verbose = options.verbosity >= 2 ? 1 : 0;
+  r.has_bounds = spec.family == Family::kRelay ? 1 : 0;
+  r.tolerance = SiconosTolerance(problem, form_, options.tolerance);
+}
+
+// Phase 3. Where this call runs (siconos_solver.h, "Isolation"): in process when the policy says never, or says
+// first and these exact bytes have come back from a probe before; else in the worker, a probe when the policy is
+// first. A problem whose probe took longer than this call's time limit stays in the worker, where the limit is
+// enforced. False (status set) when no answer came back: a crash, a signal or the deadline.
+bool SiconosSolver::RunWherePolicySays(const SolverOptions& options, std::chrono::steady_clock::time_point start,
+                                       Outcome* outcome, SolveResult* result) {
+  using Clock = std::chrono::steady_clock;
+  const SiconosIsolation isolation = options_.isolate;
+  const double limit =
+      std::isfinite(options.time_limit_seconds) ? options.time_limit_seconds : options_.default_time_limit;
+  const ProbedProblems::Outcome* probed = nullptr;
+  if (isolation == SiconosIsolation::kFirst) {
+    probed_.set_limits(options_.remembered_problems,
+                       static_cast<std::size_t>(options_.remembered_megabytes * 1024.0 * 1024.0));
+    probed = probed_.Find(RequestParts(*outcome));
+  }
+  const bool probe = isolation == SiconosIsolation::kFirst && probed == nullptr;
+  const bool in_process =
+      isolation == SiconosIsolation::kNever || (probed != nullptr && probed->seconds <= limit);
+  result->SetDetail("in_process", in_process ? 1.0 : 0.0);
+  if (in_process) {
+    // What to silence: the C streams always (free of system calls, and what Siconos prints may depend on its state,
+    // e.g. a direct solver's cache that is warm in the worker and cold here), the descriptors too when the probe
+    // saw output there or there was no probe (kNever).
+    using Console = ProbedProblems::Console;
+    const Console silence = !options_.quiet || options.verbosity >= 2                       ? Console::kSilent
+                            : probed != nullptr && probed->console != Console::kDescriptors ? Console::kStdio
+                                                                                            : Console::kDescriptors;
+    RunInProcess(silence, outcome);
+    return true;
+  }
+  const Clock::time_point deadline =
+      start + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(limit));
+  if (probe) probed_.Stage(RequestParts(*outcome));  // before x_ is overwritten
+  if (!RunIsolated(options.verbosity >= 2, limit, deadline, outcome, result)) {
+    probed_.Discard();  // this problem never runs in process
+    return false;
+  }
+  if (probe) {
+    const int console = outcome->response.console;
+    probed_.Commit({console == 0   ? ProbedProblems::Console::kSilent
+                    : console == 1 ? ProbedProblems::Console::kStdio
+                                   : ProbedProblems::Console::kDescriptors,
+                    std::chrono::duration<double>(Clock::now() - start).count()});
+  }
+  return true;
 }
 
 std::array<ProbedProblems::Part, 6> SiconosSolver::RequestParts(const Outcome& outcome) const {

@@ -53,6 +53,7 @@
 #include <string>
 #include <string_view>
 
+#include "solvers/core/backend_options.h"
 #include "solvers/core/solver.h"
 #include "solvers/siconos/child_process.h"
 #include "solvers/siconos/probed_problems.h"
@@ -84,8 +85,6 @@ enum class SiconosIsolation {
 };
 // "never", "first", "always".
 std::string_view ToString(SiconosIsolation isolation);
-// Parses those names, and the old boolean spelling "0" (never) / "1" (always). False if text is none of them.
-bool ParseSiconosIsolation(std::string_view text, SiconosIsolation* isolation);
 
 struct SiconosOptions {
   // Where Siconos runs: see SiconosIsolation and the header comment.
@@ -117,7 +116,7 @@ struct SiconosOptions {
 
 class SiconosSession;  // Siconos' problem and option structs (siconos_solver.cc), kept out of this header
 
-class SiconosSolver final : public Solver {
+class SiconosSolver final : public BackendWithOptions<SiconosOptions> {
  public:
   explicit SiconosSolver(SiconosMethod method);
   SiconosSolver(SiconosMethod method, const SiconosOptions& options);
@@ -125,8 +124,6 @@ class SiconosSolver final : public Solver {
 
   const SolverInfo& info() const override;
   SiconosMethod method() const { return method_; }
-  const SiconosOptions& options() const { return options_; }
-  void set_options(const SiconosOptions& options);
   // Process id of the running worker, or −1 (none yet, or killed after a timeout or crash).
   int worker_pid() const { return worker_.running() ? static_cast<int>(worker_.pid()) : -1; }
 
@@ -142,13 +139,16 @@ class SiconosSolver final : public Solver {
   struct Outcome;
   // The exact bytes sent to Siconos for the request in *outcome (ProbedProblems' key).
   std::array<ProbedProblems::Part, 6> RequestParts(const Outcome& outcome) const;
+  // DoSolve's phases 2 and 3 (the .cc file); the refusals and the classification of the answer need no state.
+  void PrepareRequest(const BoxMLCP& problem, const SolverOptions& options, Outcome* outcome, SolveResult* result);
+  bool RunWherePolicySays(const SolverOptions& options, std::chrono::steady_clock::time_point start,
+                          Outcome* outcome, SolveResult* result);
   bool RunIsolated(bool keep_output, double limit_seconds, std::chrono::steady_clock::time_point deadline,
                    Outcome* outcome, SolveResult* result);
   // silence: what to silence around the call (ProbedProblems::Console).
   void RunInProcess(ProbedProblems::Console silence, Outcome* outcome);
 
   SiconosMethod method_;
-  SiconosOptions options_;
   StandardForm form_;
   Vector x_;  // unknowns of the rewritten problem: start point in, Siconos' answer out
   std::unique_ptr<SiconosSession> session_;  // in-process Siconos state, created on first in-process solve

@@ -5,12 +5,8 @@
 // every mutation). An accepted set must survive a write and a re-read unchanged (ids, sizes, re-written bytes).
 #include <cstddef>
 #include <cstdint>
-#include <cstdio>
-#include <cstdlib>
-#include <exception>
 #include <sstream>
 #include <string>
-#include <typeinfo>
 
 #include "problems/library/problem_set_io.h"
 #include "tests/fuzz/fuzz_checks.h"
@@ -20,17 +16,10 @@ namespace {
 void ReadAndCheck(const std::string& bytes) {
   using smcbench::fuzz::Finding;
   smcbench::ProblemSet set;
-  try {
-    set = smcbench::ReadProblemSetBytes(bytes, "fuzz.smcps");
-  } catch (const smcbench::InvalidInputError& e) {
-    smcbench::fuzz::CheckErrorMessage(e.what());
-    return;
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "FINDING: unexpected %s: %s\n", typeid(e).name(), e.what());
-    std::abort();
-  }
+  const auto read = [&] { set = smcbench::ReadProblemSetBytes(bytes, "fuzz.smcps"); };
+  if (!smcbench::fuzz::AcceptOrReject(read)) return;
   // Accepted: from here on every exception is a finding (the reader promised a valid, writable set).
-  try {
+  smcbench::fuzz::NoExceptionAllowed("accepted set then ", [&] {
     set.Validate();
     for (const smcbench::LibraryProblem& p : set.problems) smcbench::fuzz::CheckAccepted(p.problem);
     std::ostringstream once;
@@ -45,10 +34,7 @@ void ReadAndCheck(const std::string& bytes) {
     std::ostringstream twice;
     smcbench::WriteProblemSet(again, twice);
     if (twice.str() != once.str()) Finding("write(read(write(set))) differs from write(set)");
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "FINDING: accepted set then %s: %s\n", typeid(e).name(), e.what());
-    std::abort();
-  }
+  });
 }
 
 }  // namespace

@@ -7,14 +7,13 @@
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
-#include <exception>
 #include <memory>
 #include <string>
 #include <string_view>
-#include <typeinfo>
 #include <vector>
 
 #include "solvers/registry/registry.h"
+#include "tests/fuzz/fuzz_checks.h"
 
 namespace {
 
@@ -94,7 +93,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (std::size_t b = 0; b < names.size(); ++b) {
     const std::string_view backend = names[b];
     smcbench::Solver& solver = *pool[b];
-    try {
+    // Solve never throws for a valid problem, and SetOption reports through its return value.
+    smcbench::fuzz::NoExceptionAllowed("(" + std::string(backend) + ") unexpected ", [&] {
       bool changed = common_set;
       for (const auto& [name, value] : lines) {
         const std::string before = solver.OptionsHelp();
@@ -106,7 +106,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         if (error.empty()) Finding(backend, "SetOption('" + name + "') failed without a message");
         if (solver.OptionsHelp() != before) Finding(backend, "rejected option '" + name + "' changed the backend");
       }
-      if (!changed) continue;  // default options: solving again would find nothing new
+      if (!changed) return;  // default options: solving again would find nothing new
       // Solves fork a worker process for the external backends: too slow to fuzz here, only SetOption is.
       if (!IsExternal(backend)) {
         smcbench::SolveResult result;
@@ -120,10 +120,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
         }
       }
       pool[b] = smcbench::CreateSolver(backend);
-    } catch (const std::exception& e) {
-      // Solve never throws for a valid problem, and SetOption reports through its return value.
-      Finding(backend, std::string("unexpected ") + typeid(e).name() + ": " + e.what());
-    }
+    });
   }
   return 0;
 }

@@ -1,5 +1,6 @@
 // The small-h relay of issue 12 shared by the backends' tests: W = h·G with a planted solution s*, on which
-// "solved" used to let wrong s through (the residual is O(h)). Header-only: each backend test includes it.
+// "solved" used to let wrong s through (the residual is O(h)), and the check each backend's test runs on it.
+// Header-only: each backend test includes it.
 #pragma once
 
 #include <algorithm>
@@ -8,7 +9,10 @@
 #include <string>
 #include <vector>
 
+#include <gtest/gtest.h>
+
 #include "solvers/core/problem.h"
+#include "solvers/core/solver.h"
 #include "solvers/core/verdict.h"
 
 namespace smcbench::test_support {
@@ -66,5 +70,27 @@ inline SmallHRelay MakeSmallHRelay(int n, double h) {
 }
 
 inline constexpr double kSmallHs[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10};
+
+// Issue 12's check on one backend: at n = 4, 6, 8 and every h of kSmallHs, "solved" with ‖z − s*‖∞ within the
+// forward-error allowance, with the base's exact polish and without it (the backend's own stopping test then
+// decides). GoogleTest assertions: call it from a TEST.
+inline void ExpectSolvedWithinAllowanceAtSmallH(Solver& solver) {
+  for (int n : {4, 6, 8}) {
+    for (double h : kSmallHs) {
+      const SmallHRelay relay = MakeSmallHRelay(n, h);
+      const std::string where =
+          std::string(solver.info().name) + ": n = " + std::to_string(n) + ", h = " + std::to_string(h);
+      SolverOptions options;  // tolerance 1e-10, polish on
+      const double allowance = ForwardErrorAllowance(relay.reference, options.tolerance);
+      const SolveResult r = solver.Solve(relay.problem, options);
+      ASSERT_EQ(r.status, SolveStatus::kSolved) << where << ": " << r.message;
+      EXPECT_LE((r.z - relay.reference.z).cwiseAbs().maxCoeff(), allowance) << where;
+      options.polish = false;
+      const SolveResult raw = solver.Solve(relay.problem, options);
+      ASSERT_EQ(raw.status, SolveStatus::kSolved) << where << " (polish off): " << raw.message;
+      EXPECT_LE((raw.z - relay.reference.z).cwiseAbs().maxCoeff(), allowance) << where << " (polish off)";
+    }
+  }
+}
 
 }  // namespace smcbench::test_support

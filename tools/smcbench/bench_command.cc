@@ -445,15 +445,14 @@ class ShardRunner {
   Solver* SolverFor(const std::string& name) {
     auto it = solvers_.find(name);
     if (it == solvers_.end()) {
-      ReplayOptions o = options_;
-      std::vector<std::string> names{name};
-      if (name == kGenericSparsePath) {
-        names = {"newton"};
-        o.settings = {"newton.linear_solver=sparse"};
+      if (name == kGenericSparsePath) {  // the baseline the registry defines (CreateGenericSparsePathSolver)
+        it = solvers_.emplace(name, CreateGenericSparsePathSolver()).first;
       } else {
+        ReplayOptions o = options_;
+        std::vector<std::string> names{name};
         o.settings = SettingsReaching(name, options_.settings);  // checked against the whole selection up front
+        it = solvers_.emplace(name, std::move(CreateReplaySolvers(o, &names).front())).first;
       }
-      it = solvers_.emplace(name, std::move(CreateReplaySolvers(o, &names).front())).first;
     }
     return it->second.get();
   }

@@ -1,3 +1,4 @@
+// `smcbench report`: bench_report.h. The report is made in named phases (WriteBenchReport, at the end).
 #include "tools/smcbench/bench_report.h"
 
 #include <algorithm>
@@ -9,6 +10,7 @@
 #include <limits>
 #include <map>
 #include <nlohmann/json.hpp>
+#include <ostream>
 #include <set>
 #include <sstream>
 
@@ -284,13 +286,14 @@ std::string SharedHostWarning(const BenchResults& results) {
   return warning.empty() ? warning : warning + "\n";
 }
 
-std::string WriteBenchReport(const std::string& dir, bool plots) {
-  json env;
-  const BenchResults results = ReadBenchResults(dir, &env);
-  if (plots && !GnuplotAvailable()) {
-    throw InvalidInputError("report: the plots need gnuplot (Debian package gnuplot-nox); install it or pass --no-plots");
-  }
-  std::ostringstream md;
+namespace {
+
+// ---------------------------------------------------------------------------------------------------------------
+// WriteBenchReport's phases: read the results, then per suite compute each table and write its section (figures
+// beside the section that shows them), then the time-stepper's sections, then the file.
+
+// The report's opening: the command, the environment, the verdict and what the columns mean.
+void WriteHeader(std::ostream& md, const std::string& dir, const BenchResults& results, const json& env) {
   md << "# smcbench benchmark report\n\n"
      << "Made by `smcbench report " << dir << "` from `" << dir << "/results.json`, produced by\n\n    "
      << results.command << "\n\n"
@@ -321,319 +324,411 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
                         : "**No polish** (`--no-polish`): the raw algorithms' answers.")
      << "\n\n"
      << SharedHostWarning(results);
+}
 
-  for (const SuiteResults& suite : results.suites) {
-    // What the certified references prove, per problem (every backend's record carries its problem's).
-    std::map<std::string, std::string> certificate_of;
-    for (const auto& r : suite.replay.records) certificate_of.emplace(r.problem, r.certificate);
-    std::map<std::string, int> certificates;
-    for (const auto& [problem, certificate] : certificate_of) ++certificates[certificate];
-    std::string certified;
-    for (const auto& [certificate, count] : certificates) {
-      certified += (certified.empty() ? "" : ", ") + std::to_string(count) + " " + certificate;
+// "3 unique, 2 non-unique": what the certified references prove, counted per problem (every backend's record
+// carries its problem's).
+std::string CertificateCounts(const SuiteResults& suite) {
+  std::map<std::string, std::string> certificate_of;
+  for (const auto& r : suite.replay.records) certificate_of.emplace(r.problem, r.certificate);
+  std::map<std::string, int> certificates;
+  for (const auto& [problem, certificate] : certificate_of) ++certificates[certificate];
+  std::string certified;
+  for (const auto& [certificate, count] : certificates) {
+    certified += (certified.empty() ? "" : ", ") + std::to_string(count) + " " + certificate;
+  }
+  return certified;
+}
+
+// The suite's heading and its table of verdict counts, success, SGM time and worst errors per backend.
+void WriteSuiteSummary(std::ostream& md, const SuiteResults& suite) {
+  const std::string certified = CertificateCounts(suite);
+  md << "## Suite `" << suite.suite << "`: " << suite.description << "\n\n"
+     << suite.problems << " problems; certified references: " << (certified.empty() ? "–" : certified)
+     << " (forward errors are judged on the unique and degenerate ones).\n\n"
+     << "| backend | solved | correctly refused | failed | **wrongly claimed** | **inaccurate** | **wrongly "
+        "refused** | success | SGM time | worst residual (solved) | worst residual (eq.) | worst forward error "
+        "(solved) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const BackendSummary& b : SummarizeSuite(suite)) {
+    md << "| " << b.solver << " | " << b.solved << " | " << b.correctly_refused << " | " << b.failed << " | "
+       << Count(b.wrongly_claimed) << " | " << Count(b.inaccurate) << " | " << Count(b.wrongly_refused) << " | "
+       << G(100.0 * b.success_rate, 3) << "% | " << Seconds(b.shifted_geomean) << " | " << G(b.worst_residual)
+       << " | " << G(b.worst_residual_scaled) << " | " << G(b.worst_forward_error);
+    if (b.forward_error_defined) md << " (" << b.forward_error_defined << " with z*)";
+    md << " |\n";
+  }
+  md << "\n";
+}
+
+// Every wrong answer, so a reader can check it (the first few per suite; results.csv has them all).
+void WriteWrongAnswers(std::ostream& md, const SuiteResults& suite) {
+  std::vector<const ReplayRecord*> wrong;
+  for (const auto& r : suite.replay.records) {
+    if (IsWrong(r.verdict)) wrong.push_back(&r);
+  }
+  if (wrong.empty()) return;
+  constexpr std::size_t kListed = 30;
+  md << "Wrong answers (" << wrong.size() << (wrong.size() > kListed ? ", the first 30" : "")
+     << "):\n\n| problem | backend | verdict | status | residual | residual (eq.) | forward error | "
+        "allowance | certificate |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (std::size_t i = 0; i < std::min(wrong.size(), kListed); ++i) {
+    const ReplayRecord& r = *wrong[i];
+    md << "| " << r.problem << " | " << r.solver << " | " << ToString(r.verdict) << " | " << ToString(r.status)
+       << " | " << G(r.residual_rel) << " | " << G(r.residual_scaled) << " | " << G(r.forward_error) << " | "
+       << G(r.forward_allowance) << " | " << r.certificate << " |\n";
+  }
+  md << "\n";
+}
+
+// The paper suite against the generic sparse path (bench adds it: newton on sparse copies), over the problems both
+// solve: the speed-ups and the fastest time over an arithmetic floor, each sorted.
+struct SparsePathComparison {
+  std::vector<double> speedups, over_floor;
+};
+
+SparsePathComparison CompareWithSparsePath(const SuiteResults& suite) {
+  std::map<std::string, double> best, generic;
+  std::map<std::string, int> sizes;
+  for (const auto& r : suite.replay.records) {
+    if (r.verdict != Verdict::kSolved) continue;
+    if (r.solver == "newton-sparse-path") {
+      generic[r.problem] = r.time_median;
+    } else {
+      auto [it, inserted] = best.emplace(r.problem, r.time_median);
+      if (!inserted) it->second = std::min(it->second, r.time_median);
+      sizes[r.problem] = r.size;
     }
-    md << "## Suite `" << suite.suite << "`: " << suite.description << "\n\n"
-       << suite.problems << " problems; certified references: " << (certified.empty() ? "–" : certified)
-       << " (forward errors are judged on the unique and degenerate ones).\n\n"
-       << "| backend | solved | correctly refused | failed | **wrongly claimed** | **inaccurate** | **wrongly "
-          "refused** | success | SGM time | worst residual (solved) | worst residual (eq.) | worst forward error "
-          "(solved) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    for (const BackendSummary& b : SummarizeSuite(suite)) {
-      md << "| " << b.solver << " | " << b.solved << " | " << b.correctly_refused << " | " << b.failed << " | "
-         << Count(b.wrongly_claimed) << " | " << Count(b.inaccurate) << " | " << Count(b.wrongly_refused) << " | "
-         << G(100.0 * b.success_rate, 3) << "% | " << Seconds(b.shifted_geomean) << " | " << G(b.worst_residual)
-         << " | " << G(b.worst_residual_scaled) << " | " << G(b.worst_forward_error);
-      if (b.forward_error_defined) md << " (" << b.forward_error_defined << " with z*)";
-      md << " |\n";
+  }
+  SparsePathComparison c;
+  for (const auto& [problem, t] : generic) {
+    if (!best.count(problem)) continue;
+    c.speedups.push_back(t / best.at(problem));
+    // Arithmetic floor: one m×m factorization and two mat-vecs, m³/3 + 4m² flops, at one flop per nanosecond
+    // (scalar code at ~1–3 GHz).
+    const double m = sizes.at(problem);
+    c.over_floor.push_back(best.at(problem) / ((m * m * m / 3.0 + 4.0 * m * m) * 1e-9));
+  }
+  std::sort(c.speedups.begin(), c.speedups.end());
+  std::sort(c.over_floor.begin(), c.over_floor.end());
+  return c;
+}
+
+void WriteSparsePathComparison(std::ostream& md, const SparsePathComparison& c) {
+  if (c.speedups.empty()) return;
+  const auto& ratios = c.speedups;
+  const auto& floors = c.over_floor;
+  md << "Fastest backend against the generic sparse path (the same problems with M stored sparse, solved by "
+        "`newton` with its UMFPACK sparse LU forced, `newton.linear_solver=sparse`): speed-up median "
+     << G(ratios[ratios.size() / 2]) << "×, min " << G(ratios.front()) << "×, max " << G(ratios.back())
+     << "× over " << ratios.size() << " problems (goal ≥ 10×). Distance from the arithmetic alone (m³/3 + 4m² "
+        "flops at 1 flop/ns): the fastest solve takes median "
+     << G(floors[floors.size() / 2]) << "× that floor — the rest is the fixed cost of a call (option checks, "
+        "cold start, the merit function).\n\n";
+}
+
+// Ours against the external adapters (siconos-*), per size: best of each side per problem, Siconos time / ours.
+// in_process: Siconos timed in process (each Siconos problem's untimed first solve is the probe in its isolation
+// worker, the timed ones call Siconos directly); through_worker: Siconos records timed through the worker
+// (isolate=always, a probe that crashed, results from before the probe policy), ≈ 7 µs of IPC per solve included.
+struct SiconosComparison {
+  std::map<int, std::vector<double>> in_process, through_worker;  // m → sorted ratios
+};
+
+SiconosComparison CompareWithSiconos(const SuiteResults& suite) {
+  std::map<std::string, double> ours, theirs, theirs_through_worker;
+  std::map<std::string, int> sizes;
+  for (const auto& r : suite.replay.records) {
+    if (r.verdict != Verdict::kSolved || r.solver == "newton-sparse-path") continue;
+    const bool siconos = r.solver.rfind("siconos-", 0) == 0;
+    auto& side = !siconos ? ours : r.timed_in_worker ? theirs_through_worker : theirs;
+    auto [it, inserted] = side.emplace(r.problem, r.time_median);
+    if (!inserted) it->second = std::min(it->second, r.time_median);
+    sizes[r.problem] = r.size;
+  }
+  const auto by_size = [&](const std::map<std::string, double>& external) {
+    std::map<int, std::vector<double>> ratios;
+    for (const auto& [problem, t] : external) {
+      if (ours.count(problem)) ratios[sizes.at(problem)].push_back(t / ours.at(problem));
+    }
+    for (auto& [m, r] : ratios) std::sort(r.begin(), r.end());
+    return ratios;
+  };
+  return {by_size(theirs), by_size(theirs_through_worker)};
+}
+
+void WriteRatioTable(std::ostream& md, const std::map<int, std::vector<double>>& ratios) {
+  md << "| m | problems | median ratio | min | max |\n|---|---|---|---|---|\n";
+  for (const auto& [m, r] : ratios) {
+    md << "| " << m << " | " << r.size() << " | " << G(r[r.size() / 2]) << "× | " << G(r.front()) << "× | "
+       << G(r.back()) << "× |\n";
+  }
+  md << "\n";
+}
+
+// The headline compares in-process times only; the through-worker ones get a labelled footnote.
+void WriteSiconosComparison(std::ostream& md, const SiconosComparison& c) {
+  if (!c.in_process.empty()) {
+    md << "Our best backend against Siconos' best (`siconos-*`), both timed in process: each problem's first "
+          "Siconos solve, untimed, is the probe in the backend's isolation worker (a crash or hang there is a "
+          "status); once it came back, the timed solves call Siconos directly (`isolate=first`, see "
+          "`solvers/siconos/README.md`). On the problems both solve — Siconos time / our time:\n\n";
+    WriteRatioTable(md, c.in_process);
+  }
+  if (!c.through_worker.empty()) {
+    md << (c.in_process.empty() ? "" : "Footnote: ")
+       << "Siconos records timed through the isolation worker (≈ 7 µs of inter-process communication per solve "
+          "included: `isolate=always`, a problem whose probe crashed or timed out, or results from before the "
+          "probe policy) — IPC-inclusive Siconos time / our time, not a comparison of the solvers:\n\n";
+    WriteRatioTable(md, c.through_worker);
+  }
+}
+
+// Dolan–Moré performance profile of the suite: dir/profile-SUITE.{png,svg,dat,gp} and its markdown.
+void WritePerformanceProfile(std::ostream& md, const SuiteResults& suite, const std::string& dir) {
+  const auto ratios = PerformanceRatios(suite);
+  if (ratios.empty()) return;
+  std::ostringstream data;
+  double tau_max = 2.0;
+  for (const auto& [solver, r] : ratios) {
+    for (double v : r) {
+      if (std::isfinite(v)) tau_max = std::max(tau_max, v);
+    }
+  }
+  tau_max = std::min(tau_max * 1.5, 1e6);
+  std::ostringstream g;
+  const std::string stem = "profile-" + Safe(suite.suite);
+  // The key outside the plot: with 18 backends it would cover the curves.
+  g << "set logscale x 2\nset grid\nset key outside right top\nset xlabel 'tau (time / best time)'\n"
+    << "set ylabel 'fraction of problems'\nset yrange [0:1.02]\nset xrange [1:" << tau_max << "]\n"
+    << "set title " << GnuplotQuote("Performance profile, suite " + suite.suite) << "\nplot ";
+  int index = 0;
+  for (const auto& [solver, r] : ratios) {
+    // Step function: (τ_i, i/N), extended to τ_max.
+    const double n = static_cast<double>(r.size());
+    data << "# " << solver << "\n1 0\n";
+    int k = 0;
+    for (double v : r) {
+      if (!std::isfinite(v)) break;
+      ++k;
+      data << v << ' ' << k / n << '\n';
+    }
+    data << tau_max << ' ' << k / n << "\n\n\n";
+    g << (index ? ", " : "") << GnuplotQuote(stem + ".dat") << " index " << index << " using 1:2 with steps "
+      << BackendStyle(solver) << " title " << GnuplotQuote(solver);
+    ++index;
+  }
+  g << "\n";
+  WriteFigure(dir, stem, data.str(), g.str(), 1100, 600);
+  md << FigureMarkdown("performance profile, " + suite.suite, stem);
+}
+
+// One (backend, tolerance) row of the tolerance sweep: medians over the swept problems.
+struct SweepRow {
+  std::string solver;
+  double tolerance = 0.0;
+  double forward_error = kNaN;  // median over the problems with a unique certified reference
+  std::size_t with_reference = 0, problems = 0;
+  int solved = 0;
+  double residual = kNaN, residual_scaled = kNaN;  // achieved, median
+  double time = kNaN;                              // median over every swept problem
+  double time_with_reference = kNaN;               // median over the problems with a reference
+};
+
+// Loosest tolerance first per backend. A non-finite error counts as 1e300 (NaN residual_scaled: not defined).
+std::vector<SweepRow> SweepRows(const SuiteResults& suite) {
+  std::map<std::pair<std::string, double>, std::vector<const ReplayRecord*>> groups;  // (backend, −tolerance)
+  for (const auto& r : suite.replay.sweep) groups[{r.solver, -r.tolerance}].push_back(&r);
+  std::vector<SweepRow> rows;
+  for (const auto& [key, rs] : groups) {
+    std::vector<double> res, res_scaled, fwd, t, t_fwd;
+    SweepRow row;
+    row.solver = key.first;
+    row.tolerance = -key.second;
+    row.problems = rs.size();
+    for (const auto* r : rs) {
+      res.push_back(std::isfinite(r->residual_rel) ? r->residual_rel : 1e300);
+      res_scaled.push_back(std::isfinite(r->residual_scaled) ? r->residual_scaled
+                                                             : std::isnan(r->residual_scaled) ? kNaN : 1e300);
+      t.push_back(r->time_median);
+      if (!std::isnan(r->forward_error)) {
+        fwd.push_back(std::isfinite(r->forward_error) ? r->forward_error : 1e300);
+        t_fwd.push_back(r->time_median);
+      }
+      row.solved += r->verdict == Verdict::kSolved;
+    }
+    row.residual = MedianDefined(res);
+    row.residual_scaled = MedianDefined(res_scaled);
+    row.time = MedianDefined(t);
+    row.forward_error = MedianDefined(fwd);
+    row.with_reference = fwd.size();
+    row.time_with_reference = MedianDefined(t_fwd);
+    rows.push_back(row);
+  }
+  return rows;
+}
+
+// Speed against error: the tolerance sweep. Two errors: the forward error ‖z − z*‖∞ (what a user reads, on the
+// swept problems with a unique certified reference) and the residual reached (every swept problem).
+void WriteToleranceSweep(std::ostream& md, const SuiteResults& suite, const std::string& dir, bool plots) {
+  if (suite.replay.sweep.empty()) return;
+  md << "Speed against error (iterative backends, tolerance 1e-2 … 1e-12, medians over the swept problems; "
+        "forward error over those with a unique certified reference):\n\n"
+     << "| backend | tolerance | forward error (median) | with z* | achieved residual (median) | achieved "
+        "residual, eq. (median) | time (median) | solved |\n|---|---|---|---|---|---|---|---|\n";
+  std::map<std::string, std::vector<std::pair<double, double>>> by_forward, by_residual;
+  for (const SweepRow& row : SweepRows(suite)) {
+    md << "| " << row.solver << " | " << G(row.tolerance) << " | " << G(row.forward_error) << " | "
+       << row.with_reference << "/" << row.problems << " | " << G(row.residual) << " | " << G(row.residual_scaled)
+       << " | " << Seconds(row.time) << " | " << row.solved << "/" << row.problems << " |\n";
+    by_residual[row.solver].emplace_back(std::max(row.residual, 1e-17), row.time);
+    // Time over the same problems as the error: the median time of those with a reference.
+    if (row.with_reference > 0) {
+      by_forward[row.solver].emplace_back(std::max(row.forward_error, 1e-17), row.time_with_reference);
+    }
+  }
+  md << "\n";
+  if (plots && !by_forward.empty()) {
+    const std::string stem = "speed-forward-error-" + Safe(suite.suite);
+    PlotCurves(by_forward, dir, stem, "forward error |z - z*|inf (median; problems with a unique certified z*)",
+               "time per solve [s]", "Speed against forward error, suite " + suite.suite);
+    md << FigureMarkdown("speed against forward error, " + suite.suite, stem);
+  }
+  if (plots) {
+    const std::string stem = "speed-residual-" + Safe(suite.suite);
+    PlotCurves(by_residual, dir, stem, "achieved relative natural residual (median)", "time per solve [s]",
+               "Speed against residual, suite " + suite.suite);
+    md << FigureMarkdown("speed against residual, " + suite.suite, stem);
+  }
+}
+
+// Scale: time against m with the fitted exponent (the scale suite, when it has at least three sizes).
+void WriteScaleTable(std::ostream& md, const SuiteResults& suite) {
+  std::set<int> sizes;
+  for (const auto& r : suite.replay.records) sizes.insert(r.size);
+  if (sizes.size() < 3 || suite.suite != "scale") return;
+  md << "| backend | fitted exponent of time in m | ";
+  for (int m : sizes) md << "m = " << m << " | ";
+  md << "\n|---|---|";
+  for (std::size_t i = 0; i < sizes.size(); ++i) md << "---|";
+  md << "\n";
+  for (const std::string& solver : Solvers(suite.replay.records)) {
+    md << "| " << solver << " | " << G(GrowthExponent(suite, solver)) << " | ";
+    for (int m : sizes) {
+      std::string cell = "–";
+      for (const auto& r : suite.replay.records) {
+        if (r.solver == solver && r.size == m) {
+          cell = r.verdict == Verdict::kSolved ? Seconds(r.time_median) : std::string(ToString(r.status));
+        }
+      }
+      md << cell << " | ";
     }
     md << "\n";
+  }
+  md << "\n";
+}
 
-    // Every wrong answer, so a reader can check it (the first few per suite; results.csv has them all).
-    {
-      std::vector<const ReplayRecord*> wrong;
-      for (const auto& r : suite.replay.records) {
-        if (IsWrong(r.verdict)) wrong.push_back(&r);
-      }
-      if (!wrong.empty()) {
-        constexpr std::size_t kListed = 30;
-        md << "Wrong answers (" << wrong.size() << (wrong.size() > kListed ? ", the first 30" : "")
-           << "):\n\n| problem | backend | verdict | status | residual | residual (eq.) | forward error | "
-              "allowance | certificate |\n|---|---|---|---|---|---|---|---|---|\n";
-        for (std::size_t i = 0; i < std::min(wrong.size(), kListed); ++i) {
-          const ReplayRecord& r = *wrong[i];
-          md << "| " << r.problem << " | " << r.solver << " | " << ToString(r.verdict) << " | "
-             << ToString(r.status) << " | " << G(r.residual_rel) << " | " << G(r.residual_scaled) << " | "
-             << G(r.forward_error) << " | " << G(r.forward_allowance) << " | " << r.certificate << " |\n";
-        }
-        md << "\n";
-      }
+void WriteSuite(std::ostream& md, const SuiteResults& suite, const std::string& dir, bool plots) {
+  WriteSuiteSummary(md, suite);
+  WriteWrongAnswers(md, suite);
+  WriteSparsePathComparison(md, CompareWithSparsePath(suite));
+  WriteSiconosComparison(md, CompareWithSiconos(suite));
+  if (plots) WritePerformanceProfile(md, suite, dir);
+  WriteToleranceSweep(md, suite, dir, plots);
+  WriteScaleTable(md, suite);
+}
+
+// The time-stepper: warm against cold starts, per scene and backend (records come in warm, cold pairs).
+void WriteWarmStart(std::ostream& md, const StepperStudy& st) {
+  md << "## Time-stepper: warm against cold starts\n\n"
+     << "Each scene's own run (docs/scenes.md settings), every step's one-step problem started from the previous s "
+        "(warm) or from Π(0) (cold).\n\n| scene | backend | warm: time/step | cold: time/step | cold/warm | "
+        "iterations/step warm | cold |\n|---|---|---|---|---|---|---|\n";
+  for (std::size_t i = 0; i + 1 < st.warm_start.size(); i += 2) {
+    const auto& w = st.warm_start[i];
+    const auto& c = st.warm_start[i + 1];
+    md << "| " << w.scene << " | " << w.solver << (w.ok && c.ok ? "" : " (failed steps)") << " | "
+       << Seconds(w.seconds_per_step) << " | " << Seconds(c.seconds_per_step) << " | "
+       << G(c.seconds_per_step / w.seconds_per_step) << " | " << G(w.iterations_per_step) << " | "
+       << G(c.iterations_per_step) << " |\n";
+  }
+}
+
+using WorkPrecisionLines = std::map<std::string, std::vector<const WorkPrecisionRecord*>>;  // label → h halved
+
+// One scene's line of the work-precision section: per label, x error and time from the largest h to the smallest.
+void WriteWorkPrecisionText(std::ostream& md, const std::string& scene, const WorkPrecisionLines& lines) {
+  md << "**" << scene << "**: ";
+  for (const auto& [label, rs] : lines) {
+    md << label << ": x error " << G(rs.front()->error) << " → " << G(rs.back()->error) << " in "
+       << Seconds(rs.front()->seconds) << " → " << Seconds(rs.back()->seconds);
+    double worst_s = kNaN;
+    std::int64_t certified = 0, steps = 0;
+    for (const auto* r : rs) {
+      worst_s = MaxDefined(worst_s, r->s_forward_error);
+      certified += r->s_certified_steps;
+      steps += r->steps;
     }
+    if (certified > 0) md << ", s per-step error ≤ " << G(worst_s) << " (" << certified << "/" << steps << " steps)";
+    md << "; ";
+  }
+  md << "\n\n";
+}
 
-    // The paper suite against the generic sparse path (bench adds it: newton on sparse copies).
-    {
-      std::map<std::string, double> best, generic;
-      std::map<std::string, int> sizes;
-      for (const auto& r : suite.replay.records) {
-        if (r.verdict != Verdict::kSolved) continue;
-        if (r.solver == "newton-sparse-path") {
-          generic[r.problem] = r.time_median;
-        } else {
-          auto [it, inserted] = best.emplace(r.problem, r.time_median);
-          if (!inserted) it->second = std::min(it->second, r.time_median);
-          sizes[r.problem] = r.size;
-        }
-      }
-      std::vector<double> ratios, floors;
-      for (const auto& [problem, t] : generic) {
-        if (!best.count(problem)) continue;
-        ratios.push_back(t / best.at(problem));
-        // Arithmetic floor: one m×m factorization and two mat-vecs, m³/3 + 4m² flops, at one flop per
-        // nanosecond (scalar code at ~1–3 GHz).
-        const double m = sizes.at(problem);
-        floors.push_back(best.at(problem) / ((m * m * m / 3.0 + 4.0 * m * m) * 1e-9));
-      }
-      if (!ratios.empty()) {
-        std::sort(ratios.begin(), ratios.end());
-        std::sort(floors.begin(), floors.end());
-        md << "Fastest backend against the generic sparse path (the same problems with M stored sparse, solved by "
-              "`newton` with its UMFPACK sparse LU forced, `newton.linear_solver=2`): speed-up median "
-           << G(ratios[ratios.size() / 2]) << "×, min " << G(ratios.front()) << "×, max " << G(ratios.back())
-           << "× over " << ratios.size() << " problems (goal ≥ 10×). Distance from the arithmetic alone (m³/3 + 4m² "
-              "flops at 1 flop/ns): the fastest solve takes median "
-           << G(floors[floors.size() / 2]) << "× that floor — the rest is the fixed cost of a call (option checks, "
-              "cold start, the merit function).\n\n";
-      }
-    }
-
-    // Ours against the external adapters (siconos-*), per size: best of each side per problem. The headline compares
-    // in-process times only (each Siconos problem's untimed first solve is the probe in its isolation worker, the
-    // timed ones call Siconos directly); Siconos records timed through the worker (isolate=always, a probe that
-    // crashed, results from before the probe policy) include ≈ 7 µs of IPC per solve and get a labelled footnote.
-    {
-      std::map<std::string, double> ours, theirs, theirs_through_worker;
-      std::map<std::string, int> sizes;
-      for (const auto& r : suite.replay.records) {
-        if (r.verdict != Verdict::kSolved || r.solver == "newton-sparse-path") continue;
-        const bool siconos = r.solver.rfind("siconos-", 0) == 0;
-        auto& side = !siconos ? ours : r.timed_in_worker ? theirs_through_worker : theirs;
-        auto [it, inserted] = side.emplace(r.problem, r.time_median);
-        if (!inserted) it->second = std::min(it->second, r.time_median);
-        sizes[r.problem] = r.size;
-      }
-      const auto by_size = [&](const std::map<std::string, double>& external) {
-        std::map<int, std::vector<double>> ratios;
-        for (const auto& [problem, t] : external) {
-          if (ours.count(problem)) ratios[sizes.at(problem)].push_back(t / ours.at(problem));
-        }
-        return ratios;
-      };
-      const auto table = [&](std::map<int, std::vector<double>> ratios) {
-        md << "| m | problems | median ratio | min | max |\n|---|---|---|---|---|\n";
-        for (auto& [m, r] : ratios) {
-          std::sort(r.begin(), r.end());
-          md << "| " << m << " | " << r.size() << " | " << G(r[r.size() / 2]) << "× | " << G(r.front()) << "× | "
-             << G(r.back()) << "× |\n";
-        }
-        md << "\n";
-      };
-      const auto in_process = by_size(theirs), through_worker = by_size(theirs_through_worker);
-      if (!in_process.empty()) {
-        md << "Our best backend against Siconos' best (`siconos-*`), both timed in process: each problem's first "
-              "Siconos solve, untimed, is the probe in the backend's isolation worker (a crash or hang there is a "
-              "status); once it came back, the timed solves call Siconos directly (`isolate=first`, see "
-              "`solvers/siconos/README.md`). On the problems both solve — Siconos time / our time:\n\n";
-        table(in_process);
-      }
-      if (!through_worker.empty()) {
-        md << (in_process.empty() ? "" : "Footnote: ")
-           << "Siconos records timed through the isolation worker (≈ 7 µs of inter-process communication per solve "
-              "included: `isolate=always`, a problem whose probe crashed or timed out, or results from before the "
-              "probe policy) — IPC-inclusive Siconos time / our time, not a comparison of the solvers:\n\n";
-        table(through_worker);
-      }
-    }
-
-    // Performance profile.
-    const auto ratios = PerformanceRatios(suite);
-    if (plots && !ratios.empty()) {
-      std::ostringstream data;
-      double tau_max = 2.0;
-      for (const auto& [solver, r] : ratios) {
-        for (double v : r) {
-          if (std::isfinite(v)) tau_max = std::max(tau_max, v);
-        }
-      }
-      tau_max = std::min(tau_max * 1.5, 1e6);
-      std::ostringstream g;
-      const std::string stem = "profile-" + Safe(suite.suite);
-      // The key outside the plot: with 18 backends it would cover the curves.
-      g << "set logscale x 2\nset grid\nset key outside right top\nset xlabel 'tau (time / best time)'\n"
-        << "set ylabel 'fraction of problems'\nset yrange [0:1.02]\nset xrange [1:" << tau_max << "]\n"
-        << "set title " << GnuplotQuote("Performance profile, suite " + suite.suite) << "\nplot ";
-      int index = 0;
-      for (const auto& [solver, r] : ratios) {
-        // Step function: (τ_i, i/N), extended to τ_max.
-        const double n = static_cast<double>(r.size());
-        data << "# " << solver << "\n1 0\n";
-        int k = 0;
-        for (double v : r) {
-          if (!std::isfinite(v)) break;
-          ++k;
-          data << v << ' ' << k / n << '\n';
-        }
-        data << tau_max << ' ' << k / n << "\n\n\n";
-        g << (index ? ", " : "") << GnuplotQuote(stem + ".dat") << " index " << index << " using 1:2 with steps "
-          << BackendStyle(solver) << " title " << GnuplotQuote(solver);
-        ++index;
-      }
-      g << "\n";
-      WriteFigure(dir, stem, data.str(), g.str(), 1100, 600);
-      md << FigureMarkdown("performance profile, " + suite.suite, stem);
-    }
-
-    // Speed against error: the tolerance sweep. Two errors: the forward error ‖z − z*‖∞ (what a user reads, on the
-    // swept problems with a unique certified reference) and the residual reached (every swept problem).
-    if (!suite.replay.sweep.empty()) {
-      md << "Speed against error (iterative backends, tolerance 1e-2 … 1e-12, medians over the swept problems; "
-            "forward error over those with a unique certified reference):\n\n"
-         << "| backend | tolerance | forward error (median) | with z* | achieved residual (median) | achieved "
-            "residual, eq. (median) | time (median) | solved |\n|---|---|---|---|---|---|---|---|\n";
-      // Keyed by (backend, −tolerance): loosest tolerance first.
-      std::map<std::pair<std::string, double>, std::vector<const ReplayRecord*>> groups;
-      for (const auto& r : suite.replay.sweep) groups[{r.solver, -r.tolerance}].push_back(&r);
-      std::map<std::string, std::vector<std::pair<double, double>>> by_forward, by_residual;
-      for (auto& [key, rs] : groups) {
-        std::vector<double> res, res_scaled, fwd, t, t_fwd;
-        int solved = 0;
-        for (const auto* r : rs) {
-          res.push_back(std::isfinite(r->residual_rel) ? r->residual_rel : 1e300);
-          res_scaled.push_back(std::isfinite(r->residual_scaled) ? r->residual_scaled
-                                                                 : std::isnan(r->residual_scaled) ? kNaN : 1e300);
-          t.push_back(r->time_median);
-          if (!std::isnan(r->forward_error)) {
-            fwd.push_back(std::isfinite(r->forward_error) ? r->forward_error : 1e300);
-            t_fwd.push_back(r->time_median);
-          }
-          solved += r->verdict == Verdict::kSolved;
-        }
-        const double mres = MedianDefined(res), mres_scaled = MedianDefined(res_scaled), mt = MedianDefined(t);
-        const double mfwd = MedianDefined(fwd);
-        md << "| " << key.first << " | " << G(-key.second) << " | " << G(mfwd) << " | " << fwd.size() << "/"
-           << rs.size() << " | " << G(mres) << " | " << G(mres_scaled) << " | " << Seconds(mt) << " | " << solved
-           << "/" << rs.size() << " |\n";
-        by_residual[key.first].emplace_back(std::max(mres, 1e-17), mt);
-        // Time over the same problems as the error: the median time of those with a reference.
-        if (!fwd.empty()) by_forward[key.first].emplace_back(std::max(mfwd, 1e-17), MedianDefined(t_fwd));
-      }
-      md << "\n";
-      if (plots && !by_forward.empty()) {
-        const std::string stem = "speed-forward-error-" + Safe(suite.suite);
-        PlotCurves(by_forward, dir, stem, "forward error |z - z*|inf (median; problems with a unique certified z*)",
-                   "time per solve [s]", "Speed against forward error, suite " + suite.suite);
-        md << FigureMarkdown("speed against forward error, " + suite.suite, stem);
-      }
-      if (plots) {
-        const std::string stem = "speed-residual-" + Safe(suite.suite);
-        PlotCurves(by_residual, dir, stem, "achieved relative natural residual (median)", "time per solve [s]",
-                   "Speed against residual, suite " + suite.suite);
-        md << FigureMarkdown("speed against residual, " + suite.suite, stem);
-      }
-    }
-
-    // Scale: time against m with the fitted exponent.
-    std::set<int> sizes;
-    for (const auto& r : suite.replay.records) sizes.insert(r.size);
-    if (sizes.size() >= 3 && suite.suite == "scale") {
-      md << "| backend | fitted exponent of time in m | ";
-      for (int m : sizes) md << "m = " << m << " | ";
-      md << "\n|---|---|";
-      for (std::size_t i = 0; i < sizes.size(); ++i) md << "---|";
-      md << "\n";
-      for (const std::string& solver : Solvers(suite.replay.records)) {
-        md << "| " << solver << " | " << G(GrowthExponent(suite, solver)) << " | ";
-        for (int m : sizes) {
-          std::string cell = "–";
-          for (const auto& r : suite.replay.records) {
-            if (r.solver == solver && r.size == m) {
-              cell = r.verdict == Verdict::kSolved ? Seconds(r.time_median) : std::string(ToString(r.status));
-            }
-          }
-          md << cell << " | ";
-        }
-        md << "\n";
-      }
-      md << "\n";
+// One scene's work-precision figures: time against the x error, and against the per-step error of s.
+void WriteWorkPrecisionFigures(std::ostream& md, const std::string& dir, const std::string& scene,
+                               const WorkPrecisionLines& lines) {
+  std::map<std::string, std::vector<std::pair<double, double>>> by_x, by_s;
+  for (const auto& [label, rs] : lines) {
+    for (const auto* r : rs) {
+      by_x[label].emplace_back(std::max(r->error, 1e-17), r->seconds);
+      // A certified exact answer has error 0: drawn at 1e-17, the bottom of the axis.
+      if (!std::isnan(r->s_forward_error)) by_s[label].emplace_back(std::max(r->s_forward_error, 1e-17), r->seconds);
     }
   }
+  const std::string stem = "work-precision-" + Safe(scene);
+  PlotCurves(by_x, dir, stem, "trajectory error of x against a finer reference run (max)", "run time [s]",
+             "Work-precision (trajectory error of x), " + scene, /*sort_by_x=*/false);
+  md << FigureMarkdown("work-precision, " + scene, stem);
+  if (by_s.empty()) return;
+  const std::string stem_s = "work-precision-s-" + Safe(scene);
+  PlotCurves(by_s, dir, stem_s, "per-step forward error of s against certified solutions (max; 1e-17 = exact)",
+             "run time [s]", "Work-precision (per-step forward error of s), " + scene, /*sort_by_x=*/false);
+  md << FigureMarkdown("work-precision against the per-step error of s, " + scene, stem_s);
+}
 
+void WriteWorkPrecision(std::ostream& md, const StepperStudy& st, const std::string& dir, bool plots) {
+  md << "\n## Time-stepper: work-precision\n\nRun time (set-up included, median of repeats) against two errors, h "
+        "halved from the scene's own: the **trajectory error of x** (max over the grid of ‖x_k − x_ref(t_k)‖∞, "
+        "x_ref a finer reference run: implicit Euler with lemke at the smallest h / "
+     << G(st.reference_h_factor)
+     << "; mostly discretization error), and the **per-step forward error of s** (max of ‖s_k − s*_k‖∞ over "
+        "the steps the backend solved, s*_k the certified solution of step k's own one-step problem where it is "
+        "proven unique: the solver's error alone, in the units of the control; 0 = exact).\n\n";
+  std::map<std::string, WorkPrecisionLines> by_scene;
+  for (const auto& r : st.work_precision) {
+    by_scene[r.scene][r.method == "explicit" ? std::string("explicit Euler") : "implicit, " + r.solver].push_back(&r);
+  }
+  for (const auto& [scene, lines] : by_scene) {
+    WriteWorkPrecisionText(md, scene, lines);
+    if (plots) WriteWorkPrecisionFigures(md, dir, scene, lines);
+  }
+}
+
+}  // namespace
+
+std::string WriteBenchReport(const std::string& dir, bool plots) {
+  json env;
+  const BenchResults results = ReadBenchResults(dir, &env);
+  if (plots && !GnuplotAvailable()) {
+    throw InvalidInputError("report: the plots need gnuplot (Debian package gnuplot-nox); install it or pass --no-plots");
+  }
+  std::ostringstream md;
+  WriteHeader(md, dir, results, env);
+  for (const SuiteResults& suite : results.suites) WriteSuite(md, suite, dir, plots);
   if (results.has_stepper) {
-    const StepperStudy& st = results.stepper;
-    md << "## Time-stepper: warm against cold starts\n\n"
-       << "Each scene's own run (docs/scenes.md settings), every step's one-step problem started from the previous s "
-          "(warm) or from Π(0) (cold).\n\n| scene | backend | warm: time/step | cold: time/step | cold/warm | "
-          "iterations/step warm | cold |\n|---|---|---|---|---|---|---|\n";
-    for (std::size_t i = 0; i + 1 < st.warm_start.size(); i += 2) {
-      const auto& w = st.warm_start[i];
-      const auto& c = st.warm_start[i + 1];
-      md << "| " << w.scene << " | " << w.solver << (w.ok && c.ok ? "" : " (failed steps)") << " | "
-         << Seconds(w.seconds_per_step) << " | " << Seconds(c.seconds_per_step) << " | "
-         << G(c.seconds_per_step / w.seconds_per_step) << " | " << G(w.iterations_per_step) << " | "
-         << G(c.iterations_per_step) << " |\n";
-    }
-    md << "\n## Time-stepper: work-precision\n\nRun time (set-up included, median of repeats) against two errors, h "
-          "halved from the scene's own: the **trajectory error of x** (max over the grid of ‖x_k − x_ref(t_k)‖∞, "
-          "x_ref a finer reference run: implicit Euler with lemke at the smallest h / "
-       << G(st.reference_h_factor)
-       << "; mostly discretization error), and the **per-step forward error of s** (max of ‖s_k − s*_k‖∞ over "
-          "the steps the backend solved, s*_k the certified solution of step k's own one-step problem where it is "
-          "proven unique: the solver's error alone, in the units of the control; 0 = exact).\n\n";
-    std::map<std::string, std::map<std::string, std::vector<const WorkPrecisionRecord*>>> by_scene;
-    for (const auto& r : st.work_precision) {
-      by_scene[r.scene][r.method == "explicit" ? std::string("explicit Euler") : "implicit, " + r.solver].push_back(&r);
-    }
-    for (const auto& [scene, lines] : by_scene) {
-      md << "**" << scene << "**: ";
-      for (const auto& [label, rs] : lines) {
-        md << label << ": x error " << G(rs.front()->error) << " → " << G(rs.back()->error) << " in "
-           << Seconds(rs.front()->seconds) << " → " << Seconds(rs.back()->seconds);
-        double worst_s = kNaN;
-        std::int64_t certified = 0, steps = 0;
-        for (const auto* r : rs) {
-          worst_s = MaxDefined(worst_s, r->s_forward_error);
-          certified += r->s_certified_steps;
-          steps += r->steps;
-        }
-        if (certified > 0) {
-          md << ", s per-step error ≤ " << G(worst_s) << " (" << certified << "/" << steps << " steps)";
-        }
-        md << "; ";
-      }
-      md << "\n\n";
-      if (plots) {
-        std::map<std::string, std::vector<std::pair<double, double>>> by_x, by_s;
-        for (const auto& [label, rs] : lines) {
-          for (const auto* r : rs) {
-            by_x[label].emplace_back(std::max(r->error, 1e-17), r->seconds);
-            // A certified exact answer has error 0: drawn at 1e-17, the bottom of the axis.
-            if (!std::isnan(r->s_forward_error)) {
-              by_s[label].emplace_back(std::max(r->s_forward_error, 1e-17), r->seconds);
-            }
-          }
-        }
-        const std::string stem = "work-precision-" + Safe(scene);
-        PlotCurves(by_x, dir, stem, "trajectory error of x against a finer reference run (max)", "run time [s]",
-                   "Work-precision (trajectory error of x), " + scene, /*sort_by_x=*/false);
-        md << FigureMarkdown("work-precision, " + scene, stem);
-        if (!by_s.empty()) {
-          const std::string stem_s = "work-precision-s-" + Safe(scene);
-          PlotCurves(by_s, dir, stem_s, "per-step forward error of s against certified solutions (max; 1e-17 = exact)",
-                     "run time [s]", "Work-precision (per-step forward error of s), " + scene, /*sort_by_x=*/false);
-          md << FigureMarkdown("work-precision against the per-step error of s, " + scene, stem_s);
-        }
-      }
-    }
+    WriteWarmStart(md, results.stepper);
+    WriteWorkPrecision(md, results.stepper, dir, plots);
   }
-
   const std::string text = md.str();
   std::ofstream out(fs::path(dir) / "report.md");
   out << text;

@@ -22,6 +22,7 @@
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/nonlinear_scene.h"
 #include "problems/scenes/registry.h"
+#include "problems/stepper/sampled_plant.h"
 #include "solvers/core/duration_text.h"
 #include "solvers/core/number_text.h"
 #include "solvers/reference/certify.h"
@@ -342,6 +343,8 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
   j["T"] = settings.T;
   if (!IsZoh(settings.method)) j["theta"] = settings.theta;
   j["gamma"] = settings.gamma;
+  // Only when asked for (a default run's summary is unchanged): the CSV's rows between samples; metrics are on samples.
+  if (settings.plant_substeps > 1) j["plant_substeps"] = settings.plant_substeps;
   if (dynamic_cast<const NonlinearSceneAdapter*>(&scene)) {
     j["algorithm"] = std::string(ToString(settings.algorithm));
     j["newton_tolerance"] = settings.newton_tolerance;
@@ -698,12 +701,13 @@ void RunGnuplot(const std::string& script_text, const std::string& png_path, con
 struct SimulateCommand::Flags {
   std::string scene, method, x0, solver, out, summary, plot, on_failure = "stop", algorithm, record;
   double h = 0.0, T = 0.0, theta = 0.0, gamma = 0.0, tol = 1e-10, reach_tol = 0.0, newton_tol = 0.0;
-  int max_iter = 0, newton_max_iter = 0;
+  int max_iter = 0, newton_max_iter = 0, plant_substeps = 1;
   bool no_warm_start = false, flush_subnormals = false, ieee_subnormals = false, no_polish = false;
   std::vector<std::string> params, sets;
   CLI::Option *method_opt = nullptr, *h_opt = nullptr, *T_opt = nullptr, *theta_opt = nullptr,
               *gamma_opt = nullptr, *x0_opt = nullptr, *reach_opt = nullptr, *solver_opt = nullptr,
-              *algorithm_opt = nullptr, *newton_tol_opt = nullptr, *newton_max_iter_opt = nullptr;
+              *algorithm_opt = nullptr, *newton_tol_opt = nullptr, *newton_max_iter_opt = nullptr,
+              *plant_substeps_opt = nullptr;
 };
 
 SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
@@ -753,6 +757,10 @@ SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>
                        "write the JSON summary (steps, x_final, reaching_step, s_error_max and y_error_max against a "
                        "certified reference run, ...)");
   command_->add_option("--plot", f.plot, "write a PNG (gnuplot): x, s, y against t and the phase portrait");
+  f.plant_substeps_opt = command_->add_option(
+      "--plant-substeps", f.plant_substeps,
+      "methods zoh/zoh-explicit: S >= 1; --out and --plot also get the exact plant state at S-1 points between "
+      "samples under the held input (default: the scene's plant_substeps, else 1; metrics stay on the samples)");
   command_->add_option("--record", f.record,
                        "write every one-step box-MLCP of the run (M, q, l, u, the z used, scene, method, h, theta, "
                        "step) to FILE, a problem set (problems/library/README.md; see `smcbench library FILE`)");
@@ -762,21 +770,96 @@ SimulateCommand::~SimulateCommand() = default;
 
 bool SimulateCommand::parsed() const { return command_->parsed(); }
 
-int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
-  const Flags& f = *flags_;
-  // Fail before simulating, not after.
-  if (!f.plot.empty() && !GnuplotAvailable()) {
-    throw InvalidInputError("--plot needs gnuplot (Debian package gnuplot-nox), which is not on PATH");
-  }
-  const std::unique_ptr<Scene> scene = LoadScene(f.scene);
-  const SceneInfo& info = scene->info();
-  const std::string prefix = "simulate " + info.name + ": ";
-  const auto fail = [&](const std::string& what) { throw InvalidInputError(prefix + what); };
+namespace {
 
-  SimulationSettings s = scene->defaults();
+using Flags = SimulateCommand::Flags;
+
+// What one `simulate` run is: the scene, its defaults with the command line's overrides, and how errors read.
+struct SimulatePlan {
+  std::unique_ptr<Scene> scene;
+  SimulationSettings settings;
+  double reach_tol = 0.0;
+  bool nonlinear = false;
+  std::string prefix;  // "simulate NAME: " before every error
+
+  [[noreturn]] void Fail(const std::string& what) const { throw InvalidInputError(prefix + what); }
+};
+
+// Phase 1: the scene, by name or file.
+SimulatePlan LoadPlan(const Flags& f) {
+  SimulatePlan plan;
+  plan.scene = LoadScene(f.scene);
+  plan.prefix = "simulate " + plan.scene->info().name + ": ";
+  plan.settings = plan.scene->defaults();
+  plan.nonlinear = dynamic_cast<const NonlinearSceneAdapter*>(plan.scene.get()) != nullptr;
+  return plan;
+}
+
+// --param NAME=VALUE, each naming a parameter the scene declares.
+void ApplyParameterOverrides(const Flags& f, SimulatePlan* plan) {
+  const SceneParameters& declared = plan->scene->defaults().parameters;
+  for (const std::string& p : f.params) {
+    const auto eq = p.find('=');
+    const auto value = eq == std::string::npos ? std::nullopt : ParseDouble(std::string_view(p).substr(eq + 1));
+    if (!value) plan->Fail("--param expects NAME=VALUE with a number, got '" + p + "'");
+    const std::string name = p.substr(0, eq);
+    if (!declared.count(name)) {
+      std::string known;
+      for (const auto& [k, v] : declared) known += (known.empty() ? "" : ", ") + k;
+      plan->Fail("--param: the scene has no parameter '" + name + "' (parameters: " + (known.empty() ? "none" : known) +
+                 ")");
+    }
+    plan->settings.parameters[name] = *value;
+  }
+}
+
+// The stepper's options: tolerance, budget, warm start, polish, subnormals, failure policy.
+void ApplyStepperOverrides(const Flags& f, SimulatePlan* plan) {
+  StepperOptions& stepper = plan->settings.stepper;
+  stepper.solver.tolerance = f.tol;
+  stepper.solver.max_iterations = f.max_iter;
+  stepper.warm_start = !f.no_warm_start;
+  stepper.solver.polish = !f.no_polish;
+  if (f.flush_subnormals && f.ieee_subnormals) plan->Fail("--flush-subnormals and --ieee-subnormals exclude each other");
+  stepper.subnormals = f.flush_subnormals   ? SubnormalPolicy::kFlushToZero
+                       : f.ieee_subnormals ? SubnormalPolicy::kIeee
+                                           : SubnormalPolicy::kZeroState;
+  if (f.on_failure == "stop") {
+    stepper.on_failure = FailurePolicy::kStop;
+  } else if (f.on_failure == "continue") {
+    stepper.on_failure = FailurePolicy::kContinue;
+  } else {
+    plan->Fail("--on-failure: expected stop or continue, got '" + f.on_failure + "'");
+  }
+  // Outputs are computed while the run goes (sinks): nothing is recorded.
+  stepper.record = false;
+}
+
+// --plant-substeps overrides the scene file's plant_substeps; both apply to the ZOH methods only (an Euler method
+// integrates the closed loop itself: there is no held input between samples).
+void ApplyPlantSubsteps(const Flags& f, SimulatePlan* plan, std::ostream& err) {
+  SimulationSettings& s = plan->settings;
+  if (f.plant_substeps_opt->count()) {
+    if (f.plant_substeps < 1) plan->Fail("--plant-substeps must be an integer >= 1, got " + std::to_string(f.plant_substeps));
+    if (!IsZoh(s.method) && f.plant_substeps > 1) {
+      plan->Fail("--plant-substeps " + std::to_string(f.plant_substeps) + " needs method zoh or zoh-explicit (the " +
+                 "plant between a ZOH controller's samples); method '" + std::string(ToString(s.method)) +
+                 "' integrates the closed loop");
+    }
+    s.plant_substeps = f.plant_substeps;
+  } else if (!IsZoh(s.method) && s.plant_substeps > 1) {
+    err << "note: the scene's plant_substeps applies to methods zoh and zoh-explicit only; method "
+        << ToString(s.method) << " reports its samples\n";
+    s.plant_substeps = 1;
+  }
+}
+
+// Phase 2: every command-line override on the scene's defaults, then the settings validated.
+void ApplyOverrides(const Flags& f, SimulatePlan* plan, std::ostream& err) {
+  SimulationSettings& s = plan->settings;
   if (f.method_opt->count()) {
     const auto method = MethodFromString(f.method);
-    if (!method) fail("--method: unknown method '" + f.method + "' (known: implicit, explicit, zoh, zoh-explicit)");
+    if (!method) plan->Fail("--method: unknown method '" + f.method + "' (known: implicit, explicit, zoh, zoh-explicit)");
     s.method = *method;
     // "explicit" means the classical explicit Euler scheme unless a θ is asked for.
     if (s.method == Method::kExplicit && !f.theta_opt->count()) s.theta = 0.0;
@@ -787,234 +870,280 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
   if (f.theta_opt->count()) s.theta = f.theta;
   if (f.gamma_opt->count()) s.gamma = f.gamma;
   if (f.x0_opt->count()) s.x0 = ParseVector(f.x0, "--x0");
-  for (const std::string& p : f.params) {
-    const auto eq = p.find('=');
-    const auto value = eq == std::string::npos ? std::nullopt : ParseDouble(std::string_view(p).substr(eq + 1));
-    if (!value) fail("--param expects NAME=VALUE with a number, got '" + p + "'");
-    const std::string name = p.substr(0, eq);
-    if (!scene->defaults().parameters.count(name)) {
-      std::string known;
-      for (const auto& [k, v] : scene->defaults().parameters) known += (known.empty() ? "" : ", ") + k;
-      fail("--param: the scene has no parameter '" + name + "' (parameters: " + (known.empty() ? "none" : known) + ")");
-    }
-    s.parameters[name] = *value;
-  }
-  const bool nonlinear = dynamic_cast<const NonlinearSceneAdapter*>(scene.get()) != nullptr;
+  ApplyParameterOverrides(f, plan);
   if (f.algorithm_opt->count()) {
     const auto algorithm = NonlinearAlgorithmFromString(f.algorithm);
-    if (!algorithm) fail("--algorithm: unknown algorithm '" + f.algorithm + "' (known: newton-mlcp, mcp)");
+    if (!algorithm) plan->Fail("--algorithm: unknown algorithm '" + f.algorithm + "' (known: newton-mlcp, mcp)");
     s.algorithm = *algorithm;
   }
   if (f.newton_tol_opt->count()) s.newton_tolerance = f.newton_tol;
   if (f.newton_max_iter_opt->count()) s.newton_max_iterations = f.newton_max_iter;
-  if (!nonlinear && (f.algorithm_opt->count() || f.newton_tol_opt->count() || f.newton_max_iter_opt->count())) {
+  if (!plan->nonlinear && (f.algorithm_opt->count() || f.newton_tol_opt->count() || f.newton_max_iter_opt->count())) {
     err << "note: --algorithm, --newton-tol and --newton-max-iter apply to nonlinear scenes only; a linear scene "
            "solves one box-MLCP per step\n";
   }
-  s.stepper.solver.tolerance = f.tol;
-  s.stepper.solver.max_iterations = f.max_iter;
-  s.stepper.warm_start = !f.no_warm_start;
-  s.stepper.solver.polish = !f.no_polish;
-  if (f.flush_subnormals && f.ieee_subnormals) fail("--flush-subnormals and --ieee-subnormals exclude each other");
-  s.stepper.subnormals = f.flush_subnormals   ? SubnormalPolicy::kFlushToZero
-                         : f.ieee_subnormals ? SubnormalPolicy::kIeee
-                                             : SubnormalPolicy::kZeroState;
-  if (f.on_failure == "stop") {
-    s.stepper.on_failure = FailurePolicy::kStop;
-  } else if (f.on_failure == "continue") {
-    s.stepper.on_failure = FailurePolicy::kContinue;
-  } else {
-    fail("--on-failure: expected stop or continue, got '" + f.on_failure + "'");
-  }
-  const double reach_tol = f.reach_opt->count() ? f.reach_tol : 10.0 * f.tol;
-  if (!(reach_tol >= 0.0) || !std::isfinite(reach_tol)) fail("--reach-tol must be finite and >= 0");
-  // Outputs are computed while the run goes (sinks below): nothing is recorded.
-  const bool outputs = !f.out.empty() || !f.summary.empty() || !f.plot.empty();
-  s.stepper.record = false;
+  ApplyStepperOverrides(f, plan);
+  ApplyPlantSubsteps(f, plan, err);
+  plan->reach_tol = f.reach_opt->count() ? f.reach_tol : 10.0 * f.tol;
+  if (!(plan->reach_tol >= 0.0) || !std::isfinite(plan->reach_tol)) plan->Fail("--reach-tol must be finite and >= 0");
   try {
-    s.Validate(info.n);
+    s.Validate(plan->scene->info().n);
   } catch (const InvalidInputError& e) {
-    fail(e.what());
+    plan->Fail(e.what());
   }
-  if (!scene->Supports(s.method)) {
-    fail("method '" + std::string(ToString(s.method)) + "' needs a ZOH plant (system type zoh); this scene runs " +
-         "implicit or explicit");
+  if (!plan->scene->Supports(s.method)) {
+    plan->Fail("method '" + std::string(ToString(s.method)) +
+               "' needs a ZOH plant (system type zoh); this scene runs implicit or explicit");
   }
-
-  // The backend: only implicit methods solve a one-step problem.
-  std::unique_ptr<Solver> solver;
-  std::string solver_name;
-  if (IsImplicit(s.method)) {
-    const bool mcp = nonlinear && s.algorithm == NonlinearAlgorithm::kMcp;
-    solver_name = f.solver_opt->count() ? f.solver : (!s.solver.empty() ? s.solver : mcp ? "newton" : kDefaultSolver);
-    solver = CreateSolver(solver_name);  // unknown name: error listing the known ones
-    if (mcp && !solver->info().mcp) {
-      fail("--algorithm mcp needs a backend that solves nonlinear MCPs (newton); '" + solver_name +
-           "' solves box-MLCPs only: use --algorithm newton-mlcp with it");
-    }
-    try {
-      ApplyBackendSettings(f.sets, {solver.get()});  // the one --set parser: solvers/registry/backend_settings.h
-    } catch (const InvalidInputError& e) {
-      fail(e.what());
-    }
-  } else if (f.solver_opt->count()) {
-    err << "note: --solver is ignored: method " << ToString(s.method) << " solves no one-step problem\n";
-  }
-  if (f.gamma_opt->count() && !nonlinear) {
+  if (f.gamma_opt->count() && !plan->nonlinear) {
     err << "note: --gamma has no effect on a linear scene (g(x) = B is constant)\n";
   }
+}
 
-  // --record: the run hands each one-step problem to a recorder that streams it to the file.
+struct Backend {
+  std::unique_ptr<Solver> solver;  // null for explicit methods (no one-step problem)
+  std::string name;
+};
+
+// Phase 3: the backend, for implicit methods only, with its --set options.
+Backend PickBackend(const Flags& f, const SimulatePlan& plan, std::ostream& err) {
+  const SimulationSettings& s = plan.settings;
+  Backend backend;
+  if (!IsImplicit(s.method)) {
+    if (f.solver_opt->count()) {
+      err << "note: --solver is ignored: method " << ToString(s.method) << " solves no one-step problem\n";
+    }
+    return backend;
+  }
+  const bool mcp = plan.nonlinear && s.algorithm == NonlinearAlgorithm::kMcp;
+  backend.name = f.solver_opt->count() ? f.solver : (!s.solver.empty() ? s.solver : mcp ? "newton" : kDefaultSolver);
+  backend.solver = CreateSolver(backend.name);  // unknown name: error listing the known ones
+  if (mcp && !backend.solver->info().mcp) {
+    plan.Fail("--algorithm mcp needs a backend that solves nonlinear MCPs (newton); '" + backend.name +
+              "' solves box-MLCPs only: use --algorithm newton-mlcp with it");
+  }
+  try {
+    ApplyBackendSettings(f.sets, {backend.solver.get()});  // the one --set parser: solvers/registry/backend_settings.h
+  } catch (const InvalidInputError& e) {
+    plan.Fail(e.what());
+  }
+  return backend;
+}
+
+// Everything the run writes or measures besides its counters, each fed while the run goes (bounded memory whatever
+// the number of steps). Built in place (the sinks point at the members): never moved.
+struct SimulateOutputs {
+  // --record: each one-step problem, streamed to the file.
   std::unique_ptr<ProblemSetWriter> record_writer;
   std::unique_ptr<ProblemRecorder> recorder;
-  if (!f.record.empty()) {
-    if (!IsImplicit(s.method)) {
-      fail("--record: method '" + std::string(ToString(s.method)) + "' solves no one-step problem: nothing to record");
-    }
-    if (nonlinear && s.algorithm == NonlinearAlgorithm::kMcp) {
-      fail("--record captures box-MLCPs, but --algorithm mcp solves each step as a nonlinear MCP; use --algorithm "
-           "newton-mlcp (its inner problems are box-MLCPs)");
-    }
-    // The recorder's ids are distinct by construction: the writer need not remember them (constant memory).
-    ProblemSetWriterOptions writer_options;
-    writer_options.id_check = IdCheck::kGuaranteedByCaller;
-    record_writer = std::make_unique<ProblemSetWriter>(
-        f.record, "capture",
-        "one-step problems of smcbench simulate " + info.name + " (" + std::string(ToString(s.method)) +
-            ", h = " + NumberText(s.h) + ", backend " + solver_name + ")",
-        writer_options);
-    recorder = std::make_unique<ProblemRecorder>(MakeCaptureContext("capture", *scene, s, solver_name),
-                                                 record_writer.get());
-    s.stepper.observer = recorder.get();
-  }
-
-  // The outputs, each a sink fed while the run goes (bounded memory whatever the number of steps).
-  const std::int64_t num_steps = NumSteps(s.T, s.h);
+  // The run's rows (the controller's samples) go to `sinks`; the CSV and the plot get them through `plant` (the
+  // states between samples inserted) when plant_substeps > 1, else directly.
   TrajectorySinks sinks;
+  TrajectorySinks trajectory;
+  std::unique_ptr<SampledPlantSink> plant;
   std::unique_ptr<TrajectoryCsvWriter> csv;
-  if (!f.out.empty()) {
-    try {
-      csv = std::make_unique<TrajectoryCsvWriter>(f.out);
-    } catch (const InvalidInputError& e) {
-      fail(std::string("--out: ") + e.what());
-    }
-    sinks.Add(csv.get());
-  }
+  std::optional<TrajectoryPlotData> plot_data;
   std::optional<MetricsAccumulator> metrics;
   std::optional<ChatteringAccumulator> chattering;
   std::optional<ErrorsAccumulator> exact_errors;
   std::string exact_unavailable;
-  if (outputs) {
-    metrics.emplace(info.m, reach_tol);
-    sinks.Add(&*metrics);
-    chattering.emplace(info.m, reach_tol);
-    sinks.Add(&*chattering);
-  }
   std::unique_ptr<RunRowsForReference> run_rows;
   std::string no_run_rows;
+
+  bool any() const { return csv || plot_data || metrics; }
+};
+
+// --record: the run hands each one-step problem to a recorder that streams it to the file.
+void SetUpRecorder(const Flags& f, SimulatePlan* plan, const std::string& solver_name, SimulateOutputs* outputs) {
+  if (f.record.empty()) return;
+  SimulationSettings& s = plan->settings;
+  if (!IsImplicit(s.method)) {
+    plan->Fail("--record: method '" + std::string(ToString(s.method)) + "' solves no one-step problem: nothing to record");
+  }
+  if (plan->nonlinear && s.algorithm == NonlinearAlgorithm::kMcp) {
+    plan->Fail("--record captures box-MLCPs, but --algorithm mcp solves each step as a nonlinear MCP; use --algorithm "
+               "newton-mlcp (its inner problems are box-MLCPs)");
+  }
+  // The recorder's ids are distinct by construction: the writer need not remember them (constant memory).
+  ProblemSetWriterOptions writer_options;
+  writer_options.id_check = IdCheck::kGuaranteedByCaller;
+  outputs->record_writer = std::make_unique<ProblemSetWriter>(
+      f.record, "capture",
+      "one-step problems of smcbench simulate " + plan->scene->info().name + " (" + std::string(ToString(s.method)) +
+          ", h = " + NumberText(s.h) + ", backend " + solver_name + ")",
+      writer_options);
+  outputs->recorder = std::make_unique<ProblemRecorder>(MakeCaptureContext("capture", *plan->scene, s, solver_name),
+                                                        outputs->record_writer.get());
+  s.stepper.observer = outputs->recorder.get();
+}
+
+// The ZOH plant of a linear scene with the run's parameters (plant_substeps > 1 needs it).
+ZohSmcSystem PlantOf(const SimulatePlan& plan) {
+  const auto* linear = dynamic_cast<const LinearScene*>(plan.scene.get());
+  if (linear == nullptr) plan.Fail("plant_substeps needs a linear scene of system type zoh");
+  const LinearModel model = linear->Model(plan.settings.parameters);
+  const auto* plant = std::get_if<ZohSmcSystem>(&model);
+  if (plant == nullptr) plan.Fail("plant_substeps needs a system of type zoh (a ZOH-sampled plant)");
+  return *plant;
+}
+
+// --out and --plot: the trajectory as users read it, the plant between samples included when asked for.
+void SetUpTrajectoryOutputs(const Flags& f, const SimulatePlan& plan, std::int64_t num_steps, SimulateOutputs* o) {
+  const SceneInfo& info = plan.scene->info();
+  if (!f.out.empty()) {
+    try {
+      o->csv = std::make_unique<TrajectoryCsvWriter>(f.out);
+    } catch (const InvalidInputError& e) {
+      plan.Fail(std::string("--out: ") + e.what());
+    }
+    o->trajectory.Add(o->csv.get());
+  }
+  const int substeps = plan.settings.plant_substeps;
+  if (!f.plot.empty()) {
+    o->plot_data.emplace(info.n, info.m, num_steps * substeps + 1);
+    o->trajectory.Add(&*o->plot_data);
+  }
+  if (o->trajectory.empty()) return;
+  if (substeps > 1) {
+    o->plant = std::make_unique<SampledPlantSink>(PlantOf(plan), plan.settings.h, substeps, &o->trajectory);
+    o->sinks.Add(o->plant.get());
+  } else {
+    o->sinks.Add(&o->trajectory);
+  }
+}
+
+// Phase 4: every output as a sink on the run's rows.
+void SetUpOutputs(const Flags& f, SimulatePlan* plan, std::int64_t num_steps, SimulateOutputs* o) {
+  const SceneInfo& info = plan->scene->info();
+  const SimulationSettings& s = plan->settings;
+  SetUpTrajectoryOutputs(f, *plan, num_steps, o);
+  if (!f.out.empty() || !f.summary.empty() || !f.plot.empty()) {
+    o->metrics.emplace(info.m, plan->reach_tol);
+    o->sinks.Add(&*o->metrics);
+    o->chattering.emplace(info.m, plan->reach_tol);
+    o->sinks.Add(&*o->chattering);
+  }
   if (!f.summary.empty()) {
     try {
-      if (auto exact = scene->Exact(s)) {
-        exact_errors.emplace(info.n, info.m, s.h, std::move(*exact));
-        sinks.Add(&*exact_errors);
+      if (auto exact = plan->scene->Exact(s)) {
+        o->exact_errors.emplace(info.n, info.m, s.h, std::move(*exact));
+        o->sinks.Add(&*o->exact_errors);
       }
     } catch (const InvalidInputError& e) {
-      exact_unavailable = e.what();
+      o->exact_unavailable = e.what();
     }
     // With --summary: the run's error in s and y against a certified reference run (a second run, made only up
     // to kMaxReferenceSteps steps), compared against the run's rows kept in a temporary file.
     if (ReferenceRunSkipReason(s, info.m, num_steps).empty()) {
       try {
-        run_rows = std::make_unique<RunRowsForReference>(info.m);
-        sinks.Add(run_rows.get());
+        o->run_rows = std::make_unique<RunRowsForReference>(info.m);
+        o->sinks.Add(o->run_rows.get());
       } catch (const InvalidInputError& e) {
-        no_run_rows = e.what();  // no temporary file: the summary says so instead of the errors
+        o->no_run_rows = e.what();  // no temporary file: the summary says so instead of the errors
       }
     }
   }
-  std::optional<TrajectoryPlotData> plot_data;
-  if (!f.plot.empty()) {
-    plot_data.emplace(info.n, info.m, num_steps + 1);
-    sinks.Add(&*plot_data);
-  }
-  s.stepper.sink = sinks.empty() ? nullptr : &sinks;
+  plan->settings.stepper.sink = o->sinks.empty() ? nullptr : &o->sinks;
+}
 
-  Trajectory tr;
+// Phase 5: the run, timed (set-up included); no half-written CSV is left under --out when it throws.
+double RunTimed(const Flags& f, const SimulatePlan& plan, const Backend& backend, SimulateOutputs* o, Trajectory* tr) {
   const auto start = std::chrono::steady_clock::now();
   try {
-    scene->Run(s, solver.get(), &tr);
+    plan.scene->Run(plan.settings, backend.solver.get(), tr);
   } catch (const InvalidInputError& e) {
-    if (csv) {
-      csv.reset();  // no half-written CSV under --out
+    if (o->csv) {
+      o->csv.reset();
       std::error_code ec;
       fs::remove(f.out, ec);
     }
-    fail(e.what());
+    plan.Fail(e.what());
   }
+  if (o->plant) o->plant->Finish();  // the run's last row, held back by the plant sink
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  if (record_writer) record_writer->Close();
-  if (csv) csv->Close();
+  if (o->record_writer) o->record_writer->Close();
+  if (o->csv) o->csv->Close();
+  return wall;
+}
 
+// Phase 6: the summary and the figure.
+std::optional<ReferenceComparison> WriteSummaryAndPlot(const Flags& f, const SimulatePlan& plan,
+                                                       const std::string& solver_name, const Trajectory& tr,
+                                                       double wall, SimulateOutputs* o) {
   std::optional<ReferenceComparison> reference;
   if (!f.summary.empty()) {
-    reference = CompareWithReferenceRun(*scene, s, tr, run_rows.get());
-    if (!no_run_rows.empty()) reference->skipped = no_run_rows;
+    reference = CompareWithReferenceRun(*plan.scene, plan.settings, tr, o->run_rows.get());
+    if (!o->no_run_rows.empty()) reference->skipped = o->no_run_rows;
     RunMetrics run_metrics;
-    run_metrics.metrics = metrics->Result(tr);
-    if (exact_errors) run_metrics.exact_errors = exact_errors->Result();
-    run_metrics.exact_unavailable = exact_unavailable;
-    run_metrics.chattering = chattering->Result();
-    const json summary = SimulationSummary(*scene, s, solver_name, tr, run_metrics, reach_tol, wall, &*reference);
+    run_metrics.metrics = o->metrics->Result(tr);
+    if (o->exact_errors) run_metrics.exact_errors = o->exact_errors->Result();
+    run_metrics.exact_unavailable = o->exact_unavailable;
+    run_metrics.chattering = o->chattering->Result();
+    const json summary =
+        SimulationSummary(*plan.scene, plan.settings, solver_name, tr, run_metrics, plan.reach_tol, wall, &*reference);
     std::ofstream js(f.summary);
     js << summary.dump(2) << "\n";
-    if (!js) fail("cannot write the summary '" + f.summary + "'");
+    if (!js) plan.Fail("cannot write the summary '" + f.summary + "'");
   }
-  if (plot_data) {
-    std::string title = info.name + ": " + tr.description + ", h = " + NumberText(s.h);
+  if (o->plot_data) {
+    std::string title = plan.scene->info().name + ": " + tr.description + ", h = " + NumberText(plan.settings.h);
     if (!solver_name.empty()) title += ", " + solver_name;
-    PlotTrajectory(*plot_data, title, f.plot);
+    PlotTrajectory(*o->plot_data, title, f.plot);
   }
+  return reference;
+}
 
-  // A short report on out; the files hold the details.
-  out << info.name << ": " << ToString(s.method) << " (" << tr.description << "), h = " << NumberText(s.h)
-      << ", T = " << NumberText(s.T) << ", " << tr.steps_taken << " of " << tr.num_steps << " steps"
-      << (solver_name.empty() ? "" : ", backend " + solver_name) << "\n";
-  out << "  x_final = " << VectorText(tr.x_final) << ", s_final = " << VectorText(tr.s_final) << "\n";
-  if (metrics) {
-    const TrajectoryMetrics result = metrics->Result(tr);
-    if (result.reaching_step >= 0) {
-      double max_y = 0.0;
-      std::int64_t changes = 0;
-      for (const auto& sm : result.surfaces) {
-        max_y = std::max(max_y, sm.max_abs_y_after);
-        changes += sm.sign_changes_after;
-      }
-      out << "  surfaces reached at step " << result.reaching_step << " (t = " << NumberText(tr.time(result.reaching_step))
-          << "): max |y| after " << NumberText(max_y) << ", sign changes of s after " << changes << "\n";
-    } else {
-      out << "  not every surface is reached (|y| <= " << NumberText(reach_tol) << " to the end)\n";
+// The surfaces and the input after reaching, from the metrics gathered during the run.
+void ReportMetrics(const SimulateOutputs& o, double reach_tol, const Trajectory& tr, std::ostream& out) {
+  const TrajectoryMetrics result = o.metrics->Result(tr);
+  if (result.reaching_step >= 0) {
+    double max_y = 0.0;
+    std::int64_t changes = 0;
+    for (const auto& sm : result.surfaces) {
+      max_y = std::max(max_y, sm.max_abs_y_after);
+      changes += sm.sign_changes_after;
     }
-    const ChatteringMetrics& c = chattering->Result();
-    if (c.from_step >= 0) {
-      out << "  from the reaching time t = " << NumberText(tr.time(c.from_step)) << ": sigma band "
-          << NumberText(c.sigma_band);
-      if (c.has_input) {
-        out << ", input total variation " << NumberText(c.u_total_variation) << ", max jump "
-            << NumberText(c.u_max_jump) << ", max |u| " << NumberText(c.u_max_abs);
-      }
-      out << ", sign changes of the switching part " << c.switching_sign_changes << "\n";
-    }
+    out << "  surfaces reached at step " << result.reaching_step << " (t = " << NumberText(tr.time(result.reaching_step))
+        << "): max |y| after " << NumberText(max_y) << ", sign changes of s after " << changes << "\n";
+  } else {
+    out << "  not every surface is reached (|y| <= " << NumberText(reach_tol) << " to the end)\n";
   }
+  const ChatteringMetrics& c = o.chattering->Result();
+  if (c.from_step >= 0) {
+    out << "  from the reaching time t = " << NumberText(tr.time(c.from_step)) << ": sigma band "
+        << NumberText(c.sigma_band);
+    if (c.has_input) {
+      out << ", input total variation " << NumberText(c.u_total_variation) << ", max jump "
+          << NumberText(c.u_max_jump) << ", max |u| " << NumberText(c.u_max_abs);
+    }
+    out << ", sign changes of the switching part " << c.switching_sign_changes << "\n";
+  }
+}
+
+// Phase 7: a short report on out (the files hold the details) and the first failure on err.
+void Report(const Flags& f, const SimulatePlan& plan, const std::string& solver_name, const Trajectory& tr,
+            double wall, const SimulateOutputs& o, const std::optional<ReferenceComparison>& reference,
+            std::ostream& out, std::ostream& err) {
+  const SimulationSettings& s = plan.settings;
+  out << plan.scene->info().name << ": " << ToString(s.method) << " (" << tr.description
+      << "), h = " << NumberText(s.h) << ", T = " << NumberText(s.T) << ", " << tr.steps_taken << " of "
+      << tr.num_steps << " steps" << (solver_name.empty() ? "" : ", backend " + solver_name) << "\n";
+  out << "  x_final = " << VectorText(tr.x_final) << ", s_final = " << VectorText(tr.s_final) << "\n";
+  if (o.metrics) ReportMetrics(o, plan.reach_tol, tr, out);
   if (IsImplicit(s.method)) {
     out << "  max one-step residual " << NumberText(tr.max_residual) << ", " << tr.total_iterations
         << " backend iterations, " << tr.failed_steps << " failed steps\n";
   }
+  if (o.plant) {
+    out << "  plant between samples: " << o.plant->substeps() - 1 << " point(s) per interval in the trajectory ("
+        << o.plant->RowsFor(tr.steps_taken) << " rows)\n";
+  }
   // One cold run, set-up (discretization, factorization) included: `stepper_benchmark` measures the loop itself.
   out << "  wall " << FormatSeconds(wall) << " for set-up + " << tr.steps_taken << " steps ("
-      << FormatRate(wall > 0 ? tr.steps_taken / wall : 0.0) << "steps/s" << (outputs ? ", recording" : "") << ")\n";
-  if (record_writer) {
-    const std::uint64_t matrices = record_writer->matrices_written();
-    out << "  recorded " << record_writer->problems_written() << " one-step problem(s), " << matrices
+      << FormatRate(wall > 0 ? tr.steps_taken / wall : 0.0) << "steps/s" << (o.any() ? ", recording" : "") << ")\n";
+  if (o.record_writer) {
+    const std::uint64_t matrices = o.record_writer->matrices_written();
+    out << "  recorded " << o.record_writer->problems_written() << " one-step problem(s), " << matrices
         << " distinct matri" << (matrices == 1 ? "x" : "ces") << ", to " << f.record << "\n";
   }
   if (reference) {
@@ -1032,6 +1161,30 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
         << NumberText(tr.first_failure_residual) << ")" << (tr.first_failure_message.empty() ? "" : ": ")
         << tr.first_failure_message << (tr.stopped_early ? "; the run stopped there" : "") << "\n";
   }
+}
+
+}  // namespace
+
+// Named phases, top to bottom: load the scene, apply the overrides, pick the backend, set up the outputs, run,
+// write the outputs, report.
+int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
+  const Flags& f = *flags_;
+  // Fail before simulating, not after.
+  if (!f.plot.empty() && !GnuplotAvailable()) {
+    throw InvalidInputError("--plot needs gnuplot (Debian package gnuplot-nox), which is not on PATH");
+  }
+  SimulatePlan plan = LoadPlan(f);
+  ApplyOverrides(f, &plan, err);
+  const Backend backend = PickBackend(f, plan, err);
+  SimulateOutputs outputs;
+  SetUpRecorder(f, &plan, backend.name, &outputs);
+  const std::int64_t num_steps = NumSteps(plan.settings.T, plan.settings.h);
+  SetUpOutputs(f, &plan, num_steps, &outputs);
+  Trajectory tr;
+  const double wall = RunTimed(f, plan, backend, &outputs, &tr);
+  const std::optional<ReferenceComparison> reference =
+      WriteSummaryAndPlot(f, plan, backend.name, tr, wall, &outputs);
+  Report(f, plan, backend.name, tr, wall, outputs, reference, out, err);
   return 0;
 }
 

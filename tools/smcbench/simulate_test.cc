@@ -4,11 +4,9 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include <malloc.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
@@ -27,110 +25,9 @@
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/registry.h"
 #include "solvers/registry/registry.h"
+#include "tests/support/malloc_counter.h"
 #include "tools/smcbench/cli_test_runner.h"
 #include "tools/smcbench/simulate.h"
-
-// Live heap bytes of this process at the malloc level, and their peak since HeapPeak::Reset(): malloc & co. are
-// interposed in this test executable (glibc exports its allocator as __libc_*; the same technique as
-// tests/support/malloc_counter.cc), sizes from malloc_usable_size, so Eigen's aligned buffers count too. Not under
-// AddressSanitizer, which owns malloc.
-#if defined(__SANITIZE_ADDRESS__)
-#define SIMULATE_TEST_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SIMULATE_TEST_SANITIZED 1
-#endif
-#endif
-
-namespace simulate_test_heap {
-std::atomic<long> live{0};
-std::atomic<long> peak{0};
-
-[[maybe_unused]] void Add(void* p) {
-  if (!p) return;
-  const auto size = static_cast<long>(malloc_usable_size(p));
-  const long now = live.fetch_add(size, std::memory_order_relaxed) + size;
-  long seen = peak.load(std::memory_order_relaxed);
-  while (now > seen && !peak.compare_exchange_weak(seen, now, std::memory_order_relaxed)) {
-  }
-}
-[[maybe_unused]] void Remove(void* p) {
-  if (p) live.fetch_sub(static_cast<long>(malloc_usable_size(p)), std::memory_order_relaxed);
-}
-}  // namespace simulate_test_heap
-
-#ifndef SIMULATE_TEST_SANITIZED
-extern "C" {
-void* __libc_malloc(std::size_t size);
-void* __libc_calloc(std::size_t n, std::size_t size);
-void* __libc_realloc(void* p, std::size_t size);
-void* __libc_memalign(std::size_t alignment, std::size_t size);
-void __libc_free(void* p);
-
-void* malloc(std::size_t size) noexcept {
-  void* p = __libc_malloc(size);
-  simulate_test_heap::Add(p);
-  return p;
-}
-void free(void* p) noexcept {
-  simulate_test_heap::Remove(p);
-  __libc_free(p);
-}
-void* calloc(std::size_t n, std::size_t size) noexcept {
-  void* p = __libc_calloc(n, size);
-  simulate_test_heap::Add(p);
-  return p;
-}
-void* realloc(void* p, std::size_t size) noexcept {
-  // The old block is released (or moved) either way, except when the call fails, which leaves it in place.
-  simulate_test_heap::Remove(p);
-  void* q = __libc_realloc(p, size);
-  simulate_test_heap::Add(q ? q : (size ? p : nullptr));
-  return q;
-}
-void* aligned_alloc(std::size_t alignment, std::size_t size) noexcept {
-  void* p = __libc_memalign(alignment, size);
-  simulate_test_heap::Add(p);
-  return p;
-}
-void* memalign(std::size_t alignment, std::size_t size) noexcept {
-  void* p = __libc_memalign(alignment, size);
-  simulate_test_heap::Add(p);
-  return p;
-}
-int posix_memalign(void** out, std::size_t alignment, std::size_t size) noexcept {
-  *out = __libc_memalign(alignment, size);
-  simulate_test_heap::Add(*out);
-  return *out ? 0 : 12 /* ENOMEM */;
-}
-}
-#endif
-
-namespace smcbench {
-namespace {
-
-class HeapPeak {
- public:
-  static bool Available() {
-#ifdef SIMULATE_TEST_SANITIZED
-    return false;
-#else
-    return true;
-#endif
-  }
-  static void Reset() {
-    start_ = simulate_test_heap::live.load();
-    simulate_test_heap::peak = start_;
-  }
-  // The peak of the live bytes since Reset(), above the live bytes at Reset().
-  static long Peak() { return simulate_test_heap::peak.load() - start_; }
-
- private:
-  static inline long start_ = 0;
-};
-
-}  // namespace
-}  // namespace smcbench
 
 namespace smcbench {
 namespace {
@@ -630,18 +527,18 @@ TEST_F(Simulate, StreamedSummaryEqualsTheWholeTrajectoryComputation) {
 }
 
 // Every output at once (--summary with its reference run, --out, --record) for N and 10 N steps: the heap the run
-// adds to the process must not grow with N. Measured at the malloc level (HeapPeak below: live bytes, whatever
-// allocates them, Eigen included), not through /proc (VmHWM does not see the heap on every kernel this runs on).
+// adds to the process must not grow with N. Measured at the malloc level (tests/support/malloc_counter.h: live
+// bytes, whatever allocates them, Eigen included), not through /proc (VmHWM does not see the heap on every kernel this runs on).
 // Before issue 13, 10⁵ steps of S2 held ≈ 11 MB of trajectory (the run's and the reference run's rows) plus
 // ≈ 10 MB of --record ids at once; here the peak of the 10 N run may exceed the N run's by at most 1 MB.
 TEST_F(Simulate, OutputsStreamInMemoryIndependentOfTheNumberOfSteps) {
-  if (!HeapPeak::Available()) GTEST_SKIP() << "the allocator is not ours to observe (sanitizer build)";
+  if (!test_support::CanCountMallocs()) GTEST_SKIP() << "the allocator is not ours to observe (sanitizer build)";
   const auto peak_bytes = [&](const char* T) {
     const std::string out = Path("run.csv"), summary = Path("run.json"), record = Path("run.smcps");
-    HeapPeak::Reset();
+    test_support::ResetHeapPeak();
     const CliRun r = RunSmcbench({"simulate", "galias-yu-2007", "--solver", "enum", "--h", "1e-3", "--T", T, "--out",
                                   out, "--summary", summary, "--record", record});
-    const long peak = HeapPeak::Peak();
+    const long peak = test_support::HeapPeakAboveReset();
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_TRUE(ReadJson(summary)["s_error_max"].is_number()) << "the reference run was made";
     return peak;
@@ -827,6 +724,119 @@ TEST_F(Simulate, ZohSceneWritesItsInputAndChatteringKeys) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_EQ(ReadLines(csv)[0], "t,x1,x2,s1,y1,iterations,residual");
   EXPECT_TRUE(ReadJson(summary)["chattering"]["u_total_variation"].is_null());
+}
+
+// Issue 15 item 4: the plant between samples. A ZOH plant with F ≠ 0, Siconos' θ = 0.5 controller and a matched
+// disturbance 0.1 + 0.5 sin(20 t + 0.3), plant_substeps 4 in the file: the CSV has 4N + 1 rows, the sample rows are
+// those of the samples-only run (--plant-substeps 1 overrides the file) text for text, and every point between
+// samples, those of the last interval included, matches a fine RK4 written here of x' = F x + G (u_k + d(t)) from
+// the sample row's x_k and u_k to 1e-10; the summary's metrics stay on the samples.
+constexpr const char* kSampledPlantScene = R"({
+  "format": "smcbench-scene/1", "name": "sampled", "description": "ZOH plant between samples",
+  "system": {"type": "zoh", "F": [[0, 1], [2, -2]], "G": [[0], [1]], "C": [[1, 1]], "alpha": 1,
+             "equivalent_control": {"theta": 0.5},
+             "disturbance": {"constant": [0.1], "sinusoids": [{"amplitude": [0.5], "omega": 20, "phase": 0.3}]}},
+  "simulation": {"method": "zoh", "h": 0.05, "T": 1, "x0": [1, -0.5], "plant_substeps": 4}
+})";
+
+// x(t + tau) of x' = F x + G (u + d(t)) for kSampledPlantScene, by `fine` classical RK4 steps.
+std::vector<double> SampledSceneRk4(std::vector<double> x, double u, double t, double tau, int fine) {
+  const auto rate = [u](const std::vector<double>& v, double time) {
+    const double input = u + 0.1 + 0.5 * std::sin(20.0 * time + 0.3);
+    return std::vector<double>{v[1], 2.0 * v[0] - 2.0 * v[1] + input};
+  };
+  const auto axpy = [](const std::vector<double>& v, double a, const std::vector<double>& w) {
+    return std::vector<double>{v[0] + a * w[0], v[1] + a * w[1]};
+  };
+  const double dt = tau / fine;
+  for (int i = 0; i < fine; ++i) {
+    const double ti = t + i * dt;
+    const auto k1 = rate(x, ti), k2 = rate(axpy(x, 0.5 * dt, k1), ti + 0.5 * dt);
+    const auto k3 = rate(axpy(x, 0.5 * dt, k2), ti + 0.5 * dt), k4 = rate(axpy(x, dt, k3), ti + dt);
+    for (int c = 0; c < 2; ++c) x[c] += dt / 6.0 * (k1[c] + 2.0 * k2[c] + 2.0 * k3[c] + k4[c]);
+  }
+  return x;
+}
+
+TEST_F(Simulate, PlantSubstepsReportTheContinuousPlantBetweenSamples) {
+  const std::string scene = Path("sampled.json");
+  std::ofstream(scene) << kSampledPlantScene;
+  const std::string csv = Path("plant.csv"), samples_csv = Path("samples.csv");
+  const std::string summary = Path("plant.json"), samples_summary = Path("samples.json");
+  CliRun r = RunSmcbench({"simulate", scene, "--out", csv, "--summary", summary});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("plant between samples: 3 point(s) per interval in the trajectory (81 rows)"));
+  r = RunSmcbench({"simulate", scene, "--plant-substeps", "1", "--out", samples_csv, "--summary", samples_summary});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto plant = ReadLines(csv), samples = ReadLines(samples_csv);
+  ASSERT_EQ(samples.size(), 1u + 21u);
+  ASSERT_EQ(plant.size(), 1u + 4u * 20u + 1u);
+  EXPECT_EQ(plant[0], samples[0]);
+  double worst = 0.0;
+  for (std::size_t k = 0; k < 21; ++k) {
+    EXPECT_EQ(plant[1 + 4 * k], samples[1 + k]) << "sample " << k;
+    if (k == 20) break;
+    const auto row = SplitNumbers(samples[1 + k]), next = SplitNumbers(samples[2 + k]);
+    // Columns t, x1, x2, s1, y1, iterations, residual, u1.
+    std::vector<double> x{row[1], row[2]};
+    for (int j = 1; j <= 4; ++j) {
+      x = SampledSceneRk4(x, row[7], row[0] + (j - 1) * 0.05 / 4, 0.05 / 4, 500);
+      if (j == 4) {  // the next sample: the ZOH step and the disturbance's are exact
+        worst = std::max({worst, std::abs(x[0] - next[1]), std::abs(x[1] - next[2])});
+        break;
+      }
+      const auto point = SplitNumbers(plant[1 + 4 * k + static_cast<std::size_t>(j)]);
+      EXPECT_NEAR(point[0], row[0] + j * 0.05 / 4, 1e-15) << k << "," << j;
+      worst = std::max({worst, std::abs(point[1] - x[0]), std::abs(point[2] - x[1])});
+      EXPECT_EQ(point[3], next[3]) << "s_{k+1}, the multiplier held over the interval";
+      EXPECT_NEAR(point[4], point[1] + point[2], 1e-15) << "y = C x";
+      EXPECT_EQ(point[5], 0.0);
+      EXPECT_EQ(point[7], row[7]) << "the u applied over the interval";
+    }
+  }
+  EXPECT_LE(worst, 1e-10);
+  // Metrics on the controller's samples: the same summary, plus the plant_substeps key.
+  auto with = ReadJson(summary), without = ReadJson(samples_summary);
+  EXPECT_EQ(with["plant_substeps"], 4);
+  EXPECT_FALSE(without.contains("plant_substeps"));
+  for (const char* key : {"steps", "x_final", "reaching_step", "chattering", "s_error_max", "y_error_max"}) {
+    EXPECT_EQ(with[key], without[key]) << key;
+  }
+}
+
+// The default is today's output: a ZOH scene without plant_substeps and with --plant-substeps 1 write the same bytes.
+TEST_F(Simulate, PlantSubstepsOneIsTheDefaultOutput) {
+  const std::string a = Path("default.csv"), b = Path("one.csv");
+  ASSERT_EQ(RunSmcbench({"simulate", "zoh-mimo", "--out", a}).code, 0);
+  ASSERT_EQ(RunSmcbench({"simulate", "zoh-mimo", "--plant-substeps", "1", "--out", b}).code, 0);
+  EXPECT_EQ(ReadLines(a), ReadLines(b));
+  EXPECT_GT(ReadLines(a).size(), 2u);
+}
+
+TEST_F(Simulate, PlantSubstepsBadValuesAreOneLineErrors) {
+  const std::string scene = Path("sampled.json");
+  std::ofstream(scene) << kSampledPlantScene;
+  ExpectOneLineError(RunSmcbench({"simulate", scene, "--plant-substeps", "0"}),
+                     {"--plant-substeps must be an integer >= 1, got 0"});
+  ExpectOneLineError(RunSmcbench({"simulate", "zoh-siso", "--method", "implicit", "--plant-substeps", "3"}),
+                     {"--plant-substeps 3 needs method zoh or zoh-explicit"});
+  // The file's value with an Euler method: a note, and the samples alone.
+  const std::string csv = Path("euler.csv");
+  const CliRun r = RunSmcbench({"simulate", scene, "--method", "implicit", "--out", csv});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("plant_substeps applies to methods zoh and zoh-explicit only"));
+  EXPECT_EQ(ReadLines(csv).size(), 1u + 21u);
+  const std::string text = kSampledPlantScene;
+  const auto with_value = [&](const std::string& value) {
+    std::string edited = text;
+    edited.replace(edited.find("\"plant_substeps\": 4"), 19, "\"plant_substeps\": " + value);
+    const std::string path = Path("bad.json");
+    std::ofstream(path) << edited;
+    return RunSmcbench({"simulate", path});
+  };
+  ExpectOneLineError(with_value("2.5"), {"simulation.plant_substeps", "must be an integer in [1, 1000000], got 2.5"});
+  ExpectOneLineError(with_value("0"), {"simulation.plant_substeps", "got 0"});
+  ExpectOneLineError(with_value("\"4\""), {"simulation.plant_substeps", "expected a number"});
 }
 
 }  // namespace

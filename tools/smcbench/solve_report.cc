@@ -1,3 +1,4 @@
+// Timed solves and their rendering (solve_report.h).
 #include "tools/smcbench/solve_report.h"
 
 #include <algorithm>
@@ -5,6 +6,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <string_view>
 
 #include "solvers/auto/auto_solver.h"
 #include "solvers/core/duration_text.h"
@@ -12,14 +14,19 @@
 namespace smcbench {
 
 namespace {
-// A session of `auto` calls its choice directly (SolveSession::backend): its answer is labelled as auto's own Solve
-// labels it, solver "auto" with details chosen and fallbacks (0: the choice answered).
+// A session of `auto` calls its choice directly (SolveSession::backend): an answer the choice gave itself (not
+// auto's fallback path, which labels its own) is labelled as auto's Solve labels it, with no fallback.
 void LabelDelegatedAnswer(const Solver& solver, const SolveSession& session, SolveResult* result) {
   if (&session.backend() == &solver || result->solver != session.backend().info().name) return;
-  result->solver = solver.info().name;
-  const int chosen = AutoCandidateIndex(session.backend().info().name);
-  if (chosen >= 0) result->SetDetail("chosen", chosen);
-  result->SetDetail("fallbacks", 0.0);
+  const int chosen = AutoCandidateIndex(result->solver);
+  if (chosen >= 0) LabelAutoAnswer(static_cast<AutoCandidate>(chosen), 0, result);
+}
+
+// The backend auto handed the problem to (detail "chosen"), "" for any other backend's record.
+std::string_view AutoChoiceOf(const SolveRecord& record) {
+  const double chosen = record.result.GetDetail("chosen");
+  return record.solver == "auto" && !std::isnan(chosen) ? AutoCandidateName(static_cast<int>(chosen))
+                                                         : std::string_view();
 }
 }  // namespace
 
@@ -111,9 +118,7 @@ std::string FormatRecordLine(const SolveRecord& record) {
     }
     line += buffer;
   }
-  if (const double chosen = r.GetDetail("chosen"); record.solver == "auto" && !std::isnan(chosen)) {
-    line += "   chose " + std::string(AutoCandidateName(static_cast<int>(chosen)));
-  }
+  if (const std::string_view chosen = AutoChoiceOf(record); !chosen.empty()) line += "   chose " + std::string(chosen);
   if (record.warm) line += "   [warm: session, from the previous answer]";
   if (record.timed_in_worker) line += "   [timed through the isolation worker: IPC included]";
   if (!r.solved() && !r.message.empty()) line += "   (" + r.message + ")";
@@ -159,9 +164,7 @@ nlohmann::json RecordToJson(const SolveRecord& record) {
   nlohmann::json details = nlohmann::json::object();
   for (int i = 0; i < r.num_details; ++i) details[r.details[i].name] = Number(r.details[i].value);
   j["details"] = std::move(details);
-  if (const double chosen = r.GetDetail("chosen"); record.solver == "auto" && !std::isnan(chosen)) {
-    j["chosen"] = std::string(AutoCandidateName(static_cast<int>(chosen)));
-  }
+  if (const std::string_view chosen = AutoChoiceOf(record); !chosen.empty()) j["chosen"] = std::string(chosen);
   j["warm"] = record.warm;
   return j;
 }
