@@ -1,5 +1,5 @@
 # Made by `smcbench report`; remake work-precision-multi-surface.png and work-precision-multi-surface.svg with `gnuplot work-precision-multi-surface.gp` in this folder.
-# Data: work-precision-multi-surface.dat (one block per curve, in the order of the plot command). Ours are solid lines, the external siconos-* backends dashed.
+# Data: work-precision-multi-surface.dat (one block per curve, in the order of the plot command).
 if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1100,600 noenhanced font ',10' } else { set terminal png size 1100,600 noenhanced }
 set output 'work-precision-multi-surface.png'
 set logscale xy
@@ -9,7 +9,14 @@ set xlabel 'trajectory error of x against a finer reference run (max)'
 set ylabel 'run time [s]'
 set title 'Work-precision (trajectory error of x), multi-surface'
 plot 'work-precision-multi-surface.dat' index 0 using 1:2 with linespoints lw 2.5 lc rgb '#000000' dt 1 pt 7 title 'explicit Euler', 'work-precision-multi-surface.dat' index 1 using 1:2 with linespoints lw 2.5 lc rgb '#000000' dt 1 pt 9 title 'implicit, auto', 'work-precision-multi-surface.dat' index 2 using 1:2 with linespoints lw 2.5 lc rgb '#CC79A7' dt 1 pt 5 title 'implicit, enum', 'work-precision-multi-surface.dat' index 3 using 1:2 with linespoints lw 2.5 lc rgb '#E69F00' dt 1 pt 7 title 'implicit, ipopt', 'work-precision-multi-surface.dat' index 4 using 1:2 with linespoints lw 2.5 lc rgb '#0072B2' dt 1 pt 5 title 'implicit, lemke', 'work-precision-multi-surface.dat' index 5 using 1:2 with linespoints lw 2.5 lc rgb '#009E73' dt 1 pt 9 title 'implicit, newton', 'work-precision-multi-surface.dat' index 6 using 1:2 with linespoints lw 2.5 lc rgb '#D55E00' dt 1 pt 7 title 'implicit, psor'
+unset output
 set terminal svg size 1100,600 dynamic noenhanced font 'sans,11'
 set output 'work-precision-multi-surface.svg'
-replot
+set logscale xy
+set grid
+set key outside right top
+set xlabel 'trajectory error of x against a finer reference run (max)'
+set ylabel 'run time [s]'
+set title 'Work-precision (trajectory error of x), multi-surface'
+plot 'work-precision-multi-surface.dat' index 0 using 1:2 with linespoints lw 2.5 lc rgb '#000000' dt 1 pt 7 title 'explicit Euler', 'work-precision-multi-surface.dat' index 1 using 1:2 with linespoints lw 2.5 lc rgb '#000000' dt 1 pt 9 title 'implicit, auto', 'work-precision-multi-surface.dat' index 2 using 1:2 with linespoints lw 2.5 lc rgb '#CC79A7' dt 1 pt 5 title 'implicit, enum', 'work-precision-multi-surface.dat' index 3 using 1:2 with linespoints lw 2.5 lc rgb '#E69F00' dt 1 pt 7 title 'implicit, ipopt', 'work-precision-multi-surface.dat' index 4 using 1:2 with linespoints lw 2.5 lc rgb '#0072B2' dt 1 pt 5 title 'implicit, lemke', 'work-precision-multi-surface.dat' index 5 using 1:2 with linespoints lw 2.5 lc rgb '#009E73' dt 1 pt 9 title 'implicit, newton', 'work-precision-multi-surface.dat' index 6 using 1:2 with linespoints lw 2.5 lc rgb '#D55E00' dt 1 pt 7 title 'implicit, psor'
 unset output

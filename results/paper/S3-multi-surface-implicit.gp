@@ -1,0 +1,42 @@
+# Made by `smcbench simulate --plot`; remake S3-multi-surface-implicit.png and S3-multi-surface-implicit.svg with `gnuplot S3-multi-surface-implicit.gp` in this folder.
+# Data: S3-multi-surface-implicit.dat (one block per curve, in the order of the plot command).
+if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,900 noenhanced font ',10' } else { set terminal png size 1200,900 noenhanced }
+set output 'S3-multi-surface-implicit.png'
+set grid
+set key top right
+set multiplot layout 2,2 title 'S3 multi-surface, implicit Euler, h = 0.02'
+set xlabel 't'
+set title 'state x'
+plot for [i=0:1] 'S3-multi-surface-implicit.dat' index i using 1:2 with lines lw 1.5 title sprintf('x%d', i+1)
+set title 'multiplier s (s_k acts on (t_k-1, t_k])'
+set yrange [-1.1:1.1]
+plot for [i=2:3] 'S3-multi-surface-implicit.dat' index i using 1:2 with fsteps lw 1.5 title sprintf('s%d', i-1)
+set autoscale y
+set title 'sliding variable y = Cx + D'
+plot for [i=4:5] 'S3-multi-surface-implicit.dat' index i using 1:2 with lines lw 1.5 title sprintf('y%d', i-3)
+set title 'phase portrait'
+set xlabel 'x1'
+set ylabel 'x2'
+plot 'S3-multi-surface-implicit.dat' index 6 using 1:2 with linespoints pt 7 ps 0.4 lw 1 title 'x_k', 'S3-multi-surface-implicit.dat' index 6 every ::0::0 using 1:2 with points pt 6 ps 2.5 lw 2 title 'x0'
+unset multiplot
+unset output
+set terminal svg size 1200,900 dynamic noenhanced font 'sans,11'
+set output 'S3-multi-surface-implicit.svg'
+set grid
+set key top right
+set multiplot layout 2,2 title 'S3 multi-surface, implicit Euler, h = 0.02'
+set xlabel 't'
+set title 'state x'
+plot for [i=0:1] 'S3-multi-surface-implicit.dat' index i using 1:2 with lines lw 1.5 title sprintf('x%d', i+1)
+set title 'multiplier s (s_k acts on (t_k-1, t_k])'
+set yrange [-1.1:1.1]
+plot for [i=2:3] 'S3-multi-surface-implicit.dat' index i using 1:2 with fsteps lw 1.5 title sprintf('s%d', i-1)
+set autoscale y
+set title 'sliding variable y = Cx + D'
+plot for [i=4:5] 'S3-multi-surface-implicit.dat' index i using 1:2 with lines lw 1.5 title sprintf('y%d', i-3)
+set title 'phase portrait'
+set xlabel 'x1'
+set ylabel 'x2'
+plot 'S3-multi-surface-implicit.dat' index 6 using 1:2 with linespoints pt 7 ps 0.4 lw 1 title 'x_k', 'S3-multi-surface-implicit.dat' index 6 every ::0::0 using 1:2 with points pt 6 ps 2.5 lw 2 title 'x0'
+unset multiplot
+unset output
