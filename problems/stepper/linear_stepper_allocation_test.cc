@@ -74,6 +74,15 @@ long SecondRunAllocations(LinearStepper& stepper, const Vector& x0, Solver* solv
   return count;
 }
 
+// S5's plant with Siconos' θ = 0.5 equivalent control and a matched sinusoidal disturbance 0.5 sin(50 t).
+ZohSmcSystem DisturbedSiso() {
+  ZohSmcSystem siso = stepper_test::ZohSisoScene();
+  siso.equivalent_control = EquivalentControl{0.5};
+  siso.disturbance.W = siso.G;
+  siso.disturbance.sinusoids = {{Vec({0.5}), 50.0, 0.0}};
+  return siso;
+}
+
 TEST(StepperAllocation, RepeatedRunsDoNotAllocate) {
   if (!test_support::CanCountMallocs()) GTEST_SKIP() << "the allocator is not ours to observe (sanitizer build)";
   stepper_test::ReferenceSolver solver;
@@ -99,11 +108,8 @@ TEST(StepperAllocation, InputAndDisturbanceRunsDoNotAllocate) {
   if (!test_support::CanCountMallocs()) GTEST_SKIP() << "the allocator is not ours to observe (sanitizer build)";
   stepper_test::ReferenceSolver solver;
   SummingSink sink;
-  ZohSmcSystem siso = stepper_test::ZohSisoScene();
-  siso.equivalent_control = EquivalentControl{0.5};
-  siso.disturbance.W = siso.G;
+  ZohSmcSystem siso = DisturbedSiso();
   siso.disturbance.constant = Vec({0.1});
-  siso.disturbance.sinusoids = {{Vec({0.5}), 50.0, 0.0}};
   ZohSmcSystem mimo = stepper_test::ZohMimoScene();
   mimo.disturbance.W = mimo.G;
   mimo.disturbance.sinusoids = {{Vec({0.2, -0.1}), 20.0, 0.5}};
@@ -136,11 +142,7 @@ TEST(StepperAllocation, PlantBetweenSamplesDoesNotAllocate) {
   if (!test_support::CanCountMallocs()) GTEST_SKIP() << "the allocator is not ours to observe (sanitizer build)";
   stepper_test::ReferenceSolver solver;
   SummingSink sink;
-  ZohSmcSystem siso = stepper_test::ZohSisoScene();
-  siso.equivalent_control = EquivalentControl{0.5};
-  siso.disturbance.W = siso.G;
-  siso.disturbance.sinusoids = {{Vec({0.5}), 50.0, 0.0}};
-  for (const ZohSmcSystem& plant : {siso, stepper_test::ZohMimoScene()}) {
+  for (const ZohSmcSystem& plant : {DisturbedSiso(), stepper_test::ZohMimoScene()}) {
     LinearStepper stepper(DiscretizeZoh(plant, 0.01, SignTreatment::kImplicit));
     SampledPlantSink between(plant, 0.01, 7, &sink);
     StepperOptions options;
