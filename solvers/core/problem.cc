@@ -327,6 +327,83 @@ Residual MCP::NaturalResidual(const Vector& z, Vector* F, double scale) const {
   return r;
 }
 
+void MCP::set_variable_scale(Vector c) {
+  if (c.size() != 0 && c.size() != size()) {
+    throw InvalidInputError("MCP: variable_scale has size " + std::to_string(c.size()) + " but the problem has " +
+                            std::to_string(size()) + " unknowns (give n positive units, or none)");
+  }
+  for (Eigen::Index i = 0; i < c.size(); ++i) {
+    if (!std::isfinite(c[i]) || !(c[i] > 0.0)) {
+      std::ostringstream s;
+      s << "MCP: variable_scale[" << i << "] = " << c[i] << " must be finite and > 0 (the unit of z_" << i << ")";
+      throw InvalidInputError(s.str());
+    }
+  }
+  variable_scale_ = std::move(c);
+}
+
+double McpScaledResidual(const Vector& z, const Vector& F, const Vector& l, const Vector& u, const Vector& row_scale,
+                         const Vector& variable_scale) {
+  const Eigen::Index n = z.size();
+  const bool units = variable_scale.size() == n;
+  double r = 0.0, z_norm = 0.0;
+  for (Eigen::Index i = 0; i < n; ++i) {
+    const double c = units ? variable_scale[i] : 1.0;
+    const double d = row_scale[i];
+    if (!(d < kInf) || std::isnan(F[i]) || std::isnan(z[i])) return kInf;
+    const double step = c * (F[i] / d);
+    const double projected = std::min(std::max(z[i] - step, l[i]), u[i]);
+    r = std::max(r, std::abs(z[i] - projected) / c);
+    z_norm = std::max(z_norm, std::abs(z[i]) / c);
+  }
+  return std::isnan(r) ? kInf : r / (1.0 + z_norm);
+}
+
+namespace {
+// The shared tail of McpRowScales: zero rows take the largest other row scale (all zero: 1).
+void FillZeroRowScales(Vector* d) {
+  double largest = 0.0;
+  for (Eigen::Index i = 0; i < d->size(); ++i) {
+    if ((*d)[i] < kInf) largest = std::max(largest, (*d)[i]);
+  }
+  if (largest == 0.0) largest = 1.0;
+  for (Eigen::Index i = 0; i < d->size(); ++i) {
+    if ((*d)[i] == 0.0) (*d)[i] = largest;
+  }
+}
+}  // namespace
+
+void McpRowScales(const DenseMatrix& J, const Vector& variable_scale, Vector* d) {
+  const Eigen::Index n = J.rows();
+  const bool units = variable_scale.size() == J.cols();
+  if (d->size() != n) d->resize(n);
+  d->setZero();
+  for (Eigen::Index j = 0; j < J.cols(); ++j) {
+    const double c = units ? variable_scale[j] : 1.0;
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double a = std::abs(J(i, j)) * c;
+      (*d)[i] = std::isfinite(a) ? std::max((*d)[i], a) : kInf;
+    }
+  }
+  FillZeroRowScales(d);
+}
+
+void McpRowScales(const SparseMatrix& J, const Vector& variable_scale, Vector* d) {
+  const Eigen::Index n = J.rows();
+  const bool units = variable_scale.size() == J.cols();
+  if (d->size() != n) d->resize(n);
+  d->setZero();
+  for (Eigen::Index j = 0; j < J.outerSize(); ++j) {
+    const double c = units ? variable_scale[j] : 1.0;
+    for (SparseMatrix::InnerIterator it(J, j); it; ++it) {
+      const double a = std::abs(it.value()) * c;
+      double& di = (*d)[it.row()];
+      di = std::isfinite(a) ? std::max(di, a) : kInf;
+    }
+  }
+  FillZeroRowScales(d);
+}
+
 FunctionMCP::FunctionMCP(Vector l, Vector u, Function F, DenseJacobian J, std::string name)
     : MCP(std::move(l), std::move(u), std::move(name)), F_(std::move(F)), J_(std::move(J)) {
   if (!F_) throw InvalidInputError("FunctionMCP: F is empty");

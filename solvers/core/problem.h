@@ -232,10 +232,31 @@ class MCP {
   // The merit function; F receives F(z). No row scale for a nonlinear F: Residual::scaled equals rel.
   Residual NaturalResidual(const Vector& z, Vector* F, double scale) const;
 
+  // The units of the variables, c_i > 0 (McpScaledResidual): empty (the default) means 1 for every variable, as
+  // for a box-MLCP. A problem that states its units (z = S y) keeps its verdict when they change.
+  const Vector& variable_scale() const { return variable_scale_; }
+  // InvalidInputError unless empty, or of size n with every entry finite and > 0 (naming the index).
+  void set_variable_scale(Vector c);
+
  private:
   Vector l_, u_;
+  Vector variable_scale_;
   std::string name_;
 };
+
+// The MCP's scale-free residual, the box-MLCP's Residual::scaled with M replaced by the Jacobian J = ∇F(z) at the
+// answer (docs/verdict.md): row i is divided by its row scale d_i = max_j |J_ij|·c_j (McpRowScales), variables are
+// measured in their units c (empty: 1), and
+//   scaled = max_i |z_i − Π_[l_i,u_i](z_i − c_i·F_i/d_i)| / c_i  /  (1 + max_i |z_i| / c_i).
+// With c = 1 and F = Mz + q it is exactly Residual::scaled of the box. It is unchanged by a positive scaling of the
+// rows of F, and by a change of units z = S y (S positive diagonal) stated through c. +∞ on NaN.
+double McpScaledResidual(const Vector& z, const Vector& F, const Vector& l, const Vector& u, const Vector& row_scale,
+                         const Vector& variable_scale);
+// d_i = max_j |J_ij|·c_j (c empty: 1). A zero row takes the largest d_k of the other rows (J = 0: 1), as the box's
+// BoxMLCP::row_scale does; a NaN/Inf entry makes d_i = +∞ (the residual is then not trusted: McpScaledResidual
+// returns +∞ for it). *d is resized if needed (no allocation when it has the size).
+void McpRowScales(const DenseMatrix& J, const Vector& variable_scale, Vector* d);
+void McpRowScales(const SparseMatrix& J, const Vector& variable_scale, Vector* d);
 
 // MCP from callables, for tests and small user problems.
 class FunctionMCP final : public MCP {
