@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <optional>
 #include <string_view>
+#include <vector>
 
 #include "solvers/core/problem.h"
 #include "solvers/core/status.h"
@@ -88,5 +89,12 @@ struct Judgement {
 //   otherwise:  correctly refused on an expected-infeasible problem, else failed.
 Judgement Judge(const BoxMLCP& problem, ExpectedOutcome expected, const ReferenceSolution* reference,
                 SolveStatus status, const Vector& z, double tolerance);
+
+// The verdict on a nonlinear MCP, with the same meaning as Judge: the residuals are recomputed from z here, "solved"
+// requires the scale-free residual (Residual::scaled, McpScaledResidual with the Jacobian at z) ≤ tol, and the
+// forward error is judged against the nearest reference when references_complete (every solution is listed), or
+// against the single reference when it is certified unique; references may be empty.
+Judgement JudgeMCP(const MCP& problem, ExpectedOutcome expected, const std::vector<ReferenceSolution>& references,
+                   bool references_complete, SolveStatus status, const Vector& z, double tolerance);
 
 }  // namespace smcbench
