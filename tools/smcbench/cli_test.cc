@@ -94,6 +94,38 @@ TEST(Cli, UsageErrorsAreOneLinePrefixedAndExitTwo) {
   EXPECT_THAT(help.out, HasSubstr("--repeat"));
 }
 
+// A mistyped flag is named, with the nearest flag of that command; the order of the words is the user's.
+TEST(Cli, UnknownFlagIsNamedWithTheNearestFlag) {
+  const CliRun r = RunSmcbench({"solve", kPeer + "/relay/relay_2x2.dat", "--solvr", "lemke"});
+  EXPECT_EQ(r.code, 2);
+  EXPECT_THAT(r.err, HasSubstr("unknown flag '--solvr' (did you mean '--solver'?)")) << r.err;
+  const CliRun far = RunSmcbench({"solve", kPeer + "/relay/relay_2x2.dat", "--completely-different"});
+  EXPECT_EQ(far.code, 2);
+  EXPECT_THAT(far.err, HasSubstr("unknown flag '--completely-different'")) << far.err;
+  EXPECT_THAT(far.err, Not(HasSubstr("did you mean"))) << far.err;
+}
+
+// Invalid numbers name the flag and the value instead of being accepted.
+TEST(Cli, NegativeBudgetsAreRejectedNamingTheFlag) {
+  for (const std::vector<std::string>& args :
+       std::vector<std::vector<std::string>>{{"--max-iter", "-1"}, {"--time-limit", "-1"}, {"--max-iter", "2.5"}}) {
+    const CliRun r = RunSmcbench({"solve", kPeer + "/relay/relay_2x2.dat", args[0], args[1]});
+    EXPECT_EQ(r.code, 2) << args[0] << " " << args[1];
+    EXPECT_THAT(r.err, HasSubstr(args[0])) << r.err;
+    EXPECT_THAT(r.err, HasSubstr(args[1])) << r.err;
+  }
+}
+
+// convert says what it wrote.
+TEST(Cli, ConvertSaysWhatItWrote) {
+  const std::string out = (std::filesystem::temp_directory_path() / "smcbench_cli_convert.smcps").string();
+  const CliRun r = RunSmcbench({"convert", kPeer + "/relay/relay_2x2.dat", out});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("convert: wrote '"));
+  EXPECT_THAT(r.out, HasSubstr("(m = 2, dense) to " + out));
+  std::filesystem::remove(out);
+}
+
 // --version is an option of the program like --help: listed by --help, printed on stdout with the revision the
 // build recorded, exit 0 (also from an out-of-tree program's main calling RunCli).
 TEST(Cli, VersionIsListedByHelpAndPrintsTheBuildsRevision) {

@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
@@ -65,6 +66,25 @@ CLI::Validator PositiveNumber() {
       "POSITIVE");
 }
 
+// CLI11's NonNegativeNumber admits fractions and prints DBL_MAX: a whole number ≥ 0, said in one line.
+CLI::Validator NonNegativeInteger() {
+  return CLI::Validator(
+      [](std::string& text) -> std::string {
+        long long value = -1;
+        std::size_t used = 0;
+        try {
+          value = std::stoll(text, &used);
+        } catch (const std::exception&) {
+          used = 0;
+        }
+        if (used != text.size() || value < 0 || value > std::numeric_limits<int>::max()) {
+          return "must be a whole number ≥ 0, got '" + text + "'";
+        }
+        return {};
+      },
+      "N");
+}
+
 // --format lcp|relay|mlcp|smcps|mtx into settings->format (only the Siconos kinds where allowed says so).
 void AddFormatFlag(CLI::App* app, std::optional<ProblemFormat>* format, const std::vector<std::string>& allowed,
                    const std::string& help) {
@@ -86,7 +106,8 @@ void AddSolveFlags(CLI::App* app, SolveSettings* s) {
       ->expected(1, -1);
   app->add_option("--tol", s->tolerance, "tolerance on the relative and the row-equilibrated natural residual")
       ->check(PositiveNumber());
-  app->add_option("--max-iter", s->max_iterations, "iteration/pivot budget (0: backend default)");
+  app->add_option("--max-iter", s->max_iterations, "iteration/pivot budget (0: backend default)")
+      ->check(NonNegativeInteger());
   app->add_option("--time-limit", s->time_limit, "seconds per solve")->check(PositiveNumber());
   app->add_option("--repeat", s->repeat, "cold solves per backend; the median time is reported")
       ->check(CLI::Range(1, 1000000));
@@ -388,7 +409,7 @@ int RunBenchTable(const std::string& path, std::ostream& out) {
 // `convert INPUT OUTPUT`: one problem from any readable kind to the kind OUTPUT's extension names (.mtx, .smcps,
 // else Siconos relay).
 int RunConvert(const std::string& input, std::optional<ProblemFormat> format, const std::string& id,
-               const std::string& output) {
+               const std::string& output, std::ostream& out) {
   std::vector<LibraryProblem> problems = ReadProblemFile(input, format, id.empty() ? std::vector<std::string>{}
                                                                                    : std::vector<std::string>{id});
   if (problems.size() != 1) {
@@ -396,7 +417,60 @@ int RunConvert(const std::string& input, std::optional<ProblemFormat> format, co
                             ": choose one with --id");
   }
   WriteProblemFile(problems.front(), output);
+  out << "convert: wrote '" << problems.front().id << "' (m = " << problems.front().size() << ", "
+      << (problems.front().sparse() ? "sparse" : "dense") << ") to " << output << "\n";
   return 0;
+}
+
+// Levenshtein distance of two short words (flag names), for "did you mean".
+std::size_t EditDistance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+// "unknown flag '--solvr' (did you mean '--solver'?)" for the first word of argv that looks like a long flag and is
+// not one of command's flags (its own or its parents'); empty when there is none (then CLI11's message is kept).
+// Only words after the command's name are looked at, so a flag of another command is not suggested.
+std::string UnknownFlagMessage(const CLI::App& command, int argc, const char* const* argv) {
+  std::vector<std::string> known;
+  for (const CLI::App* app = &command; app != nullptr; app = app->get_parent()) {
+    for (const CLI::Option* option : app->get_options()) {
+      for (const std::string& name : option->get_lnames()) known.push_back("--" + name);
+    }
+  }
+  for (int i = 1; i < argc; ++i) {
+    std::string word = argv[i];
+    if (word == "--") break;
+    if (word.rfind("--", 0) != 0 || word.size() < 3) continue;
+    word = word.substr(0, word.find('='));
+    if (std::find(known.begin(), known.end(), word) != known.end()) continue;
+    std::string nearest;
+    std::size_t best = std::string::npos;
+    for (const std::string& name : known) {
+      const std::size_t d = EditDistance(word, name);
+      if (d < best) {
+        best = d;
+        nearest = name;
+      }
+    }
+    std::string message = "unknown flag '" + word + "'";
+    // Suggest only a plausible typo: at most a third of the word changed.
+    if (!nearest.empty() && best <= std::max<std::size_t>(2, word.size() / 3)) {
+      message += " (did you mean '" + nearest + "'?)";
+    }
+    return message;
+  }
+  return {};
 }
 
 }  // namespace
@@ -491,10 +565,16 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
       err << e2.str();
       return 0;
     }
-    // CLI11's own usage errors as ours: one line with the program's prefix, where to look, exit status 2.
+    // CLI11's own usage errors as ours: one line with the program's prefix, where to look, exit status 2. An
+    // unknown flag is named first, with the nearest flag of the command that was being parsed.
     std::string where = "smcbench";
-    for (const CLI::App* sub : app.get_subcommands()) where += " " + sub->get_name();
-    std::string what = e.what();
+    const CLI::App* innermost = &app;
+    for (const CLI::App* sub : app.get_subcommands()) {
+      where += " " + sub->get_name();
+      innermost = sub;
+    }
+    std::string what = UnknownFlagMessage(*innermost, argc, argv);
+    if (what.empty()) what = e.what();
     std::replace(what.begin(), what.end(), '\n', ' ');
     err << "smcbench: " << what << " (see '" << where << " --help')\n";
     return 2;
@@ -507,7 +587,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (collection->parsed()) {
       return RunCollection(collection_dir, collection_settings, markdown_path, json_path, command_line, out, err);
     }
-    if (convert->parsed()) return RunConvert(convert_in, convert_format, convert_id, convert_out);
+    if (convert->parsed()) return RunConvert(convert_in, convert_format, convert_id, convert_out, out);
     if (bench_table->parsed()) return RunBenchTable(bench_json, out);
     if (simulate.parsed()) return simulate.Run(out, err);
     if (scenes.parsed()) return scenes.Run(out, err);
