@@ -1,0 +1,82 @@
+// `newton-min`: semismooth Newton on the min (natural-map) function Phi(z) = z − Π_[l,u](z − F(z)), the other classic
+// NCP function (Pang 1990, Qi 1993, Facchinei–Pang 2003 §9.1; Siconos' mcp_newton_min_FBLSA), for box-MLCPs and
+// nonlinear MCPs. Why it is here beside `newton` (Fischer–Burmeister): its Newton system is the active-set one —
+// unit rows at the bounds, J_i on the free rows — so each step is an active-set guess, exact for an LCP once the set
+// is right, and it never leaves a row strictly between "at the bound" and "free" as FB does near degenerate rows.
+// Its failure modes differ: Phi is not differentiable and ‖Phi‖² is not C¹, so the pure method cycles between active
+// sets or follows Newton on F out of its basin where FB's smooth merit would only slow down; here every step is
+// checked on FB's merit ½‖Phi_FB‖² (fischer_burmeister.h) and replaced by its gradient step when it does not descend.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "solvers/core/backend_options.h"
+#include "solvers/core/solver.h"
+#include "solvers/newton/semismooth_newton_solver.h"
+
+namespace smcbench {
+
+struct NewtonMinOptions {
+  // Values of globalization (`--set newton-min.globalization=NAME`).
+  enum Globalization : int {
+    // "fb-line-search": Armijo on the Fischer–Burmeister merit, min-Newton direction when it is a sufficient
+    // descent direction for it, else the merit's steepest descent (Siconos' min_FBLSA idea).
+    kFischerBurmeisterLineSearch = 0,
+    // "none": full min-Newton steps, no merit function (the textbook local method; can cycle or diverge).
+    kNoGlobalization = 1,
+  };
+
+  Globalization globalization = kFischerBurmeisterLineSearch;
+  // Armijo constant σ in Psi(z + t d) ≤ Psi(z) + σ t ∇Psiᵀd.
+  double armijo_sigma = 1e-4;
+  // Backtracking factor β: t ∈ {1, β, β², ...}.
+  double backtrack_factor = 0.5;
+  // Trial step lengths per line search before it is declared failed.
+  int max_backtracks = 40;
+  // The min-Newton direction d is used only if ∇Psiᵀd ≤ −ρ‖d‖^p (De Luca–Facchinei–Kanzow 1996), else −∇Psi.
+  double descent_rho = 1e-8;
+  double descent_power = 2.1;
+  // Dense LU of the free rows, or UMFPACK on the full system (unit rows at the bounds); the same choices as
+  // `newton`'s linear_solver: auto = dense for dense data and sparse data up to dense_max_size unknowns.
+  NewtonOptions::LinearSolver linear_solver = NewtonOptions::kAutoLinearSolver;
+  int dense_max_size = 64;
+
+  // True if every field is usable; otherwise *why names the field and the accepted range.
+  bool IsValid(std::string* why) const;
+};
+
+// Solves a box-MLCP (F = Mz + q, dense or sparse M) or a nonlinear MCP. Works in the units of the verdict: rows of F
+// divided by d = McpRowScales(J(z₀), c) at the start and variables in the problem's units c (MCP::variable_scale),
+// so the active-set choice and the merit are unchanged by a positive scaling of F's rows. Stops when the scale-free
+// residual McpScaledResidual(z, F, l, u, McpRowScales(J(z), c), c) ≤ tolerance (a box-MLCP, which arrives
+// row-equilibrated, also needs its natural residual ≤ tolerance·(1 + ‖q‖∞), the base's second test).
+// iterations = Newton iterations, default budget 200 (options.max_iterations ≤ 0). A failure returns the iterate
+// with the smallest scale-free residual seen, and says it in the message. Details: "newton_steps",
+// "gradient_steps", "backtracks", "factorizations", "max_system_size".
+class NewtonMinSolver final : public BackendWithOptions<NewtonMinOptions> {
+ public:
+  NewtonMinSolver();
+  explicit NewtonMinSolver(const NewtonMinOptions& options);
+  ~NewtonMinSolver() override;
+  NewtonMinSolver(const NewtonMinSolver&) = delete;
+  NewtonMinSolver& operator=(const NewtonMinSolver&) = delete;
+
+  const SolverInfo& info() const override;
+
+  static constexpr int kDefaultMaxIterations = 200;
+
+ protected:
+  void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
+  void DoSolveMCP(const MCP& problem, const SolverOptions& options, SolveResult* result) override;
+  void BindOptions(OptionBinder* binder) override;
+  bool ValidateBackendOptions(std::string* why) const override;
+
+ private:
+  struct Workspace;  // iterate, Jacobian copies, dense LU buffer and UMFPACK state, reused across solves
+  void SetUpSolve(int n, const Vector& l, const Vector& u, bool native_sparse);
+  void RunAndConclude(const SolverOptions& options, SolveResult* result);
+  std::unique_ptr<Workspace> ws_;
+};
+
+}  // namespace smcbench
