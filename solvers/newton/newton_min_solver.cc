@@ -9,18 +9,21 @@
 //      rows R the linearization F_R + J_R Δ = 0, i.e. J_RR Δ_R = −F_R − J_RA Δ_A (row scales cancel);
 //   3. globalization (fb-line-search): Phi is not differentiable, so the step is judged on the C¹ merit
 //      Psi = ½‖Phi_FB(z, G)/c‖² with Billups' box FB function; Δ is used when ∇Psiᵀ Δ ≤ −ρ‖Δ‖^p (DFK 1996) and its
-//      Armijo search succeeds, else the steepest-descent step −∇Psi. Near a strictly complementary solution the two
-//      functions pick the same active set and full min-Newton steps are accepted (local quadratic convergence).
+//      Armijo search succeeds, else FB's own Newton step under the same test, else the steepest descent −∇Psi.
+//      Near a strictly complementary solution the two functions pick the same active set and full min-Newton steps
+//      are accepted (local quadratic convergence).
 // Stopping test: the verdict's scale-free residual with the row scales of J at the current z (problem.h).
-// Linear algebra. Dense: the |R|×|R| block J_RR, rows equilibrated, Eigen's blocked in-place LU on a preallocated
-// buffer (newton's choice: Eigen's PartialPivLU object would reallocate whenever |R| changes); a pivot below
-// |R|·ε after row equilibration counts as singular. Sparse: the full n×n system on the pattern J ∪ diag (unit rows
-// at the bounds), so the pattern is fixed and UMFPACK's symbolic analysis is done once per pattern.
+// Linear algebra. Both Newton systems have rows α_i d_i + β_i J_i d = r_i. Dense: rows with β_i = 0 are solved
+// directly and the others form the block J_RR + diag(α/β)_R, rows equilibrated, Eigen's blocked in-place LU on a
+// preallocated buffer (newton's choice: Eigen's PartialPivLU object would reallocate whenever |R| changes); a pivot
+// below |R|·ε after row equilibration counts as singular. Sparse: the full n×n system diag(α) + diag(β) J on the
+// pattern J ∪ diag, so the pattern is fixed and UMFPACK's symbolic analysis is done once per pattern.
 #include "solvers/newton/newton_min_solver.h"
 
 #include <Eigen/LU>
 #include <Eigen/UmfPackSupport>
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -35,9 +38,6 @@ namespace {
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 enum class Exit { kConverged, kBudget, kTimeLimit, kStalled, kSingular, kNumericalFailure, kDiverged };
-
-// Row states of the min function's active set.
-enum RowState : signed char { kFree = 0, kAtLower = 1, kAtUpper = 2 };
 
 // DFK 1996 sufficient-descent test gd ≤ −ρ‖d‖^p.
 bool SufficientDescent(double gd, double norm_d, double rho, double p) {
@@ -69,6 +69,10 @@ bool NewtonMinOptions::IsValid(std::string* why) const {
   if (linear_solver < NewtonOptions::kAutoLinearSolver || linear_solver > NewtonOptions::kSparseLinearSolver)
     return fail("linear_solver must be auto, dense or sparse, got the code ", static_cast<int>(linear_solver));
   if (dense_max_size < 0) return fail("dense_max_size must be >= 0, got ", dense_max_size);
+  if (stagnation_window < 1 || stagnation_window > kMaxStagnationWindow)
+    return fail("stagnation_window must be in [1, ", kMaxStagnationWindow, "], got ", stagnation_window);
+  if (!(stagnation_ratio > 0.0 && stagnation_ratio < 1.0))
+    return fail("stagnation_ratio must be in (0, 1), got ", stagnation_ratio);
   return true;
 }
 
@@ -91,11 +95,11 @@ struct NewtonMinSolver::Workspace {
 
   // ---- Iterate and work vectors (size n) ----
   Vector z, F, zt, Ft, dir, g, w, Jw, phi, weight_z, weight_F, rhs, zbest;
-  Vector units;        // c: the variables' units (ones when the problem states none)
-  Vector reform_rows;  // d₀: the row scales of the reformulation, fixed for the solve
-  Vector stop_rows;    // the row scales of J at z, for the stopping test
-  Vector row_eq;       // equilibration of the reduced dense rows
-  std::vector<signed char> state;
+  Vector units;           // c: the variables' units (ones when the problem states none)
+  Vector reform_rows;     // d₀: the row scales of the reformulation, fixed for the solve
+  Vector stop_rows;       // the row scales of J at z, for the stopping test
+  Vector row_eq;          // equilibration of the reduced dense rows
+  Vector alpha, beta, r;  // the rows of the Newton system being solved: α_i d_i + β_i J_i d = r_i
   double best_residual = kInf;
 
   // ---- Dense linear algebra ----
@@ -111,18 +115,20 @@ struct NewtonMinSolver::Workspace {
   bool umf_analyzed = false;
   Eigen::UmfPackLU<SparseMatrix> umf;
 
+  std::array<double, NewtonMinOptions::kMaxStagnationWindow + 1> psi_history{};
+
   // ---- Counters and the reason of a failure ----
-  int iterations = 0, newton_steps = 0, gradient_steps = 0, backtracks = 0, factorizations = 0, max_system = 0;
+  int iterations = 0, newton_steps = 0, fb_newton_steps = 0, gradient_steps = 0, backtracks = 0, factorizations = 0;
+  int max_system = 0;
   const char* failure_detail = "";
 
   void Resize(int size) {
     if (n == size && z.size() == size) return;
     n = size;
-    for (Vector* x : {&z, &F, &zt, &Ft, &dir, &g, &w, &Jw, &phi, &weight_z, &weight_F, &rhs, &zbest, &units,
-                      &reform_rows, &stop_rows, &row_eq}) {
+    for (Vector* x : {&z,        &F,   &zt,    &Ft,    &dir,         &g,         &w,      &Jw,    &phi,  &weight_z,
+                      &weight_F, &rhs, &zbest, &units, &reform_rows, &stop_rows, &row_eq, &alpha, &beta, &r}) {
       x->resize(n);
     }
-    state.assign(n, kFree);
     perm.resize(n);
     ridx.resize(n);
     A.resize(0, 0);  // allocated on first dense use
@@ -232,52 +238,71 @@ struct NewtonMinSolver::Workspace {
     }
   }
 
-  // ---------------------------------------------------------------- the min function's active set and step
-  void SelectActiveSet() {
+  // ---------------------------------------------------------------- Newton systems α_i d_i + β_i J_i d = r_i
+  // Both steps have this row form: the min function's (SetMinNewtonRows) and FB's (SetFischerBurmeisterRows).
+  // Rows with β_i = 0 fix d_i = r_i/α_i; the others, divided by β_i, give (J_RR + diag(α/β)_R) d_R = r_R/β_R − J_RT
+  // d_T.
+
+  // The min function's active set by the natural map, and its Newton rows: at a bound d_i = bound − z_i
+  // (α = 1, β = 0), free F_i + J_i d = 0 (α = 0, β = 1).
+  void SetMinNewtonRows() {
     for (int i = 0; i < n; ++i) {
       const double trial = z[i] - units[i] * F[i] / reform_rows[i];
-      state[i] = trial <= (*l)[i] ? kAtLower : trial >= (*u)[i] ? kAtUpper : kFree;
+      const double bound = trial <= (*l)[i] ? (*l)[i] : trial >= (*u)[i] ? (*u)[i] : kNaN;
+      const bool active = !std::isnan(bound);
+      alpha[i] = active ? 1.0 : 0.0;
+      beta[i] = active ? 0.0 : 1.0;
+      r[i] = active ? bound - z[i] : -F[i];
     }
   }
 
-  // dir = the min-Newton step at z for the current active set. False if the system is singular.
-  bool SolveMinNewtonSystem() {
+  // FB's Newton rows ∂phi_i d = −phi_i from MeritGradient's derivatives (De Luca–Facchinei–Kanzow 1996).
+  void SetFischerBurmeisterRows() {
+    alpha = weight_z;
+    beta = weight_F;
+    r = -phi;
+  }
+
+  // dir = the solution of the system the rows describe. False if it is singular.
+  bool SolveNewtonSystem() {
     ++factorizations;
     return dense_la ? SolveDense() : SolveSparse();
   }
 
   bool SolveDense() {
     int nr = 0;
-    bool any_active = false;
+    bool any_fixed = false;
     for (int i = 0; i < n; ++i) {
-      if (state[i] == kFree) {
+      if (beta[i] == 0.0) {
+        if (!(alpha[i] != 0.0)) return false;  // an empty row
+        dir[i] = r[i] / alpha[i];
+        w[i] = dir[i];
+        any_fixed = true;
+      } else {
         ridx[nr++] = i;
         w[i] = 0.0;
-      } else {
-        dir[i] = (state[i] == kAtLower ? (*l)[i] : (*u)[i]) - z[i];
-        w[i] = dir[i];
-        any_active = true;
       }
     }
     max_system = std::max(max_system, nr);
-    if (nr == 0) return true;
-    if (any_active) ApplyJ(w, &Jw);  // J_RA Δ_A (w is zero on R)
+    if (nr == 0) return dir.allFinite();
+    if (any_fixed) ApplyJ(w, &Jw);  // J_RT d_T (w is zero on R)
     if (A.rows() != n) A.resize(n, n);
     const DenseMatrix& J = *Jd;
     for (int k = 0; k < nr; ++k) row_eq[k] = 0.0;
     for (int jj = 0; jj < nr; ++jj) {
-      const double* col = J.col(ridx[jj]).data();
+      const int j = ridx[jj];
+      const double* col = J.col(j).data();
       double* a = A.col(jj).data();
-      for (int ii = 0; ii < nr; ++ii) {
-        a[ii] = col[ridx[ii]];
-        row_eq[ii] = std::max(row_eq[ii], std::abs(a[ii]));
-      }
+      for (int ii = 0; ii < nr; ++ii) a[ii] = col[ridx[ii]];
+      a[jj] += alpha[j] / beta[j];
+      for (int ii = 0; ii < nr; ++ii) row_eq[ii] = std::max(row_eq[ii], std::abs(a[ii]));
     }
+    // Rows scaled to max 1 before partial pivoting (a row's scale says nothing about its pivot quality).
     for (int k = 0; k < nr; ++k) {
-      if (!(row_eq[k] > 0.0)) return false;  // a zero free row: J_RR is singular
+      if (!(row_eq[k] > 0.0) || !std::isfinite(row_eq[k])) return false;  // a zero row: singular
       row_eq[k] = 1.0 / row_eq[k];
       const int i = ridx[k];
-      rhs[k] = (-F[i] - (any_active ? Jw[i] : 0.0)) * row_eq[k];
+      rhs[k] = (r[i] / beta[i] - (any_fixed ? Jw[i] : 0.0)) * row_eq[k];
     }
     for (int jj = 0; jj < nr; ++jj) A.col(jj).head(nr).array() *= row_eq.head(nr).array();
     int transpositions = 0;
@@ -324,8 +349,8 @@ struct NewtonMinSolver::Workspace {
     umf_analyzed = false;
   }
 
-  // Full system: row i is e_iᵀ at a bound, J_i when free. J's entries are a subset of H's in every column (both with
-  // sorted row indices), so one merged pass per column fills H.
+  // The full system H = diag(α) + diag(β) J on the pattern J ∪ diag. J's entries are a subset of H's in every
+  // column (both with sorted row indices), so one merged pass per column fills H.
   bool SolveSparse() {
     const SparseMatrix& J = *Js;
     EnsureSparsePattern(J);
@@ -341,10 +366,10 @@ struct NewtonMinSolver::Workspace {
         const int row = h_inner[p];
         double value = 0.0;
         if (k < j_outer[col + 1] && j_inner[k] == row) value = jv[k++];
-        hv[p] = state[row] == kFree ? value : (row == col ? 1.0 : 0.0);
+        hv[p] = beta[row] * value + (row == col ? alpha[row] : 0.0);
       }
     }
-    for (int i = 0; i < n; ++i) rhs[i] = state[i] == kFree ? -F[i] : (state[i] == kAtLower ? (*l)[i] : (*u)[i]) - z[i];
+    rhs = r;
     max_system = std::max(max_system, n);
     if (!umf_analyzed) {
       umf.umfpackControl()(UMFPACK_IRSTEP) = 0;  // an inexact step is corrected by the next iteration
@@ -413,6 +438,21 @@ struct NewtonMinSolver::Workspace {
     return false;
   }
 
+  // Records Psi after `iterations` steps; true if it is above stagnation_ratio × its value stagnation_window steps
+  // earlier (the iterates crawl towards a minimizer of Psi that is not a solution, or cycle).
+  bool MeritStagnated(double psi) {
+    const int window = opt->stagnation_window;
+    psi_history[iterations % (window + 1)] = psi;
+    return iterations >= window && psi > opt->stagnation_ratio * psi_history[(iterations - window) % (window + 1)];
+  }
+
+  // dir if it passes the DFK sufficient-descent test and its Armijo search (then zt, Ft, *psi_new are the new point).
+  bool TryDirection(double psi, double* psi_new, bool* all_nan) {
+    const double gd = g.dot(dir);
+    return SufficientDescent(gd, dir.norm(), opt->descent_rho, opt->descent_power) &&
+           LineSearch(psi, gd, psi_new, all_nan);
+  }
+
   // ---------------------------------------------------------------- the iteration
   Exit Run() {
     const NewtonMinOptions& o = *opt;
@@ -429,48 +469,58 @@ struct NewtonMinSolver::Workspace {
       if (residual <= tolerance) return Exit::kConverged;
       if (iterations >= budget) return Exit::kBudget;
       if (owner->TimeLimitReached()) return Exit::kTimeLimit;
+      if (globalized && MeritStagnated(psi)) {
+        return Stop(Exit::kStalled, "the merit function stagnated at a point that is not a solution");
+      }
       ++iterations;
 
-      SelectActiveSet();
-      const bool newton_ok = SolveMinNewtonSystem();
-      bool gradient = false;
+      SetMinNewtonRows();
+      const bool min_ok = SolveNewtonSystem();
+      const char* step = "min-newton";
       if (!globalized) {
-        if (!newton_ok) return Stop(Exit::kSingular, "the min-Newton system is singular");
+        if (!min_ok) return Stop(Exit::kSingular, "the min-Newton system is singular");
         zt = z + dir;
         if (!EvalF(zt, &Ft)) return Stop(Exit::kNumericalFailure, "F is NaN/Inf at the full min-Newton step");
         ++newton_steps;
       } else {
         MeritGradient();
         if (!g.allFinite()) return Stop(Exit::kNumericalFailure, "the merit-function gradient is NaN/Inf");
+        // Directions in order, each used if it passes the DFK descent test and its Armijo search: the min-Newton
+        // step; FB's Newton step (where the two functions disagree on the active set, e.g. a free row whose
+        // Newton system has no nearby solution); the steepest descent −∇Psi.
         double psi_new = psi;
-        bool all_nan = false, accepted = false;
-        if (newton_ok && SufficientDescent(g.dot(dir), dir.norm(), o.descent_rho, o.descent_power)) {
-          accepted = LineSearch(psi, g.dot(dir), &psi_new, &all_nan);
-          newton_steps += accepted;
+        bool all_nan = false, any_system = min_ok;
+        bool accepted = min_ok && TryDirection(psi, &psi_new, &all_nan);
+        newton_steps += accepted;
+        if (!accepted && o.fischer_burmeister_step) {
+          step = "fb-newton";
+          SetFischerBurmeisterRows();
+          const bool fb_ok = SolveNewtonSystem();
+          any_system |= fb_ok;
+          accepted = fb_ok && TryDirection(psi, &psi_new, &all_nan);
+          fb_newton_steps += accepted;
         }
         if (!accepted) {
-          // The min-Newton step is singular, not a descent direction for Psi, or rejected by its line search.
-          gradient = true;
+          step = "gradient";
           ++gradient_steps;
           dir = -g;
           const double gd = -g.squaredNorm();
           if (!(gd < 0.0)) {
-            return newton_ok
+            return any_system
                        ? Stop(Exit::kStalled, "the merit function is stationary at a point that is not a solution")
                        : Stop(Exit::kSingular,
-                              "the min-Newton system is singular and the merit-function gradient is zero");
+                              "the Newton systems are singular and the merit-function gradient is zero");
           }
           if (!LineSearch(psi, gd, &psi_new, &all_nan)) {
             if (all_nan) return Stop(Exit::kNumericalFailure, "F is NaN/Inf at every trial point of the line search");
-            return Stop(Exit::kStalled, "the line search failed along the min-Newton and the gradient direction");
+            return Stop(Exit::kStalled, "the line search failed along every direction");
           }
         }
         if (box) box->Affine(zt, &Ft);  // exact F at the accepted point (the search used F + t M d)
         psi = psi_new;
       }
       if (verbosity >= 2) {
-        std::fprintf(stderr, "newton-min %4d residual %.3e psi %.3e step %s system %d\n", iterations, residual, psi,
-                     gradient ? "gradient" : "newton", dense_la ? max_system : n);
+        std::fprintf(stderr, "newton-min %4d residual %.3e psi %.3e step %s\n", iterations, residual, psi, step);
       }
       bool moved = false;
       for (int i = 0; i < n && !moved; ++i) moved = std::abs(zt[i] - z[i]) > 2.0 * kEps * std::abs(z[i]);
@@ -534,14 +584,15 @@ struct NewtonMinSolver::Workspace {
       result->message = s.str();
     }
     result->SetDetail("newton_steps", newton_steps);
+    result->SetDetail("fb_newton_steps", fb_newton_steps);
     result->SetDetail("gradient_steps", gradient_steps);
     result->SetDetail("backtracks", backtracks);
     result->SetDetail("factorizations", factorizations);
     result->SetDetail("max_system_size", max_system);
     if (verbosity >= 1) {
-      std::fprintf(stderr, "newton-min: %s after %d iterations (%d Newton, %d gradient steps, %d backtracks)\n",
-                   exit == Exit::kConverged ? "solved" : "not solved", iterations, newton_steps, gradient_steps,
-                   backtracks);
+      std::fprintf(stderr, "newton-min: %s after %d iterations (%d min-Newton, %d FB-Newton, %d gradient steps)\n",
+                   exit == Exit::kConverged ? "solved" : "not solved", iterations, newton_steps, fb_newton_steps,
+                   gradient_steps);
     }
   }
 };
@@ -555,7 +606,7 @@ const SolverInfo& NewtonMinSolver::info() const {
   static const SolverInfo kInfo{
       "newton-min",
       "semismooth Newton on the min (natural-map) function: active-set Newton steps checked by an Armijo line "
-      "search on the Fischer-Burmeister merit, gradient fallback; dense reduced LU or UMFPACK",
+      "search on the Fischer-Burmeister merit, FB-Newton then gradient fallback; dense reduced LU or UMFPACK",
       "Pang 1990 (Math. Oper. Res. 15); Qi 1993 (Math. Oper. Res. 18); Facchinei, Pang 2003 (ch. 9); "
       "De Luca, Facchinei, Kanzow 1996 (Math. Prog. 75)",
       /*dense=*/true,
@@ -578,8 +629,12 @@ void NewtonMinSolver::BindOptions(OptionBinder* b) {
   b->Add("armijo_sigma", &o.armijo_sigma, "Armijo constant sigma in (0, 0.5)");
   b->Add("backtrack_factor", &o.backtrack_factor, "step-length reduction factor in (0, 1)");
   b->Add("max_backtracks", &o.max_backtracks, "trial steps per line search");
+  b->Add("fischer_burmeister_step", &o.fischer_burmeister_step,
+         "try FB's Newton step when the min-Newton step is rejected, before the gradient step");
   b->Add("descent_rho", &o.descent_rho, "DFK descent test grad'd <= -rho ||d||^p: rho");
   b->Add("descent_power", &o.descent_power, "DFK descent test: p (> 2)");
+  b->Add("stagnation_window", &o.stagnation_window, "iterations over which the merit must fall (max 64)");
+  b->Add("stagnation_ratio", &o.stagnation_ratio, "required decrease factor of the merit over the window");
   b->Add("linear_solver", &o.linear_solver,
          {{"auto", NewtonOptions::kAutoLinearSolver},
           {"dense", NewtonOptions::kDenseLinearSolver},
@@ -616,7 +671,8 @@ void NewtonMinSolver::RunAndConclude(const SolverOptions& options, SolveResult* 
   ws.tolerance = options.tolerance;
   ws.verbosity = options.verbosity;
   ws.budget = IterationBudget(options, kDefaultMaxIterations);
-  ws.iterations = ws.newton_steps = ws.gradient_steps = ws.backtracks = ws.factorizations = ws.max_system = 0;
+  ws.iterations = ws.newton_steps = ws.fb_newton_steps = ws.gradient_steps = ws.backtracks = 0;
+  ws.factorizations = ws.max_system = 0;
   ws.best_residual = kInf;
   ws.failure_detail = "";
   ws.z = result->z;

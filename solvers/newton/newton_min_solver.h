@@ -5,7 +5,9 @@
 // is right, and it never leaves a row strictly between "at the bound" and "free" as FB does near degenerate rows.
 // Its failure modes differ: Phi is not differentiable and ‖Phi‖² is not C¹, so the pure method cycles between active
 // sets or follows Newton on F out of its basin where FB's smooth merit would only slow down; here every step is
-// checked on FB's merit ½‖Phi_FB‖² (fischer_burmeister.h) and replaced by its gradient step when it does not descend.
+// checked on FB's merit ½‖Phi_FB‖² (fischer_burmeister.h) and, when it does not descend, replaced by FB's own Newton
+// step and then by the merit's gradient step. Unlike `newton` it has no proximal-perturbation restart: a
+// non-solution minimizer of the merit (Billups' example) ends in `stalled`.
 #pragma once
 
 #include <memory>
@@ -34,9 +36,19 @@ struct NewtonMinOptions {
   double backtrack_factor = 0.5;
   // Trial step lengths per line search before it is declared failed.
   int max_backtracks = 40;
-  // The min-Newton direction d is used only if ∇Psiᵀd ≤ −ρ‖d‖^p (De Luca–Facchinei–Kanzow 1996), else −∇Psi.
+  // When the min-Newton step is rejected, try the Newton step of the FB function itself (De Luca–Facchinei–Kanzow
+  // 1996) before −∇Psi: where the two functions disagree on the active set, gradient steps alone can crawl (Josephy's
+  // NCP from x = 10·1, in the tests).
+  bool fischer_burmeister_step = true;
+  // A Newton direction d is used only if ∇Psiᵀd ≤ −ρ‖d‖^p (DFK 1996), else the next choice.
   double descent_rho = 1e-8;
   double descent_power = 2.1;
+  // Stalled when the merit has not fallen below stagnation_ratio × its value stagnation_window iterations earlier:
+  // there is no proximal restart here, so crawling gradient steps towards a merit minimizer that is not a solution
+  // would only spend the budget.
+  static constexpr int kMaxStagnationWindow = 64;
+  int stagnation_window = 30;
+  double stagnation_ratio = 0.5;
   // Dense LU of the free rows, or UMFPACK on the full system (unit rows at the bounds); the same choices as
   // `newton`'s linear_solver: auto = dense for dense data and sparse data up to dense_max_size unknowns.
   NewtonOptions::LinearSolver linear_solver = NewtonOptions::kAutoLinearSolver;
@@ -52,8 +64,8 @@ struct NewtonMinOptions {
 // residual McpScaledResidual(z, F, l, u, McpRowScales(J(z), c), c) ≤ tolerance (a box-MLCP, which arrives
 // row-equilibrated, also needs its natural residual ≤ tolerance·(1 + ‖q‖∞), the base's second test).
 // iterations = Newton iterations, default budget 200 (options.max_iterations ≤ 0). A failure returns the iterate
-// with the smallest scale-free residual seen, and says it in the message. Details: "newton_steps",
-// "gradient_steps", "backtracks", "factorizations", "max_system_size".
+// with the smallest scale-free residual seen, and says it in the message. Details: "newton_steps" (min-Newton),
+// "fb_newton_steps", "gradient_steps", "backtracks", "factorizations", "max_system_size".
 class NewtonMinSolver final : public BackendWithOptions<NewtonMinOptions> {
  public:
   NewtonMinSolver();
