@@ -443,7 +443,10 @@ TEST(NewtonMinSolverMcp, TheLineSearchRescuesACyclingMinNewton) {
   const SolveResult rescued = NewtonMinSolver().Solve(mcp, budget);
   ASSERT_EQ(rescued.status, SolveStatus::kSolved) << rescued.message;
   EXPECT_NEAR(rescued.z[0], 3.0, 1e-10);
-  EXPECT_GE(rescued.GetDetail("gradient_steps") + rescued.GetDetail("backtracks"), 1.0);  // the safeguard acted
+  // The safeguard acted: a rejected or shortened min-Newton step.
+  EXPECT_GE(
+      rescued.GetDetail("fb_newton_steps") + rescued.GetDetail("gradient_steps") + rescued.GetDetail("backtracks"),
+      1.0);
 }
 
 // ---------------------------------------------------------------- failures are statuses
