@@ -105,7 +105,7 @@ struct NewtonMinSolver::Workspace {
   // ---- Dense linear algebra ----
   DenseMatrix A;         // n×n buffer; the leading |R|×|R| block is used
   Eigen::VectorXi perm;  // row transpositions of the LU
-  Eigen::VectorXi ridx;  // the free rows R
+  Eigen::VectorXi ridx;  // the rows R with β ≠ 0 (the free rows of the min-Newton system)
   DenseMatrix J_dense;   // MCP dense Jacobian, or dense copy of sparse data
   // ---- Sparse linear algebra ----
   SparseMatrix J_sparse;                          // MCP sparse Jacobian, or sparse copy of dense data
@@ -115,6 +115,7 @@ struct NewtonMinSolver::Workspace {
   bool umf_analyzed = false;
   Eigen::UmfPackLU<SparseMatrix> umf;
 
+  // ---- Psi at the last stagnation_window + 1 iterations (MeritStagnated) ----
   std::array<double, NewtonMinOptions::kMaxStagnationWindow + 1> psi_history{};
 
   // ---- Counters and the reason of a failure ----
