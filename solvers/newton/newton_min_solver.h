@@ -2,13 +2,13 @@
 // NCP function (Pang 1990, Qi 1993, Facchinei–Pang 2003 §9.1; Siconos' mcp_newton_min_FBLSA), for box-MLCPs and
 // nonlinear MCPs. Why it is here beside `newton` (Fischer–Burmeister): its Newton system is the active-set one —
 // unit rows at the bounds, J_i on the free rows — so each step is an active-set guess, exact for an LCP once the
-// set is right, and its linear systems are the free rows only (cheaper than FB's, which keep every row that is not
-// trivially active). Its failure modes differ: Phi is not differentiable and ‖Phi‖² is not C¹, so the pure method
-// cycles between active sets or follows Newton on F out of its basin where FB's smooth merit would only slow down;
-// here every step is checked on FB's merit ½‖Phi_FB‖² (fischer_burmeister.h) and, when it does not descend,
-// replaced by FB's own Newton step and then by the merit's gradient step. Unlike `newton` it has no
-// proximal-perturbation restart: where its steps lead to a minimizer of the merit that is not a solution (Billups'
-// example; Josephy's NCP from x = 10·1, which `newton` solves) it ends in `stalled` with the residual it reached.
+// set is right, and its linear systems are those of the free rows only. Its failure modes differ: Phi is not
+// differentiable and ‖Phi‖² is not C¹, so the pure method cycles between active sets or follows Newton on F out of its
+// basin where FB's smooth merit would only slow down; here every step is checked on FB's merit ½‖Phi_FB‖²
+// (fischer_burmeister.h) and, when it does not descend, replaced by FB's own Newton step and then by the merit's
+// gradient step. Unlike `newton` it has no proximal-perturbation restart: where its steps lead to a minimizer of the
+// merit that is not a solution (Billups' example; Josephy's NCP from x = 10·1, which `newton` solves) it ends in
+// `stalled` with the residual it reached.
 #pragma once
 
 #include <memory>
