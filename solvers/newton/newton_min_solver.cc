@@ -1,7 +1,7 @@
 // Semismooth Newton on the min function with a Fischer–Burmeister line search (newton_min_solver.h).
 //
-// Units. G(z) = c∘F(z)/d (d = McpRowScales(J(z₀), c) fixed for the solve, c the variables' units) is F in units of
-// z; the min function is Phi_i = (z_i − Π_[l_i,u_i](z_i − G_i))/c_i, the natural residual of the verdict.
+// Units. G(z) = c∘F(z)/d (d = McpRowScales(J(z₀), c) fixed for the solve, or d = 1 with merit_scaling none; c the
+// variables' units) is F in units of z; the min function is Phi_i = (z_i − Π_[l_i,u_i](z_i − G_i))/c_i.
 // Iteration (Pang 1990; Qi 1993; Facchinei–Pang 2003 §9.1 and §9.3; Siconos' min_FBLSA):
 //   1. the active set of the natural map: z_i − G_i ≤ l_i → row at its lower bound, ≥ u_i → at its upper bound
 //      (ties count as active: either choice is an element of ∂_B Phi), otherwise free;
@@ -57,6 +57,8 @@ bool NewtonMinOptions::IsValid(std::string* why) const {
   };
   if (globalization != kFischerBurmeisterLineSearch && globalization != kNoGlobalization)
     return fail("globalization must be fb-line-search or none, got the code ", static_cast<int>(globalization));
+  if (merit_scaling != kJacobianRowScaling && merit_scaling != kNoRowScaling)
+    return fail("merit_scaling must be jacobian-rows or none, got the code ", static_cast<int>(merit_scaling));
   if (!(armijo_sigma > 0.0 && armijo_sigma < 0.5)) return fail("armijo_sigma must be in (0, 0.5), got ", armijo_sigma);
   if (!(backtrack_factor > 0.0 && backtrack_factor < 1.0))
     return fail("backtrack_factor must be in (0, 1), got ", backtrack_factor);
@@ -460,7 +462,11 @@ struct NewtonMinSolver::Workspace {
     const bool globalized = o.globalization == NewtonMinOptions::kFischerBurmeisterLineSearch;
     if (!EvalF(z, &F)) return Stop(Exit::kNumericalFailure, "F is NaN/Inf at the starting point");
     if (!UpdateJacobian()) return Exit::kNumericalFailure;
-    RowScalesOfJ(&reform_rows);
+    if (o.merit_scaling == NewtonMinOptions::kJacobianRowScaling) {
+      RowScalesOfJ(&reform_rows);
+    } else {
+      reform_rows.setOnes();
+    }
     if (!reform_rows.allFinite()) return Stop(Exit::kNumericalFailure, "the Jacobian's row scales are not finite");
     double psi = globalized ? Merit(z, F) : 0.0;
     for (;;) {
@@ -627,6 +633,9 @@ void NewtonMinSolver::BindOptions(OptionBinder* b) {
          {{"fb-line-search", NewtonMinOptions::kFischerBurmeisterLineSearch},
           {"none", NewtonMinOptions::kNoGlobalization}},
          "fb-line-search (Armijo on the Fischer-Burmeister merit, gradient fallback) or none (full min-Newton steps)");
+  b->Add("merit_scaling", &o.merit_scaling,
+         {{"jacobian-rows", NewtonMinOptions::kJacobianRowScaling}, {"none", NewtonMinOptions::kNoRowScaling}},
+         "jacobian-rows (F_i / max_j |J_ij| c_j at the start: invariant under row scaling) or none (F as given)");
   b->Add("armijo_sigma", &o.armijo_sigma, "Armijo constant sigma in (0, 0.5)");
   b->Add("backtrack_factor", &o.backtrack_factor, "step-length reduction factor in (0, 1)");
   b->Add("max_backtracks", &o.max_backtracks, "trial steps per line search");

@@ -30,7 +30,18 @@ struct NewtonMinOptions {
     kNoGlobalization = 1,
   };
 
+  // Values of merit_scaling: the row scales d of G = c∘F/d, the F that the active-set choice and the merit see.
+  enum MeritScaling : int {
+    // "jacobian-rows": d = McpRowScales(J(z₀), c), the verdict's row scales at the start. The run, and so the
+    // outcome, is the same after any positive scaling of F's rows or change of the variables' units.
+    kJacobianRowScaling = 0,
+    // "none": d = 1, F as the problem states it. Not invariant; on problems stated in natural units it can avoid
+    // minimizers of the merit that the start's scales create (Josephy's NCP from x = 10·1 is solved).
+    kNoRowScaling = 1,
+  };
+
   Globalization globalization = kFischerBurmeisterLineSearch;
+  MeritScaling merit_scaling = kJacobianRowScaling;
   // Armijo constant σ in Psi(z + t d) ≤ Psi(z) + σ t ∇Psiᵀd.
   double armijo_sigma = 1e-4;
   // Backtracking factor β: t ∈ {1, β, β², ...}.
@@ -60,7 +71,7 @@ struct NewtonMinOptions {
 };
 
 // Solves a box-MLCP (F = Mz + q, dense or sparse M) or a nonlinear MCP. Works in the units of the verdict: rows of F
-// divided by d = McpRowScales(J(z₀), c) at the start and variables in the problem's units c (MCP::variable_scale),
+// divided by d = McpRowScales(J(z₀), c) at the start (merit_scaling) and variables in the problem's units c,
 // so the active-set choice and the merit are unchanged by a positive scaling of F's rows. Stops when the scale-free
 // residual McpScaledResidual(z, F, l, u, McpRowScales(J(z), c), c) ≤ tolerance (a box-MLCP, which arrives
 // row-equilibrated, also needs its natural residual ≤ tolerance·(1 + ‖q‖∞), the base's second test).
