@@ -1,14 +1,11 @@
-// `newton-min`: semismooth Newton on the min (natural-map) function Phi(z) = z − Π_[l,u](z − F(z)), the other classic
-// NCP function (Pang 1990, Qi 1993, Facchinei–Pang 2003 §9.1; Siconos' mcp_newton_min_FBLSA), for box-MLCPs and
-// nonlinear MCPs. Why it is here beside `newton` (Fischer–Burmeister): its Newton system is the active-set one —
-// unit rows at the bounds, J_i on the free rows — so each step is an active-set guess, exact for an LCP once the
-// set is right, and its linear systems are those of the free rows only. Its failure modes differ: Phi is not
-// differentiable and ‖Phi‖² is not C¹, so the pure method cycles between active sets or follows Newton on F out of its
-// basin where FB's smooth merit would only slow down; here every step is checked on FB's merit ½‖Phi_FB‖²
-// (fischer_burmeister.h) and, when it does not descend, replaced by FB's own Newton step and then by the merit's
-// gradient step. Unlike `newton` it has no proximal-perturbation restart: where its steps lead to a minimizer of the
-// merit that is not a solution (Billups' example; Josephy's NCP from x = 10·1, which `newton` solves) it ends in
-// `stalled` with the residual it reached.
+// `newton-min`: semismooth Newton on the min (natural-map) function z − Π_[l,u](z − F(z)), the other classic NCP
+// function (Pang 1990, Qi 1993, Facchinei–Pang 2003 §9.1; Siconos' NewtonMin), for box-MLCPs and nonlinear MCPs. Here
+// beside `newton` (Fischer–Burmeister) because each of its steps is an active-set Newton step (unit rows at the
+// bounds, J on the free rows), exact for an LCP once the set is right, and it fails differently: the min function is
+// not differentiable, so the pure method cycles or follows Newton on F out of its basin. Every step is therefore
+// checked on FB's merit, with FB's Newton step and then the merit's gradient as fallbacks; there is no proximal
+// restart, so a minimizer of the merit that is not a solution ends in `stalled` (Billups' example; Josephy's NCP
+// from x = 10·1, which `newton` solves).
 #pragma once
 
 #include <memory>
