@@ -3,6 +3,7 @@
 // whose internals allocate.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 #include "problems/generators/random_problems.h"
@@ -109,7 +110,11 @@ std::vector<std::string> NonIpoptSolvers() {
 }
 
 INSTANTIATE_TEST_SUITE_P(EveryBackend, NoAllocation, ::testing::ValuesIn(NonIpoptSolvers()),
-                         [](const auto& info) { return info.param; });
+                         [](const auto& info) {  // test names allow no '-' (newton-min)
+                           std::string name = info.param;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
 
 TEST(AllocationCounter, SeesOperatorNewAndEigenAllocations) {
   if (!CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";

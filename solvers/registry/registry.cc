@@ -10,6 +10,7 @@
 #include "solvers/enumerative/enumerative_solver.h"
 #include "solvers/ipopt/ipopt_qp_solver.h"
 #include "solvers/lemke/lemke_solver.h"
+#include "solvers/newton/newton_min_solver.h"
 #include "solvers/newton/semismooth_newton_solver.h"
 #include "solvers/psor/psor_solver.h"
 #include "solvers/siconos/external_backends.h"
@@ -29,6 +30,7 @@ constexpr std::pair<std::string_view, std::unique_ptr<Solver> (*)()> kBackends[]
     {"newton", &Make<SemismoothNewtonSolver>},
     {"enum", &Make<EnumerativeSolver>},
     {"ipopt", &Make<IpoptQpSolver>},
+    {"newton-min", &Make<NewtonMinSolver>},
     // The default of the commands: one of the four above per problem (solvers/auto/auto_solver.h).
     {"auto", &Make<AutoSolver>},
 };
