@@ -29,6 +29,7 @@
 #include "mlcp_cst.h"
 #include "relay_cst.h"
 #include "solvers/siconos/external_backends.h"
+#include "solvers/siconos/siconos_mcp_solver.h"
 
 namespace smcbench {
 // Method table and wire format, shared by the backend and its worker (named, not anonymous: SiconosSession and
@@ -915,6 +916,7 @@ void AppendExternalBackends(std::vector<ExternalBackend>* backends) {
       {SpecOf(M::kMlcpDirectFb).info.name, &MakeSiconos<M::kMlcpDirectFb>},
   };
   backends->insert(backends->end(), std::begin(list), std::end(list));
+  AppendSiconosMcpBackends(backends);
 }
 
 }  // namespace smcbench
