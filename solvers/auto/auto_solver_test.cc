@@ -10,7 +10,6 @@
 
 #include "problems/generators/random_problems.h"
 #include "solvers/ipopt/ipopt_qp_solver.h"
-#include "solvers/newton/semismooth_newton_solver.h"
 #include "solvers/psor/psor_solver.h"
 
 namespace smcbench {
@@ -150,13 +149,46 @@ TEST(AutoSolver, NonlinearMcpGoesToNewton) {
 
 // ---------------------------------------------------------------- the MCP chain: newton → newton-min → ipopt
 
-// Billups' example again: newton without its proximal safeguard stalls at the merit minimizer near 0 (a failure
-// that proves nothing), ipopt's gap program solves it (its feasible set is x ≥ 1 + √1.01).
+// Billups' example (1995): F(x) = (x − 1)² − 1.01, x ≥ 0, solution 1 + √1.01.
 FunctionMCP Billups() {
   return FunctionMCP(
       Vector::Zero(1), Vector::Constant(1, kInf),
       [](const Vector& x, Vector* F) { (*F)[0] = (x[0] - 1.0) * (x[0] - 1.0) - 1.01; },
       [](const Vector& x, DenseMatrix* J) { (*J)(0, 0) = 2.0 * (x[0] - 1.0); }, "billups");
+}
+
+// Josephy's NCP (MCPLIB "josephy"): unique nondegenerate solution (√6/2, 0, 0, 1/2), MCPLIB's start (1, 1, 1, 1).
+// With a budget of one iteration newton stops at its iteration limit (a failure that proves nothing), while
+// ipopt's Newton refinement of its first iterate reaches the solution.
+FunctionMCP Josephy() {
+  return FunctionMCP(
+      Vector::Zero(4), Vector::Constant(4, kInf),
+      [](const Vector& x, Vector* F) {
+        (*F)[0] = 3 * x[0] * x[0] + 2 * x[0] * x[1] + 2 * x[1] * x[1] + x[2] + 3 * x[3] - 6;
+        (*F)[1] = 2 * x[0] * x[0] + x[0] + x[1] * x[1] + 3 * x[2] + 2 * x[3] - 2;
+        (*F)[2] = 3 * x[0] * x[0] + x[0] * x[1] + 2 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 1;
+        (*F)[3] = x[0] * x[0] + 3 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 3;
+      },
+      [](const Vector& x, DenseMatrix* J) {
+        *J << 6 * x[0] + 2 * x[1], 2 * x[0] + 4 * x[1], 1, 3,  //
+            4 * x[0] + 1, 2 * x[1], 3, 2,                      //
+            6 * x[0] + x[1], x[0] + 4 * x[1], 2, 3,            //
+            2 * x[0], 6 * x[1], 2, 3;
+      },
+      "josephy");
+}
+
+SolverOptions OneIterationFromMcplibStart() {
+  SolverOptions o;
+  o.warm_start = Vector::Ones(4);
+  o.max_iterations = 1;
+  return o;
+}
+
+Vector JosephySolution() {
+  Vector z(4);
+  z << std::sqrt(6.0) / 2, 0, 0, 0.5;
+  return z;
 }
 
 // A stand-in for a registered MCP backend that always fails without proof, counting its calls.
@@ -192,11 +224,6 @@ BackendLookup TestLookup(int* calls) {
   };
 }
 
-void SwitchOffNewtonSafeguard(AutoSolver* solver) {
-  static_cast<SemismoothNewtonSolver&>(solver->candidate(AutoCandidate::kNewton)).mutable_options()
-      .proximal_safeguard = false;
-}
-
 TEST(AutoSolverMcp, ChainSkipsNamesTheLookupDoesNotKnow) {
   AutoSolver without;
   const AutoChoice only_newton = without.McpChoice();
@@ -217,24 +244,23 @@ TEST(AutoSolverMcp, ChainSkipsNamesTheLookupDoesNotKnow) {
 
 TEST(AutoSolverMcp, AFailingFirstCandidateHandsOverToIpopt) {
   AutoSolver solver(AutoOptions{}, TestLookup(nullptr));
-  SwitchOffNewtonSafeguard(&solver);
-  const SolveResult r = solver.Solve(Billups());
+  const SolveResult r = solver.Solve(Josephy(), OneIterationFromMcplibStart());
   ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
   EXPECT_EQ(Chosen(r), AutoCandidate::kIpopt);
   EXPECT_EQ(r.GetDetail("fallbacks"), 1.0);
   EXPECT_EQ(r.solver, "auto");
-  EXPECT_NEAR(r.z[0], 1.0 + std::sqrt(1.01), 1e-9);
+  EXPECT_LE((r.z - JosephySolution()).cwiseAbs().maxCoeff(), 1e-8);
 }
 
 TEST(AutoSolverMcp, EveryFailingCandidateIsTriedInOrder) {
   int calls = 0;
   AutoSolver solver(AutoOptions{}, TestLookup(&calls));
-  SwitchOffNewtonSafeguard(&solver);
-  const SolveResult r = solver.Solve(Billups());
+  const SolveResult r = solver.Solve(Josephy(), OneIterationFromMcplibStart());
   ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
   EXPECT_EQ(calls, 1);
   EXPECT_EQ(Chosen(r), AutoCandidate::kIpopt);
   EXPECT_EQ(r.GetDetail("fallbacks"), 2.0);
+  EXPECT_LE((r.z - JosephySolution()).cwiseAbs().maxCoeff(), 1e-8);
 }
 
 TEST(AutoSolverMcp, FirstSuccessEndsTheChain) {
@@ -251,9 +277,8 @@ TEST(AutoSolverMcp, WithoutFallbackTheFirstFailureIsTheAnswer) {
   AutoOptions o;
   o.fallback = false;
   AutoSolver solver(o, TestLookup(nullptr));
-  SwitchOffNewtonSafeguard(&solver);
-  const SolveResult r = solver.Solve(Billups());
-  EXPECT_FALSE(r.solved());
+  const SolveResult r = solver.Solve(Josephy(), OneIterationFromMcplibStart());
+  EXPECT_EQ(r.status, SolveStatus::kIterationLimit) << r.message;
   EXPECT_EQ(Chosen(r), AutoCandidate::kNewton);
   EXPECT_EQ(r.GetDetail("fallbacks"), 0.0);
 }
