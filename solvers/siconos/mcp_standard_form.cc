@@ -14,9 +14,7 @@ struct McpStandardForm::Layout {
   Vector base, l, u;
 };
 
-namespace {
-
-McpStandardForm::Layout MakeLayout(const MCP& original) {
+McpStandardForm::Layout McpStandardForm::MakeLayout(const MCP& original) {
   McpStandardForm::Layout out;
   const int n = original.size();
   const Vector& l = original.l();
@@ -50,8 +48,6 @@ McpStandardForm::Layout MakeLayout(const MCP& original) {
   out.l.head(out.num_equations).setConstant(-kInf);
   return out;
 }
-
-}  // namespace
 
 McpStandardForm::McpStandardForm(const MCP& original) : McpStandardForm(original, MakeLayout(original)) {}
 

@@ -44,6 +44,7 @@ class McpStandardForm final : public MCP {
 
  private:
   struct Layout;
+  static Layout MakeLayout(const MCP& original);
   McpStandardForm(const MCP& original, const Layout& layout);
 
   const MCP& original_;

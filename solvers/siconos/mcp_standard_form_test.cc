@@ -44,7 +44,7 @@ TEST(McpStandardForm, KnownSolutionMapsToASolutionAndBack) {
     EXPECT_LE(NaturalResidual(form, x), 1e-14) << "sparse " << sparse;
     EXPECT_GE(x.tail(form.num_complementarity()).minCoeff(), 0.0);
     form.ToOriginal(x, &z);
-    EXPECT_EQ(z, k.z_star);
+    EXPECT_LE((z - k.z_star).cwiseAbs().maxCoeff(), 1e-15);  // z = u − (u − z*) rounds
   }
 }
 

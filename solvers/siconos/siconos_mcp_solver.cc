@@ -170,7 +170,7 @@ void SiconosMcpSolver::DoSolveMCP(const MCP& problem, const SolverOptions& optio
   mcp.nabla_Fmcp = NM_create(NM_DENSE, N, N);
   mcp.env = &env;
   const int id = method_ == SiconosMcpMethod::kNewtonFb ? SICONOS_MCP_NEWTON_FB_FBLSA : SICONOS_MCP_NEWTON_MIN_FBLSA;
-  SolverOptions* so = solver_options_create(id);
+  ::SolverOptions* so = solver_options_create(id);  // Siconos' option struct, not ours
   const int budget = options.max_iterations > 0 ? options.max_iterations : so->iparam[SICONOS_IPARAM_MAX_ITER];
   so->iparam[SICONOS_IPARAM_MAX_ITER] = budget;
   so->iparam[SICONOS_IPARAM_ITER_DONE] = 0;
