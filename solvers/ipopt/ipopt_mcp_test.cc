@@ -405,6 +405,74 @@ TEST(IpoptMcp, NoSolutionIsNotSolvedAndNotInfeasible) {
   EXPECT_FALSE(r.message.empty());
 }
 
+// F(x) = (x − 2)² + 0.1 > 0 on [0, ∞): the solution is x = 0, but the gap x·F(x) has a local minimizer at
+// x = (8 + √14.8)/6 ≈ 1.975 with x·F(x) ≈ 0.2 > 0 (G ≈ 0.1 in the program's units, F/d with d = |F'(3)| = 2). From
+// x = 3, Ipopt with the limited-memory Hessian converges there: without the refinement that is a stationary point
+// with a positive gap (stalled, the gap in the message); the refinement's active set (F/d ≫ x) then takes it to the
+// solution. (With the gap-only Hessian, which lacks F's curvature weighted by the nonzero multiplier there, Ipopt
+// does not converge to that point within its iteration limit.)
+TEST(IpoptMcp, StationaryPointWithPositiveGapIsStalledUnlessRefined) {
+  const FunctionMCP mcp(
+      Vector::Zero(1), Vector::Constant(1, kInf),
+      [](const Vector& x, Vector* F) { (*F)[0] = (x[0] - 2.0) * (x[0] - 2.0) + 0.1; },
+      [](const Vector& x, DenseMatrix* J) { (*J)(0, 0) = 2.0 * (x[0] - 2.0); }, "positive-gap");
+  SolverOptions o;
+  o.warm_start = Vector::Constant(1, 3.0);
+  IpoptOptions io;
+  io.polish = false;
+  io.mcp_hessian = IpoptOptions::kLimitedMemory;
+  IpoptQpSolver raw;
+  raw.set_options(io);
+  const SolveResult stalled = raw.Solve(mcp, o);
+  ASSERT_EQ(stalled.status, SolveStatus::kStalled) << stalled.message;
+  EXPECT_NE(stalled.message.find("complementarity gap G = 0.099"), std::string::npos) << stalled.message;
+  EXPECT_NEAR(stalled.z[0], (8.0 + std::sqrt(14.8)) / 6.0, 1e-4);
+  io.polish = true;
+  IpoptQpSolver refined;
+  refined.set_options(io);
+  const SolveResult r = refined.Solve(mcp, o);
+  ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
+  EXPECT_EQ(r.z[0], 0.0);
+}
+
+// Ipopt keeps the sparse Jacobian's pattern at the start: an entry that appears later (here ∂F0/∂z1 = z0, not
+// stored at z0 = 0) is a numerical failure naming it, never a wrong structure handed to Ipopt.
+class GrowingPatternMcp final : public MCP {
+ public:
+  GrowingPatternMcp() : MCP(Vector::Constant(2, -kInf), Vector::Constant(2, kInf), "growing-pattern") {}
+  void Evaluate(const Vector& z, Vector* F) const override {
+    (*F)[0] = z[0] + z[0] * z[1] - 2.0;
+    (*F)[1] = z[1] - 1.0;
+  }
+  JacobianKind jacobian_kind() const override { return JacobianKind::kSparse; }
+  void JacobianSparse(const Vector& z, SparseMatrix* J) const override {
+    DenseMatrix D(2, 2);
+    D << 1.0 + z[1], z[0], 0.0, 1.0;
+    *J = D.sparseView();
+  }
+};
+
+TEST(IpoptMcp, SparseJacobianEntryOutsideTheStartingPatternIsNamed) {
+  const GrowingPatternMcp mcp;
+  IpoptQpSolver solver;
+  SolverOptions o;
+  o.warm_start = Vector::Zero(2);
+  const SolveResult r = solver.Solve(mcp, o);
+  // The refinement does not need a fixed pattern: it may still finish the job (solution (1, 1)).
+  if (r.solved()) {
+    EXPECT_NEAR(r.z[0], 1.0, 1e-10);
+  } else {
+    EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
+    EXPECT_NE(r.message.find("(0, 1)"), std::string::npos) << r.message;
+  }
+  IpoptOptions io;
+  io.polish = false;
+  solver.set_options(io);
+  const SolveResult raw = solver.Solve(mcp, o);
+  EXPECT_EQ(raw.status, SolveStatus::kNumericalFailure) << raw.message;
+  EXPECT_NE(raw.message.find("(0, 1)"), std::string::npos) << raw.message;
+}
+
 TEST(IpoptMcp, SolvedStartNeedsNoIpoptRun) {
   const FunctionMCP mcp = Josephy();
   SolverOptions o;
