@@ -17,17 +17,17 @@
 // structure; an entry outside it later is a kNumericalFailure naming it). The Hessian of the Lagrangian is
 // ∇²G + Σ λ_i ∇²F_i / d_i, and F's second derivatives are not available. Two choices (IpoptOptions::mcp_hessian):
 //   gap (default): ∇²G only, constant (+1 at (w_k, y_i), −1 at (v_k, y_i)). Exact when F is affine, so a box-MLCP
-//     posed as an MCP gets the box backend's Newton steps; for a nonlinear F the dropped curvature only slows
-//     Ipopt's final convergence, which the Newton refinement below takes over (quadratic where J is nonsingular
-//     on the active set). Cheap and with the sparsity of the problem.
+//     posed as an MCP gets the box backend's Newton steps; for a nonlinear F the dropped curvature slows
+//     Ipopt's convergence (badly where the multipliers are large, below), and the Newton refinement takes over near
+//     a solution (quadratic where J is nonsingular on the active set). Cheap and with the sparsity of the problem.
 //   limited-memory: Ipopt's L-BFGS approximation of the whole Lagrangian ("hessian_approximation limited-memory"),
 //     which learns F's curvature from gradient differences but not the exact bilinear part.
 //   Neither dominates (ipopt_mcp_test.cc): gap converges where F is affine or mildly nonlinear and from a start at a
 //   critical point of F (Billups' example from x = 1, which limited-memory calls locally infeasible); where a
 //   stationary point of the program has a nonzero multiplier on a curved F, gap misses the curvature and may not
-//   converge within the iteration limit, which limited-memory reaches in a few iterations. Gap is the default:
-//   exact for affine F (a box-MLCP posed as an MCP), and it solved every problem of the tests that limited-memory
-//   solved except that stationary point's neighbourhood.
+//   converge to it, which limited-memory reaches in a few iterations (with the refinement both end at the solution
+//   there, gap after far more iterations). Gap is the default: exact for affine F (a box-MLCP posed as an MCP), and
+//   with the refinement it solved every test problem limited-memory solved, and Billups' from x = 1.
 //
 // Refinement (the MCP counterpart of the box backend's active-set polish). From a point z: clip to [l,u]; then up to
 // mcp_newton_steps times: identify the active set from the scaled natural map p_i = z_i − c_i F_i / d_i (d: row

@@ -433,6 +433,13 @@ TEST(IpoptMcp, StationaryPointWithPositiveGapIsStalledUnlessRefined) {
   const SolveResult r = refined.Solve(mcp, o);
   ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
   EXPECT_EQ(r.z[0], 0.0);
+  // The default (gap-only Hessian) with the refinement: solved as well, by refining an iterate, after far more
+  // Ipopt iterations.
+  IpoptQpSolver by_default;
+  const SolveResult d = by_default.Solve(mcp, o);
+  ASSERT_EQ(d.status, SolveStatus::kSolved) << d.message;
+  EXPECT_EQ(d.z[0], 0.0);
+  EXPECT_GT(d.iterations, 10 * r.iterations);
 }
 
 // Ipopt keeps the sparse Jacobian's pattern at the start: an entry that appears later (here ∂F0/∂z1 = z0, not
