@@ -174,8 +174,8 @@ void SiconosMcpSolver::DoSolveMCP(const MCP& problem, const SolverOptions& optio
   const int budget = options.max_iterations > 0 ? options.max_iterations : so->iparam[SICONOS_IPARAM_MAX_ITER];
   so->iparam[SICONOS_IPARAM_MAX_ITER] = budget;
   so->iparam[SICONOS_IPARAM_ITER_DONE] = 0;
-  so->dparam[SICONOS_DPARAM_TOL] =
-      std::max(options.tolerance / std::sqrt(static_cast<double>(N)), 10.0 * N * std::numeric_limits<double>::epsilon());
+  const double floor = 10.0 * N * std::numeric_limits<double>::epsilon();
+  so->dparam[SICONOS_DPARAM_TOL] = std::max(options.tolerance / std::sqrt(static_cast<double>(N)), floor);
   so->dparam[SICONOS_DPARAM_RESIDU] = NAN;
   numerics_set_verbose(options.verbosity >= 2 ? 1 : 0);
   int info = -1;
