@@ -56,14 +56,19 @@
 // point), early_stop (0 none, 1 merit met at an iterate, 2 refined iterate, 3 the start already solved it,
 // 4 refined warm start), mcp_hessian (0 gap, 1 limited-memory).
 //
+// An exception from F or J is not a status: it reaches the caller (Ipopt would swallow it; it is kept and rethrown
+// once Ipopt returned).
+//
 // Allocation: Ipopt allocates on every solve; our buffers are members reused while the size stays.
 #include "solvers/ipopt/ipopt_mcp.h"
 
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <exception>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <Eigen/LU>
@@ -178,6 +183,9 @@ struct IpoptMcpSession::Impl {
   DenseMatrix Jd_;
   SparseMatrix Js_;
   std::string jacobian_error_;
+  // An exception from F or J inside Ipopt's callbacks (Ipopt would swallow it): rethrown once Ipopt returned, so it
+  // reaches the caller as from every backend.
+  std::exception_ptr callback_error_;
   std::vector<int> mult_row_;
   std::vector<signed char> mult_kind_;
   // Sparse: the Jacobian's pattern at the start (column-major), Ipopt's fixed structure.
@@ -212,6 +220,18 @@ class McpGapTnlp final : public Ipopt::TNLP {
  public:
   explicit McpGapTnlp(IpoptMcpSession::Impl* s) : s_(s) {}
 
+  // Runs a callback that calls the caller's F or J: an exception is kept for the session and stops Ipopt.
+  template <typename Body>
+  bool Guarded(Body&& body) {
+    if (s_->callback_error_) return false;
+    try {
+      return body();
+    } catch (...) {
+      s_->callback_error_ = std::current_exception();
+      return false;
+    }
+  }
+
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& style) override {
     n = s_->n_ + static_cast<Index>(s_->mult_row_.size());
     m = s_->n_;
@@ -239,6 +259,10 @@ class McpGapTnlp final : public Ipopt::TNLP {
   // y from the start; multipliers from the sign split of F/d there (Ipopt pushes them into the interior).
   bool get_starting_point(Index n, bool init_x, Number* x, bool init_z, Number* z_l, Number* z_u, Index m,
                           bool init_lambda, Number* lambda) override {
+    return Guarded([&] { return StartingPoint(n, init_x, x, init_z, z_l, z_u, m, init_lambda, lambda); });
+  }
+  bool StartingPoint(Index n, bool init_x, Number* x, bool init_z, Number* z_l, Number* z_u, Index m,
+                     bool init_lambda, Number* lambda) {
     if (init_x) {
       for (Index i = 0; i < m; ++i) x[i] = s_->start_[i] / s_->c_[i];
       s_->EvaluateF(s_->start_, &s_->F_);
@@ -301,7 +325,10 @@ class McpGapTnlp final : public Ipopt::TNLP {
   }
 
   // g_i = F_i(c∘y)/d_i − w + v − y_fixed.
-  bool eval_g(Index, const Number* x, bool, Index m, Number* g) override {
+  bool eval_g(Index n, const Number* x, bool new_x, Index m, Number* g) override {
+    return Guarded([&] { return Constraints(n, x, new_x, m, g); });
+  }
+  bool Constraints(Index, const Number* x, bool, Index m, Number* g) {
     s_->ToZ(x, &s_->z_);
     if (!s_->EvaluateF(s_->z_, &s_->F_)) return false;  // Ipopt then shortens the step
     for (Index i = 0; i < m; ++i) g[i] = s_->F_[i] / s_->d_[i];
@@ -312,7 +339,11 @@ class McpGapTnlp final : public Ipopt::TNLP {
     return true;
   }
 
-  bool eval_jac_g(Index, const Number* x, bool, Index m, Index, Index* row, Index* col, Number* values) override {
+  bool eval_jac_g(Index nx, const Number* x, bool new_x, Index m, Index nele, Index* row, Index* col,
+                  Number* values) override {
+    return Guarded([&] { return ConstraintJacobian(nx, x, new_x, m, nele, row, col, values); });
+  }
+  bool ConstraintJacobian(Index, const Number* x, bool, Index m, Index, Index* row, Index* col, Number* values) {
     const int n = s_->n_;
     const Index entries = JacobianEntries();
     const int count = static_cast<int>(s_->mult_row_.size());
@@ -391,7 +422,7 @@ class McpGapTnlp final : public Ipopt::TNLP {
   bool intermediate_callback(Ipopt::AlgorithmMode mode, Index iter, Number, Number, Number, Number, Number, Number,
                              Number, Number, Index, const Ipopt::IpoptData*,
                              Ipopt::IpoptCalculatedQuantities*) override {
-    return s_->OnIteration(mode, iter);
+    return Guarded([&] { return s_->OnIteration(mode, iter); });
   }
 
  private:
@@ -707,7 +738,9 @@ void IpoptMcpSession::Impl::Solve(const MCP& p, const SolverOptions& options, co
     app_ = new Ipopt::IpoptApplication(/*create_console_out=*/false);
     tnlp_ = new McpGapTnlp(this);
   }
+  callback_error_ = nullptr;
   const Ipopt::ApplicationReturnStatus status = RunIpopt(options, o);
+  if (callback_error_) std::rethrow_exception(std::exchange(callback_error_, nullptr));
   result->SetDetail("ipopt_status", static_cast<double>(status));
   result->iterations = iterations_;
   result->SetDetail("objective", objective_);

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <random>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
@@ -478,6 +479,26 @@ TEST(IpoptMcp, SparseJacobianEntryOutsideTheStartingPatternIsNamed) {
   const SolveResult raw = solver.Solve(mcp, o);
   EXPECT_EQ(raw.status, SolveStatus::kNumericalFailure) << raw.message;
   EXPECT_NE(raw.message.find("(0, 1)"), std::string::npos) << raw.message;
+}
+
+// An exception from F inside Ipopt's iterations reaches the caller (Ipopt would swallow it), as from every backend.
+TEST(IpoptMcp, ExceptionFromFInsideIpoptReachesTheCaller) {
+  int calls = 0;
+  const FunctionMCP mcp(
+      Vector::Zero(1), Vector::Constant(1, kInf),
+      [&calls](const Vector& x, Vector* F) {
+        if (++calls > 3) throw std::runtime_error("F failed");
+        (*F)[0] = x[0] - 1.0;
+      },
+      [](const Vector&, DenseMatrix* J) { (*J)(0, 0) = 1.0; }, "throws");
+  IpoptQpSolver solver;
+  SolverOptions o;
+  o.warm_start = Vector::Constant(1, 3.0);
+  EXPECT_THROW(solver.Solve(mcp, o), std::runtime_error);
+  calls = -1000;  // the same instance solves the next problem normally
+  const SolveResult r = solver.Solve(mcp, o);
+  ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
+  EXPECT_NEAR(r.z[0], 1.0, 1e-12);
 }
 
 TEST(IpoptMcp, SolvedStartNeedsNoIpoptRun) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <exception>
 #include <limits>
 #include <sstream>
 #include <string>
@@ -25,7 +26,7 @@ struct CallbackEnv {
   const McpStandardForm* form = nullptr;
   Vector x, F;
   DenseMatrix J;
-  bool threw = false;
+  std::exception_ptr error;  // the first exception from F or J, rethrown once Siconos returned
 };
 
 void EvaluateCallback(void* env, int n, double* x, double* F) {
@@ -34,8 +35,8 @@ void EvaluateCallback(void* env, int n, double* x, double* F) {
     e->x = Eigen::Map<const Vector>(x, n);
     e->form->Evaluate(e->x, &e->F);
     std::copy(e->F.data(), e->F.data() + n, F);
-  } catch (...) {  // never through Siconos' C frames
-    e->threw = true;
+  } catch (...) {  // never through Siconos' C frames: NaN there (its line search rejects it), rethrown after
+    if (!e->error) e->error = std::current_exception();
     std::fill(F, F + n, std::numeric_limits<double>::quiet_NaN());
   }
 }
@@ -47,7 +48,7 @@ void JacobianCallback(void* env, int n, double* x, NumericsMatrix* J) {
     e->form->JacobianDense(e->x, &e->J);
     std::memcpy(J->matrix0, e->J.data(), sizeof(double) * static_cast<std::size_t>(n) * n);  // both column-major
   } catch (...) {
-    e->threw = true;
+    if (!e->error) e->error = std::current_exception();
     std::fill(J->matrix0, J->matrix0 + static_cast<std::size_t>(n) * n, std::numeric_limits<double>::quiet_NaN());
   }
 }
@@ -191,6 +192,7 @@ void SiconosMcpSolver::DoSolveMCP(const MCP& problem, const SolverOptions& optio
   solver_options_delete(so);
   NM_free(mcp.nabla_Fmcp);
   numerics_set_verbose(0);
+  if (env.error) std::rethrow_exception(env.error);
 
   result->iterations = iterations;
   result->SetDetail("siconos_info", info);
@@ -208,9 +210,6 @@ void SiconosMcpSolver::DoSolveMCP(const MCP& problem, const SolverOptions& optio
   if (!result->z.allFinite()) {
     result->status = SolveStatus::kNumericalFailure;
     msg << "Siconos returned a non-finite z (info " << info << ")";
-  } else if (env.threw) {
-    result->status = SolveStatus::kNumericalFailure;
-    msg << "F or its Jacobian threw an exception during Siconos' iterations (turned into NaN)";
   } else if (!form.jacobian_error().empty()) {
     result->status = SolveStatus::kNumericalFailure;
     msg << form.jacobian_error();

@@ -10,7 +10,8 @@
 //
 // What is checked before Siconos runs (a status, never a call): F finite and J of size n×n at the start
 // (kNumericalFailure naming the entry or the size), the rewritten size ≤ max_size (kSizeLimit). Our callbacks
-// never let an exception through Siconos' C code: one becomes NaN entries, which Siconos' line search rejects.
+// never let an exception through Siconos' C code: it becomes NaN entries for Siconos, and is rethrown to the caller
+// once Siconos returned (an exception from F is the caller's, not a status).
 //
 // Status from Siconos' `info` (detail siconos_info; its own error, the 2-norm of the min-map residual of the
 // rewritten problem plus that of its equations, as siconos_error): a non-finite z is kNumericalFailure; info 0 with

@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
 #include <string>
 
 #include "solvers/registry/registry.h"
@@ -124,6 +125,29 @@ TEST(SiconosMcp, WrongSizeJacobianIsANumericalFailureNamingTheSize) {
   const SolveResult r = solver.Solve(mcp);
   EXPECT_EQ(r.status, SolveStatus::kNumericalFailure);
   EXPECT_NE(r.message.find("3x2"), std::string::npos) << r.message;
+}
+
+// An exception from F inside Siconos' iterations never crosses its C frames; it reaches the caller afterwards.
+TEST(SiconosMcp, ExceptionFromFReachesTheCallerAfterSiconosReturns) {
+  int calls = 0;
+  const FunctionMCP mcp(
+      Vector::Zero(1), Vector::Constant(1, kInf),
+      [&calls](const Vector& x, Vector* F) {
+        if (++calls > 3) throw std::runtime_error("F failed");
+        (*F)[0] = x[0] * x[0] - 1.0;
+      },
+      [](const Vector& x, DenseMatrix* J) { (*J)(0, 0) = 2.0 * x[0]; }, "throws");
+  for (const SiconosMcpMethod method : kMethods) {
+    calls = 0;
+    SiconosMcpSolver solver(method);
+    SolverOptions o;
+    o.warm_start = Vector::Constant(1, 3.0);
+    EXPECT_THROW(solver.Solve(mcp, o), std::runtime_error);
+    calls = -1000;
+    const SolveResult r = solver.Solve(mcp, o);
+    ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
+    EXPECT_NEAR(r.z[0], 1.0, 1e-10);
+  }
 }
 
 TEST(SiconosMcp, IterationLimitAtTheBudget) {
