@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <exception>
 #include <limits>
@@ -17,6 +18,7 @@
 #include "NumericsVerbose.h"
 #include "SolverOptions.h"
 #include "solvers/siconos/mcp_standard_form.h"
+#include "solvers/siconos/swapped_stdio.h"
 
 namespace smcbench {
 namespace {
@@ -106,7 +108,9 @@ bool SiconosMcpOptions::IsValid(std::string* why) const {
 }
 
 SiconosMcpSolver::SiconosMcpSolver(SiconosMcpMethod method) : method_(method) {}
-SiconosMcpSolver::~SiconosMcpSolver() = default;
+SiconosMcpSolver::~SiconosMcpSolver() {
+  if (stdio_sink_ != nullptr) std::fclose(stdio_sink_);
+}
 
 const SolverInfo& SiconosMcpSolver::info() const { return InfoOf(method_); }
 
@@ -180,7 +184,10 @@ void SiconosMcpSolver::DoSolveMCP(const MCP& problem, const SolverOptions& optio
   so->dparam[SICONOS_DPARAM_RESIDU] = NAN;
   numerics_set_verbose(options.verbosity >= 2 ? 1 : 0);
   int info = -1;
+  // Some of Siconos' messages are unconditional printf (a failed LU): silenced unless the caller asked for them.
+  if (options.verbosity < 2 && stdio_sink_ == nullptr) stdio_sink_ = std::fopen("/dev/null", "we");
   if (!TimeLimitReached()) {
+    const SwappedStdio swapped(options.verbosity < 2 ? stdio_sink_ : nullptr);
     if (method_ == SiconosMcpMethod::kNewtonFb) {
       mcp_newton_FB_FBLSA(&mcp, x_.data(), F_.data(), &info, so);
     } else {

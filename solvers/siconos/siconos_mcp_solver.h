@@ -25,6 +25,7 @@
 // warm start reaches Siconos through the rewriting (box multipliers from F's sign).
 #pragma once
 
+#include <cstdio>
 #include <memory>
 #include <vector>
 
@@ -50,6 +51,8 @@ class SiconosMcpSolver final : public BackendWithOptions<SiconosMcpOptions> {
  public:
   explicit SiconosMcpSolver(SiconosMcpMethod method);
   ~SiconosMcpSolver() override;
+  SiconosMcpSolver(const SiconosMcpSolver&) = delete;
+  SiconosMcpSolver& operator=(const SiconosMcpSolver&) = delete;
 
   const SolverInfo& info() const override;
   SiconosMcpMethod method() const { return method_; }
@@ -64,6 +67,7 @@ class SiconosMcpSolver final : public BackendWithOptions<SiconosMcpOptions> {
  private:
   SiconosMcpMethod method_;
   std::vector<double> x_, F_;  // Siconos' unknowns (start in, answer out) and its F at the answer
+  std::FILE* stdio_sink_ = nullptr;  // /dev/null as a C stream, opened on the first quiet solve
 };
 
 // Appends siconos-mcp-newton-fb and siconos-mcp-newton-min (AppendExternalBackends calls it).
