@@ -2,6 +2,9 @@
 
 #include <Eigen/Cholesky>
 #include <cmath>
+#include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "solvers/enumerative/enumerative_solver.h"
 #include "solvers/lemke/lemke_solver.h"
@@ -12,7 +15,8 @@ namespace smcbench {
 
 namespace {
 
-constexpr std::string_view kCandidateNames[kAutoCandidateCount] = {"enum", "psor", "lemke", "newton"};
+constexpr std::string_view kCandidateNames[kAutoCandidateCount] = {"enum",       "psor", "lemke", "newton",
+                                                                   "newton-min", "ipopt"};
 
 // Whether the chain goes on after a candidate returned `status`: not after an answer, a proof (kInfeasible from
 // an exact backend), the caller's spent time budget, or options every candidate would refuse.
@@ -102,11 +106,54 @@ bool AutoOptions::IsValid(std::string* why) const {
 
 AutoSolver::AutoSolver() : AutoSolver(AutoOptions{}) {}
 
-AutoSolver::AutoSolver(const AutoOptions& options) : BackendWithOptions(options) {
+AutoSolver::AutoSolver(const AutoOptions& options) : AutoSolver(options, BackendLookup()) {}
+
+AutoSolver::AutoSolver(const AutoOptions& options, BackendLookup lookup)
+    : BackendWithOptions(options), lookup_(std::move(lookup)) {
   candidates_[static_cast<int>(AutoCandidate::kEnum)] = std::make_unique<EnumerativeSolver>();
   candidates_[static_cast<int>(AutoCandidate::kPsor)] = std::make_unique<PsorSolver>();
   candidates_[static_cast<int>(AutoCandidate::kLemke)] = std::make_unique<LemkeSolver>();
   candidates_[static_cast<int>(AutoCandidate::kNewton)] = std::make_unique<SemismoothNewtonSolver>();
+  for (const AutoCandidate own : {AutoCandidate::kEnum, AutoCandidate::kPsor, AutoCandidate::kLemke,
+                                  AutoCandidate::kNewton}) {
+    looked_up_[static_cast<int>(own)] = true;
+  }
+}
+
+Solver* AutoSolver::FindCandidate(AutoCandidate c) {
+  const int i = static_cast<int>(c);
+  if (!looked_up_[i]) {
+    looked_up_[i] = true;
+    if (lookup_) candidates_[i] = lookup_(kCandidateNames[i]);
+  }
+  return candidates_[i].get();
+}
+
+Solver& AutoSolver::candidate(AutoCandidate c) {
+  Solver* solver = FindCandidate(c);
+  if (solver == nullptr) {
+    throw std::logic_error("auto: candidate '" + std::string(AutoCandidateName(static_cast<int>(c))) +
+                           "' is not registered in this build");
+  }
+  return *solver;
+}
+
+const Solver& AutoSolver::candidate(AutoCandidate c) const {
+  const Solver* solver = candidates_[static_cast<int>(c)].get();
+  if (solver == nullptr) {
+    throw std::logic_error("auto: candidate '" + std::string(AutoCandidateName(static_cast<int>(c))) +
+                           "' is not created (non-const candidate() or FindCandidate creates it)");
+  }
+  return *solver;
+}
+
+AutoChoice AutoSolver::McpChoice() {
+  AutoChoice c;
+  for (const AutoCandidate candidate : {AutoCandidate::kNewton, AutoCandidate::kNewtonMin, AutoCandidate::kIpopt}) {
+    Solver* solver = FindCandidate(candidate);
+    if (solver != nullptr && solver->info().mcp) c.order[c.count++] = candidate;
+  }
+  return c;
 }
 
 AutoSolver::~AutoSolver() = default;
@@ -116,7 +163,8 @@ const SolverInfo& AutoSolver::info() const {
       "auto",
       "picks per problem the fastest backend that is exact or reliable for its class: enum (dense, few rows with "
       "a choice), psor (dense SPD, well conditioned), lemke (other dense), newton (sparse, nonlinear MCP); on a "
-      "failure that proves nothing it tries the next (lemke, newton); details chosen, fallbacks",
+      "failure that proves nothing it tries the next (lemke, newton; MCPs: newton-min, ipopt); details chosen, "
+      "fallbacks",
       "docs/auto.md (the rule and the measurements behind it); the chosen backend's own reference",
       /*dense=*/true,
       /*sparse=*/true,
@@ -226,9 +274,33 @@ void AutoSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, S
   LabelAutoAnswer(choice.order[at], fallbacks, result);
 }
 
+// The box chain's rule for passing on, over the MCP chain (no backend there is exact: nothing it says is a proof).
 void AutoSolver::DoSolveMCP(const MCP& problem, const SolverOptions& options, SolveResult* result) {
-  candidate(AutoCandidate::kNewton).Solve(problem, UntimedOptions(options), result);
-  LabelAutoAnswer(AutoCandidate::kNewton, 0, result);
+  const AutoChoice choice = McpChoice();
+  const SolverOptions& given = UntimedOptions(options);
+  const int last = options_.fallback ? choice.count - 1 : 0;
+  int at = 0;
+  std::string trail;
+  for (;;) {
+    Solver& backend = candidate(choice.order[at]);
+    backend.Solve(problem, given, result);
+    if (at == last || !PassOn(result->status, /*exact=*/false)) break;
+    trail += std::string(trail.empty() ? "" : "; ") + std::string(backend.info().name) + " " +
+             std::string(ToString(result->status)) + (result->message.empty() ? "" : " (" + result->message + ")");
+    ++at;
+  }
+  const Solver& answered = candidate(choice.order[at]);
+  if (result->status == SolveStatus::kInfeasible) {
+    result->status = SolveStatus::kNumericalFailure;
+    result->message = std::string(answered.info().name) + " reported infeasible, which is not a proof for a "
+                      "nonlinear MCP: " + result->message;
+  }
+  if (!trail.empty() && !result->solved()) {
+    result->message = "after " + trail + ": " + std::string(answered.info().name) + " " +
+                      std::string(ToString(result->status)) + (result->message.empty() ? "" : " (" +
+                      result->message + ")");
+  }
+  LabelAutoAnswer(choice.order[at], at, result);
 }
 
 }  // namespace smcbench

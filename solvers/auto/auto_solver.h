@@ -12,7 +12,10 @@
 //     faster than lemke from M's condition estimate
 //     and the row counts (psor_min_speedup)         → psor, then lemke, then newton
 //   any other dense M                               → lemke, then newton
-//   nonlinear MCP                                   → newton
+//   nonlinear MCP                                   → newton, then newton-min, then ipopt
+// The MCP candidates after newton are created by registry name through the BackendLookup the registry hands auto
+// (auto cannot link the registry, which lists auto itself); a name the lookup does not know is skipped, so the
+// chain is whatever subset of newton → newton-min → ipopt is built in.
 // A candidate's answer ends the chain when it is solved, when it is a proof (kInfeasible from an exact backend),
 // when the caller's time limit ran out (kTimeLimit: the budget is spent) or when the options were refused (every
 // candidate would refuse them). Any other status (iteration limit, stall, ray, singular, numerical failure, a
@@ -27,6 +30,7 @@
 
 #include <array>
 #include <cstdint>
+#include <functional>
 #include <memory>
 #include <string>
 #include <string_view>
@@ -43,10 +47,13 @@ enum class AutoCandidate : int {
   kPsor = 1,
   kLemke = 2,
   kNewton = 3,
+  kNewtonMin = 4,  // MCPs only, when registered
+  kIpopt = 5,      // MCPs only
 };
-inline constexpr int kAutoCandidateCount = 4;
+inline constexpr int kAutoCandidateCount = 6;
 
-// Registry name of candidate `index` ("enum", "psor", "lemke", "newton"); "" outside [0, kAutoCandidateCount).
+// Registry name of candidate `index` ("enum", "psor", "lemke", "newton", "newton-min", "ipopt"); "" outside
+// [0, kAutoCandidateCount).
 std::string_view AutoCandidateName(int index);
 // The inverse: the candidate index of a registry name, −1 for a name that is not a candidate.
 int AutoCandidateIndex(std::string_view name);
@@ -55,6 +62,9 @@ int AutoCandidateIndex(std::string_view name);
 // "fallbacks" = how many candidates failed before it. Auto's Solve uses it, and so does a caller whose session or
 // time-stepper called auto's choice directly (DelegateFor) and reports the answer as auto's.
 void LabelAutoAnswer(AutoCandidate chosen, int fallbacks, SolveResult* result);
+
+// A fresh backend with default options for a registry name, or nullptr for a name that is not registered.
+using BackendLookup = std::function<std::unique_ptr<Solver>(std::string_view name)>;
 
 struct AutoOptions {
   // Dense problems with at most this many rows with a choice of state go to enum (exact; its search grows as
@@ -85,6 +95,8 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
  public:
   AutoSolver();
   explicit AutoSolver(const AutoOptions& options);
+  // lookup creates the candidates auto does not build itself (newton-min, ipopt: the MCP chain), on first use.
+  AutoSolver(const AutoOptions& options, BackendLookup lookup);
   ~AutoSolver() override;
   AutoSolver(const AutoSolver&) = delete;
   AutoSolver& operator=(const AutoSolver&) = delete;
@@ -96,9 +108,14 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
   Solver* DelegateFor(const BoxMLCP& problem, const SolverOptions& options) override;
   // The candidates auto tries on this problem, in order (cached per matrix_id; may cost a Cholesky of M once).
   const AutoChoice& ChoiceFor(const BoxMLCP& problem);
-  // The instance auto uses for one candidate (its options can be changed there).
-  Solver& candidate(AutoCandidate c) { return *candidates_[static_cast<int>(c)]; }
-  const Solver& candidate(AutoCandidate c) const { return *candidates_[static_cast<int>(c)]; }
+  // The instance auto uses for one candidate (its options can be changed there). The box candidates always exist;
+  // newton-min and ipopt only when the lookup knows them (created here on first use), else candidate() throws
+  // std::logic_error and FindCandidate returns nullptr.
+  Solver& candidate(AutoCandidate c);
+  const Solver& candidate(AutoCandidate c) const;
+  Solver* FindCandidate(AutoCandidate c);
+  // The MCP chain on this build, in order (newton, then newton-min and ipopt where the lookup knows them).
+  AutoChoice McpChoice();
 
  protected:
   void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
@@ -114,6 +131,9 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
   const SolverOptions& UntimedOptions(const SolverOptions& options);
 
   std::array<std::unique_ptr<Solver>, kAutoCandidateCount> candidates_;
+  BackendLookup lookup_;
+  // Candidates the lookup was asked for (created or not), so an unknown name is looked up once.
+  std::array<bool, kAutoCandidateCount> looked_up_{};
   // ChoiceFor's cache: the last matrix seen (0: none) and the option generations (auto's, enum's) it was decided
   // under.
   std::uint64_t choice_matrix_id_ = 0;

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "problems/generators/random_problems.h"
+#include "solvers/ipopt/ipopt_qp_solver.h"
 #include "solvers/psor/psor_solver.h"
 
 namespace smcbench {
@@ -70,11 +71,18 @@ TEST(AutoSolver, InfoAndCandidateNames) {
   EXPECT_TRUE(solver.info().mcp);
   EXPECT_FALSE(solver.info().exact);  // its answer may come from psor or newton
   EXPECT_FALSE(solver.info().equilibrate);  // the chosen backend equilibrates
-  for (int i = 0; i < kAutoCandidateCount; ++i) {
+  for (int i = 0; i <= static_cast<int>(AutoCandidate::kNewton); ++i) {
     EXPECT_EQ(solver.candidate(static_cast<AutoCandidate>(i)).info().name, AutoCandidateName(i)) << i;
   }
+  // Without a lookup the MCP-only candidates are absent.
+  EXPECT_EQ(solver.FindCandidate(AutoCandidate::kNewtonMin), nullptr);
+  EXPECT_EQ(solver.FindCandidate(AutoCandidate::kIpopt), nullptr);
+  EXPECT_THROW(solver.candidate(AutoCandidate::kIpopt), std::logic_error);
   EXPECT_EQ(AutoCandidateName(0), "enum");
   EXPECT_EQ(AutoCandidateName(3), "newton");
+  EXPECT_EQ(AutoCandidateName(4), "newton-min");
+  EXPECT_EQ(AutoCandidateName(5), "ipopt");
+  EXPECT_EQ(AutoCandidateIndex("ipopt"), 5);
   EXPECT_EQ(AutoCandidateName(-1), "");
   EXPECT_EQ(AutoCandidateName(kAutoCandidateCount), "");
 }
@@ -137,6 +145,164 @@ TEST(AutoSolver, NonlinearMcpGoesToNewton) {
   ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
   EXPECT_EQ(Chosen(r), AutoCandidate::kNewton);
   EXPECT_NEAR(r.z[0], 1.0 + std::sqrt(1.01), 1e-9);
+}
+
+// ---------------------------------------------------------------- the MCP chain: newton → newton-min → ipopt
+
+// Billups' example (1995): F(x) = (x − 1)² − 1.01, x ≥ 0, solution 1 + √1.01.
+FunctionMCP Billups() {
+  return FunctionMCP(
+      Vector::Zero(1), Vector::Constant(1, kInf),
+      [](const Vector& x, Vector* F) { (*F)[0] = (x[0] - 1.0) * (x[0] - 1.0) - 1.01; },
+      [](const Vector& x, DenseMatrix* J) { (*J)(0, 0) = 2.0 * (x[0] - 1.0); }, "billups");
+}
+
+// Josephy's NCP (MCPLIB "josephy"): unique nondegenerate solution (√6/2, 0, 0, 1/2), MCPLIB's start (1, 1, 1, 1).
+// With a budget of one iteration newton stops at its iteration limit (a failure that proves nothing), while
+// ipopt's Newton refinement of its first iterate reaches the solution.
+FunctionMCP Josephy() {
+  return FunctionMCP(
+      Vector::Zero(4), Vector::Constant(4, kInf),
+      [](const Vector& x, Vector* F) {
+        (*F)[0] = 3 * x[0] * x[0] + 2 * x[0] * x[1] + 2 * x[1] * x[1] + x[2] + 3 * x[3] - 6;
+        (*F)[1] = 2 * x[0] * x[0] + x[0] + x[1] * x[1] + 3 * x[2] + 2 * x[3] - 2;
+        (*F)[2] = 3 * x[0] * x[0] + x[0] * x[1] + 2 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 1;
+        (*F)[3] = x[0] * x[0] + 3 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 3;
+      },
+      [](const Vector& x, DenseMatrix* J) {
+        *J << 6 * x[0] + 2 * x[1], 2 * x[0] + 4 * x[1], 1, 3,  //
+            4 * x[0] + 1, 2 * x[1], 3, 2,                      //
+            6 * x[0] + x[1], x[0] + 4 * x[1], 2, 3,            //
+            2 * x[0], 6 * x[1], 2, 3;
+      },
+      "josephy");
+}
+
+SolverOptions OneIterationFromMcplibStart() {
+  SolverOptions o;
+  o.warm_start = Vector::Ones(4);
+  o.max_iterations = 1;
+  return o;
+}
+
+Vector JosephySolution() {
+  Vector z(4);
+  z << std::sqrt(6.0) / 2, 0, 0, 0.5;
+  return z;
+}
+
+// A stand-in for a registered MCP backend that always fails without proof, counting its calls.
+class FailingMcpBackend final : public Solver {
+ public:
+  explicit FailingMcpBackend(int* calls) : calls_(calls) {}
+  const SolverInfo& info() const override {
+    static const SolverInfo kInfo{"newton-min", "always stalls (test double)", "none", true, false, false, false,
+                                  /*mcp=*/true};
+    return kInfo;
+  }
+
+ protected:
+  void DoSolve(const BoxMLCP&, const SolverOptions&, SolveResult* result) override {
+    result->status = SolveStatus::kStalled;
+  }
+  void DoSolveMCP(const MCP&, const SolverOptions&, SolveResult* result) override {
+    ++*calls_;
+    result->status = SolveStatus::kStalled;
+    result->message = "test double stalls";
+  }
+
+ private:
+  int* calls_;
+};
+
+// A lookup that knows ipopt (the real backend) and, when calls is given, a failing newton-min.
+BackendLookup TestLookup(int* calls) {
+  return [calls](std::string_view name) -> std::unique_ptr<Solver> {
+    if (name == "ipopt") return std::make_unique<IpoptQpSolver>();
+    if (name == "newton-min" && calls != nullptr) return std::make_unique<FailingMcpBackend>(calls);
+    return nullptr;
+  };
+}
+
+TEST(AutoSolverMcp, ChainSkipsNamesTheLookupDoesNotKnow) {
+  AutoSolver without;
+  const AutoChoice only_newton = without.McpChoice();
+  ASSERT_EQ(only_newton.count, 1);
+  EXPECT_EQ(only_newton.order[0], AutoCandidate::kNewton);
+  AutoSolver with_ipopt(AutoOptions{}, TestLookup(nullptr));
+  const AutoChoice two = with_ipopt.McpChoice();
+  ASSERT_EQ(two.count, 2);
+  EXPECT_EQ(two.order[1], AutoCandidate::kIpopt);
+  int calls = 0;
+  AutoSolver all(AutoOptions{}, TestLookup(&calls));
+  const AutoChoice three = all.McpChoice();
+  ASSERT_EQ(three.count, 3);
+  EXPECT_EQ(three.order[0], AutoCandidate::kNewton);
+  EXPECT_EQ(three.order[1], AutoCandidate::kNewtonMin);
+  EXPECT_EQ(three.order[2], AutoCandidate::kIpopt);
+}
+
+TEST(AutoSolverMcp, AFailingFirstCandidateHandsOverToIpopt) {
+  AutoSolver solver(AutoOptions{}, TestLookup(nullptr));
+  const SolveResult r = solver.Solve(Josephy(), OneIterationFromMcplibStart());
+  ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
+  EXPECT_EQ(Chosen(r), AutoCandidate::kIpopt);
+  EXPECT_EQ(r.GetDetail("fallbacks"), 1.0);
+  EXPECT_EQ(r.solver, "auto");
+  EXPECT_LE((r.z - JosephySolution()).cwiseAbs().maxCoeff(), 1e-8);
+}
+
+TEST(AutoSolverMcp, EveryFailingCandidateIsTriedInOrder) {
+  int calls = 0;
+  AutoSolver solver(AutoOptions{}, TestLookup(&calls));
+  const SolveResult r = solver.Solve(Josephy(), OneIterationFromMcplibStart());
+  ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(Chosen(r), AutoCandidate::kIpopt);
+  EXPECT_EQ(r.GetDetail("fallbacks"), 2.0);
+  EXPECT_LE((r.z - JosephySolution()).cwiseAbs().maxCoeff(), 1e-8);
+}
+
+TEST(AutoSolverMcp, FirstSuccessEndsTheChain) {
+  int calls = 0;
+  AutoSolver solver(AutoOptions{}, TestLookup(&calls));
+  const SolveResult r = solver.Solve(Billups());  // newton with its safeguard solves it
+  ASSERT_TRUE(r.solved()) << r.message;
+  EXPECT_EQ(Chosen(r), AutoCandidate::kNewton);
+  EXPECT_EQ(r.GetDetail("fallbacks"), 0.0);
+  EXPECT_EQ(calls, 0);
+}
+
+TEST(AutoSolverMcp, WithoutFallbackTheFirstFailureIsTheAnswer) {
+  AutoOptions o;
+  o.fallback = false;
+  AutoSolver solver(o, TestLookup(nullptr));
+  const SolveResult r = solver.Solve(Josephy(), OneIterationFromMcplibStart());
+  EXPECT_EQ(r.status, SolveStatus::kIterationLimit) << r.message;
+  EXPECT_EQ(Chosen(r), AutoCandidate::kNewton);
+  EXPECT_EQ(r.GetDetail("fallbacks"), 0.0);
+}
+
+TEST(AutoSolverMcp, AFinalFailureListsEveryCandidate) {
+  // No solution: F(x) = −1/(1 + x²) < 0 on [0, ∞). Every candidate fails; none may claim infeasibility.
+  const FunctionMCP none(
+      Vector::Zero(1), Vector::Constant(1, kInf),
+      [](const Vector& x, Vector* F) { (*F)[0] = -1.0 / (1.0 + x[0] * x[0]); },
+      [](const Vector& x, DenseMatrix* J) {
+        (*J)(0, 0) = 2.0 * x[0] / ((1.0 + x[0] * x[0]) * (1.0 + x[0] * x[0]));
+      },
+      "no-solution");
+  int calls = 0;
+  AutoSolver solver(AutoOptions{}, TestLookup(&calls));
+  SolverOptions o;
+  o.max_iterations = 100;
+  const SolveResult r = solver.Solve(none, o);
+  EXPECT_FALSE(r.solved());
+  EXPECT_NE(r.status, SolveStatus::kInfeasible);
+  EXPECT_EQ(calls, 1);
+  EXPECT_EQ(r.GetDetail("fallbacks"), 2.0);
+  EXPECT_NE(r.message.find("newton-min"), std::string::npos) << r.message;
+  EXPECT_NE(r.message.find("ipopt"), std::string::npos) << r.message;
 }
 
 // PSOR's sweeps grow with the condition number (docs/auto.md: 35 sweeps at 1e2, 3441 at 1e8 for this relay

@@ -96,6 +96,8 @@
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
 
+#include "solvers/ipopt/ipopt_names.h"
+
 namespace smcbench {
 namespace {
 
@@ -121,43 +123,6 @@ bool RuntimeLibraryLoadable(const char* name) {
   if (!handle) return false;
   ::dlclose(handle);
   return true;
-}
-
-const char* LinearSolverName(int code) {
-  switch (code) {
-    case IpoptOptions::kMa27: return "ma27";
-    case IpoptOptions::kMa57: return "ma57";
-    case IpoptOptions::kMa77: return "ma77";
-    case IpoptOptions::kMa86: return "ma86";
-    case IpoptOptions::kMa97: return "ma97";
-    case IpoptOptions::kPardiso: return "pardiso";
-    default: return "mumps";
-  }
-}
-
-const char* IpoptStatusName(Ipopt::ApplicationReturnStatus s) {
-  switch (s) {
-    case Ipopt::Solve_Succeeded: return "Solve_Succeeded";
-    case Ipopt::Solved_To_Acceptable_Level: return "Solved_To_Acceptable_Level";
-    case Ipopt::Infeasible_Problem_Detected: return "Infeasible_Problem_Detected";
-    case Ipopt::Search_Direction_Becomes_Too_Small: return "Search_Direction_Becomes_Too_Small";
-    case Ipopt::Diverging_Iterates: return "Diverging_Iterates";
-    case Ipopt::User_Requested_Stop: return "User_Requested_Stop";
-    case Ipopt::Feasible_Point_Found: return "Feasible_Point_Found";
-    case Ipopt::Maximum_Iterations_Exceeded: return "Maximum_Iterations_Exceeded";
-    case Ipopt::Restoration_Failed: return "Restoration_Failed";
-    case Ipopt::Error_In_Step_Computation: return "Error_In_Step_Computation";
-    case Ipopt::Maximum_CpuTime_Exceeded: return "Maximum_CpuTime_Exceeded";
-    case Ipopt::Not_Enough_Degrees_Of_Freedom: return "Not_Enough_Degrees_Of_Freedom";
-    case Ipopt::Invalid_Problem_Definition: return "Invalid_Problem_Definition";
-    case Ipopt::Invalid_Option: return "Invalid_Option";
-    case Ipopt::Invalid_Number_Detected: return "Invalid_Number_Detected";
-    case Ipopt::Unrecoverable_Exception: return "Unrecoverable_Exception";
-    case Ipopt::NonIpopt_Exception_Thrown: return "NonIpopt_Exception_Thrown";
-    case Ipopt::Insufficient_Memory: return "Insufficient_Memory";
-    case Ipopt::Internal_Error: return "Internal_Error";
-  }
-  return "unknown";
 }
 
 // y = M x for dense or sparse M; x, y may be Eigen maps over Ipopt's arrays.
@@ -1309,6 +1274,10 @@ bool IpoptOptions::IsValid(std::string* why) const {
     s << "polish_rounds must be in 1..100, got " << polish_rounds;
   } else if (!(early_polish_threshold > 0.0)) {
     s << "early_polish_threshold must be positive, got " << early_polish_threshold;
+  } else if (mcp_hessian != kGapHessian && mcp_hessian != kLimitedMemory) {
+    s << "mcp_hessian must be gap or limited-memory, got the code " << static_cast<int>(mcp_hessian);
+  } else if (mcp_newton_steps < 0 || mcp_newton_steps > 1000) {
+    s << "mcp_newton_steps must be in 0..1000, got " << mcp_newton_steps;
   }
   if (s.tellp() == 0) return true;
   if (why) *why = s.str();
@@ -1328,19 +1297,24 @@ const SolverInfo& IpoptQpSolver::info() const {
   static const SolverInfo kInfo{
       "ipopt",
       "Ipopt interior point on the convex QP (symmetric PSD M) or the complementarity-gap NLP, then active-set "
-      "polish",
+      "polish; nonlinear MCPs: the gap NLP with F's exact Jacobian, then a Newton refinement on the active set",
       "Wächter & Biegler, Math. Prog. 106 (2006) 25-57; polish after Stellato et al., OSQP (2020)",
       /*dense=*/true,
       /*sparse=*/true,
       /*symmetric_only=*/false,
       /*exact=*/false,
-      /*mcp=*/false,
+      /*mcp=*/true,
       /*default_size_limit=*/0};
   return kInfo;
 }
 
 void IpoptQpSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
   impl_->Solve(problem, options, options_, result);
+}
+
+void IpoptQpSolver::DoSolveMCP(const MCP& problem, const SolverOptions& options, SolveResult* result) {
+  if (!mcp_) mcp_ = std::make_unique<IpoptMcpSession>([this] { return Expired(); });
+  mcp_->Solve(problem, options, options_, result);
 }
 
 void IpoptQpSolver::BindOptions(OptionBinder* binder) {
@@ -1370,6 +1344,11 @@ void IpoptQpSolver::BindOptions(OptionBinder* binder) {
   binder->Add("early_polish_threshold", &options_.early_polish_threshold,
               "relative residual below which iterates are polished");
   binder->Add("polish_warm_start", &options_.polish_warm_start, "polish the warm start before running Ipopt");
+  binder->Add("mcp_hessian", &options_.mcp_hessian,
+              {{"gap", IpoptOptions::kGapHessian}, {"limited-memory", IpoptOptions::kLimitedMemory}},
+              {"gap", "limited-memory"},
+              "MCP gap program: Hessian of the gap only (exact for affine F), or Ipopt's limited-memory quasi-Newton");
+  binder->Add("mcp_newton_steps", &options_.mcp_newton_steps, "Newton steps of one MCP refinement (0: none)");
 }
 
 bool IpoptQpSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }

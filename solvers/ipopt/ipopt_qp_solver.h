@@ -1,6 +1,7 @@
 // Ipopt backend: the box-MLCP as a convex QP (symmetric PSD M) or as a complementarity-gap NLP (any other M),
 // solved by Ipopt's primal-dual interior-point filter method (Wächter & Biegler 2006) with exact derivatives,
-// followed by an OSQP-style active-set polish. The formulations are documented at the top of the .cc file.
+// followed by an OSQP-style active-set polish. The formulations are documented at the top of the .cc file; a
+// nonlinear MCP gets the same gap program with F in place of Mz + q (ipopt_mcp.{h,cc}).
 #pragma once
 
 #include <memory>
@@ -8,6 +9,7 @@
 
 #include "solvers/core/backend_options.h"
 #include "solvers/core/solver.h"
+#include "solvers/ipopt/ipopt_mcp.h"
 
 namespace smcbench {
 
@@ -22,6 +24,10 @@ struct IpoptOptions {
   // (libhsl.so) and give kInvalidOptions when it is missing.
   enum LinearSolver : int { kMumps = 0, kMa27 = 1, kMa57 = 2, kMa77 = 3, kMa86 = 4, kMa97 = 5, kPardiso = 6 };
   enum MuStrategy : int { kMonotone = 0, kAdaptive = 1 };
+  // The Hessian of the Lagrangian of the MCP's gap program (ipopt_mcp.cc): F's second derivatives are not
+  // available, so either the exact Hessian of the bilinear gap alone (exact when F is affine) or Ipopt's
+  // limited-memory quasi-Newton approximation of the whole Lagrangian.
+  enum McpHessian : int { kGapHessian = 0, kLimitedMemory = 1 };
 
   // The options with named values (`--set ipopt.formulation=gap`; the old numbers are still read).
   Formulation formulation = kAuto;
@@ -51,6 +57,10 @@ struct IpoptOptions {
   double early_polish_threshold = 1e-3;
   // Try the polish from the warm start before running Ipopt (cheap re-solve of a slightly changed problem).
   bool polish_warm_start = false;
+  // Nonlinear MCPs (ipopt_mcp.cc). The polish options above apply to the MCP's Newton refinement as well.
+  McpHessian mcp_hessian = kGapHessian;
+  // Newton steps of one MCP refinement (each re-identifies the active set and linearizes F there).
+  int mcp_newton_steps = 20;
 
   bool IsValid(std::string* why) const;
 };
@@ -66,6 +76,8 @@ class IpoptQpSolver final : public BackendWithOptions<IpoptOptions> {
 
  protected:
   void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
+  // The gap program of the MCP with exact first derivatives of F (ipopt_mcp.cc).
+  void DoSolveMCP(const MCP& problem, const SolverOptions& options, SolveResult* result) override;
   void BindOptions(OptionBinder* binder) override;
   bool ValidateBackendOptions(std::string* why) const override;
 
@@ -74,6 +86,7 @@ class IpoptQpSolver final : public BackendWithOptions<IpoptOptions> {
   bool Expired() const { return TimeLimitReached(); }
 
   std::unique_ptr<Impl> impl_;
+  std::unique_ptr<IpoptMcpSession> mcp_;  // created on the first MCP solve
 };
 
 }  // namespace smcbench

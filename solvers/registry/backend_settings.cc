@@ -17,7 +17,8 @@ std::vector<Solver*> Targets(const BackendSetting& setting, const std::vector<So
       targets.push_back(solver);
     } else if (auto* automatic = dynamic_cast<AutoSolver*>(solver)) {
       const int candidate = AutoCandidateIndex(setting.backend);
-      if (candidate >= 0) targets.push_back(&automatic->candidate(static_cast<AutoCandidate>(candidate)));
+      Solver* instance = candidate >= 0 ? automatic->FindCandidate(static_cast<AutoCandidate>(candidate)) : nullptr;
+      if (instance != nullptr) targets.push_back(instance);
     }
   }
   return targets;

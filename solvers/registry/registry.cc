@@ -23,6 +23,11 @@ std::unique_ptr<Solver> Make() {
   return std::make_unique<T>();
 }
 
+std::unique_ptr<Solver> CreateRegisteredOrNull(std::string_view name);
+
+// auto, with the registry as its lookup for the candidates it does not build itself (its MCP chain).
+std::unique_ptr<Solver> MakeAuto() { return std::make_unique<AutoSolver>(AutoOptions{}, &CreateRegisteredOrNull); }
+
 // The registry: one line per backend, in the order `smcbench list` prints them.
 constexpr std::pair<std::string_view, std::unique_ptr<Solver> (*)()> kBackends[] = {
     {"lemke", &Make<LemkeSolver>},
@@ -32,7 +37,7 @@ constexpr std::pair<std::string_view, std::unique_ptr<Solver> (*)()> kBackends[]
     {"ipopt", &Make<IpoptQpSolver>},
     {"newton-min", &Make<NewtonMinSolver>},
     // The default of the commands: one of the four above per problem (solvers/auto/auto_solver.h).
-    {"auto", &Make<AutoSolver>},
+    {"auto", &MakeAuto},
 };
 
 // A backend added with RegisterSolver. The deque never moves its elements, so the string_views SolverNames hands
@@ -65,6 +70,15 @@ std::vector<std::pair<std::string_view, SolverFactory>> AllBackends() {
   const std::lock_guard<std::mutex> lock(table.mutex);
   for (const RunTimeEntry& e : table.entries) all.emplace_back(e.name, e.create);
   return all;
+}
+
+// A fresh backend of a registered name other than auto itself, nullptr if there is none.
+std::unique_ptr<Solver> CreateRegisteredOrNull(std::string_view name) {
+  if (name == "auto") return nullptr;
+  for (const auto& [known, factory] : AllBackends()) {
+    if (known == name) return factory();
+  }
+  return nullptr;
 }
 
 std::string KnownNames(const std::vector<std::pair<std::string_view, SolverFactory>>& all) {

@@ -5,9 +5,14 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/SparseCore>
+#include <algorithm>
+#include <cmath>
+#include <string>
 #include <vector>
 
+#include "solvers/auto/auto_solver.h"
 #include "solvers/newton/semismooth_newton_solver.h"
+#include "solvers/siconos/external_backends.h"
 
 namespace smcbench {
 namespace {
@@ -51,6 +56,66 @@ TEST(RegistryGenericSparsePath, SolvesASmallSparseProblemToItsPlantedSolution) {
   const SolveResult r = CreateGenericSparsePathSolver()->Solve(problem, options);
   ASSERT_TRUE(r.solved()) << r.message;
   EXPECT_LE((r.z - z_star).cwiseAbs().maxCoeff(), 1e-9);
+}
+
+// The MCP backends are found by capability: ipopt and newton always, the Siconos MCP adapters where Siconos is built
+// in, newton-min once it is registered; every one of them really solves a small nonlinear MCP (Josephy's NCP,
+// unique solution (√6/2, 0, 0, 1/2), from MCPLIB's start).
+TEST(RegistryMcp, McpBackendsAreListedWithInfoMcpAndSolveJosephy) {
+  std::vector<std::string> mcp_names;
+  for (std::string_view name : SolverNames()) {
+    if (CreateSolver(name)->info().mcp) mcp_names.emplace_back(name);
+  }
+  const auto listed = [&](const char* name) {
+    return std::find(mcp_names.begin(), mcp_names.end(), name) != mcp_names.end();
+  };
+  EXPECT_TRUE(listed("newton"));
+  EXPECT_TRUE(listed("ipopt"));
+  EXPECT_TRUE(listed("auto"));
+  EXPECT_EQ(listed("siconos-mcp-newton-fb"), IsExternalBackend("siconos-mcp-newton-fb"));
+  EXPECT_EQ(listed("siconos-mcp-newton-min"), IsExternalBackend("siconos-mcp-newton-min"));
+  EXPECT_FALSE(listed("lemke"));
+  const FunctionMCP josephy(
+      Vector::Zero(4), Vector::Constant(4, kInf),
+      [](const Vector& x, Vector* F) {
+        (*F)[0] = 3 * x[0] * x[0] + 2 * x[0] * x[1] + 2 * x[1] * x[1] + x[2] + 3 * x[3] - 6;
+        (*F)[1] = 2 * x[0] * x[0] + x[0] + x[1] * x[1] + 3 * x[2] + 2 * x[3] - 2;
+        (*F)[2] = 3 * x[0] * x[0] + x[0] * x[1] + 2 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 1;
+        (*F)[3] = x[0] * x[0] + 3 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 3;
+      },
+      [](const Vector& x, DenseMatrix* J) {
+        *J << 6 * x[0] + 2 * x[1], 2 * x[0] + 4 * x[1], 1, 3,  //
+            4 * x[0] + 1, 2 * x[1], 3, 2,                      //
+            6 * x[0] + x[1], x[0] + 4 * x[1], 2, 3,            //
+            2 * x[0], 6 * x[1], 2, 3;
+      },
+      "josephy");
+  Vector expected(4);
+  expected << std::sqrt(6.0) / 2, 0, 0, 0.5;
+  SolverOptions o;
+  o.warm_start = Vector::Ones(4);
+  for (const std::string& name : mcp_names) {
+    const SolveResult r = CreateSolver(name)->Solve(josephy, o);
+    ASSERT_TRUE(r.solved()) << name << ": " << r.message;
+    EXPECT_LE((r.z - expected).cwiseAbs().maxCoeff(), 1e-8) << name;
+  }
+}
+
+// auto's MCP chain from the registry: newton, then newton-min where registered, then ipopt.
+TEST(RegistryMcp, AutoFromTheRegistryChainsTheRegisteredMcpBackends) {
+  const std::unique_ptr<Solver> solver = CreateSolver("auto");
+  auto* automatic = dynamic_cast<AutoSolver*>(solver.get());
+  ASSERT_NE(automatic, nullptr);
+  const AutoChoice chain = automatic->McpChoice();
+  const std::vector<std::string_view> names = SolverNames();
+  const bool has_newton_min = std::find(names.begin(), names.end(), "newton-min") != names.end();
+  ASSERT_EQ(chain.count, has_newton_min ? 3 : 2);
+  EXPECT_EQ(chain.order[0], AutoCandidate::kNewton);
+  if (has_newton_min) {
+    EXPECT_EQ(chain.order[1], AutoCandidate::kNewtonMin);
+  }
+  EXPECT_EQ(chain.order[chain.count - 1], AutoCandidate::kIpopt);
+  EXPECT_EQ(automatic->candidate(AutoCandidate::kIpopt).info().name, "ipopt");
 }
 
 }  // namespace

@@ -29,6 +29,8 @@
 #include "mlcp_cst.h"
 #include "relay_cst.h"
 #include "solvers/siconos/external_backends.h"
+#include "solvers/siconos/siconos_mcp_solver.h"
+#include "solvers/siconos/swapped_stdio.h"
 
 namespace smcbench {
 // Method table and wire format, shared by the backend and its worker (named, not anonymous: SiconosSession and
@@ -187,33 +189,6 @@ class QuietStdio {
  private:
   int saved_out_ = -1;
   int saved_err_ = -1;
-};
-
-// Points the C streams stdout and stderr at sink for the lifetime of the object: silences what Siconos prints
-// through stdio (printf, fprintf(stderr)) without a system call, where QuietStdio costs several. glibc's stdout and
-// stderr are ordinary variables (glibc manual, "Standard Streams"). Output written to descriptors 1 and 2 directly
-// is not caught (ProbedProblems::Console says when that happens). sink nullptr: does nothing.
-class SwappedStdio {
- public:
-  explicit SwappedStdio(FILE* sink) : sink_(sink) {
-    if (sink_ == nullptr) return;
-    saved_out_ = stdout;
-    saved_err_ = stderr;
-    stdout = sink_;
-    stderr = sink_;
-  }
-  ~SwappedStdio() {
-    if (sink_ == nullptr) return;
-    stdout = saved_out_;
-    stderr = saved_err_;
-  }
-  SwappedStdio(const SwappedStdio&) = delete;
-  SwappedStdio& operator=(const SwappedStdio&) = delete;
-
- private:
-  FILE* sink_;
-  FILE* saved_out_ = nullptr;
-  FILE* saved_err_ = nullptr;
 };
 
 bool AllFinite(const Vector& v) {
@@ -915,6 +890,7 @@ void AppendExternalBackends(std::vector<ExternalBackend>* backends) {
       {SpecOf(M::kMlcpDirectFb).info.name, &MakeSiconos<M::kMlcpDirectFb>},
   };
   backends->insert(backends->end(), std::begin(list), std::end(list));
+  AppendSiconosMcpBackends(backends);
 }
 
 }  // namespace smcbench

@@ -30,7 +30,8 @@ constexpr double kTol = 1e-10;
 std::vector<std::string> SiconosNames() {
   std::vector<std::string> names;
   for (auto name : SolverNames()) {
-    if (name.substr(0, 8) == "siconos-") names.emplace_back(name);
+    // The box adapters (the siconos-mcp-* ones refuse box-MLCPs: siconos_mcp_solver_test.cc).
+    if (name.substr(0, 8) == "siconos-" && name.substr(0, 12) != "siconos-mcp-") names.emplace_back(name);
   }
   return names;
 }
