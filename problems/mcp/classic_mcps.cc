@@ -1,0 +1,356 @@
+// The classic and hard built-in MCPs (classic_mcps.h). Every F is written once, on the scalar type T (double for
+// the backends, __float128 for the certifier), with its Jacobian entries; constants are the double values of the
+// published decimals, the same in both precisions.
+#include "problems/mcp/classic_mcps.h"
+
+#include <cmath>
+#include <memory>
+#include <utility>
+
+#include "problems/mcp/builtin_mcp.h"
+#include "problems/mcp/scalar_math.h"
+
+namespace smcbench {
+namespace {
+
+using mcp_math::Pow;
+using mcp_math::Sqrt;
+
+Vector Values(std::initializer_list<double> values) {
+  Vector v(static_cast<Eigen::Index>(values.size()));
+  Eigen::Index i = 0;
+  for (double x : values) v[i++] = x;
+  return v;
+}
+Vector Constant(int n, double value) { return Vector::Constant(n, value); }
+Vector Nonnegative(int n) { return Vector::Zero(n); }
+Vector Unbounded(int n) { return Vector::Constant(n, kInf); }
+
+// Kojima & Shindo (1986), "Extensions of Newton and quasi-Newton methods to systems of PC¹ equations", J. Oper.
+// Res. Soc. Japan 29; MCPLIB `kojshin` (Dirkse & Ferris 1995). NCP in R⁴ with two solutions, (1, 0, 3, 0) and
+// (√6/2, 0, 0, 1/2), the second degenerate in no row but with x2 = 0, F2 > 0 in both.
+class KojimaShindo final : public BuiltinMcp<KojimaShindo> {
+ public:
+  KojimaShindo() : BuiltinMcp(Nonnegative(4), Unbounded(4), "kojshin") {}
+  template <class T>
+  void Function(const T* x, T* F) const {
+    F[0] = 3 * x[0] * x[0] + 2 * x[0] * x[1] + 2 * x[1] * x[1] + x[2] + 3 * x[3] - 6;
+    F[1] = 2 * x[0] * x[0] + x[0] + x[1] * x[1] + 10 * x[2] + 2 * x[3] - 2;
+    F[2] = 3 * x[0] * x[0] + x[0] * x[1] + 2 * x[1] * x[1] + 2 * x[2] + 9 * x[3] - 9;
+    F[3] = x[0] * x[0] + 3 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 3;
+  }
+  template <class T, class Add>
+  void Jacobian(const T* x, Add&& add) const {
+    add(0, 0, 6 * x[0] + 2 * x[1]), add(0, 1, 2 * x[0] + 4 * x[1]), add(0, 2, T(1)), add(0, 3, T(3));
+    add(1, 0, 4 * x[0] + 1), add(1, 1, 2 * x[1]), add(1, 2, T(10)), add(1, 3, T(2));
+    add(2, 0, 6 * x[0] + x[1]), add(2, 1, x[0] + 4 * x[1]), add(2, 2, T(2)), add(2, 3, T(9));
+    add(3, 0, 2 * x[0]), add(3, 1, 6 * x[1]), add(3, 2, T(2)), add(3, 3, T(3));
+  }
+};
+
+// Josephy (1979), "Newton's method for generalized equations", MRC TSR 1965 (Kojima's example); MCPLIB `josephy`.
+// The Kojima–Shindo F with rows 2 and 3 changed; solution (√6/2, 0, 0, 1/2).
+class Josephy final : public BuiltinMcp<Josephy> {
+ public:
+  Josephy() : BuiltinMcp(Nonnegative(4), Unbounded(4), "josephy") {}
+  template <class T>
+  void Function(const T* x, T* F) const {
+    F[0] = 3 * x[0] * x[0] + 2 * x[0] * x[1] + 2 * x[1] * x[1] + x[2] + 3 * x[3] - 6;
+    F[1] = 2 * x[0] * x[0] + x[0] + x[1] * x[1] + 3 * x[2] + 2 * x[3] - 2;
+    F[2] = 3 * x[0] * x[0] + x[0] * x[1] + 2 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 1;
+    F[3] = x[0] * x[0] + 3 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 3;
+  }
+  template <class T, class Add>
+  void Jacobian(const T* x, Add&& add) const {
+    add(0, 0, 6 * x[0] + 2 * x[1]), add(0, 1, 2 * x[0] + 4 * x[1]), add(0, 2, T(1)), add(0, 3, T(3));
+    add(1, 0, 4 * x[0] + 1), add(1, 1, 2 * x[1]), add(1, 2, T(3)), add(1, 3, T(2));
+    add(2, 0, 6 * x[0] + x[1]), add(2, 1, x[0] + 4 * x[1]), add(2, 2, T(2)), add(2, 3, T(3));
+    add(3, 0, 2 * x[0]), add(3, 1, 6 * x[1]), add(3, 2, T(2)), add(3, 3, T(3));
+  }
+};
+
+// Mathiesen's (1985) general-equilibrium example in its four-variable NCP form (x1 an activity level, x2 and x3
+// prices, x4 a slack activity; expenditure shares α and 1 − α with α = 0.75, b = 0.95):
+//   F1 = −x2 + x3 + x4,  F2 = x1 − α(x3 + αx4)/x2,  F3 = 1 − x1 − (1 − α)(x3 + αx4)/x3,  F4 = b − x1.
+// Unnormalized it has the ray of solutions (3/4, λ, λ, 0); the price x2 is fixed as numéraire (l2 = u2 = 1) and
+// the price x3 bounded below by 1e-8 (F is undefined at x3 = 0). Uniqueness then, by cases: x4 > 0 forces x1 = b,
+// x3 + x4 = 1 and F3 = 1 − b − (1 − α)(1 + αx4/x3) < 0, impossible; x1 = 0 forces x3 + x4 ≥ 1 and either
+// x4 = 4x3 > 0 with F4 = b ≠ 0 or x3 at its floor with x4 ≤ 4·1e-8, both impossible; so x4 = 0, x1 > 0, x3 = 1
+// and x1 = 3/4: z* = (3/4, 1, 1, 0), strictly complementary (F4 = 0.2).
+class Mathiesen final : public BuiltinMcp<Mathiesen> {
+ public:
+  static constexpr double kAlpha = 0.75, kB = 0.95, kPriceFloor = 1e-8;
+  Mathiesen()
+      : BuiltinMcp(Values({0.0, 1.0, kPriceFloor, 0.0}), Values({kInf, 1.0, kInf, kInf}), "mathiesen",
+                   JacobianKind::kDense, SolutionSetProperty::kUniqueByProof) {}
+  template <class T>
+  void Function(const T* x, T* F) const {
+    const T a = kAlpha, income = x[2] + a * x[3];
+    F[0] = -x[1] + x[2] + x[3];
+    F[1] = x[0] - a * income / x[1];
+    F[2] = 1 - x[0] - (1 - a) * income / x[2];
+    F[3] = T(kB) - x[0];
+  }
+  template <class T, class Add>
+  void Jacobian(const T* x, Add&& add) const {
+    const T a = kAlpha, income = x[2] + a * x[3];
+    add(0, 0, T(0)), add(0, 1, T(-1)), add(0, 2, T(1)), add(0, 3, T(1));
+    add(1, 0, T(1)), add(1, 1, a * income / (x[1] * x[1])), add(1, 2, -a / x[1]), add(1, 3, -a * a / x[1]);
+    // F3 = 1 − x1 − (1 − α)(1 + α x4/x3).
+    add(2, 0, T(-1)), add(2, 1, T(0)), add(2, 2, (1 - a) * a * x[3] / (x[2] * x[2])), add(2, 3, -(1 - a) * a / x[2]);
+    add(3, 0, T(-1)), add(3, 1, T(0)), add(3, 2, T(0)), add(3, 3, T(0));
+  }
+};
+
+// Cournot–Nash oligopoly (Murphy, Sherali & Soyster 1982, Math. Prog. 24; Harker 1984, Math. Prog. 30; the GAMS
+// model `oligomcp`): firm i's marginal cost c_i + (q_i/L_i)^{1/β_i}, inverse demand p(Q) = (5000/Q)^{1/γ},
+// F_i(q) = c_i + (q_i/L_i)^{1/β_i} − p(Q)(1 − q_i/(γQ)) (the first-order condition of firm i's profit). Outputs are
+// bounded below by 1e-8 (F is undefined at Q = 0). Unique: p is decreasing and convex, Q p(Q) = 5000^{1/γ}Q^{1−1/γ}
+// concave and every cost convex (the uniqueness theorem of Murphy–Sherali–Soyster); the equilibrium is interior.
+class Cournot final : public BuiltinMcp<Cournot> {
+ public:
+  static constexpr double kOutputFloor = 1e-8;
+  Cournot(std::vector<double> c, std::vector<double> L, std::vector<double> beta, double gamma, std::string name)
+      : BuiltinMcp(Constant(static_cast<int>(c.size()), kOutputFloor), Unbounded(static_cast<int>(c.size())),
+                   std::move(name), JacobianKind::kDense, SolutionSetProperty::kUniqueByProof),
+        c_(std::move(c)), L_(std::move(L)), beta_(std::move(beta)), gamma_(gamma) {}
+  template <class T>
+  void Function(const T* q, T* F) const {
+    const int n = size();
+    const T gamma = gamma_;
+    T Q = 0;
+    for (int i = 0; i < n; ++i) Q += q[i];
+    const T p = Pow(T(5000) / Q, 1 / gamma);
+    for (int i = 0; i < n; ++i) {
+      F[i] = T(c_[i]) + Pow(q[i] / T(L_[i]), 1 / T(beta_[i])) - p * (1 - q[i] / (gamma * Q));
+    }
+  }
+  template <class T, class Add>
+  void Jacobian(const T* q, Add&& add) const {
+    const int n = size();
+    const T gamma = gamma_;
+    T Q = 0;
+    for (int i = 0; i < n; ++i) Q += q[i];
+    const T p = Pow(T(5000) / Q, 1 / gamma), dp = -p / (gamma * Q);
+    for (int i = 0; i < n; ++i) {
+      const T share = 1 - q[i] / (gamma * Q);
+      for (int j = 0; j < n; ++j) {
+        // ∂share/∂q_j = −δ_ij/(γQ) + q_i/(γQ²).
+        T v = -dp * share - p * (q[i] / (gamma * Q * Q));
+        if (i == j) {
+          const T e = 1 / T(beta_[i]);
+          v += p / (gamma * Q) + e * Pow(q[i] / T(L_[i]), e - 1) / T(L_[i]);
+        }
+        add(i, j, v);
+      }
+    }
+  }
+
+ private:
+  std::vector<double> c_, L_, beta_;
+  double gamma_;
+};
+
+// Billups (1995), "Algorithms for complementarity problems and generalized equations", PhD thesis, Wisconsin: the
+// one-dimensional NCP x ≥ 0, F(x) = (x − 1)² − 1.01, on which Newton's method on the Fischer–Burmeister function
+// from x = 0 stalls at a local minimizer of its merit function near x = 1. Unique solution 1 + √1.01: x = 0 fails
+// (F(0) = −0.01 < 0) and the other root 1 − √1.01 is negative.
+class Billups final : public BuiltinMcp<Billups> {
+ public:
+  Billups() : BuiltinMcp(Nonnegative(1), Unbounded(1), "billups", JacobianKind::kDense,
+                         SolutionSetProperty::kUniqueByProof) {}
+  template <class T>
+  void Function(const T* x, T* F) const {
+    F[0] = (x[0] - 1) * (x[0] - 1) - T(1.01);
+  }
+  template <class T, class Add>
+  void Jacobian(const T* x, Add&& add) const {
+    add(0, 0, 2 * (x[0] - 1));
+  }
+};
+
+// Constructed degenerate NCP: F1 = x1 + x1³ − 2, F2 = x2 + x1² − 1, x ≥ 0. ∇F = [[1 + 3x1², 0], [2x1, 1]] is a
+// P-matrix everywhere, so F is a P-function (Moré & Rheinboldt 1973) and the solution (1, 0) is unique; there
+// x2 = 0 and F2 = 0: not strictly complementary.
+class Degenerate final : public BuiltinMcp<Degenerate> {
+ public:
+  Degenerate() : BuiltinMcp(Nonnegative(2), Unbounded(2), "degenerate", JacobianKind::kDense,
+                            SolutionSetProperty::kPFunction) {}
+  template <class T>
+  void Function(const T* x, T* F) const {
+    F[0] = x[0] + x[0] * x[0] * x[0] - 2;
+    F[1] = x[1] + x[0] * x[0] - 1;
+  }
+  template <class T, class Add>
+  void Jacobian(const T* x, Add&& add) const {
+    add(0, 0, 1 + 3 * x[0] * x[0]), add(0, 1, T(0));
+    add(1, 0, 2 * x[0]), add(1, 1, T(1));
+  }
+};
+
+// Constructed: x ≥ 0, F(x) = (x − 1)(x − 2). Exactly three solutions, 0 (F(0) = 2 > 0), 1 and 2 (the roots of F);
+// a one-dimensional NCP has no others. Each is strictly complementary with F' ≠ 0: isolated.
+class ThreeSolutions final : public BuiltinMcp<ThreeSolutions> {
+ public:
+  ThreeSolutions() : BuiltinMcp(Nonnegative(1), Unbounded(1), "three-solutions") {}
+  template <class T>
+  void Function(const T* x, T* F) const {
+    F[0] = (x[0] - 1) * (x[0] - 2);
+  }
+  template <class T, class Add>
+  void Jacobian(const T* x, Add&& add) const {
+    add(0, 0, 2 * x[0] - 3);
+  }
+};
+
+// Constructed, no solution: z ≥ 0, F1 = z1 − z2, F2 = −1 − z1² − z2². F2 < 0 everywhere, so row 2 can neither
+// sit at its bound z2 = 0 (which needs F2 ≥ 0) nor be free (which needs F2 = 0). Nor is there an asymptotic
+// solution: |F2|/max_j|∂F2/∂z_j| = (1 + z1² + z2²)/(2 max(|z1|, |z2|)) ≥ max(1, ‖z‖∞)/2, so the scale-free
+// residual stays above about 1/4 however far a backend runs.
+class NoSolution final : public BuiltinMcp<NoSolution> {
+ public:
+  NoSolution() : BuiltinMcp(Nonnegative(2), Unbounded(2), "no-solution") {}
+  template <class T>
+  void Function(const T* z, T* F) const {
+    F[0] = z[0] - z[1];
+    F[1] = -1 - z[0] * z[0] - z[1] * z[1];
+  }
+  template <class T, class Add>
+  void Jacobian(const T* z, Add&& add) const {
+    add(0, 0, T(1)), add(0, 1, T(-1));
+    add(1, 0, -2 * z[0]), add(1, 1, -2 * z[1]);
+  }
+};
+
+// Constructed, F undefined outside the box (NaN for a negative argument of the square roots): x ≥ 0,
+// F1 = √x1 + x1 − 2, F2 = √x2 + x2 − 6 x1. F1 is increasing with F1(0) = −2, so x1 = 1; then F2 is increasing in
+// x2 with F2(1, 0) = −6, so x2 = 4: the unique solution (1, 4), strictly inside the box. A backend stepping below
+// 0 meets NaN and must step back; the Jacobian is infinite on the bounds.
+class UndefinedOutside final : public BuiltinMcp<UndefinedOutside> {
+ public:
+  UndefinedOutside() : BuiltinMcp(Nonnegative(2), Unbounded(2), "undefined-outside", JacobianKind::kDense,
+                                  SolutionSetProperty::kUniqueByProof) {}
+  template <class T>
+  void Function(const T* x, T* F) const {
+    F[0] = Sqrt(x[0]) + x[0] - 2;
+    F[1] = Sqrt(x[1]) + x[1] - 6 * x[0];
+  }
+  template <class T, class Add>
+  void Jacobian(const T* x, Add&& add) const {
+    add(0, 0, 1 / (2 * Sqrt(x[0])) + 1), add(0, 1, T(0));
+    add(1, 0, T(-6)), add(1, 1, 1 / (2 * Sqrt(x[1])) + 1);
+  }
+};
+
+struct Classic {
+  const char* id;
+  const char* source;
+  std::shared_ptr<const MCP> (*make)();
+  std::vector<std::pair<std::string, Vector>> starts;
+  std::vector<std::string> tags;
+  ExpectedOutcome expected;
+  std::vector<Vector> known_solutions;
+  bool complete;  // known_solutions is the whole solution set
+};
+
+std::shared_ptr<const MCP> MakeNash5() {
+  return std::make_shared<Cournot>(std::vector<double>{10, 8, 6, 4, 2}, std::vector<double>(5, 5.0),
+                                   std::vector<double>{1.2, 1.1, 1.0, 0.9, 0.8}, 1.1, "nash5");
+}
+std::shared_ptr<const MCP> MakeNash10() {
+  return std::make_shared<Cournot>(std::vector<double>{5, 3, 8, 5, 1, 3, 7, 4, 6, 3}, std::vector<double>(10, 10.0),
+                                   std::vector<double>{1.2, 1, 0.9, 0.6, 1.5, 1, 0.7, 1.1, 0.95, 0.75}, 1.2,
+                                   "nash10");
+}
+
+std::vector<Classic> Table() {
+  const double r6 = std::sqrt(6.0) / 2;
+  return {
+      {"mcp/classic/kojshin", "literature:Kojima-Shindo 1986; MCPLIB kojshin (Dirkse-Ferris 1995)",
+       [] { return std::shared_ptr<const MCP>(std::make_shared<KojimaShindo>()); },
+       {{"z0=0", Vector::Zero(4)}, {"z0=1", Vector::Ones(4)}, {"z0=100", Vector::Constant(4, 100.0)}},
+       {"classic", "several-solutions"}, ExpectedOutcome::kSolvable,
+       {Values({1, 0, 3, 0}), Values({r6, 0, 0, 0.5})}, true},
+      {"mcp/classic/josephy", "literature:Josephy 1979 (Kojima's example); MCPLIB josephy (Dirkse-Ferris 1995)",
+       [] { return std::shared_ptr<const MCP>(std::make_shared<Josephy>()); },
+       {{"z0=0", Vector::Zero(4)}, {"z0=1", Vector::Ones(4)}, {"z0=100", Vector::Constant(4, 100.0)}},
+       {"classic"}, ExpectedOutcome::kSolvable, {Values({r6, 0, 0, 0.5})}, false},
+      {"mcp/classic/mathiesen", "literature:Mathiesen 1985 four-variable general equilibrium, numeraire x2 = 1",
+       [] { return std::shared_ptr<const MCP>(std::make_shared<Mathiesen>()); },
+       {{"z0=1", Values({1, 1, 1, 1})}, {"z0=Pi(0)", Values({0, 1, Mathiesen::kPriceFloor, 0})}},
+       {"classic", "price-floor"}, ExpectedOutcome::kSolvable, {Values({0.75, 1, 1, 0})}, true},
+      {"mcp/classic/nash5", "literature:Murphy-Sherali-Soyster 1982 Cournot-Nash, 5 firms (GAMS oligomcp)",
+       MakeNash5, {{"q=10", Vector::Constant(5, 10.0)}, {"q=1", Vector::Ones(5)}},
+       {"classic", "cournot", "output-floor"}, ExpectedOutcome::kSolvable,
+       {Values({15.4293, 12.4986, 9.6635, 7.1651, 5.1326})}, true},
+      {"mcp/classic/nash10", "literature:Harker 1984 Cournot-Nash, 10 firms",
+       MakeNash10, {{"q=1", Vector::Ones(10)}, {"q=7", Vector::Constant(10, 7.0)}},
+       {"classic", "cournot", "output-floor"}, ExpectedOutcome::kSolvable,
+       {Values({7.44, 4.09, 2.59, 0.93, 17.93, 4.09, 1.30, 5.59, 3.22, 1.67})}, true},
+      {"mcp/classic/billups", "literature:Billups 1995 PhD thesis, one-dimensional example",
+       [] { return std::shared_ptr<const MCP>(std::make_shared<Billups>()); },
+       {{"z0=0", Vector::Zero(1)}}, {"classic", "fb-newton-trap"}, ExpectedOutcome::kSolvable,
+       {Values({1 + std::sqrt(1.01)})}, true},
+  };
+}
+
+std::vector<Classic> HardTable() {
+  return {
+      {"mcp/hard/degenerate", "constructed:P-function NCP with F2 = 0 at x2 = 0",
+       [] { return std::shared_ptr<const MCP>(std::make_shared<Degenerate>()); },
+       {{"z0=0", Vector::Zero(2)}, {"z0=2", Vector::Constant(2, 2.0)}}, {"hard", "degenerate"},
+       ExpectedOutcome::kSolvable, {Values({1, 0})}, true},
+      {"mcp/hard/three-solutions", "constructed:(x-1)(x-2) on x >= 0",
+       [] { return std::shared_ptr<const MCP>(std::make_shared<ThreeSolutions>()); },
+       {{"z0=0.4", Values({0.4})}, {"z0=1.5", Values({1.5})}, {"z0=3", Values({3.0})}},
+       {"hard", "several-solutions"}, ExpectedOutcome::kSolvable, {Values({0}), Values({1}), Values({2})}, true},
+      {"mcp/hard/no-solution", "constructed:F2 < 0 everywhere",
+       [] { return std::shared_ptr<const MCP>(std::make_shared<NoSolution>()); },
+       {{"z0=0", Vector::Zero(2)}, {"z0=1", Vector::Ones(2)}}, {"hard", "no-solution"},
+       ExpectedOutcome::kInfeasible, {}, true},
+      {"mcp/hard/undefined-outside", "constructed:square roots, NaN below the bounds",
+       [] { return std::shared_ptr<const MCP>(std::make_shared<UndefinedOutside>()); },
+       {{"z0=0.01", Vector::Constant(2, 0.01)}, {"z0=9", Vector::Constant(2, 9.0)}},
+       {"hard", "undefined-outside"}, ExpectedOutcome::kSolvable, {Values({1, 4})}, true},
+  };
+}
+
+std::vector<std::string> Ids(const std::vector<Classic>& table) {
+  std::vector<std::string> ids;
+  for (const Classic& c : table) ids.emplace_back(c.id);
+  return ids;
+}
+
+}  // namespace
+
+std::vector<std::string> ClassicMcpIds() { return Ids(Table()); }
+std::vector<std::string> HardMcpIds() { return Ids(HardTable()); }
+
+bool MakeClassicMcp(const std::string& id, BuiltinMcpEntry* out) {
+  for (const auto& table : {Table(), HardTable()}) {
+    for (const Classic& c : table) {
+      if (id != c.id) continue;
+      McpLibraryProblem& p = out->problem;
+      p = {};
+      p.id = c.id;
+      p.source = c.source;
+      p.problem = c.make();
+      for (const auto& [label, start] : c.starts) {
+        p.start_labels.push_back(label);
+        p.starts.push_back(start);
+      }
+      p.tags = c.tags;
+      p.expected = c.expected;
+      p.references_complete = c.complete;
+      p.metadata["known_solutions"] = std::to_string(c.known_solutions.size());
+      if (const auto* e = dynamic_cast<const ExtendedPrecisionMCP*>(p.problem.get())) {
+        p.metadata["solution_set"] = std::string(ToString(e->solution_set_property()));
+      }
+      out->known_solutions = c.known_solutions;
+      return true;
+    }
+  }
+  return false;
+}
+
+}  // namespace smcbench
