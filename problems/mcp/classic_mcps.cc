@@ -28,7 +28,7 @@ Vector Unbounded(int n) { return Vector::Constant(n, kInf); }
 
 // Kojima & Shindo (1986), "Extensions of Newton and quasi-Newton methods to systems of PC¹ equations", J. Oper.
 // Res. Soc. Japan 29; MCPLIB `kojshin` (Dirkse & Ferris 1995). NCP in R⁴ with two solutions, (1, 0, 3, 0) and
-// (√6/2, 0, 0, 1/2), the second degenerate in no row but with x2 = 0, F2 > 0 in both.
+// (√6/2, 0, 0, 1/2); the second is degenerate (x3 = 0 and F3 = 0).
 class KojimaShindo final : public BuiltinMcp<KojimaShindo> {
  public:
   KojimaShindo() : BuiltinMcp(Nonnegative(4), Unbounded(4), "kojshin") {}
@@ -103,7 +103,10 @@ class Mathiesen final : public BuiltinMcp<Mathiesen> {
 };
 
 // Cournot–Nash oligopoly (Murphy, Sherali & Soyster 1982, Math. Prog. 24; Harker 1984, Math. Prog. 30; the GAMS
-// model `oligomcp`): firm i's marginal cost c_i + (q_i/L_i)^{1/β_i}, inverse demand p(Q) = (5000/Q)^{1/γ},
+// model `oligomcp`, whose 5-firm data and start q = 10 are used; its equilibrium is (36.933, 41.818, 43.707,
+// 42.659, 39.179)). The 10-firm version keeps the model with the costs c = (5, 3, 8, 5, 1, 3, 7, 4, 6, 3),
+// L = 10, β = (1.2, 1, 0.9, 0.6, 1.5, 1, 0.7, 1.1, 0.95, 0.75), γ = 1.2 (our instance: no published solution is
+// used). Firm i's marginal cost c_i + (q_i/L_i)^{1/β_i}, inverse demand p(Q) = (5000/Q)^{1/γ},
 // F_i(q) = c_i + (q_i/L_i)^{1/β_i} − p(Q)(1 − q_i/(γQ)) (the first-order condition of firm i's profit). Outputs are
 // bounded below by 1e-8 (F is undefined at Q = 0). Unique: p is decreasing and convex, Q p(Q) = 5000^{1/γ}Q^{1−1/γ}
 // concave and every cost convex (the uniqueness theorem of Murphy–Sherali–Soyster); the equilibrium is interior.
@@ -282,11 +285,10 @@ std::vector<Classic> Table() {
       {"mcp/classic/nash5", "literature:Murphy-Sherali-Soyster 1982 Cournot-Nash, 5 firms (GAMS oligomcp)",
        MakeNash5, {{"q=10", Vector::Constant(5, 10.0)}, {"q=1", Vector::Ones(5)}},
        {"classic", "cournot", "output-floor"}, ExpectedOutcome::kSolvable,
-       {Values({15.4293, 12.4986, 9.6635, 7.1651, 5.1326})}, true},
-      {"mcp/classic/nash10", "literature:Harker 1984 Cournot-Nash, 10 firms",
-       MakeNash10, {{"q=1", Vector::Ones(10)}, {"q=7", Vector::Constant(10, 7.0)}},
-       {"classic", "cournot", "output-floor"}, ExpectedOutcome::kSolvable,
-       {Values({7.44, 4.09, 2.59, 0.93, 17.93, 4.09, 1.30, 5.59, 3.22, 1.67})}, true},
+       {Values({36.933, 41.818, 43.707, 42.659, 39.179})}, true},
+      {"mcp/classic/nash10", "constructed:Cournot-Nash, 10 firms (the oligomcp model with 10 firms' costs)",
+       MakeNash10, {{"q=1", Vector::Ones(10)}, {"q=10", Vector::Constant(10, 10.0)}},
+       {"classic", "cournot", "output-floor"}, ExpectedOutcome::kSolvable, {}, true},
       {"mcp/classic/billups", "literature:Billups 1995 PhD thesis, one-dimensional example",
        [] { return std::shared_ptr<const MCP>(std::make_shared<Billups>()); },
        {{"z0=0", Vector::Zero(1)}}, {"classic", "fb-newton-trap"}, ExpectedOutcome::kSolvable,

@@ -80,10 +80,10 @@ TEST(McpLibraryTest, UnknownIdsAreErrorsNamingCloseIds) {
   EXPECT_EQ(MakeBuiltinMcp("mcp/obstacle2d/m3")->size(), 9);
 }
 
-// The published (exact) solutions satisfy complementarity to rounding; the Cournot games' published 4-6 digits to
+// The published (exact) solutions satisfy complementarity to rounding; the Cournot game's published 5 digits to
 // that accuracy.
 TEST(McpLibraryTest, PublishedSolutionsSatisfyComplementarity) {
-  const std::map<std::string, double> tolerance{{"mcp/classic/nash5", 1e-4}, {"mcp/classic/nash10", 1e-2}};
+  const std::map<std::string, double> tolerance{{"mcp/classic/nash5", 1e-4}};
   int checked = 0;
   for (const std::string& id : AllQuickIds()) {
     if (id.rfind("mcp/scene/", 0) == 0) continue;
@@ -95,7 +95,7 @@ TEST(McpLibraryTest, PublishedSolutionsSatisfyComplementarity) {
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 12);
+  EXPECT_EQ(checked, 11);
 }
 
 TEST(McpLibraryTest, JacobiansMatchCentralDifferencesAndQuadMatchesDouble) {
@@ -265,8 +265,9 @@ TEST(McpLibraryTest, QuickSuiteValidatesWithCertifiedReferences) {
   // The Cournot games' references agree with the published digits.
   for (const McpLibraryProblem& p : suite.problems) {
     if (p.id != "mcp/classic/nash5") continue;
-    const double published[5] = {15.4293, 12.4986, 9.6635, 7.1651, 5.1326};
-    for (int i = 0; i < 5; ++i) EXPECT_NEAR(p.references[0].z[i], published[i], 1e-4);
+    const double published[5] = {36.933, 41.818, 43.707, 42.659, 39.179};
+    ASSERT_EQ(p.references.size(), 1u);
+    for (int i = 0; i < 5; ++i) EXPECT_NEAR(p.references[0].z[i], published[i], 1e-3);
   }
 }
 

@@ -68,7 +68,9 @@ void AttachReferences(McpLibraryProblem* p, const std::vector<Vector>& known_sol
     p->references_complete = false;
     return;
   }
+  // The starts too: a start from which no backend converges may still lead the certifier's Newton to a solution.
   std::vector<Vector> candidates = known_solutions;
+  candidates.insert(candidates.end(), p->starts.begin(), p->starts.end());
   for (std::string_view name : SolverNames()) {
     std::unique_ptr<Solver> solver = CreateSolver(name);
     if (!solver->info().mcp) continue;

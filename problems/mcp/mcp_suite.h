@@ -29,7 +29,8 @@ McpLibraryProblem MakeBuiltinMcpProblem(const std::string& id);
 
 // Certified references for a problem with n ≤ 64 whose MCP implements ExtendedPrecisionMCP (others are left
 // without references): the candidates are the answers of every registered backend that solves MCPs
-// (SolverInfo::mcp) from every start, plus the built-in's published or proved solutions; CertifyMCPSolutions
+// (SolverInfo::mcp) from every start, the starts themselves and the built-in's published or proved solutions;
+// CertifyMCPSolutions
 // (solvers/reference/mcp_certify.h) keeps the verified ones. references_complete stays true only when the entry
 // declared it and the certified set matches what the literature or proof says (every known solution found; one
 // solution certified unique when none is listed; none for an expected-infeasible problem).

@@ -2,6 +2,7 @@
 #include "problems/mcp/scene_step_mcps.h"
 
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <utility>
@@ -123,8 +124,11 @@ bool MakeSceneStepMcp(const std::string& id, BuiltinMcpEntry* out) {
     p.tags = {"scene", NameOf(scene)};
     p.expected = ExpectedOutcome::kSolvable;
     p.references_complete = false;
-    p.metadata["x_k"] = std::to_string(x_k);
-    p.metadata["h"] = std::to_string(s.scheme.h);
+    char text[32];
+    std::snprintf(text, sizeof text, "%.17g", x_k);
+    p.metadata["x_k"] = text;
+    std::snprintf(text, sizeof text, "%.17g", s.scheme.h);
+    p.metadata["h"] = text;
     out->known_solutions = {(Vector(2) << tr.x(0, k + 1), tr.s(0, k + 1)).finished()};
     return true;
   }

@@ -154,6 +154,25 @@ class McpCertifier {
     Classify();
   }
 
+  std::vector<McpCertifiedSolution> Results() {
+    std::vector<McpCertifiedSolution> out;
+    for (std::size_t s = 0; s < found_.size(); ++s) {
+      McpCertifiedSolution c;
+      c.reference = found_[s].reference;
+      c.z = found_[s].attempt.z;
+      c.margin = static_cast<double>(found_[s].attempt.delta);
+      c.degenerate = found_[s].attempt.degenerate;
+      c.newton_iterations = found_[s].attempt.iterations;
+      if (c.reference.verified()) {
+        c.reference.z.resize(n_);
+        // Clamped: a free row within δ of its bound may sit a rounding outside it.
+        for (int i = 0; i < n_; ++i) c.reference.z[i] = std::min(std::max(static_cast<double>(c.z[i]), l_[i]), u_[i]);
+      }
+      out.push_back(std::move(c));
+    }
+    return out;
+  }
+
  private:
   struct Found {
     ActiveSet set;
@@ -419,26 +438,6 @@ class McpCertifier {
     }
   }
 
- public:
-  std::vector<McpCertifiedSolution> Results() {
-    std::vector<McpCertifiedSolution> out;
-    for (std::size_t s = 0; s < found_.size(); ++s) {
-      McpCertifiedSolution c;
-      c.reference = found_[s].reference;
-      c.z = found_[s].attempt.z;
-      c.margin = static_cast<double>(found_[s].attempt.delta);
-      c.degenerate = found_[s].attempt.degenerate;
-      c.newton_iterations = found_[s].attempt.iterations;
-      if (c.reference.verified()) {
-        c.reference.z.resize(n_);
-        for (int i = 0; i < n_; ++i) c.reference.z[i] = static_cast<double>(c.z[i]);
-      }
-      out.push_back(std::move(c));
-    }
-    return out;
-  }
-
- private:
   const ExtendedPrecisionMCP& p_;
   const McpCertifyOptions options_;
   const int n_;
