@@ -138,7 +138,7 @@ TEST(McpLibraryTest, JacobiansMatchCentralDifferencesAndQuadMatchesDouble) {
 
 TEST(McpLibraryTest, FamiliesSparseJacobianEqualsDenseAndKeepsItsPattern) {
   std::mt19937_64 rng(7);
-  for (const std::string& id : {"mcp/obstacle1d/n32", "mcp/obstacle2d/m8", "mcp/bratu1d/n32", "mcp/bratu2d/m8",
+  for (const char* id : {"mcp/obstacle1d/n32", "mcp/obstacle2d/m8", "mcp/bratu1d/n32", "mcp/bratu2d/m8",
                                 "mcp/obstacle2d/m100"}) {
     SCOPED_TRACE(id);
     const std::shared_ptr<const MCP> p = MakeBuiltinMcp(id);
