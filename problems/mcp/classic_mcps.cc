@@ -154,6 +154,66 @@ class Cournot final : public BuiltinMcp<Cournot> {
   double gamma_;
 };
 
+// A pure exchange economy with Cobb–Douglas consumers (the textbook general-equilibrium MCP, e.g. Mathiesen 1985,
+// Rutherford 1995): consumer h owns e_h and spends the share a_hj of its income p·e_h on good j, so
+// F_j(p) = Σ_h e_hj − Σ_h a_hj (p·e_h)/p_j (excess supply) ⟂ p_j. Good 1 is the numéraire (p1 = 1), the other
+// prices are bounded below by 1e-8 (F is undefined at p_j = 0). Cobb–Douglas demand has gross substitutes, so the
+// normalized equilibrium is unique (Arrow, Block & Hurwicz 1959); it solves the linear system
+// p_j Σ_h e_hj = Σ_k (Σ_h a_hj e_hk) p_k, the known solution below. Our data (3 consumers, 3 goods).
+class Exchange final : public BuiltinMcp<Exchange> {
+ public:
+  static constexpr int kGoods = 3, kConsumers = 3;
+  static constexpr double kPriceFloor = 1e-8;
+  static constexpr double kShare[kConsumers][kGoods] = {{0.5, 0.3, 0.2}, {0.2, 0.6, 0.2}, {0.3, 0.2, 0.5}};
+  static constexpr double kEndowment[kConsumers][kGoods] = {{1, 0, 2}, {0, 3, 1}, {2, 1, 0}};
+  Exchange()
+      : BuiltinMcp(Values({1.0, kPriceFloor, kPriceFloor}), Values({1.0, kInf, kInf}), "exchange",
+                   JacobianKind::kDense, SolutionSetProperty::kUniqueByProof) {}
+  template <class T>
+  void Function(const T* p, T* F) const {
+    for (int j = 0; j < kGoods; ++j) {
+      T excess = 0;
+      for (int h = 0; h < kConsumers; ++h) excess += T(kEndowment[h][j]) - T(kShare[h][j]) * Income(p, h) / p[j];
+      F[j] = excess;
+    }
+  }
+  template <class T, class Add>
+  void Jacobian(const T* p, Add&& add) const {
+    for (int j = 0; j < kGoods; ++j) {
+      for (int k = 0; k < kGoods; ++k) {
+        T v = 0;
+        for (int h = 0; h < kConsumers; ++h) {
+          v -= T(kShare[h][j]) * T(kEndowment[h][k]) / p[j];
+          if (j == k) v += T(kShare[h][j]) * Income(p, h) / (p[j] * p[j]);
+        }
+        add(j, k, v);
+      }
+    }
+  }
+  // The equilibrium from its linear system with p1 = 1 (rows 2 and 3; Walras' law makes row 1 dependent).
+  static Vector Equilibrium() {
+    double B[kGoods][kGoods] = {}, S[kGoods] = {};
+    for (int j = 0; j < kGoods; ++j) {
+      for (int h = 0; h < kConsumers; ++h) {
+        S[j] += kEndowment[h][j];
+        for (int k = 0; k < kGoods; ++k) B[j][k] += kShare[h][j] * kEndowment[h][k];
+      }
+    }
+    Eigen::Matrix2d A;
+    A << S[1] - B[1][1], -B[1][2], -B[2][1], S[2] - B[2][2];
+    const Eigen::Vector2d rest = A.lu().solve(Eigen::Vector2d(B[1][0], B[2][0]));
+    return Values({1.0, rest[0], rest[1]});
+  }
+
+ private:
+  template <class T>
+  static T Income(const T* p, int h) {
+    T income = 0;
+    for (int k = 0; k < kGoods; ++k) income += p[k] * T(kEndowment[h][k]);
+    return income;
+  }
+};
+
 // Billups (1995), "Algorithms for complementarity problems and generalized equations", PhD thesis, Wisconsin: the
 // one-dimensional NCP x ≥ 0, F(x) = (x − 1)² − 1.01, on which Newton's method on the Fischer–Burmeister function
 // from x = 0 stalls at a local minimizer of its merit function near x = 1. Unique solution 1 + √1.01: x = 0 fails
@@ -289,6 +349,10 @@ std::vector<Classic> Table() {
       {"mcp/classic/nash10", "constructed:Cournot-Nash, 10 firms (the oligomcp model with 10 firms' costs)",
        MakeNash10, {{"q=1", Vector::Ones(10)}, {"q=10", Vector::Constant(10, 10.0)}},
        {"classic", "cournot", "output-floor"}, ExpectedOutcome::kSolvable, {}, true},
+      {"mcp/classic/exchange", "literature:Cobb-Douglas exchange economy (textbook general equilibrium), our data",
+       [] { return std::shared_ptr<const MCP>(std::make_shared<Exchange>()); },
+       {{"p=1", Vector::Ones(3)}, {"p=Pi(0)", Values({1, Exchange::kPriceFloor, Exchange::kPriceFloor})}},
+       {"classic", "price-floor"}, ExpectedOutcome::kSolvable, {Exchange::Equilibrium()}, true},
       {"mcp/classic/billups", "literature:Billups 1995 PhD thesis, one-dimensional example",
        [] { return std::shared_ptr<const MCP>(std::make_shared<Billups>()); },
        {{"z0=0", Vector::Zero(1)}}, {"classic", "fb-newton-trap"}, ExpectedOutcome::kSolvable,

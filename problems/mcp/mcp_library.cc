@@ -28,7 +28,8 @@ void McpProblemSet::Validate() const {
       if (!p.starts[s].allFinite()) {
         throw InvalidInputError(where + ": starts[" + std::to_string(s) + "] has a NaN or infinite entry");
       }
-      if (p.start_labels[s].empty()) throw InvalidInputError(where + ": start_labels[" + std::to_string(s) + "] is empty");
+      if (p.start_labels[s].empty())
+        throw InvalidInputError(where + ": start_labels[" + std::to_string(s) + "] is empty");
     }
     for (std::size_t r = 0; r < p.references.size(); ++r) {
       const Vector& z = p.references[r].z;

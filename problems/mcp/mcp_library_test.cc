@@ -36,11 +36,16 @@ Vector RandomInside(const MCP& p, std::mt19937_64* rng) {
   Vector z(p.size());
   for (int i = 0; i < p.size(); ++i) {
     const double l = p.l()[i], u = p.u()[i];
-    if (l == u) z[i] = l;
-    else if (l > -kInf && u < kInf) z[i] = l + unit(*rng) * (u - l);
-    else if (l > -kInf) z[i] = l + wide(*rng) * (1 + std::abs(l));
-    else if (u < kInf) z[i] = u - wide(*rng) * (1 + std::abs(u));
-    else z[i] = free(*rng);
+    if (l == u)
+      z[i] = l;
+    else if (l > -kInf && u < kInf)
+      z[i] = l + unit(*rng) * (u - l);
+    else if (l > -kInf)
+      z[i] = l + wide(*rng) * (1 + std::abs(l));
+    else if (u < kInf)
+      z[i] = u - wide(*rng) * (1 + std::abs(u));
+    else
+      z[i] = free(*rng);
   }
   return z;
 }
@@ -48,11 +53,21 @@ Vector RandomInside(const MCP& p, std::mt19937_64* rng) {
 std::vector<std::string> AllQuickIds() { return McpSuiteIds(true); }
 
 TEST(McpLibraryTest, IdsAreStable) {
-  const std::vector<std::string> expected_prefix{
-      "mcp/classic/kojshin", "mcp/classic/josephy", "mcp/classic/mathiesen", "mcp/classic/nash5",
-      "mcp/classic/nash10", "mcp/classic/billups", "mcp/hard/degenerate", "mcp/hard/three-solutions",
-      "mcp/hard/no-solution", "mcp/hard/undefined-outside", "mcp/obstacle1d/n32", "mcp/obstacle2d/m8",
-      "mcp/bratu1d/n32", "mcp/bratu2d/m8"};
+  const std::vector<std::string> expected_prefix{"mcp/classic/kojshin",
+                                                 "mcp/classic/josephy",
+                                                 "mcp/classic/mathiesen",
+                                                 "mcp/classic/nash5",
+                                                 "mcp/classic/nash10",
+                                                 "mcp/classic/exchange",
+                                                 "mcp/classic/billups",
+                                                 "mcp/hard/degenerate",
+                                                 "mcp/hard/three-solutions",
+                                                 "mcp/hard/no-solution",
+                                                 "mcp/hard/undefined-outside",
+                                                 "mcp/obstacle1d/n32",
+                                                 "mcp/obstacle2d/m8",
+                                                 "mcp/bratu1d/n32",
+                                                 "mcp/bratu2d/m8"};
   const std::vector<std::string> ids = McpSuiteIds(true);
   ASSERT_GE(ids.size(), expected_prefix.size() + 2);
   for (std::size_t k = 0; k < expected_prefix.size(); ++k) EXPECT_EQ(ids[k], expected_prefix[k]);
@@ -95,7 +110,7 @@ TEST(McpLibraryTest, PublishedSolutionsSatisfyComplementarity) {
       ++checked;
     }
   }
-  EXPECT_EQ(checked, 11);
+  EXPECT_EQ(checked, 12);
 }
 
 TEST(McpLibraryTest, JacobiansMatchCentralDifferencesAndQuadMatchesDouble) {
@@ -130,7 +145,8 @@ TEST(McpLibraryTest, JacobiansMatchCentralDifferencesAndQuadMatchesDouble) {
       quad->JacobianQuad(zq.data(), Jq.data());
       for (int i = 0; i < n; ++i) {
         EXPECT_NEAR(static_cast<double>(Fq[i]), F[i], 1e-13 * (1 + std::abs(F[i]))) << i;
-        for (int j = 0; j < n; ++j) EXPECT_NEAR(static_cast<double>(Jq[i + j * n]), J(i, j), 1e-13 * (1 + std::abs(J(i, j))));
+        for (int j = 0; j < n; ++j)
+          EXPECT_NEAR(static_cast<double>(Jq[i + j * n]), J(i, j), 1e-13 * (1 + std::abs(J(i, j))));
       }
     }
   }
@@ -138,8 +154,8 @@ TEST(McpLibraryTest, JacobiansMatchCentralDifferencesAndQuadMatchesDouble) {
 
 TEST(McpLibraryTest, FamiliesSparseJacobianEqualsDenseAndKeepsItsPattern) {
   std::mt19937_64 rng(7);
-  for (const char* id : {"mcp/obstacle1d/n32", "mcp/obstacle2d/m8", "mcp/bratu1d/n32", "mcp/bratu2d/m8",
-                                "mcp/obstacle2d/m100"}) {
+  for (const char* id :
+       {"mcp/obstacle1d/n32", "mcp/obstacle2d/m8", "mcp/bratu1d/n32", "mcp/bratu2d/m8", "mcp/obstacle2d/m100"}) {
     SCOPED_TRACE(id);
     const std::shared_ptr<const MCP> p = MakeBuiltinMcp(id);
     EXPECT_EQ(p->jacobian_kind(), MCP::JacobianKind::kSparse);
@@ -236,6 +252,7 @@ TEST(McpLibraryTest, QuickSuiteValidatesWithCertifiedReferences) {
       {"mcp/classic/mathiesen", {Certificate::kUnique}},
       {"mcp/classic/nash5", {Certificate::kUnique}},
       {"mcp/classic/nash10", {Certificate::kUnique}},
+      {"mcp/classic/exchange", {Certificate::kUnique}},
       {"mcp/classic/billups", {Certificate::kUnique}},
       {"mcp/hard/degenerate", {Certificate::kDegenerate}},
       {"mcp/hard/three-solutions", {Certificate::kNonUnique, Certificate::kNonUnique, Certificate::kNonUnique}},

@@ -12,13 +12,13 @@ namespace smcbench {
 namespace {
 
 constexpr Quad kQuadEps = 0x1p-112;
-constexpr double kPivotTolerance = 1e-28;   // relative to the block's largest entry: singular below it
+constexpr double kPivotTolerance = 1e-28;  // relative to the block's largest entry: singular below it
 constexpr double kMarginFactor = 64.0;
 constexpr double kMarginFloor = 1e-30;
 constexpr double kMaxRelativeMargin = 1e-10;  // a wider margin decides nothing
 constexpr double kStepTolerance = 1e-32;      // Newton stops when ‖C⁻¹Δz‖∞ ≤ this (1 + ‖C⁻¹z‖∞)
 constexpr int kMaxHalvings = 60;
-constexpr int kMaxMinorsSize = 10;            // principal-minor P-matrix check up to this n (2^n minors)
+constexpr int kMaxMinorsSize = 10;  // principal-minor P-matrix check up to this n (2^n minors)
 
 Quad Abs(Quad x) { return x < 0 ? -x : x; }
 bool Finite(Quad x) { return x - x == 0; }
@@ -221,8 +221,10 @@ class McpCertifier {
         continue;
       }
       const Quad t = z[i] - c_[i] * F_[i] / d[i];
-      if (l_[i] > -kInf && t <= l_[i]) (*set)[i] = kLower;
-      else if (u_[i] < kInf && t >= u_[i]) (*set)[i] = kUpper;
+      if (l_[i] > -kInf && t <= l_[i])
+        (*set)[i] = kLower;
+      else if (u_[i] < kInf && t >= u_[i])
+        (*set)[i] = kUpper;
     }
     return true;
   }
@@ -239,7 +241,8 @@ class McpCertifier {
     const int k = static_cast<int>(free.size());
     std::vector<Quad> block(static_cast<std::size_t>(k) * k);
     for (int r = 0; r < k; ++r) {
-      for (int s = 0; s < k; ++s) block[static_cast<std::size_t>(r) * k + s] = J(free[r], free[s]) * c_[free[s]] / d[free[r]];
+      for (int s = 0; s < k; ++s)
+        block[static_cast<std::size_t>(r) * k + s] = J(free[r], free[s]) * c_[free[s]] / d[free[r]];
     }
     SmallLu lu;
     lu.Factor(k, std::move(block));
@@ -250,9 +253,12 @@ class McpCertifier {
     Attempt a;
     std::vector<int> free;
     for (int i = 0; i < n_; ++i) {
-      if (set[i] == kFree) free.push_back(i);
-      else if (set[i] == kUpper) z[i] = u_[i];
-      else z[i] = l_[i];
+      if (set[i] == kFree)
+        free.push_back(i);
+      else if (set[i] == kUpper)
+        z[i] = u_[i];
+      else
+        z[i] = l_[i];
     }
     const int k = static_cast<int>(free.size());
     std::vector<Quad> d, rhs(k), step, trial;
@@ -375,7 +381,8 @@ class McpCertifier {
         if (!(pivot > 0)) return false;
         for (int i = s + 1; i < n_; ++i) {
           const Quad m = h[static_cast<std::size_t>(i) * n_ + s] / pivot;
-          for (int j = s + 1; j < n_; ++j) h[static_cast<std::size_t>(i) * n_ + j] -= m * h[static_cast<std::size_t>(s) * n_ + j];
+          for (int j = s + 1; j < n_; ++j)
+            h[static_cast<std::size_t>(i) * n_ + j] -= m * h[static_cast<std::size_t>(s) * n_ + j];
         }
       }
       return true;

@@ -23,7 +23,9 @@ class PolyMcp final : public ExtendedPrecisionMCP {
   using QuadF = std::function<void(const Quad*, Quad*)>;
   using QuadJ = std::function<void(const Quad*, Quad*)>;
   PolyMcp(Vector l, Vector u, QuadF F, QuadJ J, SolutionSetProperty property = SolutionSetProperty::kNone)
-      : ExtendedPrecisionMCP(std::move(l), std::move(u), "poly"), F_(std::move(F)), J_(std::move(J)),
+      : ExtendedPrecisionMCP(std::move(l), std::move(u), "poly"),
+        F_(std::move(F)),
+        J_(std::move(J)),
         property_(property) {}
   void Evaluate(const Vector& z, Vector* F) const override {
     std::vector<Quad> zq(z.data(), z.data() + z.size()), Fq(z.size());
@@ -121,9 +123,7 @@ TEST(McpCertifyTest, DegenerateSolutionOfAPFunctionIsDegenerate) {
         F[0] = x[0] + x[0] * x[0] * x[0] - 2;
         F[1] = x[1] + x[0] * x[0] - 1;
       },
-      [](const Quad* x, Quad* J) {
-        J[0] = 1 + 3 * x[0] * x[0], J[1] = 2 * x[0], J[2] = 0, J[3] = 1;
-      },
+      [](const Quad* x, Quad* J) { J[0] = 1 + 3 * x[0] * x[0], J[1] = 2 * x[0], J[2] = 0, J[3] = 1; },
       SolutionSetProperty::kPFunction);
   for (const Vector& candidate : {Vec({1.0, 0.0}), Vec({0.9, 1e-3}), Vec({1.1, 0.0})}) {
     const std::vector<McpCertifiedSolution> found = CertifyMCPSolutions(p, {candidate});
@@ -161,7 +161,9 @@ TEST(McpCertifyTest, VariableUnitsScaleTheAnswerAndKeepTheCondition) {
         F[0] = 2 * (z[0] / s0) + z[1] / s1 - 3;
         F[1] = z[0] / s0 + 3 * (z[1] / s1) - 4;
       },
-      [&](const Quad*, Quad* J) { J[0] = 2 / Quad(s0), J[1] = 1 / Quad(s0), J[2] = 1 / Quad(s1), J[3] = 3 / Quad(s1); });
+      [&](const Quad*, Quad* J) {
+        J[0] = 2 / Quad(s0), J[1] = 1 / Quad(s0), J[2] = 1 / Quad(s1), J[3] = 3 / Quad(s1);
+      });
   p.set_variable_scale(Vec({s0, s1}));
   const ReferenceSolution r = CertifyMCP(p, {Vec({0.0, 0.0})});
   EXPECT_EQ(r.certificate, Certificate::kIsolated);
@@ -179,8 +181,7 @@ TEST(McpCertifyTest, NoSolutionGivesNoneFound) {
         F[1] = -1 - z[0] * z[0] - z[1] * z[1];
       },
       [](const Quad* z, Quad* J) { J[0] = 1, J[1] = -2 * z[0], J[2] = -1, J[3] = -2 * z[1]; });
-  const ReferenceSolution r =
-      CertifyMCP(p, {Vec({0, 0}), Vec({1, 1}), Vec({1e6, 1e6}), Vec({1}), Vec({kNaN, 0})});
+  const ReferenceSolution r = CertifyMCP(p, {Vec({0, 0}), Vec({1, 1}), Vec({1e6, 1e6}), Vec({1}), Vec({kNaN, 0})});
   EXPECT_EQ(r.certificate, Certificate::kNoneFound);
   EXPECT_EQ(r.z.size(), 0);
   EXPECT_FALSE(r.verified());
