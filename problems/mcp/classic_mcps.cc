@@ -326,18 +326,25 @@ std::shared_ptr<const MCP> MakeNash10() {
                                    "nash10");
 }
 
+// The eight starting points of MCPLIB's `kojshin` and `josephy` (the same for both; the AMPL versions of the
+// collection list them as columns 1-8).
+std::vector<std::pair<std::string, Vector>> KojimaStarts() {
+  return {{"start1=(0,0,0,0)", Values({0, 0, 0, 0})},       {"start2=(1,1,1,1)", Values({1, 1, 1, 1})},
+          {"start3=(100,100,100,100)", Values({100, 100, 100, 100})}, {"start4=(1,0,1,0)", Values({1, 0, 1, 0})},
+          {"start5=(1,0,0,0)", Values({1, 0, 0, 0})},       {"start6=(0,1,1,0)", Values({0, 1, 1, 0})},
+          {"start7=(0,1,0,1)", Values({0, 1, 0, 1})},       {"start8=(1.25,0,0,0.5)", Values({1.25, 0, 0, 0.5})}};
+}
+
 std::vector<Classic> Table() {
   const double r6 = std::sqrt(6.0) / 2;
   return {
       {"mcp/classic/kojshin", "literature:Kojima-Shindo 1986; MCPLIB kojshin (Dirkse-Ferris 1995)",
        [] { return std::shared_ptr<const MCP>(std::make_shared<KojimaShindo>()); },
-       {{"z0=0", Vector::Zero(4)}, {"z0=1", Vector::Ones(4)}, {"z0=100", Vector::Constant(4, 100.0)}},
-       {"classic", "several-solutions"}, ExpectedOutcome::kSolvable,
+       KojimaStarts(), {"classic", "several-solutions"}, ExpectedOutcome::kSolvable,
        {Values({1, 0, 3, 0}), Values({r6, 0, 0, 0.5})}, true},
       {"mcp/classic/josephy", "literature:Josephy 1979 (Kojima's example); MCPLIB josephy (Dirkse-Ferris 1995)",
        [] { return std::shared_ptr<const MCP>(std::make_shared<Josephy>()); },
-       {{"z0=0", Vector::Zero(4)}, {"z0=1", Vector::Ones(4)}, {"z0=100", Vector::Constant(4, 100.0)}},
-       {"classic"}, ExpectedOutcome::kSolvable, {Values({r6, 0, 0, 0.5})}, false},
+       KojimaStarts(), {"classic"}, ExpectedOutcome::kSolvable, {Values({r6, 0, 0, 0.5})}, false},
       {"mcp/classic/mathiesen", "literature:Mathiesen 1985 four-variable general equilibrium, numeraire x2 = 1",
        [] { return std::shared_ptr<const MCP>(std::make_shared<Mathiesen>()); },
        {{"z0=1", Values({1, 1, 1, 1})}, {"z0=Pi(0)", Values({0, 1, Mathiesen::kPriceFloor, 0})}},
