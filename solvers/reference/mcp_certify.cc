@@ -134,7 +134,7 @@ class McpCertifier {
 
   void Run(const std::vector<Vector>& candidates) {
     for (const Vector& candidate : candidates) {
-      if (candidate.size() != n_ || !candidate.allFinite()) continue;
+      if (candidate.size() != n_ || !candidate.allFinite() || NearFound(candidate)) continue;
       std::vector<Quad> z(n_);
       for (int i = 0; i < n_; ++i) z[i] = std::min(std::max(candidate[i], l_[i]), u_[i]);
       ActiveSet set;
@@ -179,6 +179,20 @@ class McpCertifier {
     Attempt attempt;
     ReferenceSolution reference;
   };
+
+  // A candidate within 1e-8 (relative, in units of z) of a verified point would only verify it again (backends'
+  // answers from several starts usually agree): skipped, which keeps the cost per problem to a few Newton runs.
+  bool NearFound(const Vector& candidate) const {
+    for (const Found& f : found_) {
+      double distance = 0.0, size = 0.0;
+      for (int i = 0; i < n_; ++i) {
+        distance = std::max(distance, std::abs(candidate[i] - static_cast<double>(f.attempt.z[i])) / c_[i]);
+        size = std::max(size, std::abs(candidate[i]) / c_[i]);
+      }
+      if (distance <= 1e-8 * (1 + size)) return true;
+    }
+    return false;
+  }
 
   bool Evaluate(const std::vector<Quad>& z) {
     p_.EvaluateQuad(z.data(), F_.data());
