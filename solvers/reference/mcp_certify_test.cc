@@ -172,6 +172,34 @@ TEST(McpCertifyTest, VariableUnitsScaleTheAnswerAndKeepTheCondition) {
   EXPECT_NEAR(r.condition, 1.8, 1e-14);
 }
 
+// Rows of F scaled by 1e8 and 1e-8: the same solutions, certificates and μ (the row scales absorb the factors).
+TEST(McpCertifyTest, RowScalingOfFChangesNothing) {
+  const Quad s[4] = {1e8, 1e-8, 1e8, 1e-8};
+  const PolyMcp plain = KojimaShindo();
+  const PolyMcp scaled(
+      Vector::Zero(4), Vector::Constant(4, kInf),
+      [&](const Quad* x, Quad* F) {
+        KojimaShindo().EvaluateQuad(x, F);
+        for (int i = 0; i < 4; ++i) F[i] *= s[i];
+      },
+      [&](const Quad* x, Quad* J) {
+        KojimaShindo().JacobianQuad(x, J);
+        for (int j = 0; j < 4; ++j) {
+          for (int i = 0; i < 4; ++i) J[i + 4 * j] *= s[i];
+        }
+      });
+  const std::vector<Vector> candidates{Vec({1, 0, 3, 0}), Vec({1.2247, 0, 0, 0.5})};
+  const std::vector<McpCertifiedSolution> a = CertifyMCPSolutions(plain, candidates);
+  const std::vector<McpCertifiedSolution> b = CertifyMCPSolutions(scaled, candidates);
+  ASSERT_EQ(a.size(), 2u);
+  ASSERT_EQ(b.size(), 2u);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(a[k].reference.certificate, b[k].reference.certificate);
+    EXPECT_NEAR(a[k].reference.condition, b[k].reference.condition, 1e-12 * a[k].reference.condition);
+    for (int i = 0; i < 4; ++i) EXPECT_LT(QuadAbs(a[k].z[i] - b[k].z[i]), 1e-30);
+  }
+}
+
 // F2 = −1 − z1² − z2² < 0 on z ≥ 0: no solution; nothing verifies, wrong-size and NaN candidates are skipped.
 TEST(McpCertifyTest, NoSolutionGivesNoneFound) {
   const PolyMcp p(
