@@ -46,7 +46,9 @@ struct McpCertifiedSolution {
 };
 
 // Every distinct solution verified from the candidates, in the order found (candidates of the wrong size or with
-// non-finite entries are skipped). Empty when none verifies or n > max_size. Never throws for a valid problem.
+// non-finite entries are skipped). A point that meets every condition but cannot be certified (degenerate, no
+// declared property, a singular alternative block) is listed with kNoneFound and an empty reference.z. Empty when
+// none verifies or n > max_size. Never throws for a valid problem.
 std::vector<McpCertifiedSolution> CertifyMCPSolutions(const ExtendedPrecisionMCP& problem,
                                                       const std::vector<Vector>& candidates,
                                                       const McpCertifyOptions& options = {});
