@@ -69,36 +69,50 @@ class Josephy final : public BuiltinMcp<Josephy> {
   }
 };
 
-// Mathiesen's (1985) general-equilibrium example in its four-variable NCP form (x1 an activity level, x2 and x3
-// prices, x4 a slack activity; expenditure shares α and 1 − α with α = 0.75, b = 0.95):
-//   F1 = −x2 + x3 + x4,  F2 = x1 − α(x3 + αx4)/x2,  F3 = 1 − x1 − (1 − α)(x3 + αx4)/x3,  F4 = b − x1.
-// Unnormalized it has the ray of solutions (3/4, λ, λ, 0); the price x2 is fixed as numéraire (l2 = u2 = 1) and
-// the price x3 bounded below by 1e-8 (F is undefined at x3 = 0). Uniqueness then, by cases: x4 > 0 forces x1 = b,
-// x3 + x4 = 1 and F3 = 1 − b − (1 − α)(1 + αx4/x3) < 0, impossible; x1 = 0 forces x3 + x4 ≥ 1 and either
-// x4 = 4x3 > 0 with F4 = b ≠ 0 or x3 at its floor with x4 ≤ 4·1e-8, both impossible; so x4 = 0, x1 > 0, x3 = 1
-// and x1 = 3/4: z* = (3/4, 1, 1, 0), strictly complementary (F4 = 0.2).
+// Mathiesen (1987), "An algorithm based on a sequence of linear complementarity problems applied to a Walrasian
+// equilibrium model: an example", Math. Prog. 37 (also the GAMS EMP model `mopec_mathiesen`): three goods, one
+// activity y turning goods 2 and 3 into good 1 (technology (1, −1, −1)), one consumer with Cobb–Douglas shares
+// s = (0.9, 0.1, 0) and endowment b = (0, 5, 3). With the explicit demand s_i (p·b)/p_i, z = (y, p1, p2, p3):
+//   F1 = −p1 + p2 + p3,  F_{1+i} = b_i + A_i y − s_i (p·b)/p_i  (excess supply of good i).
+// Good 2 is the numéraire (p2 = 1, as in the GAMS model); p1 and p3 are bounded below by 1e-8 (F is undefined at
+// p1 = 0). Solution (3, 6, 1, 5), the paper's y* = 3, p* = (6, 1, 5). Unique, by cases: y > 0 gives p1 = 1 + p3;
+// p3 at its floor would need y ≤ 3 while F2 = 0 gives y = 0.9(5 + 3p3)/p1 ≈ 4.5; p1 at its floor would need
+// y ≥ 4.5e8 > 3; so y = 3 and 3(1 + p3) = 0.9(5 + 3p3), p3 = 5. And y = 0 leaves F2 < 0 for every p1 > 0.
 class Mathiesen final : public BuiltinMcp<Mathiesen> {
  public:
-  static constexpr double kAlpha = 0.75, kB = 0.95, kPriceFloor = 1e-8;
+  static constexpr double kPriceFloor = 1e-8;
+  static constexpr double kShare[3] = {0.9, 0.1, 0.0}, kEndowment[3] = {0.0, 5.0, 3.0}, kTechnology[3] = {1, -1, -1};
   Mathiesen()
-      : BuiltinMcp(Values({0.0, 1.0, kPriceFloor, 0.0}), Values({kInf, 1.0, kInf, kInf}), "mathiesen",
+      : BuiltinMcp(Values({0.0, kPriceFloor, 1.0, kPriceFloor}), Values({kInf, kInf, 1.0, kInf}), "mathiesen",
                    JacobianKind::kDense, SolutionSetProperty::kUniqueByProof) {}
   template <class T>
-  void Function(const T* x, T* F) const {
-    const T a = kAlpha, income = x[2] + a * x[3];
-    F[0] = -x[1] + x[2] + x[3];
-    F[1] = x[0] - a * income / x[1];
-    F[2] = 1 - x[0] - (1 - a) * income / x[2];
-    F[3] = T(kB) - x[0];
+  void Function(const T* z, T* F) const {
+    const T* p = z + 1;
+    const T income = Income(p);
+    F[0] = -p[0] + p[1] + p[2];
+    for (int i = 0; i < 3; ++i) F[1 + i] = T(kEndowment[i]) + T(kTechnology[i]) * z[0] - T(kShare[i]) * income / p[i];
   }
   template <class T, class Add>
-  void Jacobian(const T* x, Add&& add) const {
-    const T a = kAlpha, income = x[2] + a * x[3];
+  void Jacobian(const T* z, Add&& add) const {
+    const T* p = z + 1;
+    const T income = Income(p);
     add(0, 0, T(0)), add(0, 1, T(-1)), add(0, 2, T(1)), add(0, 3, T(1));
-    add(1, 0, T(1)), add(1, 1, a * income / (x[1] * x[1])), add(1, 2, -a / x[1]), add(1, 3, -a * a / x[1]);
-    // F3 = 1 − x1 − (1 − α)(1 + α x4/x3).
-    add(2, 0, T(-1)), add(2, 1, T(0)), add(2, 2, (1 - a) * a * x[3] / (x[2] * x[2])), add(2, 3, -(1 - a) * a / x[2]);
-    add(3, 0, T(-1)), add(3, 1, T(0)), add(3, 2, T(0)), add(3, 3, T(0));
+    for (int i = 0; i < 3; ++i) {
+      add(1 + i, 0, T(kTechnology[i]));
+      for (int k = 0; k < 3; ++k) {
+        T v = -T(kShare[i]) * T(kEndowment[k]) / p[i];
+        if (k == i) v += T(kShare[i]) * income / (p[i] * p[i]);
+        add(1 + i, 1 + k, v);
+      }
+    }
+  }
+
+ private:
+  template <class T>
+  static T Income(const T* p) {
+    T income = 0;
+    for (int k = 0; k < 3; ++k) income += p[k] * T(kEndowment[k]);
+    return income;
   }
 };
 
@@ -345,10 +359,10 @@ std::vector<Classic> Table() {
       {"mcp/classic/josephy", "literature:Josephy 1979 (Kojima's example); MCPLIB josephy (Dirkse-Ferris 1995)",
        [] { return std::shared_ptr<const MCP>(std::make_shared<Josephy>()); },
        KojimaStarts(), {"classic"}, ExpectedOutcome::kSolvable, {Values({r6, 0, 0, 0.5})}, false},
-      {"mcp/classic/mathiesen", "literature:Mathiesen 1985 four-variable general equilibrium, numeraire x2 = 1",
+      {"mcp/classic/mathiesen", "literature:Mathiesen 1987 Walrasian model (Math. Prog. 37), numeraire p2 = 1",
        [] { return std::shared_ptr<const MCP>(std::make_shared<Mathiesen>()); },
-       {{"z0=1", Values({1, 1, 1, 1})}, {"z0=Pi(0)", Values({0, 1, Mathiesen::kPriceFloor, 0})}},
-       {"classic", "price-floor"}, ExpectedOutcome::kSolvable, {Values({0.75, 1, 1, 0})}, true},
+       {{"z0=1", Values({1, 1, 1, 1})}, {"z0=Pi(0)", Values({0, Mathiesen::kPriceFloor, 1, Mathiesen::kPriceFloor})}},
+       {"classic", "price-floor"}, ExpectedOutcome::kSolvable, {Values({3, 6, 1, 5})}, true},
       {"mcp/classic/nash5", "literature:Murphy-Sherali-Soyster 1982 Cournot-Nash, 5 firms (GAMS oligomcp)",
        MakeNash5, {{"q=10", Vector::Constant(5, 10.0)}, {"q=1", Vector::Ones(5)}},
        {"classic", "cournot", "output-floor"}, ExpectedOutcome::kSolvable,
