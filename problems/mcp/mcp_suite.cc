@@ -17,9 +17,7 @@ namespace {
 constexpr BuiltinMcpMaker kMakers[] = {MakeClassicMcp, MakeFamilyMcp, MakeSceneStepMcp};
 constexpr int kMaxCertifiedSize = 64;
 
-BuiltinMcpEntry MakeEntry(const std::string& id);
-
-// Levenshtein distance, for "did you mean".
+// Levenshtein distance, to suggest the ids closest to an unknown one.
 std::size_t Distance(const std::string& a, const std::string& b) {
   std::vector<std::size_t> row(b.size() + 1);
   for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
