@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 #include <utility>
 
 #include "solvers/core/extended_precision_mcp.h"
@@ -50,6 +51,10 @@ class BuiltinMcp : public ExtendedPrecisionMCP {
     const int n = size();
     for (int k = 0; k < n * n; ++k) J[k] = 0;
     self().Jacobian(z, [J, n](int i, int j, Quad v) { J[i + j * n] += v; });
+  }
+  void JacobianQuadEntries(const Quad* z, std::vector<QuadEntry>* entries) const override {
+    entries->clear();
+    self().Jacobian(z, [entries](int i, int j, Quad v) { entries->push_back({i, j, v}); });
   }
   SolutionSetProperty solution_set_property() const override { return property_; }
 

@@ -278,5 +278,15 @@ TEST(McpLibraryTest, QuickSuiteValidatesWithCertifiedReferences) {
   }
 }
 
+// A large family size gets its reference through the certifier's banded path (tridiagonal here).
+TEST(McpLibraryTest, LargeSparseFamilyGetsABandedReference) {
+  McpLibraryProblem p = MakeBuiltinMcpProblem("mcp/obstacle1d/n1000");
+  AttachMcpReferences(&p);
+  ASSERT_EQ(p.references.size(), 1u);
+  EXPECT_EQ(p.references[0].certificate, Certificate::kUnique);
+  EXPECT_TRUE(p.references_complete);
+  EXPECT_LE(ScaledResidual(*p.problem, p.references[0].z), 1e-15);
+}
+
 }  // namespace
 }  // namespace smcbench

@@ -16,6 +16,7 @@ namespace {
 
 constexpr BuiltinMcpMaker kMakers[] = {MakeClassicMcp, MakeFamilyMcp, MakeSceneStepMcp};
 constexpr int kMaxCertifiedSize = 64;
+constexpr double kLargeCandidateResidual = 1e-6;
 
 // Levenshtein distance, to suggest the ids closest to an unknown one.
 std::size_t Distance(const std::string& a, const std::string& b) {
@@ -58,28 +59,50 @@ BuiltinMcpEntry MakeEntry(const std::string& id) {
   throw InvalidInputError(message);
 }
 
+// McpScaledResidual of z with the Jacobian at z, in the storage the problem advertises.
+double ScaledResidual(const MCP& problem, const Vector& z) {
+  Vector F(problem.size()), d;
+  problem.Evaluate(z, &F);
+  if (problem.jacobian_kind() == MCP::JacobianKind::kSparse) {
+    SparseMatrix J;
+    problem.JacobianSparse(z, &J);
+    McpRowScales(J, problem.variable_scale(), &d);
+  } else {
+    DenseMatrix J;
+    problem.JacobianDense(z, &J);
+    McpRowScales(J, problem.variable_scale(), &d);
+  }
+  return McpScaledResidual(z, F, problem.l(), problem.u(), d, problem.variable_scale());
+}
+
 void AttachReferences(McpLibraryProblem* p, const std::vector<Vector>& known_solutions) {
   p->references.clear();
   const auto* mcp = dynamic_cast<const ExtendedPrecisionMCP*>(p->problem.get());
   const int n = p->size();
-  if (!mcp || n > kMaxCertifiedSize) {
+  const McpCertifyOptions options;
+  const bool small = n <= kMaxCertifiedSize;
+  const bool banded = !small && p->sparse() && n <= options.max_banded_size;
+  if (!mcp || (!small && !banded)) {
     p->references_complete = false;
     return;
   }
   // The starts too: a start from which no backend converges may still lead the certifier's Newton to a solution.
+  // Large problems take only answers already close to a solution (each quad Newton step there is a banded
+  // factorization of n unknowns).
   std::vector<Vector> candidates = known_solutions;
-  candidates.insert(candidates.end(), p->starts.begin(), p->starts.end());
+  if (small) candidates.insert(candidates.end(), p->starts.begin(), p->starts.end());
   for (std::string_view name : SolverNames()) {
     std::unique_ptr<Solver> solver = CreateSolver(name);
     if (!solver->info().mcp) continue;
     for (const Vector& start : p->starts) {
-      SolverOptions options;
-      options.warm_start = start;
-      const SolveResult result = solver->Solve(*mcp, options);
-      if (result.z.size() == n && result.z.allFinite()) candidates.push_back(result.z);
+      SolverOptions solver_options;
+      solver_options.warm_start = start;
+      const SolveResult result = solver->Solve(*mcp, solver_options);
+      if (result.z.size() != n || !result.z.allFinite()) continue;
+      if (small || ScaledResidual(*mcp, result.z) <= kLargeCandidateResidual) candidates.push_back(result.z);
     }
   }
-  const std::vector<McpCertifiedSolution> solutions = CertifyMCPSolutions(*mcp, candidates);
+  const std::vector<McpCertifiedSolution> solutions = CertifyMCPSolutions(*mcp, candidates, options);
   bool all_verified = true;
   for (const McpCertifiedSolution& s : solutions) {
     all_verified = all_verified && s.reference.verified();

@@ -17,7 +17,7 @@ namespace smcbench {
 std::vector<std::string> McpSuiteIds(bool quick);
 
 // The suite with its references attached (AttachMcpReferences on every problem). Runs every registered MCP backend
-// from every start of every problem with n ≤ 64: seconds, not milliseconds.
+// from every start of every problem: about a second quick, minutes full (the 10⁴-unknown references).
 McpProblemSet BuildMcpSuite(bool quick);
 
 // The MCP of a built-in id (any id of McpSuiteIds, and any size of a family or step of a scene of the same form).
@@ -27,13 +27,14 @@ std::shared_ptr<const MCP> MakeBuiltinMcp(const std::string& id);
 // The library entry of a built-in id (problem, starts, tags, expected outcome), without references.
 McpLibraryProblem MakeBuiltinMcpProblem(const std::string& id);
 
-// Certified references for a problem with n ≤ 64 whose MCP implements ExtendedPrecisionMCP (others are left
-// without references): the candidates are the answers of every registered backend that solves MCPs
-// (SolverInfo::mcp) from every start, the starts themselves and the built-in's published or proved solutions;
-// CertifyMCPSolutions
-// (solvers/reference/mcp_certify.h) keeps the verified ones. references_complete stays true only when the entry
-// declared it and the certified set matches what the literature or proof says (every known solution found; one
-// solution certified unique when none is listed; none for an expected-infeasible problem).
+// Certified references for a problem whose MCP implements ExtendedPrecisionMCP, dense up to n = 64 and sparse up
+// to McpCertifyOptions::max_banded_size (others are left without references): the candidates are the answers of
+// every registered backend that solves MCPs (SolverInfo::mcp) from every start, the built-in's published or proved
+// solutions and, for n ≤ 64, the starts themselves (larger problems take only answers with a scale-free residual
+// ≤ 1e-6); CertifyMCPSolutions (solvers/reference/mcp_certify.h) keeps the verified ones. references_complete stays
+// true only when the entry declared it and the certified set matches what the literature or proof says (every
+// known solution found; one solution certified unique when none is listed; none for an expected-infeasible
+// problem).
 void AttachMcpReferences(McpLibraryProblem* problem);
 
 }  // namespace smcbench

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <string_view>
+#include <vector>
 
 #include "solvers/core/problem.h"
 
@@ -23,6 +24,13 @@ enum class SolutionSetProperty : int {
 };
 std::string_view ToString(SolutionSetProperty value);  // "none", "P-function", "strongly monotone", "unique by proof"
 
+// One Jacobian entry ∂F_row/∂z_col in quad.
+struct QuadEntry {
+  int row = 0;
+  int col = 0;
+  Quad value = 0;
+};
+
 class ExtendedPrecisionMCP : public MCP {
  public:
   using MCP::MCP;
@@ -31,6 +39,20 @@ class ExtendedPrecisionMCP : public MCP {
   virtual void EvaluateQuad(const Quad* z, Quad* F) const = 0;
   // ∂F/∂z at z in quad, dense column-major size()×size() (every entry written).
   virtual void JacobianQuad(const Quad* z, Quad* J) const = 0;
+  // The same Jacobian as entries (an (i, j) listed twice is summed), for problems too large for the dense n×n of
+  // JacobianQuad (the certifier's banded path). Default: the nonzeros of JacobianQuad (an n² workspace).
+  virtual void JacobianQuadEntries(const Quad* z, std::vector<QuadEntry>* entries) const {
+    const int n = size();
+    std::vector<Quad> J(static_cast<std::size_t>(n) * n);
+    JacobianQuad(z, J.data());
+    entries->clear();
+    for (int j = 0; j < n; ++j) {
+      for (int i = 0; i < n; ++i) {
+        const Quad v = J[static_cast<std::size_t>(j) * n + i];
+        if (v != 0) entries->push_back({i, j, v});
+      }
+    }
+  }
   // What is known about the solution set (the certifier's `unique` needs more than kNone).
   virtual SolutionSetProperty solution_set_property() const { return SolutionSetProperty::kNone; }
 };

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <memory>
 #include <set>
 #include <string>
 #include <utility>
@@ -26,8 +27,16 @@ bool Finite(Quad x) { return x - x == 0; }
 enum State : char { kLower = 'L', kUpper = 'U', kFree = 'F', kFixed = 'X' };
 using ActiveSet = std::string;
 
+// A factored reduced Jacobian A = D_F⁻¹ J_FF C_F: solves, and μ = ‖A⁻¹‖∞ (+∞ when it cannot be bounded).
+struct ReducedFactor {
+  virtual ~ReducedFactor() = default;
+  virtual bool singular() const = 0;
+  virtual void Solve(const std::vector<Quad>& b, std::vector<Quad>* x) const = 0;
+  virtual Quad InverseNorm() const = 0;
+};
+
 // Complete-pivoting LU of a k×k row-major block: rank-revealing; solves and ‖B⁻¹‖∞.
-struct SmallLu {
+struct SmallLu final : ReducedFactor {
   int k = 0, rank = 0, swaps = 0;
   std::vector<Quad> a;
   std::vector<int> row, col;
@@ -68,9 +77,9 @@ struct SmallLu {
       rank = s + 1;
     }
   }
-  bool singular() const { return rank < k; }
+  bool singular() const override { return rank < k; }
   // x = B⁻¹ b (nonsingular only).
-  void Solve(const std::vector<Quad>& b, std::vector<Quad>* x) const {
+  void Solve(const std::vector<Quad>& b, std::vector<Quad>* x) const override {
     std::vector<Quad> y(k);
     for (int s = 0; s < k; ++s) {
       Quad v = b[row[s]];
@@ -85,7 +94,7 @@ struct SmallLu {
       (*x)[col[s]] = y[s];
     }
   }
-  Quad InverseNorm() const {
+  Quad InverseNorm() const override {
     std::vector<Quad> e(k, Quad(0)), x, row_sum(k, Quad(0));
     for (int c = 0; c < k; ++c) {
       std::fill(e.begin(), e.end(), Quad(0));
@@ -105,6 +114,63 @@ struct SmallLu {
   }
 };
 
+// LU without pivoting of a k×k band matrix (lower bandwidth p, upper q; row-major band storage), for the large
+// sparse problems whose reduced Jacobian is a nonsingular M-matrix (discretized −Δ + monotone terms): elimination
+// without pivoting is then stable and keeps the band. μ: for a Z-matrix A (off-diagonal ≤ 0), a solution x > 0 of
+// A x = e proves A a nonsingular M-matrix, so A⁻¹ ≥ 0 and ‖A⁻¹‖∞ = ‖A⁻¹e‖∞ = max x; otherwise μ is not bounded
+// here (+∞: the point is not certified).
+struct BandLu final : ReducedFactor {
+  int k = 0, p = 0, q = 0;
+  bool z_matrix = true, failed = false;
+  std::vector<Quad> a;
+  int width() const { return p + q + 1; }
+  Quad& At(int r, int c) { return a[static_cast<std::size_t>(r) * width() + (c - r + p)]; }
+  Quad At(int r, int c) const { return a[static_cast<std::size_t>(r) * width() + (c - r + p)]; }
+
+  void Factor() {
+    Quad largest = 0;
+    for (Quad v : a) largest = std::max(largest, Abs(v));
+    const Quad tolerance = kPivotTolerance * largest;
+    for (int s = 0; s < k && !failed; ++s) {
+      const Quad pivot = At(s, s);
+      if (!(Abs(pivot) > tolerance) || !Finite(pivot)) {
+        failed = true;
+        break;
+      }
+      for (int i = s + 1; i <= std::min(k - 1, s + p); ++i) {
+        const Quad m = At(i, s) / pivot;
+        At(i, s) = m;
+        if (m == 0) continue;
+        for (int j = s + 1; j <= std::min(k - 1, s + q); ++j) At(i, j) -= m * At(s, j);
+      }
+    }
+  }
+  bool singular() const override { return failed; }
+  void Solve(const std::vector<Quad>& b, std::vector<Quad>* x) const override {
+    x->assign(b.begin(), b.end());
+    std::vector<Quad>& y = *x;
+    for (int r = 0; r < k; ++r) {
+      for (int c = std::max(0, r - p); c < r; ++c) y[r] -= At(r, c) * y[c];
+    }
+    for (int r = k - 1; r >= 0; --r) {
+      for (int c = r + 1; c <= std::min(k - 1, r + q); ++c) y[r] -= At(r, c) * y[c];
+      y[r] /= At(r, r);
+    }
+  }
+  Quad InverseNorm() const override {
+    const Quad unbounded = static_cast<Quad>(kInf);
+    if (!z_matrix) return unbounded;
+    std::vector<Quad> x;
+    Solve(std::vector<Quad>(k, Quad(1)), &x);
+    Quad norm = 0;
+    for (Quad v : x) {
+      if (!(v > 0)) return unbounded;
+      norm = std::max(norm, v);
+    }
+    return norm;
+  }
+};
+
 // The outcome of one active set.
 struct Attempt {
   bool converged = false;
@@ -120,8 +186,8 @@ struct Attempt {
 
 class McpCertifier {
  public:
-  McpCertifier(const ExtendedPrecisionMCP& problem, const McpCertifyOptions& options)
-      : p_(problem), options_(options), n_(problem.size()) {
+  McpCertifier(const ExtendedPrecisionMCP& problem, const McpCertifyOptions& options, bool banded)
+      : p_(problem), options_(options), n_(problem.size()), banded_(banded) {
     l_.assign(problem.l().data(), problem.l().data() + n_);
     u_.assign(problem.u().data(), problem.u().data() + n_);
     c_.assign(n_, 1.0);
@@ -129,7 +195,7 @@ class McpCertifier {
       for (int i = 0; i < n_; ++i) c_[i] = problem.variable_scale()[i];
     }
     F_.resize(n_);
-    J_.resize(static_cast<std::size_t>(n_) * n_);
+    if (!banded_) J_.resize(static_cast<std::size_t>(n_) * n_);
   }
 
   void Run(const std::vector<Vector>& candidates) {
@@ -201,14 +267,41 @@ class McpCertifier {
     }
     return true;
   }
-  void Jacobian(const std::vector<Quad>& z) { p_.JacobianQuad(z.data(), J_.data()); }
+  void Jacobian(const std::vector<Quad>& z) {
+    if (!banded_) {
+      p_.JacobianQuad(z.data(), J_.data());
+      return;
+    }
+    // Sorted by (row, col) with repeated entries summed, so that each row's scale sees the true J_ij.
+    p_.JacobianQuadEntries(z.data(), &entries_);
+    std::sort(entries_.begin(), entries_.end(), [](const QuadEntry& x, const QuadEntry& y) {
+      return x.row != y.row ? x.row < y.row : x.col < y.col;
+    });
+    std::size_t out = 0;
+    for (std::size_t e = 0; e < entries_.size(); ++e) {
+      if (out > 0 && entries_[out - 1].row == entries_[e].row && entries_[out - 1].col == entries_[e].col) {
+        entries_[out - 1].value += entries_[e].value;
+      } else {
+        entries_[out++] = entries_[e];
+      }
+    }
+    entries_.resize(out);
+  }
   Quad J(int i, int j) const { return J_[static_cast<std::size_t>(j) * n_ + i]; }
 
   // d_i = max_j |J_ij| c_j (zero rows: the largest other); false if J is not finite.
   bool RowScales(std::vector<Quad>* d) const {
     d->assign(n_, Quad(0));
     Quad largest = 0;
-    for (int i = 0; i < n_; ++i) {
+    if (banded_) {
+      for (const QuadEntry& e : entries_) {
+        const Quad a = Abs(e.value) * c_[e.col];
+        if (!Finite(a)) return false;
+        (*d)[e.row] = std::max((*d)[e.row], a);
+      }
+      for (Quad di : *d) largest = std::max(largest, di);
+    }
+    for (int i = 0; i < n_ && !banded_; ++i) {
       for (int j = 0; j < n_; ++j) {
         const Quad a = Abs(J(i, j)) * c_[j];
         if (!Finite(a)) return false;
@@ -250,16 +343,47 @@ class McpCertifier {
     return r;
   }
 
-  // The reduced Jacobian A = D_F⁻¹ J_FF C_F, factored.
-  SmallLu ReducedLu(const std::vector<int>& free, const std::vector<Quad>& d) const {
+  // The reduced Jacobian A = D_F⁻¹ J_FF C_F, factored: dense with complete pivoting, or banded (a band wider than
+  // max_bandwidth counts as singular: the point is then not certified).
+  std::unique_ptr<ReducedFactor> ReducedLu(const std::vector<int>& free, const std::vector<Quad>& d) const {
     const int k = static_cast<int>(free.size());
-    std::vector<Quad> block(static_cast<std::size_t>(k) * k);
-    for (int r = 0; r < k; ++r) {
-      for (int s = 0; s < k; ++s)
-        block[static_cast<std::size_t>(r) * k + s] = J(free[r], free[s]) * c_[free[s]] / d[free[r]];
+    if (!banded_) {
+      std::vector<Quad> block(static_cast<std::size_t>(k) * k);
+      for (int r = 0; r < k; ++r) {
+        for (int s = 0; s < k; ++s)
+          block[static_cast<std::size_t>(r) * k + s] = J(free[r], free[s]) * c_[free[s]] / d[free[r]];
+      }
+      auto lu = std::make_unique<SmallLu>();
+      lu->Factor(k, std::move(block));
+      return lu;
     }
-    SmallLu lu;
-    lu.Factor(k, std::move(block));
+    auto lu = std::make_unique<BandLu>();
+    lu->k = k;
+    std::vector<int> position(n_, -1);
+    for (int r = 0; r < k; ++r) position[free[r]] = r;
+    for (const QuadEntry& e : entries_) {
+      const int r = position[e.row], s = position[e.col];
+      if (r < 0 || s < 0) continue;
+      lu->p = std::max(lu->p, r - s);
+      lu->q = std::max(lu->q, s - r);
+    }
+    if (lu->p > options_.max_bandwidth || lu->q > options_.max_bandwidth) {
+      lu->failed = true;
+      return lu;
+    }
+    lu->a.assign(static_cast<std::size_t>(k) * lu->width(), Quad(0));
+    for (const QuadEntry& e : entries_) {
+      const int r = position[e.row], s = position[e.col];
+      if (r < 0 || s < 0) continue;
+      const Quad v = e.value * c_[e.col] / d[e.row];
+      lu->At(r, s) += v;
+    }
+    for (int r = 0; r < k; ++r) {
+      for (int s = std::max(0, r - lu->p); s <= std::min(k - 1, r + lu->q); ++s) {
+        if (s == r ? !(lu->At(r, s) > 0) : lu->At(r, s) > 0) lu->z_matrix = false;
+      }
+    }
+    lu->Factor();
     return lu;
   }
 
@@ -282,10 +406,10 @@ class McpCertifier {
     for (int it = 0; it < options_.max_newton_iterations && !converged; ++it) {
       Jacobian(z);
       if (!RowScales(&d)) return a;
-      const SmallLu lu = ReducedLu(free, d);
-      if (lu.singular()) return a;
+      const std::unique_ptr<ReducedFactor> lu = ReducedLu(free, d);
+      if (lu->singular()) return a;
       for (int r = 0; r < k; ++r) rhs[r] = -F_[free[r]] / d[free[r]];
-      lu.Solve(rhs, &step);
+      lu->Solve(rhs, &step);
       const Quad before = ReducedResidual(F_, d, free);
       Quad size = 0, z_norm = 0;
       for (int r = 0; r < k; ++r) size = std::max(size, Abs(step[r]));
@@ -316,9 +440,9 @@ class McpCertifier {
     }
     Jacobian(z);
     if (!RowScales(&d)) return a;
-    const SmallLu lu = ReducedLu(free, d);
-    if (lu.singular()) return a;
-    const Quad mu = k > 0 ? lu.InverseNorm() : Quad(0);
+    const std::unique_ptr<ReducedFactor> lu = ReducedLu(free, d);
+    if (lu->singular()) return a;
+    const Quad mu = k > 0 ? lu->InverseNorm() : Quad(0);
     Quad z_norm = 0;
     for (int i = 0; i < n_; ++i) z_norm = std::max(z_norm, Abs(z[i]) / c_[i]);
     const Quad residual = ReducedResidual(F_, d, free);
@@ -382,7 +506,8 @@ class McpCertifier {
   bool DeclaredUnique(const std::vector<Quad>& z) {
     const SolutionSetProperty property = p_.solution_set_property();
     if (property == SolutionSetProperty::kNone) return false;
-    if (property == SolutionSetProperty::kUniqueByProof) return true;
+    // Too large to check cheaply: the declaration is trusted.
+    if (property == SolutionSetProperty::kUniqueByProof || banded_) return true;
     Jacobian(z);
     if (property == SolutionSetProperty::kStronglyMonotone) {
       // xᵀJx > 0 for all x: the symmetric part positive definite (Cholesky-like LDLᵀ, every pivot positive).
@@ -463,24 +588,38 @@ class McpCertifier {
   const McpCertifyOptions options_;
   const int n_;
   std::vector<double> l_, u_, c_;
+  const bool banded_;
   std::vector<Quad> F_, J_;
+  std::vector<QuadEntry> entries_;  // banded: the Jacobian's entries, sorted, repeats summed
   std::vector<Found> found_;
 };
 
 }  // namespace
 
+namespace {
+// Dense up to max_size; sparse problems up to max_banded_size banded; others not attempted.
+bool Attempted(const ExtendedPrecisionMCP& problem, const McpCertifyOptions& options, bool* banded) {
+  const int n = problem.size();
+  *banded = n > options.max_size;
+  return n > 0 && (n <= options.max_size ||
+                   (problem.jacobian_kind() == MCP::JacobianKind::kSparse && n <= options.max_banded_size));
+}
+}  // namespace
+
 std::vector<McpCertifiedSolution> CertifyMCPSolutions(const ExtendedPrecisionMCP& problem,
                                                       const std::vector<Vector>& candidates,
                                                       const McpCertifyOptions& options) {
-  if (problem.size() == 0 || problem.size() > options.max_size) return {};
-  McpCertifier certifier(problem, options);
+  bool banded = false;
+  if (!Attempted(problem, options, &banded)) return {};
+  McpCertifier certifier(problem, options, banded);
   certifier.Run(candidates);
   return certifier.Results();
 }
 
 ReferenceSolution CertifyMCP(const ExtendedPrecisionMCP& problem, const std::vector<Vector>& candidates,
                              const McpCertifyOptions& options) {
-  if (problem.size() == 0 || problem.size() > options.max_size) return {};
+  bool banded = false;
+  if (!Attempted(problem, options, &banded)) return {};
   const std::vector<McpCertifiedSolution> found = CertifyMCPSolutions(problem, candidates, options);
   for (const McpCertifiedSolution& s : found) {
     if (s.reference.verified()) return s.reference;

@@ -12,6 +12,9 @@
 // condition from failure: free rows inside [l, u] within δ, bound rows with c_i F_i/d_i of the right sign within δ,
 // A nonsingular (no pivot below 1e-28 of the largest entry) and δ ≤ 1e-10 (1 + ‖C⁻¹z*‖∞). A violated condition
 // moves the row to the other state and the set is tried again (at most max_set_changes times per candidate).
+// Sparse problems above max_size take a banded path: the same steps with A in band storage, factored without
+// pivoting, μ = ‖A⁻¹e‖∞ when A is a Z-matrix and A⁻¹e > 0 (then A is an M-matrix and A⁻¹ ≥ 0); otherwise no
+// certificate.
 //
 // Certificates (solvers/core/verdict.h). Several distinct verified points: each kNonUnique. One point: kUnique when
 // the problem declares a property implying uniqueness (ExtendedPrecisionMCP::solution_set_property; a P-function is
@@ -31,7 +34,12 @@
 namespace smcbench {
 
 struct McpCertifyOptions {
-  int max_size = 64;               // larger problems are not attempted (kNone)
+  int max_size = 64;               // dense path up to this n
+  // Larger problems with jacobian_kind() kSparse up to this n take the banded path (reduced Jacobian in band
+  // storage, LU without pivoting; certified only when it is an M-matrix, which bounds μ by one solve); others, and
+  // bands wider than max_bandwidth, are not attempted or not certified (kNone / kNoneFound).
+  int max_banded_size = 10000;
+  int max_bandwidth = 128;
   int max_newton_iterations = 80;  // per active set
   int max_set_changes = 16;        // active-set corrections per candidate
 };
@@ -48,13 +56,13 @@ struct McpCertifiedSolution {
 // Every distinct solution verified from the candidates, in the order found (candidates of the wrong size or with
 // non-finite entries are skipped). A point that meets every condition but cannot be certified (degenerate, no
 // declared property, a singular alternative block) is listed with kNoneFound and an empty reference.z. Empty when
-// none verifies or n > max_size. Never throws for a valid problem.
+// none verifies or the problem is not attempted. Never throws for a valid problem.
 std::vector<McpCertifiedSolution> CertifyMCPSolutions(const ExtendedPrecisionMCP& problem,
                                                       const std::vector<Vector>& candidates,
                                                       const McpCertifyOptions& options = {});
 
 // The reference of problem: the first solution CertifyMCPSolutions verifies (kNonUnique when it found several),
-// kNoneFound when it found none, kNone when n > max_size.
+// kNoneFound when it found none, kNone when the problem is not attempted (size limits above).
 ReferenceSolution CertifyMCP(const ExtendedPrecisionMCP& problem, const std::vector<Vector>& candidates,
                              const McpCertifyOptions& options = {});
 

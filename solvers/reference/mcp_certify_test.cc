@@ -215,6 +215,69 @@ TEST(McpCertifyTest, NoSolutionGivesNoneFound) {
   EXPECT_FALSE(r.verified());
 }
 
+// A sparse 1-D obstacle problem, −u″ + u³ = −10 above ψ, rows times h² (strongly monotone; tridiagonal J).
+class SparseObstacle final : public ExtendedPrecisionMCP {
+ public:
+  explicit SparseObstacle(int n) : ExtendedPrecisionMCP(Obstacle(n), Vector::Constant(n, kInf), "obstacle") {}
+  static Vector Obstacle(int n) {
+    Vector psi(n);
+    for (int i = 0; i < n; ++i) {
+      const double x = (i + 1.0) / (n + 1.0) - 0.5;
+      psi[i] = -0.05 - 0.5 * x * x;
+    }
+    return psi;
+  }
+  JacobianKind jacobian_kind() const override { return JacobianKind::kSparse; }
+  SolutionSetProperty solution_set_property() const override { return SolutionSetProperty::kStronglyMonotone; }
+  void Evaluate(const Vector& z, Vector* F) const override {
+    std::vector<Quad> zq(z.data(), z.data() + z.size()), Fq(z.size());
+    EvaluateQuad(zq.data(), Fq.data());
+    for (int i = 0; i < size(); ++i) (*F)[i] = static_cast<double>(Fq[i]);
+  }
+  void EvaluateQuad(const Quad* z, Quad* F) const override {
+    const int n = size();
+    const Quad h2 = Quad(1) / ((n + 1) * (n + 1));
+    for (int i = 0; i < n; ++i) {
+      F[i] = 2 * z[i] + h2 * (z[i] * z[i] * z[i] + 10);
+      if (i > 0) F[i] -= z[i - 1];
+      if (i + 1 < n) F[i] -= z[i + 1];
+    }
+  }
+  void JacobianQuad(const Quad* z, Quad* J) const override {
+    const int n = size();
+    const Quad h2 = Quad(1) / ((n + 1) * (n + 1));
+    for (int k = 0; k < n * n; ++k) J[k] = 0;
+    for (int i = 0; i < n; ++i) {
+      J[i + i * n] = 2 + 3 * h2 * z[i] * z[i];
+      if (i > 0) J[i + (i - 1) * n] = -1;
+      if (i + 1 < n) J[i + (i + 1) * n] = -1;
+    }
+  }
+};
+
+// The banded path (n above max_size) certifies the same solution, certificate and μ as the dense path: for this
+// M-matrix reduced Jacobian ‖A⁻¹‖∞ = ‖A⁻¹e‖∞.
+TEST(McpCertifyTest, BandedPathAgreesWithTheDensePath) {
+  const SparseObstacle p(100);
+  const std::vector<Vector> candidates{p.l()};
+  McpCertifyOptions dense;
+  dense.max_size = 100;
+  const std::vector<McpCertifiedSolution> a = CertifyMCPSolutions(p, candidates, dense);
+  const std::vector<McpCertifiedSolution> b = CertifyMCPSolutions(p, candidates);
+  ASSERT_EQ(a.size(), 1u);
+  ASSERT_EQ(b.size(), 1u);
+  EXPECT_EQ(a[0].reference.certificate, Certificate::kUnique);
+  EXPECT_EQ(b[0].reference.certificate, Certificate::kUnique);
+  EXPECT_NEAR(a[0].reference.condition, b[0].reference.condition, 1e-20 * a[0].reference.condition);
+  EXPECT_GT(a[0].reference.condition, 1.0);
+  for (int i = 0; i < 100; ++i) EXPECT_LT(QuadAbs(a[0].z[i] - b[0].z[i]), 1e-30) << i;
+  // Some rows touch the obstacle, some do not.
+  int contact = 0;
+  for (int i = 0; i < 100; ++i) contact += b[0].reference.z[i] == p.l()[i];
+  EXPECT_GT(contact, 0);
+  EXPECT_LT(contact, 100);
+}
+
 TEST(McpCertifyTest, LargerThanMaxSizeIsNotAttempted) {
   const PolyMcp p(
       Vector::Zero(1), Vector::Constant(1, kInf), [](const Quad* x, Quad* F) { F[0] = x[0] - 1; },
