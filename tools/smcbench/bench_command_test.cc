@@ -971,5 +971,43 @@ TEST(Bench, McpSuiteJobsAndRun) {
   fs::remove_all(dir);
 }
 
+// The MCP suite's jobs shard, merge and resume like the box's: two shards merged are the single run, and a backend
+// past its budget gets its remaining problem × start recorded as not run, start label kept.
+TEST(Shards, McpJobsMergeToTheSingleRunAndRespectTheBudget) {
+  const fs::path root = fs::temp_directory_path() / ("smcbench-mcp-shards-" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const auto args = [](std::vector<std::string> extra) {
+    std::vector<std::string> a{"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "newton"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  ASSERT_EQ(RunSmcbench(args({"--out", (root / "single").string()})).code, 0);
+  std::vector<std::string> merge{"merge", (root / "merged").string()};
+  for (int k = 1; k <= 2; ++k) {
+    merge.push_back((root / ("shard-" + std::to_string(k))).string());
+    const CliRun r = RunSmcbench(args({"--shard", std::to_string(k) + "/2", "--out", merge.back()}));
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  const CliRun merged = RunSmcbench(merge);
+  ASSERT_EQ(merged.code, 0) << merged.err;
+  const std::vector<nlohmann::json> expected = TimelessRecords(root / "single");
+  ASSERT_GE(expected.size(), 2u);
+  EXPECT_EQ(expected[0]["suite"], "mcp");
+  EXPECT_EQ(expected[0]["checksum"].get<std::string>().size(), 16u);
+  EXPECT_EQ(TimelessRecords(root / "merged"), expected);
+
+  const CliRun budget = RunSmcbench(args({"--backend-budget", "1e-9", "--out", (root / "budget").string()}));
+  ASSERT_EQ(budget.code, 0) << budget.err;
+  const std::vector<nlohmann::json> cut = TimelessRecords(root / "budget");
+  ASSERT_EQ(cut.size(), expected.size());
+  if (cut.size() > 2) {
+    EXPECT_EQ(cut[2]["status"], "time_limit");
+    EXPECT_THAT(cut[2]["message"].get<std::string>(), HasSubstr("--backend-budget"));
+    EXPECT_EQ(cut[2]["start"], expected[2]["start"]);
+    EXPECT_THAT(budget.err, HasSubstr("problem x start of suite mcp"));
+  }
+  fs::remove_all(root);
+}
+
 }  // namespace
 }  // namespace smcbench
