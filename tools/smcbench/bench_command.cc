@@ -228,8 +228,8 @@ void CheckBenchRequest(const BenchCommand::Flags& f, const std::vector<std::stri
         std::find(std::begin(kBenchSuiteNames), std::end(kBenchSuiteNames), name) != std::end(kBenchSuiteNames);
     std::error_code ec;
     if (!known && !fs::is_regular_file(name, ec)) {
-      throw InvalidInputError("bench: unknown suite '" + name +
-                              "' (known: paper, families, hard, siconos, scale, tiny, mcp, all, or a problem-set file)");
+      throw InvalidInputError("bench: unknown suite '" + name + "' (known: paper, families, hard, siconos, scale, "
+                              "tiny, mcp, all, or a problem-set file)");
     }
     if ((name == "siconos" || name == "hard") && !fs::is_directory(f.siconos_dir, ec)) {
       throw InvalidInputError("bench: suite " + name + " needs the Siconos collection: --siconos-dir '" +
@@ -671,7 +671,8 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
   const std::vector<ProblemSet> sets = BuildBenchSuites(suites, request, true, err);
   const std::vector<McpProblemSet> mcp_sets = BuildBenchMcpSuites(suites, f.quick, err);
   if (!mcp_sets.empty() && McpSolverNames(solvers).empty()) {
-    err << "bench: no chosen backend solves MCPs (`smcbench list`, column mcp): the MCP suite is not run\n";
+    err << "bench: no chosen backend solves MCPs (`smcbench list` says: accepts nonlinear MCP): the MCP suite is "
+           "not run\n";
   }
 
   RunManifest manifest;

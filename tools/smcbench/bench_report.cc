@@ -710,12 +710,12 @@ void WriteMcpSection(std::ostream& md, const SuiteResults& suite, const std::str
      << " problem × start (each published starting point is its own instance; times are cold solves from it); "
         "references: "
      << (certified.empty() ? "–" : certified)
-     << ". Only backends that solve MCPs run here (`smcbench list`, column mcp): the others have no record and "
-        "are not counted. The verdict is the box's with F's Jacobian J at the answer in place of M: residual (eq.) "
-        "is the scale-free MCP residual (row i divided by max_j |J_ij|·c_j, variables in their units c, relative "
-        "to 1 + max_i |z_i|/c_i) and must be ≤ tol; the forward error is judged against the nearest reference "
-        "when the references list every solution, else against one certified unique. Success and SGM time "
-        "are over problem × start.\n\n";
+     << ". Only backends that solve MCPs run here (`smcbench list` says: accepts nonlinear MCP): the others have no "
+        "record and are not counted. The verdict is the box's with F's Jacobian J at the answer in place of M: "
+        "residual (eq.) is the scale-free MCP residual (row i divided by max_j |J_ij|·c_j, variables in their units "
+        "c, relative to 1 + max_i |z_i|/c_i) and must be ≤ tol; the forward error is judged against the nearest "
+        "reference when the references list every solution, else against one certified unique. Success and SGM "
+        "time are over problem × start.\n\n";
   WriteBackendTable(md, suite);
   WriteMcpStarts(md, suite);
   WriteMcpFailures(md, suite);
