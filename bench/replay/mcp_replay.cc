@@ -5,6 +5,7 @@
 #include <cstring>
 
 #include "bench/replay/sample_times.h"
+#include "solvers/registry/backend_settings.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {
@@ -123,10 +124,14 @@ ReplayRecord ReplayMcpOne(const McpProblemSet& set, const McpLibraryProblem& p, 
 
 ReplayResults ReplayMcpProblemSet(const McpProblemSet& set, const ReplayOptions& options) {
   std::vector<std::string> names = McpSolverNames(options.solvers);
-  ReplayOptions chosen = options;
-  chosen.solvers = names;
+  // The settings were checked against the whole selection: each MCP backend gets those that reach it.
   std::vector<std::unique_ptr<Solver>> solvers;
-  if (!names.empty()) solvers = CreateReplaySolvers(chosen, &names);
+  for (const std::string& name : names) {
+    ReplayOptions one = options;
+    one.settings = SettingsReaching(name, options.settings);
+    std::vector<std::string> single{name};
+    solvers.push_back(std::move(CreateReplaySolvers(one, &single).front()));
+  }
   ReplayResults out;
   std::size_t total = 0, done = 0;
   for (const McpLibraryProblem& p : set.problems) total += p.starts.size() * solvers.size();

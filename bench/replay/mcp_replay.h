@@ -32,7 +32,8 @@ ReplayRecord ReplayMcpOne(const McpProblemSet& set, const McpLibraryProblem& pro
                           double tolerance);
 
 // Every problem × start of set on every MCP backend among options.solvers (empty: every registered one), in that
-// order (problem, start, backend). No tolerance sweep. Throws as CreateReplaySolvers.
+// order (problem, start, backend); each backend gets the settings that reach it (a setting for a box-only backend
+// of the selection is not an error here). No tolerance sweep. Throws as CreateReplaySolvers.
 ReplayResults ReplayMcpProblemSet(const McpProblemSet& set, const ReplayOptions& options);
 
 // What the run's manifest records of an MCP suite, so shards and resumed runs refuse another suite: FNV-1a 64 (as

@@ -251,6 +251,13 @@ TEST(McpReplay, WrongAnswersAreWronglyClaimedInaccurateOrWronglyRefused) {
 TEST(McpReplay, BackendsWithoutMcpsAreNotRun) {
   EXPECT_EQ(McpSolverNames({"lemke", "newton", "psor"}), std::vector<std::string>{"newton"});
   EXPECT_TRUE(ReplayMcpProblemSet(Set({PlantedCubic()}), Quick({"lemke"})).records.empty());
+  // A setting for a box-only backend of the selection is not an error on the MCP set; newton gets its own.
+  ReplayOptions with_settings = Quick({"psor", "newton"});
+  with_settings.settings = {"psor.omega=1.2", "newton.max_backtracks=30"};
+  const ReplayResults mixed = ReplayMcpProblemSet(Set({PlantedCubic()}), with_settings);
+  ASSERT_EQ(mixed.records.size(), 2u);
+  EXPECT_EQ(mixed.records[0].solver, "newton");
+  EXPECT_EQ(mixed.records[0].verdict, Verdict::kSolved);
   // Called directly, a box-only backend gets an honest record, never a crash.
   const McpProblemSet set = Set({PlantedCubic()});
   auto lemke = CreateSolver("lemke");
