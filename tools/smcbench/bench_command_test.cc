@@ -968,6 +968,14 @@ TEST(Bench, McpSuiteJobsAndRun) {
   ASSERT_EQ(back.suites.size(), 1u);
   EXPECT_EQ(back.suites[0].replay.records.size(), jobs);
   for (const ReplayRecord& rec : back.suites[0].replay.records) EXPECT_FALSE(rec.start.empty());
+
+  // Only box backends chosen: said on stderr, no MCP record, and the report says why the suite is empty.
+  r = RunSmcbench({"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "lemke", "--out", dir.string(),
+                   "--overwrite", "--report", "--no-plots"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("no chosen backend solves MCPs"));
+  EXPECT_THAT(r.out, Not(HasSubstr("| mcp |")));
+  EXPECT_THAT(ReadText(dir / "report.md"), HasSubstr("No records: no chosen backend ran on it"));
   fs::remove_all(dir);
 }
 

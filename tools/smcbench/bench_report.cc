@@ -752,6 +752,11 @@ void WriteScaleTable(std::ostream& md, const SuiteResults& suite) {
 }
 
 void WriteSuite(std::ostream& md, const SuiteResults& suite, const std::string& dir, bool plots) {
+  if (suite.replay.records.empty() && suite.replay.sweep.empty()) {
+    md << "## Suite `" << suite.suite << "`: " << suite.description << "\n\nNo records: no chosen backend ran on it "
+       << "(an MCP suite runs only on the backends that solve MCPs).\n\n";
+    return;
+  }
   if (IsMcpSuite(suite)) return WriteMcpSection(md, suite, dir, plots);
   WriteSuiteSummary(md, suite);
   WriteWrongAnswers(md, suite);
