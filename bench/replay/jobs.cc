@@ -31,7 +31,7 @@ std::uint64_t Fnv1a64(const std::string& text) {
 }
 
 JobKind JobKindFromText(const std::string& text, const std::string& where) {
-  for (JobKind k : {JobKind::kCold, JobKind::kGenericSparse, JobKind::kSweep, JobKind::kStepper}) {
+  for (JobKind k : {JobKind::kCold, JobKind::kGenericSparse, JobKind::kSweep, JobKind::kStepper, JobKind::kMcp}) {
     if (text == ToString(k)) return k;
   }
   throw InvalidInputError(where + ": unknown job kind '" + text + "'");
@@ -39,6 +39,10 @@ JobKind JobKindFromText(const std::string& text, const std::string& where) {
 
 std::string JobId(const BenchJob& job) {
   if (job.kind == JobKind::kStepper) return "stepper";
+  if (job.kind == JobKind::kMcp) {
+    return job.suite_name + "|" + job.problem_id + "@" + job.start_label + "|" + job.solver + "|cold|" +
+           NumberText(job.tolerance);
+  }
   const char* mode = job.kind == JobKind::kSweep ? "sweep" : "cold";
   return job.suite_name + "|" + job.problem_id + "|" + job.solver + "|" + mode + "|" + NumberText(job.tolerance);
 }
@@ -51,6 +55,7 @@ const char* ToString(JobKind kind) {
     case JobKind::kGenericSparse: return "generic-sparse";
     case JobKind::kSweep: return "sweep";
     case JobKind::kStepper: return "stepper";
+    case JobKind::kMcp: return "mcp";
   }
   return "?";
 }
@@ -72,8 +77,22 @@ double EstimateJobSeconds(const LibraryProblem& problem, const ReplayOptions& op
   return std::min(options.time_limit_seconds, solve) + sampling;
 }
 
+double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptions& options) {
+  const double n = problem.size();
+  const double solve = 20.0 * 1e-9 * n * (n + (problem.sparse() ? 10.0 * n : n * n));
+  const double sampling =
+      std::min(options.max_seconds_per_pair, options.repetitions * std::max(options.min_sample_seconds, solve));
+  return std::min(options.time_limit_seconds, solve) + sampling;
+}
+
 std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites, const ReplayOptions& options,
                                     const JobListRequest& request) {
+  return ListBenchJobs(suites, {}, options, request);
+}
+
+std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
+                                    const std::vector<McpProblemSet>& mcp_suites,
+                                    const ReplayOptions& options, const JobListRequest& request) {
   std::vector<BenchJob> jobs;
   const auto add = [&](JobKind kind, std::size_t s, std::size_t p, const std::string& solver, double tolerance) {
     BenchJob job;
@@ -102,6 +121,30 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites, const
       for (std::size_t b = 0; b < request.solvers.size(); ++b) {
         if (!request.iterative[b]) continue;
         for (const double tol : kSweepTolerances) add(JobKind::kSweep, s, p, request.solvers[b], tol);
+      }
+    }
+  }
+  for (std::size_t k = 0; k < mcp_suites.size(); ++k) {
+    const McpProblemSet& set = mcp_suites[k];
+    for (std::size_t p = 0; p < set.problems.size(); ++p) {
+      const McpLibraryProblem& problem = set.problems[p];
+      for (std::size_t start = 0; start < problem.starts.size(); ++start) {
+        for (const std::string& solver : request.mcp_solvers) {
+          BenchJob job;
+          job.index = jobs.size();
+          job.kind = JobKind::kMcp;
+          job.suite = suites.size() + k;
+          job.problem = p;
+          job.start = start;
+          job.suite_name = set.name;
+          job.problem_id = problem.id;
+          job.start_label = start < problem.start_labels.size() ? problem.start_labels[start] : "";
+          job.solver = solver;
+          job.tolerance = options.tolerance;
+          job.cost = EstimateMcpJobSeconds(problem, options);
+          job.id = JobId(job);
+          jobs.push_back(std::move(job));
+        }
       }
     }
   }
@@ -273,6 +316,7 @@ json RunManifestToJson(const RunManifest& m) {
     j["jobs"].push_back({{"id", b.id}, {"kind", ToString(b.kind)}, {"suite", b.suite}, {"problem", b.problem},
                          {"suite_name", b.suite_name}, {"problem_id", b.problem_id}, {"solver", b.solver},
                          {"tolerance", b.tolerance}, {"cost", b.cost}, {"shard", m.job_shard.at(i) + 1}});
+    if (b.kind == JobKind::kMcp) j["jobs"].back()["start"] = {{"index", b.start}, {"label", b.start_label}};
   }
   return j;
 }
@@ -306,6 +350,10 @@ RunManifest RunManifestFromJson(const json& j, const std::string& where) {
       job.solver = b.at("solver").get<std::string>();
       job.tolerance = b.at("tolerance").get<double>();
       job.cost = b.at("cost").get<double>();
+      if (job.kind == JobKind::kMcp) {
+        job.start = b.at("start").at("index").get<std::size_t>();
+        job.start_label = b.at("start").at("label").get<std::string>();
+      }
       if (job.kind != JobKind::kStepper && job.suite >= m.suites.size()) {
         throw InvalidInputError(where + ": job " + job.id + " names suite " + std::to_string(job.suite));
       }

@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/replay/mcp_replay.h"
 #include "bench/replay/replay.h"
 #include "bench/replay/results_io.h"
 
@@ -28,6 +29,7 @@ enum class JobKind {
   kGenericSparse,  // the paper suite's problems with M stored sparse, newton through UMFPACK ("newton-sparse-path")
   kSweep,          // problem × iterative backend at one tolerance of kSweepTolerances (mode "sweep")
   kStepper,        // the time-stepper studies (warm/cold starts, work-precision), one job
+  kMcp,            // nonlinear MCP × start × MCP backend at the run's tolerance (ReplayMcpOne, mode "cold")
 };
 const char* ToString(JobKind kind);
 
@@ -36,12 +38,15 @@ struct BenchJob {
   JobKind kind = JobKind::kCold;
   std::size_t suite = 0;    // index of the suite in the run (not used by kStepper)
   std::size_t problem = 0;  // index of the problem in its suite
+  std::size_t start = 0;    // kMcp: index of the start in McpLibraryProblem::starts
   std::string suite_name, problem_id, solver;
+  std::string start_label;  // kMcp: McpLibraryProblem::start_labels[start]
   double tolerance = 0.0;
   // Estimated seconds, for balancing shards (EstimateJobSeconds).
   double cost = 0.0;
   // "suite|problem|solver|mode|tolerance" (tolerance in shortest round-trip form): the job's identity across
-  // processes, machines and resumed runs; "stepper" for the stepper job.
+  // processes, machines and resumed runs; "suite|problem@start|solver|cold|tolerance" for an MCP job (start: its
+  // label); "stepper" for the stepper job.
   std::string id;
 };
 
@@ -53,18 +58,29 @@ inline constexpr const char* kGenericSparsePath = "newton-sparse-path";
 // least min_sample_seconds, together at most max_seconds_per_pair). Backends are not told apart. The stepper job
 // is a fixed 30 s (quick: 3 s). Only balances shards: never changes what runs.
 double EstimateJobSeconds(const LibraryProblem& problem, const ReplayOptions& options, JobKind kind);
+// The same guess for one MCP job: 20 Newton steps, each 1e-9·n·(n + nnz(J)) s with nnz(J) taken as n² (dense J) or
+// 10·n (sparse J; not evaluated for an estimate).
+double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptions& options);
 
 struct JobListRequest {
   std::vector<std::string> solvers;  // resolved names (never empty)
   std::vector<bool> iterative;       // per solver: SolverInfo::exact is false (it gets the tolerance sweep)
   bool generic_sparse_path = false;  // add the newton-sparse-path jobs for a suite named "paper"
   bool stepper = false;              // add the stepper job (last)
+  // The backends of the MCP jobs: the resolved names whose backend has SolverInfo::mcp (McpSolverNames). The
+  // others are not run on MCPs.
+  std::vector<std::string> mcp_solvers;
 };
 
 // Every job of a run, in the order a single run writes its results: per suite the cold jobs (problem, then
-// backend), the generic sparse path (problem), the sweep (problem, backend, tolerance); then the stepper job.
+// backend), the generic sparse path (problem), the sweep (problem, backend, tolerance); then per MCP suite its jobs
+// (problem, start, MCP backend; BenchJob::suite counts on after the box suites: suites.size() + k); then the
+// stepper job.
 std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites, const ReplayOptions& options,
                                     const JobListRequest& request);
+std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
+                                    const std::vector<McpProblemSet>& mcp_suites,
+                                    const ReplayOptions& options, const JobListRequest& request);
 
 // The shard (0-based, < shards) of every job: longest estimated job first (ties in the order of a stable hash of
 // the job's id, FNV-1a 64), each to the shard with the least estimated work so far (ties: the lowest shard).
@@ -132,7 +148,8 @@ struct RunManifest {
   std::string command;
   nlohmann::json environment;     // BenchEnvironment of the process that started the folder
   nlohmann::json options;         // the options that change what is measured (BenchRunOptions)
-  std::vector<SuiteResults> suites;  // suite, description, problems, checksum; no records
+  // suite, description, problems, checksum; no records. The box suites, then the MCP suites (BenchJob::suite).
+  std::vector<SuiteResults> suites;
   std::vector<BenchJob> jobs;     // the whole run's job list
   int shard = 0, shards = 1;      // this folder's share (0-based)
   std::vector<int> job_shard;     // AssignShards(jobs, shards)

@@ -1,24 +1,14 @@
 #include "bench/replay/replay.h"
 
 #include <algorithm>
-#include <chrono>
-#include <cmath>
 #include <memory>
 
+#include "bench/replay/sample_times.h"
 #include "solvers/registry/backend_settings.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-double Median(std::vector<double> v) {
-  if (v.empty()) return 0.0;
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
 
 std::string JoinTags(const std::vector<std::string>& tags) {
   std::string out;
@@ -61,48 +51,11 @@ void Fill(const LibraryProblem& p, const SolveResult& result, double tolerance, 
 
 void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& options, const ReplayOptions& replay,
                 SolveResult* result, ReplayRecord* record) {
-  // Warm-up: sizes the workspace, tells how long one solve takes, and is a siconos-* backend's probe (its first
-  // solve of a problem runs in its isolation worker; the timed ones then run in process, unless the probe crashed
-  // or timed out, in which case every solve stays in the worker).
   SessionOptions session_options;
   session_options.reuse_active_set = replay.reuse_active_set;
   SolveSession session = solver->Prepare(problem, options, session_options);
   const Eigen::Ref<const Vector> q = problem.q();
-  const auto t0 = Clock::now();
-  session.Solve(q, result);
-  const double first = std::chrono::duration<double>(Clock::now() - t0).count();
-  const auto pair_start = Clock::now();
-  std::int64_t count = 1;
-  if (first > 0.0) {
-    count = std::max<std::int64_t>(1, static_cast<std::int64_t>(std::ceil(replay.min_sample_seconds / first)));
-  }
-  count = std::min<std::int64_t>(count, 1 << 20);
-  std::vector<double> samples;
-  // Which path answered the timed solves (detail "in_process", NaN for our backends): one worker answer taints all.
-  const auto answered_in_worker = [&] { return result->GetDetail("in_process") == 0.0; };
-  record->timed_in_worker = false;
-  const int wanted = std::max(1, replay.repetitions);
-  // A solve that ran into the time limit is not repeated: its time is the limit, not a measurement.
-  if (result->status == SolveStatus::kTimeLimit) {
-    samples.push_back(first);
-    count = 1;
-    record->timed_in_worker = answered_in_worker();
-  }
-  while (static_cast<int>(samples.size()) < wanted) {
-    const auto s0 = Clock::now();
-    for (std::int64_t i = 0; i < count; ++i) session.Solve(q, result);
-    samples.push_back(std::chrono::duration<double>(Clock::now() - s0).count() / static_cast<double>(count));
-    record->timed_in_worker = record->timed_in_worker || answered_in_worker();
-    if (std::chrono::duration<double>(Clock::now() - pair_start).count() > replay.max_seconds_per_pair) break;
-  }
-  record->samples = static_cast<int>(samples.size());
-  record->solves_per_sample = count;
-  record->time_median = Median(samples);
-  record->time_min = *std::min_element(samples.begin(), samples.end());
-  record->time_max = *std::max_element(samples.begin(), samples.end());
-  std::vector<double> dev;
-  for (double s : samples) dev.push_back(std::abs(s - record->time_median));
-  record->time_mad = Median(dev);
+  replay_internal::SampleSolveTimes([&] { session.Solve(q, result); }, result, replay, record);
 }
 
 std::vector<std::unique_ptr<Solver>> CreateReplaySolvers(const ReplayOptions& options,

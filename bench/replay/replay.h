@@ -44,6 +44,9 @@ struct ReplayOptions {
 struct ReplayRecord {
   std::string suite;
   std::string problem;  // LibraryProblem::id
+  // The label of the starting point an MCP job started from (McpLibraryProblem::start_labels): a problem × start is
+  // one MCP instance. Empty for box-MLCP records (they start cold from Π(0)) and in results written before MCPs.
+  std::string start;
   std::string solver;
   int size = 0;
   bool sparse = false;

@@ -66,6 +66,7 @@ double OptionalNumber(const json& record, const char* key) {
 json RecordJson(const ReplayRecord& r) {
   return {{"suite", r.suite},
           {"problem", r.problem},
+          {"start", r.start},
           {"solver", r.solver},
           {"size", r.size},
           {"sparse", r.sparse},
@@ -107,6 +108,8 @@ ReplayRecord RecordFromJson(const json& j) {
   ReplayRecord r;
   r.suite = j.at("suite").get<std::string>();
   r.problem = j.at("problem").get<std::string>();
+  // Written since MCP records (a problem × start); box records and older results have none.
+  r.start = j.value("start", std::string());
   r.solver = j.at("solver").get<std::string>();
   r.size = j.at("size").get<int>();
   r.sparse = j.at("sparse").get<bool>();
@@ -326,12 +329,12 @@ void WriteBenchResults(const BenchResults& results, const std::string& dir, cons
     if (!out) throw InvalidInputError("bench: cannot write " + (fs::path(dir) / "results.json").string());
   }
   // Numbers in shortest round-trip form (NumberText: reads back to the same double; "inf", "nan" when not finite).
-  // The columns since issue 12 (and timed_in_worker, issue 13) come last, so scripts that index the older ones keep
-  // working.
+  // The columns added later (residual_scaled onwards, then timed_in_worker, host, start) come last, so scripts
+  // that index the older ones keep working.
   std::ofstream csv(fs::path(dir) / "results.csv");
   csv << "suite,problem,solver,mode,size,sparse,expected,status,verdict,iterations,residual_abs,residual_rel,"
          "tolerance,time_median,time_min,time_max,time_mad,samples,solves_per_sample,residual_scaled,"
-         "forward_error,forward_error_rel,forward_allowance,certificate,timed_in_worker,host,concurrent_jobs\n";
+         "forward_error,forward_error_rel,forward_allowance,certificate,timed_in_worker,host,concurrent_jobs,start\n";
   for (const SuiteResults& s : results.suites) {
     for (const auto* records : {&s.replay.records, &s.replay.sweep}) {
       for (const ReplayRecord& r : *records) {
@@ -343,7 +346,8 @@ void WriteBenchResults(const BenchResults& results, const std::string& dir, cons
             << r.samples << ',' << r.solves_per_sample << ',' << NumberText(r.residual_scaled) << ','
             << NumberText(r.forward_error) << ',' << NumberText(r.forward_error_rel) << ','
             << NumberText(r.forward_allowance) << ',' << CsvField(r.certificate) << ','
-            << (r.timed_in_worker ? 1 : 0) << ',' << CsvField(r.host) << ',' << r.concurrent_jobs << '\n';
+            << (r.timed_in_worker ? 1 : 0) << ',' << CsvField(r.host) << ',' << r.concurrent_jobs << ','
+            << CsvField(r.start) << '\n';
       }
     }
   }

@@ -15,10 +15,12 @@
 #include <sstream>
 
 #include "bench/replay/jobs.h"
+#include "bench/replay/mcp_replay.h"
 #include "bench/replay/replay.h"
 #include "bench/replay/results_io.h"
 #include "bench/replay/stepper_study.h"
 #include "problems/library/references.h"
+#include "problems/mcp/mcp_suite.h"
 #include "solvers/reference/certify.h"
 #include "solvers/registry/backend_settings.h"
 #include "solvers/registry/registry.h"
@@ -55,7 +57,11 @@ bool GlobMatch(std::string_view pattern, std::string_view text) {
 // ------------------------------------------------------------------------------------------------------------
 
 // The suites `bench` knows by name (anything else must be a problem-set file).
-const char* const kBenchSuiteNames[] = {"paper", "families", "hard", "siconos", "scale", "tiny", "all"};
+const char* const kBenchSuiteNames[] = {"paper", "families", "hard", "siconos", "scale", "tiny", "mcp", "all"};
+namespace {
+// The nonlinear MCP suites among them (BuildMcpSuite), run on the backends with SolverInfo::mcp.
+bool IsMcpSuiteName(const std::string& name) { return name == "mcp"; }
+}  // namespace
 
 struct BenchCommand::Flags {
   std::vector<std::string> suites, solvers, sets, allow_wrong;
@@ -82,8 +88,9 @@ BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
                                         "claimed, inaccurate or wrongly refused) on a backend not named by "
                                         "--allow-wrong, after writing the results (and report)");
   bench_->add_option("--suite", f.suites,
-                     "paper | families | hard | siconos | scale | tiny | all | FILE (repeatable; default: paper "
-                     "families hard siconos)");
+                     "paper | families | hard | siconos | scale | tiny | mcp | all | FILE (repeatable; default: "
+                     "paper families hard siconos mcp; mcp: the nonlinear MCPs, problem x start, on the backends "
+                     "that solve MCPs)");
   bench_->add_option("--solver", f.solvers, "backend (repeatable; default: every registered backend)");
   bench_->add_option("--set", f.sets, "typed backend option BACKEND.OPTION=VALUE (see `smcbench list`)");
   bench_->add_option("--out", f.out, "output folder (default: a fresh ./smcbench-bench-YYYYMMDD-HHMMSS); a folder "
@@ -221,8 +228,8 @@ void CheckBenchRequest(const BenchCommand::Flags& f, const std::vector<std::stri
         std::find(std::begin(kBenchSuiteNames), std::end(kBenchSuiteNames), name) != std::end(kBenchSuiteNames);
     std::error_code ec;
     if (!known && !fs::is_regular_file(name, ec)) {
-      throw InvalidInputError("bench: unknown suite '" + name +
-                              "' (known: paper, families, hard, siconos, scale, tiny, all, or a problem-set file)");
+      throw InvalidInputError("bench: unknown suite '" + name + "' (known: paper, families, hard, siconos, scale, "
+                              "tiny, mcp, all, or a problem-set file)");
     }
     if ((name == "siconos" || name == "hard") && !fs::is_directory(f.siconos_dir, ec)) {
       throw InvalidInputError("bench: suite " + name + " needs the Siconos collection: --siconos-dir '" +
@@ -333,6 +340,7 @@ std::vector<ProblemSet> BuildBenchSuites(const std::vector<std::string>& names, 
                                          bool references, std::ostream& err) {
   std::vector<ProblemSet> sets;
   for (const std::string& name : names) {
+    if (IsMcpSuiteName(name)) continue;  // BuildBenchMcpSuites
     const auto build_start = std::chrono::steady_clock::now();
     ProblemSet set = BuildSuite(name, request);
     set.Validate();
@@ -361,6 +369,35 @@ std::vector<ProblemSet> BuildBenchSuites(const std::vector<std::string>& names, 
   return sets;
 }
 
+// The MCP suites among names, built (references attached by the suite) and validated, one line each on err.
+std::vector<McpProblemSet> BuildBenchMcpSuites(const std::vector<std::string>& names, bool quick, std::ostream& err) {
+  std::vector<McpProblemSet> sets;
+  for (const std::string& name : names) {
+    if (!IsMcpSuiteName(name)) continue;
+    const auto build_start = std::chrono::steady_clock::now();
+    McpProblemSet set = BuildMcpSuite(quick);
+    set.Validate();
+    std::size_t instances = 0;
+    std::map<std::string, int> certificates;
+    for (const McpLibraryProblem& p : set.problems) {
+      instances += p.starts.size();
+      for (const ReferenceSolution& r : p.references) ++certificates[std::string(ToString(r.certificate))];
+      if (p.references.empty()) ++certificates["no reference"];
+    }
+    std::string certified;
+    for (const auto& [certificate, count] : certificates) {
+      certified += (certified.empty() ? "" : ", ") + std::to_string(count) + " " + certificate;
+    }
+    char seconds[64];
+    std::snprintf(seconds, sizeof seconds, "built in %.2f s",
+                  std::chrono::duration<double>(std::chrono::steady_clock::now() - build_start).count());
+    err << "bench: suite " << set.name << " (" << set.problems.size() << " MCPs, " << instances
+        << " problem x start, " << seconds << "; references: " << certified << ")\n";
+    sets.push_back(std::move(set));
+  }
+  return sets;
+}
+
 // The generic path the report compares against: the same problems with M stored sparse, solved by the semismooth
 // Newton backend through UMFPACK (what a general sparse complementarity code does), judged against the same
 // certified solutions.
@@ -380,14 +417,16 @@ ProblemSet SparseCopy(const ProblemSet& set) {
 
 // The run's job list (ListBenchJobs) for these suites and backends.
 std::vector<BenchJob> RunJobs(const BenchCommand::Flags& f, const std::vector<ProblemSet>& sets,
-                              const ReplayOptions& options, const std::vector<std::string>& solvers) {
+                              const std::vector<McpProblemSet>& mcp_sets, const ReplayOptions& options,
+                              const std::vector<std::string>& solvers) {
   JobListRequest request;
   request.solvers = solvers;
   for (const std::string& name : solvers) request.iterative.push_back(!CreateSolver(name)->info().exact);
   request.generic_sparse_path =
       f.solvers.empty() || std::find(f.solvers.begin(), f.solvers.end(), "newton") != f.solvers.end();
   request.stepper = !f.no_stepper;
-  return ListBenchJobs(sets, options, request);
+  if (!mcp_sets.empty()) request.mcp_solvers = McpSolverNames(solvers);
+  return ListBenchJobs(sets, mcp_sets, options, request);
 }
 
 // Runs the jobs of one folder one at a time, each timed, judged and appended to records.jsonl as it finishes. A
@@ -395,9 +434,10 @@ std::vector<BenchJob> RunJobs(const BenchCommand::Flags& f, const std::vector<Pr
 // not run (time limit, a message) and its sweep jobs skipped.
 class ShardRunner {
  public:
-  ShardRunner(const BenchCommand::Flags& flags, const std::vector<ProblemSet>& sets, const ReplayOptions& options,
+  ShardRunner(const BenchCommand::Flags& flags, const std::vector<ProblemSet>& sets,
+              const std::vector<McpProblemSet>& mcp_sets, const ReplayOptions& options,
               const std::string& records_path, std::ostream& err)
-      : flags_(flags), sets_(sets), options_(options), writer_(records_path), err_(err) {}
+      : flags_(flags), sets_(sets), mcp_sets_(mcp_sets), options_(options), writer_(records_path), err_(err) {}
 
   JobLine Run(const BenchJob& job) {
     const int before = activity_.Count();
@@ -428,8 +468,17 @@ class ShardRunner {
   // One line per backend that ran out of budget on a suite.
   void ReportSkipped() const {
     for (const auto& [key, count] : skipped_) {
-      err_ << "bench: " << key.second << " skipped " << count << " of " << sets_[key.first].problems.size()
-           << " problems of suite " << sets_[key.first].name << " after spending its budget of "
+      const bool mcp = key.first >= sets_.size();
+      std::size_t problems = 0;
+      if (mcp) {
+        for (const McpLibraryProblem& p : mcp_sets_[key.first - sets_.size()].problems) problems += p.starts.size();
+      } else {
+        problems = sets_[key.first].problems.size();
+      }
+      err_ << "bench: " << key.second << " skipped " << count << " of " << problems
+           << (mcp ? " problem x start of suite " : " problems of suite ")
+           << (mcp ? mcp_sets_[key.first - sets_.size()].name : sets_[key.first].name)
+           << " after spending its budget of "
            << flags_.backend_budget << " s (--backend-budget)\n";
     }
   }
@@ -458,6 +507,11 @@ class ShardRunner {
   }
 
   ReplayRecord Replay(const BenchJob& job) {
+    if (job.kind == JobKind::kMcp) {
+      const McpProblemSet& set = mcp_sets_.at(job.suite - sets_.size());
+      return ReplayMcpOne(set, set.problems.at(job.problem), job.start, SolverFor(job.solver), job.solver, options_,
+                          job.tolerance);
+    }
     const ProblemSet& set = sets_[job.suite];
     if (job.kind != JobKind::kGenericSparse) {
       return ReplayOne(set, set.problems[job.problem], SolverFor(job.solver), job.solver, options_,
@@ -470,6 +524,13 @@ class ShardRunner {
   }
 
   ReplayRecord NotRunRecord(const BenchJob& job) const {
+    if (job.kind == JobKind::kMcp) {
+      const McpProblemSet& set = mcp_sets_.at(job.suite - sets_.size());
+      char message[160];
+      std::snprintf(message, sizeof message, "not run: %s spent its budget of %g s on suite %s (--backend-budget)",
+                    job.solver.c_str(), flags_.backend_budget, set.name.c_str());
+      return McpNotRunRecord(set, set.problems.at(job.problem), job.start, job.solver, job.tolerance, message);
+    }
     const LibraryProblem& p = sets_[job.suite].problems[job.problem];
     ReplayRecord r;
     r.suite = sets_[job.suite].name;
@@ -534,6 +595,7 @@ class ShardRunner {
 
   const BenchCommand::Flags& flags_;
   const std::vector<ProblemSet>& sets_;
+  const std::vector<McpProblemSet>& mcp_sets_;  // BenchJob::suite counts them after sets_
   ReplayOptions options_;
   JobLineWriter writer_;
   std::ostream& err_;
@@ -568,9 +630,9 @@ void PrintJobs(const std::vector<BenchJob>& jobs, const std::vector<int>& shard,
 int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, std::ostream& err) const {
   const Flags& f = *flags_;
   std::vector<std::string> suites = f.suites;
-  if (suites.empty()) suites = {"paper", "families", "hard", "siconos"};
+  if (suites.empty()) suites = {"paper", "families", "hard", "siconos", "mcp"};
   if (std::find(suites.begin(), suites.end(), "all") != suites.end()) {
-    suites = {"paper", "families", "hard", "siconos", "scale"};
+    suites = {"paper", "families", "hard", "siconos", "scale", "mcp"};
   }
   ReplayOptions options;
   options.solvers = f.solvers;
@@ -594,7 +656,8 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
   if (f.list_jobs) {
     std::ostringstream quiet;
     const std::vector<ProblemSet> sets = BuildBenchSuites(suites, request, false, quiet);
-    const std::vector<BenchJob> jobs = RunJobs(f, sets, options, solvers);
+    const std::vector<McpProblemSet> mcp_sets = BuildBenchMcpSuites(suites, f.quick, quiet);
+    const std::vector<BenchJob> jobs = RunJobs(f, sets, mcp_sets, options, solvers);
     PrintJobs(jobs, AssignShards(jobs, shards), f.shard.empty() ? -1 : shard, shards, out);
     return 0;
   }
@@ -606,6 +669,11 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
   }
   err << "bench: writing to " << out_dir << "\n";
   const std::vector<ProblemSet> sets = BuildBenchSuites(suites, request, true, err);
+  const std::vector<McpProblemSet> mcp_sets = BuildBenchMcpSuites(suites, f.quick, err);
+  if (!mcp_sets.empty() && McpSolverNames(solvers).empty()) {
+    err << "bench: no chosen backend solves MCPs (`smcbench list` says: accepts nonlinear MCP): the MCP suite is "
+           "not run\n";
+  }
 
   RunManifest manifest;
   manifest.command = command_line;
@@ -619,7 +687,15 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
     suite.checksum = ProblemSetContentChecksum(set);
     manifest.suites.push_back(std::move(suite));
   }
-  manifest.jobs = RunJobs(f, sets, options, solvers);
+  for (const McpProblemSet& set : mcp_sets) {
+    SuiteResults suite;
+    suite.suite = set.name;
+    suite.description = set.description;
+    suite.problems = static_cast<int>(set.problems.size());
+    suite.checksum = McpProblemSetChecksum(set);
+    manifest.suites.push_back(std::move(suite));
+  }
+  manifest.jobs = RunJobs(f, sets, mcp_sets, options, solvers);
   manifest.shard = shard;
   manifest.shards = shards;
   manifest.job_shard = AssignShards(manifest.jobs, shards);
@@ -649,12 +725,13 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
   }
   const bool terminal = &err == &std::cerr && ::isatty(2);
   Progress progress(err, terminal, f.progress_every);
-  ShardRunner runner(f, sets, options, records_path, err);
+  ShardRunner runner(f, sets, mcp_sets, options, records_path, err);
   runner.stepper_progress = [&](const std::string& what) { progress.Note(what); };
   for (std::size_t k = 0; k < todo.size(); ++k) {
     const BenchJob& job = *todo[k];
     done[job.index] = runner.Run(job);
-    progress.Update(k + 1, todo.size(), job.suite_name + " " + job.problem_id + " " + job.solver);
+    const std::string start = job.kind == JobKind::kMcp ? "@" + job.start_label : "";
+    progress.Update(k + 1, todo.size(), job.suite_name + " " + job.problem_id + start + " " + job.solver);
   }
   progress.Finish();
   runner.ReportSkipped();

@@ -85,7 +85,7 @@ TEST(Bench, TinySuiteEndToEndWithReport) {
   const std::string csv = ReadText(dir / "results.csv");
   EXPECT_EQ(csv.rfind("suite,problem,solver,mode,size", 0), 0u);
   EXPECT_THAT(csv, HasSubstr(",residual_scaled,forward_error,forward_error_rel,forward_allowance,certificate,"
-                             "timed_in_worker,host,concurrent_jobs\n"));
+                             "timed_in_worker,host,concurrent_jobs,start\n"));
   const std::string md = ReadText(dir / "report.md");
   EXPECT_THAT(md, HasSubstr("## Suite `tiny`"));
   // solved, correctly refused, failed, wrongly claimed, inaccurate, wrongly refused, success.
@@ -724,6 +724,7 @@ TEST(Shards, ResultsCsvNumbersRoundTrip) {
     std::vector<std::string> cells;
     std::istringstream in(rows[i + 1]);
     for (std::string cell; std::getline(in, cell, ',');) cells.push_back(cell);
+    if (!rows[i + 1].empty() && rows[i + 1].back() == ',') cells.emplace_back();  // an empty last field (start)
     ASSERT_EQ(cells.size(), header.size()) << rows[i + 1];
     for (std::size_t c = 0; c < header.size(); ++c) {
       const auto& value = records[i][header[c]];
@@ -843,6 +844,177 @@ TEST(Report, WarnsWhenComparedTimesComeFromSharedHosts) {
   results.suites[0].replay.records[1].concurrent_jobs = 1;
   results.suites[0].replay.records[1].host = "node2";
   EXPECT_THAT(SharedHostWarning(results), HasSubstr("The times come from 2 hosts"));
+}
+
+// An MCP suite's records are problem × start: a backend's failure on one start of a problem is penalized at 10×
+// the slowest correct time on that same start, and the profile compares times per start.
+TEST(Report, McpSuiteIsSummarizedPerProblemAndStart) {
+  SuiteResults s;
+  s.suite = "mcp";
+  const auto at = [](ReplayRecord r, const std::string& start) {
+    r.start = start;
+    return r;
+  };
+  s.replay.records = {at(Rec("p", "a", Verdict::kSolved, 1e-6), "s1"), at(Rec("p", "b", Verdict::kSolved, 2e-6), "s1"),
+                      at(Rec("p", "a", Verdict::kFailed, 1.0), "s2"), at(Rec("p", "b", Verdict::kSolved, 5e-6), "s2")};
+  EXPECT_TRUE(IsMcpSuite(s));
+  const auto summary = SummarizeSuite(s);
+  ASSERT_EQ(summary.size(), 2u);
+  EXPECT_EQ(summary[0].problems, 2);
+  EXPECT_EQ(summary[0].solved, 1);
+  EXPECT_EQ(summary[0].failed, 1);
+  // a: 1e-6 on s1, and on s2 10 × b's 5e-6 (not b's 2e-6 of the other start); shift 1e-6.
+  EXPECT_NEAR(summary[0].shifted_geomean, std::sqrt(2e-6 * 51e-6) - 1e-6, 1e-18);
+  EXPECT_NEAR(summary[1].shifted_geomean, std::sqrt(3e-6 * 6e-6) - 1e-6, 1e-18);
+  const auto ratios = PerformanceRatios(s);
+  EXPECT_THAT(ratios[0].second, ::testing::ElementsAre(1.0, std::numeric_limits<double>::infinity()));
+  EXPECT_THAT(ratios[1].second, ::testing::ElementsAre(1.0, 2.0));  // s2: b is the best; s1: 2e-6 / 1e-6
+  SuiteResults box = s;
+  for (auto& r : box.replay.records) r.start.clear();
+  EXPECT_FALSE(IsMcpSuite(box));
+}
+
+TEST(Report, McpSectionNamesSuccessPerStartAndWhoFailsWhere) {
+  const fs::path dir = fs::temp_directory_path() / ("smcbench-report-mcp-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  BenchResults results;
+  results.command = "smcbench bench --suite mcp";
+  SuiteResults box;
+  box.suite = "tiny";
+  box.description = "box";
+  box.replay.records = {Rec("q", "lemke", Verdict::kSolved, 1e-6)};
+  SuiteResults mcp;
+  mcp.suite = "mcp";
+  mcp.description = "nonlinear MCPs";
+  mcp.problems = 2;
+  const auto at = [](ReplayRecord r, const std::string& problem, const std::string& start) {
+    r.suite = "mcp";
+    r.problem = problem;
+    r.start = start;
+    r.samples = 3;
+    r.certificate = "unique";
+    return r;
+  };
+  ReplayRecord failed = at(Rec("", "newton", Verdict::kFailed, 1e-3), "mcp/classic/josephy", "start2");
+  failed.status = SolveStatus::kIterationLimit;
+  failed.message = "line search | stalled";
+  ReplayRecord inaccurate = at(Rec("", "other", Verdict::kInaccurate, 2e-5), "mcp/classic/josephy", "start1");
+  inaccurate.status = SolveStatus::kSolved;
+  inaccurate.forward_error = 0.5;
+  ReplayRecord solved = at(Rec("", "newton", Verdict::kSolved, 1e-5), "mcp/classic/josephy", "start1");
+  solved.forward_error = 1e-15;
+  mcp.replay.records = {solved, inaccurate, failed,
+                        at(Rec("", "other", Verdict::kSolved, 3e-5), "mcp/classic/josephy", "start2"),
+                        at(Rec("", "newton", Verdict::kCorrectlyRefused, 1e-5), "mcp/hard/none", "start1"),
+                        at(Rec("", "other", Verdict::kCorrectlyRefused, 1e-5), "mcp/hard/none", "start1")};
+  results.suites = {box, mcp};
+  WriteBenchResults(results, dir.string(), nlohmann::json::object());
+  const std::string md = WriteBenchReport(dir.string(), false);
+  EXPECT_THAT(md, HasSubstr("## Suite `tiny`"));  // the box suite keeps its section
+  EXPECT_THAT(md, HasSubstr("## MCP suite `mcp`: nonlinear MCPs"));
+  EXPECT_THAT(md, HasSubstr("2 nonlinear MCPs, 3 problem × start"));
+  // Backend table: newton 1 solved, 1 correctly refused, 1 failed; other 1 solved, 1 refused, 1 inaccurate.
+  EXPECT_THAT(md, HasSubstr("| newton | 1 | 1 | 1 | 0 | 0 | 0 | 66.7% |"));
+  EXPECT_THAT(md, HasSubstr("| other | 1 | 1 | 0 | 0 | **1** | 0 | 66.7% |"));
+  // Per start: start1 has josephy and none, start2 josephy only.
+  EXPECT_THAT(md, HasSubstr("| backend | `start1` | `start2` | "));
+  EXPECT_THAT(md, HasSubstr("| newton | 2/2 | 0/1 | "));
+  EXPECT_THAT(md, HasSubstr("| other | 1/2 | 1/1 | "));
+  // Who fails where: the wrong answer first, then the failure with its status and message (no stray '|').
+  const auto wrong_at = md.find("| mcp/classic/josephy | start1 | other | **INACCURATE** | solved |");
+  const auto failed_at = md.find("| mcp/classic/josephy | start2 | newton | failed | iteration_limit | "
+                                 "line search / stalled |");
+  ASSERT_NE(wrong_at, std::string::npos) << md;
+  ASSERT_NE(failed_at, std::string::npos) << md;
+  EXPECT_LT(wrong_at, failed_at);
+  EXPECT_THAT(md, HasSubstr("Where the backends fail (2 problem × start × backend"));
+  if (GnuplotAvailable()) {
+    WriteBenchReport(dir.string(), true);
+    EXPECT_TRUE(fs::exists(dir / "speed-forward-error-mcp.png"));
+    EXPECT_TRUE(fs::exists(dir / "profile-mcp.png"));
+    const std::string data = ReadText(dir / "speed-forward-error-mcp.dat");
+    EXPECT_THAT(data, HasSubstr("# newton"));
+    EXPECT_THAT(data, HasSubstr("# other"));
+  }
+  fs::remove_all(dir);
+}
+
+// `bench --suite mcp`: MCP jobs only on the backends that solve MCPs, one per problem × start; the run's summary
+// gets an mcp row and the report its MCP section.
+TEST(Bench, McpSuiteJobsAndRun) {
+  CliRun r = RunSmcbench({"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "lemke", "--solver",
+                          "newton", "--list-jobs"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::size_t jobs = 0;
+  for (const std::string& line : Lines(r.out)) {
+    if (line.empty() || line[0] == '#') continue;
+    ++jobs;
+    EXPECT_THAT(line, HasSubstr("\tmcp\tmcp|"));
+    EXPECT_THAT(line, HasSubstr("@"));
+    EXPECT_THAT(line, HasSubstr("|newton|cold|"));  // lemke does not solve MCPs: no job
+  }
+  EXPECT_GT(jobs, 0u);
+
+  const fs::path dir = fs::temp_directory_path() / ("smcbench-bench-mcp-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  r = RunSmcbench({"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "lemke", "--solver", "newton",
+                   "--out", dir.string(), "--report", "--no-plots"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("| mcp | newton | " + std::to_string(jobs) + " | "));
+  EXPECT_THAT(r.out, Not(HasSubstr("| mcp | lemke |")));
+  const std::string md = ReadText(dir / "report.md");
+  EXPECT_THAT(md, HasSubstr("## MCP suite `mcp`"));
+  const BenchResults back = ReadBenchResults(dir.string());
+  ASSERT_EQ(back.suites.size(), 1u);
+  EXPECT_EQ(back.suites[0].replay.records.size(), jobs);
+  for (const ReplayRecord& rec : back.suites[0].replay.records) EXPECT_FALSE(rec.start.empty());
+
+  // Only box backends chosen: said on stderr, no MCP record, and the report says why the suite is empty.
+  r = RunSmcbench({"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "lemke", "--out", dir.string(),
+                   "--overwrite", "--report", "--no-plots"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("no chosen backend solves MCPs"));
+  EXPECT_THAT(r.out, Not(HasSubstr("| mcp |")));
+  EXPECT_THAT(ReadText(dir / "report.md"), HasSubstr("No records: no chosen backend ran on it"));
+  fs::remove_all(dir);
+}
+
+// The MCP suite's jobs shard, merge and resume like the box's: two shards merged are the single run, and a backend
+// past its budget gets its remaining problem × start recorded as not run, start label kept.
+TEST(Shards, McpJobsMergeToTheSingleRunAndRespectTheBudget) {
+  const fs::path root = fs::temp_directory_path() / ("smcbench-mcp-shards-" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const auto args = [](std::vector<std::string> extra) {
+    std::vector<std::string> a{"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "newton"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  ASSERT_EQ(RunSmcbench(args({"--out", (root / "single").string()})).code, 0);
+  std::vector<std::string> merge{"merge", (root / "merged").string()};
+  for (int k = 1; k <= 2; ++k) {
+    merge.push_back((root / ("shard-" + std::to_string(k))).string());
+    const CliRun r = RunSmcbench(args({"--shard", std::to_string(k) + "/2", "--out", merge.back()}));
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  const CliRun merged = RunSmcbench(merge);
+  ASSERT_EQ(merged.code, 0) << merged.err;
+  const std::vector<nlohmann::json> expected = TimelessRecords(root / "single");
+  ASSERT_GE(expected.size(), 2u);
+  EXPECT_EQ(expected[0]["suite"], "mcp");
+  EXPECT_EQ(expected[0]["checksum"].get<std::string>().size(), 16u);
+  EXPECT_EQ(TimelessRecords(root / "merged"), expected);
+
+  const CliRun budget = RunSmcbench(args({"--backend-budget", "1e-9", "--out", (root / "budget").string()}));
+  ASSERT_EQ(budget.code, 0) << budget.err;
+  const std::vector<nlohmann::json> cut = TimelessRecords(root / "budget");
+  ASSERT_EQ(cut.size(), expected.size());
+  if (cut.size() > 2) {
+    EXPECT_EQ(cut[2]["status"], "time_limit");
+    EXPECT_THAT(cut[2]["message"].get<std::string>(), HasSubstr("--backend-budget"));
+    EXPECT_EQ(cut[2]["start"], expected[2]["start"]);
+    EXPECT_THAT(budget.err, HasSubstr("problem x start of suite mcp"));
+  }
+  fs::remove_all(root);
 }
 
 }  // namespace

@@ -35,6 +35,10 @@ std::string G(double v, int digits = 3) {
 
 std::string Seconds(double s) { return DurationText(s); }
 
+// What a time is compared over: the problem, or for an MCP record the problem × start (each start is its own
+// instance: the same backend may solve one start and fail another).
+std::string Instance(const ReplayRecord& r) { return r.start.empty() ? r.problem : r.problem + "@" + r.start; }
+
 bool Correct(const ReplayRecord& r) {
   return r.verdict == Verdict::kSolved || r.verdict == Verdict::kCorrectlyRefused;
 }
@@ -139,7 +143,7 @@ std::string Count(int n) { return n ? "**" + std::to_string(n) + "**" : std::str
 // e.g. of decreasing h): the figure dir/STEM.{png,svg,dat,gp} (WriteFigure).
 void PlotCurves(const std::map<std::string, std::vector<std::pair<double, double>>>& curves, const std::string& dir,
                 const std::string& stem, const std::string& xlabel, const std::string& ylabel,
-                const std::string& title, bool sort_by_x = true) {
+                const std::string& title, bool sort_by_x = true, const char* with = "linespoints") {
   std::ostringstream data, g;
   g << "set logscale xy\nset grid\nset key outside right top\nset xlabel " << GnuplotQuote(xlabel) << "\nset ylabel "
     << GnuplotQuote(ylabel) << "\nset title " << GnuplotQuote(title) << "\nplot ";
@@ -150,7 +154,7 @@ void PlotCurves(const std::map<std::string, std::vector<std::pair<double, double
     data << "# " << label << "\n";
     for (auto [x, y] : sorted) data << x << ' ' << y << '\n';
     data << "\n\n";
-    g << (index ? ", " : "") << GnuplotQuote(stem + ".dat") << " index " << index << " using 1:2 with linespoints "
+    g << (index ? ", " : "") << GnuplotQuote(stem + ".dat") << " index " << index << " using 1:2 with " << with << " "
       << BackendStyle(label) << " title " << GnuplotQuote(label);
     ++index;
   }
@@ -167,12 +171,17 @@ const char* const kVerdictInTwoSentences =
     "solution unique, also ‖z − z*‖∞ ≤ 10·max(1, μ)·tol·(1 + ‖z*‖∞), with μ = ‖(D⁻¹M)_FF⁻¹‖∞ the conditioning of "
     "z*'s free rows; a claim that no solution exists, on a problem known to have one, is wrongly refused.";
 
+bool IsMcpSuite(const SuiteResults& suite) {
+  return std::any_of(suite.replay.records.begin(), suite.replay.records.end(),
+                     [](const ReplayRecord& r) { return !r.start.empty(); });
+}
+
 std::vector<BackendSummary> SummarizeSuite(const SuiteResults& suite, double time_limit_seconds) {
   const auto& records = suite.replay.records;
   // Slowest correct time per problem.
   std::map<std::string, double> slowest;
   for (const auto& r : records) {
-    if (Correct(r)) slowest[r.problem] = std::max(slowest[r.problem], r.time_median);
+    if (Correct(r)) slowest[Instance(r)] = std::max(slowest[Instance(r)], r.time_median);
   }
   std::vector<BackendSummary> out;
   for (const std::string& solver : Solvers(records)) {
@@ -209,7 +218,7 @@ std::vector<BackendSummary> SummarizeSuite(const SuiteResults& suite, double tim
           ++b.wrongly_refused;
           break;
       }
-      const auto it = slowest.find(r.problem);
+      const auto it = slowest.find(Instance(r));
       const double t = Correct(r) ? r.time_median : (it != slowest.end() ? 10.0 * it->second : time_limit_seconds);
       log_sum += std::log(t + kShift);
     }
@@ -225,15 +234,15 @@ std::vector<std::pair<std::string, std::vector<double>>> PerformanceRatios(const
   std::map<std::string, double> best;
   for (const auto& r : records) {
     if (r.verdict != Verdict::kSolved) continue;
-    auto [it, inserted] = best.emplace(r.problem, r.time_median);
+    auto [it, inserted] = best.emplace(Instance(r), r.time_median);
     if (!inserted) it->second = std::min(it->second, r.time_median);
   }
   std::vector<std::pair<std::string, std::vector<double>>> out;
   for (const std::string& solver : Solvers(records)) {
     std::vector<double> ratios;
     for (const auto& r : records) {
-      if (r.solver != solver || !best.count(r.problem)) continue;  // problems nobody solves are left out
-      ratios.push_back(r.verdict == Verdict::kSolved ? r.time_median / best.at(r.problem) : kInfTime);
+      if (r.solver != solver || !best.count(Instance(r))) continue;  // problems nobody solves are left out
+      ratios.push_back(r.verdict == Verdict::kSolved ? r.time_median / best.at(Instance(r)) : kInfTime);
     }
     std::sort(ratios.begin(), ratios.end());
     out.emplace_back(solver, std::move(ratios));
@@ -340,13 +349,20 @@ std::string CertificateCounts(const SuiteResults& suite) {
   return certified;
 }
 
+void WriteBackendTable(std::ostream& md, const SuiteResults& suite);
+
 // The suite's heading and its table of verdict counts, success, SGM time and worst errors per backend.
 void WriteSuiteSummary(std::ostream& md, const SuiteResults& suite) {
   const std::string certified = CertificateCounts(suite);
   md << "## Suite `" << suite.suite << "`: " << suite.description << "\n\n"
      << suite.problems << " problems; certified references: " << (certified.empty() ? "–" : certified)
-     << " (forward errors are judged on the unique and degenerate ones).\n\n"
-     << "| backend | solved | correctly refused | failed | **wrongly claimed** | **inaccurate** | **wrongly "
+     << " (forward errors are judged on the unique and degenerate ones).\n\n";
+  WriteBackendTable(md, suite);
+}
+
+// Per backend: verdict counts, success, SGM time and worst errors (SummarizeSuite).
+void WriteBackendTable(std::ostream& md, const SuiteResults& suite) {
+  md << "| backend | solved | correctly refused | failed | **wrongly claimed** | **inaccurate** | **wrongly "
         "refused** | success | SGM time | worst residual (solved) | worst residual (eq.) | worst forward error "
         "(solved) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
   for (const BackendSummary& b : SummarizeSuite(suite)) {
@@ -601,6 +617,114 @@ void WriteToleranceSweep(std::ostream& md, const SuiteResults& suite, const std:
   }
 }
 
+// ---- The MCP section: a suite whose records are MCP problem × start (ReplayRecord::start). ----
+
+// A table cell from free text: one line, no column separator, at most max_chars bytes.
+std::string Cell(const std::string& text, std::size_t max_chars = 90) {
+  std::string out;
+  for (char c : text) out += c == '|' ? '/' : c == '\n' ? ' ' : c;
+  if (out.size() > max_chars) out = out.substr(0, max_chars) + "…";
+  return out;
+}
+
+// Per backend and start label: correct answers (solved + correctly refused) over the problems with that start.
+void WriteMcpStarts(std::ostream& md, const SuiteResults& suite) {
+  std::vector<std::string> labels;
+  std::map<std::pair<std::string, std::string>, std::pair<int, int>> cells;  // (backend, label) → correct, total
+  for (const auto& r : suite.replay.records) {
+    if (std::find(labels.begin(), labels.end(), r.start) == labels.end()) labels.push_back(r.start);
+    auto& [correct, total] = cells[{r.solver, r.start}];
+    correct += Correct(r);
+    ++total;
+  }
+  md << "Success per start (solved + correctly refused / problems with that start; a start label names the "
+        "published starting point of each problem):\n\n| backend | ";
+  for (const auto& label : labels) md << "`" << Cell(label, 40) << "` | ";
+  md << "\n|---|";
+  for (std::size_t i = 0; i < labels.size(); ++i) md << "---|";
+  md << "\n";
+  for (const std::string& solver : Solvers(suite.replay.records)) {
+    md << "| " << solver << " | ";
+    for (const auto& label : labels) {
+      const auto it = cells.find({solver, label});
+      md << (it == cells.end() ? std::string("–")
+                               : std::to_string(it->second.first) + "/" + std::to_string(it->second.second))
+         << " | ";
+    }
+    md << "\n";
+  }
+  md << "\n";
+}
+
+// Which backend fails where, and with what status: every record that is not correct (wrong answers first).
+void WriteMcpFailures(std::ostream& md, const SuiteResults& suite) {
+  std::vector<const ReplayRecord*> failures;
+  for (const auto& r : suite.replay.records) {
+    if (!Correct(r)) failures.push_back(&r);
+  }
+  if (failures.empty()) {
+    md << "Every backend is right on every problem × start.\n\n";
+    return;
+  }
+  std::stable_sort(failures.begin(), failures.end(), [](const ReplayRecord* a, const ReplayRecord* b) {
+    return IsWrong(a->verdict) > IsWrong(b->verdict);
+  });
+  constexpr std::size_t kListed = 40;
+  md << "Where the backends fail (" << failures.size() << " problem × start × backend"
+     << (failures.size() > kListed ? ", the first 40; results.csv has them all" : "")
+     << "; wrong answers first):\n\n| problem | start | backend | verdict | status | message | residual (eq.) | "
+        "forward error | allowance |\n|---|---|---|---|---|---|---|---|---|\n";
+  for (std::size_t i = 0; i < std::min(failures.size(), kListed); ++i) {
+    const ReplayRecord& r = *failures[i];
+    const std::string verdict(ToString(r.verdict));
+    md << "| " << r.problem << " | " << Cell(r.start, 40) << " | " << r.solver << " | "
+       << (IsWrong(r.verdict) ? "**" + verdict + "**" : verdict) << " | " << ToString(r.status) << " | "
+       << Cell(r.message) << " | " << G(r.residual_scaled) << " | " << G(r.forward_error) << " | "
+       << G(r.forward_allowance) << " |\n";
+  }
+  md << "\n";
+}
+
+// Speed against forward error: one point per problem × start a backend answered, where the forward error is
+// defined (a reference certified unique, or every solution listed).
+void WriteMcpSpeedAgainstError(std::ostream& md, const SuiteResults& suite, const std::string& dir) {
+  std::map<std::string, std::vector<std::pair<double, double>>> points;
+  for (const auto& r : suite.replay.records) {
+    if (std::isnan(r.forward_error) || r.samples == 0) continue;
+    points[r.solver].emplace_back(std::max(std::isfinite(r.forward_error) ? r.forward_error : 1e300, 1e-17),
+                                  std::max(r.time_median, 1e-9));
+  }
+  if (points.empty()) return;
+  const std::string stem = "speed-forward-error-" + Safe(suite.suite);
+  PlotCurves(points, dir, stem, "forward error |z - z*|inf against the nearest reference (1e-17 = exact)",
+             "time per solve [s]", "Speed against forward error, MCP suite " + suite.suite, true, "points");
+  md << FigureMarkdown("speed against forward error, MCP suite " + suite.suite, stem);
+}
+
+void WriteMcpSection(std::ostream& md, const SuiteResults& suite, const std::string& dir, bool plots) {
+  std::set<std::string> problems, instances;
+  for (const auto& r : suite.replay.records) problems.insert(r.problem), instances.insert(Instance(r));
+  const std::string certified = CertificateCounts(suite);
+  md << "## MCP suite `" << suite.suite << "`: " << suite.description << "\n\n"
+     << problems.size() << " nonlinear MCPs, " << instances.size()
+     << " problem × start (each published starting point is its own instance; times are cold solves from it); "
+        "references: "
+     << (certified.empty() ? "–" : certified)
+     << ". Only backends that solve MCPs run here (`smcbench list` says: accepts nonlinear MCP): the others have no "
+        "record and are not counted. The verdict is the box's with F's Jacobian J at the answer in place of M: "
+        "residual (eq.) is the scale-free MCP residual (row i divided by max_j |J_ij|·c_j, variables in their units "
+        "c, relative to 1 + max_i |z_i|/c_i) and must be ≤ tol; the forward error is judged against the nearest "
+        "reference when the references list every solution, else against one certified unique. Success and SGM "
+        "time are over problem × start.\n\n";
+  WriteBackendTable(md, suite);
+  WriteMcpStarts(md, suite);
+  WriteMcpFailures(md, suite);
+  if (plots) {
+    WriteMcpSpeedAgainstError(md, suite, dir);
+    WritePerformanceProfile(md, suite, dir);
+  }
+}
+
 // Scale: time against m with the fitted exponent (the scale suite, when it has at least three sizes).
 void WriteScaleTable(std::ostream& md, const SuiteResults& suite) {
   std::set<int> sizes;
@@ -628,6 +752,12 @@ void WriteScaleTable(std::ostream& md, const SuiteResults& suite) {
 }
 
 void WriteSuite(std::ostream& md, const SuiteResults& suite, const std::string& dir, bool plots) {
+  if (suite.replay.records.empty() && suite.replay.sweep.empty()) {
+    md << "## Suite `" << suite.suite << "`: " << suite.description << "\n\nNo records: no chosen backend ran on it "
+       << "(an MCP suite runs only on the backends that solve MCPs).\n\n";
+    return;
+  }
+  if (IsMcpSuite(suite)) return WriteMcpSection(md, suite, dir, plots);
   WriteSuiteSummary(md, suite);
   WriteWrongAnswers(md, suite);
   WriteSparsePathComparison(md, CompareWithSparsePath(suite));

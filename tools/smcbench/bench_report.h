@@ -2,7 +2,8 @@
 // backend the verdict counts (wrong answers apart), success rate, shifted geometric mean time, worst residuals
 // (relative and row-equilibrated) and worst forward error, Dolan–Moré performance profiles, time against the
 // forward error and against the residual reached (tolerance sweep), the time-stepper's work-precision diagrams
-// and warm/cold table, and the scale family's growth exponent.
+// and warm/cold table, the scale family's growth exponent, and for an MCP suite its own section (success per
+// backend and per start, where each backend fails and with what status, speed against forward error, profile).
 #pragma once
 
 #include <string>
@@ -27,8 +28,12 @@ struct BackendSummary {
   int wrong() const { return wrongly_claimed + inaccurate + wrongly_refused; }
 };
 
+// True when the suite's records are MCP problem × start (ReplayRecord::start set): the report's MCP section.
+bool IsMcpSuite(const SuiteResults& suite);
+
 // Shifted geometric mean of the per-problem median times, shift 1e-6 s, a problem the backend does not get right
-// counted at 10× the slowest correct time on that problem (the time limit if nobody got it right).
+// counted at 10× the slowest correct time on that problem (the time limit if nobody got it right). For an MCP suite
+// a problem is a problem × start, here and in PerformanceRatios.
 std::vector<BackendSummary> SummarizeSuite(const SuiteResults& suite, double time_limit_seconds = 10.0);
 
 // Dolan–Moré: for each backend, ρ(τ) = fraction of problems solved within τ × the best time on that problem.
