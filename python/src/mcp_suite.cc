@@ -47,12 +47,14 @@ double Median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
-// Repeated cold solves from the same start into *result (the last one is judged). Called without the GIL.
-McpTiming TimeMcpSolves(Solver* solver, const MCP& problem, const SolverOptions& options,
+// Repeated cold solves from the same start into *result (the last one is judged). Called without the GIL. An
+// exception from F or J ends it after the warm-up solve (PythonMCP::RethrowCallbackError).
+McpTiming TimeMcpSolves(Solver* solver, PythonMCP& problem, const SolverOptions& options,
                         const McpBenchOptions& bench, SolveResult* result) {
   const auto t0 = Clock::now();
   solver->Solve(problem, options, result);  // warm-up: sizes the workspaces, tells how long one solve takes
   const double first = std::chrono::duration<double>(Clock::now() - t0).count();
+  problem.RethrowCallbackError();
   McpTiming timing;
   std::vector<double> samples;
   std::int64_t count = 1;
@@ -123,12 +125,14 @@ py::dict JudgeMcp(const py::dict& problem_dict, const py::object& z, const std::
                                                            what + ": expected"),
                                references, problem_dict["references_complete"].cast<bool>(),
                                ToSolveStatus(status, what + ": status"), answer, tolerance);
+  problem->RethrowCallbackError();
   return JudgementToDict(j);
 }
 
 // A user's suite as McpLibraryProblems (the library's data model), checked here with messages naming the problem:
 // ids unique and non-empty, starts of the right size and finite, one label per start.
-std::vector<McpLibraryProblem> ToSuite(const py::list& problems) {
+// *callbacks: the same problems as PythonMCP, for RethrowCallbackError.
+std::vector<McpLibraryProblem> ToSuite(const py::list& problems, std::vector<std::shared_ptr<PythonMCP>>* callbacks) {
   std::vector<McpLibraryProblem> suite;
   std::set<std::string> ids;
   for (std::size_t index = 0; index < problems.size(); ++index) {
@@ -142,6 +146,7 @@ std::vector<McpLibraryProblem> ToSuite(const py::list& problems) {
     if (starts.size() == 0) throw InvalidInputError(what + ": starts is empty (give at least one start point)");
     const std::shared_ptr<PythonMCP> problem = MakePythonMcp(d, ToVector(starts[0], what + ": starts[0]"), what);
     p.problem = problem;
+    callbacks->push_back(problem);
     p.source = d["source"].cast<std::string>();
     p.tags = d["tags"].cast<std::vector<std::string>>();
     p.expected = ToExpectedOutcome(d["expected"].cast<std::string>(), what + ": expected");
@@ -192,11 +197,14 @@ py::list BenchMcp(const py::list& problems, std::vector<std::string> solver_name
   if (repetitions < 1) throw InvalidInputError("bench_mcp: repetitions must be >= 1");
   if (!(time_limit > 0.0)) throw InvalidInputError("bench_mcp: time_limit must be > 0 seconds");
   // Built and destroyed with the GIL held (they own Python objects); only the solves run without it.
-  const std::vector<McpLibraryProblem> suite = ToSuite(problems);
+  std::vector<std::shared_ptr<PythonMCP>> callbacks;
+  const std::vector<McpLibraryProblem> suite = ToSuite(problems, &callbacks);
   std::vector<std::unique_ptr<Solver>> solvers = McpSolvers(&solver_names);
   py::list rows;
   SolveResult result;
-  for (const McpLibraryProblem& p : suite) {
+  for (std::size_t index = 0; index < suite.size(); ++index) {
+    const McpLibraryProblem& p = suite[index];
+    PythonMCP& problem = *callbacks[index];
     for (std::size_t k = 0; k < p.starts.size(); ++k) {
       for (std::size_t s = 0; s < solvers.size(); ++s) {
         SolverOptions options;
@@ -208,10 +216,11 @@ py::list BenchMcp(const py::list& problems, std::vector<std::string> solver_name
         Judgement j;
         {
           py::gil_scoped_release release;
-          timing = TimeMcpSolves(solvers[s].get(), *p.problem, options, bench, &result);
-          j = JudgeMCP(*p.problem, p.expected, p.references, p.references_complete, result.status, result.z,
+          timing = TimeMcpSolves(solvers[s].get(), problem, options, bench, &result);
+          j = JudgeMCP(problem, p.expected, p.references, p.references_complete, result.status, result.z,
                        bench.tolerance);
         }
+        problem.RethrowCallbackError();
         py::dict row = JudgementToDict(j);
         row["problem"] = p.id;
         row["start"] = p.start_labels[k];

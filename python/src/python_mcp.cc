@@ -17,29 +17,53 @@ void PythonMCP::ProbeJacobianKind(const Vector& z) {
 }
 
 void PythonMCP::Evaluate(const Vector& z, Vector* F) const {
-  py::gil_scoped_acquire acquire;
-  const Vector value = ToVector(F_(ToNumpy(z)), what_ + ": F(z)");
-  if (value.size() != size()) {
-    throw InvalidInputError(what_ + ": F(z) returned " + std::to_string(value.size()) + " entries, expected " +
-                            std::to_string(size()));
+  try {
+    py::gil_scoped_acquire acquire;
+    const Vector value = ToVector(F_(ToNumpy(z)), what_ + ": F(z)");
+    if (value.size() != size()) {
+      throw InvalidInputError(what_ + ": F(z) returned " + std::to_string(value.size()) + " entries, expected " +
+                              std::to_string(size()));
+    }
+    *F = value;
+  } catch (...) {
+    KeepAndRethrow();
   }
-  *F = value;
 }
 
 void PythonMCP::JacobianDense(const Vector& z, DenseMatrix* J) const {
-  py::gil_scoped_acquire acquire;
-  const py::object value = J_(ToNumpy(z));
-  *J = IsCscTuple(value) ? DenseMatrix(ToSparseMatrix(value.cast<py::tuple>(), what_ + ": J(z)"))
-                         : ToDenseMatrix(value, what_ + ": J(z)");
-  CheckShape(J->rows(), J->cols());
+  try {
+    py::gil_scoped_acquire acquire;
+    const py::object value = J_(ToNumpy(z));
+    *J = IsCscTuple(value) ? DenseMatrix(ToSparseMatrix(value.cast<py::tuple>(), what_ + ": J(z)"))
+                           : ToDenseMatrix(value, what_ + ": J(z)");
+    CheckShape(J->rows(), J->cols());
+  } catch (...) {
+    KeepAndRethrow();
+  }
 }
 
 void PythonMCP::JacobianSparse(const Vector& z, SparseMatrix* J) const {
-  py::gil_scoped_acquire acquire;
-  const py::object value = J_(ToNumpy(z));
-  *J = IsCscTuple(value) ? ToSparseMatrix(value.cast<py::tuple>(), what_ + ": J(z)")
-                         : SparseMatrix(ToDenseMatrix(value, what_ + ": J(z)").sparseView());
-  CheckShape(J->rows(), J->cols());
+  try {
+    py::gil_scoped_acquire acquire;
+    const py::object value = J_(ToNumpy(z));
+    *J = IsCscTuple(value) ? ToSparseMatrix(value.cast<py::tuple>(), what_ + ": J(z)")
+                           : SparseMatrix(ToDenseMatrix(value, what_ + ": J(z)").sparseView());
+    CheckShape(J->rows(), J->cols());
+  } catch (...) {
+    KeepAndRethrow();
+  }
+}
+
+void PythonMCP::KeepAndRethrow() const {
+  if (!callback_error_) callback_error_ = std::current_exception();
+  throw;
+}
+
+void PythonMCP::RethrowCallbackError() {
+  if (!callback_error_) return;
+  std::exception_ptr error;
+  std::swap(error, callback_error_);
+  std::rethrow_exception(error);
 }
 
 void PythonMCP::CheckShape(Eigen::Index rows, Eigen::Index cols) const {

@@ -4,6 +4,7 @@
 
 #include <pybind11/pybind11.h>
 
+#include <exception>
 #include <string>
 #include <vector>
 
@@ -13,10 +14,11 @@
 
 namespace smcbench::python {
 
-// F and J are called with the GIL re-acquired (backends run without it). A Python exception propagates out of the
-// solve as itself (py::error_already_set: the backends catch nothing); a result of the wrong shape is an
-// InvalidInputError that starts with `what` (the caller: "solve_mcp", "bench_mcp: problems[0] ('x')"). Construct
-// and destroy it with the GIL held (it owns references to Python objects).
+// F and J are called with the GIL re-acquired (backends run without it). A result of the wrong shape is an
+// InvalidInputError that starts with `what` (the caller: "solve_mcp", "bench_mcp: problems[0] ('x')"). An exception
+// from F or J (a Python one, or that error) is thrown into the solve, which may turn it into a status, and kept:
+// RethrowCallbackError raises the first one after the solve, so a bug in the user's F reaches the caller as itself
+// instead of hiding in a status message. Construct and destroy it with the GIL held (it owns Python objects).
 class PythonMCP final : public MCP {
  public:
   // Bounds validated by MCP (InvalidInputError naming l or u); the Jacobian is dense until ProbeJacobianKind.
@@ -31,12 +33,18 @@ class PythonMCP final : public MCP {
   void JacobianDense(const Vector& z, DenseMatrix* J) const override;
   void JacobianSparse(const Vector& z, SparseMatrix* J) const override;
 
+  // Throws the first exception F or J threw since the last call (and forgets it); nothing if there was none.
+  void RethrowCallbackError();
+
  private:
   void CheckShape(Eigen::Index rows, Eigen::Index cols) const;
+  // Keeps the exception being handled (the first one only) and throws it on.
+  [[noreturn]] void KeepAndRethrow() const;
 
   py::function F_, J_;
   JacobianKind kind_ = JacobianKind::kDense;
   std::string what_;
+  mutable std::exception_ptr callback_error_;  // set from the const F/J calls of a solve
 };
 
 // The registered backends that solve nonlinear MCPs (SolverInfo::mcp), in registry order, and the same as one

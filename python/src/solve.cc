@@ -92,6 +92,7 @@ py::dict SolveMcp(const py::function& F, const py::function& J, const py::object
     py::gil_scoped_release release;
     solver->Solve(problem, options, &result);
   }
+  problem.RethrowCallbackError();
   return ResultToDict(result);
 }
 
