@@ -283,7 +283,7 @@ def bench_mcp(problems: Iterable[McpProblem], solvers: Optional[List[str]] = Non
     residual_abs/rel/scaled, tolerance, forward_error, forward_error_rel, forward_allowance, time_median/min/max,
     samples, solves_per_sample, message), in suite, start, backend order.
 
-    solvers: backend names (None: every registered backend with mcp=True). Each problem × start × backend is solved
+    solvers: a backend name or a list of them (None: every registered backend with mcp=True). Each problem × start × backend is solved
     once untimed, then `repetitions` timed samples (a sample repeats the solve until it lasts 0.2 ms; at most 2 s per
     row); times are per solve, in seconds, and include the calls into F and J. The timing loop runs in C++ without
     the GIL. The last answer is judged by JudgeMCP, the verdict of judge_mcp and of `smcbench bench`. time_limit:
@@ -297,7 +297,8 @@ def bench_mcp(problems: Iterable[McpProblem], solvers: Optional[List[str]] = Non
         if not isinstance(p, McpProblem):
             raise InvalidInputError(f"bench_mcp: problems[{index}] is a {type(p).__name__}, expected McpProblem")
         suite.append(p._core(index))
-    rows = _smcbench._bench_mcp(suite, list(solvers or []), float(tol), int(repetitions), float(time_limit))
+    names = [solvers] if isinstance(solvers, str) else list(solvers or [])
+    rows = _smcbench._bench_mcp(suite, names, float(tol), int(repetitions), float(time_limit))
     return pd.DataFrame.from_records(rows, columns=_BENCH_MCP_COLUMNS)
 
 

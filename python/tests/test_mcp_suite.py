@@ -168,8 +168,9 @@ def test_bench_mcp_judges_like_judge_mcp():
 
 def test_bench_mcp_without_starts_uses_the_projection_of_zero():
     suite = [smcbench.McpProblem("planted", planted_F, planted_J, PLANTED_L, PLANTED_U)]
-    frame = smcbench.bench_mcp(suite, solvers=["newton"], repetitions=1)
+    frame = smcbench.bench_mcp(suite, solvers="newton", repetitions=1)
     assert list(frame["start"]) == ["cold"] and list(frame["verdict"]) == ["solved"]
+    assert list(frame["solver"]) == ["newton"]
 
 
 def test_bench_mcp_runs_beside_other_python_threads():
