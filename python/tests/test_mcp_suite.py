@@ -173,6 +173,15 @@ def test_bench_mcp_without_starts_uses_the_projection_of_zero():
     assert list(frame["solver"]) == ["newton"]
 
 
+def test_a_suite_problem_solves_from_each_of_its_starts():
+    cardano, planted = two_problem_suite()
+    for start in range(2):
+        result = planted.solve(start=start, solver="newton")
+        assert result.solved, result.message
+        np.testing.assert_allclose(result.z, PLANTED_SOLUTION, rtol=0, atol=1e-12)
+    np.testing.assert_allclose(cardano.solve(start=1).z, CARDANO_SOLUTION, rtol=0, atol=1e-12)
+
+
 def test_bench_mcp_runs_beside_other_python_threads():
     # The timing loop releases the GIL and each callback takes it back: two benchmarks in two threads finish.
     frames = []
