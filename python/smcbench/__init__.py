@@ -1,5 +1,6 @@
-"""smcbench from Python: solve box-MLCPs and nonlinear MCPs with smcbench's backends, simulate the sliding-mode
-scenes of Acary & Brogliato (2009), read and write .smcps problem sets, load `smcbench bench` results.
+"""smcbench from Python: solve box-MLCPs and nonlinear MCPs with smcbench's backends, judge and benchmark a suite of
+one's own MCPs, simulate the sliding-mode scenes of Acary & Brogliato (2009), read and write .smcps problem sets,
+load `smcbench bench` results.
 
 numpy in, numpy out. The C++ core is the extension `smcbench._smcbench`; this file turns Python's conventions
 (None bounds, scalars, scipy.sparse, keyword options) into its arguments and its dicts into result objects.
@@ -20,8 +21,9 @@ from . import _smcbench
 from ._smcbench import InvalidInputError, scenes, scenes_directory
 
 __all__ = [
-    "InvalidInputError", "SolveResult", "Simulation", "Problem", "solvers", "solve", "solve_mcp", "simulate",
-    "scenes", "scenes_directory", "read_problem_set", "write_problem_set", "load_bench_results",
+    "InvalidInputError", "SolveResult", "Simulation", "Problem", "McpProblem", "solvers", "solve", "solve_mcp",
+    "judge_mcp", "bench_mcp", "simulate", "scenes", "scenes_directory", "read_problem_set", "write_problem_set",
+    "load_bench_results",
 ]
 
 
@@ -114,8 +116,44 @@ def solve(M, q, l=None, u=None, solver: str = "auto", tol: float = 1e-10, time_l
                                     solver, float(tol), time_limit, z0, max_iterations, polish, backend_options))
 
 
-def solve_mcp(F: Callable, J: Callable, l, u, z0=None, solver: str = "newton", tol: float = 1e-10,
-              time_limit: Optional[float] = None, *, max_iterations: Optional[int] = None,
+def _default_mcp_solver() -> str:
+    """"auto" when the registry says auto solves MCPs (SolverInfo::mcp), else "newton"; asked at every call."""
+    backends = {b["name"]: b for b in solvers()}
+    return "auto" if backends.get("auto", {}).get("mcp") else "newton"
+
+
+def _mcp_arrays(F, J, l, u, where: str):
+    """The checked callables and bound vectors of an MCP (scalar bounds broadcast to the other bound's size)."""
+    for name, value in (("F", F), ("J", J)):
+        if not callable(value):
+            raise InvalidInputError(f"{where}: {name} must be callable (z -> array), got {type(value).__name__}")
+    l_vec = np.asarray(l, dtype=np.float64)
+    u_vec = np.asarray(u, dtype=np.float64)
+    for name, value in (("l", l_vec), ("u", u_vec)):
+        if value.ndim > 1:
+            raise InvalidInputError(f"{where}: {name}: expected a 1-D array or a scalar, got shape {value.shape}")
+    if l_vec.ndim == 0 and u_vec.ndim == 0:
+        raise InvalidInputError(f"{where}: l and u are both scalars: give at least one bound vector (size n)")
+    n = l_vec.shape[0] if l_vec.ndim == 1 else u_vec.shape[0]
+    return _bound(l_vec, 0.0, n, "l"), _bound(u_vec, 0.0, n, "u")
+
+
+def _jacobian_for_core(J: Callable, where: str) -> Callable:
+    """J as the C++ core takes it: a scipy.sparse value becomes its CSC tuple, a dense one passes unchanged."""
+
+    def jacobian(z: np.ndarray):
+        value = J(z)
+        return _csc_tuple(value, f"{where}: J(z)") if _is_sparse(value) else value
+
+    return jacobian
+
+
+def _optional_vector(value) -> Optional[np.ndarray]:
+    return None if value is None else np.asarray(value, dtype=np.float64)
+
+
+def solve_mcp(F: Callable, J: Callable, l, u, z0=None, solver: Optional[str] = None, tol: float = 1e-10,
+              time_limit: Optional[float] = None, *, max_iterations: Optional[int] = None, variable_scale=None,
               **backend_options) -> SolveResult:
     """Solve the nonlinear MCP: z in [l, u] with −F(z) in the normal cone of [l, u] at z, i.e. per row
     F_i(z) ≥ 0 at z_i = l_i, F_i(z) ≤ 0 at z_i = u_i, F_i(z) = 0 strictly inside.
@@ -123,27 +161,145 @@ def solve_mcp(F: Callable, J: Callable, l, u, z0=None, solver: str = "newton", t
     F(z) -> array of shape (n,); J(z) -> the Jacobian dF/dz, a dense (n, n) array or a scipy.sparse matrix.
     Both are called with a float64 array z of shape (n,) while the backend runs (it releases the GIL and takes it
     back for each call). l, u: bound vectors (scalars are used on every row; ±np.inf allowed); z0: the start
-    point (default: the projection of 0 onto the box). An exception raised by F or J stops the solve and is
-    raised from solve_mcp; a result of the wrong shape raises InvalidInputError.
+    point (default: the projection of 0 onto the box). solver: any backend with mcp=True in solvers(); None (the
+    default) is "auto" when the registry says auto solves MCPs, else "newton". variable_scale: the units c_i > 0
+    of the variables (default 1), so that residual_scaled, the scale-free MCP residual, does not change with them.
+    An exception raised by F or J stops the solve and is raised from solve_mcp; a result of the wrong shape, a
+    non-callable F or J, bad bounds or sizes, an unknown backend or one that does not solve MCPs raise
+    InvalidInputError naming the field.
     The Jacobian's kind (dense or sparse) is taken from J's value at the start point: a sparse J is handed to
-    newton's sparse path (UMFPACK).
+    the backends' sparse paths.
     """
-    l_vec = np.asarray(l, dtype=np.float64)
-    u_vec = np.asarray(u, dtype=np.float64)
-    if l_vec.ndim == 0 and u_vec.ndim == 0:
-        raise InvalidInputError("solve_mcp: l and u are both scalars: give at least one bound vector (size n)")
-    n = l_vec.shape[0] if l_vec.ndim == 1 else u_vec.shape[0]
-    l_vec = _bound(l_vec, 0.0, n, "l")
-    u_vec = _bound(u_vec, 0.0, n, "u")
-    start = np.asarray(z0, dtype=np.float64) if z0 is not None else np.clip(0.0, l_vec, u_vec)
-    sparse_jacobian = _is_sparse(J(start.copy()))
+    l_vec, u_vec = _mcp_arrays(F, J, l, u, "solve_mcp")
+    name = _default_mcp_solver() if solver is None else solver
+    return _result(_smcbench._solve_mcp(F, _jacobian_for_core(J, "solve_mcp"), l_vec, u_vec, z0,
+                                        _optional_vector(variable_scale), name, float(tol), time_limit,
+                                        max_iterations, backend_options))
 
-    def jacobian(z: np.ndarray):
-        value = J(z)
-        return _csc_tuple(value, "solve_mcp: J(z)") if _is_sparse(value) else value
 
-    return _result(_smcbench._solve_mcp(F, jacobian, sparse_jacobian, l_vec, u_vec, z0, solver, float(tol),
-                                        time_limit, max_iterations, backend_options))
+def _references(references, solution, where: str) -> List[dict]:
+    """References as the core takes them: dicts {"z", "certificate", "condition"}. A bare array is a verified
+    solution not known to be the only one ("isolated"); `solution` is the problem's one solution ("unique")."""
+    out = []
+    if solution is not None:
+        out.append({"z": np.asarray(solution, dtype=np.float64), "certificate": "unique", "condition": 0.0})
+    for k, r in enumerate(references or []):
+        if isinstance(r, dict):
+            unknown = sorted(set(r) - {"z", "certificate", "condition"})
+            if unknown or "z" not in r:
+                raise InvalidInputError(f"{where}: references[{k}]: a dict with 'z' and optionally 'certificate', "
+                                        f"'condition' (got keys {sorted(r)})")
+            out.append({"z": np.asarray(r["z"], dtype=np.float64),
+                        "certificate": str(r.get("certificate", "isolated")),
+                        "condition": float(r.get("condition", 0.0))})
+        else:
+            out.append({"z": np.asarray(r, dtype=np.float64), "certificate": "isolated", "condition": 0.0})
+    return out
+
+
+def judge_mcp(F: Callable, J: Callable, l, u, z, status: str = "solved", tol: float = 1e-10, references=None,
+              references_complete: bool = False, expected: str = "unknown", *, variable_scale=None) -> dict:
+    """The verdict `smcbench bench` gives an answer z with status (a SolveResult.status name) to the MCP (F, J, l,
+    u): JudgeMCP (docs/verdict.md). The residuals are recomputed from z (the scale-free one with J at z); "solved"
+    requires residual_scaled ≤ tol and, where a reference defines it, a forward error within its allowance.
+    references: known solutions, each an array (a verified solution, certificate "isolated") or a dict {"z",
+    "certificate" ("unique", "degenerate", "isolated", "non-unique"), "condition" (μ of docs/verdict.md, default
+    0)}; references_complete: they are every solution (the nearest one is then used); expected: "unknown",
+    "solvable" or "infeasible". Returns a dict: verdict ("solved", "failed", "WRONGLY CLAIMED", "INACCURATE", ...),
+    wrong (a wrong answer: wrongly claimed, inaccurate or wrongly refused), residual_abs, residual_rel,
+    residual_scaled, forward_error, forward_error_rel, forward_allowance (NaN where no reference defines them)."""
+    l_vec, u_vec = _mcp_arrays(F, J, l, u, "judge_mcp")
+    problem = {"F": F, "J": _jacobian_for_core(J, "judge_mcp"), "l": l_vec, "u": u_vec,
+               "variable_scale": _optional_vector(variable_scale),
+               "references": _references(references, None, "judge_mcp"),
+               "references_complete": bool(references_complete), "expected": str(expected)}
+    return _smcbench._judge_mcp(problem, z, str(status), float(tol))
+
+
+@dataclass
+class McpProblem:
+    """A nonlinear MCP of a user's suite for bench_mcp: z in [l, u] with −F(z) in the normal cone at z.
+
+    id: unique in the suite. F, J, l, u as in solve_mcp. starts: the starting points (each one is a job; None: the
+    projection of 0 onto the box, labelled "cold"); start_labels: their names (None: "start1", "start2", ...).
+    solution: the problem's unique solution, if known (judged by forward error, certificate "unique"); references:
+    more known solutions as in judge_mcp; references_complete: the references (and solution) are every solution.
+    expected: "solvable" (default), "infeasible" or "unknown". variable_scale: the variables' units (solve_mcp)."""
+
+    id: str
+    F: Callable
+    J: Callable
+    l: Any
+    u: Any
+    starts: Optional[List[Any]] = None
+    start_labels: Optional[List[str]] = None
+    solution: Optional[Any] = None
+    references: Optional[List[Any]] = None
+    references_complete: bool = False
+    expected: str = "solvable"
+    variable_scale: Optional[Any] = None
+    source: str = "python"
+    tags: List[str] = field(default_factory=list)
+
+    def solve(self, start: int = 0, solver: Optional[str] = None, **kwargs) -> SolveResult:
+        """solve_mcp on this problem from starts[start] (None: from the projection of 0)."""
+        z0 = None if self.starts is None else self.starts[start]
+        return solve_mcp(self.F, self.J, self.l, self.u, z0=z0, solver=solver, variable_scale=self.variable_scale,
+                         **kwargs)
+
+    def _starts(self, l_vec: np.ndarray, u_vec: np.ndarray):
+        if self.starts is None:
+            if l_vec.shape != u_vec.shape:  # the core's message names l and u
+                return [np.zeros(0)], ["cold"]
+            return [np.clip(0.0, l_vec, u_vec)], ["cold"]
+        starts = [np.asarray(s, dtype=np.float64) for s in self.starts]
+        labels = list(self.start_labels) if self.start_labels is not None else [f"start{k + 1}" for k in
+                                                                                 range(len(starts))]
+        return starts, labels
+
+    def _core(self, index: int) -> dict:
+        """This problem as the C++ core takes it (bench_mcp)."""
+        where = f"bench_mcp: problems[{index}] ('{self.id}')"
+        l_vec, u_vec = _mcp_arrays(self.F, self.J, self.l, self.u, where)
+        starts, labels = self._starts(l_vec, u_vec)
+        return {"id": str(self.id), "F": self.F, "J": _jacobian_for_core(self.J, where), "l": l_vec, "u": u_vec,
+                "variable_scale": _optional_vector(self.variable_scale), "starts": starts,
+                "start_labels": [str(label) for label in labels],
+                "references": _references(self.references, self.solution, where),
+                "references_complete": bool(self.references_complete), "expected": str(self.expected),
+                "source": str(self.source), "tags": [str(t) for t in self.tags]}
+
+
+_BENCH_MCP_COLUMNS = ["problem", "start", "solver", "size", "expected", "status", "verdict", "wrong", "iterations",
+                      "residual_abs", "residual_rel", "residual_scaled", "tolerance", "forward_error",
+                      "forward_error_rel", "forward_allowance", "time_median", "time_min", "time_max", "samples",
+                      "solves_per_sample", "message"]
+
+
+def bench_mcp(problems: Iterable[McpProblem], solvers: Optional[List[str]] = None, tol: float = 1e-10,
+              repetitions: int = 5, time_limit: float = 10.0):
+    """Benchmark a suite of McpProblem on MCP backends as `smcbench bench` does: a pandas DataFrame with one row per
+    problem × start × backend (columns: problem, start, solver, size, expected, status, verdict, wrong, iterations,
+    residual_abs/rel/scaled, tolerance, forward_error, forward_error_rel, forward_allowance, time_median/min/max,
+    samples, solves_per_sample, message), in suite, start, backend order.
+
+    solvers: a backend name or a list of them (None: every registered backend with mcp=True). Each problem × start × backend is solved
+    once untimed, then `repetitions` timed samples (a sample repeats the solve until it lasts 0.2 ms; at most 2 s per
+    row); times are per solve, in seconds, and include the calls into F and J. The timing loop runs in C++ without
+    the GIL. The last answer is judged by JudgeMCP, the verdict of judge_mcp and of `smcbench bench`. time_limit:
+    seconds per solve. An exception raised by F or J ends the benchmark and is raised here; bad input (duplicate
+    ids, starts of the wrong size, NaN bounds, an unknown backend or one that does not solve MCPs) raises
+    InvalidInputError naming the problem and the field."""
+    import pandas as pd  # imported here: the rest of the module does not need pandas
+
+    suite = []
+    for index, p in enumerate(problems):
+        if not isinstance(p, McpProblem):
+            raise InvalidInputError(f"bench_mcp: problems[{index}] is a {type(p).__name__}, expected McpProblem")
+        suite.append(p._core(index))
+    names = [solvers] if isinstance(solvers, str) else list(solvers or [])
+    rows = _smcbench._bench_mcp(suite, names, float(tol), int(repetitions), float(time_limit))
+    return pd.DataFrame.from_records(rows, columns=_BENCH_MCP_COLUMNS)
 
 
 @dataclass

@@ -1,6 +1,6 @@
 // The extension module smcbench._smcbench: the library's errors as Python exceptions, the backend list, and the
-// bindings of solve.cc, simulate.cc and problem_set.cc. Python users import the package smcbench (__init__.py),
-// which wraps these functions in the documented API (docs/python.md).
+// bindings of solve.cc, simulate.cc, problem_set.cc and mcp_suite.cc. Python users import the package smcbench
+// (__init__.py), which wraps these functions in the documented API (docs/python.md).
 #include <pybind11/pybind11.h>
 
 #include <string>
@@ -15,6 +15,7 @@ namespace smcbench::python {
 void BindSolve(py::module_& m);
 void BindSimulate(py::module_& m);
 void BindProblemSet(py::module_& m);
+void BindMcpSuite(py::module_& m);
 
 namespace {
 
@@ -52,4 +53,5 @@ PYBIND11_MODULE(_smcbench, m) {
   smcbench::python::BindSolve(m);
   smcbench::python::BindSimulate(m);
   smcbench::python::BindProblemSet(m);
+  smcbench::python::BindMcpSuite(m);
 }

@@ -1,5 +1,5 @@
-// smcbench.solve and smcbench.solve_mcp: a numpy problem built into a BoxMLCP (or an MCP whose F and J call back
-// into Python), one backend from the registry with the caller's options, and the result as a dict. The GIL is
+// smcbench.solve and smcbench.solve_mcp: a numpy problem built into a BoxMLCP (or a PythonMCP whose F and J call
+// back into Python), one backend from the registry with the caller's options, and the result as a dict. The GIL is
 // released while the backend runs; the MCP callbacks take it back for each call into Python.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "convert.h"
+#include "python_mcp.h"
 #include "solvers/core/problem.h"
 #include "solvers/registry/registry.h"
 
@@ -71,71 +72,27 @@ py::dict SolveBox(const py::object& M, const py::object& q, const py::object& l,
   return ResultToDict(result);
 }
 
-// An MCP whose F and Jacobian are Python callables. Each call re-acquires the GIL (the solve runs without it); a
-// Python exception propagates out of the solve as itself (py::error_already_set: the backends catch nothing), a
-// result of the wrong shape is an InvalidInputError naming the callable.
-class PythonMCP final : public MCP {
- public:
-  PythonMCP(Vector l, Vector u, py::function F, py::function J, JacobianKind kind)
-      : MCP(std::move(l), std::move(u), "python"), F_(std::move(F)), J_(std::move(J)), kind_(kind) {}
-
-  JacobianKind jacobian_kind() const override { return kind_; }
-
-  void Evaluate(const Vector& z, Vector* F) const override {
-    py::gil_scoped_acquire acquire;
-    const Vector value = ToVector(F_(ToNumpy(z)), "solve_mcp: F(z)");
-    if (value.size() != size()) {
-      throw InvalidInputError("solve_mcp: F(z) returned " + std::to_string(value.size()) + " entries, expected " +
-                              std::to_string(size()));
-    }
-    *F = value;
-  }
-
-  void JacobianDense(const Vector& z, DenseMatrix* J) const override {
-    py::gil_scoped_acquire acquire;
-    const py::object value = J_(ToNumpy(z));
-    *J = IsCscTuple(value) ? DenseMatrix(ToSparseMatrix(value.cast<py::tuple>(), "solve_mcp: J(z)"))
-                           : ToDenseMatrix(value, "solve_mcp: J(z)");
-    CheckShape(J->rows(), J->cols());
-  }
-
-  void JacobianSparse(const Vector& z, SparseMatrix* J) const override {
-    py::gil_scoped_acquire acquire;
-    const py::object value = J_(ToNumpy(z));
-    *J = IsCscTuple(value) ? ToSparseMatrix(value.cast<py::tuple>(), "solve_mcp: J(z)")
-                           : SparseMatrix(ToDenseMatrix(value, "solve_mcp: J(z)").sparseView());
-    CheckShape(J->rows(), J->cols());
-  }
-
- private:
-  void CheckShape(Eigen::Index rows, Eigen::Index cols) const {
-    if (rows != size() || cols != size()) {
-      throw InvalidInputError("solve_mcp: J(z) returned a " + std::to_string(rows) + "x" + std::to_string(cols) +
-                              " matrix, expected " + std::to_string(size()) + "x" + std::to_string(size()));
-    }
-  }
-
-  py::function F_, J_;
-  JacobianKind kind_;
-};
-
-py::dict SolveMcp(const py::function& F, const py::function& J, bool sparse_jacobian, const py::object& l,
-                  const py::object& u, const py::object& z0, const std::string& solver_name, double tolerance,
-                  std::optional<double> time_limit, std::optional<int> max_iterations,
+py::dict SolveMcp(const py::function& F, const py::function& J, const py::object& l, const py::object& u,
+                  const py::object& z0, const py::object& variable_scale, const std::string& solver_name,
+                  double tolerance, std::optional<double> time_limit, std::optional<int> max_iterations,
                   const py::dict& backend_options) {
-  PythonMCP problem(ToVector(l, "l"), ToVector(u, "u"), F, J,
-                    sparse_jacobian ? MCP::JacobianKind::kSparse : MCP::JacobianKind::kDense);
+  PythonMCP problem(ToVector(l, "l"), ToVector(u, "u"), F, J, "solve_mcp");
+  if (!variable_scale.is_none()) problem.set_variable_scale(ToVector(variable_scale, "variable_scale"));
   const SolverOptions options = MakeOptions(tolerance, time_limit, max_iterations, true, z0, problem.size());
+  Vector start = options.warm_start;
+  if (start.size() == 0) ProjectZeroOntoBox(problem.l(), problem.u(), &start);
+  problem.ProbeJacobianKind(start);
   std::unique_ptr<Solver> solver = MakeSolver(solver_name, backend_options);
   if (!solver->info().mcp) {
-    throw InvalidInputError("solve_mcp: backend '" + solver_name +
-                            "' does not solve nonlinear MCPs (smcbench.solvers() lists those with mcp=True)");
+    throw InvalidInputError("solve_mcp: backend '" + solver_name + "' does not solve nonlinear MCPs (those that do: " +
+                            McpBackendList() + ")");
   }
   SolveResult result;
   {
     py::gil_scoped_release release;
     solver->Solve(problem, options, &result);
   }
+  problem.RethrowCallbackError();
   return ResultToDict(result);
 }
 
@@ -146,8 +103,8 @@ void BindSolve(py::module_& m) {
   m.def("_solve", &SolveBox, "M"_a, "q"_a, "l"_a, "u"_a, "solver"_a, "tol"_a, "time_limit"_a, "z0"_a,
         "max_iterations"_a, "polish"_a, "backend_options"_a,
         "Solve one box-MLCP (arrays prepared by smcbench.solve); returns a dict.");
-  m.def("_solve_mcp", &SolveMcp, "F"_a, "J"_a, "sparse_jacobian"_a, "l"_a, "u"_a, "z0"_a, "solver"_a, "tol"_a,
-        "time_limit"_a, "max_iterations"_a, "backend_options"_a,
+  m.def("_solve_mcp", &SolveMcp, "F"_a, "J"_a, "l"_a, "u"_a, "z0"_a, "variable_scale"_a,
+        "solver"_a, "tol"_a, "time_limit"_a, "max_iterations"_a, "backend_options"_a,
         "Solve one nonlinear MCP with Python callables (see smcbench.solve_mcp); returns a dict.");
 }
 
