@@ -16,7 +16,11 @@
 //   (Solver's base), and the test is the base's verdict on that problem: its residual r, in units of z, at most
 //   tol·(1 + ‖z‖∞) (Residual::scaled) and tol·(1 + ‖q‖∞) (Residual::rel), i.e. r ≤ tol·(1 + min(‖z‖∞, ‖q‖∞)).
 //   1 + ‖q‖∞ alone would let a problem with small M (W = O(h)) stop at errors of order tol/h in z, 1 + ‖z‖∞ alone
-//   a runaway z. An MCP has no row scale: its residual is relative to 1 + ‖F(Π(0))‖∞, as the base measures it.
+//   a runaway z. A nonlinear MCP stops on the base's own verdict: the scale-free residual McpScaledResidual (rows
+//   divided by the row scales of ∇F at the iterate, variables in their units c) ≤ tol. ∇F at the iterate is what the
+//   next Newton step needs anyway, so it is evaluated before the test and reused by the step: the test costs no
+//   evaluation of F or ∇F except ∇F at the final point (and at its projection onto the box, when the iterate lies
+//   outside). Newton therefore neither stops at a point the base would downgrade nor runs on past one it accepts.
 // Safeguard (Billups 1995, ch. 3, "proximal perturbation"): Psi can have local minimizers that are not
 // solutions. Billups' example F(x) = (x − 1)² − 1.01, x ≥ 0, from x = 0 ends at x ≈ 1 − √1.01 ≈ −0.005, a
 // minimizer of Psi outside the box. When the line search fails or Psi stagnates, the solver solves the
@@ -105,8 +109,8 @@ bool SufficientDescent(double gd, double norm_d, double rho, double p) {
 bool IsHardFailure(Exit e) { return e == Exit::kNumericalFailure || e == Exit::kTimeLimit || e == Exit::kDiverged; }
 
 // Status and message for a loop exit that is not convergence.
-void ReportExit(Exit exit, const char* detail, int iterations, int budget, int rounds, double residual_rel,
-                SolveResult* result) {
+void ReportExit(Exit exit, const char* detail, int iterations, int budget, int rounds, const char* measure,
+                double residual, SolveResult* result) {
   if (exit == Exit::kConverged) {
     result->status = SolveStatus::kSolved;
     return;
@@ -143,7 +147,7 @@ void ReportExit(Exit exit, const char* detail, int iterations, int budget, int r
   }
   s << " after " << iterations << " iterations";
   if (rounds > 0) s << "; " << rounds << " proximal-perturbation rounds did not recover";
-  s << "; best relative natural residual " << residual_rel;
+  s << "; best " << measure << " " << residual;
   result->message = s.str();
 }
 
@@ -218,7 +222,10 @@ struct SemismoothNewtonSolver::Workspace {
   Vector row_scale;             // s_i: Phi_i uses s_i·F_i (see ComputeRowScaling)
   Vector jac_row_max;           // max_j |∂F_i/∂z_j| at the start (row equilibration of the dense LU)
   Vector row_eq;                // equilibration factors of the current reduced rows
-  double best_residual = kInf;  // original natural residual at zbest, relative (Relative)
+  double best_residual = kInf;  // the stopping measure at zbest (Relative, or the MCP's scale-free residual)
+  Vector mcp_row_scales;        // MCP: McpRowScales of ∇F at the point last measured (StopMeasure)
+  bool jacobian_current = false;     // MCP: Jd/Js hold ∇F at z (UpdateJacobian need not evaluate it again)
+  bool projection_verified = false;  // MCP: the last Loop returned converged with Π(z) checked (zt, Ft hold it)
 
   // ---- Dense linear algebra ----
   DenseMatrix A;         // n×n LU buffer; the leading |R|×|R| block is used
@@ -253,7 +260,8 @@ struct SemismoothNewtonSolver::Workspace {
     if (n == size && z.size() == size) return;
     n = size;
     for (Vector* x : {&z, &F, &Phi, &Da, &Db,   &g,     &d,   &Md,        &zt,          &Ft,
-                      &v, &w, &e,   &Je, &zbar, &zbest, &rhs, &row_scale, &jac_row_max, &row_eq}) {
+                      &v, &w, &e,   &Je, &zbar, &zbest, &rhs, &row_scale, &jac_row_max, &row_eq,
+                      &mcp_row_scales}) {
       x->resize(n);
     }
     perm.resize(n);
@@ -275,12 +283,18 @@ struct SemismoothNewtonSolver::Workspace {
     return out->allFinite();
   }
 
-  // Refreshes Jd/Js at z for an MCP (an LCP's Jacobian is M, fixed at setup). False on a malformed Jacobian.
+  // Refreshes Jd/Js at z for an MCP (an LCP's Jacobian is M, fixed at setup), unless they already hold ∇F(z).
+  // False on a malformed Jacobian.
   bool UpdateJacobian() {
-    if (lcp) return true;
+    if (lcp || jacobian_current) return true;
+    jacobian_current = JacobianAt(z);
+    return jacobian_current;
+  }
+  // Jd/Js ← ∇F(x) of the MCP. False on a malformed Jacobian.
+  bool JacobianAt(const Vector& x) {
     if (!native_sparse) {
       if (J_dense.rows() != n || J_dense.cols() != n) J_dense.resize(n, n);
-      mcp->JacobianDense(z, &J_dense);
+      mcp->JacobianDense(x, &J_dense);
       if (J_dense.rows() != n || J_dense.cols() != n) return false;
       Jd = &J_dense;
       if (!dense_la) {
@@ -288,7 +302,7 @@ struct SemismoothNewtonSolver::Workspace {
         Js = &J_sparse;
       }
     } else {
-      mcp->JacobianSparse(z, &J_sparse);
+      mcp->JacobianSparse(x, &J_sparse);
       if (J_sparse.rows() != n || J_sparse.cols() != n) return false;
       J_sparse.makeCompressed();
       Js = &J_sparse;
@@ -392,11 +406,20 @@ struct SemismoothNewtonSolver::Workspace {
   double Relative(double r, const Vector& x) const {
     return z_relative ? r / std::min(1.0 + x.cwiseAbs().maxCoeff(), scale) : r / scale;
   }
-  // Relative residuals need not decrease with abs ones, so the best iterate is the one with the smallest relative.
-  void TrackBest(double original_residual) {
-    const double relative = Relative(original_residual, z);
-    if (relative < best_residual) {
-      best_residual = relative;
+  // The MCP's stopping measure at (x, Fx) with Jd/Js = ∇F(x): the base's verdict, McpScaledResidual.
+  double StopMeasure(const Vector& x, const Vector& Fx) {
+    if (native_sparse) {
+      McpRowScales(*Js, mcp->variable_scale(), &mcp_row_scales);
+    } else {
+      McpRowScales(*Jd, mcp->variable_scale(), &mcp_row_scales);
+    }
+    return McpScaledResidual(x, Fx, *l, *u, mcp_row_scales, mcp->variable_scale());
+  }
+  // The stopping measure need not decrease with the merit function, so the best iterate is the one where it is
+  // smallest.
+  void TrackBest(double measure) {
+    if (measure < best_residual) {
+      best_residual = measure;
       zbest = z;
     }
   }
@@ -649,14 +672,29 @@ struct SemismoothNewtonSolver::Workspace {
     double psi_best = psi;
     int since_best = 0;
     const int window = o.stagnation_window;
+    projection_verified = false;
     for (int k = 0;; ++k) {
       // The stagnation test compares reference merits (max of the GLL memory) so that a non-monotone
       // line search is not mistaken for stagnation; with memory 1 this is Psi itself.
       psi_window[k % (window + 1)] = ReferenceMerit();
       double r = ResidualOfCurrent(z, F);
-      const double r_original = lambda == 0.0 ? r : NaturalResidualNorm(z, F, *l, *u);
-      TrackBest(r_original);
-      bool converged = lambda == 0.0 ? Relative(r, z) <= tolerance : r <= target_abs;
+      bool converged;
+      double measure = 0.0;  // MCP: the stopping measure of the original problem at z
+      if (mcp != nullptr) {
+        // ∇F(z), which the step below needs, first: the stopping test is in the base's units.
+        if (!UpdateJacobian()) {
+          failure_detail = "the MCP Jacobian has the wrong size";
+          return Exit::kNumericalFailure;
+        }
+        measure = StopMeasure(z, F);
+        TrackBest(measure);
+        // A perturbed solve that meets the original problem's test ends too: Run then accepts it at once.
+        converged = measure <= tolerance || (lambda > 0.0 && r <= target_abs);
+      } else {
+        const double r_original = lambda == 0.0 ? r : NaturalResidualNorm(z, F, *l, *u);
+        TrackBest(Relative(r_original, z));
+        converged = lambda == 0.0 ? Relative(r, z) <= tolerance : r <= target_abs;
+      }
       if (converged && F_is_incremental) {
         // The accumulated F + t M d may differ from M z + q by rounding: confirm on a fresh product.
         EvalF(z, &F);
@@ -668,7 +706,11 @@ struct SemismoothNewtonSolver::Workspace {
       // FB iterates may sit outside [l, u] by up to the tolerance; the returned point is projected onto the
       // box (Conclude). If the projection would break the tolerance, polish with a few more Newton steps,
       // which near the solution shrink the infeasibility quadratically.
-      if (converged && (lambda > 0.0 || polish_left <= 0 || ProjectionConverged())) return Exit::kConverged;
+      if (converged && (lambda > 0.0 || polish_left <= 0)) return Exit::kConverged;
+      if (converged && ProjectionConverged()) {
+        projection_verified = true;
+        return Exit::kConverged;
+      }
       if (converged) --polish_left;
       if (k >= local_budget || iterations >= budget) return Exit::kBudget;
       if (owner->TimeLimitReached()) return Exit::kTimeLimit;
@@ -738,7 +780,7 @@ struct SemismoothNewtonSolver::Workspace {
       }
       if (verbosity >= 2) {
         std::fprintf(stderr, "newton %4d%s psi %.3e res %.3e step %s t %.2e system %d\n", iterations,
-                     lambda > 0.0 ? " (prox)" : "", psi, Relative(r, z),
+                     lambda > 0.0 ? " (prox)" : "", psi, mcp != nullptr ? measure : Relative(r, z),
                      gradient      ? "grad  "
                      : regularized ? "reg   "
                                    : "newton",
@@ -762,6 +804,7 @@ struct SemismoothNewtonSolver::Workspace {
       z.swap(zt);
       F.swap(Ft);
       F_is_incremental = lcp != nullptr;
+      jacobian_current = false;
       psi = psi_new;
       PushMemory(psi);
       // Watchdog for the non-monotone search: if the memory window passed without a new best merit value,
@@ -789,6 +832,7 @@ struct SemismoothNewtonSolver::Workspace {
   // Recomputes F at z (after z was reset). False if not finite.
   bool ResetF() {
     F_is_incremental = false;
+    jacobian_current = false;
     return EvalF(z, &F);
   }
 
@@ -826,7 +870,9 @@ struct SemismoothNewtonSolver::Workspace {
       zbar = z;
       const double r0 = NaturalResidualNorm(z, F, *l, *u);
       lambda = lambda_round;
-      const double unit = z_relative ? std::min(1.0 + z.cwiseAbs().maxCoeff(), scale) : scale;  // Relative's
+      // Relative's unit; an MCP's perturbed solves aim at tol·(1 + ‖z‖∞), the base's scale-free unit.
+      const double unit = z_relative ? std::min(1.0 + z.cwiseAbs().maxCoeff(), scale)
+                                     : (mcp != nullptr ? 1.0 + z.cwiseAbs().maxCoeff() : scale);
       const Exit inner = Loop(std::max(0.5 * tolerance * unit, 0.1 * r0), o.proximal_inner_iterations, true);
       lambda = 0.0;
       if (verbosity >= 2) {
@@ -880,6 +926,11 @@ struct SemismoothNewtonSolver::Workspace {
       zt[i] = std::min(std::max(z[i], (*l)[i]), (*u)[i]);
       outside |= zt[i] != z[i];
     }
+    if (mcp != nullptr && outside) {
+      // ∇F at Π(z) replaces ∇F(z) in Jd/Js: the next UpdateJacobian evaluates it at z again.
+      jacobian_current = false;
+      return EvalF(zt, &Ft) && JacobianAt(zt) && StopMeasure(zt, Ft) <= tolerance;
+    }
     return !outside || (EvalF(zt, &Ft) && Relative(NaturalResidualNorm(zt, Ft, *l, *u), zt) <= tolerance);
   }
 
@@ -887,14 +938,15 @@ struct SemismoothNewtonSolver::Workspace {
   // not be feasible) is replaced by its projection when that still meets the tolerance.
   void Conclude(Exit exit, SolveResult* result) {
     if (exit == Exit::kConverged) {
-      if (ProjectionConverged()) z.swap(zt);  // else z itself meets the tolerance but lies slightly outside
+      // An MCP whose Loop already checked Π(z) is not evaluated there a second time.
+      if ((mcp != nullptr && projection_verified) || ProjectionConverged()) z.swap(zt);  // else z passes, outside
     } else if (best_residual < kInf) {
       z = zbest;
     }
     result->z = z;
     result->iterations = iterations;
-    ReportExit(exit, failure_detail, iterations, budget, safeguard_failed ? proximal_rounds : 0, best_residual,
-               result);
+    ReportExit(exit, failure_detail, iterations, budget, safeguard_failed ? proximal_rounds : 0,
+               mcp != nullptr ? "scale-free residual" : "relative natural residual", best_residual, result);
     result->SetDetail("backtracks", backtracks);
     result->SetDetail("gradient_steps", gradient_steps);
     result->SetDetail("proximal_rounds", proximal_rounds);
@@ -997,6 +1049,8 @@ void SemismoothNewtonSolver::RunAndConclude(const SolverOptions& options, SolveR
   ws.proximal_rounds = ws.regularized_steps = 0;
   ws.safeguard_failed = false;
   ws.failure_detail = "";
+  ws.jacobian_current = false;
+  ws.projection_verified = false;
   ws.z = result->z;
   ws.Conclude(ws.Run(), result);
 }
@@ -1032,11 +1086,7 @@ void SemismoothNewtonSolver::DoSolveMCP(const MCP& problem, const SolverOptions&
   ws.lcp = nullptr;
   ws.mcp = &problem;
   ws.symmetric_jacobian = false;  // an MCP Jacobian is not assumed symmetric
-  // The base class measures an MCP relative to 1 + ‖F(Π(0))‖∞; use the same scale for the stopping test.
-  for (int i = 0; i < n; ++i) ws.zt[i] = std::min(std::max(0.0, problem.l()[i]), problem.u()[i]);
-  problem.Evaluate(ws.zt, &ws.Ft);
-  const double scale = 1.0 + ws.Ft.cwiseAbs().maxCoeff();
-  ws.scale = std::isfinite(scale) ? scale : 1.0;
+  ws.scale = 1.0;                 // unused: an MCP stops on the scale-free residual (StopMeasure)
   ws.z_relative = false;
   RunAndConclude(options, result);
 }
