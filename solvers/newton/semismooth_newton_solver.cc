@@ -21,6 +21,12 @@
 //   next Newton step needs anyway, so it is evaluated before the test and reused by the step: the test costs no
 //   evaluation of F or ∇F except ∇F at the final point (and at its projection onto the box, when the iterate lies
 //   outside). Newton therefore neither stops at a point the base would downgrade nor runs on past one it accepts.
+// Units of an MCP: the FB function, its merit, the descent tests, the regularization and the proximal term all
+//   depend on the scaling of F's rows and on the units of z, which a verdict must not. So a nonlinear MCP is solved
+//   in y = z/c (c = MCP::variable_scale, default 1) as G(y) = D⁻¹F(c∘y), D = diag(d) the row scales of ∇F (in units
+//   c) at the starting point: G's Jacobian D⁻¹∇F C has rows of largest entry 1 there, and every quantity above is
+//   the same, up to rounding, for any positive scaling of F's rows and any change of units stated through c.
+//   (The scale-free residual of the problem in y is the problem's own, so the stopping test is unchanged by it.)
 // Safeguard (Billups 1995, ch. 3, "proximal perturbation"): Psi can have local minimizers that are not
 // solutions. Billups' example F(x) = (x − 1)² − 1.01, x ≥ 0, from x = 0 ends at x ≈ 1 − √1.01 ≈ −0.005, a
 // minimizer of Psi outside the box. When the line search fails or Psi stagnates, the solver solves the
@@ -223,7 +229,12 @@ struct SemismoothNewtonSolver::Workspace {
   Vector jac_row_max;           // max_j |∂F_i/∂z_j| at the start (row equilibration of the dense LU)
   Vector row_eq;                // equilibration factors of the current reduced rows
   double best_residual = kInf;  // the stopping measure at zbest (Relative, or the MCP's scale-free residual)
-  Vector mcp_row_scales;        // MCP: McpRowScales of ∇F at the point last measured (StopMeasure)
+  Vector mcp_row_scales;        // MCP: McpRowScales of ∇G at the point last measured (StopMeasure)
+  // MCP: Newton runs on y = z/c with G(y) = D⁻¹F(c∘y) (the file comment): the units c, 1/d of the row scales d of
+  // ∇F at the start, the bounds l/c, u/c, and c∘y (mutable: EvalF is const).
+  bool mcp_units = false;  // c was declared (else c = 1 and y = z)
+  Vector mcp_c, mcp_inv_d, mcp_l, mcp_u;
+  mutable Vector mcp_z;
   bool jacobian_current = false;     // MCP: Jd/Js hold ∇F at z (UpdateJacobian need not evaluate it again)
   bool projection_verified = false;  // MCP: the last Loop returned converged with Π(z) checked (zt, Ft hold it)
 
@@ -261,7 +272,7 @@ struct SemismoothNewtonSolver::Workspace {
     n = size;
     for (Vector* x : {&z, &F, &Phi, &Da, &Db,   &g,     &d,   &Md,        &zt,          &Ft,
                       &v, &w, &e,   &Je, &zbar, &zbest, &rhs, &row_scale, &jac_row_max, &row_eq,
-                      &mcp_row_scales}) {
+                      &mcp_row_scales, &mcp_c, &mcp_inv_d, &mcp_l, &mcp_u, &mcp_z}) {
       x->resize(n);
     }
     perm.resize(n);
@@ -278,7 +289,14 @@ struct SemismoothNewtonSolver::Workspace {
     if (lcp) {
       lcp->Affine(x, out);
     } else {
-      mcp->Evaluate(x, out);
+      // G(y) = D⁻¹F(c∘y).
+      if (mcp_units) {
+        mcp_z = mcp_c.cwiseProduct(x);
+        mcp->Evaluate(mcp_z, out);
+      } else {
+        mcp->Evaluate(x, out);
+      }
+      out->array() *= mcp_inv_d.array();
     }
     return out->allFinite();
   }
@@ -290,21 +308,32 @@ struct SemismoothNewtonSolver::Workspace {
     jacobian_current = JacobianAt(z);
     return jacobian_current;
   }
-  // Jd/Js ← ∇F(x) of the MCP. False on a malformed Jacobian.
+  // Jd/Js ← ∇G(y) = D⁻¹ ∇F(c∘y) C of the MCP at y = x. False on a malformed Jacobian.
   bool JacobianAt(const Vector& x) {
+    const Vector* at = &x;
+    if (mcp_units) {
+      mcp_z = mcp_c.cwiseProduct(x);
+      at = &mcp_z;
+    }
     if (!native_sparse) {
       if (J_dense.rows() != n || J_dense.cols() != n) J_dense.resize(n, n);
-      mcp->JacobianDense(x, &J_dense);
+      mcp->JacobianDense(*at, &J_dense);
       if (J_dense.rows() != n || J_dense.cols() != n) return false;
+      if (mcp_units) J_dense *= mcp_c.asDiagonal();
+      J_dense.array().colwise() *= mcp_inv_d.array();
       Jd = &J_dense;
       if (!dense_la) {
         J_sparse = J_dense.sparseView();  // forced sparse LA on dense data: converted every iteration
         Js = &J_sparse;
       }
     } else {
-      mcp->JacobianSparse(x, &J_sparse);
+      mcp->JacobianSparse(*at, &J_sparse);
       if (J_sparse.rows() != n || J_sparse.cols() != n) return false;
       J_sparse.makeCompressed();
+      for (int k = 0; k < J_sparse.outerSize(); ++k) {
+        const double c = mcp_units ? mcp_c[k] : 1.0;
+        for (SparseMatrix::InnerIterator it(J_sparse, k); it; ++it) it.valueRef() *= mcp_inv_d[it.row()] * c;
+      }
       Js = &J_sparse;
       if (dense_la) {
         CopySparseToDense(J_sparse);
@@ -406,14 +435,16 @@ struct SemismoothNewtonSolver::Workspace {
   double Relative(double r, const Vector& x) const {
     return z_relative ? r / std::min(1.0 + x.cwiseAbs().maxCoeff(), scale) : r / scale;
   }
-  // The MCP's stopping measure at (x, Fx) with Jd/Js = ∇F(x): the base's verdict, McpScaledResidual.
+  // The MCP's stopping measure at (y, G(y)) with Jd/Js = ∇G(y): the base's verdict McpScaledResidual at z = c∘y,
+  // computed in y (where the units are 1 and the row scales of ∇F at z are d∘those of ∇G: the same number up to
+  // rounding).
   double StopMeasure(const Vector& x, const Vector& Fx) {
     if (native_sparse) {
-      McpRowScales(*Js, mcp->variable_scale(), &mcp_row_scales);
+      McpRowScales(*Js, Vector(), &mcp_row_scales);
     } else {
-      McpRowScales(*Jd, mcp->variable_scale(), &mcp_row_scales);
+      McpRowScales(*Jd, Vector(), &mcp_row_scales);
     }
-    return McpScaledResidual(x, Fx, *l, *u, mcp_row_scales, mcp->variable_scale());
+    return McpScaledResidual(x, Fx, *l, *u, mcp_row_scales, Vector());
   }
   // The stopping measure need not decrease with the merit function, so the best iterate is the one where it is
   // smallest.
@@ -1088,7 +1119,53 @@ void SemismoothNewtonSolver::DoSolveMCP(const MCP& problem, const SolverOptions&
   ws.symmetric_jacobian = false;  // an MCP Jacobian is not assumed symmetric
   ws.scale = 1.0;                 // unused: an MCP stops on the scale-free residual (StopMeasure)
   ws.z_relative = false;
+  // Units and row scales (the file comment): y = z/c, G(y) = D⁻¹F(c∘y), d = McpRowScales of ∇F at the start, so
+  // that Newton's iterates do not depend on the scaling of F's rows or on the stated units of z.
+  const Vector& c = problem.variable_scale();
+  ws.mcp_units = c.size() == n;
+  if (ws.mcp_units) {
+    ws.mcp_c = c;
+  } else {
+    ws.mcp_c.setOnes();
+  }
+  ws.mcp_l = problem.l().cwiseQuotient(ws.mcp_c);
+  ws.mcp_u = problem.u().cwiseQuotient(ws.mcp_c);
+  ws.l = &ws.mcp_l;
+  ws.u = &ws.mcp_u;
+  ws.mcp_inv_d.setOnes();
+  if (ws.native_sparse) {
+    problem.JacobianSparse(result->z, &ws.J_sparse);
+    if (ws.J_sparse.rows() == n && ws.J_sparse.cols() == n) McpRowScales(ws.J_sparse, c, &ws.mcp_row_scales);
+  } else {
+    if (ws.J_dense.rows() != n || ws.J_dense.cols() != n) ws.J_dense.resize(n, n);
+    problem.JacobianDense(result->z, &ws.J_dense);
+    if (ws.J_dense.rows() == n && ws.J_dense.cols() == n) McpRowScales(ws.J_dense, c, &ws.mcp_row_scales);
+  }
+  // A malformed Jacobian is reported by Run; a non-finite row leaves that row unscaled.
+  const bool scaled = ws.native_sparse ? ws.J_sparse.rows() == n && ws.J_sparse.cols() == n
+                                       : ws.J_dense.rows() == n && ws.J_dense.cols() == n;
+  for (int i = 0; scaled && i < n; ++i) {
+    const double d = ws.mcp_row_scales[i];
+    ws.mcp_inv_d[i] = d > 0.0 && d < kInf ? 1.0 / d : 1.0;
+  }
+  if (ws.mcp_units) result->z.array() /= ws.mcp_c.array();
   RunAndConclude(options, result);
+  if (ws.mcp_units) {
+    // Back to z = c∘y; a y on its bound l/c or u/c maps onto l or u exactly.
+    for (int i = 0; i < n; ++i) {
+      const double y = result->z[i];
+      double& z = result->z[i];
+      if (y == ws.mcp_l[i]) {
+        z = problem.l()[i];
+      } else if (y == ws.mcp_u[i]) {
+        z = problem.u()[i];
+      } else if (y > ws.mcp_l[i] && y < ws.mcp_u[i]) {
+        z = std::min(std::max(c[i] * y, problem.l()[i]), problem.u()[i]);  // inside stays inside despite rounding
+      } else {
+        z = c[i] * y;
+      }
+    }
+  }
 }
 
 }  // namespace smcbench
