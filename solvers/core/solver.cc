@@ -270,6 +270,27 @@ SolveSession Solver::Prepare(const BoxMLCP& problem, const SolverOptions& option
   return SolveSession(this, problem, options, session);
 }
 
+namespace {
+// F and its Jacobian are the caller's code. The exceptions C++ code throws when an evaluation fails
+// (std::runtime_error, std::logic_error) end the solve with a status and *why; InvalidInputError (bad input, an error
+// naming the field, never a status) and exceptions of any other type (a host language's own, such as a Python
+// exception raised in a callback, which its binding re-raises as itself) reach the caller unchanged.
+template <typename Body>
+bool EvaluationSucceeds(Body&& body, const char* context, std::string* why) {
+  try {
+    body();
+    return true;
+  } catch (const InvalidInputError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    *why = std::string(context) + e.what();
+  } catch (const std::logic_error& e) {
+    *why = std::string(context) + e.what();
+  }
+  return false;
+}
+}  // namespace
+
 void Solver::Solve(const MCP& problem, const SolverOptions& options, SolveResult* result) {
   const auto start = StartClock(options);
   const SolverInfo& solver_info = info();
@@ -278,13 +299,11 @@ void Solver::Solve(const MCP& problem, const SolverOptions& options, SolveResult
       result->status = SolveStatus::kNotApplicable;
       result->message = "backend does not solve nonlinear MCPs";
     } else {
-      // F and its Jacobian are the caller's code: an exception from them ends this solve, not the program.
-      try {
-        DoSolveMCP(problem, options, result);
-      } catch (const std::exception& e) {
+      std::string why;  // written only on failure
+      if (!EvaluationSucceeds([&] { DoSolveMCP(problem, options, result); },
+                              "the solve stopped on an exception from F, its Jacobian or the backend: ", &why)) {
         result->status = SolveStatus::kNumericalFailure;
-        result->message = std::string("the solve stopped on an exception from F, its Jacobian or the backend: ") +
-                          e.what();
+        result->message = std::move(why);
       }
     }
   }
@@ -349,45 +368,45 @@ bool McpMerit(const MCP& problem, const Vector& z, Vector* F, McpMeritWorkspace*
   *r = Residual{};
   McpMeritWorkspace& ws = *workspace;
   if (F->size() != n) F->resize(n);
-  try {
-    if (ws.scale_point.size() != n) ws.scale_point.resize(n);
-    for (Eigen::Index i = 0; i < n; ++i) ws.scale_point[i] = std::min(std::max(0.0, problem.l()[i]), problem.u()[i]);
-    problem.Evaluate(ws.scale_point, F);
-    const double scale = 1.0 + F->cwiseAbs().maxCoeff();
-    if (z.size() != n) {
-      *why = "z has size " + std::to_string(z.size()) + " but the problem has " + std::to_string(n) + " unknowns";
-      return false;
-    }
-    problem.Evaluate(z, F);
-    r->abs = NaturalResidualNorm(z, *F, problem.l(), problem.u());
-    r->rel = r->abs / (std::isfinite(scale) ? scale : 1.0);
-    if (!(r->abs < kInf)) return true;
-    const auto wrong_size = [&](Eigen::Index rows, Eigen::Index cols) {
-      *why = "the Jacobian at z is " + std::to_string(rows) + "x" + std::to_string(cols) + ", expected " +
-             std::to_string(n) + "x" + std::to_string(n);
-      return false;
-    };
-    if (problem.jacobian_kind() == MCP::JacobianKind::kSparse) {
-      problem.JacobianSparse(z, &ws.jacobian_sparse);
-      if (ws.jacobian_sparse.rows() != n || ws.jacobian_sparse.cols() != n) {
-        return wrong_size(ws.jacobian_sparse.rows(), ws.jacobian_sparse.cols());
-      }
-      McpRowScales(ws.jacobian_sparse, problem.variable_scale(), &ws.row_scale);
-    } else {
-      if (ws.jacobian_dense.rows() != n || ws.jacobian_dense.cols() != n) ws.jacobian_dense.resize(n, n);
-      problem.JacobianDense(z, &ws.jacobian_dense);
-      if (ws.jacobian_dense.rows() != n || ws.jacobian_dense.cols() != n) {
-        return wrong_size(ws.jacobian_dense.rows(), ws.jacobian_dense.cols());
-      }
-      McpRowScales(ws.jacobian_dense, problem.variable_scale(), &ws.row_scale);
-    }
-    r->scaled = McpScaledResidual(z, *F, problem.l(), problem.u(), ws.row_scale, problem.variable_scale());
-  } catch (const std::exception& e) {
-    *why = std::string("F or its Jacobian threw at z: ") + e.what();
-    r->scaled = kInf;
+  if (ws.scale_point.size() != n) ws.scale_point.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) ws.scale_point[i] = std::min(std::max(0.0, problem.l()[i]), problem.u()[i]);
+  if (z.size() != n) {
+    *why = "z has size " + std::to_string(z.size()) + " but the problem has " + std::to_string(n) + " unknowns";
     return false;
   }
-  return true;
+  bool jacobian_ok = true;
+  const bool evaluated = EvaluationSucceeds(
+      [&] {
+        problem.Evaluate(ws.scale_point, F);
+        const double scale = 1.0 + F->cwiseAbs().maxCoeff();
+        problem.Evaluate(z, F);
+        r->abs = NaturalResidualNorm(z, *F, problem.l(), problem.u());
+        r->rel = r->abs / (std::isfinite(scale) ? scale : 1.0);
+        if (!(r->abs < kInf)) return;
+        const auto wrong_size = [&](Eigen::Index rows, Eigen::Index cols) {
+          *why = "the Jacobian at z is " + std::to_string(rows) + "x" + std::to_string(cols) + ", expected " +
+                 std::to_string(n) + "x" + std::to_string(n);
+          jacobian_ok = false;
+        };
+        if (problem.jacobian_kind() == MCP::JacobianKind::kSparse) {
+          problem.JacobianSparse(z, &ws.jacobian_sparse);
+          if (ws.jacobian_sparse.rows() != n || ws.jacobian_sparse.cols() != n) {
+            return wrong_size(ws.jacobian_sparse.rows(), ws.jacobian_sparse.cols());
+          }
+          McpRowScales(ws.jacobian_sparse, problem.variable_scale(), &ws.row_scale);
+        } else {
+          if (ws.jacobian_dense.rows() != n || ws.jacobian_dense.cols() != n) ws.jacobian_dense.resize(n, n);
+          problem.JacobianDense(z, &ws.jacobian_dense);
+          if (ws.jacobian_dense.rows() != n || ws.jacobian_dense.cols() != n) {
+            return wrong_size(ws.jacobian_dense.rows(), ws.jacobian_dense.cols());
+          }
+          McpRowScales(ws.jacobian_dense, problem.variable_scale(), &ws.row_scale);
+        }
+        r->scaled = McpScaledResidual(z, *F, problem.l(), problem.u(), ws.row_scale, problem.variable_scale());
+      },
+      "F or its Jacobian threw at z: ", why);
+  if (!evaluated) r->scaled = kInf;
+  return evaluated && jacobian_ok;
 }
 
 void Solver::BindOptions(OptionBinder*) {}

@@ -20,9 +20,10 @@ namespace smcbench {
 
 // The MCP's merit function at z, one home for Solver::Solve and JudgeMCP (verdict.h). Into *r: abs = ‖z − Π(z − F)‖∞,
 // rel = abs / (1 + ‖F(Π(0))‖∞) (information only: not invariant under row scaling) and scaled = McpScaledResidual
-// with the row scales of the Jacobian at z, the one that decides "solved". *F receives F(z). Never throws: false
-// with *why when F or the Jacobian throws, the Jacobian has the wrong size, or z has the wrong size (the entries of
-// *r not computed stay +∞). A z or F(z) with NaN/Inf has r = +∞ and returns true; no Jacobian is asked for there.
+// with the row scales of the Jacobian at z, the one that decides "solved". *F receives F(z). False with *why when F
+// or the Jacobian throws (std::runtime_error, std::logic_error; other exceptions propagate, as in Solver::Solve), the
+// Jacobian has the wrong size, or z has the wrong size (the entries of *r not computed stay +∞). A z or F(z) with
+// NaN/Inf has r = +∞ and returns true; no Jacobian is asked for there.
 struct McpMeritWorkspace {
   Vector scale_point;            // Π(0)
   DenseMatrix jacobian_dense;    // the Jacobian at z, of the kind the problem provides
@@ -70,8 +71,9 @@ class Solver {
   // For an MCP the rule is the scale-free residual alone: residual_scaled = McpScaledResidual with the row scales
   // of the Jacobian at z (one more Jacobian evaluation per solve), status == kSolved ⇒ residual_scaled ≤ tolerance;
   // residual_rel = residual_abs / (1 + ‖F(Π(0))‖∞) is information only, since a scale read at an arbitrary point
-  // such as Π(0) changes with the scaling of F's rows (docs/verdict.md, "Nonlinear MCPs"). A backend or an F or
-  // Jacobian that throws, or a Jacobian of the wrong size, is kNumericalFailure with a message.
+  // such as Π(0) changes with the scaling of F's rows (docs/verdict.md, "Nonlinear MCPs"). An F or Jacobian that
+  // throws std::runtime_error or std::logic_error, or a Jacobian of the wrong size, is kNumericalFailure with a
+  // message; InvalidInputError and exceptions of other types (a Python callback's own) reach the caller unchanged.
   void Solve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
   void Solve(const MCP& problem, const SolverOptions& options, SolveResult* result);
   // Convenience forms that allocate a fresh result.
@@ -165,7 +167,7 @@ class Solver {
   void Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result);
   // After DoSolveMCP: the MCP's merit function at result->z (F there into result->w, the Jacobian there into the
   // workspace below; skipped for a delegating backend, whose delegate's Solve computed it), the MCP rule for
-  // "solved", then the end every solve shares. Never throws: a failure to evaluate is a status.
+  // "solved", then the end every solve shares. A failure to evaluate is a status (McpMerit).
   void ConcludeMcp(const MCP& problem, const SolverOptions& options, bool recompute,
                    std::chrono::steady_clock::time_point start, SolveResult* result);
 

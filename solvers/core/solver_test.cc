@@ -358,6 +358,11 @@ TEST(McpVerdict, AMalformedOrThrowingJacobianIsANumericalFailureNotACrash) {
   r = solver.Solve(f_throws);
   EXPECT_EQ(r.status, SolveStatus::kNumericalFailure);
   EXPECT_THAT(r.message, HasSubstr("F broke"));
+  // Bad input is an error naming the field, not a status (the Python binding's shape checks rely on it).
+  const FunctionMCP bad_input(Vector::Zero(1), Vector::Constant(1, kInf), F, [](const Vector&, DenseMatrix*) -> void {
+    throw InvalidInputError("J(z) returned a 2x2 matrix, expected 1x1");
+  });
+  EXPECT_THROW(solver.Solve(bad_input), InvalidInputError);
   // A backend that refused keeps its reason.
   ScriptedSolver not_mcp;
   r = not_mcp.Solve(wrong_size);
