@@ -27,9 +27,10 @@ constexpr double kTol = 1e-10;
 class PlantedMcp final : public MCP {
  public:
   PlantedMcp(DenseMatrix A, Vector kappa, Vector b, const Vector& l, const Vector& u, Vector r, Vector s,
-             std::string name)
+             bool sparse, std::string name)
       : MCP(l.cwiseQuotient(s), u.cwiseQuotient(s), std::move(name)), A_(std::move(A)), kappa_(std::move(kappa)),
-        b_(std::move(b)), r_(std::move(r)), s_(std::move(s)), z_(s_.size()) {}
+        b_(std::move(b)), r_(std::move(r)), s_(std::move(s)), sparse_(sparse), z_(s_.size()) {}
+  JacobianKind jacobian_kind() const override { return sparse_ ? JacobianKind::kSparse : JacobianKind::kDense; }
   void Evaluate(const Vector& y, Vector* G) const override {
     z_ = s_.cwiseProduct(y);
     G->noalias() = A_ * z_;
@@ -42,10 +43,16 @@ class PlantedMcp final : public MCP {
     J->diagonal().array() += 3.0 * kappa_.array() * z_.array().square();
     *J = r_.asDiagonal() * (*J) * s_.asDiagonal();
   }
+  void JacobianSparse(const Vector& y, SparseMatrix* J) const override {
+    DenseMatrix dense(size(), size());
+    JacobianDense(y, &dense);
+    *J = dense.sparseView();
+  }
 
  private:
   DenseMatrix A_;
   Vector kappa_, b_, r_, s_;
+  bool sparse_;
   mutable Vector z_;  // workspace
 };
 
@@ -55,9 +62,10 @@ struct Planted {
   DenseMatrix A;
   Vector kappa, b, l, u, z_star;
   double condition = 0.0;  // μ = ‖(D⁻¹ J_FF)⁻¹‖∞ at z*, F its free rows: the same in every copy
+  bool sparse = false;     // the Jacobian is given sparse (every other problem)
 
   PlantedMcp Copy(const Vector& r, const Vector& s, const std::string& what) const {
-    PlantedMcp mcp(A, kappa, b, l, u, r, s, name + " " + what);
+    PlantedMcp mcp(A, kappa, b, l, u, r, s, sparse, name + " " + what);
     if (s != Vector::Ones(s.size())) mcp.set_variable_scale(s.cwiseInverse());
     return mcp;
   }
@@ -69,6 +77,8 @@ Planted MakePlanted(int n, int seed) {
   std::uniform_real_distribution<double> unit(0.0, 1.0);
   Planted p;
   p.name = "n" + std::to_string(n) + "-seed" + std::to_string(seed);
+  p.sparse = seed % 2 == 0;
+  if (p.sparse) p.name += "-sparse";
   DenseMatrix B(n, n), K(n, n);
   for (int j = 0; j < n; ++j) {
     for (int i = 0; i < n; ++i) {

@@ -235,7 +235,7 @@ struct SemismoothNewtonSolver::Workspace {
   bool mcp_units = false;  // c was declared (else c = 1 and y = z)
   Vector mcp_c, mcp_inv_d, mcp_l, mcp_u;
   mutable Vector mcp_z;
-  bool jacobian_current = false;     // MCP: Jd/Js hold ∇F at z (UpdateJacobian need not evaluate it again)
+  bool jacobian_current = false;     // MCP: Jd/Js hold ∇G at z (UpdateJacobian need not evaluate it again)
   bool projection_verified = false;  // MCP: the last Loop returned converged with Π(z) checked (zt, Ft hold it)
 
   // ---- Dense linear algebra ----
@@ -301,7 +301,7 @@ struct SemismoothNewtonSolver::Workspace {
     return out->allFinite();
   }
 
-  // Refreshes Jd/Js at z for an MCP (an LCP's Jacobian is M, fixed at setup), unless they already hold ∇F(z).
+  // Refreshes Jd/Js at z for an MCP (an LCP's Jacobian is M, fixed at setup), unless they already hold ∇G(z).
   // False on a malformed Jacobian.
   bool UpdateJacobian() {
     if (lcp || jacobian_current) return true;
@@ -712,7 +712,7 @@ struct SemismoothNewtonSolver::Workspace {
       bool converged;
       double measure = 0.0;  // MCP: the stopping measure of the original problem at z
       if (mcp != nullptr) {
-        // ∇F(z), which the step below needs, first: the stopping test is in the base's units.
+        // ∇G(z), which the step below needs, first: the stopping test is the base's verdict.
         if (!UpdateJacobian()) {
           failure_detail = "the MCP Jacobian has the wrong size";
           return Exit::kNumericalFailure;
@@ -958,7 +958,7 @@ struct SemismoothNewtonSolver::Workspace {
       outside |= zt[i] != z[i];
     }
     if (mcp != nullptr && outside) {
-      // ∇F at Π(z) replaces ∇F(z) in Jd/Js: the next UpdateJacobian evaluates it at z again.
+      // ∇G at Π(z) replaces ∇G(z) in Jd/Js: the next UpdateJacobian evaluates it at z again.
       jacobian_current = false;
       return EvalF(zt, &Ft) && JacobianAt(zt) && StopMeasure(zt, Ft) <= tolerance;
     }
