@@ -703,7 +703,6 @@ struct SemismoothNewtonSolver::Workspace {
     double psi_best = psi;
     int since_best = 0;
     const int window = o.stagnation_window;
-    projection_verified = false;
     for (int k = 0;; ++k) {
       // The stagnation test compares reference merits (max of the GLL memory) so that a non-monotone
       // line search is not mistaken for stagnation; with memory 1 this is Psi itself.
@@ -737,9 +736,8 @@ struct SemismoothNewtonSolver::Workspace {
       // FB iterates may sit outside [l, u] by up to the tolerance; the returned point is projected onto the
       // box (Conclude). If the projection would break the tolerance, polish with a few more Newton steps,
       // which near the solution shrink the infeasibility quadratically.
-      if (converged && (lambda > 0.0 || polish_left <= 0)) return Exit::kConverged;
-      if (converged && ProjectionConverged()) {
-        projection_verified = true;
+      if (converged && (lambda > 0.0 || polish_left <= 0 || ProjectionConverged())) {
+        if (mcp != nullptr) projection_verified = lambda == 0.0 && polish_left > 0;
         return Exit::kConverged;
       }
       if (converged) --polish_left;
