@@ -446,6 +446,21 @@ struct SemismoothNewtonSolver::Workspace {
     }
     return McpScaledResidual(x, Fx, *l, *u, mcp_row_scales, Vector());
   }
+  // Loop's MCP stopping test, out of line so that the box-MLCP loop compiles as it did: ∇G(z), which the step
+  // needs anyway, first, then the base's verdict at z. A perturbed solve (λ > 0) that meets the original problem's
+  // test ends too (Run then accepts it at once). 1: converged, 0: not, −1: malformed Jacobian.
+  [[gnu::noinline]] int McpConvergence(double r, double target_abs, double* measure) {
+    if (!UpdateJacobian()) return -1;
+    *measure = StopMeasure(z, F);
+    TrackBest(*measure);
+    return *measure <= tolerance || (lambda > 0.0 && r <= target_abs) ? 1 : 0;
+  }
+  // ProjectionConverged for an MCP whose z lies outside the box (zt = Π(z)), out of line like McpConvergence. ∇G at
+  // Π(z) replaces ∇G(z) in Jd/Js: the next UpdateJacobian evaluates it at z again.
+  [[gnu::noinline]] bool McpProjectionConverged() {
+    jacobian_current = false;
+    return EvalF(zt, &Ft) && JacobianAt(zt) && StopMeasure(zt, Ft) <= tolerance;
+  }
   // The stopping measure need not decrease with the merit function, so the best iterate is the one where it is
   // smallest.
   void TrackBest(double measure) {
@@ -711,15 +726,12 @@ struct SemismoothNewtonSolver::Workspace {
       bool converged;
       double measure = 0.0;  // MCP: the stopping measure of the original problem at z
       if (mcp != nullptr) {
-        // ∇G(z), which the step below needs, first: the stopping test is the base's verdict.
-        if (!UpdateJacobian()) {
+        const int test = McpConvergence(r, target_abs, &measure);
+        if (test < 0) {
           failure_detail = "the MCP Jacobian has the wrong size";
           return Exit::kNumericalFailure;
         }
-        measure = StopMeasure(z, F);
-        TrackBest(measure);
-        // A perturbed solve that meets the original problem's test ends too: Run then accepts it at once.
-        converged = measure <= tolerance || (lambda > 0.0 && r <= target_abs);
+        converged = test > 0;
       } else {
         const double r_original = lambda == 0.0 ? r : NaturalResidualNorm(z, F, *l, *u);
         TrackBest(Relative(r_original, z));
@@ -955,11 +967,7 @@ struct SemismoothNewtonSolver::Workspace {
       zt[i] = std::min(std::max(z[i], (*l)[i]), (*u)[i]);
       outside |= zt[i] != z[i];
     }
-    if (mcp != nullptr && outside) {
-      // ∇G at Π(z) replaces ∇G(z) in Jd/Js: the next UpdateJacobian evaluates it at z again.
-      jacobian_current = false;
-      return EvalF(zt, &Ft) && JacobianAt(zt) && StopMeasure(zt, Ft) <= tolerance;
-    }
+    if (mcp != nullptr && outside) return McpProjectionConverged();
     return !outside || (EvalF(zt, &Ft) && Relative(NaturalResidualNorm(zt, Ft, *l, *u), zt) <= tolerance);
   }
 
