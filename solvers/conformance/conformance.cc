@@ -5,9 +5,12 @@
 #include <cmath>
 #include <exception>
 #include <memory>
+#include <random>
 #include <sstream>
+#include <stdexcept>
 #include <utility>
 
+#include "solvers/core/verdict.h"
 #include "solvers/enumerative/enumerative_solver.h"
 
 namespace smcbench {
@@ -248,6 +251,192 @@ void CheckSessionReuse(const SolverFactory& create, const ConformanceOptions& op
   }
 }
 
+// A strongly monotone MCP with a planted solution: F(z) = A z + κ∘z³ + b, A = BᵀB/n + skew + I/2 (positive definite
+// symmetric part), κ > 0, so z* is its only solution; rows cycle through an LCP row, a box, a free row and an
+// upper-bounded one; b is derived from z* and an F(z*) complementary to it.
+struct PlantedMcpData {
+  DenseMatrix A;
+  Vector kappa, b, l, u, z_star;
+};
+
+PlantedMcpData MakePlantedMcpData(int n, int seed) {
+  std::mt19937 rng(seed);
+  std::normal_distribution<double> normal;
+  std::uniform_real_distribution<double> unit(0.0, 1.0);
+  PlantedMcpData p;
+  DenseMatrix B(n, n), K(n, n);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) {
+      B(i, j) = normal(rng);
+      K(i, j) = normal(rng);
+    }
+  }
+  p.A = B.transpose() * B / n + (K - K.transpose()) * 0.5;
+  p.A.diagonal().array() += 0.5;
+  p.kappa.resize(n);
+  p.l.resize(n);
+  p.u.resize(n);
+  p.z_star.resize(n);
+  Vector F_star(n);
+  for (int i = 0; i < n; ++i) {
+    p.kappa[i] = 0.2 + unit(rng);
+    const int kind = (i + seed) % 4;
+    p.l[i] = kind == 0 ? 0.0 : (kind == 1 ? -1.0 - unit(rng) : -kInf);
+    p.u[i] = kind == 1 ? 1.0 + unit(rng) : (kind == 3 ? 2.0 * unit(rng) : kInf);
+    const double pick = unit(rng);
+    if (std::isfinite(p.l[i]) && pick < 0.4) {
+      p.z_star[i] = p.l[i];
+      F_star[i] = 0.1 + unit(rng);
+    } else if (std::isfinite(p.u[i]) && pick > 0.6) {
+      p.z_star[i] = p.u[i];
+      F_star[i] = -0.1 - unit(rng);
+    } else {
+      const double lo = std::isfinite(p.l[i]) ? p.l[i] : -2.0, hi = std::isfinite(p.u[i]) ? p.u[i] : 2.0;
+      p.z_star[i] = lo + (hi - lo) * (0.1 + 0.8 * unit(rng));
+      F_star[i] = 0.0;
+    }
+  }
+  p.b = F_star - p.A * p.z_star - (p.kappa.array() * p.z_star.array().cube()).matrix();
+  return p;
+}
+
+// The planted MCP; its Jacobian can be made malformed (of the wrong size, or throwing).
+class PlantedMcp final : public MCP {
+ public:
+  enum class Jacobian { kRight, kWrongSize, kThrows };
+
+  PlantedMcp(int n, int seed, Jacobian jacobian = Jacobian::kRight)
+      : PlantedMcp(MakePlantedMcpData(n, seed), "planted-mcp-n" + std::to_string(n) + "-seed" + std::to_string(seed),
+                   jacobian) {}
+  const Vector& z_star() const { return data_.z_star; }
+
+  void Evaluate(const Vector& z, Vector* F) const override {
+    F->noalias() = data_.A * z;
+    F->array() += data_.kappa.array() * z.array().cube() + data_.b.array();
+  }
+  void JacobianDense(const Vector& z, DenseMatrix* J) const override {
+    if (jacobian_ == Jacobian::kThrows) throw std::runtime_error("this Jacobian always throws");
+    *J = data_.A;
+    J->diagonal().array() += 3.0 * data_.kappa.array() * z.array().square();
+    if (jacobian_ == Jacobian::kWrongSize) J->conservativeResize(J->rows() + 1, J->cols());
+  }
+
+ private:
+  PlantedMcp(PlantedMcpData data, std::string name, Jacobian jacobian)
+      : MCP(data.l, data.u, std::move(name)), data_(std::move(data)), jacobian_(jacobian) {}
+  PlantedMcpData data_;
+  Jacobian jacobian_;
+};
+
+// μ = ‖(D_F⁻¹ J_FF)⁻¹‖∞ at z* (verdict.h), in double: these Jacobians are well conditioned.
+ReferenceSolution PlantedReference(const PlantedMcp& mcp) {
+  const Vector& z = mcp.z_star();
+  const int n = mcp.size();
+  DenseMatrix J(n, n);
+  mcp.JacobianDense(z, &J);
+  std::vector<int> free_rows;
+  for (int i = 0; i < n; ++i) {
+    if (z[i] > mcp.l()[i] && z[i] < mcp.u()[i]) free_rows.push_back(i);
+  }
+  ReferenceSolution reference;
+  reference.certificate = Certificate::kUnique;
+  reference.z = z;
+  const int nf = static_cast<int>(free_rows.size());
+  if (nf > 0) {
+    DenseMatrix block(nf, nf);
+    for (int a = 0; a < nf; ++a) {
+      const double d = J.row(free_rows[a]).cwiseAbs().maxCoeff();
+      for (int b = 0; b < nf; ++b) block(a, b) = J(free_rows[a], free_rows[b]) / d;
+    }
+    reference.condition = DenseMatrix(block.inverse()).cwiseAbs().rowwise().sum().maxCoeff();
+  }
+  return reference;
+}
+
+constexpr int kMcpSizes[] = {1, 2, 3, 5, 8, 10};
+
+void CheckMcpKnownSolutions(const SolverFactory& create, const ConformanceOptions& options,
+                            ConformanceReport* report) {
+  const std::unique_ptr<Solver> solver = Make(create);
+  if (!solver->info().mcp) return;
+  Findings findings("mcp-known-solution", report);
+  int solved = 0;
+  for (int n : kMcpSizes) {
+    if (n > options.max_size) continue;
+    for (int seed : {1, 2}) {
+      const PlantedMcp mcp(n, seed);
+      SolverOptions solve_options;
+      solve_options.tolerance = options.tolerance;
+      solve_options.time_limit_seconds = options.time_limit_seconds;
+      const SolveResult r = solver->Solve(mcp, solve_options);
+      ++report->mcp_solves;
+      Vector F(n);
+      mcp.Evaluate(r.z, &F);
+      if (r.z.size() != n || r.w != F) findings.Fail(mcp.name(), "w is not F(z) on return");
+      if (!r.solved()) {
+        if (options.mcp_must_solve) {
+          findings.Fail(mcp.name(), "not solved: " + std::string(ToString(r.status)) + " " + r.message +
+                                        " (scale-free residual " + Num(r.residual_scaled) + ")");
+        }
+        continue;
+      }
+      ++solved;
+      ++report->mcp_solved_checked;
+      const Judgement j = JudgeMCP(mcp, ExpectedOutcome::kSolvable, {PlantedReference(mcp)}, false, r.status, r.z,
+                                   options.tolerance);
+      if (j.verdict != Verdict::kSolved) {
+        findings.Fail(mcp.name(), "claimed solved, JudgeMCP says " + std::string(ToString(j.verdict)) +
+                                      " (scale-free residual " + Num(j.residual.scaled) + ", forward error " +
+                                      Num(j.forward_error) + ", allowance " + Num(j.forward_allowance) + ")");
+      }
+    }
+  }
+  if (solved == 0) findings.Fail("(all)", "solved no MCP");
+}
+
+void CheckMcpMalformedJacobian(const SolverFactory& create, const ConformanceOptions& options,
+                               ConformanceReport* report) {
+  const std::unique_ptr<Solver> solver = Make(create);
+  if (!solver->info().mcp) return;
+  Findings findings("mcp-malformed-jacobian", report);
+  for (PlantedMcp::Jacobian kind : {PlantedMcp::Jacobian::kWrongSize, PlantedMcp::Jacobian::kThrows}) {
+    const PlantedMcp mcp(3, 5, kind);
+    const std::string what = mcp.name() + (kind == PlantedMcp::Jacobian::kThrows ? " (throwing Jacobian)"
+                                                                                 : " (Jacobian of the wrong size)");
+    SolverOptions solve_options;
+    solve_options.tolerance = options.tolerance;
+    solve_options.time_limit_seconds = options.time_limit_seconds;
+    SolveResult r;
+    try {
+      solver->Solve(mcp, solve_options, &r);
+    } catch (const std::exception& e) {
+      findings.Fail(what, std::string("Solve threw: ") + e.what());
+      continue;
+    }
+    ++report->mcp_solves;
+    if (r.solved()) findings.Fail(what, "reported solved although its Jacobian cannot be evaluated");
+    if (r.message.empty()) findings.Fail(what, "status " + std::string(ToString(r.status)) + " without a message");
+  }
+}
+
+void CheckMcpNotApplicable(const SolverFactory& create, const ConformanceOptions& options,
+                           ConformanceReport* report) {
+  const std::unique_ptr<Solver> solver = Make(create);
+  if (solver->info().mcp) return;
+  Findings findings("mcp-not-applicable", report);
+  for (int n : {1, 3}) {
+    const PlantedMcp mcp(n, 1);
+    SolverOptions solve_options;
+    solve_options.tolerance = options.tolerance;
+    const SolveResult r = solver->Solve(mcp, solve_options);
+    ++report->mcp_solves;
+    if (r.status != SolveStatus::kNotApplicable) {
+      findings.Fail(mcp.name(), "a backend without info().mcp answered " + std::string(ToString(r.status)) +
+                                    " instead of not_applicable");
+    }
+  }
+}
+
 }  // namespace
 
 ConformanceReport CheckConformance(const SolverFactory& create, const ConformanceOptions& options) {
@@ -259,6 +448,9 @@ ConformanceReport CheckConformance(const SolverFactory& create, const Conformanc
       {"known-solution", &CheckKnownSolutions},
       {"session-bits", &CheckSessionBits},
       {"session-reuse", &CheckSessionReuse},
+      {"mcp-known-solution", &CheckMcpKnownSolutions},
+      {"mcp-malformed-jacobian", &CheckMcpMalformedJacobian},
+      {"mcp-not-applicable", &CheckMcpNotApplicable},
   };
   for (const auto& [name, check] : checks) {
     try {
@@ -278,8 +470,13 @@ ConformanceReport CheckConformance(std::string_view registered_name, const Confo
 
 std::string ToString(const ConformanceReport& report) {
   if (report.passed()) {
-    return "passed (" + std::to_string(report.solves) + " solves, " + std::to_string(report.solved_checked) +
-           " solved answers checked against the planted solution)";
+    std::string text = "passed (" + std::to_string(report.solves) + " solves, " +
+                       std::to_string(report.solved_checked) + " solved answers checked against the planted solution";
+    if (report.mcp_solved_checked > 0) {
+      text += "; " + std::to_string(report.mcp_solves) + " MCP solves, " +
+              std::to_string(report.mcp_solved_checked) + " solved MCP answers judged";
+    }
+    return text + ")";
   }
   std::string text;
   for (const ConformanceFailure& f : report.failures) text += f.check + ": " + f.problem + ": " + f.message + "\n";

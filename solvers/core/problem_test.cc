@@ -256,5 +256,82 @@ TEST(MCPValidation, BoundsAreChecked) {
   EXPECT_THAT(ErrorOf([&] { FunctionMCP(u, l, nullptr, J); }), HasSubstr("F is empty"));
 }
 
+// ---- The MCP's scale-free residual (McpScaledResidual, McpRowScales, MCP::variable_scale) ----
+
+// With units 1 and F = M z + q it is the box's Residual::scaled, to rounding (the box multiplies by 1/d_i, the MCP
+// divides by d_i).
+TEST(McpScaledResidual, IsTheBoxResidualScaledForAnAffineF) {
+  DenseMatrix M(3, 3);
+  M << 2e-6, 1e-6, 0, -1e-6, 2e-6, 0, 0, 3.0, 4e3;
+  Vector q(3), l(3), u(3), z(3);
+  q << -1e-6, 2e-6, -5.0;
+  l << -1.0, 0.0, -kInf;
+  u << 1.0, kInf, kInf;
+  z << 0.3, 0.7, -2.0;
+  const BoxMLCP p(M, q, l, u);
+  Vector w;
+  const double box = p.NaturalResidual(z, &w).scaled;
+  Vector d;
+  McpRowScales(M, Vector(), &d);
+  EXPECT_EQ(d, p.row_scale());
+  EXPECT_NEAR(McpScaledResidual(z, w, l, u, d, Vector()), box, 1e-15 * box);
+  McpRowScales(SparseMatrix(M.sparseView()), Vector(), &d);
+  EXPECT_EQ(d, p.row_scale());
+}
+
+// Row i of F scaled by r_i > 0 scales row i of J by r_i, so F_i/d_i is unchanged: the residual is the same (to
+// rounding) for r_i = 1e±8. A change of units z = S y stated through c = S⁻¹·c0 gives the same residual in y.
+TEST(McpScaledResidual, IsInvariantUnderRowScalingAndUnderAStatedChangeOfUnits) {
+  DenseMatrix J(2, 2);
+  J << 4.0, -1.0, 0.5, 3.0;
+  Vector z(2), F(2), l(2), u(2);
+  z << 1.5, 1e-3;
+  F << 2e-7, 0.25;
+  l << 0.0, 0.0;
+  u << kInf, kInf;
+  Vector d;
+  McpRowScales(J, Vector(), &d);
+  const double reference = McpScaledResidual(z, F, l, u, d, Vector());
+  EXPECT_GT(reference, 0.0);
+  const Vector r = (Vector(2) << 1e8, 1e-8).finished();
+  McpRowScales(r.asDiagonal() * J, Vector(), &d);
+  EXPECT_NEAR(McpScaledResidual(z, r.asDiagonal() * F, l, u, d, Vector()), reference, 1e-14 * reference);
+  // y = S⁻¹ z: F_y(y) = F(S y), J_y = J S, bounds S⁻¹l, S⁻¹u, units c = S⁻¹ (z's unit was 1).
+  const Vector S = (Vector(2) << 1e4, 1e-4).finished();
+  const Vector c = S.cwiseInverse();
+  McpRowScales(J * S.asDiagonal(), c, &d);
+  EXPECT_NEAR(McpScaledResidual(S.cwiseInverse().asDiagonal() * z, F, l, u, d, c), reference, 1e-14 * reference);
+}
+
+TEST(McpRowScales, ZeroRowsTakeTheLargestAndNonFiniteEntriesAreNotTrusted) {
+  DenseMatrix J(3, 3);
+  J << 0, 0, 0, 2, -7, 0, 0, 0, 0.5;
+  Vector d;
+  McpRowScales(J, Vector(), &d);
+  EXPECT_EQ(d, (Vector(3) << 7.0, 7.0, 0.5).finished());
+  McpRowScales(DenseMatrix::Zero(2, 2), Vector(), &d);
+  EXPECT_EQ(d, Vector::Ones(2));
+  J(2, 0) = std::nan("");
+  McpRowScales(J, Vector(), &d);
+  EXPECT_EQ(d[2], kInf);
+  const Vector z = Vector::Ones(3), F = Vector::Zero(3), l = Vector::Zero(3), u = Vector::Constant(3, kInf);
+  EXPECT_EQ(McpScaledResidual(z, F, l, u, d, Vector()), kInf) << "a residual that cannot be trusted never passes";
+}
+
+TEST(MCPValidation, VariableScaleMustBePositiveFiniteAndOfTheProblemsSize) {
+  FunctionMCP mcp(
+      Vector::Zero(2), Vector::Constant(2, kInf), [](const Vector& z, Vector* F) { *F = z; },
+      [](const Vector&, DenseMatrix* J) { J->setIdentity(); });
+  EXPECT_THAT(ErrorOf([&] { mcp.set_variable_scale(Vector::Ones(3)); }), HasSubstr("variable_scale has size 3"));
+  EXPECT_THAT(ErrorOf([&] { mcp.set_variable_scale((Vector(2) << 1.0, 0.0).finished()); }),
+              HasSubstr("variable_scale[1] = 0"));
+  EXPECT_THAT(ErrorOf([&] { mcp.set_variable_scale((Vector(2) << kInf, 1.0).finished()); }),
+              HasSubstr("variable_scale[0]"));
+  mcp.set_variable_scale((Vector(2) << 2.0, 1e-3).finished());
+  EXPECT_EQ(mcp.variable_scale()[1], 1e-3);
+  mcp.set_variable_scale(Vector());
+  EXPECT_EQ(mcp.variable_scale().size(), 0);
+}
+
 }  // namespace
 }  // namespace smcbench

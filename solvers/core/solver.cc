@@ -1,7 +1,9 @@
 #include "solvers/core/solver.h"
 
 #include <cstdio>
+#include <exception>
 #include <sstream>
+#include <string>
 
 #include "solvers/core/polish.h"
 
@@ -165,18 +167,25 @@ namespace {
 }
 }  // namespace
 
-void Solver::Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result) {
+namespace {
+// The end of every solve, box or MCP: a backend that set no status failed; the wall time.
+[[gnu::always_inline]] inline void StampEnd(std::chrono::steady_clock::time_point start, SolveResult* result) {
   using Clock = std::chrono::steady_clock;
-  // The rule: the merit function, not the backend, decides what "solved" means.
-  if (result->status == SolveStatus::kSolved &&
-      !(result->residual_rel <= tolerance && result->residual_scaled <= tolerance)) {
-    Downgrade(tolerance, result);
-  }
   if (result->status == SolveStatus::kNotRun) {
     result->status = SolveStatus::kNumericalFailure;
     result->message = "backend returned without setting a status";
   }
   result->solve_seconds = start == Clock::time_point{} ? 0.0 : std::chrono::duration<double>(Clock::now() - start).count();
+}
+}  // namespace
+
+void Solver::Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result) {
+  // The rule: the merit function, not the backend, decides what "solved" means.
+  if (result->status == SolveStatus::kSolved &&
+      !(result->residual_rel <= tolerance && result->residual_scaled <= tolerance)) {
+    Downgrade(tolerance, result);
+  }
+  StampEnd(start, result);
 }
 
 namespace {
@@ -261,28 +270,79 @@ SolveSession Solver::Prepare(const BoxMLCP& problem, const SolverOptions& option
   return SolveSession(this, problem, options, session);
 }
 
+namespace {
+// F and its Jacobian are the caller's code. The exceptions C++ code throws when an evaluation fails
+// (std::runtime_error, std::logic_error) end the solve with a status and *why; InvalidInputError (bad input, an error
+// naming the field, never a status) and exceptions of any other type (a host language's own, such as a Python
+// exception raised in a callback, which its binding re-raises as itself) reach the caller unchanged.
+template <typename Body>
+bool EvaluationSucceeds(Body&& body, const char* context, std::string* why) {
+  try {
+    body();
+    return true;
+  } catch (const InvalidInputError&) {
+    throw;
+  } catch (const std::runtime_error& e) {
+    *why = std::string(context) + e.what();
+  } catch (const std::logic_error& e) {
+    *why = std::string(context) + e.what();
+  }
+  return false;
+}
+}  // namespace
+
 void Solver::Solve(const MCP& problem, const SolverOptions& options, SolveResult* result) {
   const auto start = StartClock(options);
-  const int n = problem.size();
-  if (BeginSolve<0, true>(n, problem.l(), problem.u(), options, info().name, result)) {
-    if (!info().mcp) {
+  const SolverInfo& solver_info = info();
+  if (BeginSolve<0, true>(problem.size(), problem.l(), problem.u(), options, solver_info.name, result)) {
+    if (!solver_info.mcp) {
       result->status = SolveStatus::kNotApplicable;
       result->message = "backend does not solve nonlinear MCPs";
     } else {
-      DoSolveMCP(problem, options, result);
+      std::string why;  // written only on failure
+      if (!EvaluationSucceeds([&] { DoSolveMCP(problem, options, result); },
+                              "the solve stopped on an exception from F, its Jacobian or the backend: ", &why)) {
+        result->status = SolveStatus::kNumericalFailure;
+        result->message = std::move(why);
+      }
     }
   }
-  // Relative scale of an MCP: 1 + ‖F(Π(0))‖∞, the box-MLCP's 1 + ‖q‖∞ when 0 is feasible.
-  Vector& F = result->w;
-  if (scale_point_.size() != n) scale_point_.resize(n);
-  for (int i = 0; i < n; ++i) scale_point_[i] = std::min(std::max(0.0, problem.l()[i]), problem.u()[i]);
-  problem.Evaluate(scale_point_, &F);
-  const double scale = 1.0 + (F.size() ? F.cwiseAbs().maxCoeff() : 0.0);
-  const Residual r = problem.NaturalResidual(result->z, &F, std::isfinite(scale) ? scale : 1.0);
-  result->residual_abs = r.abs;
-  result->residual_rel = r.rel;
-  result->residual_scaled = r.scaled;
-  Finish(options.tolerance, start, result);
+  ConcludeMcp(problem, options, !solver_info.delegates || !solver_info.mcp, start, result);
+}
+
+namespace {
+// Statuses that say the backend did not run on the problem: they keep their own reason even when the merit
+// function cannot be evaluated at the returned z.
+bool NothingRan(SolveStatus status) {
+  return status == SolveStatus::kNotApplicable || status == SolveStatus::kInvalidOptions ||
+         status == SolveStatus::kSizeLimit;
+}
+}  // namespace
+
+void Solver::ConcludeMcp(const MCP& problem, const SolverOptions& options, bool recompute,
+                         std::chrono::steady_clock::time_point start, SolveResult* result) {
+  const double tolerance = options.tolerance;
+  if (recompute) {
+    std::string why;  // written only when the merit function cannot be evaluated
+    Residual r;
+    if (!McpMerit(problem, result->z, &result->w, &mcp_merit_, &r, &why) && !NothingRan(result->status)) {
+      result->status = SolveStatus::kNumericalFailure;
+      result->message = result->message.empty() ? why : why + " (backend: " + result->message + ")";
+    }
+    result->residual_abs = r.abs;
+    result->residual_rel = r.rel;
+    result->residual_scaled = r.scaled;
+  }
+  // The MCP rule: the scale-free residual decides; residual_rel does not (it is not invariant under row scaling).
+  if (result->status == SolveStatus::kSolved && !(result->residual_scaled <= tolerance)) {
+    std::ostringstream s;
+    s << "backend reported success but the scale-free residual (rows divided by the Jacobian's row scales at z, in "
+         "units of z) is "
+      << result->residual_scaled << " > " << tolerance;
+    result->status = SolveStatus::kInaccurate;
+    result->message = s.str();
+  }
+  StampEnd(start, result);
 }
 
 SolveResult Solver::Solve(const BoxMLCP& problem, const SolverOptions& options) {
@@ -300,6 +360,53 @@ SolveResult Solver::Solve(const MCP& problem, const SolverOptions& options) {
 void Solver::DoSolveMCP(const MCP&, const SolverOptions&, SolveResult* result) {
   result->status = SolveStatus::kNotApplicable;
   result->message = "backend does not solve nonlinear MCPs";
+}
+
+bool McpMerit(const MCP& problem, const Vector& z, Vector* F, McpMeritWorkspace* workspace, Residual* r,
+              std::string* why) {
+  const Eigen::Index n = problem.size();
+  *r = Residual{};
+  McpMeritWorkspace& ws = *workspace;
+  if (F->size() != n) F->resize(n);
+  if (ws.scale_point.size() != n) ws.scale_point.resize(n);
+  for (Eigen::Index i = 0; i < n; ++i) ws.scale_point[i] = std::min(std::max(0.0, problem.l()[i]), problem.u()[i]);
+  if (z.size() != n) {
+    *why = "z has size " + std::to_string(z.size()) + " but the problem has " + std::to_string(n) + " unknowns";
+    return false;
+  }
+  bool jacobian_ok = true;
+  const bool evaluated = EvaluationSucceeds(
+      [&] {
+        problem.Evaluate(ws.scale_point, F);
+        const double scale = 1.0 + F->cwiseAbs().maxCoeff();
+        problem.Evaluate(z, F);
+        r->abs = NaturalResidualNorm(z, *F, problem.l(), problem.u());
+        r->rel = r->abs / (std::isfinite(scale) ? scale : 1.0);
+        if (!(r->abs < kInf)) return;
+        const auto wrong_size = [&](Eigen::Index rows, Eigen::Index cols) {
+          *why = "the Jacobian at z is " + std::to_string(rows) + "x" + std::to_string(cols) + ", expected " +
+                 std::to_string(n) + "x" + std::to_string(n);
+          jacobian_ok = false;
+        };
+        if (problem.jacobian_kind() == MCP::JacobianKind::kSparse) {
+          problem.JacobianSparse(z, &ws.jacobian_sparse);
+          if (ws.jacobian_sparse.rows() != n || ws.jacobian_sparse.cols() != n) {
+            return wrong_size(ws.jacobian_sparse.rows(), ws.jacobian_sparse.cols());
+          }
+          McpRowScales(ws.jacobian_sparse, problem.variable_scale(), &ws.row_scale);
+        } else {
+          if (ws.jacobian_dense.rows() != n || ws.jacobian_dense.cols() != n) ws.jacobian_dense.resize(n, n);
+          problem.JacobianDense(z, &ws.jacobian_dense);
+          if (ws.jacobian_dense.rows() != n || ws.jacobian_dense.cols() != n) {
+            return wrong_size(ws.jacobian_dense.rows(), ws.jacobian_dense.cols());
+          }
+          McpRowScales(ws.jacobian_dense, problem.variable_scale(), &ws.row_scale);
+        }
+        r->scaled = McpScaledResidual(z, *F, problem.l(), problem.u(), ws.row_scale, problem.variable_scale());
+      },
+      "F or its Jacobian threw at z: ", why);
+  if (!evaluated) r->scaled = kInf;
+  return evaluated && jacobian_ok;
 }
 
 void Solver::BindOptions(OptionBinder*) {}

@@ -18,6 +18,21 @@
 
 namespace smcbench {
 
+// The MCP's merit function at z, one home for Solver::Solve and JudgeMCP (verdict.h). Into *r: abs = ‖z − Π(z − F)‖∞,
+// rel = abs / (1 + ‖F(Π(0))‖∞) (information only: not invariant under row scaling) and scaled = McpScaledResidual
+// with the row scales of the Jacobian at z, the one that decides "solved". *F receives F(z). False with *why when F
+// or the Jacobian throws (std::runtime_error, std::logic_error; other exceptions propagate, as in Solver::Solve), the
+// Jacobian has the wrong size, or z has the wrong size (the entries of *r not computed stay +∞). A z or F(z) with
+// NaN/Inf has r = +∞ and returns true; no Jacobian is asked for there.
+struct McpMeritWorkspace {
+  Vector scale_point;            // Π(0)
+  DenseMatrix jacobian_dense;    // the Jacobian at z, of the kind the problem provides
+  SparseMatrix jacobian_sparse;
+  Vector row_scale;              // McpRowScales of it
+};
+bool McpMerit(const MCP& problem, const Vector& z, Vector* F, McpMeritWorkspace* workspace, Residual* r,
+              std::string* why);
+
 // What `smcbench list` prints about a backend.
 struct SolverInfo {
   std::string_view name;        // registry name, e.g. "lemke"
@@ -53,6 +68,12 @@ class Solver {
   // including invalid options, is a status with a message. Guarantees on return: result->w = F(z),
   // result->residual_* is the merit function at z, and status == kSolved ⇒ residual_rel ≤ tolerance and
   // residual_scaled ≤ tolerance. With options.polish, the exact polish (polish.h) ran on the backend's answer.
+  // For an MCP the rule is the scale-free residual alone: residual_scaled = McpScaledResidual with the row scales
+  // of the Jacobian at z (one more Jacobian evaluation per solve), status == kSolved ⇒ residual_scaled ≤ tolerance;
+  // residual_rel = residual_abs / (1 + ‖F(Π(0))‖∞) is information only, since a scale read at an arbitrary point
+  // such as Π(0) changes with the scaling of F's rows (docs/verdict.md, "Nonlinear MCPs"). An F or Jacobian that
+  // throws std::runtime_error or std::logic_error, or a Jacobian of the wrong size, is kNumericalFailure with a
+  // message; InvalidInputError and exceptions of other types (a Python callback's own) reach the caller unchanged.
   void Solve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
   void Solve(const MCP& problem, const SolverOptions& options, SolveResult* result);
   // Convenience forms that allocate a fresh result.
@@ -144,6 +165,11 @@ class Solver {
   }
   // start == time_point{} means "not timed" (options.measure_time off).
   void Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result);
+  // After DoSolveMCP: the MCP's merit function at result->z (F there into result->w, the Jacobian there into the
+  // workspace below; skipped for a delegating backend, whose delegate's Solve computed it), the MCP rule for
+  // "solved", then the end every solve shares. A failure to evaluate is a status (McpMerit).
+  void ConcludeMcp(const MCP& problem, const SolverOptions& options, bool recompute,
+                   std::chrono::steady_clock::time_point start, SolveResult* result);
 
   // EquilibratedFor's copy and the matrix_id of the problem it was made from (0: none).
   std::optional<BoxMLCP> equilibrated_;
@@ -153,7 +179,7 @@ class Solver {
   std::uint64_t option_generation_ = 1;
   std::chrono::steady_clock::time_point deadline_{};
   bool has_deadline_ = false;
-  Vector scale_point_;  // Π(0) for the MCP relative scale, kept to avoid allocating per solve
+  McpMeritWorkspace mcp_merit_;  // kept so that repeated MCP solves of one size do not allocate
 };
 
 }  // namespace smcbench

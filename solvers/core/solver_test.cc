@@ -6,6 +6,10 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <stdexcept>
+#include <vector>
+
+#include "solvers/core/verdict.h"
 
 namespace smcbench {
 namespace {
@@ -260,6 +264,229 @@ TEST(SolverBase, ResultIsReusedWithoutStaleState) {
   solver.Solve(SimpleLCP(), SolverOptions{}, &r);
   EXPECT_TRUE(r.solved());
   EXPECT_TRUE(r.message.empty());
+}
+
+// ---- Nonlinear MCPs: the base's scale-free rule and JudgeMCP ----
+
+// An MCP backend that returns a scripted z and status (optionally evaluating F first, as a real backend does).
+class ScriptedMcpSolver final : public Solver {
+ public:
+  const SolverInfo& info() const override {
+    static const SolverInfo kInfo{"scripted-mcp", "returns a scripted answer", "none", true, false, false, false,
+                                  /*mcp=*/true};
+    return kInfo;
+  }
+  SolveStatus status_to_report = SolveStatus::kSolved;
+  Vector z_to_report;
+  bool evaluate_f = false;
+
+ protected:
+  void DoSolve(const BoxMLCP&, const SolverOptions&, SolveResult* result) override {
+    result->status = SolveStatus::kNotApplicable;
+  }
+  void DoSolveMCP(const MCP& problem, const SolverOptions&, SolveResult* result) override {
+    if (evaluate_f) problem.Evaluate(result->z, &result->w);
+    result->z = z_to_report;
+    result->status = status_to_report;
+  }
+};
+
+// The general-equilibrium failure in one price: p ≥ 1e-8 (F is undefined at 0), F(p) = row·(1 − 1/p), the
+// unique solution p* = 1. At Π(0) = 1e-8, |F| = 1e8·row, so a residual relative to 1 + ‖F(Π(0))‖∞ lets through
+// answers off by ~1e-2; near p*, J = row/p² is modest.
+FunctionMCP PriceMcp(double row = 1.0) {
+  return FunctionMCP(
+      Vector::Constant(1, 1e-8), Vector::Constant(1, kInf),
+      [row](const Vector& p, Vector* F) { (*F)[0] = row * (1.0 - 1.0 / p[0]); },
+      [row](const Vector& p, DenseMatrix* J) { (*J)(0, 0) = row / (p[0] * p[0]); }, "price");
+}
+
+TEST(McpVerdict, AWrongAnswerThatTheRelativeResidualPassesIsInaccurate) {
+  ScriptedMcpSolver solver;
+  solver.z_to_report = Vector::Constant(1, 1.0 + 1e-4);  // 1e-4 off the unique solution
+  const SolveResult r = solver.Solve(PriceMcp());
+  EXPECT_LE(r.residual_rel, 1e-10) << "relative to 1 + |F(1e-8)| = 1e8: blind to it";
+  // F = 1 − 1/p ≈ 1e-4, d = 1/p²: the step F/d = p(p − 1) ≈ 1.0001e-4, over 1 + |p| ≈ 2.
+  EXPECT_NEAR(r.residual_scaled, (1.0 + 1e-4) * 1e-4 / (2.0 + 1e-4), 1e-15);
+  EXPECT_EQ(r.status, SolveStatus::kInaccurate);
+  EXPECT_THAT(r.message, HasSubstr("scale-free residual"));
+}
+
+TEST(McpVerdict, ARightAnswerIsSolvedWithWEqualToF) {
+  ScriptedMcpSolver solver;
+  solver.z_to_report = Vector::Constant(1, 1.0);
+  const SolveResult r = solver.Solve(PriceMcp(1e8));
+  EXPECT_EQ(r.status, SolveStatus::kSolved) << r.message;
+  EXPECT_EQ(r.residual_scaled, 0.0);
+  EXPECT_EQ(r.w[0], 0.0);
+}
+
+// residual_rel is information: scaling F by 1e8 changes it, never the status; residual_scaled does not change.
+TEST(McpVerdict, TheRuleIsInvariantUnderScalingFsRows) {
+  for (double p : {1.0, 1.0 + 1e-12, 1.0 + 1e-6, 0.5}) {
+    ScriptedMcpSolver solver;
+    solver.z_to_report = Vector::Constant(1, p);
+    const SolveResult a = solver.Solve(PriceMcp(1.0));
+    for (double row : {1e8, 1e-8}) {
+      const SolveResult b = solver.Solve(PriceMcp(row));
+      EXPECT_EQ(a.status, b.status) << p << " " << row;
+      EXPECT_NEAR(b.residual_scaled, a.residual_scaled, 1e-14 * a.residual_scaled) << p << " " << row;
+    }
+  }
+}
+
+TEST(McpVerdict, AMalformedOrThrowingJacobianIsANumericalFailureNotACrash) {
+  const auto F = [](const Vector& z, Vector* f) { (*f)[0] = z[0] - 1.0; };
+  const FunctionMCP wrong_size(
+      Vector::Zero(1), Vector::Constant(1, kInf), F, [](const Vector&, DenseMatrix* J) { J->setIdentity(2, 2); });
+  const FunctionMCP throws(Vector::Zero(1), Vector::Constant(1, kInf), F,
+                           [](const Vector&, DenseMatrix*) -> void { throw std::runtime_error("no Jacobian here"); });
+  ScriptedMcpSolver solver;
+  solver.z_to_report = Vector::Constant(1, 1.0);  // the solution: only the Jacobian is wrong
+  SolveResult r = solver.Solve(wrong_size);
+  EXPECT_EQ(r.status, SolveStatus::kNumericalFailure);
+  EXPECT_THAT(r.message, HasSubstr("Jacobian at z is 2x2, expected 1x1"));
+  EXPECT_EQ(r.residual_scaled, kInf);
+  r = solver.Solve(throws);
+  EXPECT_EQ(r.status, SolveStatus::kNumericalFailure);
+  EXPECT_THAT(r.message, HasSubstr("no Jacobian here"));
+  // F throwing inside the backend ends the solve with a status too.
+  const FunctionMCP f_throws(
+      Vector::Zero(1), Vector::Constant(1, kInf), [](const Vector&, Vector*) { throw std::runtime_error("F broke"); },
+      [](const Vector&, DenseMatrix* J) { J->setIdentity(1, 1); });
+  solver.evaluate_f = true;
+  r = solver.Solve(f_throws);
+  EXPECT_EQ(r.status, SolveStatus::kNumericalFailure);
+  EXPECT_THAT(r.message, HasSubstr("F broke"));
+  // Bad input is an error naming the field, not a status (the Python binding's shape checks rely on it).
+  const FunctionMCP bad_input(Vector::Zero(1), Vector::Constant(1, kInf), F, [](const Vector&, DenseMatrix*) -> void {
+    throw InvalidInputError("J(z) returned a 2x2 matrix, expected 1x1");
+  });
+  EXPECT_THROW(solver.Solve(bad_input), InvalidInputError);
+  // A backend that refused keeps its reason.
+  ScriptedSolver not_mcp;
+  r = not_mcp.Solve(wrong_size);
+  EXPECT_EQ(r.status, SolveStatus::kNotApplicable);
+}
+
+// The verdicts of JudgeMCP on MCPs whose solutions are known by hand.
+ReferenceSolution Reference(Certificate certificate, double z, double condition = 1.0) {
+  ReferenceSolution r;
+  r.certificate = certificate;
+  r.z = Vector::Constant(1, z);
+  r.condition = condition;
+  return r;
+}
+
+TEST(JudgeMCP, SolvedAndWronglyClaimedFollowTheScaleFreeResidual) {
+  const FunctionMCP mcp = PriceMcp(1e8);
+  const std::vector<ReferenceSolution> unique = {Reference(Certificate::kUnique, 1.0)};
+  Judgement j = JudgeMCP(mcp, ExpectedOutcome::kSolvable, unique, false, SolveStatus::kSolved,
+                         Vector::Constant(1, 1.0 + 1e-12), 1e-10);
+  EXPECT_EQ(j.verdict, Verdict::kSolved);
+  EXPECT_NEAR(j.forward_error, 1e-12, 1e-15);
+  EXPECT_DOUBLE_EQ(j.forward_allowance, ForwardErrorAllowance(unique[0], 1e-10));
+  // The case: relative residual ≤ tol, scale-free residual 5e-5.
+  j = JudgeMCP(mcp, ExpectedOutcome::kSolvable, unique, false, SolveStatus::kSolved, Vector::Constant(1, 1.0001),
+               1e-10);
+  EXPECT_LE(j.residual.rel, 1e-10);
+  EXPECT_EQ(j.verdict, Verdict::kWronglyClaimed);
+  // Solved on a problem without a solution; a z of the wrong size.
+  j = JudgeMCP(mcp, ExpectedOutcome::kInfeasible, {}, false, SolveStatus::kSolved, Vector::Constant(1, 1.0), 1e-10);
+  EXPECT_EQ(j.verdict, Verdict::kWronglyClaimed);
+  j = JudgeMCP(mcp, ExpectedOutcome::kSolvable, {}, false, SolveStatus::kSolved, Vector::Ones(2), 1e-10);
+  EXPECT_EQ(j.verdict, Verdict::kWronglyClaimed);
+}
+
+// z ≥ 0, F(z) = z(z − 1)² + 1e-12 > 0 on z ≥ 0: the only solution is z* = 0 (at its bound, F(0) > 0: no free rows,
+// μ = 0). At z = 1, F = 1e-12 and F' = 0 (the row scale falls back to 1): every residual passes, 1 away from z*.
+TEST(JudgeMCP, ASmallResidualFarFromTheUniqueSolutionIsInaccurate) {
+  const FunctionMCP mcp(
+      Vector::Zero(1), Vector::Constant(1, kInf),
+      [](const Vector& z, Vector* F) { (*F)[0] = z[0] * (z[0] - 1.0) * (z[0] - 1.0) + 1e-12; },
+      [](const Vector& z, DenseMatrix* J) { (*J)(0, 0) = (z[0] - 1.0) * (3.0 * z[0] - 1.0); }, "fake-root");
+  const std::vector<ReferenceSolution> unique = {Reference(Certificate::kUnique, 0.0, 0.0)};
+  Judgement j = JudgeMCP(mcp, ExpectedOutcome::kSolvable, unique, false, SolveStatus::kSolved, Vector::Ones(1), 1e-10);
+  EXPECT_LE(j.residual.scaled, 1e-10);
+  EXPECT_EQ(j.forward_error, 1.0);
+  EXPECT_EQ(j.verdict, Verdict::kInaccurate);
+  EXPECT_TRUE(IsWrong(j.verdict));
+  j = JudgeMCP(mcp, ExpectedOutcome::kSolvable, unique, false, SolveStatus::kSolved, Vector::Zero(1), 1e-10);
+  EXPECT_EQ(j.verdict, Verdict::kSolved);
+  // Without a reference nothing proves it wrong: the residuals decide.
+  j = JudgeMCP(mcp, ExpectedOutcome::kSolvable, {}, false, SolveStatus::kSolved, Vector::Ones(1), 1e-10);
+  EXPECT_EQ(j.verdict, Verdict::kSolved);
+  EXPECT_TRUE(std::isnan(j.forward_error));
+}
+
+TEST(JudgeMCP, RefusalsAndFailures) {
+  const FunctionMCP solvable = PriceMcp();
+  // z ≥ 0, F(z) = −1 − z²: F < 0 everywhere, so no z ≥ 0 is a solution.
+  const FunctionMCP no_solution(
+      Vector::Zero(1), Vector::Constant(1, kInf), [](const Vector& z, Vector* F) { (*F)[0] = -1.0 - z[0] * z[0]; },
+      [](const Vector& z, DenseMatrix* J) { (*J)(0, 0) = -2.0 * z[0]; }, "none");
+  const Vector z = Vector::Constant(1, 3.0);
+  EXPECT_EQ(JudgeMCP(solvable, ExpectedOutcome::kSolvable, {}, false, SolveStatus::kInfeasible, z, 1e-10).verdict,
+            Verdict::kWronglyRefused);
+  // A verified reference proves solvability even when the expected outcome is unknown.
+  EXPECT_EQ(JudgeMCP(solvable, ExpectedOutcome::kUnknown, {Reference(Certificate::kIsolated, 1.0)}, false,
+                     SolveStatus::kInfeasible, z, 1e-10)
+                .verdict,
+            Verdict::kWronglyRefused);
+  EXPECT_EQ(JudgeMCP(solvable, ExpectedOutcome::kSolvable, {}, false, SolveStatus::kIterationLimit, z, 1e-10).verdict,
+            Verdict::kFailed);
+  EXPECT_EQ(JudgeMCP(no_solution, ExpectedOutcome::kInfeasible, {}, false, SolveStatus::kInfeasible, z, 1e-10).verdict,
+            Verdict::kCorrectlyRefused);
+  EXPECT_EQ(JudgeMCP(no_solution, ExpectedOutcome::kInfeasible, {}, false, SolveStatus::kStalled, z, 1e-10).verdict,
+            Verdict::kCorrectlyRefused);
+}
+
+// z ∈ [0, 3], F(z) = (z − 1)(z − 2): solutions 0 (F(0) = 2 > 0 at the lower bound), 1 and 2 (F = 0 inside).
+TEST(JudgeMCP, SeveralSolutionsAcceptAnyListedOneAndJudgeAgainstTheNearest) {
+  const FunctionMCP mcp(
+      Vector::Zero(1), Vector::Constant(1, 3.0),
+      [](const Vector& z, Vector* F) { (*F)[0] = (z[0] - 1.0) * (z[0] - 2.0); },
+      [](const Vector& z, DenseMatrix* J) { (*J)(0, 0) = 2.0 * z[0] - 3.0; }, "three-solutions");
+  const std::vector<ReferenceSolution> all = {Reference(Certificate::kNonUnique, 0.0, 0.0),
+                                              Reference(Certificate::kNonUnique, 1.0),
+                                              Reference(Certificate::kNonUnique, 2.0)};
+  for (double z : {0.0, 1.0, 2.0}) {
+    const Judgement j =
+        JudgeMCP(mcp, ExpectedOutcome::kSolvable, all, true, SolveStatus::kSolved, Vector::Constant(1, z), 1e-10);
+    EXPECT_EQ(j.verdict, Verdict::kSolved) << z;
+    EXPECT_EQ(j.forward_error, 0.0) << z;
+  }
+  // A list that claims to be complete but misses z = 2: the answer 2 is 1 from the nearest listed solution.
+  const std::vector<ReferenceSolution> missing(all.begin(), all.begin() + 2);
+  Judgement j =
+      JudgeMCP(mcp, ExpectedOutcome::kSolvable, missing, true, SolveStatus::kSolved, Vector::Constant(1, 2.0), 1e-10);
+  EXPECT_EQ(j.forward_error, 1.0);
+  EXPECT_EQ(j.verdict, Verdict::kInaccurate);
+  // Not complete and none unique: no forward error is defined.
+  j = JudgeMCP(mcp, ExpectedOutcome::kSolvable, missing, false, SolveStatus::kSolved, Vector::Constant(1, 2.0), 1e-10);
+  EXPECT_TRUE(std::isnan(j.forward_error));
+  EXPECT_EQ(j.verdict, Verdict::kSolved);
+}
+
+// The forward error and its allowance are in the variables' units: the price problem written in cents (y = 100 p,
+// c = 100) gets the same verdicts, forward errors and allowances as in units.
+TEST(JudgeMCP, ForwardErrorIsMeasuredInTheStatedUnits) {
+  FunctionMCP cents(
+      Vector::Constant(1, 1e-6), Vector::Constant(1, kInf),
+      [](const Vector& y, Vector* F) { (*F)[0] = 1.0 - 100.0 / y[0]; },
+      [](const Vector& y, DenseMatrix* J) { (*J)(0, 0) = 100.0 / (y[0] * y[0]); }, "price-in-cents");
+  cents.set_variable_scale(Vector::Constant(1, 100.0));
+  const FunctionMCP units = PriceMcp();
+  for (double p : {1.0, 1.0 + 1e-11, 1.0 + 1e-9, 1.001}) {
+    const Judgement a = JudgeMCP(units, ExpectedOutcome::kSolvable, {Reference(Certificate::kUnique, 1.0)}, false,
+                                 SolveStatus::kSolved, Vector::Constant(1, p), 1e-10);
+    const Judgement b = JudgeMCP(cents, ExpectedOutcome::kSolvable, {Reference(Certificate::kUnique, 100.0)}, false,
+                                 SolveStatus::kSolved, Vector::Constant(1, 100.0 * p), 1e-10);
+    EXPECT_EQ(a.verdict, b.verdict) << p;
+    EXPECT_NEAR(a.forward_error, b.forward_error, 1e-13) << p;
+    EXPECT_DOUBLE_EQ(a.forward_allowance, b.forward_allowance) << p;
+    EXPECT_NEAR(a.residual.scaled, b.residual.scaled, 1e-13 * (1.0 + a.residual.scaled)) << p;
+  }
 }
 
 TEST(SolveStatusNames, RoundTripAndStayStable) {

@@ -1,6 +1,9 @@
 #include "solvers/core/verdict.h"
 
 #include <algorithm>
+#include <string>
+
+#include "solvers/core/solver.h"
 
 namespace smcbench {
 
@@ -91,6 +94,71 @@ Judgement Judge(const BoxMLCP& problem, ExpectedOutcome expected, const Referenc
   if (status == SolveStatus::kSolved) {
     if (expected == ExpectedOutcome::kInfeasible || !has_z || !(j.residual.rel <= tolerance) ||
         !(j.residual.scaled <= tolerance)) {
+      j.verdict = Verdict::kWronglyClaimed;
+    } else if (j.forward_allowance == j.forward_allowance && !(j.forward_error <= j.forward_allowance)) {
+      j.verdict = Verdict::kInaccurate;
+    } else {
+      j.verdict = Verdict::kSolved;
+    }
+  } else if (status == SolveStatus::kInfeasible && known_solvable) {
+    j.verdict = Verdict::kWronglyRefused;
+  } else {
+    j.verdict = expected == ExpectedOutcome::kInfeasible ? Verdict::kCorrectlyRefused : Verdict::kFailed;
+  }
+  return j;
+}
+
+namespace {
+// max_i |x_i| / c_i (c empty: 1): a length in the variables' units (MCP::variable_scale).
+double NormInUnits(const Vector& x, const Vector& c) {
+  double m = 0.0;
+  for (Eigen::Index i = 0; i < x.size(); ++i) {
+    const double a = std::abs(x[i]) / (c.size() == x.size() ? c[i] : 1.0);
+    if (!(a <= kInf)) return kInf;  // NaN
+    m = std::max(m, a);
+  }
+  return m;
+}
+}  // namespace
+
+Judgement JudgeMCP(const MCP& problem, ExpectedOutcome expected, const std::vector<ReferenceSolution>& references,
+                   bool references_complete, SolveStatus status, const Vector& z, double tolerance) {
+  Judgement j;
+  const bool has_z = z.size() == problem.size();
+  const Vector& c = problem.variable_scale();
+  if (has_z) {
+    Vector F;
+    McpMeritWorkspace workspace;
+    std::string why;
+    McpMerit(problem, z, &F, &workspace, &j.residual, &why);  // on failure the residual stays +∞: not solved
+    // The reference the answer is judged against: the nearest verified one when every solution is listed, else the
+    // one certified unique.
+    const ReferenceSolution* reference = nullptr;
+    double nearest = kInf;
+    for (const ReferenceSolution& candidate : references) {
+      if (candidate.z.size() != z.size()) continue;
+      if (references_complete ? candidate.verified() : candidate.unique()) {
+        const double error = NormInUnits(z - candidate.z, c);
+        if (reference == nullptr || error < nearest) {
+          reference = &candidate;
+          nearest = error;
+        }
+        if (!references_complete) break;
+      }
+    }
+    if (reference != nullptr) {
+      // ForwardErrorAllowance measured in the variables' units: with c = 1 it is exactly the box's.
+      const double z_star_norm = NormInUnits(reference->z, c);
+      j.forward_error = nearest;
+      j.forward_error_rel = nearest / std::max(1.0, z_star_norm);
+      j.forward_allowance =
+          kForwardErrorFactor * std::max(1.0, reference->condition) * tolerance * (1.0 + z_star_norm);
+    }
+  }
+  bool known_solvable = expected == ExpectedOutcome::kSolvable;
+  for (const ReferenceSolution& reference : references) known_solvable = known_solvable || reference.verified();
+  if (status == SolveStatus::kSolved) {
+    if (expected == ExpectedOutcome::kInfeasible || !has_z || !(j.residual.scaled <= tolerance)) {
       j.verdict = Verdict::kWronglyClaimed;
     } else if (j.forward_allowance == j.forward_allowance && !(j.forward_error <= j.forward_allowance)) {
       j.verdict = Verdict::kInaccurate;

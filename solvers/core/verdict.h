@@ -90,10 +90,14 @@ struct Judgement {
 Judgement Judge(const BoxMLCP& problem, ExpectedOutcome expected, const ReferenceSolution* reference,
                 SolveStatus status, const Vector& z, double tolerance);
 
-// The verdict on a nonlinear MCP, with the same meaning as Judge: the residuals are recomputed from z here, "solved"
-// requires the scale-free residual (Residual::scaled, McpScaledResidual with the Jacobian at z) ≤ tol, and the
-// forward error is judged against the nearest reference when references_complete (every solution is listed), or
-// against the single reference when it is certified unique; references may be empty.
+// The verdict on a nonlinear MCP, with the same meaning as Judge: the residuals are recomputed from z here (F and
+// the Jacobian at z: McpMerit), "solved" requires the scale-free residual (Residual::scaled, McpScaledResidual) ≤ tol
+// and nothing else of the residuals: Residual::rel (relative to 1 + ‖F(Π(0))‖∞) is kept as information, since a
+// positive scaling of F's rows changes it and must not change a verdict. The forward error is judged against the
+// nearest verified reference when references_complete (every solution is listed), else against the first reference
+// certified unique; references may be empty. It is measured in the variables' units c (MCP::variable_scale; empty:
+// 1): forward_error = max_i |z_i − z*_i|/c_i, allowance 10·max(1, μ)·tol·(1 + max_i |z*_i|/c_i), μ =
+// ‖(D⁻¹ J_FF C_F)⁻¹‖∞ at z* (the box's condition with M = J C), so the verdict survives a change of units.
 Judgement JudgeMCP(const MCP& problem, ExpectedOutcome expected, const std::vector<ReferenceSolution>& references,
                    bool references_complete, SolveStatus status, const Vector& z, double tolerance);
 

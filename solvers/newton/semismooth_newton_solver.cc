@@ -16,7 +16,17 @@
 //   (Solver's base), and the test is the base's verdict on that problem: its residual r, in units of z, at most
 //   tol·(1 + ‖z‖∞) (Residual::scaled) and tol·(1 + ‖q‖∞) (Residual::rel), i.e. r ≤ tol·(1 + min(‖z‖∞, ‖q‖∞)).
 //   1 + ‖q‖∞ alone would let a problem with small M (W = O(h)) stop at errors of order tol/h in z, 1 + ‖z‖∞ alone
-//   a runaway z. An MCP has no row scale: its residual is relative to 1 + ‖F(Π(0))‖∞, as the base measures it.
+//   a runaway z. A nonlinear MCP stops on the base's own verdict: the scale-free residual McpScaledResidual (rows
+//   divided by the row scales of ∇F at the iterate, variables in their units c) ≤ tol. ∇F at the iterate is what the
+//   next Newton step needs anyway, so it is evaluated before the test and reused by the step: the test costs no
+//   evaluation of F or ∇F except ∇F at the final point (and at its projection onto the box, when the iterate lies
+//   outside). Newton therefore neither stops at a point the base would downgrade nor runs on past one it accepts.
+// Units of an MCP: the FB function, its merit, the descent tests, the regularization and the proximal term all
+//   depend on the scaling of F's rows and on the units of z, which a verdict must not. So a nonlinear MCP is solved
+//   in y = z/c (c = MCP::variable_scale, default 1) as G(y) = D⁻¹F(c∘y), D = diag(d) the row scales of ∇F (in units
+//   c) at the starting point: G's Jacobian D⁻¹∇F C has rows of largest entry 1 there, and every quantity above is
+//   the same, up to rounding, for any positive scaling of F's rows and any change of units stated through c.
+//   (The scale-free residual of the problem in y is the problem's own, so the stopping test is unchanged by it.)
 // Safeguard (Billups 1995, ch. 3, "proximal perturbation"): Psi can have local minimizers that are not
 // solutions. Billups' example F(x) = (x − 1)² − 1.01, x ≥ 0, from x = 0 ends at x ≈ 1 − √1.01 ≈ −0.005, a
 // minimizer of Psi outside the box. When the line search fails or Psi stagnates, the solver solves the
@@ -105,8 +115,8 @@ bool SufficientDescent(double gd, double norm_d, double rho, double p) {
 bool IsHardFailure(Exit e) { return e == Exit::kNumericalFailure || e == Exit::kTimeLimit || e == Exit::kDiverged; }
 
 // Status and message for a loop exit that is not convergence.
-void ReportExit(Exit exit, const char* detail, int iterations, int budget, int rounds, double residual_rel,
-                SolveResult* result) {
+void ReportExit(Exit exit, const char* detail, int iterations, int budget, int rounds, const char* measure,
+                double residual, SolveResult* result) {
   if (exit == Exit::kConverged) {
     result->status = SolveStatus::kSolved;
     return;
@@ -143,7 +153,7 @@ void ReportExit(Exit exit, const char* detail, int iterations, int budget, int r
   }
   s << " after " << iterations << " iterations";
   if (rounds > 0) s << "; " << rounds << " proximal-perturbation rounds did not recover";
-  s << "; best relative natural residual " << residual_rel;
+  s << "; best " << measure << " " << residual;
   result->message = s.str();
 }
 
@@ -218,7 +228,15 @@ struct SemismoothNewtonSolver::Workspace {
   Vector row_scale;             // s_i: Phi_i uses s_i·F_i (see ComputeRowScaling)
   Vector jac_row_max;           // max_j |∂F_i/∂z_j| at the start (row equilibration of the dense LU)
   Vector row_eq;                // equilibration factors of the current reduced rows
-  double best_residual = kInf;  // original natural residual at zbest, relative (Relative)
+  double best_residual = kInf;  // the stopping measure at zbest (Relative, or the MCP's scale-free residual)
+  Vector mcp_row_scales;        // MCP: McpRowScales of ∇G at the point last measured (StopMeasure)
+  // MCP: Newton runs on y = z/c with G(y) = D⁻¹F(c∘y) (the file comment): the units c, 1/d of the row scales d of
+  // ∇F at the start, the bounds l/c, u/c, and c∘y (mutable: EvalF is const).
+  bool mcp_units = false;  // c was declared (else c = 1 and y = z)
+  Vector mcp_c, mcp_inv_d, mcp_l, mcp_u;
+  mutable Vector mcp_z;
+  bool jacobian_current = false;     // MCP: Jd/Js hold ∇G at z (UpdateJacobian need not evaluate it again)
+  bool projection_verified = false;  // MCP: the last Loop returned converged with Π(z) checked (zt, Ft hold it)
 
   // ---- Dense linear algebra ----
   DenseMatrix A;         // n×n LU buffer; the leading |R|×|R| block is used
@@ -253,7 +271,8 @@ struct SemismoothNewtonSolver::Workspace {
     if (n == size && z.size() == size) return;
     n = size;
     for (Vector* x : {&z, &F, &Phi, &Da, &Db,   &g,     &d,   &Md,        &zt,          &Ft,
-                      &v, &w, &e,   &Je, &zbar, &zbest, &rhs, &row_scale, &jac_row_max, &row_eq}) {
+                      &v, &w, &e,   &Je, &zbar, &zbest, &rhs, &row_scale, &jac_row_max, &row_eq,
+                      &mcp_row_scales, &mcp_c, &mcp_inv_d, &mcp_l, &mcp_u, &mcp_z}) {
       x->resize(n);
     }
     perm.resize(n);
@@ -270,27 +289,51 @@ struct SemismoothNewtonSolver::Workspace {
     if (lcp) {
       lcp->Affine(x, out);
     } else {
-      mcp->Evaluate(x, out);
+      // G(y) = D⁻¹F(c∘y).
+      if (mcp_units) {
+        mcp_z = mcp_c.cwiseProduct(x);
+        mcp->Evaluate(mcp_z, out);
+      } else {
+        mcp->Evaluate(x, out);
+      }
+      out->array() *= mcp_inv_d.array();
     }
     return out->allFinite();
   }
 
-  // Refreshes Jd/Js at z for an MCP (an LCP's Jacobian is M, fixed at setup). False on a malformed Jacobian.
+  // Refreshes Jd/Js at z for an MCP (an LCP's Jacobian is M, fixed at setup), unless they already hold ∇G(z).
+  // False on a malformed Jacobian.
   bool UpdateJacobian() {
-    if (lcp) return true;
+    if (lcp || jacobian_current) return true;
+    jacobian_current = JacobianAt(z);
+    return jacobian_current;
+  }
+  // Jd/Js ← ∇G(y) = D⁻¹ ∇F(c∘y) C of the MCP at y = x. False on a malformed Jacobian.
+  bool JacobianAt(const Vector& x) {
+    const Vector* at = &x;
+    if (mcp_units) {
+      mcp_z = mcp_c.cwiseProduct(x);
+      at = &mcp_z;
+    }
     if (!native_sparse) {
       if (J_dense.rows() != n || J_dense.cols() != n) J_dense.resize(n, n);
-      mcp->JacobianDense(z, &J_dense);
+      mcp->JacobianDense(*at, &J_dense);
       if (J_dense.rows() != n || J_dense.cols() != n) return false;
+      if (mcp_units) J_dense *= mcp_c.asDiagonal();
+      J_dense.array().colwise() *= mcp_inv_d.array();
       Jd = &J_dense;
       if (!dense_la) {
         J_sparse = J_dense.sparseView();  // forced sparse LA on dense data: converted every iteration
         Js = &J_sparse;
       }
     } else {
-      mcp->JacobianSparse(z, &J_sparse);
+      mcp->JacobianSparse(*at, &J_sparse);
       if (J_sparse.rows() != n || J_sparse.cols() != n) return false;
       J_sparse.makeCompressed();
+      for (int k = 0; k < J_sparse.outerSize(); ++k) {
+        const double c = mcp_units ? mcp_c[k] : 1.0;
+        for (SparseMatrix::InnerIterator it(J_sparse, k); it; ++it) it.valueRef() *= mcp_inv_d[it.row()] * c;
+      }
       Js = &J_sparse;
       if (dense_la) {
         CopySparseToDense(J_sparse);
@@ -392,11 +435,37 @@ struct SemismoothNewtonSolver::Workspace {
   double Relative(double r, const Vector& x) const {
     return z_relative ? r / std::min(1.0 + x.cwiseAbs().maxCoeff(), scale) : r / scale;
   }
-  // Relative residuals need not decrease with abs ones, so the best iterate is the one with the smallest relative.
-  void TrackBest(double original_residual) {
-    const double relative = Relative(original_residual, z);
-    if (relative < best_residual) {
-      best_residual = relative;
+  // The MCP's stopping measure at (y, G(y)) with Jd/Js = ∇G(y): the base's verdict McpScaledResidual at z = c∘y,
+  // computed in y (where the units are 1 and the row scales of ∇F at z are d∘those of ∇G: the same number up to
+  // rounding).
+  double StopMeasure(const Vector& x, const Vector& Fx) {
+    if (native_sparse) {
+      McpRowScales(*Js, Vector(), &mcp_row_scales);
+    } else {
+      McpRowScales(*Jd, Vector(), &mcp_row_scales);
+    }
+    return McpScaledResidual(x, Fx, *l, *u, mcp_row_scales, Vector());
+  }
+  // Loop's MCP stopping test, out of line so that the box-MLCP loop compiles as it did: ∇G(z), which the step
+  // needs anyway, first, then the base's verdict at z. A perturbed solve (λ > 0) that meets the original problem's
+  // test ends too (Run then accepts it at once). 1: converged, 0: not, −1: malformed Jacobian.
+  [[gnu::noinline]] int McpConvergence(double r, double target_abs, double* measure) {
+    if (!UpdateJacobian()) return -1;
+    *measure = StopMeasure(z, F);
+    TrackBest(*measure);
+    return *measure <= tolerance || (lambda > 0.0 && r <= target_abs) ? 1 : 0;
+  }
+  // ProjectionConverged for an MCP whose z lies outside the box (zt = Π(z)), out of line like McpConvergence. ∇G at
+  // Π(z) replaces ∇G(z) in Jd/Js: the next UpdateJacobian evaluates it at z again.
+  [[gnu::noinline]] bool McpProjectionConverged() {
+    jacobian_current = false;
+    return EvalF(zt, &Ft) && JacobianAt(zt) && StopMeasure(zt, Ft) <= tolerance;
+  }
+  // The stopping measure need not decrease with the merit function, so the best iterate is the one where it is
+  // smallest.
+  void TrackBest(double measure) {
+    if (measure < best_residual) {
+      best_residual = measure;
       zbest = z;
     }
   }
@@ -654,9 +723,20 @@ struct SemismoothNewtonSolver::Workspace {
       // line search is not mistaken for stagnation; with memory 1 this is Psi itself.
       psi_window[k % (window + 1)] = ReferenceMerit();
       double r = ResidualOfCurrent(z, F);
-      const double r_original = lambda == 0.0 ? r : NaturalResidualNorm(z, F, *l, *u);
-      TrackBest(r_original);
-      bool converged = lambda == 0.0 ? Relative(r, z) <= tolerance : r <= target_abs;
+      bool converged;
+      double measure = 0.0;  // MCP: the stopping measure of the original problem at z
+      if (mcp != nullptr) {
+        const int test = McpConvergence(r, target_abs, &measure);
+        if (test < 0) {
+          failure_detail = "the MCP Jacobian has the wrong size";
+          return Exit::kNumericalFailure;
+        }
+        converged = test > 0;
+      } else {
+        const double r_original = lambda == 0.0 ? r : NaturalResidualNorm(z, F, *l, *u);
+        TrackBest(Relative(r_original, z));
+        converged = lambda == 0.0 ? Relative(r, z) <= tolerance : r <= target_abs;
+      }
       if (converged && F_is_incremental) {
         // The accumulated F + t M d may differ from M z + q by rounding: confirm on a fresh product.
         EvalF(z, &F);
@@ -668,7 +748,10 @@ struct SemismoothNewtonSolver::Workspace {
       // FB iterates may sit outside [l, u] by up to the tolerance; the returned point is projected onto the
       // box (Conclude). If the projection would break the tolerance, polish with a few more Newton steps,
       // which near the solution shrink the infeasibility quadratically.
-      if (converged && (lambda > 0.0 || polish_left <= 0 || ProjectionConverged())) return Exit::kConverged;
+      if (converged && (lambda > 0.0 || polish_left <= 0 || ProjectionConverged())) {
+        if (mcp != nullptr) projection_verified = lambda == 0.0 && polish_left > 0;
+        return Exit::kConverged;
+      }
       if (converged) --polish_left;
       if (k >= local_budget || iterations >= budget) return Exit::kBudget;
       if (owner->TimeLimitReached()) return Exit::kTimeLimit;
@@ -738,7 +821,7 @@ struct SemismoothNewtonSolver::Workspace {
       }
       if (verbosity >= 2) {
         std::fprintf(stderr, "newton %4d%s psi %.3e res %.3e step %s t %.2e system %d\n", iterations,
-                     lambda > 0.0 ? " (prox)" : "", psi, Relative(r, z),
+                     lambda > 0.0 ? " (prox)" : "", psi, mcp != nullptr ? measure : Relative(r, z),
                      gradient      ? "grad  "
                      : regularized ? "reg   "
                                    : "newton",
@@ -762,6 +845,7 @@ struct SemismoothNewtonSolver::Workspace {
       z.swap(zt);
       F.swap(Ft);
       F_is_incremental = lcp != nullptr;
+      jacobian_current = false;
       psi = psi_new;
       PushMemory(psi);
       // Watchdog for the non-monotone search: if the memory window passed without a new best merit value,
@@ -789,6 +873,7 @@ struct SemismoothNewtonSolver::Workspace {
   // Recomputes F at z (after z was reset). False if not finite.
   bool ResetF() {
     F_is_incremental = false;
+    jacobian_current = false;
     return EvalF(z, &F);
   }
 
@@ -826,7 +911,9 @@ struct SemismoothNewtonSolver::Workspace {
       zbar = z;
       const double r0 = NaturalResidualNorm(z, F, *l, *u);
       lambda = lambda_round;
-      const double unit = z_relative ? std::min(1.0 + z.cwiseAbs().maxCoeff(), scale) : scale;  // Relative's
+      // Relative's unit; an MCP's perturbed solves aim at tol·(1 + ‖z‖∞), the base's scale-free unit.
+      const double unit = z_relative ? std::min(1.0 + z.cwiseAbs().maxCoeff(), scale)
+                                     : (mcp != nullptr ? 1.0 + z.cwiseAbs().maxCoeff() : scale);
       const Exit inner = Loop(std::max(0.5 * tolerance * unit, 0.1 * r0), o.proximal_inner_iterations, true);
       lambda = 0.0;
       if (verbosity >= 2) {
@@ -880,6 +967,7 @@ struct SemismoothNewtonSolver::Workspace {
       zt[i] = std::min(std::max(z[i], (*l)[i]), (*u)[i]);
       outside |= zt[i] != z[i];
     }
+    if (mcp != nullptr && outside) return McpProjectionConverged();
     return !outside || (EvalF(zt, &Ft) && Relative(NaturalResidualNorm(zt, Ft, *l, *u), zt) <= tolerance);
   }
 
@@ -887,14 +975,15 @@ struct SemismoothNewtonSolver::Workspace {
   // not be feasible) is replaced by its projection when that still meets the tolerance.
   void Conclude(Exit exit, SolveResult* result) {
     if (exit == Exit::kConverged) {
-      if (ProjectionConverged()) z.swap(zt);  // else z itself meets the tolerance but lies slightly outside
+      // An MCP whose Loop already checked Π(z) is not evaluated there a second time.
+      if ((mcp != nullptr && projection_verified) || ProjectionConverged()) z.swap(zt);  // else z passes, outside
     } else if (best_residual < kInf) {
       z = zbest;
     }
     result->z = z;
     result->iterations = iterations;
-    ReportExit(exit, failure_detail, iterations, budget, safeguard_failed ? proximal_rounds : 0, best_residual,
-               result);
+    ReportExit(exit, failure_detail, iterations, budget, safeguard_failed ? proximal_rounds : 0,
+               mcp != nullptr ? "scale-free residual" : "relative natural residual", best_residual, result);
     result->SetDetail("backtracks", backtracks);
     result->SetDetail("gradient_steps", gradient_steps);
     result->SetDetail("proximal_rounds", proximal_rounds);
@@ -997,6 +1086,8 @@ void SemismoothNewtonSolver::RunAndConclude(const SolverOptions& options, SolveR
   ws.proximal_rounds = ws.regularized_steps = 0;
   ws.safeguard_failed = false;
   ws.failure_detail = "";
+  ws.jacobian_current = false;
+  ws.projection_verified = false;
   ws.z = result->z;
   ws.Conclude(ws.Run(), result);
 }
@@ -1032,13 +1123,55 @@ void SemismoothNewtonSolver::DoSolveMCP(const MCP& problem, const SolverOptions&
   ws.lcp = nullptr;
   ws.mcp = &problem;
   ws.symmetric_jacobian = false;  // an MCP Jacobian is not assumed symmetric
-  // The base class measures an MCP relative to 1 + ‖F(Π(0))‖∞; use the same scale for the stopping test.
-  for (int i = 0; i < n; ++i) ws.zt[i] = std::min(std::max(0.0, problem.l()[i]), problem.u()[i]);
-  problem.Evaluate(ws.zt, &ws.Ft);
-  const double scale = 1.0 + ws.Ft.cwiseAbs().maxCoeff();
-  ws.scale = std::isfinite(scale) ? scale : 1.0;
+  ws.scale = 1.0;                 // unused: an MCP stops on the scale-free residual (StopMeasure)
   ws.z_relative = false;
+  // Units and row scales (the file comment): y = z/c, G(y) = D⁻¹F(c∘y), d = McpRowScales of ∇F at the start, so
+  // that Newton's iterates do not depend on the scaling of F's rows or on the stated units of z.
+  const Vector& c = problem.variable_scale();
+  ws.mcp_units = c.size() == n;
+  if (ws.mcp_units) {
+    ws.mcp_c = c;
+  } else {
+    ws.mcp_c.setOnes();
+  }
+  ws.mcp_l = problem.l().cwiseQuotient(ws.mcp_c);
+  ws.mcp_u = problem.u().cwiseQuotient(ws.mcp_c);
+  ws.l = &ws.mcp_l;
+  ws.u = &ws.mcp_u;
+  ws.mcp_inv_d.setOnes();
+  if (ws.native_sparse) {
+    problem.JacobianSparse(result->z, &ws.J_sparse);
+    if (ws.J_sparse.rows() == n && ws.J_sparse.cols() == n) McpRowScales(ws.J_sparse, c, &ws.mcp_row_scales);
+  } else {
+    if (ws.J_dense.rows() != n || ws.J_dense.cols() != n) ws.J_dense.resize(n, n);
+    problem.JacobianDense(result->z, &ws.J_dense);
+    if (ws.J_dense.rows() == n && ws.J_dense.cols() == n) McpRowScales(ws.J_dense, c, &ws.mcp_row_scales);
+  }
+  // A malformed Jacobian is reported by Run; a non-finite row leaves that row unscaled.
+  const bool scaled = ws.native_sparse ? ws.J_sparse.rows() == n && ws.J_sparse.cols() == n
+                                       : ws.J_dense.rows() == n && ws.J_dense.cols() == n;
+  for (int i = 0; scaled && i < n; ++i) {
+    const double d = ws.mcp_row_scales[i];
+    ws.mcp_inv_d[i] = d > 0.0 && d < kInf ? 1.0 / d : 1.0;
+  }
+  if (ws.mcp_units) result->z.array() /= ws.mcp_c.array();
   RunAndConclude(options, result);
+  if (ws.mcp_units) {
+    // Back to z = c∘y; a y on its bound l/c or u/c maps onto l or u exactly.
+    for (int i = 0; i < n; ++i) {
+      const double y = result->z[i];
+      double& z = result->z[i];
+      if (y == ws.mcp_l[i]) {
+        z = problem.l()[i];
+      } else if (y == ws.mcp_u[i]) {
+        z = problem.u()[i];
+      } else if (y > ws.mcp_l[i] && y < ws.mcp_u[i]) {
+        z = std::min(std::max(c[i] * y, problem.l()[i]), problem.u()[i]);  // inside stays inside despite rounding
+      } else {
+        z = c[i] * y;
+      }
+    }
+  }
 }
 
 }  // namespace smcbench

@@ -72,7 +72,8 @@ struct NewtonOptions {
 
 // Solves a box-MLCP (F = Mz + q) or a nonlinear MCP. iterations = Newton iterations (each takes one step along
 // a Newton, regularized or gradient direction), summed over proximal rounds; default budget 200
-// (options.max_iterations ≤ 0). A failure returns the iterate with the smallest natural residual seen.
+// (options.max_iterations ≤ 0). A failure returns the iterate with the smallest stopping measure seen (the relative
+// natural residual of a box-MLCP, the scale-free residual of an MCP, which is solved in its stated units).
 // Details: "backtracks", "gradient_steps", "proximal_rounds", "regularized_steps",
 // "factorizations", "max_system_size".
 class SemismoothNewtonSolver final : public BackendWithOptions<NewtonOptions> {

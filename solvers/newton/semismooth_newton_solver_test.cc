@@ -642,6 +642,205 @@ TEST(NewtonSolverMcp, NanInFIsNumericalFailure) {
   EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
 }
 
+// ---- MCPs whose F is huge at Π(0) but modest near the solution -------------------------------------------------
+// A stopping test relative to 1 + ‖F(Π(0))‖∞ stopped such problems far from their solution and called it solved.
+// Newton now stops on the base's scale-free residual: every "solved" must be the known solution.
+
+// A Cobb–Douglas exchange economy (Scarf's general-equilibrium setting): household h owns e_h and spends the share
+// α_hi of its income p·e_h on good i. F_i(p) = E_i − Σ_h α_hi (p·e_h)/p_i is excess supply, prices p_i ≥ 1e-8 (F is
+// undefined at 0), good 0 the numéraire (l = u = 1). At Π(0) the demand for every other good is ~1e8 times its
+// supply. The equilibrium solves the linear system p_i E_i = Σ_j B_ij p_j, B = Σ_h α_h e_hᵀ (computed here
+// independently).
+class CobbDouglasEconomy final : public MCP {
+ public:
+  CobbDouglasEconomy(DenseMatrix alpha, DenseMatrix endowment)
+      : MCP(Bounds(endowment.cols(), true), Bounds(endowment.cols(), false), "cobb-douglas"),
+        alpha_(std::move(alpha)), e_(std::move(endowment)), supply_(e_.colwise().sum().transpose()),
+        income_(e_.rows()) {}
+  void Evaluate(const Vector& p, Vector* F) const override {
+    income_.noalias() = e_ * p;
+    for (int i = 0; i < size(); ++i) (*F)[i] = supply_[i] - alpha_.col(i).dot(income_) / p[i];
+  }
+  void JacobianDense(const Vector& p, DenseMatrix* J) const override {
+    income_.noalias() = e_ * p;
+    for (int i = 0; i < size(); ++i) {
+      for (int j = 0; j < size(); ++j) (*J)(i, j) = -alpha_.col(i).dot(e_.col(j)) / p[i];
+      (*J)(i, i) += alpha_.col(i).dot(income_) / (p[i] * p[i]);
+    }
+  }
+  // The equilibrium with p_0 = 1: rows 1..n−1 of (diag(E) − B) p = 0.
+  Vector Equilibrium() const {
+    const int n = size();
+    const DenseMatrix B = alpha_.transpose() * e_;
+    DenseMatrix A = -B;
+    A.diagonal() += supply_;
+    Vector p(n);
+    p[0] = 1.0;
+    p.tail(n - 1) = A.bottomRightCorner(n - 1, n - 1).fullPivLu().solve(-A.bottomLeftCorner(n - 1, 1));
+    return p;
+  }
+
+ private:
+  static Vector Bounds(Eigen::Index n, bool lower) {
+    Vector b = Vector::Constant(n, lower ? 1e-8 : kInf);
+    b[0] = 1.0;
+    return b;
+  }
+  DenseMatrix alpha_, e_;
+  Vector supply_;
+  mutable Vector income_;  // workspace: F and J allocate nothing
+};
+
+CobbDouglasEconomy Economy() {
+  DenseMatrix alpha(3, 4), e(3, 4);
+  alpha << 0.1, 0.2, 0.3, 0.4,  //
+      0.5, 0.3, 0.1, 0.1,        //
+      0.05, 0.05, 0.1, 0.8;
+  e << 2.0, 0.0, 30.0, 0.001,  //
+      0.5, 40.0, 0.0, 0.0,      //
+      0.0, 0.3, 1.0, 100.0;
+  return CobbDouglasEconomy(alpha, e);
+}
+
+// Murphy–Sherali–Soyster (1982) Cournot–Nash oligopoly: inverse demand P(Q) = 5000^{1/γ} Q^{−1/γ}, firm i's cost
+// c_i q + β_i/(β_i + 1) L_i^{1/β_i} q^{(β_i+1)/β_i}, outputs q_i ≥ 1e-8 (P is undefined at Q = 0). F_i is firm i's
+// marginal profit with a minus sign: c_i + (L_i q_i)^{1/β_i} − P(Q) − q_i P'(Q). At Π(0), Q = n·1e-8 and P ~ 1e9.
+class CournotGame final : public MCP {
+ public:
+  CournotGame(Vector c, Vector L, Vector beta, double gamma)
+      : MCP(Vector::Constant(c.size(), 1e-8), Vector::Constant(c.size(), kInf), "cournot"), c_(std::move(c)),
+        L_(std::move(L)), beta_(std::move(beta)), gamma_(gamma) {}
+  void Evaluate(const Vector& q, Vector* F) const override {
+    const double Q = q.sum(), P = Price(Q);
+    for (int i = 0; i < size(); ++i) {
+      (*F)[i] = c_[i] + std::pow(L_[i] * q[i], 1.0 / beta_[i]) - P + q[i] * P / (gamma_ * Q);
+    }
+  }
+  void JacobianDense(const Vector& q, DenseMatrix* J) const override {
+    const double Q = q.sum(), P = Price(Q);
+    for (int i = 0; i < size(); ++i) {
+      const double row = P / (gamma_ * Q) - q[i] * (1.0 + 1.0 / gamma_) * P / (gamma_ * Q * Q);
+      J->row(i).setConstant(row);
+      (*J)(i, i) += L_[i] * std::pow(L_[i] * q[i], 1.0 / beta_[i] - 1.0) / beta_[i] + P / (gamma_ * Q);
+    }
+  }
+  // The equilibrium by nested bisection in long double: for a total Q each firm's condition is increasing in q_i
+  // (its root, or the bound, is q_i(Q)), and Σ q_i(Q) − Q is decreasing in Q. Independent of any MCP solver.
+  Vector Equilibrium() const {
+    using Real = long double;
+    const auto firm_output = [&](int i, Real Q) {
+      const Real P = std::pow(Real(5000) / Q, 1 / Real(gamma_));
+      const auto g = [&](Real q) { return c_[i] + std::pow(L_[i] * q, 1 / Real(beta_[i])) - P + q * P / (gamma_ * Q); };
+      Real lo = 1e-8L, hi = gamma_ * Q;
+      if (g(lo) >= 0) return lo;
+      for (int k = 0; k < 100; ++k) (g((lo + hi) / 2) < 0 ? lo : hi) = (lo + hi) / 2;
+      return (lo + hi) / 2;
+    };
+    const auto excess = [&](Real Q) {
+      Real sum = 0;
+      for (int i = 0; i < size(); ++i) sum += firm_output(i, Q);
+      return sum - Q;
+    };
+    Real lo = 1e-6L, hi = 1e6L;
+    for (int k = 0; k < 100; ++k) (excess(std::sqrt(lo * hi)) > 0 ? lo : hi) = std::sqrt(lo * hi);
+    const Real Q = std::sqrt(lo * hi);
+    Vector q(size());
+    for (int i = 0; i < size(); ++i) q[i] = static_cast<double>(firm_output(i, Q));
+    return q;
+  }
+
+ private:
+  double Price(double Q) const { return std::pow(5000.0 / Q, 1.0 / gamma_); }
+  Vector c_, L_, beta_;
+  double gamma_;
+};
+
+CournotGame FiveFirms() {
+  return CournotGame((Vector(5) << 10, 8, 6, 4, 2).finished(), Vector::Constant(5, 5.0),
+                     (Vector(5) << 1.2, 1.1, 1.0, 0.9, 0.8).finished(), 1.1);
+}
+
+CournotGame TenFirms() {
+  return CournotGame((Vector(10) << 5, 3, 8, 5, 1, 3, 7, 4, 6, 3).finished(), Vector::Constant(10, 10.0),
+                     (Vector(10) << 1.2, 1, 0.9, 0.6, 1.5, 1, 0.7, 1.1, 0.95, 0.75).finished(), 1.1);
+}
+
+// Every start: solved to forward error ≤ 1e-8·max(1, ‖z*‖∞), or an honest non-solved status; never "solved" away
+// from z*. Returns how many starts were solved.
+int ExpectNeverSolvedFarAway(const MCP& mcp, const Vector& z_star, const std::vector<Vector>& starts) {
+  int solved = 0;
+  for (const Vector& start : starts) {
+    SemismoothNewtonSolver solver;
+    SolverOptions options;
+    options.warm_start = start;
+    const SolveResult r = solver.Solve(mcp, options);
+    const Judgement j = JudgeMCP(mcp, ExpectedOutcome::kSolvable, {}, false, r.status, r.z, options.tolerance);
+    const double error = (r.z - z_star).cwiseAbs().maxCoeff();
+    if (r.solved()) {
+      ++solved;
+      EXPECT_EQ(j.verdict, Verdict::kSolved) << mcp.name() << " from " << start.transpose();
+      EXPECT_LE(error, 1e-8 * std::max(1.0, z_star.cwiseAbs().maxCoeff()))
+          << mcp.name() << " from " << start.transpose() << ": residual_rel " << r.residual_rel << ", scaled "
+          << r.residual_scaled;
+    }
+    EXPECT_EQ(r.residual_scaled, j.residual.scaled) << "the base and the verdict measure the same thing";
+  }
+  return solved;
+}
+
+TEST(NewtonSolverMcp, GeneralEquilibriumIsNeverSolvedFarFromItsPrices) {
+  const CobbDouglasEconomy economy = Economy();
+  const Vector p_star = economy.Equilibrium();
+  ASSERT_TRUE((p_star.array() > 1e-3).all()) << p_star.transpose();
+  Vector F(4);
+  economy.Evaluate(p_star, &F);
+  ASSERT_LE(F.cwiseAbs().maxCoeff(), 1e-10 * 150) << "the independent equilibrium solves the MCP";
+  Vector cold(4);
+  ProjectZeroOntoBox(economy.l(), economy.u(), &cold);
+  economy.Evaluate(cold, &F);
+  EXPECT_GT(F.cwiseAbs().maxCoeff(), 1e7) << "F at Π(0) is huge";
+  const std::vector<Vector> starts = {cold, Vector::Ones(4), (Vector(4) << 1, 10, 0.1, 5).finished(),
+                                      (Vector(4) << 1, 1e-3, 1e-3, 1e-3).finished()};
+  EXPECT_GE(ExpectNeverSolvedFarAway(economy, p_star, starts), 3);
+}
+
+TEST(NewtonSolverMcp, CournotNashIsNeverSolvedFarFromItsEquilibrium) {
+  const CournotGame five = FiveFirms();
+  const Vector q5 = five.Equilibrium();
+  // The published equilibrium (Murphy, Sherali, Soyster 1982; Harker 1988), 4 decimals.
+  const Vector published = (Vector(5) << 15.4293, 12.4986, 9.6635, 7.1651, 5.1326).finished();
+  EXPECT_LE((q5 - published).cwiseAbs().maxCoeff(), 1e-4) << q5.transpose();
+  EXPECT_EQ(ExpectNeverSolvedFarAway(five, q5, {Vector::Constant(5, 1e-8), Vector::Ones(5), Vector::Constant(5, 10.0)}),
+            3);
+  const CournotGame ten = TenFirms();
+  const Vector q10 = ten.Equilibrium();
+  Vector F(10);
+  ten.Evaluate(Vector::Constant(10, 1e-8), &F);
+  EXPECT_GT(F.cwiseAbs().maxCoeff(), 1e8) << "F at Π(0) is huge";
+  EXPECT_EQ(
+      ExpectNeverSolvedFarAway(ten, q10, {Vector::Constant(10, 1e-8), Vector::Ones(10), Vector::Constant(10, 10.0)}),
+      3);
+}
+
+// Newton stops on the base's own verdict: at its last iterate the base accepts, and one iteration less is an
+// iteration limit whose best point the base does not accept (Newton did not run on past an acceptable point).
+TEST(NewtonSolverMcp, StopsAtTheFirstIterateTheBaseAccepts) {
+  const CournotGame ten = TenFirms();
+  for (const Vector& start : std::vector<Vector>{Vector::Constant(10, 1e-8), Vector::Ones(10),
+                                                 Vector::Constant(10, 10.0)}) {
+    SemismoothNewtonSolver solver;
+    SolverOptions options;
+    options.warm_start = start;
+    const SolveResult r = solver.Solve(ten, options);
+    ASSERT_TRUE(r.solved()) << r.message;
+    if (r.iterations < 2) continue;  // max_iterations = 0 means the default budget
+    options.max_iterations = r.iterations - 1;
+    const SolveResult shorter = solver.Solve(ten, options);
+    EXPECT_EQ(shorter.status, SolveStatus::kIterationLimit) << shorter.message;
+    EXPECT_GT(shorter.residual_scaled, options.tolerance);
+  }
+}
+
 // ---- Small h (issue 12): relay W = h·G with a planted s* ------------------------------------------------------
 // The fixture (G, s*, the reference with μ) and the check are tests/support/small_h_relay.h.
 
