@@ -1,8 +1,9 @@
 // The MCP verdict's invariance, over every registered backend that solves nonlinear MCPs (asked of the registry:
 // info().mcp): a positive scaling of F's rows leaves an MCP's solution set unchanged, and so does a change of units
-// z = S y stated through MCP::variable_scale. So every such backend must reach the same verdict (JudgeMCP against
+// z = S y stated through MCP::variable_scale. So every backend of ours must reach the same verdict (JudgeMCP against
 // the planted, unique solution) on the transformed problem as on the problem as given: solved or not, and when
-// solved, within the forward-error allowance in the variables' units. Verdicts are compared, not bits.
+// solved, within the forward-error allowance in the variables' units; no backend, external codes included, may give
+// a wrong answer on any copy. Verdicts are compared, not bits.
 #include <gtest/gtest.h>
 
 #include <cctype>
@@ -159,6 +160,7 @@ class McpScalingInvariance : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(McpScalingInvariance, VerdictIsTheSameUnderRowScalingAndAChangeOfUnits) {
   const std::string backend = GetParam();
+  const bool external = CreateSolver(backend)->info().external;
   int solved = 0;
   for (const Planted& p : PlantedSet()) {
     const int n = static_cast<int>(p.z_star.size());
@@ -195,7 +197,12 @@ TEST_P(McpScalingInvariance, VerdictIsTheSameUnderRowScalingAndAChangeOfUnits) {
       trail << "\n  " << t.what << ": " << ToString(j.verdict) << " (" << ToString(result.status) << " "
             << result.message << "; forward error " << j.forward_error << ")";
     }
-    for (const Verdict v : verdicts) EXPECT_EQ(v, verdicts[0]) << backend << " on " << p.name << trail.str();
+    // Our backends work in the stated units and on the row-scaled F, so their verdict cannot change. An external
+    // code (info().external) runs its own algorithm on the problem as written: it must never be wrong, but whether it
+    // solves a rescaled problem is a property of that code, which the invariance is measured on, not required of.
+    if (!external) {
+      for (const Verdict v : verdicts) EXPECT_EQ(v, verdicts[0]) << backend << " on " << p.name << trail.str();
+    }
     solved += verdicts[0] == Verdict::kSolved;
   }
   EXPECT_GT(solved, 0) << backend << " solved none of the strongly monotone problems";

@@ -482,7 +482,9 @@ TEST(IpoptMcp, SparseJacobianEntryOutsideTheStartingPatternIsNamed) {
 }
 
 // An exception from F inside Ipopt's iterations reaches the caller (Ipopt would swallow it), as from every backend.
-TEST(IpoptMcp, ExceptionFromFInsideIpoptReachesTheCaller) {
+// An evaluation error of F inside Ipopt's callbacks (a std::runtime_error) ends the solve with numerical_failure and
+// its message (Solver::Solve's policy for the caller's code), and leaves the instance able to solve the next problem.
+TEST(IpoptMcp, ExceptionFromFInsideIpoptIsAStatusAndTheInstanceStaysUsable) {
   int calls = 0;
   const FunctionMCP mcp(
       Vector::Zero(1), Vector::Constant(1, kInf),
@@ -494,7 +496,9 @@ TEST(IpoptMcp, ExceptionFromFInsideIpoptReachesTheCaller) {
   IpoptQpSolver solver;
   SolverOptions o;
   o.warm_start = Vector::Constant(1, 3.0);
-  EXPECT_THROW(solver.Solve(mcp, o), std::runtime_error);
+  const SolveResult failed = solver.Solve(mcp, o);
+  EXPECT_EQ(failed.status, SolveStatus::kNumericalFailure);
+  EXPECT_NE(failed.message.find("F failed"), std::string::npos) << failed.message;
   calls = -1000;  // the same instance solves the next problem normally
   const SolveResult r = solver.Solve(mcp, o);
   ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
