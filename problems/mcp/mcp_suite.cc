@@ -8,6 +8,7 @@
 #include "problems/mcp/classic_mcps.h"
 #include "problems/mcp/mcp_families.h"
 #include "problems/mcp/scene_step_mcps.h"
+#include "solvers/core/edit_distance.h"
 #include "solvers/reference/mcp_certify.h"
 #include "solvers/registry/registry.h"
 
@@ -17,22 +18,7 @@ namespace {
 constexpr BuiltinMcpMaker kMakers[] = {MakeClassicMcp, MakeFamilyMcp, MakeSceneStepMcp};
 constexpr int kMaxCertifiedSize = 64;
 constexpr double kLargeCandidateResidual = 1e-6;
-
-// Levenshtein distance, to suggest the ids closest to an unknown one.
-std::size_t Distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t up = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = up;
-    }
-  }
-  return row[b.size()];
-}
+constexpr double kCandidateTimeLimitSeconds = 20.0;  // per backend and start
 
 // Ids of the fixed tables (the scenes' ids need a run, so the suggestion lists their form instead).
 std::vector<std::string> SuggestableIds() {
@@ -50,12 +36,8 @@ BuiltinMcpEntry MakeEntry(const std::string& id) {
   for (BuiltinMcpMaker make : kMakers) {
     if (make(id, &entry)) return entry;
   }
-  std::vector<std::pair<std::size_t, std::string>> ranked;
-  for (const std::string& known : SuggestableIds()) ranked.emplace_back(Distance(id, known), known);
-  std::stable_sort(ranked.begin(), ranked.end(),
-                   [](const auto& a, const auto& b) { return a.first < b.first; });
   std::string message = "MakeBuiltinMcp: unknown id '" + id + "'; closest built-in ids:";
-  for (std::size_t k = 0; k < ranked.size() && k < 3; ++k) message += " " + ranked[k].second;
+  for (const std::string& known : NearestNames(id, SuggestableIds(), 3)) message += " " + known;
   throw InvalidInputError(message);
 }
 
@@ -94,9 +76,13 @@ void AttachReferences(McpLibraryProblem* p, const std::vector<Vector>& known_sol
   for (std::string_view name : SolverNames()) {
     std::unique_ptr<Solver> solver = CreateSolver(name);
     if (!solver->info().mcp) continue;
+    // A large sparse problem takes candidates from the backends that work on its sparse Jacobian in our process
+    // (an external code's dense method on 10⁴ unknowns is minutes per start, and cannot be interrupted).
+    if (!small && (!solver->info().sparse || solver->info().external)) continue;
     for (const Vector& start : p->starts) {
       SolverOptions solver_options;
       solver_options.warm_start = start;
+      solver_options.time_limit_seconds = kCandidateTimeLimitSeconds;
       const SolveResult result = solver->Solve(*mcp, solver_options);
       if (result.z.size() != n || !result.z.allFinite()) continue;
       if (small || ScaledResidual(*mcp, result.z) <= kLargeCandidateResidual) candidates.push_back(result.z);

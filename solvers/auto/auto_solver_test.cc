@@ -11,6 +11,7 @@
 #include "problems/generators/random_problems.h"
 #include "solvers/ipopt/ipopt_qp_solver.h"
 #include "solvers/psor/psor_solver.h"
+#include "tests/support/small_mcps.h"
 
 namespace smcbench {
 namespace {
@@ -135,11 +136,7 @@ TEST(AutoSolver, FreeAndFixedRowsDoNotCountTowardsEnum) {
 }
 
 TEST(AutoSolver, NonlinearMcpGoesToNewton) {
-  // F(x) = (x − 1)² − 1.01, x ≥ 0: solution 1 + √1.01 (Billups 1995).
-  const FunctionMCP mcp(
-      Vector::Zero(1), Vector::Constant(1, kInf),
-      [](const Vector& x, Vector* F) { (*F)[0] = (x[0] - 1.0) * (x[0] - 1.0) - 1.01; },
-      [](const Vector& x, DenseMatrix* J) { (*J)(0, 0) = 2.0 * (x[0] - 1.0); }, "billups");
+  const FunctionMCP mcp = BillupsMcp();  // solution 1 + √1.01
   AutoSolver solver;
   const SolveResult r = solver.Solve(mcp);
   ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
@@ -149,46 +146,14 @@ TEST(AutoSolver, NonlinearMcpGoesToNewton) {
 
 // ---------------------------------------------------------------- the MCP chain: newton → newton-min → ipopt
 
-// Billups' example (1995): F(x) = (x − 1)² − 1.01, x ≥ 0, solution 1 + √1.01.
-FunctionMCP Billups() {
-  return FunctionMCP(
-      Vector::Zero(1), Vector::Constant(1, kInf),
-      [](const Vector& x, Vector* F) { (*F)[0] = (x[0] - 1.0) * (x[0] - 1.0) - 1.01; },
-      [](const Vector& x, DenseMatrix* J) { (*J)(0, 0) = 2.0 * (x[0] - 1.0); }, "billups");
-}
 
-// Josephy's NCP (MCPLIB "josephy"): unique nondegenerate solution (√6/2, 0, 0, 1/2), MCPLIB's start (1, 1, 1, 1).
-// With a budget of one iteration newton stops at its iteration limit (a failure that proves nothing), while
-// ipopt's Newton refinement of its first iterate reaches the solution.
-FunctionMCP Josephy() {
-  return FunctionMCP(
-      Vector::Zero(4), Vector::Constant(4, kInf),
-      [](const Vector& x, Vector* F) {
-        (*F)[0] = 3 * x[0] * x[0] + 2 * x[0] * x[1] + 2 * x[1] * x[1] + x[2] + 3 * x[3] - 6;
-        (*F)[1] = 2 * x[0] * x[0] + x[0] + x[1] * x[1] + 3 * x[2] + 2 * x[3] - 2;
-        (*F)[2] = 3 * x[0] * x[0] + x[0] * x[1] + 2 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 1;
-        (*F)[3] = x[0] * x[0] + 3 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 3;
-      },
-      [](const Vector& x, DenseMatrix* J) {
-        *J << 6 * x[0] + 2 * x[1], 2 * x[0] + 4 * x[1], 1, 3,  //
-            4 * x[0] + 1, 2 * x[1], 3, 2,                      //
-            6 * x[0] + x[1], x[0] + 4 * x[1], 2, 3,            //
-            2 * x[0], 6 * x[1], 2, 3;
-      },
-      "josephy");
-}
-
+// Josephy's NCP from MCPLIB's start (1, 1, 1, 1) with a budget of one iteration: newton stops at its iteration limit
+// (a failure that proves nothing), while ipopt's Newton refinement of its first iterate reaches the solution.
 SolverOptions OneIterationFromMcplibStart() {
   SolverOptions o;
   o.warm_start = Vector::Ones(4);
   o.max_iterations = 1;
   return o;
-}
-
-Vector JosephySolution() {
-  Vector z(4);
-  z << std::sqrt(6.0) / 2, 0, 0, 0.5;
-  return z;
 }
 
 // A stand-in for a registered MCP backend that always fails without proof, counting its calls.
@@ -244,7 +209,7 @@ TEST(AutoSolverMcp, ChainSkipsNamesTheLookupDoesNotKnow) {
 
 TEST(AutoSolverMcp, AFailingFirstCandidateHandsOverToIpopt) {
   AutoSolver solver(AutoOptions{}, TestLookup(nullptr));
-  const SolveResult r = solver.Solve(Josephy(), OneIterationFromMcplibStart());
+  const SolveResult r = solver.Solve(JosephyMcp(), OneIterationFromMcplibStart());
   ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
   EXPECT_EQ(Chosen(r), AutoCandidate::kIpopt);
   EXPECT_EQ(r.GetDetail("fallbacks"), 1.0);
@@ -255,7 +220,7 @@ TEST(AutoSolverMcp, AFailingFirstCandidateHandsOverToIpopt) {
 TEST(AutoSolverMcp, EveryFailingCandidateIsTriedInOrder) {
   int calls = 0;
   AutoSolver solver(AutoOptions{}, TestLookup(&calls));
-  const SolveResult r = solver.Solve(Josephy(), OneIterationFromMcplibStart());
+  const SolveResult r = solver.Solve(JosephyMcp(), OneIterationFromMcplibStart());
   ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
   EXPECT_EQ(calls, 1);
   EXPECT_EQ(Chosen(r), AutoCandidate::kIpopt);
@@ -266,7 +231,7 @@ TEST(AutoSolverMcp, EveryFailingCandidateIsTriedInOrder) {
 TEST(AutoSolverMcp, FirstSuccessEndsTheChain) {
   int calls = 0;
   AutoSolver solver(AutoOptions{}, TestLookup(&calls));
-  const SolveResult r = solver.Solve(Billups());  // newton with its safeguard solves it
+  const SolveResult r = solver.Solve(BillupsMcp());  // newton with its safeguard solves it
   ASSERT_TRUE(r.solved()) << r.message;
   EXPECT_EQ(Chosen(r), AutoCandidate::kNewton);
   EXPECT_EQ(r.GetDetail("fallbacks"), 0.0);
@@ -277,7 +242,7 @@ TEST(AutoSolverMcp, WithoutFallbackTheFirstFailureIsTheAnswer) {
   AutoOptions o;
   o.fallback = false;
   AutoSolver solver(o, TestLookup(nullptr));
-  const SolveResult r = solver.Solve(Josephy(), OneIterationFromMcplibStart());
+  const SolveResult r = solver.Solve(JosephyMcp(), OneIterationFromMcplibStart());
   EXPECT_EQ(r.status, SolveStatus::kIterationLimit) << r.message;
   EXPECT_EQ(Chosen(r), AutoCandidate::kNewton);
   EXPECT_EQ(r.GetDetail("fallbacks"), 0.0);

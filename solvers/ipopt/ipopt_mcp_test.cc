@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "solvers/ipopt/ipopt_qp_solver.h"
+#include "tests/support/small_mcps.h"
 
 namespace smcbench {
 namespace {
@@ -154,35 +155,14 @@ class BoundedCubic final : public MCP {
   Vector S_;
 };
 
-// Josephy's NCP (MCPLIB "josephy"; Kojima & Shindo's companion problem): unique nondegenerate solution
-// (√6/2, 0, 0, 1/2).
-FunctionMCP Josephy() {
-  return FunctionMCP(
-      Vector::Zero(4), Vector::Constant(4, kInf),
-      [](const Vector& x, Vector* F) {
-        (*F)[0] = 3 * x[0] * x[0] + 2 * x[0] * x[1] + 2 * x[1] * x[1] + x[2] + 3 * x[3] - 6;
-        (*F)[1] = 2 * x[0] * x[0] + x[0] + x[1] * x[1] + 3 * x[2] + 2 * x[3] - 2;
-        (*F)[2] = 3 * x[0] * x[0] + x[0] * x[1] + 2 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 1;
-        (*F)[3] = x[0] * x[0] + 3 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 3;
-      },
-      [](const Vector& x, DenseMatrix* J) {
-        *J << 6 * x[0] + 2 * x[1], 2 * x[0] + 4 * x[1], 1, 3,  //
-            4 * x[0] + 1, 2 * x[1], 3, 2,                      //
-            6 * x[0] + x[1], x[0] + 4 * x[1], 2, 3,            //
-            2 * x[0], 6 * x[1], 2, 3;
-      },
-      "josephy");
-}
-
 TEST(IpoptMcp, InfoSaysMcp) {
   IpoptQpSolver solver;
   EXPECT_TRUE(solver.info().mcp);
 }
 
 TEST(IpoptMcp, JosephyFromPublishedStarts) {
-  const FunctionMCP mcp = Josephy();
-  Vector expected(4);
-  expected << std::sqrt(6.0) / 2, 0, 0, 0.5;
+  const FunctionMCP mcp = JosephyMcp();
+  const Vector expected = JosephySolution();
   // MCPLIB's start is (1, 1, 1, 1); the cold start Π(0) = 0 as well.
   for (const double start : {0.0, 1.0}) {
     IpoptQpSolver solver;
@@ -199,10 +179,7 @@ TEST(IpoptMcp, JosephyFromPublishedStarts) {
 // x = 0 (F = −0.01, and F decreases as x grows towards 1) it is locally infeasible, which proves nothing about the
 // MCP (numerical_failure, never infeasible); from x = 1, on the far side of F's minimum, Ipopt reaches the solution.
 TEST(IpoptMcp, BillupsLocallyInfeasibleFromZeroSolvedFromOne) {
-  const FunctionMCP mcp(
-      Vector::Zero(1), Vector::Constant(1, kInf),
-      [](const Vector& x, Vector* F) { (*F)[0] = (x[0] - 1.0) * (x[0] - 1.0) - 1.01; },
-      [](const Vector& x, DenseMatrix* J) { (*J)(0, 0) = 2.0 * (x[0] - 1.0); }, "billups");
+  const FunctionMCP mcp = BillupsMcp();
   IpoptQpSolver solver;
   const SolveResult from_zero = solver.Solve(mcp);
   EXPECT_EQ(from_zero.status, SolveStatus::kNumericalFailure) << from_zero.message;
@@ -506,7 +483,7 @@ TEST(IpoptMcp, ExceptionFromFInsideIpoptIsAStatusAndTheInstanceStaysUsable) {
 }
 
 TEST(IpoptMcp, SolvedStartNeedsNoIpoptRun) {
-  const FunctionMCP mcp = Josephy();
+  const FunctionMCP mcp = JosephyMcp();
   SolverOptions o;
   o.warm_start.resize(4);
   o.warm_start << std::sqrt(6.0) / 2, 0, 0, 0.5;

@@ -16,6 +16,7 @@
 #include "tests/support/malloc_counter.h"
 #include "tests/support/small_h_relay.h"
 #include "solvers/newton/fischer_burmeister.h"
+#include "tests/support/small_mcps.h"
 
 namespace smcbench {
 namespace {
@@ -502,16 +503,7 @@ TEST(NewtonSolver, IterationLimit) {
 
 // ---------------------------------------------------------------- nonlinear MCPs
 
-// Billups' example (thesis 1995): F(x) = (x − 1)² − 1.01, x ≥ 0; solution 1 + √1.01. From x = 0 (F = −0.01)
-// the Newton step leaves the box towards the infeasible root 1 − √1.01 ≈ −0.005 of F, where Psi has a local
-// minimizer (Psi ≈ 5e-5) that is not a solution; between it and the solution Psi rises to ≈ 1 near x = 0.9.
-FunctionMCP BillupsMcp() {
-  return FunctionMCP(
-      Vector::Zero(1), Vector::Constant(1, kInf),
-      [](const Vector& x, Vector* F) { (*F)[0] = (x[0] - 1.0) * (x[0] - 1.0) - 1.01; },
-      [](const Vector& x, DenseMatrix* J) { (*J)(0, 0) = 2.0 * (x[0] - 1.0); }, "billups");
-}
-
+// Billups' example (tests/support/small_mcps.h): the merit function's local minimizer outside the box.
 TEST(NewtonSolverMcp, BillupsWithoutSafeguardStallsHonestly) {
   const FunctionMCP mcp = BillupsMcp();
   NewtonOptions o;
@@ -535,21 +527,7 @@ TEST(NewtonSolverMcp, BillupsSolvedByProximalPerturbation) {
 
 // Josephy's NCP (MCPLIB "josephy"): nondegenerate solution (√6/2, 0, 0, 1/2).
 TEST(NewtonSolverMcp, Josephy) {
-  const FunctionMCP mcp(
-      Vector::Zero(4), Vector::Constant(4, kInf),
-      [](const Vector& x, Vector* F) {
-        (*F)[0] = 3 * x[0] * x[0] + 2 * x[0] * x[1] + 2 * x[1] * x[1] + x[2] + 3 * x[3] - 6;
-        (*F)[1] = 2 * x[0] * x[0] + x[0] + x[1] * x[1] + 3 * x[2] + 2 * x[3] - 2;
-        (*F)[2] = 3 * x[0] * x[0] + x[0] * x[1] + 2 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 1;
-        (*F)[3] = x[0] * x[0] + 3 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 3;
-      },
-      [](const Vector& x, DenseMatrix* J) {
-        *J << 6 * x[0] + 2 * x[1], 2 * x[0] + 4 * x[1], 1, 3,  //
-            4 * x[0] + 1, 2 * x[1], 3, 2,                      //
-            6 * x[0] + x[1], x[0] + 4 * x[1], 2, 3,            //
-            2 * x[0], 6 * x[1], 2, 3;
-      },
-      "josephy");
+  const FunctionMCP mcp = JosephyMcp();
   SemismoothNewtonSolver solver;
   const SolveResult r = solver.Solve(mcp);
   ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;

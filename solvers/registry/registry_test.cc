@@ -13,6 +13,7 @@
 #include "solvers/auto/auto_solver.h"
 #include "solvers/newton/semismooth_newton_solver.h"
 #include "solvers/siconos/external_backends.h"
+#include "tests/support/small_mcps.h"
 
 namespace smcbench {
 namespace {
@@ -75,23 +76,8 @@ TEST(RegistryMcp, McpBackendsAreListedWithInfoMcpAndSolveJosephy) {
   EXPECT_EQ(listed("siconos-mcp-newton-fb"), IsExternalBackend("siconos-mcp-newton-fb"));
   EXPECT_EQ(listed("siconos-mcp-newton-min"), IsExternalBackend("siconos-mcp-newton-min"));
   EXPECT_FALSE(listed("lemke"));
-  const FunctionMCP josephy(
-      Vector::Zero(4), Vector::Constant(4, kInf),
-      [](const Vector& x, Vector* F) {
-        (*F)[0] = 3 * x[0] * x[0] + 2 * x[0] * x[1] + 2 * x[1] * x[1] + x[2] + 3 * x[3] - 6;
-        (*F)[1] = 2 * x[0] * x[0] + x[0] + x[1] * x[1] + 3 * x[2] + 2 * x[3] - 2;
-        (*F)[2] = 3 * x[0] * x[0] + x[0] * x[1] + 2 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 1;
-        (*F)[3] = x[0] * x[0] + 3 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 3;
-      },
-      [](const Vector& x, DenseMatrix* J) {
-        *J << 6 * x[0] + 2 * x[1], 2 * x[0] + 4 * x[1], 1, 3,  //
-            4 * x[0] + 1, 2 * x[1], 3, 2,                      //
-            6 * x[0] + x[1], x[0] + 4 * x[1], 2, 3,            //
-            2 * x[0], 6 * x[1], 2, 3;
-      },
-      "josephy");
-  Vector expected(4);
-  expected << std::sqrt(6.0) / 2, 0, 0, 0.5;
+  const FunctionMCP josephy = JosephyMcp();
+  const Vector expected = JosephySolution();
   SolverOptions o;
   o.warm_start = Vector::Ones(4);
   for (const std::string& name : mcp_names) {

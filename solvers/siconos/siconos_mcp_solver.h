@@ -41,8 +41,10 @@ enum class SiconosMcpMethod : int {
 };
 
 struct SiconosMcpOptions {
-  // Largest rewritten problem (unknowns N; a box row counts 2) sent to Siconos, whose MCP methods are dense.
-  int max_size = 2048;
+  // Largest rewritten problem (unknowns N; a box row counts 2) sent to Siconos, whose MCP methods are dense and run
+  // in process, where our time limit cannot interrupt them: a dense factorization per iteration stays well under a
+  // second at this size.
+  int max_size = 512;
 
   bool IsValid(std::string* why) const;
 };

@@ -11,6 +11,7 @@
 
 #include "solvers/registry/registry.h"
 #include "solvers/siconos/planted_mcp_test_util.h"
+#include "tests/support/small_mcps.h"
 
 namespace smcbench {
 namespace {
@@ -67,23 +68,8 @@ TEST(SiconosMcp, PlantedSolutionWithEveryRowKindThroughTheRewriting) {
 // Josephy's NCP (MCPLIB "josephy"): unique nondegenerate solution (√6/2, 0, 0, 1/2), from MCPLIB's start
 // (1, 1, 1, 1).
 TEST(SiconosMcp, JosephyFromThePublishedStart) {
-  const FunctionMCP mcp(
-      Vector::Zero(4), Vector::Constant(4, kInf),
-      [](const Vector& x, Vector* F) {
-        (*F)[0] = 3 * x[0] * x[0] + 2 * x[0] * x[1] + 2 * x[1] * x[1] + x[2] + 3 * x[3] - 6;
-        (*F)[1] = 2 * x[0] * x[0] + x[0] + x[1] * x[1] + 3 * x[2] + 2 * x[3] - 2;
-        (*F)[2] = 3 * x[0] * x[0] + x[0] * x[1] + 2 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 1;
-        (*F)[3] = x[0] * x[0] + 3 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 3;
-      },
-      [](const Vector& x, DenseMatrix* J) {
-        *J << 6 * x[0] + 2 * x[1], 2 * x[0] + 4 * x[1], 1, 3,  //
-            4 * x[0] + 1, 2 * x[1], 3, 2,                      //
-            6 * x[0] + x[1], x[0] + 4 * x[1], 2, 3,            //
-            2 * x[0], 6 * x[1], 2, 3;
-      },
-      "josephy");
-  Vector expected(4);
-  expected << std::sqrt(6.0) / 2, 0, 0, 0.5;
+  const FunctionMCP mcp = JosephyMcp();
+  const Vector expected = JosephySolution();
   for (const SiconosMcpMethod method : kMethods) {
     SiconosMcpSolver solver(method);
     SolverOptions o;

@@ -14,6 +14,7 @@
 #include <sstream>
 
 #include "problems/io/siconos_format.h"
+#include "solvers/core/edit_distance.h"
 #include "solvers/auto/auto_solver.h"
 #include "solvers/reference/certify.h"
 #include "smcbench/version.h"
@@ -420,22 +421,6 @@ int RunConvert(const std::string& input, std::optional<ProblemFormat> format, co
   out << "convert: wrote '" << problems.front().id << "' (m = " << problems.front().size() << ", "
       << (problems.front().sparse() ? "sparse" : "dense") << ") to " << output << "\n";
   return 0;
-}
-
-// Levenshtein distance of two short words (flag names), for "did you mean".
-std::size_t EditDistance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
 }
 
 // "unknown flag '--solvr' (did you mean '--solver'?)" for the first word of argv that looks like a long flag and is
