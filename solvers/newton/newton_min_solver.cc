@@ -1,23 +1,27 @@
 // Semismooth Newton on the min function with a Fischer–Burmeister line search (newton_min_solver.h).
 //
 // Units. G(z) = c∘F(z)/d (d = McpRowScales(J(z₀), c) fixed for the solve, or d = 1 with merit_scaling none; c the
-// variables' units) is F in units of z; the min function is Phi_i = (z_i − Π_[l_i,u_i](z_i − G_i))/c_i.
+// variables' units) is F in units of z; the min function is Phi_i = (z_i − Π_[l_i,u_i](z_i − G_i))/c_i. Every
+// quantity the iteration compares is measured in the units c, as if it ran on y = z/c (`newton` does so explicitly):
+// a step's norm is ‖d/c‖, the steepest descent is the gradient in y, −c∘c∘∇Psi, the Newton systems are solved for
+// d/c, and the divergence test bounds z/c. So the iterates are the same, up to rounding, after any positive scaling
+// of F's rows and any change of units stated through c.
 // Iteration (Pang 1990; Qi 1993; Facchinei–Pang 2003 §9.1 and §9.3; Siconos' min_FBLSA):
 //   1. the active set of the natural map: z_i − G_i ≤ l_i → row at its lower bound, ≥ u_i → at its upper bound
 //      (ties count as active: either choice is an element of ∂_B Phi), otherwise free;
 //   2. the min-Newton step Δ, an element of ∂_B Phi applied: Δ_i = bound_i − z_i on the active rows, and on the free
 //      rows R the linearization F_R + J_R Δ = 0, i.e. J_RR Δ_R = −F_R − J_RA Δ_A (row scales cancel);
 //   3. globalization (fb-line-search): Phi is not differentiable, so the step is judged on the C¹ merit
-//      Psi = ½‖Phi_FB(z, G)/c‖² with Billups' box FB function; Δ is used when ∇Psiᵀ Δ ≤ −ρ‖Δ‖^p (DFK 1996) and its
-//      Armijo search succeeds, else FB's own Newton step under the same test, else the steepest descent −∇Psi.
+//      Psi = ½‖Phi_FB(z, G)/c‖² with Billups' box FB function; Δ is used when ∇Psiᵀ Δ ≤ −ρ‖Δ/c‖^p (DFK 1996) and its
+//      Armijo search succeeds, else FB's own Newton step under the same test, else the steepest descent.
 //      Near a strictly complementary solution the two functions pick the same active set and full min-Newton steps
 //      are accepted (local quadratic convergence).
 // Stopping test: the verdict's scale-free residual with the row scales of J at the current z (problem.h).
 // Linear algebra. Both Newton systems have rows α_i d_i + β_i J_i d = r_i. Dense: rows with β_i = 0 are solved
-// directly and the others form the block J_RR + diag(α/β)_R, rows equilibrated, Eigen's blocked in-place LU on a
+// directly and the others form the block (J_RR + diag(α/β)_R) C_R, rows equilibrated, Eigen's blocked in-place LU on a
 // preallocated buffer (newton's choice: Eigen's PartialPivLU object would reallocate whenever |R| changes); a pivot
-// below |R|·ε after row equilibration counts as singular. Sparse: the full n×n system diag(α) + diag(β) J on the
-// pattern J ∪ diag, so the pattern is fixed and UMFPACK's symbolic analysis is done once per pattern.
+// below |R|·ε after row equilibration counts as singular. Sparse: the full n×n system (diag(α) + diag(β) J) C on
+// the pattern J ∪ diag, so the pattern is fixed and UMFPACK's symbolic analysis is done once per pattern.
 #include "solvers/newton/newton_min_solver.h"
 
 #include <Eigen/LU>
@@ -98,6 +102,7 @@ struct NewtonMinSolver::Workspace {
   // ---- Iterate and work vectors (size n) ----
   Vector z, F, zt, Ft, dir, g, w, Jw, phi, weight_z, weight_F, rhs, zbest;
   Vector units;           // c: the variables' units (ones when the problem states none)
+  Vector in_units;        // a step or gradient measured in the units c (the norms the tests compare)
   Vector reform_rows;     // d₀: the row scales of the reformulation, fixed for the solve
   Vector stop_rows;       // the row scales of J at z, for the stopping test
   Vector row_eq;          // equilibration of the reduced dense rows
@@ -128,8 +133,8 @@ struct NewtonMinSolver::Workspace {
   void Resize(int size) {
     if (n == size && z.size() == size) return;
     n = size;
-    for (Vector* x : {&z,        &F,   &zt,    &Ft,    &dir,         &g,         &w,      &Jw,    &phi,  &weight_z,
-                      &weight_F, &rhs, &zbest, &units, &reform_rows, &stop_rows, &row_eq, &alpha, &beta, &r}) {
+    for (Vector* x : {&z, &F, &zt, &Ft, &dir, &g, &w, &Jw, &phi, &weight_z, &weight_F, &rhs, &zbest, &units,
+                      &in_units, &reform_rows, &stop_rows, &row_eq, &alpha, &beta, &r}) {
       x->resize(n);
     }
     perm.resize(n);
@@ -292,12 +297,15 @@ struct NewtonMinSolver::Workspace {
     if (A.rows() != n) A.resize(n, n);
     const DenseMatrix& J = *Jd;
     for (int k = 0; k < nr; ++k) row_eq[k] = 0.0;
+    // Unknowns d_R/c_R: the block is (J_RR + diag(α/β)_R) C_R, so pivoting and the pivot test see the same
+    // matrix whatever the variables' units.
     for (int jj = 0; jj < nr; ++jj) {
       const int j = ridx[jj];
+      const double cj = units[j];
       const double* col = J.col(j).data();
       double* a = A.col(jj).data();
-      for (int ii = 0; ii < nr; ++ii) a[ii] = col[ridx[ii]];
-      a[jj] += alpha[j] / beta[j];
+      for (int ii = 0; ii < nr; ++ii) a[ii] = col[ridx[ii]] * cj;
+      a[jj] += alpha[j] / beta[j] * cj;
       for (int ii = 0; ii < nr; ++ii) row_eq[ii] = std::max(row_eq[ii], std::abs(a[ii]));
     }
     // Rows scaled to max 1 before partial pivoting (a row's scale says nothing about its pivot quality).
@@ -323,7 +331,7 @@ struct NewtonMinSolver::Workspace {
     auto x = rhs.head(nr);
     a.triangularView<Eigen::UnitLower>().solveInPlace(x);
     a.triangularView<Eigen::Upper>().solveInPlace(x);
-    for (int k = 0; k < nr; ++k) dir[ridx[k]] = x[k];
+    for (int k = 0; k < nr; ++k) dir[ridx[k]] = x[k] * units[ridx[k]];
     return dir.allFinite();
   }
 
@@ -352,7 +360,8 @@ struct NewtonMinSolver::Workspace {
     umf_analyzed = false;
   }
 
-  // The full system H = diag(α) + diag(β) J on the pattern J ∪ diag. J's entries are a subset of H's in every
+  // The full system H = (diag(α) + diag(β) J) C on the pattern J ∪ diag, for the unknowns d/c: UMFPACK's scaling
+  // and pivoting then see the same matrix whatever the variables' units. J's entries are a subset of H's in every
   // column (both with sorted row indices), so one merged pass per column fills H.
   bool SolveSparse() {
     const SparseMatrix& J = *Js;
@@ -369,7 +378,7 @@ struct NewtonMinSolver::Workspace {
         const int row = h_inner[p];
         double value = 0.0;
         if (k < j_outer[col + 1] && j_inner[k] == row) value = jv[k++];
-        hv[p] = beta[row] * value + (row == col ? alpha[row] : 0.0);
+        hv[p] = (beta[row] * value + (row == col ? alpha[row] : 0.0)) * units[col];
       }
     }
     rhs = r;
@@ -383,6 +392,7 @@ struct NewtonMinSolver::Workspace {
     umf.factorize(H);
     if (umf.info() != Eigen::Success) return false;  // includes UMFPACK's "singular matrix" warning
     dir = umf.solve(rhs);
+    dir.array() *= units.array();
     return umf.info() == Eigen::Success && dir.allFinite();
   }
 
@@ -450,9 +460,11 @@ struct NewtonMinSolver::Workspace {
   }
 
   // dir if it passes the DFK sufficient-descent test and its Armijo search (then zt, Ft, *psi_new are the new point).
+  // ∇Psiᵀd does not depend on the units; ‖d‖ is measured in them (‖d/c‖).
   bool TryDirection(double psi, double* psi_new, bool* all_nan) {
     const double gd = g.dot(dir);
-    return SufficientDescent(gd, dir.norm(), opt->descent_rho, opt->descent_power) &&
+    in_units.array() = dir.array() / units.array();
+    return SufficientDescent(gd, in_units.norm(), opt->descent_rho, opt->descent_power) &&
            LineSearch(psi, gd, psi_new, all_nan);
   }
 
@@ -510,8 +522,10 @@ struct NewtonMinSolver::Workspace {
         if (!accepted) {
           step = "gradient";
           ++gradient_steps;
-          dir = -g;
-          const double gd = -g.squaredNorm();
+          // Steepest descent in the units c: ∇Psi with respect to z/c is c∘g, so d = −c∘(c∘g), ∇Psiᵀd = −‖c∘g‖².
+          in_units.array() = units.array() * g.array();
+          dir.array() = -(units.array() * in_units.array());
+          const double gd = -in_units.squaredNorm();
           if (!(gd < 0.0)) {
             return any_system
                        ? Stop(Exit::kStalled, "the merit function is stationary at a point that is not a solution")
@@ -534,7 +548,9 @@ struct NewtonMinSolver::Workspace {
       if (!moved) return Stop(Exit::kStalled, "the step length collapsed to rounding level");
       z.swap(zt);
       F.swap(Ft);
-      if (!(z.cwiseAbs().maxCoeff() < 1e100)) return Stop(Exit::kDiverged, "the iterates grew without bound");
+      if (!((z.array() / units.array()).abs().maxCoeff() < 1e100)) {
+        return Stop(Exit::kDiverged, "the iterates grew without bound");
+      }
       if (!UpdateJacobian()) return Exit::kNumericalFailure;
     }
   }

@@ -49,7 +49,7 @@ struct NewtonMinOptions {
   // 1996) before −∇Psi: where the two functions disagree on the active set, gradient steps alone can crawl (Josephy's
   // NCP from x = 10·1, in the tests).
   bool fischer_burmeister_step = true;
-  // A Newton direction d is used only if ∇Psiᵀd ≤ −ρ‖d‖^p (DFK 1996), else the next choice.
+  // A Newton direction d is used only if ∇Psiᵀd ≤ −ρ‖d/c‖^p (DFK 1996; c the variables' units), else the next choice.
   double descent_rho = 1e-8;
   double descent_power = 2.1;
   // Stalled when the merit has not fallen below stagnation_ratio × its value stagnation_window iterations earlier:
@@ -68,10 +68,11 @@ struct NewtonMinOptions {
 };
 
 // Solves a box-MLCP (F = Mz + q, dense or sparse M) or a nonlinear MCP. Works in the units of the verdict: rows of F
-// divided by d = McpRowScales(J(z₀), c) at the start (merit_scaling) and variables in the problem's units c,
-// so the active-set choice and the merit are unchanged by a positive scaling of F's rows. Stops when the scale-free
-// residual McpScaledResidual(z, F, l, u, McpRowScales(J(z), c), c) ≤ tolerance (a box-MLCP, which arrives
-// row-equilibrated, also needs its natural residual ≤ tolerance·(1 + ‖q‖∞), the base's second test).
+// divided by d = McpRowScales(J(z₀), c) at the start (merit_scaling) and variables in the problem's units c, in
+// which every step, norm and test is measured. So the iterates are unchanged, up to rounding, by a change of units
+// stated through MCP::variable_scale and (merit_scaling jacobian-rows) by a positive scaling of F's rows. Stops when
+// the scale-free residual McpScaledResidual(z, F, l, u, McpRowScales(J(z), c), c) ≤ tolerance (a box-MLCP, which
+// arrives row-equilibrated, also needs its natural residual ≤ tolerance·(1 + ‖q‖∞), the base's second test).
 // iterations = Newton iterations, default budget 200 (options.max_iterations ≤ 0). A failure returns the iterate
 // with the smallest scale-free residual seen, and says it in the message. Details: "newton_steps" (min-Newton),
 // "fb_newton_steps", "gradient_steps", "backtracks", "factorizations", "max_system_size".

@@ -9,6 +9,7 @@
 #include <cstdio>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "solvers/newton/semismooth_newton_solver.h"
@@ -495,6 +496,94 @@ TEST(NewtonMinSolverMcp, RowScalingAndUnitsDoNotChangeTheRun) {
   EXPECT_LE((a.z - k.z_star).cwiseAbs().maxCoeff(), 1e-8);
   EXPECT_LE((b.z - k.z_star).cwiseAbs().maxCoeff(), 1e-8);
   EXPECT_LE((c.z.cwiseProduct(units) - k.z_star).cwiseAbs().maxCoeff(), 1e-8);
+}
+
+// An MCP seen through row factors r and units c: G(y) = r∘F(c∘y) on [l/c, u/c], variable_scale 1/c, so z = c∘y.
+class RescaledMcp final : public MCP {
+ public:
+  RescaledMcp(const MCP& base, Vector rows, Vector units)
+      : MCP(base.l().cwiseQuotient(units), base.u().cwiseQuotient(units), base.name()),
+        base_(base),
+        rows_(std::move(rows)),
+        c_(std::move(units)),
+        x_(c_.size()) {
+    set_variable_scale(c_.cwiseInverse());
+  }
+  void Evaluate(const Vector& y, Vector* G) const override {
+    x_ = c_.cwiseProduct(y);
+    base_.Evaluate(x_, G);
+    G->array() *= rows_.array();
+  }
+  void JacobianDense(const Vector& y, DenseMatrix* J) const override {
+    x_ = c_.cwiseProduct(y);
+    base_.JacobianDense(x_, J);
+    *J = rows_.asDiagonal() * (*J) * c_.asDiagonal();
+  }
+
+ private:
+  const MCP& base_;
+  Vector rows_, c_;
+  mutable Vector x_;
+};
+
+TEST(NewtonMinSolverMcp, UnitsOfTheVariablesDoNotChangeTheRun) {
+  // The backend measures its steps, norms and tests in the units c, so the iterates are the same, up to rounding, in
+  // every unit system and under any row scaling: the same status, iteration count, kinds of step and answer in z.
+  // The cubic MCP takes min-Newton steps only; Josephy's NCP from 0 also takes an FB-Newton step, and from 10·1 it
+  // crawls by gradient steps until the merit stagnates (kStalled).
+  const Planted k = PlantSolution(12, {Bounds::kLower, Bounds::kBox, Bounds::kFree, Bounds::kUpper}, 6);
+  const CubicMcp cubic(k, 2.0, false);
+  const FunctionMCP josephy = JosephyMcp();
+  struct Case {
+    const MCP* base;
+    double start;  // z₀ = start·1 (NaN: the cold start)
+    SolveStatus status;
+    bool falls_back;  // takes FB-Newton or gradient steps
+  };
+  const Case cases[] = {{&cubic, kNaN, SolveStatus::kSolved, false},
+                        {&josephy, kNaN, SolveStatus::kSolved, true},
+                        {&josephy, 10.0, SolveStatus::kStalled, true}};
+  for (const Case& c : cases) {
+    const MCP& base = *c.base;
+    const int n = base.size();
+    Vector row_factors(n), up(n), down(n);
+    for (int i = 0; i < n; ++i) {
+      row_factors[i] = i % 2 ? 1e-8 : 1e8;
+      up[i] = i % 2 ? 1e-4 : 1e4;
+      down[i] = i % 2 ? 1e4 : 1e-4;
+    }
+    for (auto linear_solver : {NewtonOptions::kDenseLinearSolver, NewtonOptions::kSparseLinearSolver}) {
+      NewtonMinOptions o;
+      o.linear_solver = linear_solver;
+      SolverOptions start;
+      if (!std::isnan(c.start)) start.warm_start = Vector::Constant(n, c.start);
+      const SolveResult reference = NewtonMinSolver(o).Solve(base, start);
+      ASSERT_EQ(reference.status, c.status) << base.name() << ": " << reference.message;
+      if (c.status == SolveStatus::kSolved) {
+        EXPECT_LE(McpResidual(base, reference.z), 1e-10) << base.name();
+      }
+      if (c.falls_back) {
+        EXPECT_GE(reference.GetDetail("fb_newton_steps") + reference.GetDetail("gradient_steps"), 1.0) << base.name();
+      }
+      const double z_norm = reference.z.cwiseAbs().maxCoeff();
+      for (const Vector& rows : {Vector(Vector::Ones(n)), row_factors}) {
+        for (const Vector& units : {Vector(Vector::Ones(n)), up, down}) {
+          const RescaledMcp mcp(base, rows, units);
+          SolverOptions y_start;
+          if (!std::isnan(c.start)) y_start.warm_start = start.warm_start.cwiseQuotient(units);
+          const SolveResult r = NewtonMinSolver(o).Solve(mcp, y_start);
+          const std::string what = base.name() + " from " + std::to_string(c.start) + ", rows " +
+                                   std::to_string(rows[0]) + ", units " + std::to_string(units[0]) +
+                                   (linear_solver == NewtonOptions::kDenseLinearSolver ? ", dense" : ", sparse");
+          EXPECT_EQ(r.status, reference.status) << what << ": " << r.message;
+          EXPECT_EQ(r.iterations, reference.iterations) << what;
+          EXPECT_LE((r.z.cwiseProduct(units) - reference.z).cwiseAbs().maxCoeff(), 1e-9 * z_norm) << what;
+          EXPECT_EQ(r.GetDetail("gradient_steps"), reference.GetDetail("gradient_steps")) << what;
+          EXPECT_EQ(r.GetDetail("fb_newton_steps"), reference.GetDetail("fb_newton_steps")) << what;
+        }
+      }
+    }
+  }
 }
 
 TEST(NewtonMinSolverMcp, TheLineSearchRescuesACyclingMinNewton) {
