@@ -129,7 +129,7 @@ Solver* AutoSolver::FindCandidate(AutoCandidate c) {
   return candidates_[i].get();
 }
 
-Solver& AutoSolver::candidate(AutoCandidate c) {
+Solver& AutoSolver::CreateCandidate(AutoCandidate c) {
   Solver* solver = FindCandidate(c);
   if (solver == nullptr) {
     throw std::logic_error("auto: candidate '" + std::string(AutoCandidateName(static_cast<int>(c))) +

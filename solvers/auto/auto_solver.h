@@ -111,7 +111,11 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
   // The instance auto uses for one candidate (its options can be changed there). The box candidates always exist;
   // newton-min and ipopt only when the lookup knows them (created here on first use), else candidate() throws
   // std::logic_error and FindCandidate returns nullptr.
-  Solver& candidate(AutoCandidate c);
+  // Inline: the box chain asks for its candidates on every solve, and the paper's solves are tens of nanoseconds.
+  Solver& candidate(AutoCandidate c) {
+    Solver* solver = candidates_[static_cast<int>(c)].get();
+    return solver != nullptr ? *solver : CreateCandidate(c);
+  }
   const Solver& candidate(AutoCandidate c) const;
   Solver* FindCandidate(AutoCandidate c);
   // The MCP chain on this build, in order (newton, then newton-min and ipopt where the lookup knows them).
@@ -129,6 +133,8 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
   // The options the candidate gets: the caller's, with measure_time off (the base times auto's call; the
   // candidate's own two clock reads would only add to it).
   const SolverOptions& UntimedOptions(const SolverOptions& options);
+  // candidate()'s first use of a looked-up candidate: creates it, or throws std::logic_error when not registered.
+  Solver& CreateCandidate(AutoCandidate c);
 
   std::array<std::unique_ptr<Solver>, kAutoCandidateCount> candidates_;
   BackendLookup lookup_;
