@@ -14,6 +14,7 @@
 
 #include "solvers/newton/semismooth_newton_solver.h"
 #include "tests/support/malloc_counter.h"
+#include "tests/support/small_mcps.h"
 
 namespace smcbench {
 namespace {
@@ -89,54 +90,6 @@ double McpResidual(const MCP& mcp, const Vector& z) {
 }
 
 // ---------------------------------------------------------------- nonlinear MCPs of the literature
-
-// Josephy's NCP (MCPLIB `josephy`; Josephy 1979): unique solution (√6/2, 0, 0, 1/2).
-FunctionMCP JosephyMcp() {
-  return FunctionMCP(
-      Vector::Zero(4), Vector::Constant(4, kInf),
-      [](const Vector& x, Vector* F) {
-        (*F)[0] = 3 * x[0] * x[0] + 2 * x[0] * x[1] + 2 * x[1] * x[1] + x[2] + 3 * x[3] - 6;
-        (*F)[1] = 2 * x[0] * x[0] + x[0] + x[1] * x[1] + 3 * x[2] + 2 * x[3] - 2;
-        (*F)[2] = 3 * x[0] * x[0] + x[0] * x[1] + 2 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 1;
-        (*F)[3] = x[0] * x[0] + 3 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 3;
-      },
-      [](const Vector& x, DenseMatrix* J) {
-        *J << 6 * x[0] + 2 * x[1], 2 * x[0] + 4 * x[1], 1, 3,  //
-            4 * x[0] + 1, 2 * x[1], 3, 2,                      //
-            6 * x[0] + x[1], x[0] + 4 * x[1], 2, 3,            //
-            2 * x[0], 6 * x[1], 2, 3;
-      },
-      "josephy");
-}
-
-// Kojima–Shindo's NCP (Kojima, Shindo 1986, J. Oper. Res. Soc. Japan 29; MCPLIB `kojshin`): it differs from Josephy's
-// in F2 (10 x3) and F3 (9 x4 − 9), and has two solutions, (1, 0, 3, 0) and (√6/2, 0, 0, 1/2).
-FunctionMCP KojimaShindoMcp() {
-  return FunctionMCP(
-      Vector::Zero(4), Vector::Constant(4, kInf),
-      [](const Vector& x, Vector* F) {
-        (*F)[0] = 3 * x[0] * x[0] + 2 * x[0] * x[1] + 2 * x[1] * x[1] + x[2] + 3 * x[3] - 6;
-        (*F)[1] = 2 * x[0] * x[0] + x[0] + x[1] * x[1] + 10 * x[2] + 2 * x[3] - 2;
-        (*F)[2] = 3 * x[0] * x[0] + x[0] * x[1] + 2 * x[1] * x[1] + 2 * x[2] + 9 * x[3] - 9;
-        (*F)[3] = x[0] * x[0] + 3 * x[1] * x[1] + 2 * x[2] + 3 * x[3] - 3;
-      },
-      [](const Vector& x, DenseMatrix* J) {
-        *J << 6 * x[0] + 2 * x[1], 2 * x[0] + 4 * x[1], 1, 3,  //
-            4 * x[0] + 1, 2 * x[1], 10, 2,                     //
-            6 * x[0] + x[1], x[0] + 4 * x[1], 2, 9,            //
-            2 * x[0], 6 * x[1], 2, 3;
-      },
-      "kojshin");
-}
-
-// Billups' example (1995 thesis): F(x) = (x − 1)² − 1.01, x ≥ 0, solution 1 + √1.01. From x = 0 Newton on F heads for
-// the root 1 − √1.01 < 0 outside the box, where the FB merit has a local minimizer that is not a solution.
-FunctionMCP BillupsMcp() {
-  return FunctionMCP(
-      Vector::Zero(1), Vector::Constant(1, kInf),
-      [](const Vector& x, Vector* F) { (*F)[0] = (x[0] - 1.0) * (x[0] - 1.0) - 1.01; },
-      [](const Vector& x, DenseMatrix* J) { (*J)(0, 0) = 2.0 * (x[0] - 1.0); }, "billups");
-}
 
 // F(x) = atan(x − 3), x ≥ 0, solution 3. Newton on atan diverges from |x − 3| > 1.39, so the pure min-Newton method
 // from 0 goes 0 → 3 + 10·atan(3) ≈ 15.5 → far below 0 → the bound 0 (a unit row) → ... and cycles.
