@@ -348,6 +348,7 @@ TEST(NewtonMinSolverMcp, KojimaShindoEndsAtOneOfItsTwoSolutions) {
     reached_second += to_second <= 1e-8;
   }
   EXPECT_GE(reached_first, 1);  // the start next to (1, 0, 3, 0) ends there
+  EXPECT_EQ(reached_first + reached_second, 4);  // every start ends at exactly one of the two (they are 1.8 apart)
 }
 
 TEST(NewtonMinSolverMcp, CubicMcpDenseAndSparseAgreeWithTheFischerBurmeisterNewton) {
