@@ -55,7 +55,6 @@ void JacobianCallback(void* env, int n, double* x, NumericsMatrix* J) {
   }
 }
 
-constexpr std::string_view kRef = "Siconos Numerics 4.4 (INRIA, Acary et al.; Debian libsiconos-numerics-dev)";
 
 const SolverInfo& InfoOf(SiconosMcpMethod method) {
   static const SolverInfo kFb{
