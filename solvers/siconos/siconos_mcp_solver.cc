@@ -55,7 +55,6 @@ void JacobianCallback(void* env, int n, double* x, NumericsMatrix* J) {
   }
 }
 
-
 const SolverInfo& InfoOf(SiconosMcpMethod method) {
   static const SolverInfo kFb{
       "siconos-mcp-newton-fb",
