@@ -75,6 +75,23 @@ double ForwardErrorAllowance(const ReferenceSolution& reference, double toleranc
   return kForwardErrorFactor * std::max(1.0, reference.condition) * tolerance * (1.0 + z_norm);
 }
 
+namespace {
+// The verdict from what Judge and JudgeMCP computed: the status, what is known of the problem, whether the returned z
+// passes the residual test of its problem type, and the forward error against its allowance (NaN: not judged).
+Verdict Classify(SolveStatus status, ExpectedOutcome expected, bool known_solvable, bool residuals_pass,
+                 const Judgement& j) {
+  if (status == SolveStatus::kSolved) {
+    if (expected == ExpectedOutcome::kInfeasible || !residuals_pass) return Verdict::kWronglyClaimed;
+    if (j.forward_allowance == j.forward_allowance && !(j.forward_error <= j.forward_allowance)) {
+      return Verdict::kInaccurate;
+    }
+    return Verdict::kSolved;
+  }
+  if (status == SolveStatus::kInfeasible && known_solvable) return Verdict::kWronglyRefused;
+  return expected == ExpectedOutcome::kInfeasible ? Verdict::kCorrectlyRefused : Verdict::kFailed;
+}
+}  // namespace
+
 Judgement Judge(const BoxMLCP& problem, ExpectedOutcome expected, const ReferenceSolution* reference,
                 SolveStatus status, const Vector& z, double tolerance) {
   Judgement j;
@@ -91,20 +108,8 @@ Judgement Judge(const BoxMLCP& problem, ExpectedOutcome expected, const Referenc
   }
   const bool known_solvable =
       expected == ExpectedOutcome::kSolvable || (reference != nullptr && reference->verified());
-  if (status == SolveStatus::kSolved) {
-    if (expected == ExpectedOutcome::kInfeasible || !has_z || !(j.residual.rel <= tolerance) ||
-        !(j.residual.scaled <= tolerance)) {
-      j.verdict = Verdict::kWronglyClaimed;
-    } else if (j.forward_allowance == j.forward_allowance && !(j.forward_error <= j.forward_allowance)) {
-      j.verdict = Verdict::kInaccurate;
-    } else {
-      j.verdict = Verdict::kSolved;
-    }
-  } else if (status == SolveStatus::kInfeasible && known_solvable) {
-    j.verdict = Verdict::kWronglyRefused;
-  } else {
-    j.verdict = expected == ExpectedOutcome::kInfeasible ? Verdict::kCorrectlyRefused : Verdict::kFailed;
-  }
+  j.verdict = Classify(status, expected, known_solvable,
+                       has_z && j.residual.rel <= tolerance && j.residual.scaled <= tolerance, j);
   return j;
 }
 
@@ -157,19 +162,7 @@ Judgement JudgeMCP(const MCP& problem, ExpectedOutcome expected, const std::vect
   }
   bool known_solvable = expected == ExpectedOutcome::kSolvable;
   for (const ReferenceSolution& reference : references) known_solvable = known_solvable || reference.verified();
-  if (status == SolveStatus::kSolved) {
-    if (expected == ExpectedOutcome::kInfeasible || !has_z || !(j.residual.scaled <= tolerance)) {
-      j.verdict = Verdict::kWronglyClaimed;
-    } else if (j.forward_allowance == j.forward_allowance && !(j.forward_error <= j.forward_allowance)) {
-      j.verdict = Verdict::kInaccurate;
-    } else {
-      j.verdict = Verdict::kSolved;
-    }
-  } else if (status == SolveStatus::kInfeasible && known_solvable) {
-    j.verdict = Verdict::kWronglyRefused;
-  } else {
-    j.verdict = expected == ExpectedOutcome::kInfeasible ? Verdict::kCorrectlyRefused : Verdict::kFailed;
-  }
+  j.verdict = Classify(status, expected, known_solvable, has_z && j.residual.scaled <= tolerance, j);
   return j;
 }
 
