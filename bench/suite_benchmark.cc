@@ -6,7 +6,7 @@
 // a problem whose expected outcome is "infeasible" is the right answer and is timed.
 // Suites: SMCBENCH_SUITES (comma-separated names `smcbench bench --suite` takes: paper, families, hard, siconos,
 // scale, tiny or a .smcps file; default "paper,families,hard"; "siconos" and "hard" read SMCBENCH_SICONOS_DIR,
-// default tests/data/siconos).
+// default the checkout's tests/data/siconos: problems/io/data_dirs.h).
 #include <benchmark/benchmark.h>
 
 #include <cmath>
@@ -62,10 +62,7 @@ void SolveBenchmark(benchmark::State& state, const LibraryProblem* problem, std:
 
 void RegisterAll() {
   const char* env = std::getenv("SMCBENCH_SUITES");
-  const char* dir = std::getenv("SMCBENCH_SICONOS_DIR");
-  const std::string siconos_dir = dir ? dir : "tests/data/siconos";
-  SuiteRequest request;
-  request.siconos_dir = siconos_dir;
+  const SuiteRequest request;  // its siconos_dir: $SMCBENCH_SICONOS_DIR, else this build's collection
   std::stringstream names(env ? env : "paper,families,hard");
   for (std::string name; std::getline(names, name, ',');) {
     Sets().push_back(std::make_unique<ProblemSet>(BuildSuite(name, request)));

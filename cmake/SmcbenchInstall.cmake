@@ -2,7 +2,7 @@
 # a relocatable CMake package (find_package(smcbench CONFIG) → smcbench::<library>, smcbench::smcbench). Tests and
 # benchmarks are not installed. Included at the end of the top-level CMakeLists.txt, once every target exists.
 # Layout (GNUInstallDirs): bin/smcbench, lib/libsmcbench_*.a, include/smcbench/{smcbench.h,version.h,solvers/,
-# problems/,bench/,tools/}, share/smcbench/scenes/*.json, lib/cmake/smcbench/.
+# problems/,bench/,tools/}, share/smcbench/{scenes,siconos}/, lib/cmake/smcbench/.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -36,9 +36,13 @@ endforeach()
 install(FILES ${PROJECT_SOURCE_DIR}/include/smcbench/smcbench.h ${PROJECT_SOURCE_DIR}/include/smcbench/version.h
   DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/smcbench COMPONENT development)
 
-# The scene files. The installed smcbench finds them beside itself (<bin>/../share/smcbench/scenes, main.cc).
+# The data folders: the scene files and the vendored Siconos collection (unchanged, with its README, LICENSE and
+# SOURCE_COMMIT). The installed smcbench and Python module find them beside themselves, wherever the prefix is moved
+# (DataDirectory, problems/io/data_dirs.h), so no default path depends on the working directory.
 file(GLOB scene_files ${PROJECT_SOURCE_DIR}/problems/scenes/*.json)
 install(FILES ${scene_files} DESTINATION ${CMAKE_INSTALL_DATADIR}/smcbench/scenes COMPONENT runtime)
+install(DIRECTORY ${PROJECT_SOURCE_DIR}/tests/data/siconos/ DESTINATION ${CMAKE_INSTALL_DATADIR}/smcbench/siconos
+  COMPONENT runtime)
 install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/CITATION.cff
   DESTINATION ${CMAKE_INSTALL_DATADIR}/doc/smcbench COMPONENT runtime)
 

@@ -3,7 +3,8 @@
 # prefix alone — build the smallest consumer (examples/consumer) and the out-of-tree backend
 # (examples/custom-backend), run the consumer, the backend's conformance checks and a small `bench` that shows
 # the backend beside ours; check that no installed text file names the source or build tree, and that the installed
-# program reads the installed scenes after the prefix is moved.
+# program, started from an empty folder after the prefix is moved, reads its own scenes and Siconos collection
+# (`simulate` of a named scene, `collection` and `bench --suite hard` with their default folders).
 #
 #   bash tools/install-check.sh [BUILD_DIR]
 # BUILD_DIR: an existing build tree to install from (only what is installed gets built in it); without it a
@@ -36,7 +37,8 @@ step "cmake --install $build_dir --prefix $prefix"
 cmake --install "$build_dir" --prefix "$prefix" >"$work/install.log" || fail "install"
 for f in bin/smcbench include/smcbench/smcbench.h include/smcbench/solvers/core/solver.h \
          lib/cmake/smcbench/smcbenchConfig.cmake lib/cmake/smcbench/smcbenchTargets.cmake \
-         share/smcbench/scenes/galias-yu-2007.json share/doc/smcbench/LICENSE; do
+         share/smcbench/scenes/galias-yu-2007.json share/smcbench/siconos/README.md share/smcbench/siconos/LICENSE \
+         share/smcbench/siconos/SOURCE_COMMIT share/smcbench/siconos/lcp/lcp_CPS_3.dat share/doc/smcbench/LICENSE; do
   [[ -e "$prefix/$f" ]] || fail "not installed: $f"
 done
 if compgen -G "$prefix/bin/*_test" >/dev/null || compgen -G "$prefix/lib/*test_support*" >/dev/null; then
@@ -49,18 +51,44 @@ if leaks=$(grep -rIl -e "$source_dir" -e "$build_dir" "$prefix"); then
   fail "installed text files name $source_dir or $build_dir"
 fi
 
-step "the installed program reads its own scenes, from a moved prefix, with SMCBENCH_SCENES_DIR unset"
+# Every default data folder must resolve from the prefix alone: run from an empty folder, with the variables that
+# override the data folders unset.
 moved="$work/moved-prefix"
 cp -a "$prefix" "$moved"
-(cd "$work" && env -u SMCBENCH_SCENES_DIR "$moved/bin/smcbench" simulate galias-yu-2007 --T 0.01 >"$work/simulate.txt") ||
-  fail "moved prefix: smcbench simulate galias-yu-2007"
+empty="$work/empty"
+mkdir "$empty"
+installed() { (cd "$empty" && env -u SMCBENCH_SCENES_DIR -u SMCBENCH_SICONOS_DIR "$moved/bin/smcbench" "$@"); }
+
+step "from an empty folder, a moved prefix: simulate galias-yu-2007 (its own scenes)"
+installed simulate galias-yu-2007 --T 0.01 >"$work/simulate.txt" || fail "moved prefix: smcbench simulate galias-yu-2007"
+grep -q "^galias-yu-2007: " "$work/simulate.txt" || { cat "$work/simulate.txt"; fail "simulate printed no outcome"; }
 # Proof that the scene came from the moved prefix and not from the source tree: a scene file changed there only
 # is what the program reads.
 sed -i 's/"name": *"sign"/"name": "changed-in-the-moved-prefix"/' "$moved/share/smcbench/scenes/sign.json"
-if (cd "$work" && env -u SMCBENCH_SCENES_DIR "$moved/bin/smcbench" simulate sign --T 0.01 >/dev/null 2>"$work/sign.err"); then
+if installed simulate sign --T 0.01 >/dev/null 2>"$work/sign.err"; then
   fail "moved prefix: the changed sign.json was not read (the scenes came from somewhere else)"
 fi
 grep -q "changed-in-the-moved-prefix" "$work/sign.err" || { cat "$work/sign.err"; fail "unexpected error"; }
+
+step "from an empty folder, a moved prefix: collection and bench --suite hard (its own Siconos collection)"
+# collection reads every file of the default collection; the hard suite's Siconos cases come from it too. The
+# quickest bench that reads the collection (one backend, one sample, no stepper studies): the default suites of
+# `bench --quick` take minutes, most of it certifying references.
+installed collection --solver lemke --repeat 1 >"$work/collection.txt" 2>&1 || { tail -20 "$work/collection.txt"; fail "collection"; }
+grep -q "lcp/lcp_CPS_3.dat" "$work/collection.txt" || { tail -20 "$work/collection.txt"; fail "collection read no file"; }
+installed bench --suite hard --quick --solver lemke --repetitions 1 --no-stepper --report --no-plots \
+  --out "$work/bench-hard" >"$work/bench-hard.log" 2>&1 || { tail -20 "$work/bench-hard.log"; fail "bench --suite hard"; }
+grep -q "^hard,hard/siconos/lcp_CPS_3,lemke," "$work/bench-hard/results.csv" ||
+  fail "bench --suite hard: no Siconos case in results.csv"
+[[ -z "$(ls -A "$empty")" ]] || fail "the installed program wrote into the working folder: $(ls -A "$empty")"
+# Proof that the collection came from the moved prefix: a file removed there only is missed, by its moved path.
+rm "$moved/share/smcbench/siconos/lcp/lcp_CPS_3.dat"
+if installed bench --suite hard --quick --solver lemke --repetitions 1 --no-stepper --out "$work/bench-hard-2" \
+     >"$work/bench-hard-2.log" 2>&1; then
+  fail "moved prefix: the removed lcp_CPS_3.dat was not missed (the collection came from somewhere else)"
+fi
+grep -qF "$moved/share/smcbench/siconos/lcp/lcp_CPS_3.dat' not found" "$work/bench-hard-2.log" ||
+  { cat "$work/bench-hard-2.log"; fail "unexpected error"; }
 "$prefix/bin/smcbench" --version
 
 # The examples are copied out of the checkout, so that nothing but the prefix can supply a header or a library.

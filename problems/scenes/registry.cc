@@ -1,17 +1,11 @@
 #include "problems/scenes/registry.h"
 
-#include <dlfcn.h>
-
-#include <cstdlib>
 #include <filesystem>
 #include <system_error>
 
+#include "problems/io/data_dirs.h"
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/nonlinear_scene.h"
-
-#ifndef SMCBENCH_SCENES_DIR
-#error "SMCBENCH_SCENES_DIR must be defined (problems/scenes/CMakeLists.txt)"
-#endif
 
 namespace smcbench {
 namespace {
@@ -47,29 +41,7 @@ std::vector<std::string_view> SceneNames() {
   return names;
 }
 
-namespace {
-// An installed copy finds the scenes installed with it, wherever the prefix was moved: the file holding this code
-// (the program <prefix>/bin/smcbench, or the Python module <prefix>/lib/python3/dist-packages/smcbench/_smcbench.so)
-// is looked up with dladdr, and <prefix>/share/smcbench/scenes searched in its parent folders. Empty if none.
-std::string InstalledScenesDirectory() {
-  Dl_info info{};
-  if (dladdr(reinterpret_cast<void*>(&InstalledScenesDirectory), &info) == 0 || info.dli_fname == nullptr) return {};
-  std::error_code error;
-  std::filesystem::path folder = std::filesystem::canonical(info.dli_fname, error).parent_path();
-  if (error) return {};
-  for (int up = 0; up < 5 && folder.has_relative_path(); ++up, folder = folder.parent_path()) {
-    const std::filesystem::path scenes = folder / "share" / "smcbench" / "scenes";
-    if (std::filesystem::is_directory(scenes, error)) return scenes.string();
-  }
-  return {};
-}
-}  // namespace
-
-std::string ScenesDirectory() {
-  if (const char* dir = std::getenv("SMCBENCH_SCENES_DIR"); dir && *dir) return dir;
-  if (std::string installed = InstalledScenesDirectory(); !installed.empty()) return installed;
-  return SMCBENCH_SCENES_DIR;
-}
+std::string ScenesDirectory() { return DataDirectory(DataFolder::kScenes); }
 
 std::unique_ptr<Scene> LoadScene(std::string_view name_or_path) {
   for (const Entry& e : kScenes) {

@@ -14,9 +14,9 @@ namespace smcbench {
 // Registered names in the order of docs/scenes.md (S1 sign, S2 galias-yu-2007, ...).
 std::vector<std::string_view> SceneNames();
 
-// The folder holding the scene files: $SMCBENCH_SCENES_DIR if set, else the installed <prefix>/share/smcbench/scenes
-// of an installed program or Python module (found beside the file holding this code), else this source folder
-// (compile definition).
+// The folder holding the scene files: DataDirectory(DataFolder::kScenes) (problems/io/data_dirs.h):
+// $SMCBENCH_SCENES_DIR if set, else the installed <prefix>/share/smcbench/scenes of an installed program or Python
+// module, else this source folder.
 std::string ScenesDirectory();
 
 // A registered name, or a path to a scene file (anything that is not a registered name and names an existing file,

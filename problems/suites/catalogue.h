@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "problems/io/data_dirs.h"
 #include "problems/library/problem_set.h"
 
 namespace smcbench {
@@ -25,7 +26,9 @@ ProblemSet SiconosSuite(const std::string& dir, std::vector<std::string>* reject
 ProblemSet TinySuite();
 
 struct SuiteRequest {
-  std::string siconos_dir = "tests/data/siconos";  // the vendored collection (tests/data/README.md)
+  // The collection of this installation or checkout ($SMCBENCH_SICONOS_DIR, share/smcbench/siconos or
+  // tests/data/siconos: problems/io/data_dirs.h), never a path relative to the working directory.
+  std::string siconos_dir = DataDirectory(DataFolder::kSiconosCollection);
   bool quick = false;  // smaller families / scale sizes
   // Attach certified reference solutions (AttachReferences, problems/library/references.h) to the problems small
   // enough, so the verdict can judge forward errors. `bench` turns it off here and attaches them itself, timed.

@@ -19,6 +19,7 @@
 #include "bench/replay/replay.h"
 #include "bench/replay/results_io.h"
 #include "bench/replay/stepper_study.h"
+#include "problems/io/data_dirs.h"
 #include "problems/library/references.h"
 #include "problems/mcp/mcp_suite.h"
 #include "solvers/reference/certify.h"
@@ -67,7 +68,7 @@ struct BenchCommand::Flags {
   std::vector<std::string> suites, solvers, sets, allow_wrong;
   // Empty: a fresh folder ./smcbench-bench-YYYYMMDD-HHMMSS (DefaultOutputFolder), so a run without --out never
   // replaces earlier results, the committed results/bench included.
-  std::string out, siconos_dir = "tests/data/siconos", report_dir, history;
+  std::string out, siconos_dir = DataDirectory(DataFolder::kSiconosCollection), report_dir, history;
   int repetitions = 7;
   double tol = 1e-10, time_limit = 10.0;
   // Seconds one backend may spend on one suite before its remaining problems there are skipped (0: no limit).
@@ -97,7 +98,9 @@ BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
                                      "that already holds results.json is refused unless --overwrite");
   bench_->add_flag("--overwrite", f.overwrite, "let --out name a folder with earlier results (tools/bench.sh "
                                                "passes it for results/bench)");
-  bench_->add_option("--siconos-dir", f.siconos_dir, "the Siconos collection (default tests/data/siconos)");
+  bench_->add_option("--siconos-dir", f.siconos_dir, "the Siconos collection (default: $SMCBENCH_SICONOS_DIR, else "
+                                                     "share/smcbench/siconos of this installation, else the "
+                                                     "checkout's tests/data/siconos)");
   bench_->add_option("--repetitions", f.repetitions, "timing samples per problem x backend (default 7)");
   bench_->add_option("--tol", f.tol, "tolerance on the relative and the row-equilibrated natural residual "
                                      "(default 1e-10)");

@@ -13,6 +13,7 @@
 #include <regex>
 #include <sstream>
 
+#include "problems/io/data_dirs.h"
 #include "problems/io/siconos_format.h"
 #include "solvers/core/edit_distance.h"
 #include "solvers/auto/auto_solver.h"
@@ -492,11 +493,13 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
                                                   "(keys forward_error, forward_error_rel, verdict)");
 
   auto* collection = app.add_subcommand("collection", "solve every file of a Siconos collection with every backend");
-  std::string collection_dir, markdown_path, json_path;
+  std::string collection_dir = DataDirectory(DataFolder::kSiconosCollection), markdown_path, json_path;
   SolveSettings collection_settings;
   collection_settings.solvers = {"all"};
   collection_settings.repeat = 3;
-  collection->add_option("DIR", collection_dir, "folder holding lcp/, relay/, mlcp/")->required();
+  collection->add_option("DIR", collection_dir, "folder holding lcp/, relay/, mlcp/ (default: $SMCBENCH_SICONOS_DIR, "
+                                                "else share/smcbench/siconos of this installation, else the "
+                                                "checkout's tests/data/siconos)");
   AddSolveFlags(collection, &collection_settings);
   AddFormatFlag(collection, &collection_settings.format, {"lcp", "relay", "mlcp"},
                 "read every file as this Siconos kind");
