@@ -452,7 +452,7 @@ class ShardRunner {
       line.skipped = job.kind == JobKind::kSweep;
       line.has_record = !line.skipped;
       if (line.has_record) line.record = NotRunRecord(job);
-      ++skipped_[{job.suite, job.solver}];
+      if (line.has_record) ++skipped_[{job.suite, job.solver}];  // problems; skipped sweep rungs are not problems
     } else {
       const auto start = std::chrono::steady_clock::now();
       line.has_record = true;
