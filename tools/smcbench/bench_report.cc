@@ -580,26 +580,35 @@ void WriteSolvedNothing(std::ostream& md, const SuiteResults& suite) {
   md << "\n";
 }
 
-// Per backend, how many records ended with each status the backend returned (its own word, after the base layer's
-// residual check; the verdict above is ours): one column per status met in the suite.
-void WriteStatusTable(std::ostream& md, const SuiteResults& suite) {
+// Per backend, how many records ended with each status the backend returned (one column per status met in the
+// suite), then the audit of claims (AuditClaims): whether its own success flag agreed with our verdict.
+void WriteStatusesAndClaims(std::ostream& md, const SuiteResults& suite) {
   const std::vector<BackendSummary> summary = SummarizeSuite(suite);
+  const std::vector<ClaimAudit> audit = AuditClaims(suite);
   std::set<SolveStatus> met;
   for (const BackendSummary& b : summary) {
     for (const auto& [status, count] : b.statuses) met.insert(status);
   }
-  md << "Statuses returned (what each backend said; the verdict above is ours):\n\n| backend | ";
+  md << "**Statuses returned and the audit of claims**: how each backend's answers ended in its own words, and "
+        "whether its success flag was right — a claim is right when it says solved exactly when our verdict is "
+        "solved. The flag is Siconos' own return code (`info` = 0, column `backend_code` of results.csv) where the "
+        "record has one, before our base layer re-judged the answer (with the polish on, a false failure can be a "
+        "short stop our polish finished); else the status.\n\n| backend | ";
   for (SolveStatus s : met) md << "`" << ToString(s) << "` | ";
-  md << "\n|---|";
-  for (std::size_t i = 0; i < met.size(); ++i) md << "---|";
+  md << "flag right | false success (said solved, is not) | false failure (said failed, is solved) | flag from the "
+        "return code |\n|---|";
+  for (std::size_t i = 0; i < met.size() + 4; ++i) md << "---|";
   md << "\n";
-  for (const BackendSummary& b : summary) {
+  for (std::size_t k = 0; k < summary.size(); ++k) {
+    const BackendSummary& b = summary[k];
+    const ClaimAudit& a = audit[k];  // both in the order the backends first appear in the records
     md << "| " << b.solver << " | ";
     for (SolveStatus s : met) {
       const auto it = b.statuses.find(s);
       md << (it == b.statuses.end() ? 0 : it->second) << " | ";
     }
-    md << "\n";
+    md << Fraction(a.right, a.records) << " | " << Count(a.false_success) << " | " << a.false_failure << " | "
+       << a.with_return_code << "/" << a.records << " |\n";
   }
   md << "\n";
 }
@@ -624,25 +633,6 @@ void WriteBandWinners(std::ostream& md, const SuiteResults& suite) {
        << (w.runner_up.empty() ? "" : std::to_string(w.runner_up_correct) + "/" + std::to_string(w.problems))
        << " | " << (w.runner_up.empty() ? "" : Seconds(w.runner_up_geomean)) << " | "
        << (w.runner_up.empty() ? "" : G(w.runner_up_geomean / w.shifted_geomean) + "×") << " |\n";
-  }
-  md << "\n";
-}
-
-// Whether each backend's own success flag agreed with our verdict (AuditClaims).
-void WriteClaimAudit(std::ostream& md, const SuiteResults& suite) {
-  const std::vector<ClaimAudit> audit = AuditClaims(suite);
-  if (audit.empty()) return;
-  md << "**Audit of claims**: was the backend's own success flag right? A claim is right when the backend says "
-        "\"solved\" exactly when our verdict is solved. For the `siconos-*` backends the flag is Siconos' own return "
-        "code (`info` = 0 is success; column `backend_code` of results.csv), what a program calling Siconos trusts, "
-        "taken before our base layer re-judges the answer; for ours, and for a call that never reached Siconos, it is "
-        "the status returned (which has been through the base layer's residual check). With the polish on, a false "
-        "failure can be a short stop our polish finished (`--no-polish` audits the raw answers).\n\n"
-        "| backend | flag right | false success (said solved, is not) | false failure (said failed, is "
-        "solved) | judged on the return code |\n|---|---|---|---|---|\n";
-  for (const ClaimAudit& a : audit) {
-    md << "| " << a.solver << " | " << Fraction(a.right, a.records) << " | " << Count(a.false_success) << " | "
-       << a.false_failure << " | " << a.with_return_code << "/" << a.records << " |\n";
   }
   md << "\n";
 }
@@ -881,13 +871,12 @@ void WriteToleranceLadder(std::ostream& md, const SuiteResults& suite) {
   if (ladder.rows.empty()) return;
   std::set<std::string> problems;
   for (const auto& r : suite.replay.sweep) problems.insert(Instance(r));
-  md << "**Tolerance ladder**: success (solved + correctly refused) of each backend at each tolerance, on "
-     << problems.size() << " problems of the suite spread evenly over it (`bench` sweeps 16 per suite, 2 with "
-        "`--quick`). Each rung is its own solve at that tolerance: an untimed warm-up solve, then at most 3 timed "
-        "samples (each repeating the solve until it lasts ≥ 0.2 ms); the verdict, at that tolerance, judges the "
-        "last answer; their times are in the folded table below. With the polish on (the default) an answer with the "
-        "right active set is exact at every rung, so `--no-polish` shows the algorithms' own trade-off. Blank: that "
-        "rung did not run (the backend's `--backend-budget` ran out).\n\n| backend | ";
+  md << "**Tolerance ladder**: success (solved + correctly refused) per backend and tolerance on the "
+     << problems.size() << " swept problems (`bench` sweeps 16 per suite spread evenly over it, 2 with `--quick`). "
+        "Each rung is its own solve at that tolerance — an untimed warm-up, then at most 3 timed samples — judged at "
+        "that tolerance; the times are in the folded table below. With the polish on (the default) an answer with "
+        "the right active set is exact at every rung (`--no-polish` shows the algorithms' own trade-off). Blank: "
+        "not run (`--backend-budget` spent).\n\n| backend | ";
   for (double t : ladder.tolerances) md << "tol " << G(t) << " | ";
   md << "\n|---|";
   for (std::size_t i = 0; i < ladder.tolerances.size(); ++i) md << "---|";
@@ -1027,9 +1016,8 @@ void WriteMcpSection(std::ostream& md, const SuiteResults& suite, const std::str
         "time are over problem × start.\n\n";
   WriteBackendTable(md, suite);
   WriteSolvedNothing(md, suite);
-  WriteStatusTable(md, suite);
+  WriteStatusesAndClaims(md, suite);
   WriteBandWinners(md, suite);
-  WriteClaimAudit(md, suite);
   WriteMcpStarts(md, suite);
   WriteMcpFailures(md, suite);
   if (plots) {
@@ -1073,10 +1061,9 @@ void WriteSuite(std::ostream& md, const SuiteResults& suite, const std::string& 
   if (IsMcpSuite(suite)) return WriteMcpSection(md, suite, dir, plots);
   WriteSuiteSummary(md, suite);
   WriteSolvedNothing(md, suite);
-  WriteStatusTable(md, suite);
+  WriteStatusesAndClaims(md, suite);
   WriteBandWinners(md, suite);
   WriteWrongAnswers(md, suite);
-  WriteClaimAudit(md, suite);
   WriteSparsePathComparison(md, CompareWithSparsePath(suite));
   WriteSiconosComparison(md, CompareWithSiconos(suite));
   if (plots) WritePerformanceProfile(md, suite, dir);

@@ -131,9 +131,11 @@ TEST(ReportFailures, SolvedNothingIsListedApartWithItsReasonAndStatusesAreTabled
   // The penalty convention stands next to the table that uses it.
   EXPECT_THAT(md, HasSubstr("counts as 10× the slowest correct time on that problem, or as 10 s when no backend "
                             "got it right"));
-  // Statuses: one column per status met, in the enum's order.
-  EXPECT_THAT(md, HasSubstr("| backend | `solved` | `iteration_limit` | `size_limit` | \n|---|---|---|---|\n"
-                            "| lemke | 3 | 0 | 0 | \n| psor | 2 | 1 | 0 | \n| enum | 0 | 0 | 3 | \n"));
+  // Statuses: one column per status met, in the enum's order, then the audit of claims (every flag right here).
+  EXPECT_THAT(md, HasSubstr("| backend | `solved` | `iteration_limit` | `size_limit` | flag right | "));
+  EXPECT_THAT(md, HasSubstr("|---|---|---|---|---|---|---|---|\n| lemke | 3 | 0 | 0 | 3/3 (100%) | 0 | 0 | 0/3 |\n"
+                            "| psor | 2 | 1 | 0 | 3/3 (100%) | 0 | 0 | 0/3 |\n"
+                            "| enum | 0 | 0 | 3 | 3/3 (100%) | 0 | 0 | 0/3 |\n"));
 }
 
 // "worst residual (solved)" of a backend that solved nothing is blank, never a 0 that reads as exact.
@@ -234,7 +236,7 @@ TEST(ReportLadder, SuccessPerBackendAndTolerance) {
   EXPECT_THAT(md, HasSubstr("| backend | tol 0.001 | tol 1e-09 | tol 1e-12 | "));
   EXPECT_THAT(md, HasSubstr("| psor | 2/2 (100%) | 1/2 (50%) | 0/2 (0%) | "));
   EXPECT_THAT(md, HasSubstr("| lemke | 2/2 (100%) | 2/2 (100%) | 3/3 (100%) | "));
-  EXPECT_THAT(md, HasSubstr("an untimed warm-up solve, then at most 3 timed samples"));
+  EXPECT_THAT(md, HasSubstr("an untimed warm-up, then at most 3 timed samples"));
 }
 
 // Siconos' own return code decides its claim; our backends' claim is their status.
@@ -271,8 +273,9 @@ TEST(ReportAudit, OwnSuccessFlagAgainstTheVerdict) {
   EXPECT_EQ(audit[1].false_failure, 0);
   EXPECT_EQ(audit[1].with_return_code, 0);
   const std::string md = ReportOf(s, "audit");
-  EXPECT_THAT(md, HasSubstr("| siconos-x | 2/4 (50%) | **1** | 1 | 3/4 |"));
-  EXPECT_THAT(md, HasSubstr("| ours | 3/4 (75%) | **1** | 0 | 0/4 |"));
+  // Statuses solved, iteration_limit, size_limit, infeasible, inaccurate; then the audit.
+  EXPECT_THAT(md, HasSubstr("| siconos-x | 2 | 0 | 1 | 0 | 1 | 2/4 (50%) | **1** | 1 | 3/4 |\n"));
+  EXPECT_THAT(md, HasSubstr("| ours | 2 | 1 | 0 | 1 | 0 | 3/4 (75%) | **1** | 0 | 0/4 |\n"));
 }
 
 // The return code survives results.json and results.csv (empty when there is none).
