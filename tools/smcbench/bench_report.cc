@@ -164,8 +164,9 @@ PlotStyle StyleOf(std::size_t index, bool external) {
   const std::size_t colour = index % kN, round = index / kN;
   PlotStyle style;
   style.colour = kColours[colour];
-  // Within one colour the point type steps with each round of the palette, so colour + point stays unique.
-  style.point = kPoints[(colour + round) % kN];
+  // Within one colour the point type steps with each round of the palette, so colour + point stays unique; the
+  // external family starts 3 point types on, so our i-th and its i-th differ in more than the dash.
+  style.point = kPoints[(colour + round + (external ? 3 : 0)) % kN];
   style.dash = external ? 2 + static_cast<int>(round % 4) : 1;
   style.width = external ? 2.0 : 2.5;
   return style;
