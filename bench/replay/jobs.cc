@@ -116,11 +116,9 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
     if (request.generic_sparse_path && suites[s].name == "paper") {
       for (std::size_t p = 0; p < n; ++p) add(JobKind::kGenericSparse, s, p, kGenericSparsePath, options.tolerance);
     }
-    const std::size_t sweep = std::min<std::size_t>(std::max(0, options.tolerance_sweep_problems), n);
-    for (std::size_t p = 0; p < sweep; ++p) {
-      for (std::size_t b = 0; b < request.solvers.size(); ++b) {
-        if (!request.iterative[b]) continue;
-        for (const double tol : kSweepTolerances) add(JobKind::kSweep, s, p, request.solvers[b], tol);
+    for (const std::size_t p : SweepProblemIndices(n, options.tolerance_sweep_problems)) {
+      for (const std::string& solver : request.solvers) {
+        for (const double tol : kSweepTolerances) add(JobKind::kSweep, s, p, solver, tol);
       }
     }
   }

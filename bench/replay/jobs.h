@@ -27,7 +27,7 @@ namespace smcbench {
 enum class JobKind {
   kCold,           // problem × backend at the run's tolerance (ReplayOne, mode "cold")
   kGenericSparse,  // the paper suite's problems with M stored sparse, newton through UMFPACK ("newton-sparse-path")
-  kSweep,          // problem × iterative backend at one tolerance of kSweepTolerances (mode "sweep")
+  kSweep,          // problem × backend at one tolerance of kSweepTolerances (mode "sweep")
   kStepper,        // the time-stepper studies (warm/cold starts, work-precision), one job
   kMcp,            // nonlinear MCP × start × MCP backend at the run's tolerance (ReplayMcpOne, mode "cold")
 };
@@ -64,7 +64,9 @@ double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptio
 
 struct JobListRequest {
   std::vector<std::string> solvers;  // resolved names (never empty)
-  std::vector<bool> iterative;       // per solver: SolverInfo::exact is false (it gets the tolerance sweep)
+  // Per solver: SolverInfo::exact is false. No longer selects the sweep's backends (every backend gets the tolerance
+  // ladder); kept until its callers stop filling it.
+  std::vector<bool> iterative;
   bool generic_sparse_path = false;  // add the newton-sparse-path jobs for a suite named "paper"
   bool stepper = false;              // add the stepper job (last)
   // The backends of the MCP jobs: the resolved names whose backend has SolverInfo::mcp (McpSolverNames). The
@@ -73,9 +75,9 @@ struct JobListRequest {
 };
 
 // Every job of a run, in the order a single run writes its results: per suite the cold jobs (problem, then
-// backend), the generic sparse path (problem), the sweep (problem, backend, tolerance); then per MCP suite its jobs
-// (problem, start, MCP backend; BenchJob::suite counts on after the box suites: suites.size() + k); then the
-// stepper job.
+// backend), the generic sparse path (problem), the sweep (SweepProblemIndices, backend, tolerance); then per MCP
+// suite its jobs (problem, start, MCP backend; BenchJob::suite counts on after the box suites: suites.size() + k);
+// then the stepper job.
 std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites, const ReplayOptions& options,
                                     const JobListRequest& request);
 std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,

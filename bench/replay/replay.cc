@@ -1,6 +1,7 @@
 #include "bench/replay/replay.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 
 #include "bench/replay/sample_times.h"
@@ -45,9 +46,24 @@ void Fill(const LibraryProblem& p, const SolveResult& result, double tolerance, 
   r->certificate = std::string(ToString(p.reference.certificate));
   r->tolerance = tolerance;
   r->verdict = j.verdict;
+  r->backend_code = BackendReturnCode(result);
 }
 
 }  // namespace
+
+std::vector<std::size_t> SweepProblemIndices(std::size_t problems, int sweep_problems) {
+  std::vector<std::size_t> out;
+  if (sweep_problems <= 0) return out;
+  const std::size_t n = std::min(problems, static_cast<std::size_t>(sweep_problems));
+  for (std::size_t i = 0; i < n; ++i) out.push_back(n == problems ? i : (2 * i + 1) * problems / (2 * n));
+  return out;
+}
+
+std::optional<int> BackendReturnCode(const SolveResult& result) {
+  const double info = result.GetDetail("siconos_info");
+  if (std::isnan(info)) return std::nullopt;
+  return static_cast<int>(info);
+}
 
 void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& options, const ReplayOptions& replay,
                 SolveResult* result, ReplayRecord* record) {
@@ -98,10 +114,8 @@ ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& optio
   std::vector<std::string> names = options.solvers;
   std::vector<std::unique_ptr<Solver>> solvers = CreateReplaySolvers(options, &names);
   ReplayResults out;
-  const int sweep_problems = std::min<int>(options.tolerance_sweep_problems, static_cast<int>(set.problems.size()));
-  std::size_t iterative = 0;
-  for (const auto& s : solvers) iterative += !s->info().exact;
-  const std::size_t total = set.problems.size() * solvers.size() + sweep_problems * iterative;
+  const std::vector<std::size_t> swept = SweepProblemIndices(set.problems.size(), options.tolerance_sweep_problems);
+  const std::size_t total = (set.problems.size() + swept.size()) * solvers.size();
   std::size_t done = 0;
   for (const LibraryProblem& p : set.problems) {
     for (std::size_t b = 0; b < solvers.size(); ++b) {
@@ -109,12 +123,11 @@ ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& optio
       if (options.progress) options.progress(++done, total, set.name + " " + p.id + " " + names[b]);
     }
   }
-  // Tolerance sweep: time against the error actually reached (residuals, and the forward error where the problem
-  // has a unique reference), for the iterative backends.
-  for (int i = 0; i < sweep_problems; ++i) {
+  // Tolerance sweep: success at each tolerance (the ladder) and time against the error actually reached
+  // (residuals, and the forward error where the problem has a unique reference), for every backend.
+  for (const std::size_t i : swept) {
     const LibraryProblem& p = set.problems[i];
     for (std::size_t b = 0; b < solvers.size(); ++b) {
-      if (solvers[b]->info().exact) continue;
       for (const double tol : kSweepTolerances) {
         out.sweep.push_back(ReplayOne(set, p, solvers[b].get(), names[b], options, "sweep", tol));
       }

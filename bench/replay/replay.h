@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -33,9 +34,9 @@ struct ReplayOptions {
   // 25 ns clock read); the per-solve time is the sample divided by the count.
   double min_sample_seconds = 2e-4;
   double max_seconds_per_pair = 2.0;  // stop sampling a problem × backend after this much time (≥ 1 sample)
-  // Tolerance sweep: on up to this many problems of the set, every iterative backend (SolverInfo::exact false)
-  // is run at tolerances 1e-2, 1e-4, …, 1e-12 (time against achieved residual). 0 disables it.
-  int tolerance_sweep_problems = 8;
+  // Tolerance sweep (the report's tolerance ladder and speed against error): on this many problems of the set,
+  // evenly spaced (SweepProblemIndices), every backend is run at each of kSweepTolerances. 0 disables it.
+  int tolerance_sweep_problems = 16;
   // Called after each problem × backend with (done, total); for the progress bar.
   std::function<void(std::size_t done, std::size_t total, const std::string& what)> progress;
 };
@@ -80,6 +81,11 @@ struct ReplayRecord {
   // solved in process). False for every backend of ours, and for siconos-* ones by default: the untimed warm-up
   // solve is the probe, the timed ones run in process (detail "in_process" of solvers/siconos/siconos_solver.h).
   bool timed_in_worker = false;
+  // An external library's own return code for this answer, 0 meaning its success (Siconos' info, BackendReturnCode):
+  // what a program calling that library trusts, before our base layer re-judged the answer (its polish may upgrade a
+  // short stop, its residual check downgrade a false success). Empty for our backends and when the library was not
+  // called (refused, crashed, timed out); the report's audit of claims then takes `status`.
+  std::optional<int> backend_code;
   // Where it ran (gethostname) and the most bench jobs that ran on that host at once while it ran, itself included
   // (HostActivity, bench/replay/jobs.h): times measured beside other jobs disturb each other. Empty / 0 in results
   // written before sharding (issue 17).
@@ -89,7 +95,7 @@ struct ReplayRecord {
 
 struct ReplayResults {
   std::vector<ReplayRecord> records;        // mode "cold": one per problem × backend
-  std::vector<ReplayRecord> sweep;          // mode "sweep": iterative backends at each tolerance
+  std::vector<ReplayRecord> sweep;          // mode "sweep": every backend at each of kSweepTolerances
 };
 
 // Runs set on the chosen backends. Throws InvalidInputError for an unknown backend name, a malformed or rejected
@@ -97,8 +103,18 @@ struct ReplayResults {
 // backend that fails on a problem is a record, never an exception.
 ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& options);
 
-// The tolerances of the tolerance sweep (ReplayOptions::tolerance_sweep_problems), loosest first.
-inline constexpr double kSweepTolerances[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
+// The tolerances of the tolerance sweep (ReplayOptions::tolerance_sweep_problems), loosest first: the report's
+// tolerance ladder, from a loose engineering tolerance to near the limit of double precision.
+inline constexpr double kSweepTolerances[] = {1e-3, 1e-6, 1e-9, 1e-12};
+
+// Which problems of a set of `problems` the tolerance sweep runs on: all when sweep_problems ≥ problems, else
+// sweep_problems of them evenly spaced (the middle of each of as many equal slices), so that the ladder sees the
+// whole suite (its sizes and families) rather than its first problems. Empty when sweep_problems ≤ 0.
+std::vector<std::size_t> SweepProblemIndices(std::size_t problems, int sweep_problems);
+
+// The external library's own return code stored in result's details (detail "siconos_info" of the siconos-*
+// backends, box and MCP), or empty when the result has none.
+std::optional<int> BackendReturnCode(const SolveResult& result);
 
 // The backends by name (empty: every registered one) with options.settings applied, in the order of *names (filled
 // in when empty). InvalidInputError for an unknown name or a rejected setting (a setting must reach one of the

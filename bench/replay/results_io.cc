@@ -93,7 +93,8 @@ json RecordJson(const ReplayRecord& r) {
           {"mode", r.mode},
           {"timed_in_worker", r.timed_in_worker},
           {"host", r.host},
-          {"concurrent_jobs", r.concurrent_jobs}};
+          {"concurrent_jobs", r.concurrent_jobs},
+          {"backend_code", r.backend_code ? json(*r.backend_code) : json(nullptr)}};
 }
 
 template <typename Enum, typename Values>
@@ -152,6 +153,8 @@ ReplayRecord RecordFromJson(const json& j) {
   // Written since sharded runs (issue 17).
   r.host = j.value("host", std::string());
   r.concurrent_jobs = j.value("concurrent_jobs", 0);
+  // Written since the report's audit of claims; null (or absent, in older results) when there is none.
+  if (j.contains("backend_code") && !j.at("backend_code").is_null()) r.backend_code = j.at("backend_code").get<int>();
   return r;
 }
 
@@ -329,12 +332,13 @@ void WriteBenchResults(const BenchResults& results, const std::string& dir, cons
     if (!out) throw InvalidInputError("bench: cannot write " + (fs::path(dir) / "results.json").string());
   }
   // Numbers in shortest round-trip form (NumberText: reads back to the same double; "inf", "nan" when not finite).
-  // The columns added later (residual_scaled onwards, then timed_in_worker, host, start) come last, so scripts
-  // that index the older ones keep working.
+  // The columns added later (residual_scaled onwards, then timed_in_worker, host, start, backend_code) come last,
+  // so scripts that index the older ones keep working.
   std::ofstream csv(fs::path(dir) / "results.csv");
   csv << "suite,problem,solver,mode,size,sparse,expected,status,verdict,iterations,residual_abs,residual_rel,"
          "tolerance,time_median,time_min,time_max,time_mad,samples,solves_per_sample,residual_scaled,"
-         "forward_error,forward_error_rel,forward_allowance,certificate,timed_in_worker,host,concurrent_jobs,start\n";
+         "forward_error,forward_error_rel,forward_allowance,certificate,timed_in_worker,host,concurrent_jobs,start,"
+         "backend_code\n";
   for (const SuiteResults& s : results.suites) {
     for (const auto* records : {&s.replay.records, &s.replay.sweep}) {
       for (const ReplayRecord& r : *records) {
@@ -347,7 +351,8 @@ void WriteBenchResults(const BenchResults& results, const std::string& dir, cons
             << NumberText(r.forward_error) << ',' << NumberText(r.forward_error_rel) << ','
             << NumberText(r.forward_allowance) << ',' << CsvField(r.certificate) << ','
             << (r.timed_in_worker ? 1 : 0) << ',' << CsvField(r.host) << ',' << r.concurrent_jobs << ','
-            << CsvField(r.start) << '\n';
+            << CsvField(r.start) << ',' << (r.backend_code ? std::to_string(*r.backend_code) : std::string())
+            << '\n';
       }
     }
   }

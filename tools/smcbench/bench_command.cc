@@ -288,15 +288,21 @@ std::string DefaultOutputFolder() {
   return name;
 }
 
-// The run at a glance on stdout: per suite and backend the verdict counts and the shifted geometric mean time.
+// The run at a glance on stdout: per suite and backend the verdict counts and the shifted geometric mean time; a
+// backend that solved nothing gets its most common status instead of a time made of failure penalties alone.
 void PrintSummaryTable(const BenchResults& results, double time_limit, std::ostream& out) {
   out << "| suite | backend | problems | solved | refused | failed | wrongly claimed | inaccurate | wrongly refused "
          "| SGM time |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
   for (const SuiteResults& suite : results.suites) {
-    for (const BackendSummary& b : SummarizeSuite(suite, time_limit)) {
+    const std::vector<BackendSummary> summary = SummarizeSuite(suite, time_limit);
+    for (const BackendSummary& b : summary) {
       out << "| " << suite.suite << " | " << b.solver << " | " << b.problems << " | " << b.solved << " | "
           << b.correctly_refused << " | " << b.failed << " | " << b.wrongly_claimed << " | " << b.inaccurate << " | "
-          << b.wrongly_refused << " | " << FormatDuration(1e9 * b.shifted_geomean) << " |\n";
+          << b.wrongly_refused << " | "
+          << (SolvedNothing(b, summary) ? "solved nothing: " + std::string(ToString(b.failure.status)) + " on " +
+                                              std::to_string(b.failure.count)
+                                        : FormatDuration(1e9 * b.shifted_geomean))
+          << " |\n";
     }
   }
 }
@@ -455,7 +461,7 @@ class ShardRunner {
       line.skipped = job.kind == JobKind::kSweep;
       line.has_record = !line.skipped;
       if (line.has_record) line.record = NotRunRecord(job);
-      ++skipped_[{job.suite, job.solver}];
+      if (line.has_record) ++skipped_[{job.suite, job.solver}];  // problems; skipped sweep rungs are not problems
     } else {
       const auto start = std::chrono::steady_clock::now();
       line.has_record = true;

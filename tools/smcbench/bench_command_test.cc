@@ -85,7 +85,7 @@ TEST(Bench, TinySuiteEndToEndWithReport) {
   const std::string csv = ReadText(dir / "results.csv");
   EXPECT_EQ(csv.rfind("suite,problem,solver,mode,size", 0), 0u);
   EXPECT_THAT(csv, HasSubstr(",residual_scaled,forward_error,forward_error_rel,forward_allowance,certificate,"
-                             "timed_in_worker,host,concurrent_jobs,start\n"));
+                             "timed_in_worker,host,concurrent_jobs,start,backend_code\n"));
   const std::string md = ReadText(dir / "report.md");
   EXPECT_THAT(md, HasSubstr("## Suite `tiny`"));
   // solved, correctly refused, failed, wrongly claimed, inaccurate, wrongly refused, success.
@@ -159,7 +159,8 @@ TEST(Bench, ExitsThreeOnAWrongAnswerUnlessTheBackendIsAllowed) {
                                          "--no-plots"};
   const CliRun wrong = RunSmcbench(base);
   EXPECT_EQ(wrong.code, 3) << wrong.err;
-  EXPECT_THAT(wrong.err, HasSubstr("bench: 1 wrong answer (INACCURATE 1; lemke 1)"));
+  // The cold record and the 4 rungs of its tolerance ladder: a wrong answer at a loose tolerance is still wrong.
+  EXPECT_THAT(wrong.err, HasSubstr("bench: 5 wrong answers (INACCURATE 5; lemke 5)"));
   // The results and the report are written before the exit status says so.
   const auto j = nlohmann::json::parse(ReadText(dir / "out" / "results.json"));
   const auto& rec = j["suites"][0]["records"][0];
@@ -171,7 +172,7 @@ TEST(Bench, ExitsThreeOnAWrongAnswerUnlessTheBackendIsAllowed) {
   allowed.insert(allowed.end(), {"--allow-wrong", "siconos-*", "--allow-wrong", "lem*"});
   const CliRun excused = RunSmcbench(allowed);
   EXPECT_EQ(excused.code, 0) << excused.err;
-  EXPECT_THAT(excused.err, HasSubstr("1 of them allowed by --allow-wrong"));  // still reported
+  EXPECT_THAT(excused.err, HasSubstr("5 of them allowed by --allow-wrong"));  // still reported
 
   std::vector<std::string> other = base;
   other.insert(other.end(), {"--allow-wrong", "siconos-*"});
@@ -427,7 +428,7 @@ TEST(Bench, BackendBudgetSkipsTheRestAndProgressLinesAreWritten) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("bench: lemke skipped 4 of 5 problems of suite tiny after spending its budget"));
   EXPECT_THAT(r.err, HasSubstr("bench: enum skipped 4 of 5 problems"));
-  EXPECT_THAT(r.err, HasSubstr("bench: 1/10 (10%) after "));
+  EXPECT_THAT(r.err, HasSubstr("bench: 1/26 (3%) after "));  // 10 cold jobs, 16 of the tolerance ladder
   EXPECT_THAT(r.out, HasSubstr("| tiny | lemke | 5 | 1 | 0 | 4 | 0 | 0 | 0 | "));  // skipped = failed, not refused
   const auto j = nlohmann::json::parse(ReadText(dir / "results.json"));
   const auto& records = j["suites"][0]["records"];
@@ -602,7 +603,7 @@ std::vector<nlohmann::json> TimelessRecords(const fs::path& dir) {
   return out;
 }
 
-// lemke and enum (exact) and psor (iterative: it gets the tolerance sweep), tiny suite, no stepper study.
+// lemke, psor and enum (each gets the tolerance sweep), tiny suite, no stepper study.
 std::vector<std::string> ShardArgs(const std::vector<std::string>& extra) {
   std::vector<std::string> args{"bench", "--suite", "tiny", "--quick", "--no-stepper", "--solver", "lemke",
                                 "--solver", "psor", "--solver", "enum"};
@@ -623,10 +624,10 @@ TEST(Shards, ThreeShardsMergedEqualTheSingleRunAndAKilledShardResumes) {
   CliRun single = RunSmcbench(ShardArgs({"--out", (root / "single").string()}));
   ASSERT_EQ(single.code, 0) << single.err;
 
-  // --list-jobs: 5 problems × 3 backends cold + 2 problems × psor × 6 tolerances = 27 jobs, each in one shard.
+  // --list-jobs: 5 problems × 3 backends cold + 2 problems × 3 backends × 4 tolerances = 39 jobs, each in one shard.
   const CliRun listed = RunSmcbench(ShardArgs({"--list-jobs"}));
   ASSERT_EQ(listed.code, 0) << listed.err;
-  EXPECT_THAT(listed.out, HasSubstr("# 27 of 27 jobs"));
+  EXPECT_THAT(listed.out, HasSubstr("# 39 of 39 jobs"));
   std::set<std::string> in_shards;
   std::size_t listed_in_shards = 0;
   for (int k = 1; k <= 3; ++k) {
@@ -641,8 +642,8 @@ TEST(Shards, ThreeShardsMergedEqualTheSingleRunAndAKilledShardResumes) {
     }
     EXPECT_EQ(RunSmcbench(ShardArgs({"--list-jobs", "--shard", shard})).out, part.out) << "deterministic";
   }
-  EXPECT_EQ(listed_in_shards, 27u);
-  EXPECT_EQ(in_shards.size(), 27u) << "every job in exactly one shard";
+  EXPECT_EQ(listed_in_shards, 39u);
+  EXPECT_EQ(in_shards.size(), 39u) << "every job in exactly one shard";
 
   std::vector<std::string> dirs;
   for (int k = 1; k <= 3; ++k) {
@@ -657,7 +658,7 @@ TEST(Shards, ThreeShardsMergedEqualTheSingleRunAndAKilledShardResumes) {
   ASSERT_EQ(merged.code, 0) << merged.err;
   EXPECT_EQ(merged.err, "");  // nothing missing, nothing duplicated
   const std::vector<nlohmann::json> expected = TimelessRecords(root / "single");
-  ASSERT_EQ(expected.size(), 1u + 15u + 12u);
+  ASSERT_EQ(expected.size(), 1u + 15u + 24u);
   EXPECT_EQ(TimelessRecords(root / "merged"), expected);
   const CliRun report = RunSmcbench({"report", (root / "merged").string(), "--no-plots"});
   EXPECT_EQ(report.code, 0) << report.err;

@@ -63,49 +63,6 @@ double Slope(const std::vector<double>& x, const std::vector<double>& y) {
   return d > 0 ? (n * sxy - sx * sy) / d : std::nan("");
 }
 
-// Each backend its own look in every figure, so 18 curves stay readable: ours solid, the external siconos-* ones
-// dashed (colour and dash both vary among them), each from its own palette; the registry's order decides who gets
-// which, so a backend looks the same in every figure. A label that names no known backend ("newton implicit" is
-// newton's) gets a colour from its name.
-std::string BackendStyle(const std::string& label) {
-  static const char* const kOurs[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7", "#E69F00", "#000000", "#56B4E9",
-                                      "#8C564B"};
-  static const char* const kExternal[] = {"#1B9E77", "#D95F02", "#7570B3", "#E7298A", "#66A61E", "#E6AB02",
-                                          "#A6761D", "#666666", "#17BECF", "#BCBD22", "#9467BD", "#FF7F0E"};
-  std::vector<std::string> known;
-  for (auto name : SolverNames()) known.emplace_back(name);
-  known.emplace_back("newton-sparse-path");
-  std::string backend = label;
-  std::string token;
-  for (char c : label + " ") {
-    if (c == ' ' || c == '/' || c == '(' || c == ')' || c == ',') {
-      if (!token.empty() && std::find(known.begin(), known.end(), token) != known.end()) {
-        backend = token;
-        break;
-      }
-      token.clear();
-    } else {
-      token.push_back(c);
-    }
-  }
-  const bool external = backend.rfind("siconos-", 0) == 0;
-  std::size_t index = 0;
-  const auto it = std::find(known.begin(), known.end(), backend);
-  if (it == known.end()) {
-    index = std::hash<std::string>{}(backend);
-  } else {
-    for (auto k = known.begin(); k != it; ++k) index += (k->rfind("siconos-", 0) == 0) == external;
-  }
-  char style[96];
-  if (external) {
-    std::snprintf(style, sizeof style, "lw 2 lc rgb '%s' dt %zu pt %zu", kExternal[index % 12], 2 + index % 4,
-                  4 + 2 * (index % 4));
-  } else {
-    std::snprintf(style, sizeof style, "lw 2.5 lc rgb '%s' dt 1 pt %zu", kOurs[index % 8], 5 + 2 * (index % 3));
-  }
-  return style;
-}
-
 // A figure a user can restyle: dir/STEM.dat (the data), dir/STEM.gp (the gnuplot script, reading STEM.dat and
 // writing STEM.png and STEM.svg; `cd DIR && gnuplot STEM.gp` remakes both) kept beside STEM.png and STEM.svg.
 // body: the settings and the plot command, naming the data file as 'STEM.dat'.
@@ -139,14 +96,34 @@ double MedianDefined(std::vector<double> v) {
 
 std::string Count(int n) { return n ? "**" + std::to_string(n) + "**" : std::string("0"); }
 
+// A table cell from free text: one line, no column separator, at most max_chars bytes.
+std::string Cell(const std::string& text, std::size_t max_chars = 90) {
+  std::string out;
+  for (char c : text) out += c == '|' ? '/' : c == '\n' ? ' ' : c;
+  if (out.size() > max_chars) out = out.substr(0, max_chars) + "…";
+  return out;
+}
+
+// A value that is not defined (NaN: nothing solved, no reference) as an empty cell, never as a 0.
+std::string Blank(double v) { return std::isnan(v) ? std::string() : G(v); }
+
+// "12/16 (75%)"; empty when nothing was run.
+std::string Fraction(int part, int whole) {
+  if (whole == 0) return "";
+  return std::to_string(part) + "/" + std::to_string(whole) + " (" + G(100.0 * part / whole, 3) + "%)";
+}
+
+// Tick labels in %g ("1e-06", "0.001", "100"): never gnuplot's default fixed notation ("0.0000010").
+constexpr const char* kTickFormat = "set format x '%g'\nset format y '%g'\n";
+
 // One curve per label of (x, time) points on log axes, joined in x order when sort_by_x (else in the given order,
 // e.g. of decreasing h): the figure dir/STEM.{png,svg,dat,gp} (WriteFigure).
 void PlotCurves(const std::map<std::string, std::vector<std::pair<double, double>>>& curves, const std::string& dir,
                 const std::string& stem, const std::string& xlabel, const std::string& ylabel,
                 const std::string& title, bool sort_by_x = true, const char* with = "linespoints") {
   std::ostringstream data, g;
-  g << "set logscale xy\nset grid\nset key outside right top\nset xlabel " << GnuplotQuote(xlabel) << "\nset ylabel "
-    << GnuplotQuote(ylabel) << "\nset title " << GnuplotQuote(title) << "\nplot ";
+  g << "set logscale xy\nset grid\nset key outside right top\n" << kTickFormat << "set xlabel " << GnuplotQuote(xlabel)
+    << "\nset ylabel " << GnuplotQuote(ylabel) << "\nset title " << GnuplotQuote(title) << "\nplot ";
   int index = 0;
   for (const auto& [label, points] : curves) {
     auto sorted = points;
@@ -176,8 +153,92 @@ bool IsMcpSuite(const SuiteResults& suite) {
                      [](const ReplayRecord& r) { return !r.start.empty(); });
 }
 
+PlotStyle StyleOf(std::size_t index, bool external) {
+  // Okabe & Ito (2008), "Color Universal Design": distinct under every common colour-vision deficiency. Its yellow
+  // (#F0E442) is left out: it vanishes on a white background.
+  static constexpr const char* kColours[] = {"#0072B2", "#D55E00", "#009E73", "#CC79A7",
+                                             "#E69F00", "#56B4E9", "#000000"};
+  // Filled circle, square, up and down triangles, diamond; open circle, open square.
+  static constexpr int kPoints[] = {7, 5, 9, 11, 13, 6, 4};
+  constexpr std::size_t kN = 7;
+  const std::size_t colour = index % kN, round = index / kN;
+  PlotStyle style;
+  style.colour = kColours[colour];
+  // Within one colour the point type steps with each round of the palette, so colour + point stays unique; the
+  // external family starts 3 point types on, so our i-th and its i-th differ in more than the dash.
+  style.point = kPoints[(colour + round + (external ? 3 : 0)) % kN];
+  style.dash = external ? 2 + static_cast<int>(round % 4) : 1;
+  style.width = external ? 2.0 : 2.5;
+  return style;
+}
+
+std::string BackendStyle(const std::string& label) {
+  std::vector<std::string> known;
+  for (auto name : SolverNames()) known.emplace_back(name);
+  known.emplace_back("newton-sparse-path");
+  std::string backend = label;
+  std::string token;
+  for (char c : label + " ") {
+    if (c == ' ' || c == '/' || c == '(' || c == ')' || c == ',') {
+      if (!token.empty() && std::find(known.begin(), known.end(), token) != known.end()) {
+        backend = token;
+        break;
+      }
+      token.clear();
+    } else {
+      token.push_back(c);
+    }
+  }
+  const bool external = backend.rfind("siconos-", 0) == 0;
+  std::size_t index = 0;
+  const auto it = std::find(known.begin(), known.end(), backend);
+  if (it == known.end()) {
+    index = std::hash<std::string>{}(backend) % 49;
+  } else {
+    for (auto k = known.begin(); k != it; ++k) index += (k->rfind("siconos-", 0) == 0) == external;
+  }
+  const PlotStyle style = StyleOf(index, external);
+  char text[96];
+  std::snprintf(text, sizeof text, "lw %g lc rgb '%s' dt %d pt %d", style.width, style.colour.c_str(), style.dash,
+                style.point);
+  return text;
+}
+
 std::vector<BackendSummary> SummarizeSuite(const SuiteResults& suite, double time_limit_seconds) {
-  const auto& records = suite.replay.records;
+  return SummarizeRecords(suite.replay.records, time_limit_seconds);
+}
+
+namespace {
+
+// The most common ending of a backend's records that are not correct (FailureReason).
+FailureReason MostCommonFailure(const std::vector<const ReplayRecord*>& not_correct) {
+  FailureReason reason;
+  std::vector<SolveStatus> order;
+  std::map<SolveStatus, int> by_status;
+  for (const ReplayRecord* r : not_correct) {
+    if (by_status[r->status]++ == 0) order.push_back(r->status);
+  }
+  for (SolveStatus s : order) {
+    if (by_status[s] > reason.count) reason.status = s, reason.count = by_status[s];
+  }
+  std::vector<std::string> messages;
+  std::map<std::string, int> by_message;
+  std::vector<double> times;
+  for (const ReplayRecord* r : not_correct) {
+    if (r->status != reason.status) continue;
+    if (by_message[r->message]++ == 0) messages.push_back(r->message);
+    times.push_back(r->time_median);
+  }
+  for (const std::string& m : messages) {
+    if (by_message[m] > reason.message_count) reason.message = m, reason.message_count = by_message[m];
+  }
+  reason.median_time = MedianDefined(times);
+  return reason;
+}
+
+}  // namespace
+
+std::vector<BackendSummary> SummarizeRecords(const std::vector<ReplayRecord>& records, double time_limit_seconds) {
   // Slowest correct time per problem.
   std::map<std::string, double> slowest;
   for (const auto& r : records) {
@@ -189,13 +250,16 @@ std::vector<BackendSummary> SummarizeSuite(const SuiteResults& suite, double tim
     b.solver = solver;
     double log_sum = 0.0;
     constexpr double kShift = 1e-6;
+    std::vector<const ReplayRecord*> not_correct;
     for (const auto& r : records) {
       if (r.solver != solver) continue;
       ++b.problems;
+      ++b.statuses[r.status];
+      if (!Correct(r)) not_correct.push_back(&r);
       switch (r.verdict) {
         case Verdict::kSolved:
           ++b.solved;
-          b.worst_residual = std::max(b.worst_residual, r.residual_rel);
+          b.worst_residual = MaxDefined(b.worst_residual, r.residual_rel);
           b.worst_residual_scaled = MaxDefined(b.worst_residual_scaled, r.residual_scaled);
           if (!std::isnan(r.forward_error)) {
             ++b.forward_error_defined;
@@ -219,12 +283,109 @@ std::vector<BackendSummary> SummarizeSuite(const SuiteResults& suite, double tim
           break;
       }
       const auto it = slowest.find(Instance(r));
-      const double t = Correct(r) ? r.time_median : (it != slowest.end() ? 10.0 * it->second : time_limit_seconds);
+      const double t = Correct(r) ? r.time_median
+                                  : (it != slowest.end() ? kFailurePenaltyFactor * it->second : time_limit_seconds);
       log_sum += std::log(t + kShift);
     }
+    if (!not_correct.empty()) b.failure = MostCommonFailure(not_correct);
     b.success_rate = b.problems ? static_cast<double>(b.solved + b.correctly_refused) / b.problems : 0.0;
     b.shifted_geomean = b.problems ? std::exp(log_sum / b.problems) - kShift : 0.0;
     out.push_back(b);
+  }
+  return out;
+}
+
+bool SolvedNothing(const BackendSummary& backend, const std::vector<BackendSummary>& suite) {
+  return backend.solved == 0 &&
+         std::any_of(suite.begin(), suite.end(), [](const BackendSummary& b) { return b.solved > 0; });
+}
+
+std::vector<BandWinner> FastestCorrectPerBand(const SuiteResults& suite, double time_limit_seconds) {
+  std::vector<BandWinner> out;
+  for (const SizeBand band : kSizeBands) {
+    std::vector<ReplayRecord> records;
+    for (const auto& r : suite.replay.records) {
+      if (SizeBandOf(r.size) == band) records.push_back(r);
+    }
+    if (records.empty()) continue;
+    BandWinner w;
+    w.band = band;
+    std::map<std::string, double> fastest;  // instance → smallest correct time
+    for (const auto& r : records) {
+      if (!Correct(r)) continue;
+      auto [it, inserted] = fastest.emplace(Instance(r), r.time_median);
+      if (!inserted) it->second = std::min(it->second, r.time_median);
+    }
+    std::set<std::string> instances;
+    for (const auto& r : records) instances.insert(Instance(r));
+    w.problems = static_cast<int>(instances.size());
+    std::vector<BackendSummary> candidates;
+    for (const BackendSummary& b : SummarizeRecords(records, time_limit_seconds)) {
+      if (b.wrong() == 0 && b.correct() > 0) candidates.push_back(b);
+    }
+    // Most correct answers first, then the smaller SGM.
+    std::stable_sort(candidates.begin(), candidates.end(), [](const BackendSummary& a, const BackendSummary& b) {
+      return a.correct() != b.correct() ? a.correct() > b.correct() : a.shifted_geomean < b.shifted_geomean;
+    });
+    if (!candidates.empty()) {
+      w.solver = candidates[0].solver;
+      w.correct = candidates[0].correct();
+      w.shifted_geomean = candidates[0].shifted_geomean;
+      for (const auto& r : records) {
+        w.fastest_on += r.solver == w.solver && Correct(r) && r.time_median <= fastest.at(Instance(r));
+      }
+    }
+    if (candidates.size() > 1) {
+      w.runner_up = candidates[1].solver;
+      w.runner_up_correct = candidates[1].correct();
+      w.runner_up_geomean = candidates[1].shifted_geomean;
+    }
+    out.push_back(w);
+  }
+  return out;
+}
+
+ToleranceLadder BuildToleranceLadder(const SuiteResults& suite) {
+  ToleranceLadder ladder;
+  std::set<double> tolerances;
+  for (const auto& r : suite.replay.sweep) tolerances.insert(r.tolerance);
+  ladder.tolerances.assign(tolerances.rbegin(), tolerances.rend());
+  for (const std::string& solver : Solvers(suite.replay.sweep)) {
+    ToleranceLadder::Row row;
+    row.solver = solver;
+    row.correct.assign(ladder.tolerances.size(), 0);
+    row.problems.assign(ladder.tolerances.size(), 0);
+    for (const auto& r : suite.replay.sweep) {
+      if (r.solver != solver) continue;
+      const auto k = static_cast<std::size_t>(
+          std::find(ladder.tolerances.begin(), ladder.tolerances.end(), r.tolerance) - ladder.tolerances.begin());
+      ++row.problems[k];
+      row.correct[k] += Correct(r);
+    }
+    ladder.rows.push_back(std::move(row));
+  }
+  return ladder;
+}
+
+bool ClaimedSolved(const ReplayRecord& record) {
+  return record.backend_code ? *record.backend_code == 0 : record.status == SolveStatus::kSolved;
+}
+
+std::vector<ClaimAudit> AuditClaims(const SuiteResults& suite) {
+  std::vector<ClaimAudit> out;
+  for (const std::string& solver : Solvers(suite.replay.records)) {
+    ClaimAudit a;
+    a.solver = solver;
+    for (const auto& r : suite.replay.records) {
+      if (r.solver != solver) continue;
+      ++a.records;
+      a.with_return_code += r.backend_code.has_value();
+      const bool claimed = ClaimedSolved(r), solved = r.verdict == Verdict::kSolved;
+      a.right += claimed == solved;
+      a.false_success += claimed && !solved;
+      a.false_failure += !claimed && solved;
+    }
+    out.push_back(a);
   }
   return out;
 }
@@ -326,7 +487,8 @@ void WriteHeader(std::ostream& md, const std::string& dir, const BenchResults& r
         "(each sample repeats the solve until it lasts ≥ 0.2 ms) after one untimed warm-up solve, which for a "
         "`siconos-*` backend is the probe in its isolation worker, so that its timed solves run in process; SGM is "
         "the shifted geometric mean (shift 1 µs) "
-        "with a wrong or failed problem counted at 10× the slowest correct time on it. "
+        "with a wrong or failed problem counted at 10× the slowest correct time on it (10 s where no backend got it "
+        "right). "
      << (results.polish ? "Every answer went through the base layer's exact polish (the default: from the answer's "
                           "active set, the reduced system solved directly), so an answer with the right active set "
                           "is exact whatever the tolerance; `smcbench bench --no-polish` times the raw algorithms."
@@ -360,18 +522,118 @@ void WriteSuiteSummary(std::ostream& md, const SuiteResults& suite) {
   WriteBackendTable(md, suite);
 }
 
-// Per backend: verdict counts, success, SGM time and worst errors (SummarizeSuite).
+// The failure-penalty convention, in the words the report prints beside every table and figure that uses it.
+const char* const kPenaltyConvention =
+    "SGM time = shifted geometric mean (shift 1 µs) of the per-problem median times, where a problem the backend "
+    "did not get right (failed, or a wrong answer) counts as 10× the slowest correct time on that problem, or as "
+    "10 s when no backend got it right: a failure never costs less than the slowest success (qpbenchmark's "
+    "convention, with 10× the slowest correct time in place of the time limit).";
+
+// Per backend: verdict counts, success, SGM time and worst errors (SummarizeSuite). Backends that solved nothing
+// are listed apart (WriteSolvedNothing): their SGM would be the penalty alone.
 void WriteBackendTable(std::ostream& md, const SuiteResults& suite) {
+  const std::vector<BackendSummary> summary = SummarizeSuite(suite);
   md << "| backend | solved | correctly refused | failed | **wrongly claimed** | **inaccurate** | **wrongly "
         "refused** | success | SGM time | worst residual (solved) | worst residual (eq.) | worst forward error "
         "(solved) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-  for (const BackendSummary& b : SummarizeSuite(suite)) {
+  for (const BackendSummary& b : summary) {
+    if (SolvedNothing(b, summary)) continue;
     md << "| " << b.solver << " | " << b.solved << " | " << b.correctly_refused << " | " << b.failed << " | "
        << Count(b.wrongly_claimed) << " | " << Count(b.inaccurate) << " | " << Count(b.wrongly_refused) << " | "
-       << G(100.0 * b.success_rate, 3) << "% | " << Seconds(b.shifted_geomean) << " | " << G(b.worst_residual)
-       << " | " << G(b.worst_residual_scaled) << " | " << G(b.worst_forward_error);
+       << G(100.0 * b.success_rate, 3) << "% | " << Seconds(b.shifted_geomean) << " | " << Blank(b.worst_residual)
+       << " | " << Blank(b.worst_residual_scaled) << " | ";
+    // Nothing solved: blank; solved, but no problem with a unique reference: "–".
+    if (b.solved > 0) md << G(b.worst_forward_error);
     if (b.forward_error_defined) md << " (" << b.forward_error_defined << " with z*)";
     md << " |\n";
+  }
+  md << "\n" << kPenaltyConvention << " Worst residuals and forward error are over the solved answers (blank: none "
+     << "solved; –: no solved problem has a unique certified reference).\n\n";
+}
+
+// "size_limit on 50 of 50: "refused m > 12" (50×), median 24 µs": the reason a backend solved nothing.
+std::string FailureText(const FailureReason& f, int problems) {
+  std::string text = "`" + std::string(ToString(f.status)) + "` on " + std::to_string(f.count) + " of " +
+                     std::to_string(problems);
+  if (!f.message.empty()) {
+    text += ": \"" + Cell(f.message) + "\"";
+    if (f.message_count != f.count) text += " (" + std::to_string(f.message_count) + "×)";
+  }
+  if (!std::isnan(f.median_time)) text += ", median " + Seconds(f.median_time);
+  return text;
+}
+
+// The backends that solved nothing while others solved something, each with its most common ending.
+void WriteSolvedNothing(std::ostream& md, const SuiteResults& suite) {
+  const std::vector<BackendSummary> summary = SummarizeSuite(suite);
+  std::vector<const BackendSummary*> none;
+  for (const BackendSummary& b : summary) {
+    if (SolvedNothing(b, summary)) none.push_back(&b);
+  }
+  if (none.empty()) return;
+  md << "**Solved nothing** in this suite (left out of the table above: their SGM would be the failure penalty "
+        "alone). The most common ending, with its message and the median time it took:\n\n"
+        "| backend | problems | correctly refused | failed | wrong | most common ending |\n|---|---|---|---|---|---|\n";
+  for (const BackendSummary* b : none) {
+    md << "| " << b->solver << " | " << b->problems << " | " << b->correctly_refused << " | " << b->failed << " | "
+       << Count(b->wrong()) << " | " << FailureText(b->failure, b->problems) << " |\n";
+  }
+  md << "\n";
+}
+
+// Per backend, how many records ended with each status the backend returned (one column per status met in the
+// suite), then the audit of claims (AuditClaims): whether its own success flag agreed with our verdict.
+void WriteStatusesAndClaims(std::ostream& md, const SuiteResults& suite) {
+  const std::vector<BackendSummary> summary = SummarizeSuite(suite);
+  const std::vector<ClaimAudit> audit = AuditClaims(suite);
+  std::set<SolveStatus> met;
+  for (const BackendSummary& b : summary) {
+    for (const auto& [status, count] : b.statuses) met.insert(status);
+  }
+  md << "**Statuses returned and the audit of claims**: how each backend's answers ended in its own words, and "
+        "whether its success flag was right — a claim is right when it says solved exactly when our verdict is "
+        "solved. The flag is Siconos' own return code (`info` = 0, column `backend_code` of results.csv) where the "
+        "record has one, before our base layer re-judged the answer (with the polish on, a false failure can be a "
+        "short stop our polish finished); else the status.\n\n| backend | ";
+  for (SolveStatus s : met) md << "`" << ToString(s) << "` | ";
+  md << "flag right | false success (said solved, is not) | false failure (said failed, is solved) | flag from the "
+        "return code |\n|---|";
+  for (std::size_t i = 0; i < met.size() + 4; ++i) md << "---|";
+  md << "\n";
+  for (std::size_t k = 0; k < summary.size(); ++k) {
+    const BackendSummary& b = summary[k];
+    const ClaimAudit& a = audit[k];  // both in the order the backends first appear in the records
+    md << "| " << b.solver << " | ";
+    for (SolveStatus s : met) {
+      const auto it = b.statuses.find(s);
+      md << (it == b.statuses.end() ? 0 : it->second) << " | ";
+    }
+    md << Fraction(a.right, a.records) << " | " << Count(a.false_success) << " | " << a.false_failure << " | "
+       << a.with_return_code << "/" << a.records << " |\n";
+  }
+  md << "\n";
+}
+
+// The fastest correct backend per size band (FastestCorrectPerBand), with the evidence: its correct answers, SGM,
+// on how many problems it was the fastest, and the runner-up.
+void WriteBandWinners(std::ostream& md, const SuiteResults& suite) {
+  const std::vector<BandWinner> winners = FastestCorrectPerBand(suite);
+  if (winners.empty()) return;
+  md << "**Fastest correct backend per size band**: among the backends with no wrong answer in the band, those "
+        "with the most correct answers, and of them the smallest SGM time over the band (penalty as above, from the "
+        "band's problems alone):\n\n| size band | problems | fastest correct | correct | SGM time | fastest on | "
+        "runner-up | its correct | its SGM time | runner-up / fastest |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const BandWinner& w : winners) {
+    md << "| " << ToString(w.band) << " | " << w.problems << " | ";
+    if (w.solver.empty()) {
+      md << "none (every backend gave a wrong answer) | | | | | | | |\n";
+      continue;
+    }
+    md << "**" << w.solver << "** | " << w.correct << "/" << w.problems << " | " << Seconds(w.shifted_geomean)
+       << " | " << w.fastest_on << " | " << w.runner_up << " | "
+       << (w.runner_up.empty() ? "" : std::to_string(w.runner_up_correct) + "/" + std::to_string(w.problems))
+       << " | " << (w.runner_up.empty() ? "" : Seconds(w.runner_up_geomean)) << " | "
+       << (w.runner_up.empty() ? "" : G(w.runner_up_geomean / w.shifted_geomean) + "×") << " |\n";
   }
   md << "\n";
 }
@@ -433,8 +695,8 @@ void WriteSparsePathComparison(std::ostream& md, const SparsePathComparison& c) 
   if (c.speedups.empty()) return;
   const auto& ratios = c.speedups;
   const auto& floors = c.over_floor;
-  md << "Fastest backend against the generic sparse path (the same problems with M stored sparse, solved by "
-        "`newton` with its UMFPACK sparse LU forced, `newton.linear_solver=sparse`): speed-up median "
+  md << "Fastest correct backend on each problem against the generic sparse path (the same problems with M stored "
+        "sparse, solved by `newton` with its UMFPACK sparse LU forced, `newton.linear_solver=sparse`): speed-up median "
      << G(ratios[ratios.size() / 2]) << "×, min " << G(ratios.front()) << "×, max " << G(ratios.back())
      << "× over " << ratios.size() << " problems (goal ≥ 10×). Distance from the arithmetic alone (m³/3 + 4m² "
         "flops at 1 flop/ns): the fastest solve takes median "
@@ -484,9 +746,9 @@ void WriteRatioTable(std::ostream& md, const std::map<int, std::vector<double>>&
 // The headline compares in-process times only; the through-worker ones get a labelled footnote.
 void WriteSiconosComparison(std::ostream& md, const SiconosComparison& c) {
   if (!c.in_process.empty()) {
-    md << "Our best backend against Siconos' best (`siconos-*`), both timed in process: each problem's first "
-          "Siconos solve, untimed, is the probe in the backend's isolation worker (a crash or hang there is a "
-          "status); once it came back, the timed solves call Siconos directly (`isolate=first`, see "
+    md << "Our best backend against Siconos' best (`siconos-*`; on each problem the fastest correct answer of each "
+          "side), both timed in process: each problem's first Siconos solve, untimed, is the probe in the backend's "
+          "isolation worker (a crash or hang there is a status); once it came back, the timed solves call Siconos directly (`isolate=first`, see "
           "`solvers/siconos/README.md`). On the problems both solve — Siconos time / our time:\n\n";
     WriteRatioTable(md, c.in_process);
   }
@@ -513,12 +775,18 @@ void WritePerformanceProfile(std::ostream& md, const SuiteResults& suite, const 
   tau_max = std::min(tau_max * 1.5, 1e6);
   std::ostringstream g;
   const std::string stem = "profile-" + Safe(suite.suite);
-  // The key outside the plot: with 18 backends it would cover the curves.
-  g << "set logscale x 2\nset grid\nset key outside right top\nset xlabel 'tau (time / best time)'\n"
-    << "set ylabel 'fraction of problems'\nset yrange [0:1.02]\nset xrange [1:" << tau_max << "]\n"
-    << "set title " << GnuplotQuote("Performance profile, suite " + suite.suite) << "\nplot ";
+  // The key outside the plot: with 20 backends it would cover the curves.
+  g << "set logscale x 2\nset grid\nset key outside right top\n" << kTickFormat
+    << "set xlabel 'tau (time / best time)'\nset ylabel 'fraction of problems'\nset yrange [0:1.02]\nset xrange [1:"
+    << tau_max << "]\nset title " << GnuplotQuote("Performance profile, suite " + suite.suite) << "\nplot ";
+  // A backend that solved no problem would be a flat line on the x-axis, hiding the others' start: named below.
+  std::vector<std::string> never;
   int index = 0;
   for (const auto& [solver, r] : ratios) {
+    if (r.empty() || !std::isfinite(r.front())) {
+      never.push_back(solver);
+      continue;
+    }
     // Step function: (τ_i, i/N), extended to τ_max.
     const double n = static_cast<double>(r.size());
     data << "# " << solver << "\n1 0\n";
@@ -529,13 +797,28 @@ void WritePerformanceProfile(std::ostream& md, const SuiteResults& suite, const 
       data << v << ' ' << k / n << '\n';
     }
     data << tau_max << ' ' << k / n << "\n\n\n";
-    g << (index ? ", " : "") << GnuplotQuote(stem + ".dat") << " index " << index << " using 1:2 with steps "
-      << BackendStyle(solver) << " title " << GnuplotQuote(solver);
+    // Steps draw no point types, and colour + dash alone repeat past seven backends: about eight markers on each
+    // curve, and a key entry showing line and marker together.
+    const std::string style = BackendStyle(solver), file = GnuplotQuote(stem + ".dat");
+    g << (index ? ", " : "") << file << " index " << index << " using 1:2 with steps " << style << " notitle, "
+      << file << " index " << index << " using 1:2 every " << std::max(1, k / 8) << " with points " << style
+      << " notitle, keyentry with linespoints " << style << " title " << GnuplotQuote(solver);
     ++index;
   }
   g << "\n";
-  WriteFigure(dir, stem, data.str(), g.str(), 1100, 600);
-  md << FigureMarkdown("performance profile, " + suite.suite, stem);
+  if (index > 0) {
+    WriteFigure(dir, stem, data.str(), g.str(), 1100, 600);
+    md << FigureMarkdown("performance profile, " + suite.suite, stem);
+  }
+  md << "Performance profile: ρ(τ) = the fraction of problems a backend solved within τ × the fastest solved time "
+        "on that problem; a failure or a wrong answer never counts (it sits at τ = ∞), and problems no backend "
+        "solved are left out.";
+  if (!never.empty()) {
+    md << " Not drawn, since they solved none of those problems:";
+    for (std::size_t i = 0; i < never.size(); ++i) md << (i ? ", " : " ") << never[i];
+    md << ".";
+  }
+  md << "\n\n";
 }
 
 // One (backend, tolerance) row of the tolerance sweep: medians over the swept problems.
@@ -583,12 +866,36 @@ std::vector<SweepRow> SweepRows(const SuiteResults& suite) {
   return rows;
 }
 
+// The tolerance ladder: success per backend at each tolerance of the sweep (BuildToleranceLadder).
+void WriteToleranceLadder(std::ostream& md, const SuiteResults& suite) {
+  const ToleranceLadder ladder = BuildToleranceLadder(suite);
+  if (ladder.rows.empty()) return;
+  std::set<std::string> problems;
+  for (const auto& r : suite.replay.sweep) problems.insert(Instance(r));
+  md << "**Tolerance ladder**: success (solved + correctly refused) per backend and tolerance on the "
+     << problems.size() << " swept problems (`bench` sweeps 16 per suite spread evenly over it, 2 with `--quick`). "
+        "Each rung is its own solve at that tolerance — an untimed warm-up, then at most 3 timed samples — judged at "
+        "that tolerance; the times are in the folded table below. With the polish on (the default) an answer with "
+        "the right active set is exact at every rung (`--no-polish` shows the algorithms' own trade-off). Blank: "
+        "not run (`--backend-budget` spent).\n\n| backend | ";
+  for (double t : ladder.tolerances) md << "tol " << G(t) << " | ";
+  md << "\n|---|";
+  for (std::size_t i = 0; i < ladder.tolerances.size(); ++i) md << "---|";
+  md << "\n";
+  for (const auto& row : ladder.rows) {
+    md << "| " << row.solver << " | ";
+    for (std::size_t k = 0; k < ladder.tolerances.size(); ++k) md << Fraction(row.correct[k], row.problems[k]) << " | ";
+    md << "\n";
+  }
+  md << "\n";
+}
+
 // Speed against error: the tolerance sweep. Two errors: the forward error ‖z − z*‖∞ (what a user reads, on the
 // swept problems with a unique certified reference) and the residual reached (every swept problem).
 void WriteToleranceSweep(std::ostream& md, const SuiteResults& suite, const std::string& dir, bool plots) {
   if (suite.replay.sweep.empty()) return;
-  md << "Speed against error (iterative backends, tolerance 1e-2 … 1e-12, medians over the swept problems; "
-        "forward error over those with a unique certified reference):\n\n"
+  md << "<details><summary>Speed against error, per backend and tolerance (medians over the swept problems; "
+        "forward error over those with a unique certified reference)</summary>\n\n"
      << "| backend | tolerance | forward error (median) | with z* | achieved residual (median) | achieved "
         "residual, eq. (median) | time (median) | solved |\n|---|---|---|---|---|---|---|---|\n";
   std::map<std::string, std::vector<std::pair<double, double>>> by_forward, by_residual;
@@ -602,7 +909,7 @@ void WriteToleranceSweep(std::ostream& md, const SuiteResults& suite, const std:
       by_forward[row.solver].emplace_back(std::max(row.forward_error, 1e-17), row.time_with_reference);
     }
   }
-  md << "\n";
+  md << "\n</details>\n\n";
   if (plots && !by_forward.empty()) {
     const std::string stem = "speed-forward-error-" + Safe(suite.suite);
     PlotCurves(by_forward, dir, stem, "forward error |z - z*|inf (median; problems with a unique certified z*)",
@@ -618,14 +925,6 @@ void WriteToleranceSweep(std::ostream& md, const SuiteResults& suite, const std:
 }
 
 // ---- The MCP section: a suite whose records are MCP problem × start (ReplayRecord::start). ----
-
-// A table cell from free text: one line, no column separator, at most max_chars bytes.
-std::string Cell(const std::string& text, std::size_t max_chars = 90) {
-  std::string out;
-  for (char c : text) out += c == '|' ? '/' : c == '\n' ? ' ' : c;
-  if (out.size() > max_chars) out = out.substr(0, max_chars) + "…";
-  return out;
-}
 
 // Per backend and start label: correct answers (solved + correctly refused) over the problems with that start.
 void WriteMcpStarts(std::ostream& md, const SuiteResults& suite) {
@@ -717,6 +1016,9 @@ void WriteMcpSection(std::ostream& md, const SuiteResults& suite, const std::str
         "reference when the references list every solution, else against one certified unique. Success and SGM "
         "time are over problem × start.\n\n";
   WriteBackendTable(md, suite);
+  WriteSolvedNothing(md, suite);
+  WriteStatusesAndClaims(md, suite);
+  WriteBandWinners(md, suite);
   WriteMcpStarts(md, suite);
   WriteMcpFailures(md, suite);
   if (plots) {
@@ -759,10 +1061,14 @@ void WriteSuite(std::ostream& md, const SuiteResults& suite, const std::string& 
   }
   if (IsMcpSuite(suite)) return WriteMcpSection(md, suite, dir, plots);
   WriteSuiteSummary(md, suite);
+  WriteSolvedNothing(md, suite);
+  WriteStatusesAndClaims(md, suite);
+  WriteBandWinners(md, suite);
   WriteWrongAnswers(md, suite);
   WriteSparsePathComparison(md, CompareWithSparsePath(suite));
   WriteSiconosComparison(md, CompareWithSiconos(suite));
   if (plots) WritePerformanceProfile(md, suite, dir);
+  WriteToleranceLadder(md, suite);
   WriteToleranceSweep(md, suite, dir, plots);
   WriteScaleTable(md, suite);
 }

@@ -1,17 +1,31 @@
 // `smcbench report DIR`: turns a bench run's results.json into DIR/report.md with PNG plots — per suite and
-// backend the verdict counts (wrong answers apart), success rate, shifted geometric mean time, worst residuals
-// (relative and row-equilibrated) and worst forward error, Dolan–Moré performance profiles, time against the
-// forward error and against the residual reached (tolerance sweep), the time-stepper's work-precision diagrams
-// and warm/cold table, the scale family's growth exponent, and for an MCP suite its own section (success per
-// backend and per start, where each backend fails and with what status, speed against forward error, profile).
+// backend the verdict counts (wrong answers apart), the statuses the backends returned, success rate, shifted
+// geometric mean time (failure penalty stated beside it), worst residuals (relative and row-equilibrated) and worst
+// forward error, the backends that solved nothing listed apart with their reason, the fastest correct backend per
+// size band, the audit of the backends' own success flags, the tolerance ladder, Dolan–Moré performance profiles,
+// time against the forward error and against the residual reached (tolerance sweep), the time-stepper's
+// work-precision diagrams and warm/cold table, the scale family's growth exponent, and for an MCP suite its own
+// section (success per backend and per start, where each backend fails and with what status, speed against
+// forward error, profile).
 #pragma once
 
+#include <map>
 #include <string>
 #include <vector>
 
 #include "bench/replay/results_io.h"
+#include "bench/replay/size_band.h"
 
 namespace smcbench {
+
+// The most common way a backend's records that are not correct ended: what the report says instead of a time.
+struct FailureReason {
+  SolveStatus status = SolveStatus::kNotRun;
+  int count = 0;              // records not correct with that status
+  std::string message;        // the most common message among them (ties: the first met)
+  int message_count = 0;      // records with that status and that message
+  double median_time = kNaN;  // median of their per-solve times (seconds)
+};
 
 struct BackendSummary {
   std::string solver;
@@ -20,21 +34,93 @@ struct BackendSummary {
   double success_rate = 0.0;     // (solved + correctly refused) / problems
   double shifted_geomean = 0.0;  // seconds; see SummarizeSuite
   // Over the records with verdict solved: max relative residual, max row-equilibrated residual, and max forward
-  // error ‖z − z*‖∞ over those whose problem has a unique reference (NaN when none has).
-  double worst_residual = 0.0;
-  double worst_residual_scaled = 0.0;
+  // error ‖z − z*‖∞ over those whose problem has a unique reference. NaN when not defined (nothing solved, no
+  // reference): the report prints a blank, never a 0 that looks like a perfect answer.
+  double worst_residual = kNaN;
+  double worst_residual_scaled = kNaN;
   double worst_forward_error = kNaN;
   int forward_error_defined = 0;  // solved records with a forward error
+  std::map<SolveStatus, int> statuses;  // records per status the backend returned
+  FailureReason failure;                // over the records that are not correct (count 0: none)
   int wrong() const { return wrongly_claimed + inaccurate + wrongly_refused; }
+  int correct() const { return solved + correctly_refused; }
 };
 
 // True when the suite's records are MCP problem × start (ReplayRecord::start set): the report's MCP section.
 bool IsMcpSuite(const SuiteResults& suite);
 
 // Shifted geometric mean of the per-problem median times, shift 1e-6 s, a problem the backend does not get right
-// counted at 10× the slowest correct time on that problem (the time limit if nobody got it right). For an MCP suite
-// a problem is a problem × start, here and in PerformanceRatios.
+// counted at kFailurePenaltyFactor × the slowest correct time on that problem (time_limit_seconds if nobody got it
+// right). For an MCP suite a problem is a problem × start, here and in PerformanceRatios.
 std::vector<BackendSummary> SummarizeSuite(const SuiteResults& suite, double time_limit_seconds = 10.0);
+// The same over any subset of one suite's cold records (a size band, ...): penalties from that subset alone.
+std::vector<BackendSummary> SummarizeRecords(const std::vector<ReplayRecord>& records,
+                                             double time_limit_seconds = 10.0);
+inline constexpr double kFailurePenaltyFactor = 10.0;
+
+// True when the backend goes in the report's "solved nothing" list instead of the timing table: it solved no
+// problem of the suite while another backend solved at least one (then its SGM would be its penalty alone).
+bool SolvedNothing(const BackendSummary& backend, const std::vector<BackendSummary>& suite);
+
+// The fastest correct backend of one size band: among the backends with no wrong answer in the band, those with
+// the most correct answers, and of them the smallest shifted geometric mean over the band (SummarizeRecords).
+struct BandWinner {
+  SizeBand band = SizeBand::kTiny;
+  int problems = 0;          // instances in the band
+  std::string solver;        // empty when every backend gave a wrong answer in the band
+  int correct = 0;           // its correct answers in the band
+  double shifted_geomean = kNaN;
+  int fastest_on = 0;        // instances where its time was the smallest of the correct answers
+  std::string runner_up;     // the next backend in the same order (empty if none)
+  int runner_up_correct = 0;
+  double runner_up_geomean = kNaN;
+};
+// One entry per band that has records, smallest band first.
+std::vector<BandWinner> FastestCorrectPerBand(const SuiteResults& suite, double time_limit_seconds = 10.0);
+
+// Success at each tolerance of the sweep records (mode "sweep"): correct answers (solved or correctly refused) of
+// each backend over the swept problems, per tolerance.
+struct ToleranceLadder {
+  std::vector<double> tolerances;  // loosest first, those the sweep records hold (kSweepTolerances today)
+  struct Row {
+    std::string solver;
+    std::vector<int> correct, problems;  // per tolerance (problems 0: that rung was not run, e.g. skipped)
+  };
+  std::vector<Row> rows;  // in the order the backends first appear
+};
+ToleranceLadder BuildToleranceLadder(const SuiteResults& suite);
+
+// What the backend itself said: its library's own return code where the record has one (ReplayRecord::backend_code,
+// 0 = success), else its status is solved.
+bool ClaimedSolved(const ReplayRecord& record);
+
+// Audit of the backends' own success flags over a suite's cold records: a claim is right when ClaimedSolved ⇔ our
+// verdict is solved.
+struct ClaimAudit {
+  std::string solver;
+  int records = 0, right = 0;
+  int false_success = 0;     // claimed solved, our verdict is not solved
+  int false_failure = 0;     // claimed not solved (a failure code), our verdict is solved
+  int with_return_code = 0;  // records judged on the library's own return code rather than the status
+};
+std::vector<ClaimAudit> AuditClaims(const SuiteResults& suite);
+
+// The look of a backend's curve: colour (Okabe–Ito, without its yellow, which vanishes on white), gnuplot dash
+// type and point type. Ours solid (dash 1), the external siconos-* ones dashed (dash ≥ 2).
+struct PlotStyle {
+  std::string colour;  // "#RRGGBB"
+  int dash = 1;
+  int point = 7;
+  double width = 2.5;
+};
+// The index-th style of a family (ours, or external): no two indices below 49 of one family share colour and
+// point, and no two below 28 of the external family share colour and dash; the families differ in dash.
+PlotStyle StyleOf(std::size_t index, bool external);
+// A backend's style in every figure: its family and its position in the registry's order (SolverNames, then
+// newton-sparse-path), so a backend looks the same in every figure; a label naming a backend ("implicit, lemke")
+// gets that backend's, one naming none a style from a hash of it. As gnuplot options ("lw 2.5 lc rgb '#0072B2' dt 1
+// pt 7").
+std::string BackendStyle(const std::string& label);
 
 // Dolan–Moré: for each backend, ρ(τ) = fraction of problems solved within τ × the best time on that problem.
 // Returns, per backend, the ratios r_p = t_p / min_s t_p (∞ for problems it does not solve), sorted.
