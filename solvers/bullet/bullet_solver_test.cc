@@ -3,7 +3,7 @@
 // unconditional "success" far from the solution.
 #include <gtest/gtest.h>
 
-#include "solvers/peer/peer_backend_checks.h"
+#include "solvers/peer/peer_backends_test_util.h"
 
 namespace smcbench {
 namespace {

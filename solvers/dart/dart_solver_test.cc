@@ -2,7 +2,7 @@
 // the peer's flag kept as a detail, never trusted.
 #include <gtest/gtest.h>
 
-#include "solvers/peer/peer_backend_checks.h"
+#include "solvers/peer/peer_backends_test_util.h"
 
 namespace smcbench {
 namespace {

@@ -23,11 +23,6 @@ void ToPeerBoxForm(const BoxMLCP& problem, PeerBoxForm* form) {
     if (!is_free(i) && l[i] != u[i]) form->permutation.push_back(i);
   }
   const int m = static_cast<int>(form->permutation.size());
-  // q + M c over every column: a fixed row's c = l is its whole contribution.
-  Vector qc = problem.q();
-  for (int j = 0; j < n; ++j) {
-    if (form->shift[j] != 0.0) qc += M.col(j) * form->shift[j];
-  }
   form->A.resize(m, m);
   form->b.resize(m);
   form->lo.resize(m);
@@ -35,7 +30,13 @@ void ToPeerBoxForm(const BoxMLCP& problem, PeerBoxForm* form) {
   for (int k = 0; k < m; ++k) {
     const int i = form->permutation[k];
     for (int c = 0; c < m; ++c) form->A(k, c) = M(i, form->permutation[c]);
-    form->b[k] = -qc[i];
+    // b = −(q + M c) over every column (a fixed row's c = l is its whole contribution); c = 0 adds nothing, so
+    // b = −q bitwise when nothing is shifted.
+    double qc = problem.q()[i];
+    for (int j = 0; j < n; ++j) {
+      if (form->shift[j] != 0.0) qc += M(i, j) * form->shift[j];
+    }
+    form->b[k] = -qc;
     // l − c and u − c: ±inf stays ±inf, and c = 0 leaves the bound bitwise unchanged.
     form->lo[k] = l[i] - form->shift[i];
     form->hi[k] = u[i] - form->shift[i];

@@ -7,12 +7,41 @@
 
 #include <cstdio>
 #include <string>
+#include <vector>
 
 #include "solvers/conformance/conformance.h"
 #include "solvers/registry/registry.h"
+#include "solvers/siconos/external_backends.h"
 
 namespace smcbench {
 namespace {
+
+// The registry lists exactly the bullet-* and dart-* backends built in (three per library found, none otherwise),
+// each an external adapter that gets the problem as written.
+TEST(PeerRegistry, ListsExactlyTheBuiltInBulletAndDartBackends) {
+  std::vector<ExternalBackend> built;
+  AppendBulletBackends(&built);
+  EXPECT_TRUE(built.empty() || built.size() == 3u);
+  const std::size_t bullet = built.size();
+  AppendDartBackends(&built);
+  EXPECT_TRUE(built.size() == bullet || built.size() == bullet + 3);
+  std::vector<std::string> listed;
+  for (std::string_view name : SolverNames()) {
+    if (name.substr(0, 7) == "bullet-" || name.substr(0, 5) == "dart-") listed.emplace_back(name);
+  }
+  ASSERT_EQ(listed.size(), built.size());
+  for (std::size_t i = 0; i < built.size(); ++i) {
+    EXPECT_EQ(listed[i], built[i].name);
+    const auto solver = CreateSolver(built[i].name);
+    EXPECT_EQ(solver->info().name, built[i].name);
+    EXPECT_TRUE(solver->info().external);
+    EXPECT_FALSE(solver->info().equilibrate);
+    EXPECT_TRUE(IsExternalBackend(built[i].name));
+    EXPECT_TRUE(IsExternalBackendName(built[i].name));
+  }
+  EXPECT_FALSE(IsExternalBackendName("lemke"));
+  EXPECT_TRUE(IsExternalBackendName("siconos-relay-lemke"));
+}
 
 TEST(PeerConformance, EveryBulletAndDartBackendIsNeverWronglySolved) {
   int checked = 0;
