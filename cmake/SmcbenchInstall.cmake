@@ -49,6 +49,8 @@ install(FILES ${PROJECT_SOURCE_DIR}/LICENSE ${PROJECT_SOURCE_DIR}/CITATION.cff
 # The package: targets, version, and the find modules of dependencies that ship no CMake config of their own.
 install(EXPORT smcbenchTargets NAMESPACE smcbench:: DESTINATION ${SMCBENCH_INSTALL_CMAKEDIR} COMPONENT development)
 get_property(SMCBENCH_PACKAGE_WITH_SICONOS GLOBAL PROPERTY SMCBENCH_HAVE_SICONOS)
+get_property(SMCBENCH_PACKAGE_WITH_BULLET GLOBAL PROPERTY SMCBENCH_HAVE_BULLET)
+get_property(SMCBENCH_PACKAGE_WITH_DART GLOBAL PROPERTY SMCBENCH_HAVE_DART)
 configure_package_config_file(${PROJECT_SOURCE_DIR}/cmake/smcbenchConfig.cmake.in
   ${PROJECT_BINARY_DIR}/package/smcbenchConfig.cmake
   INSTALL_DESTINATION ${SMCBENCH_INSTALL_CMAKEDIR}

@@ -5,10 +5,11 @@
 #                                libFuzzer runtimes (the asan preset and the fuzz targets), and what `pip install .`
 #                                into a virtual environment needs offline (the ctest python_pip_install*, docs/python.md)
 set -euo pipefail
-# libsiconos-numerics-dev is optional for the build (without it the siconos-* backends are not built) but is
-# installed so that the default report compares against Siconos.
+# libsiconos-numerics-dev, libbullet-dev and libdart-dev are optional for the build (without them the siconos-*,
+# bullet-* and dart-* backends are not built) but are installed so that the default report compares against them.
 packages=(cmake make g++ pkg-config libeigen3-dev libsuitesparse-dev coinor-libipopt-dev libbenchmark-dev
           libgtest-dev libgmock-dev nlohmann-json3-dev libcli11-dev gnuplot-nox libsiconos-numerics-dev
+          libbullet-dev libdart-dev
           pybind11-dev python3-dev python3-numpy python3-scipy python3-pandas python3-pytest)
 case "${1:-}" in
   "") ;;

@@ -58,13 +58,13 @@ RunTimeTable& RunTimeBackends() {
   return table;
 }
 
-// Ours, then the optional external ones that were built in (siconos-*; none without Siconos), then the run-time
-// additions.
+// Ours, then the optional external ones that were built in (siconos-*, bullet-*, dart-*; none without their
+// libraries), then the run-time additions.
 std::vector<std::pair<std::string_view, SolverFactory>> AllBackends() {
   std::vector<std::pair<std::string_view, SolverFactory>> all;
   for (const auto& [name, make] : kBackends) all.emplace_back(name, make);
   std::vector<ExternalBackend> external;
-  AppendExternalBackends(&external);
+  AppendAllExternalBackends(&external);
   for (const ExternalBackend& e : external) all.emplace_back(e.name, e.create);
   RunTimeTable& table = RunTimeBackends();
   const std::lock_guard<std::mutex> lock(table.mutex);
@@ -130,6 +130,13 @@ void RegisterSolver(std::string name, SolverFactory factory) {
     if (e.name == name) throw InvalidInputError(what + ": name is already registered");
   }
   table.entries.push_back({std::move(name), std::move(factory)});
+}
+
+bool IsExternalBackendName(std::string_view name) {
+  for (std::string_view family : {"siconos-", "bullet-", "dart-"}) {
+    if (name.substr(0, family.size()) == family) return true;
+  }
+  return false;
 }
 
 bool IsRegisteredAtRunTime(std::string_view name) {

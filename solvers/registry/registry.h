@@ -17,7 +17,7 @@ namespace smcbench {
 using SolverFactory = std::function<std::unique_ptr<Solver>()>;
 
 // Registered names in a fixed order: ours ("lemke", "psor", "newton", "enum", "ipopt", then "auto", which picks one
-// of them per problem), then the external adapters that were built in ("siconos-*"), then the backends added with
+// of them per problem), then the external adapters that were built in ("siconos-*", "bullet-*", "dart-*"), then the backends added with
 // RegisterSolver, in the order they were added.
 std::vector<std::string_view> SolverNames();
 // A fresh backend with default options; throws InvalidInputError listing the known names if name is unknown.
@@ -39,5 +39,8 @@ std::unique_ptr<Solver> CreateGenericSparsePathSolver();
 void RegisterSolver(std::string name, SolverFactory factory);
 // True if name was added with RegisterSolver (not one of ours, not a built-in external adapter).
 bool IsRegisteredAtRunTime(std::string_view name);
+// True for a name of the external adapter families (siconos-*, bullet-*, dart-*), built into this binary or not:
+// reports use it to keep other libraries' results apart from ours, also when they read another build's results.
+bool IsExternalBackendName(std::string_view name);
 
 }  // namespace smcbench

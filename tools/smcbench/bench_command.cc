@@ -568,7 +568,7 @@ class ShardRunner {
       // External adapters run each solve in a child process: along 10⁴-step trajectories that is minutes; they
       // are timed on the replay suites instead (name them with --solver to include them here).
       for (auto n : SolverNames()) {
-        if (n.rfind("siconos-", 0) != 0) so.solvers.emplace_back(n);
+        if (!IsExternalBackendName(n)) so.solvers.emplace_back(n);
       }
     }
     if (flags_.quick) {

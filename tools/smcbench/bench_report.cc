@@ -189,13 +189,13 @@ std::string BackendStyle(const std::string& label) {
       token.push_back(c);
     }
   }
-  const bool external = backend.rfind("siconos-", 0) == 0;
+  const bool external = IsExternalBackendName(backend);
   std::size_t index = 0;
   const auto it = std::find(known.begin(), known.end(), backend);
   if (it == known.end()) {
     index = std::hash<std::string>{}(backend) % 49;
   } else {
-    for (auto k = known.begin(); k != it; ++k) index += (k->rfind("siconos-", 0) == 0) == external;
+    for (auto k = known.begin(); k != it; ++k) index += IsExternalBackendName(*k) == external;
   }
   const PlotStyle style = StyleOf(index, external);
   char text[96];
@@ -718,6 +718,7 @@ SiconosComparison CompareWithSiconos(const SuiteResults& suite) {
   for (const auto& r : suite.replay.records) {
     if (r.verdict != Verdict::kSolved || r.solver == "newton-sparse-path") continue;
     const bool siconos = r.solver.rfind("siconos-", 0) == 0;
+    if (!siconos && IsExternalBackendName(r.solver)) continue;  // another library (bullet-*, dart-*): not ours
     auto& side = !siconos ? ours : r.timed_in_worker ? theirs_through_worker : theirs;
     auto [it, inserted] = side.emplace(r.problem, r.time_median);
     if (!inserted) it->second = std::min(it->second, r.time_median);

@@ -135,7 +135,7 @@ json CycleJson(const Cycle& c) {
           {"steps", c.horizon_steps}};
 }
 
-bool IsExternal(std::string_view backend) { return backend.rfind("siconos-", 0) == 0; }
+bool IsExternal(std::string_view backend) { return IsExternalBackendName(backend); }
 
 void TableHeader(std::ostream& out, std::initializer_list<const char*> columns) {
   out << "|";
