@@ -94,34 +94,4 @@ ReplayRecord ReplayOne(const ProblemSet& set, const LibraryProblem& p, Solver* s
   return r;
 }
 
-ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& options) {
-  std::vector<std::string> names = options.solvers;
-  std::vector<std::unique_ptr<Solver>> solvers = CreateReplaySolvers(options, &names);
-  ReplayResults out;
-  const int sweep_problems = std::min<int>(options.tolerance_sweep_problems, static_cast<int>(set.problems.size()));
-  std::size_t iterative = 0;
-  for (const auto& s : solvers) iterative += !s->info().exact;
-  const std::size_t total = set.problems.size() * solvers.size() + sweep_problems * iterative;
-  std::size_t done = 0;
-  for (const LibraryProblem& p : set.problems) {
-    for (std::size_t b = 0; b < solvers.size(); ++b) {
-      out.records.push_back(ReplayOne(set, p, solvers[b].get(), names[b], options, "cold", options.tolerance));
-      if (options.progress) options.progress(++done, total, set.name + " " + p.id + " " + names[b]);
-    }
-  }
-  // Tolerance sweep: time against the error actually reached (residuals, and the forward error where the problem
-  // has a unique reference), for the iterative backends.
-  for (int i = 0; i < sweep_problems; ++i) {
-    const LibraryProblem& p = set.problems[i];
-    for (std::size_t b = 0; b < solvers.size(); ++b) {
-      if (solvers[b]->info().exact) continue;
-      for (const double tol : kSweepTolerances) {
-        out.sweep.push_back(ReplayOne(set, p, solvers[b].get(), names[b], options, "sweep", tol));
-      }
-      if (options.progress) options.progress(++done, total, set.name + " sweep " + p.id + " " + names[b]);
-    }
-  }
-  return out;
-}
-
 }  // namespace smcbench

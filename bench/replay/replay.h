@@ -36,7 +36,7 @@ struct ReplayOptions {
   // Tolerance sweep: on up to this many problems of the set, every iterative backend (SolverInfo::exact false)
   // is run at tolerances 1e-2, 1e-4, …, 1e-12 (time against achieved residual). 0 disables it.
   int tolerance_sweep_problems = 8;
-  // Called after each problem × backend with (done, total); for the progress bar.
+  // Called after each problem × start × backend of ReplayMcpProblemSet with (done, total); for a progress bar.
   std::function<void(std::size_t done, std::size_t total, const std::string& what)> progress;
 };
 
@@ -92,11 +92,6 @@ struct ReplayResults {
   std::vector<ReplayRecord> sweep;          // mode "sweep": iterative backends at each tolerance
 };
 
-// Runs set on the chosen backends. Throws InvalidInputError for an unknown backend name, a malformed or rejected
-// setting, or invalid options; a
-// backend that fails on a problem is a record, never an exception.
-ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& options);
-
 // The tolerances of the tolerance sweep (ReplayOptions::tolerance_sweep_problems), loosest first.
 inline constexpr double kSweepTolerances[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-12};
 
@@ -106,8 +101,8 @@ inline constexpr double kSweepTolerances[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10, 1e-
 std::vector<std::unique_ptr<Solver>> CreateReplaySolvers(const ReplayOptions& options, std::vector<std::string>* names);
 
 // One problem × backend: cold (mode "cold", at options.tolerance) or one step of the tolerance sweep (mode "sweep",
-// at tolerance, at most 3 samples), timed (TimeSolves) and judged. What ReplayProblemSet does for each pair; what
-// one job of a sharded `bench` runs.
+// at tolerance, at most 3 samples), timed (TimeSolves) and judged: what one job of a run (bench/run/run_shard.h)
+// runs. A backend that fails on the problem is a record, never an exception.
 ReplayRecord ReplayOne(const ProblemSet& set, const LibraryProblem& problem, Solver* solver,
                        const std::string& solver_name, const ReplayOptions& options, const std::string& mode,
                        double tolerance);
