@@ -64,9 +64,6 @@ double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptio
 
 struct JobListRequest {
   std::vector<std::string> solvers;  // resolved names (never empty)
-  // Per solver: SolverInfo::exact is false. No longer selects the sweep's backends (every backend gets the tolerance
-  // ladder); kept until its callers stop filling it.
-  std::vector<bool> iterative;
   bool generic_sparse_path = false;  // add the newton-sparse-path jobs for a suite named "paper"
   bool stepper = false;              // add the stepper job (last)
   // The backends of the MCP jobs: the resolved names whose backend has SolverInfo::mcp (McpSolverNames). The

@@ -336,7 +336,6 @@ TEST(McpJobs, ListedPerStartAfterTheBoxSuitesShardedAndAssembled) {
   ReplayOptions options = Quick({});
   JobListRequest request;
   request.solvers = {"lemke", "newton"};
-  request.iterative = {false, false};
   request.mcp_solvers = {"newton"};
   const std::vector<BenchJob> jobs = ListBenchJobs({box}, {set}, options, request);
   ASSERT_EQ(jobs.size(), 3u);  // (2 + 1 starts) × newton; lemke does not solve MCPs

@@ -110,31 +110,4 @@ ReplayRecord ReplayOne(const ProblemSet& set, const LibraryProblem& p, Solver* s
   return r;
 }
 
-ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& options) {
-  std::vector<std::string> names = options.solvers;
-  std::vector<std::unique_ptr<Solver>> solvers = CreateReplaySolvers(options, &names);
-  ReplayResults out;
-  const std::vector<std::size_t> swept = SweepProblemIndices(set.problems.size(), options.tolerance_sweep_problems);
-  const std::size_t total = (set.problems.size() + swept.size()) * solvers.size();
-  std::size_t done = 0;
-  for (const LibraryProblem& p : set.problems) {
-    for (std::size_t b = 0; b < solvers.size(); ++b) {
-      out.records.push_back(ReplayOne(set, p, solvers[b].get(), names[b], options, "cold", options.tolerance));
-      if (options.progress) options.progress(++done, total, set.name + " " + p.id + " " + names[b]);
-    }
-  }
-  // Tolerance sweep: success at each tolerance (the ladder) and time against the error actually reached
-  // (residuals, and the forward error where the problem has a unique reference), for every backend.
-  for (const std::size_t i : swept) {
-    const LibraryProblem& p = set.problems[i];
-    for (std::size_t b = 0; b < solvers.size(); ++b) {
-      for (const double tol : kSweepTolerances) {
-        out.sweep.push_back(ReplayOne(set, p, solvers[b].get(), names[b], options, "sweep", tol));
-      }
-      if (options.progress) options.progress(++done, total, set.name + " sweep " + p.id + " " + names[b]);
-    }
-  }
-  return out;
-}
-
 }  // namespace smcbench

@@ -37,7 +37,7 @@ struct ReplayOptions {
   // Tolerance sweep (the report's tolerance ladder and speed against error): on this many problems of the set,
   // evenly spaced (SweepProblemIndices), every backend is run at each of kSweepTolerances. 0 disables it.
   int tolerance_sweep_problems = 16;
-  // Called after each problem × backend with (done, total); for the progress bar.
+  // Called after each problem × start × backend of ReplayMcpProblemSet with (done, total); for a progress bar.
   std::function<void(std::size_t done, std::size_t total, const std::string& what)> progress;
 };
 
@@ -98,11 +98,6 @@ struct ReplayResults {
   std::vector<ReplayRecord> sweep;          // mode "sweep": every backend at each of kSweepTolerances
 };
 
-// Runs set on the chosen backends. Throws InvalidInputError for an unknown backend name, a malformed or rejected
-// setting, or invalid options; a
-// backend that fails on a problem is a record, never an exception.
-ReplayResults ReplayProblemSet(const ProblemSet& set, const ReplayOptions& options);
-
 // The tolerances of the tolerance sweep (ReplayOptions::tolerance_sweep_problems), loosest first: the report's
 // tolerance ladder, from a loose engineering tolerance to near the limit of double precision.
 inline constexpr double kSweepTolerances[] = {1e-3, 1e-6, 1e-9, 1e-12};
@@ -122,8 +117,8 @@ std::optional<int> BackendReturnCode(const SolveResult& result);
 std::vector<std::unique_ptr<Solver>> CreateReplaySolvers(const ReplayOptions& options, std::vector<std::string>* names);
 
 // One problem × backend: cold (mode "cold", at options.tolerance) or one step of the tolerance sweep (mode "sweep",
-// at tolerance, at most 3 samples), timed (TimeSolves) and judged. What ReplayProblemSet does for each pair; what
-// one job of a sharded `bench` runs.
+// at tolerance, at most 3 samples), timed (TimeSolves) and judged: what one job of a run (bench/run/run_shard.h)
+// runs. A backend that fails on the problem is a record, never an exception.
 ReplayRecord ReplayOne(const ProblemSet& set, const LibraryProblem& problem, Solver* solver,
                        const std::string& solver_name, const ReplayOptions& options, const std::string& mode,
                        double tolerance);

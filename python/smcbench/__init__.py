@@ -23,7 +23,7 @@ from ._smcbench import InvalidInputError, scenes, scenes_directory
 __all__ = [
     "InvalidInputError", "SolveResult", "Simulation", "Problem", "McpProblem", "solvers", "solve", "solve_mcp",
     "judge_mcp", "bench_mcp", "simulate", "scenes", "scenes_directory", "read_problem_set", "write_problem_set",
-    "load_bench_results",
+    "load_bench_results", "bench",
 ]
 
 
@@ -430,6 +430,42 @@ def write_problem_set(path, problems: Iterable, name: str = "python", descriptio
                 del d[key]
         dicts.append(d)
     _smcbench._write_problem_set(os.fspath(path), dicts, name, description)
+
+
+def bench(suites, solvers=None, tol: float = 1e-10, repetitions: int = 7, time_limit: float = 10.0, *,
+          settings: Optional[List[str]] = None, quick: bool = False, polish: bool = True, backend_budget: float = 60.0,
+          siconos_dir=None, out=None):
+    """Run a benchmark as `smcbench bench` does, through the same engine: a pandas DataFrame with the columns of
+    results.csv, one row per record (problem × backend, then the tolerance sweep's rows, mode "sweep").
+
+    suites: a suite name ("tiny", "paper", "families", "hard", "siconos", "scale", "mcp", "all"), the path of a .smcps
+    file, a list of those, or a list of Problem (read_problem_set's list, or your own), run as one suite named
+    "python". solvers: a backend name or a list (None: every registered backend). settings: typed backend options
+    "BACKEND.OPTION=VALUE". quick, polish, backend_budget (seconds per backend and suite, 0: no limit) and
+    siconos_dir (None: bench's default) as the flags of `smcbench bench`; no time-stepper studies. out: a folder to
+    keep results.json and results.csv in (None: a temporary one). Bad input (an unknown suite or backend, a
+    rejected setting, tol <= 0, repetitions < 1, ...) raises InvalidInputError naming it, before anything runs."""
+    import tempfile
+
+    import pandas as pd  # imported here: the rest of the module does not need pandas
+
+    items = [suites] if isinstance(suites, (str, os.PathLike, Problem)) else list(suites)
+    problems = [item for item in items if isinstance(item, Problem)]
+    names = [solvers] if isinstance(solvers, str) else list(solvers or [])
+    with tempfile.TemporaryDirectory(prefix="smcbench-bench-") as scratch:
+        if problems:
+            if len(problems) != len(items):
+                raise InvalidInputError("bench: suites: give suite names and files, or a list of Problem, not both")
+            path = os.path.join(scratch, "python.smcps")
+            write_problem_set(path, problems, name="python", description="problems given to smcbench.bench")
+            paths = [path]
+        else:
+            paths = [os.fspath(item) for item in items]
+        folder = os.fspath(out) if out is not None else os.path.join(scratch, "results")
+        _smcbench._bench(paths, names, list(settings or []), float(tol), int(repetitions), float(time_limit),
+                         float(backend_budget), bool(quick), bool(polish),
+                         "" if siconos_dir is None else os.fspath(siconos_dir), folder)
+        return pd.read_csv(os.path.join(folder, "results.csv"))
 
 
 def load_bench_results(path, include_sweep: bool = True):

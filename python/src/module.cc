@@ -16,6 +16,7 @@ void BindSolve(py::module_& m);
 void BindSimulate(py::module_& m);
 void BindProblemSet(py::module_& m);
 void BindMcpSuite(py::module_& m);
+void BindBench(py::module_& m);
 
 namespace {
 
@@ -54,4 +55,5 @@ PYBIND11_MODULE(_smcbench, m) {
   smcbench::python::BindSimulate(m);
   smcbench::python::BindProblemSet(m);
   smcbench::python::BindMcpSuite(m);
+  smcbench::python::BindBench(m);
 }

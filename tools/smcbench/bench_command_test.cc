@@ -9,12 +9,15 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 #include <unistd.h>
 
 #include "bench/replay/jobs.h"
+#include "bench/run/bench_plan.h"
+#include "bench/run/run_shard.h"
 #include "problems/library/problem_set_io.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_command.h"
@@ -39,7 +42,7 @@ std::string ReadText(const fs::path& path) {
 TEST(Bench, TinySuiteEndToEndWithReport) {
   const fs::path dir = fs::temp_directory_path() / ("smcbench-bench-test-" + std::to_string(::getpid()));
   const CliRun r = RunSmcbench({"bench", "--suite", "tiny", "--quick", "--solver", "lemke", "--solver", "psor",
-                                "--solver", "enum", "--out", dir.string(), "--report", "--no-plots"});
+                                "--solver", "enum", "--stepper", "--out", dir.string(), "--report", "--no-plots"});
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("results.json"));
   const auto j = nlohmann::json::parse(ReadText(dir / "results.json"));
@@ -195,6 +198,18 @@ TEST(Bench, GlobMatchesBackendNames) {
   EXPECT_FALSE(GlobMatch("a*b*c", "aXbYbZ"));
 }
 
+// Runs set (written to a problem-set file, as a user's suite is given) through the engine `bench` runs.
+ReplayResults RunSet(const ProblemSet& set, BenchRequest request) {
+  const fs::path file = fs::temp_directory_path() / ("smcbench-bench-set-" + std::to_string(::getpid()) + ".smcps");
+  WriteProblemSetFile(set, file.string());
+  request.suites = {file.string()};
+  const BenchPlan plan = MakeBenchPlan(request);
+  std::map<std::size_t, JobLine> lines;
+  RunShard(plan, {}, {}, [&](const JobLine& line) { lines[line.job] = line; });
+  fs::remove(file);
+  return PlanResults(plan, lines).suites.at(0).replay;
+}
+
 // A siconos-* backend's untimed warm-up solve is its probe in the isolation worker: the timed solves then run in
 // process (timed_in_worker false), unless isolate=always or the probe crashed, which is never run in process.
 TEST(Bench, SiconosIsTimedInProcessAfterItsProbeUnlessItCrashed) {
@@ -205,14 +220,13 @@ TEST(Bench, SiconosIsTimedInProcessAfterItsProbeUnlessItCrashed) {
   set.name = "s";
   const BoxMLCP lcp = BoxMLCP::LCP(DenseMatrix::Identity(2, 2) * 2.0, Vector::Constant(2, -1.0));
   set.problems.push_back(MakeLibraryProblem("s/lcp", "handmade", lcp));
-  ReplayOptions options;
-  options.solvers = {"siconos-lcp-lemke", "siconos-relay-lemke", "siconos-mlcp-lemke"};
+  BenchRequest request;
+  request.solvers = {"siconos-lcp-lemke", "siconos-relay-lemke", "siconos-mlcp-lemke"};
   // relay-lemke does not apply to an LCP; mlcp_lcp_lemke aborts on an MLCP without equality rows.
-  options.settings = {"siconos-mlcp-lemke.allow_known_crashes=1"};
-  options.repetitions = 2;
-  options.max_seconds_per_pair = 0.2;
-  options.tolerance_sweep_problems = 0;
-  ReplayResults results = ReplayProblemSet(set, options);
+  request.settings = {"siconos-mlcp-lemke.allow_known_crashes=1"};
+  request.repetitions = 2;
+  request.quick = true;
+  ReplayResults results = RunSet(set, request);
   ASSERT_EQ(results.records.size(), 3u);
   EXPECT_EQ(results.records[0].status, SolveStatus::kSolved);
   EXPECT_FALSE(results.records[0].timed_in_worker);
@@ -221,9 +235,9 @@ TEST(Bench, SiconosIsTimedInProcessAfterItsProbeUnlessItCrashed) {
   EXPECT_EQ(results.records[2].status, SolveStatus::kNumericalFailure) << results.records[2].message;
   EXPECT_TRUE(results.records[2].timed_in_worker);
   // isolate=always: every timed solve goes through the worker.
-  options.settings = {"siconos-lcp-lemke.isolate=always"};
-  options.solvers = {"siconos-lcp-lemke"};
-  results = ReplayProblemSet(set, options);
+  request.settings = {"siconos-lcp-lemke.isolate=always"};
+  request.solvers = {"siconos-lcp-lemke"};
+  results = RunSet(set, request);
   ASSERT_EQ(results.records.size(), 1u);
   EXPECT_EQ(results.records[0].status, SolveStatus::kSolved);
   EXPECT_TRUE(results.records[0].timed_in_worker);
@@ -356,10 +370,62 @@ TEST(Bench, ChecksSuitesAndOptionsBeforeAnyWork) {
   r = RunSmcbench({"bench", "--suite", "siconos", "--siconos-dir", "/nonexistent", "--out", out.string()});
   EXPECT_EQ(r.code, 1);
   EXPECT_THAT(r.err, HasSubstr("--siconos-dir '/nonexistent' is not a folder"));
-  r = RunSmcbench({"bench", "--suite", "paper", "--backend-budget", "-1", "--out", out.string()});
+  // Numbers are checked as the flags are parsed (exit status 2, as every command's), naming flag and value.
+  for (const std::vector<std::string>& flag : std::vector<std::vector<std::string>>{
+           {"--time-limit", "-1"}, {"--time-limit", "nan"}, {"--repetitions", "0"}, {"--backend-budget", "-1"},
+           {"--tol", "0"}, {"--repetitions", "2.5"}}) {
+    r = RunSmcbench({"bench", "--suite", "paper", flag[0], flag[1], "--out", out.string()});
+    EXPECT_EQ(r.code, 2) << flag[0] << " " << flag[1];
+    EXPECT_THAT(r.err, HasSubstr(flag[0])) << r.err;
+    EXPECT_THAT(r.err, HasSubstr("'" + flag[1] + "'")) << r.err;
+  }
+  r = RunSmcbench({"bench", "--suite", "paper", "--stepper", "--no-stepper", "--out", out.string()});
   EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--stepper or --no-stepper"));
   EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 5.0);
   EXPECT_FALSE(fs::exists(out)) << "no folder is made for a request that fails its checks";
+}
+
+// Issue 27: a problem-set file that cannot be read, or holds no problem, fails before the output folder exists.
+TEST(Bench, AnUnreadableOrEmptySuiteFileLeavesNoFolder) {
+  const fs::path scratch = fs::temp_directory_path() / ("smcbench-bench-empty-" + std::to_string(::getpid()));
+  fs::remove_all(scratch);
+  fs::create_directories(scratch);
+  const fs::path empty = scratch / "empty.smcps", garbage = scratch / "garbage.smcps", out = scratch / "b1";
+  std::ofstream(empty).close();
+  std::ofstream(garbage) << "not a problem set\n";
+  for (const fs::path& file : {empty, garbage}) {
+    const CliRun r = RunSmcbench({"bench", "--suite", file.string(), "--no-stepper", "--solver", "lemke", "--out",
+                                  out.string()});
+    EXPECT_EQ(r.code, 1) << file;
+    EXPECT_THAT(r.err, HasSubstr(file.filename().string())) << r.err;
+    EXPECT_FALSE(fs::exists(out)) << "bench made " << out << " for " << file;
+  }
+  fs::remove_all(scratch);
+}
+
+// Issue 27: the time-stepper studies run the paper's scenes, so a run of other suites (a user's problem-set file)
+// has none unless --stepper asks for them.
+TEST(Bench, StepperStudiesOnlyForSceneSuitesOrWhenAsked) {
+  const fs::path scratch = fs::temp_directory_path() / ("smcbench-bench-stepper-" + std::to_string(::getpid()));
+  fs::remove_all(scratch);
+  fs::create_directories(scratch);
+  const fs::path suite = scratch / "mine.smcps";
+  WriteProblemSetFile(TinySuite(), suite.string());
+  CliRun r = RunSmcbench({"bench", "--suite", suite.string(), "--solver", "lemke", "--list-jobs"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, Not(HasSubstr("stepper")));
+  r = RunSmcbench({"bench", "--suite", suite.string(), "--solver", "lemke", "--list-jobs", "--stepper"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("\tstepper\tstepper\n# ")) << "the last job: " << r.out;
+  // A run of the file: no stepper section in results.json, and the manifest says so.
+  const fs::path out = scratch / "run";
+  r = RunSmcbench({"bench", "--suite", suite.string(), "--solver", "lemke", "--quick", "--out", out.string()});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.err, Not(HasSubstr("time-stepper")));
+  EXPECT_FALSE(ReadBenchResults(out.string()).has_stepper);
+  EXPECT_EQ(nlohmann::json::parse(ReadText(out / "manifest.json"))["options"]["stepper"], false);
+  fs::remove_all(scratch);
 }
 
 // Runs `bench` on the tiny suite (4 planted-solution P-matrix problems and one infeasible LCP) into dir.
@@ -435,7 +501,7 @@ TEST(Bench, BackendBudgetSkipsTheRestAndProgressLinesAreWritten) {
   ASSERT_EQ(records.size(), 10u);
   int skipped = 0;
   for (std::size_t k = 0; k < records.size(); ++k) {
-    // The order is ReplayProblemSet's: problem by problem, lemke then enum.
+    // The job list's order: problem by problem, lemke then enum.
     EXPECT_EQ(records[k]["solver"], k % 2 == 0 ? "lemke" : "enum") << k;
     if (records[k]["message"].get<std::string>().find("not run: ") == 0) {
       ++skipped;

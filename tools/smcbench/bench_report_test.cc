@@ -408,7 +408,6 @@ TEST(ReportSweep, EveryBackendGetsEveryRung) {
   options.tolerance_sweep_problems = 2;
   JobListRequest request;
   request.solvers = {"lemke", "psor"};
-  request.iterative = {false, true};
   std::set<std::tuple<std::string, std::string, double>> sweep;
   for (const BenchJob& job : ListBenchJobs({set}, options, request)) {
     if (job.kind == JobKind::kSweep) sweep.insert({job.problem_id, job.solver, job.tolerance});

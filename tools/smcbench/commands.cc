@@ -24,6 +24,7 @@
 #include "tools/smcbench/bench_command.h"
 #include "tools/smcbench/library_command.h"
 #include "tools/smcbench/merge_command.h"
+#include "tools/smcbench/number_flags.h"
 #include "tools/smcbench/paper.h"
 #include "tools/smcbench/problem_files.h"
 #include "tools/smcbench/simulate.h"
@@ -48,44 +49,6 @@ struct SolveSettings {
   bool warm = false;              // repeats through a session, each from the previous answer (docs/session.md)
   std::optional<ProblemFormat> format;  // --format; unset: guessed from the file (tools/smcbench/problem_files.h)
 };
-
-// CLI11's PositiveNumber prints its range with DBL_MAX in full (300 digits): a short message instead.
-CLI::Validator PositiveNumber() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        double value = 0.0;
-        std::size_t used = 0;
-        try {
-          value = std::stod(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used != text.size() || !(value > 0.0) || !std::isfinite(value)) {
-          return "must be a positive finite number, got '" + text + "'";
-        }
-        return {};
-      },
-      "POSITIVE");
-}
-
-// CLI11's NonNegativeNumber admits fractions and prints DBL_MAX: a whole number ≥ 0, said in one line.
-CLI::Validator NonNegativeInteger() {
-  return CLI::Validator(
-      [](std::string& text) -> std::string {
-        long long value = -1;
-        std::size_t used = 0;
-        try {
-          value = std::stoll(text, &used);
-        } catch (const std::exception&) {
-          used = 0;
-        }
-        if (used != text.size() || value < 0 || value > std::numeric_limits<int>::max()) {
-          return "must be a whole number ≥ 0, got '" + text + "'";
-        }
-        return {};
-      },
-      "N");
-}
 
 // --format lcp|relay|mlcp|smcps|mtx into settings->format (only the Siconos kinds where allowed says so).
 void AddFormatFlag(CLI::App* app, std::optional<ProblemFormat>* format, const std::vector<std::string>& allowed,

@@ -1,0 +1,232 @@
+#include "bench/run/bench_plan.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iterator>
+#include <nlohmann/json.hpp>
+
+#include "bench/replay/mcp_replay.h"
+#include "problems/library/references.h"
+#include "problems/mcp/mcp_suite.h"
+#include "solvers/registry/backend_settings.h"
+#include "solvers/registry/registry.h"
+
+namespace smcbench {
+namespace fs = std::filesystem;
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+bool IsMcpSuiteName(const std::string& name) { return name == "mcp"; }
+
+// The defaults filled in and "all" expanded, in the order given.
+std::vector<std::string> ResolveSuiteNames(const std::vector<std::string>& named) {
+  if (named.empty()) return {std::begin(kDefaultBenchSuites), std::end(kDefaultBenchSuites)};
+  if (std::find(named.begin(), named.end(), "all") != named.end()) {
+    return {std::begin(kAllBenchSuites), std::end(kAllBenchSuites)};
+  }
+  return named;
+}
+
+// The backends named (none: every registered one), each created once, so an unknown name fails here.
+std::vector<std::string> ResolveSolverNames(const std::vector<std::string>& named) {
+  std::vector<std::string> names = named;
+  if (names.empty()) {
+    for (auto n : SolverNames()) names.emplace_back(n);
+  }
+  for (const std::string& name : names) CreateSolver(name);  // InvalidInputError listing the known names
+  return names;
+}
+
+// A suite's problems, built (captured suites certify while capturing), validated and (with certify) given their
+// certified references, with one line for the log: size, time taken and certificates.
+ProblemSet BuildBoxSuite(const std::string& name, const BenchRequest& request, std::string* line) {
+  SuiteRequest suite_request;
+  suite_request.siconos_dir = request.siconos_dir;
+  suite_request.quick = request.quick;
+  suite_request.references = false;  // attached below, timed
+  const auto build_start = Clock::now();
+  ProblemSet set = BuildSuite(name, suite_request);
+  if (set.problems.empty()) throw InvalidInputError("bench: suite '" + name + "' holds no problem");
+  set.Validate();
+  if (!request.certify) return set;
+  const auto references_start = Clock::now();
+  AttachReferences(&set);
+  const double references_seconds = SecondsSince(references_start);
+  std::map<Certificate, int> certificates;
+  for (const LibraryProblem& p : set.problems) ++certificates[p.reference.certificate];
+  std::string certified;
+  for (const auto& [certificate, count] : certificates) {
+    certified += (certified.empty() ? "" : ", ") + std::to_string(count) + " " + std::string(ToString(certificate));
+  }
+  char seconds[96];
+  std::snprintf(seconds, sizeof seconds, "built in %.2f s; certified references in %.2f s",
+                std::chrono::duration<double>(references_start - build_start).count(), references_seconds);
+  *line = "suite " + set.name + " (" + std::to_string(set.problems.size()) + " problems, " + seconds + ": " +
+          certified + ")";
+  return set;
+}
+
+// The MCP suite (references attached by the suite itself), validated, with one line for the log.
+McpProblemSet BuildMcpBenchSuite(bool quick, std::string* line) {
+  const auto build_start = Clock::now();
+  McpProblemSet set = BuildMcpSuite(quick);
+  set.Validate();
+  std::size_t instances = 0;
+  std::map<std::string, int> certificates;
+  for (const McpLibraryProblem& p : set.problems) {
+    instances += p.starts.size();
+    for (const ReferenceSolution& r : p.references) ++certificates[std::string(ToString(r.certificate))];
+    if (p.references.empty()) ++certificates["no reference"];
+  }
+  std::string certified;
+  for (const auto& [certificate, count] : certificates) {
+    certified += (certified.empty() ? "" : ", ") + std::to_string(count) + " " + certificate;
+  }
+  char seconds[64];
+  std::snprintf(seconds, sizeof seconds, "built in %.2f s", SecondsSince(build_start));
+  *line = "suite " + set.name + " (" + std::to_string(set.problems.size()) + " MCPs, " + std::to_string(instances) +
+          " problem x start, " + seconds + "; references: " + certified + ")";
+  return set;
+}
+
+}  // namespace
+
+bool IncludesStepperStudy(const std::vector<std::string>& suite_names, StepperStudyChoice choice) {
+  if (choice != StepperStudyChoice::kIfSceneSuite) return choice == StepperStudyChoice::kAlways;
+  return std::find(suite_names.begin(), suite_names.end(), "paper") != suite_names.end();
+}
+
+void CheckBenchRequest(const BenchRequest& request) {
+  for (const std::string& name : ResolveSuiteNames(request.suites)) {
+    const bool known =
+        std::find(std::begin(kBenchSuiteNames), std::end(kBenchSuiteNames), name) != std::end(kBenchSuiteNames);
+    std::error_code ec;
+    if (!known && !fs::is_regular_file(name, ec)) {
+      throw InvalidInputError("bench: unknown suite '" + name + "' (known: paper, families, hard, siconos, scale, "
+                              "tiny, mcp, all, or a problem-set file)");
+    }
+    if ((name == "siconos" || name == "hard") && !fs::is_directory(request.siconos_dir, ec)) {
+      throw InvalidInputError("bench: suite " + name + " needs the Siconos collection: --siconos-dir '" +
+                              request.siconos_dir + "' is not a folder");
+    }
+  }
+  const std::vector<std::string> solvers = ResolveSolverNames(request.solvers);
+  try {
+    CheckBackendSettings(request.settings, solvers);  // the one --set parser: solvers/registry/backend_settings.h
+  } catch (const InvalidInputError& e) {
+    throw InvalidInputError(std::string("bench: ") + e.what());
+  }
+  const auto refuse = [](const char* field, double value, const char* must) {
+    char text[64];
+    std::snprintf(text, sizeof text, "%g", value);
+    throw InvalidInputError(std::string("bench: ") + field + " must be " + must + ", got " + text);
+  };
+  if (!(request.tolerance > 0.0) || !std::isfinite(request.tolerance)) {
+    refuse("tolerance", request.tolerance, "a positive finite number");
+  }
+  if (!(request.time_limit_seconds > 0.0) || !std::isfinite(request.time_limit_seconds)) {
+    refuse("time limit", request.time_limit_seconds, "a positive finite number of seconds");
+  }
+  if (request.repetitions < 1) refuse("repetitions", request.repetitions, "a whole number >= 1");
+  if (!(request.backend_budget_seconds >= 0.0) || !std::isfinite(request.backend_budget_seconds)) {
+    refuse("backend budget", request.backend_budget_seconds, "a finite number of seconds >= 0");
+  }
+}
+
+BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(const std::string&)>& log) {
+  CheckBenchRequest(request);
+  BenchPlan plan;
+  plan.request = request;
+  plan.suite_names = ResolveSuiteNames(request.suites);
+  plan.solvers = ResolveSolverNames(request.solvers);
+  ReplayOptions& options = plan.options;
+  options.solvers = plan.solvers;
+  options.settings = request.settings;
+  options.tolerance = request.tolerance;
+  options.time_limit_seconds = request.time_limit_seconds;
+  options.repetitions = request.quick ? std::min(request.repetitions, 3) : request.repetitions;
+  if (request.quick) {
+    options.max_seconds_per_pair = 0.2;
+    options.tolerance_sweep_problems = 2;
+  }
+  options.polish = request.polish;
+  CreateReplaySolvers(options, &plan.solvers);  // applies the settings once: a rejected value fails here
+
+  for (const std::string& name : plan.suite_names) {
+    std::string line;
+    if (IsMcpSuiteName(name)) {
+      plan.mcp_suites.push_back(BuildMcpBenchSuite(request.quick, &line));
+    } else {
+      plan.suites.push_back(BuildBoxSuite(name, request, &line));
+    }
+    if (log && !line.empty()) log(line);
+  }
+  JobListRequest jobs;
+  jobs.solvers = plan.solvers;
+  jobs.generic_sparse_path = request.solvers.empty() ||
+                             std::find(request.solvers.begin(), request.solvers.end(), "newton") != request.solvers.end();
+  plan.stepper = IncludesStepperStudy(plan.suite_names, request.stepper);
+  jobs.stepper = plan.stepper;
+  if (!plan.mcp_suites.empty()) {
+    jobs.mcp_solvers = McpSolverNames(plan.solvers);
+    if (jobs.mcp_solvers.empty() && log) {
+      log("no chosen backend solves MCPs (`smcbench list` says: accepts nonlinear MCP): the MCP suite is not run");
+    }
+  }
+  plan.jobs = ListBenchJobs(plan.suites, plan.mcp_suites, options, jobs);
+  return plan;
+}
+
+std::vector<SuiteResults> PlanSuites(const BenchPlan& plan) {
+  std::vector<SuiteResults> out;
+  for (const ProblemSet& set : plan.suites) {
+    SuiteResults suite;
+    suite.suite = set.name;
+    suite.description = set.description;
+    suite.problems = static_cast<int>(set.problems.size());
+    suite.checksum = ProblemSetContentChecksum(set);
+    out.push_back(std::move(suite));
+  }
+  for (const McpProblemSet& set : plan.mcp_suites) {
+    SuiteResults suite;
+    suite.suite = set.name;
+    suite.description = set.description;
+    suite.problems = static_cast<int>(set.problems.size());
+    suite.checksum = McpProblemSetChecksum(set);
+    out.push_back(std::move(suite));
+  }
+  return out;
+}
+
+nlohmann::json PlanOptionsJson(const BenchPlan& plan) {
+  const ReplayOptions& o = plan.options;
+  return {{"solvers", plan.solvers},
+          {"settings", plan.request.settings},
+          {"tolerance", o.tolerance},
+          {"time_limit", o.time_limit_seconds},
+          {"repetitions", o.repetitions},
+          {"max_seconds_per_pair", o.max_seconds_per_pair},
+          {"tolerance_sweep_problems", o.tolerance_sweep_problems},
+          {"polish", o.polish},
+          {"quick", plan.request.quick},
+          {"stepper", plan.stepper},
+          {"backend_budget", plan.request.backend_budget_seconds}};
+}
+
+BenchResults PlanResults(const BenchPlan& plan, const std::map<std::size_t, JobLine>& done) {
+  RunManifest manifest;
+  manifest.options = PlanOptionsJson(plan);
+  manifest.suites = PlanSuites(plan);
+  manifest.jobs = plan.jobs;
+  return AssembleResults(manifest, done);
+}
+
+}  // namespace smcbench

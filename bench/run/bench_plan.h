@@ -1,0 +1,89 @@
+// What a benchmark run is, before anything runs: the suites by name (built, validated and certified), the backends
+// with their settings, the options, and the list of jobs (bench/replay/jobs.h). `smcbench bench` and Python's
+// smcbench.bench make a plan from a request and run it with RunShard (bench/run/run_shard.h); every bad input is an
+// InvalidInputError from MakeBenchPlan, before a caller writes anything.
+#pragma once
+
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include <nlohmann/json_fwd.hpp>
+
+#include "bench/replay/jobs.h"
+#include "problems/mcp/mcp_library.h"
+#include "problems/suites/catalogue.h"
+
+namespace smcbench {
+
+// The suites a run knows by name ("all": every one but tiny); anything else must be a problem-set file.
+inline constexpr const char* kBenchSuiteNames[] = {"paper", "families", "hard", "siconos", "scale", "tiny", "mcp",
+                                                   "all"};
+// What a request without suites runs, and what "all" stands for.
+inline constexpr const char* kDefaultBenchSuites[] = {"paper", "families", "hard", "siconos", "mcp"};
+inline constexpr const char* kAllBenchSuites[] = {"paper", "families", "hard", "siconos", "scale", "mcp"};
+
+// Whether a run includes the time-stepper studies (warm/cold starts, work-precision on the paper's scenes).
+enum class StepperStudyChoice {
+  kIfSceneSuite = 0,  // only when a suite of the run is captured from the scenes ("paper", or "all")
+  kAlways = 1,        // `bench --stepper`
+  kNever = 2,         // `bench --no-stepper`
+};
+
+// Whether a run of these suites (resolved names) includes the stepper studies under choice: with kIfSceneSuite,
+// only when "paper" is among them (the studies run the paper's scenes; a user's problem-set file has none).
+bool IncludesStepperStudy(const std::vector<std::string>& suite_names, StepperStudyChoice choice);
+
+struct BenchRequest {
+  std::vector<std::string> suites;    // kBenchSuiteNames or problem-set files; empty: kDefaultBenchSuites
+  std::vector<std::string> solvers;   // registry names; empty: every registered backend
+  std::vector<std::string> settings;  // typed backend options "BACKEND.OPTION=VALUE" (solvers/registry)
+  std::string siconos_dir = SuiteRequest().siconos_dir;  // the collection suites hard and siconos read
+  double tolerance = 1e-10;           // on the relative and the row-equilibrated natural residual
+  double time_limit_seconds = 10.0;   // per solve
+  int repetitions = 7;                // timing samples per job (quick: at most 3)
+  // Seconds one backend may spend on one suite before its remaining jobs there are not run (0: no limit).
+  double backend_budget_seconds = 60.0;
+  bool quick = false;                 // smaller suites, fewer samples, a shorter sweep and stepper study (CI)
+  bool polish = true;                 // SolverOptions::polish of every solve (false: time the raw algorithms)
+  StepperStudyChoice stepper = StepperStudyChoice::kIfSceneSuite;
+  // Attach certified references to the suites' problems. Off only to list the jobs (their cost does not depend
+  // on them): verdicts without references cannot judge forward errors.
+  bool certify = true;
+};
+
+struct BenchPlan {
+  BenchRequest request;
+  std::vector<std::string> suite_names;  // the request's, defaults filled in and "all" expanded
+  std::vector<std::string> solvers;      // resolved (never empty), in the order of the jobs
+  ReplayOptions options;                 // what each job's ReplayOne / ReplayMcpOne is given
+  std::vector<ProblemSet> suites;        // the box suites, in the order named
+  std::vector<McpProblemSet> mcp_suites;  // the MCP suites; BenchJob::suite counts them after suites
+  bool stepper = false;                  // the job list ends with the stepper job
+  std::vector<BenchJob> jobs;            // every job, in the order a single run writes its results
+};
+
+// Every check that needs no suite built: suite names (or readable problem-set files), the Siconos folder when its
+// suites are named, backend names, settings (tried on a fresh instance of each backend), numbers. InvalidInputError
+// naming the field and value; the caller's flag names are its own business.
+void CheckBenchRequest(const BenchRequest& request);
+
+// Checks the request (CheckBenchRequest), builds and validates its suites, attaches certified references (unless
+// request.certify is false) and lists the jobs. One line per suite (size, time taken, certificates) goes to log
+// when given, and one when no chosen backend solves the MCP suite. InvalidInputError for any bad input, including
+// a problem-set file that cannot be read or holds no problem.
+BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(const std::string&)>& log = {});
+
+// The plan's suites as results.json and the manifest list them (name, description, problems, checksum; no
+// records): the box suites, then the MCP suites.
+std::vector<SuiteResults> PlanSuites(const BenchPlan& plan);
+
+// The options that change what a run measures, as the manifest records them (shards and resumed runs must agree).
+nlohmann::json PlanOptionsJson(const BenchPlan& plan);
+
+// The results of the finished jobs in done (by job index), in the job list's order: what `bench` writes to
+// results.json, without the command line.
+BenchResults PlanResults(const BenchPlan& plan, const std::map<std::size_t, JobLine>& done);
+
+}  // namespace smcbench

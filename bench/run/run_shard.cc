@@ -1,0 +1,244 @@
+#include "bench/run/run_shard.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cstdint>
+#include <cstdio>
+#include <map>
+#include <memory>
+#include <utility>
+
+#include "bench/replay/mcp_replay.h"
+#include "bench/replay/stepper_study.h"
+#include "solvers/reference/certify.h"
+#include "solvers/registry/backend_settings.h"
+#include "solvers/registry/registry.h"
+
+namespace smcbench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double SecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// The generic path the report compares against: the same problems with M stored sparse, solved by the semismooth
+// Newton backend through UMFPACK (what a general sparse complementarity code does), judged against the same
+// certified solutions.
+ProblemSet SparseCopy(const ProblemSet& set) {
+  ProblemSet sparse;
+  sparse.name = set.name;
+  sparse.description = set.description;
+  for (const LibraryProblem& p : set.problems) {
+    const SparseMatrix S = p.problem.dense_matrix().sparseView();
+    LibraryProblem copy = MakeLibraryProblem(p.id, p.source, BoxMLCP(S, p.problem.q(), p.problem.l(), p.problem.u()));
+    copy.expected = p.expected;
+    copy.reference = p.reference;
+    sparse.problems.push_back(std::move(copy));
+  }
+  return sparse;
+}
+
+// The jobs of one shard, run in order with one backend instance per name (the timed solves are cold sessions, so
+// sharing an instance across problems does not change an answer), the budget counted per suite and backend.
+class ShardRunner {
+ public:
+  ShardRunner(const BenchPlan& plan, BenchProgress* progress) : plan_(plan), progress_(progress) {}
+
+  JobLine Run(const BenchJob& job) {
+    const int before = activity_.Count();
+    JobLine line;
+    line.job = job.index;
+    line.id = job.id;
+    line.host = activity_.host();
+    if (job.kind == JobKind::kStepper) {
+      line.has_stepper = true;
+      line.stepper = RunStepper();
+    } else if (OverBudget(job)) {
+      line.skipped = job.kind == JobKind::kSweep;
+      line.has_record = !line.skipped;
+      if (line.has_record) line.record = NotRunRecord(job);
+      if (line.has_record) ++skipped_[{job.suite, job.solver}];  // problems; skipped sweep rungs are not problems
+    } else {
+      const auto start = Clock::now();
+      line.has_record = true;
+      line.record = Replay(job);
+      spent_[{job.suite, job.solver}] += SecondsSince(start);
+    }
+    line.concurrent_jobs = std::max(before, activity_.Count());
+    if (line.has_record) line.record.host = line.host, line.record.concurrent_jobs = line.concurrent_jobs;
+    return line;
+  }
+
+  std::vector<BudgetSkip> Skipped() const {
+    std::vector<BudgetSkip> out;
+    for (const auto& [key, count] : skipped_) {
+      BudgetSkip skip;
+      skip.solver = key.second;
+      skip.skipped = count;
+      skip.mcp = key.first >= plan_.suites.size();
+      if (skip.mcp) {
+        const McpProblemSet& set = plan_.mcp_suites[key.first - plan_.suites.size()];
+        skip.suite = set.name;
+        for (const McpLibraryProblem& p : set.problems) skip.problems += p.starts.size();
+      } else {
+        skip.suite = plan_.suites[key.first].name;
+        skip.problems = plan_.suites[key.first].problems.size();
+      }
+      out.push_back(std::move(skip));
+    }
+    return out;
+  }
+
+ private:
+  bool OverBudget(const BenchJob& job) const {
+    const auto it = spent_.find({job.suite, job.solver});
+    const double budget = plan_.request.backend_budget_seconds;
+    return budget > 0.0 && it != spent_.end() && it->second >= budget;
+  }
+
+  Solver* SolverFor(const std::string& name) {
+    auto it = solvers_.find(name);
+    if (it == solvers_.end()) {
+      if (name == kGenericSparsePath) {  // the baseline the registry defines (CreateGenericSparsePathSolver)
+        it = solvers_.emplace(name, CreateGenericSparsePathSolver()).first;
+      } else {
+        ReplayOptions o = plan_.options;
+        std::vector<std::string> names{name};
+        o.settings = SettingsReaching(name, plan_.options.settings);  // checked against the whole selection
+        it = solvers_.emplace(name, std::move(CreateReplaySolvers(o, &names).front())).first;
+      }
+    }
+    return it->second.get();
+  }
+
+  ReplayRecord Replay(const BenchJob& job) {
+    if (job.kind == JobKind::kMcp) {
+      const McpProblemSet& set = plan_.mcp_suites.at(job.suite - plan_.suites.size());
+      return ReplayMcpOne(set, set.problems.at(job.problem), job.start, SolverFor(job.solver), job.solver,
+                          plan_.options, job.tolerance);
+    }
+    const ProblemSet& set = plan_.suites.at(job.suite);
+    if (job.kind != JobKind::kGenericSparse) {
+      return ReplayOne(set, set.problems.at(job.problem), SolverFor(job.solver), job.solver, plan_.options,
+                       job.kind == JobKind::kSweep ? "sweep" : "cold", job.tolerance);
+    }
+    auto it = sparse_.find(job.suite);
+    if (it == sparse_.end()) it = sparse_.emplace(job.suite, SparseCopy(set)).first;
+    return ReplayOne(it->second, it->second.problems.at(job.problem), SolverFor(job.solver), job.solver,
+                     plan_.options, "cold", job.tolerance);
+  }
+
+  std::string NotRunMessage(const BenchJob& job) const {
+    char message[200];
+    std::snprintf(message, sizeof message, "not run: %s spent its budget of %g s on suite %s (--backend-budget)",
+                  job.solver.c_str(), plan_.request.backend_budget_seconds, job.suite_name.c_str());
+    return message;
+  }
+
+  ReplayRecord NotRunRecord(const BenchJob& job) const {
+    if (job.kind == JobKind::kMcp) {
+      const McpProblemSet& set = plan_.mcp_suites.at(job.suite - plan_.suites.size());
+      return McpNotRunRecord(set, set.problems.at(job.problem), job.start, job.solver, job.tolerance,
+                             NotRunMessage(job));
+    }
+    const LibraryProblem& p = plan_.suites.at(job.suite).problems.at(job.problem);
+    ReplayRecord r;
+    r.suite = plan_.suites[job.suite].name;
+    r.problem = p.id;
+    r.solver = job.solver;
+    r.size = p.size();
+    r.sparse = p.sparse() || job.kind == JobKind::kGenericSparse;
+    for (const auto& t : p.tags) r.tags += (r.tags.empty() ? "" : ",") + t;
+    r.expected = p.expected;
+    r.status = SolveStatus::kTimeLimit;
+    r.message = NotRunMessage(job);
+    r.verdict = Verdict::kFailed;  // not run is no answer, even on a problem with no solution
+    r.residual_abs = r.residual_rel = r.residual_scaled = kInf;
+    r.certificate = std::string(ToString(p.reference.certificate));
+    r.tolerance = job.tolerance;
+    return r;
+  }
+
+  StepperStudy RunStepper() {
+    StepperStudyOptions so;
+    so.solvers = plan_.request.solvers;
+    if (so.solvers.empty()) {
+      // External adapters run each solve in a child process: along 10⁴-step trajectories that is minutes; they
+      // are timed on the replay suites instead (name them with --solver to include them here).
+      for (auto n : SolverNames()) {
+        if (n.rfind("siconos-", 0) != 0) so.solvers.emplace_back(n);
+      }
+    }
+    if (plan_.request.quick) {
+      so.warm_scenes = {"sign", "galias-yu-2007"};
+      so.precision_scenes = {"galias-yu-2007"};
+      so.refinements = 3;
+      so.min_seconds = 0.002;
+    }
+    if (progress_) so.progress = [this](const std::string& what) { progress_->Phase(what); };
+    so.polish = plan_.options.polish;
+    // Per-step forward error of s in the work-precision runs: each step's one-step problem certified from the
+    // backend's own answer (the cheapest candidate: usually its active set verifies at once). Its cost is
+    // reported, since it adds to the job's time.
+    double certify_seconds = 0.0;
+    std::int64_t certified_steps = 0;
+    so.step_forward_error = [&](const BoxMLCP& problem, const Vector& z) {
+      const auto start = Clock::now();
+      const ReferenceSolution reference = Certify(problem, {z});
+      certify_seconds += SecondsSince(start);
+      ++certified_steps;
+      return reference.unique() ? (z - reference.z).cwiseAbs().maxCoeff() : kNaN;
+    };
+    if (progress_) progress_->Message("time-stepper studies");
+    const auto stepper_start = Clock::now();
+    StepperStudy study = RunStepperStudy(so);
+    char line[160];
+    std::snprintf(line, sizeof line, "time-stepper studies took %.1f s, of which %.1f s certifying %lld steps",
+                  SecondsSince(stepper_start), certify_seconds, static_cast<long long>(certified_steps));
+    if (progress_) progress_->Message(line);
+    return study;
+  }
+
+  const BenchPlan& plan_;
+  BenchProgress* progress_;
+  HostActivity activity_;
+  std::map<std::string, std::unique_ptr<Solver>> solvers_;
+  std::map<std::size_t, ProblemSet> sparse_;
+  std::map<std::pair<std::size_t, std::string>, double> spent_;
+  std::map<std::pair<std::size_t, std::string>, int> skipped_;
+};
+
+std::string JobLabel(const BenchJob& job) {
+  if (job.kind == JobKind::kStepper) return "time-stepper studies";
+  const std::string start = job.kind == JobKind::kMcp ? "@" + job.start_label : "";
+  return job.suite_name + " " + job.problem_id + start + " " + job.solver;
+}
+
+}  // namespace
+
+ShardSummary RunShard(const BenchPlan& plan, ShardSelection shard, const std::set<std::size_t>& done,
+                      const JobLineSink& sink, BenchProgress* progress) {
+  if (shard.count < 1 || shard.index < 0 || shard.index >= shard.count) {
+    throw InvalidInputError("bench: shard " + std::to_string(shard.index + 1) + " of " + std::to_string(shard.count) +
+                            " does not exist (1 <= K <= N)");
+  }
+  const std::vector<int> job_shard = AssignShards(plan.jobs, shard.count);
+  std::vector<const BenchJob*> todo;
+  for (const BenchJob& job : plan.jobs) {
+    if (job_shard[job.index] == shard.index && !done.count(job.index)) todo.push_back(&job);
+  }
+  ShardRunner runner(plan, progress);
+  ShardSummary summary;
+  for (const BenchJob* job : todo) {
+    const JobLine line = runner.Run(*job);
+    if (sink) sink(line);
+    ++summary.jobs_run;
+    if (progress) progress->JobFinished(summary.jobs_run, todo.size(), JobLabel(*job));
+  }
+  summary.skipped = runner.Skipped();
+  return summary;
+}
+
+}  // namespace smcbench

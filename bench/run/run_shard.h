@@ -1,0 +1,58 @@
+// Runs the jobs of a benchmark plan (bench/run/bench_plan.h) one at a time: each timed, judged and handed to a sink
+// as it finishes (`bench` appends it to records.jsonl at once, so a killed run keeps its work). A backend past its
+// budget on a suite gets its remaining jobs there recorded as not run. Which process runs a job never changes its
+// answer: a job's record depends only on the plan and the job.
+#pragma once
+
+#include <cstddef>
+#include <functional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "bench/run/bench_plan.h"
+
+namespace smcbench {
+
+// Told what a run is doing, for a progress bar or a log. Every method may be left as is (nothing).
+class BenchProgress {
+ public:
+  virtual ~BenchProgress() = default;
+  // After each job: finished of total jobs of this call, and what the job was ("suite problem[@start] backend").
+  virtual void JobFinished(std::size_t /*finished*/, std::size_t /*total*/, const std::string& /*what*/) {}
+  // A phase inside one long job (the time-stepper studies' scenes): what runs now.
+  virtual void Phase(const std::string& /*what*/) {}
+  // One line for the user (what the stepper study took).
+  virtual void Message(const std::string& /*line*/) {}
+};
+
+// Which share of a plan's jobs a process runs: shard index (0-based) of count (AssignShards, bench/replay/jobs.h).
+struct ShardSelection {
+  int index = 0;
+  int count = 1;
+};
+
+// A backend that spent its budget on a suite: how many of the suite's jobs for it were not run (sweep jobs
+// included), of how many problems (MCP: problem x start).
+struct BudgetSkip {
+  std::string suite, solver;
+  bool mcp = false;
+  int skipped = 0;
+  std::size_t problems = 0;
+};
+
+struct ShardSummary {
+  std::size_t jobs_run = 0;          // jobs of the shard not in done, each given to the sink
+  std::vector<BudgetSkip> skipped;   // by suite, then backend
+};
+
+using JobLineSink = std::function<void(const JobLine& line)>;
+
+// Runs every job of plan in shard that is not in done (job indices), in the job list's order, and gives each
+// finished job's line to sink. A backend whose jobs on a suite took plan.request.backend_budget_seconds (when > 0,
+// counted in this call) gets its remaining cold jobs there as not-run records (status time limit, verdict failed,
+// a message) and its sweep jobs skipped (a line without record). InvalidInputError for a shard outside the count.
+ShardSummary RunShard(const BenchPlan& plan, ShardSelection shard, const std::set<std::size_t>& done,
+                      const JobLineSink& sink, BenchProgress* progress = nullptr);
+
+}  // namespace smcbench

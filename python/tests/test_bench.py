@@ -1,0 +1,91 @@
+"""smcbench.bench runs a benchmark through the engine `smcbench bench` runs: the same columns and verdicts as the
+command's results.csv for the same suite, Python-made problems judged against their known solution, and bad input
+refused naming it."""
+import os
+import pathlib
+import subprocess
+
+import numpy as np
+import pandas as pd
+import pytest
+
+import smcbench
+
+BACKENDS = ["lemke", "enum", "psor"]  # two exact backends and an iterative one (it gets the tolerance sweep)
+KEY = ["suite", "problem", "solver", "mode", "tolerance"]
+
+
+def cli_path() -> pathlib.Path:
+    """The smcbench command of the build the module comes from (ctest names it in SMCBENCH_CLI)."""
+    if os.environ.get("SMCBENCH_CLI"):
+        return pathlib.Path(os.environ["SMCBENCH_CLI"])
+    return pathlib.Path(smcbench.__file__).resolve().parents[2] / "tools" / "smcbench"
+
+
+def test_tiny_suite_has_the_columns_and_verdicts_of_the_commands_results_csv(tmp_path):
+    cli = cli_path()
+    if not cli.is_file():
+        pytest.skip(f"no smcbench command at {cli}")
+    args = [str(cli), "bench", "--suite", "tiny", "--quick", "--repetitions", "1", "--out", str(tmp_path / "cli")]
+    for name in BACKENDS:
+        args += ["--solver", name]
+    subprocess.run(args, check=True, capture_output=True, text=True)
+    expected = pd.read_csv(tmp_path / "cli" / "results.csv")
+
+    df = smcbench.bench("tiny", solvers=BACKENDS, repetitions=1, quick=True, out=tmp_path / "py")
+    assert list(df.columns) == list(expected.columns)
+    assert (tmp_path / "py" / "results.json").is_file()
+    assert len(df) == len(expected)
+    assert (df["mode"] == "sweep").any(), "psor's tolerance sweep"
+    joined = df.merge(expected, on=KEY, suffixes=("_py", "_cli"), validate="one_to_one")
+    assert len(joined) == len(df)
+    for column in ["status", "verdict", "iterations", "expected", "certificate"]:
+        assert (joined[f"{column}_py"] == joined[f"{column}_cli"]).all(), column
+    # The known answers: both exact backends solve the four planted problems and refuse the infeasible LCP.
+    cold = df[(df["mode"] == "cold") & df.solver.isin(["lemke", "enum"])]
+    assert set(cold[cold.problem == "tiny/infeasible-lcp"].verdict) == {"correctly refused"}
+    solved = cold[cold.problem != "tiny/infeasible-lcp"]
+    assert len(solved) == 8 and (solved.verdict == "solved").all()
+    assert (solved.forward_error <= 1e-8).all()
+
+
+def test_a_list_of_problems_is_run_as_one_suite():
+    # M = [[2, 1], [1, 2]], q = (-1, -1): both rows free, z* = (1/3, 1/3), the only solution (M is a P-matrix).
+    problem = smcbench.Problem(id="mine/2x2", M=np.array([[2.0, 1.0], [1.0, 2.0]]), q=np.array([-1.0, -1.0]),
+                               l=np.zeros(2), u=np.full(2, np.inf), expected="solvable")
+    df = smcbench.bench([problem], solvers="lemke", repetitions=1, quick=True)
+    assert list(df.suite) == ["python"] and list(df.problem) == ["mine/2x2"]
+    assert df.verdict[0] == "solved"
+    assert df.forward_error[0] <= 1e-14
+
+
+def test_bad_input_is_a_value_error_naming_it():
+    with pytest.raises(ValueError, match="unknown suite 'tinny'"):
+        smcbench.bench(["tiny", "tinny"], solvers=["lemke"])
+    with pytest.raises(smcbench.InvalidInputError, match="'lemkee'"):
+        smcbench.bench("tiny", solvers=["lemkee"])
+    with pytest.raises(ValueError, match="repetitions must be a whole number >= 1, got 0"):
+        smcbench.bench("tiny", solvers=["lemke"], repetitions=0)
+    with pytest.raises(ValueError, match="time limit"):
+        smcbench.bench("tiny", solvers=["lemke"], time_limit=float("nan"))
+
+
+def test_docs_example_prints_what_its_comments_say():
+    """docs/python.md's benchmark example (docs_quick only checks that it runs)."""
+    import contextlib
+    import io
+    import re
+
+    from conftest import SOURCE_DIR
+
+    text = (SOURCE_DIR / "docs" / "python.md").read_text(encoding="utf-8")
+    section = text[text.index("### Benchmarks from Python"):]
+    match = re.search(r"<<'PY'\n(.*?)\nPY\n", section, re.S)
+    assert match, "docs/python.md: the benchmark example's heredoc (<<'PY' ... PY) is missing"
+    code = match.group(1)
+    expected = [line.split("  # ", 1)[1].strip() for line in code.splitlines() if line.startswith("print(")]
+    assert len(expected) == 2
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(code, "docs/python.md", "exec"), {})
+    assert out.getvalue().splitlines() == expected
