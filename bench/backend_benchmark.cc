@@ -5,6 +5,8 @@
 // an error, never as a fast time.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <iterator>
 #include <string>
 
 #include "problems/generators/random_problems.h"
@@ -15,11 +17,13 @@ namespace {
 
 constexpr int kSizes[] = {1, 2, 4, 8, 16, 64, 256, 1024};
 
-// Sizes above which a backend is not timed (it would take minutes per solve, or refuses by design).
-int MaxSize(std::string_view solver) {
-  if (solver == "enum") return 16;
-  if (solver == "ipopt") return 256;
-  return 1024;
+// The largest size a backend is timed at, from its capabilities: its size limit (enum refuses larger problems by
+// design) and the size above which one solve takes seconds (SolverInfo::practical_size_limit: ipopt).
+int MaxSize(const SolverInfo& info) {
+  int max_size = kSizes[std::size(kSizes) - 1];
+  if (info.default_size_limit > 0) max_size = std::min(max_size, info.default_size_limit);
+  if (info.practical_size_limit > 0) max_size = std::min(max_size, info.practical_size_limit);
+  return max_size;
 }
 
 void SolveBenchmark(benchmark::State& state, std::string solver_name, GeneratorOptions g) {
@@ -85,10 +89,11 @@ void SessionBenchmark(benchmark::State& state, std::string solver_name, Generato
 
 void RegisterAll() {
   for (auto solver : SolverNames()) {
+    const SolverInfo info = CreateSolver(solver)->info();
     for (MatrixFamily family : {MatrixFamily::kSymmetricPositiveDefinite, MatrixFamily::kNonsymmetricPMatrix}) {
       for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay}) {
         for (int m : kSizes) {
-          if (m > MaxSize(solver)) continue;
+          if (m > MaxSize(info)) continue;
           GeneratorOptions g;
           g.family = family;
           g.bounds = bounds;
@@ -99,7 +104,9 @@ void RegisterAll() {
           auto* b = benchmark::RegisterBenchmark(name.c_str(), SolveBenchmark, std::string(solver), g);
           b->Unit(benchmark::kNanosecond);
           if (m >= 256) b->Iterations(m >= 1024 ? 3 : 20);
-          if (m > 16 || solver == "ipopt") continue;
+          // A backend slow enough to have a practical size limit (ipopt: an interior point per call) is timed by the
+          // solve/ benchmarks only.
+          if (m > 16 || info.practical_size_limit > 0) continue;
           for (bool warm : {false, true}) {
             const std::string session_name = "session/" + std::string(solver) + "/" + ToString(family) + "-" +
                                              ToString(bounds) + "/" + std::to_string(m) + "/" +

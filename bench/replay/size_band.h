@@ -32,4 +32,15 @@ constexpr std::string_view ToString(SizeBand band) {
   return "?";
 }
 
+// "m<=4", "m5-64", "m65-1024", "m>1024": ASCII, for fixed-width terminal tables (`compare`) and figure axes.
+constexpr std::string_view ShortName(SizeBand band) {
+  switch (band) {
+    case SizeBand::kTiny: return "m<=4";
+    case SizeBand::kSmall: return "m5-64";
+    case SizeBand::kMedium: return "m65-1024";
+    case SizeBand::kLarge: return "m>1024";
+  }
+  return "?";
+}
+
 }  // namespace smcbench

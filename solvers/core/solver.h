@@ -53,6 +53,16 @@ struct SolverInfo {
   // An adapter to another library (siconos-*): timed and studied as that library runs, so a solve session never
   // answers for it from a reused active set (its own warm behaviour, e.g. a direct solver's cache, is what counts).
   bool external = false;
+  // Capabilities that tests and benchmarks select backends by ("every backend that can X"), so that a new backend is
+  // covered by registering it. Repeated solves of one size, plain or in a session, allocate nothing after a warm-up
+  // (tests/allocation_test.cc pins it); an external library's internals are not ours to promise.
+  bool allocation_free = !external;
+  // Expected to solve every box-MLCP whose M is a P-matrix (within its size limit): the conformance suite requires
+  // it. False for splitting methods (psor), which converge for symmetric positive definite and H-matrices only.
+  bool solves_every_p_matrix = true;
+  // Above this many rows one solve takes seconds (a dense interior point's factorizations): benchmarks of growing
+  // size stop there, though the backend accepts larger problems. 0 = none.
+  int practical_size_limit = 0;
 };
 
 // Not thread-safe: a Solver owns its workspace. Use one instance per thread.

@@ -1304,7 +1304,13 @@ const SolverInfo& IpoptQpSolver::info() const {
       /*symmetric_only=*/false,
       /*exact=*/false,
       /*mcp=*/true,
-      /*default_size_limit=*/0};
+      /*default_size_limit=*/0,
+      /*equilibrate=*/true,
+      /*delegates=*/false,
+      /*external=*/false,
+      /*allocation_free=*/false,  // Ipopt's internals allocate on every solve
+      /*solves_every_p_matrix=*/true,
+      /*practical_size_limit=*/256};
   return kInfo;
 }
 

@@ -334,7 +334,12 @@ const SolverInfo& PsorSolver::info() const {
       /*symmetric_only=*/false,
       /*exact=*/false,
       /*mcp=*/false,
-      /*default_size_limit=*/0};
+      /*default_size_limit=*/0,
+      /*equilibrate=*/true,
+      /*delegates=*/false,
+      /*external=*/false,
+      /*allocation_free=*/true,
+      /*solves_every_p_matrix=*/false};
   return kInfo;
 }
 

@@ -22,6 +22,7 @@
 #include "solvers/registry/backend_settings.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_command.h"
+#include "tools/smcbench/compare_command.h"
 #include "tools/smcbench/library_command.h"
 #include "tools/smcbench/merge_command.h"
 #include "tools/smcbench/number_flags.h"
@@ -491,6 +492,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   BenchCommand bench(&app);
   LibraryCommand library(&app);
   MergeCommand merge(&app);
+  CompareCommand compare(&app);
 
   // An unknown first word gets a message naming it and the commands (CLI11 would only say one is required).
   if (argc >= 2 && argv[1][0] != '-') {
@@ -548,6 +550,7 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (bench.report_parsed()) return bench.RunReport(out, err);
     if (library.parsed()) return library.Run(out, err);
     if (merge.parsed()) return merge.Run(out, err);
+    if (compare.parsed()) return compare.Run(out, err);
   } catch (const InvalidInputError& e) {
     err << "smcbench: " << e.what() << "\n";
     return 1;
