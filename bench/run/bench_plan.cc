@@ -170,7 +170,11 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
     if (log && !line.empty()) log(line);
   }
   JobListRequest jobs;
-  jobs.solvers = plan.solvers;
+  // The box suites' backends: every chosen one that solves box-MLCPs (an MCP-only adapter would only add rows of
+  // not_applicable to every box table).
+  for (const std::string& name : plan.solvers) {
+    if (CreateSolver(name)->info().box) jobs.solvers.push_back(name);
+  }
   jobs.generic_sparse_path = request.solvers.empty() ||
                              std::find(request.solvers.begin(), request.solvers.end(), "newton") != request.solvers.end();
   plan.stepper = IncludesStepperStudy(plan.suite_names, request.stepper);

@@ -63,6 +63,9 @@ struct SolverInfo {
   // Above this many rows one solve takes seconds (a dense interior point's factorizations): benchmarks of growing
   // size stop there, though the backend accepts larger problems. 0 = none.
   int practical_size_limit = 0;
+  // Solves box-MLCPs. False for an MCP-only adapter (siconos-mcp-*), which answers every box-MLCP not_applicable:
+  // bench runs it on the MCP suites only, and box tables do not list it.
+  bool box = true;
 };
 
 // Not thread-safe: a Solver owns its workspace. Use one instance per thread.

@@ -64,14 +64,16 @@ const SolverInfo& InfoOf(SiconosMcpMethod method) {
       "Siconos Numerics 4.4 mcp_newton_FB_FBLSA; Facchinei & Pang 2003, Finite-Dimensional Variational "
       "Inequalities and Complementarity Problems, sec. 9.1",
       /*dense=*/true, /*sparse=*/false, /*symmetric_only=*/false, /*exact=*/false, /*mcp=*/true,
-      /*default_size_limit=*/0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true};
+      /*default_size_limit=*/0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true,
+      /*allocation_free=*/false, /*solves_every_p_matrix=*/false, /*practical_size_limit=*/0, /*box=*/false};
   static const SolverInfo kMin{
       "siconos-mcp-newton-min",
       "Siconos mcp_newton_min_FBLSA: Newton directions from the min reformulation, line search on the "
       "Fischer-Burmeister merit function, on the exact rewriting of the box MCP into Siconos' form; runs in process",
       "Siconos Numerics 4.4 mcp_newton_min_FBLSA; Facchinei & Pang 2003, sec. 9.1",
       /*dense=*/true, /*sparse=*/false, /*symmetric_only=*/false, /*exact=*/false, /*mcp=*/true,
-      /*default_size_limit=*/0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true};
+      /*default_size_limit=*/0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true,
+      /*allocation_free=*/false, /*solves_every_p_matrix=*/false, /*practical_size_limit=*/0, /*box=*/false};
   return method == SiconosMcpMethod::kNewtonFb ? kFb : kMin;
 }
 

@@ -18,6 +18,7 @@
 #include "bench/run/bench_plan.h"
 #include "bench/run/run_shard.h"
 #include "problems/io/data_dirs.h"
+#include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_report.h"
 #include "tools/smcbench/history_report.h"
 #include "tools/smcbench/number_flags.h"
@@ -110,7 +111,8 @@ BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
   bench_->add_flag("--no-polish", f.no_polish, "no exact polish of the backends' answers (SolverOptions::polish = "
                                               "false): time a raw algorithm");
   bench_->add_option("--allow-wrong", f.allow_wrong, "glob PATTERN of backends whose wrong answers do not set exit "
-                                                     "status 3 (still reported), e.g. 'siconos-*' (repeatable)")
+                                                     "status 3 (still reported), e.g. 'siconos-*', or `external`: "
+                                                     "every adapter to another library (repeatable)")
       ->type_name("PATTERN");
 
   bench_->add_option("--shard", f.shard, "run only shard K of N (1 <= K <= N): a deterministic share of the jobs "
@@ -186,6 +188,10 @@ class Progress : public BenchProgress {
   Clock::time_point start_, last_line_;
 };
 
+// The --allow-wrong value naming every adapter to another library (siconos-*, bullet-*, dart-*: SolverInfo::external),
+// so that the main job need not list the peers' prefixes.
+constexpr std::string_view kAllowWrongExternal = "external";
+
 // One line on err when any answer is wrong (none: nothing), and the exit status: kExitWrongAnswers when a wrong
 // answer comes from a backend no --allow-wrong pattern names, else 0. Sweep records count too: a wrong answer at a
 // loose tolerance is still a wrong answer.
@@ -201,8 +207,9 @@ int SummarizeWrongAnswers(const BenchResults& results, const std::vector<std::st
         ++wrong;
         ++by_verdict[r.verdict];
         ++by_backend[r.solver];
-        excused += std::any_of(allow_wrong.begin(), allow_wrong.end(),
-                               [&](const std::string& pattern) { return GlobMatch(pattern, r.solver); });
+        excused += std::any_of(allow_wrong.begin(), allow_wrong.end(), [&](const std::string& pattern) {
+          return pattern == kAllowWrongExternal ? IsExternalBackendName(r.solver) : GlobMatch(pattern, r.solver);
+        });
       }
     }
   }

@@ -86,8 +86,10 @@ void AddSolveFlags(CLI::App* app, SolveSettings* s) {
 std::vector<std::string> ResolveSolverNames(const std::vector<std::string>& requested) {
   std::vector<std::string> names;
   for (const std::string& name : requested) {
-    if (name == "all") {
-      for (auto known : SolverNames()) names.emplace_back(known);
+    if (name == "all") {  // every backend that solves box-MLCPs (the files `solve` and `collection` read)
+      for (auto known : SolverNames()) {
+        if (CreateSolver(known)->info().box) names.emplace_back(known);
+      }
     } else {
       CreateSolver(name);  // throws InvalidInputError listing the known names
       names.push_back(name);
