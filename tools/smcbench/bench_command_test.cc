@@ -14,13 +14,13 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "bench/figures/gnuplot_figure.h"
 #include "bench/replay/jobs.h"
 #include "problems/library/problem_set_io.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_command.h"
 #include "tools/smcbench/bench_report.h"
 #include "tools/smcbench/cli_test_runner.h"
-#include "tools/smcbench/simulate.h"
 
 namespace smcbench {
 namespace {
