@@ -27,7 +27,7 @@ install(TARGETS smcbench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT r
 
 # Headers keep their paths from the checkout's root, under include/smcbench (so "solvers/core/solver.h" never
 # collides with another package's headers in <prefix>/include). Tests' helpers are left out.
-foreach(dir solvers problems bench/replay bench/run bench/compare bench/perf tools/smcbench)
+foreach(dir solvers problems bench/replay bench/run bench/compare bench/figures bench/perf tools/smcbench)
   install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/smcbench/${dir}
     COMPONENT development
     FILES_MATCHING PATTERN "*.h"

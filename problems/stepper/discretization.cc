@@ -182,7 +182,6 @@ OneStepData DiscretizeZohUnchecked(const ZohSmcSystem& system, double h, SignTre
 }
 
 namespace {
-bool IsZoh(Method method) { return method == Method::kZoh || method == Method::kZohExplicit; }
 SignTreatment SignOf(Method method) {
   return (method == Method::kImplicit || method == Method::kZoh) ? SignTreatment::kImplicit
                                                                   : SignTreatment::kExplicit;

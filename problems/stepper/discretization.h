@@ -31,6 +31,10 @@ enum class Method { kImplicit, kExplicit, kZoh, kZohExplicit };
 // "implicit", "explicit", "zoh", "zoh-explicit".
 std::string_view ToString(Method method);
 std::optional<Method> MethodFromString(std::string_view name);
+// Whether each step solves a one-step problem (implicit sign: kImplicit, kZoh); the explicit methods solve none.
+constexpr bool IsImplicit(Method method) { return method == Method::kImplicit || method == Method::kZoh; }
+// Whether the method samples a ZOH plant (kZoh, kZohExplicit): only these have a held input between samples.
+constexpr bool IsZoh(Method method) { return method == Method::kZoh || method == Method::kZohExplicit; }
 
 // The exact forced response of a plant disturbance W d(t) (linear_system.h) over [t_k, t_k + τ) from x = 0, for one
 // fixed τ (the step h, or a point between samples: sampled_plant.h):

@@ -303,11 +303,27 @@ def bench_mcp(problems: Iterable[McpProblem], solvers: Optional[List[str]] = Non
 
 
 @dataclass
+class PlantRows:
+    """A ZOH run's plant between samples (plant_substeps = S > 1): S·steps + 1 rows, the samples and the plant's
+    exact state at S − 1 points between each two, as `smcbench simulate --out` writes them. t (rows,), x (rows, n);
+    s, y, u (rows, m): between samples s is the multiplier of the held input and u the input held."""
+
+    t: np.ndarray
+    x: np.ndarray
+    s: np.ndarray
+    y: np.ndarray
+    u: np.ndarray
+
+
+@dataclass
 class Simulation:
     """A recorded run of a scene. Rows are steps k = 0 .. steps: t (steps+1,), x (steps+1, n), s and y
-    (steps+1, m); row 0 is the initial state (s_0 = 0). iterations, residual and status describe the one-step
-    problem that produced row k (row 0: none). summary: the JSON summary of `smcbench simulate --summary`
-    (steps, x_final, reaching_step, s_error_max / y_error_max against a certified reference run, ...)."""
+    (steps+1, m); row 0 is the initial state (s_0 = 0). u (steps+1, m): the control input applied over
+    [t_k, t_k+1) (the u columns of `smcbench simulate --out`; the last row NaN), None when the run has no input.
+    iterations, residual and status describe the one-step problem that produced row k (row 0: none). summary:
+    the JSON summary of `smcbench simulate --summary` (steps, x_final, reaching_step, s_error_max / y_error_max
+    against a certified reference run, ...). plant: the plant between samples (PlantRows) for a ZOH run with
+    plant_substeps > 1, else None. notes: overrides that had no effect (the CLI's "note:" lines)."""
 
     scene: str
     description: str
@@ -321,11 +337,14 @@ class Simulation:
     status: List[str]
     summary: dict
     wall_seconds: float
+    u: Optional[np.ndarray] = None
+    plant: Optional[PlantRows] = None
+    notes: List[str] = field(default_factory=list)
 
 
 _SIMULATE_OVERRIDES = ("method", "h", "T", "theta", "gamma", "x0", "parameters", "solver", "tol", "max_iterations",
                        "warm_start", "polish", "on_failure", "algorithm", "newton_tol", "newton_max_iterations",
-                       "reach_tol", "reference")
+                       "reach_tol", "plant_substeps", "reference")
 
 
 def simulate(scene, *, backend_options: Optional[dict] = None, **overrides) -> Simulation:
@@ -336,9 +355,11 @@ def simulate(scene, *, backend_options: Optional[dict] = None, **overrides) -> S
     "explicit", "zoh", "zoh-explicit"), h, T, theta, gamma, x0, parameters (dict name → value), solver (default:
     the scene's, else "auto"), tol (1e-10), max_iterations, warm_start (True), polish (True), on_failure
     ("stop" | "continue"), algorithm ("newton-mlcp" | "mcp", nonlinear scenes), newton_tol,
-    newton_max_iterations, reach_tol (10·tol), reference (True: run the certified reference run for the
-    summary's s_error_max / y_error_max; False skips that second run). backend_options: the backend's typed
-    options (the CLI's --set). An unknown override raises TypeError; a bad value InvalidInputError.
+    newton_max_iterations, reach_tol (10·tol), plant_substeps (ZOH methods: S > 1 fills Simulation.plant with
+    the plant's state at S − 1 points between samples; default: the scene's), reference (True: run the certified
+    reference run for the summary's s_error_max / y_error_max; False skips that second run). backend_options: the
+    backend's typed options (the CLI's --set). The rules and messages are `smcbench simulate`'s. An unknown
+    override raises TypeError; a bad value InvalidInputError.
     """
     unknown = sorted(set(overrides) - set(_SIMULATE_OVERRIDES))
     if unknown:
@@ -359,6 +380,8 @@ def simulate(scene, *, backend_options: Optional[dict] = None, **overrides) -> S
     else:
         raise TypeError(f"simulate: scene must be a name, a path or a dict, got {type(scene).__name__}")
     raw["summary"] = json.loads(raw.pop("summary_json"))
+    if raw["plant"] is not None:
+        raw["plant"] = PlantRows(**raw["plant"])
     return Simulation(**raw)
 
 

@@ -1,29 +1,35 @@
 // smcbench.simulate: a scene (registered name, scene file, or a scene document given as JSON text by __init__.py)
-// run with the CLI's overrides (tools/smcbench/simulate.cc: h, T, method, theta, gamma, x0, parameters, solver,
-// tolerance, algorithm, Newton settings, backend options), recorded, and returned as numpy arrays with the same
-// JSON summary `smcbench simulate --summary` writes (SimulationSummary, with the certified reference run).
+// run with the overrides `smcbench simulate` takes (problems/scenes/scene_overrides.h: the same rules and
+// messages), recorded, and returned as numpy arrays with the same JSON summary `smcbench simulate --summary` writes
+// (problems/scenes/run_summary.h, with the certified reference run), the control input u and, for a ZOH run with
+// plant_substeps > 1, the plant's rows between samples as `simulate --out` writes them.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
 #include <chrono>
+#include <limits>
 #include <map>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <nlohmann/json.hpp>
 
 #include "convert.h"
 #include "problems/scenes/linear_scene.h"
-#include "problems/scenes/nonlinear_scene.h"
+#include "problems/scenes/reference_run.h"
 #include "problems/scenes/registry.h"
+#include "problems/scenes/run_summary.h"
+#include "problems/scenes/scene_overrides.h"
+#include "problems/stepper/sampled_plant.h"
 #include "solvers/registry/registry.h"
-#include "tools/smcbench/simulate.h"
 
 namespace smcbench::python {
 namespace {
 
-// The settings a Python caller may override; an unset field keeps the scene's value (as an absent CLI flag).
+// The keywords of smcbench.simulate as Python sets them; an unset field keeps the scene's value. The stepper's
+// options always apply, with the command line's defaults.
 struct SimulateOverrides {
   std::optional<std::string> method;
   std::optional<double> h, T, theta, gamma;
@@ -39,103 +45,102 @@ struct SimulateOverrides {
   std::optional<double> newton_tolerance;
   std::optional<int> newton_max_iterations;
   std::optional<double> reach_tolerance;
+  std::optional<int> plant_substeps;
   bool reference = true;
 };
 
-bool IsImplicit(Method m) { return m == Method::kImplicit || m == Method::kZoh; }
-
-// The CLI's rules (SimulateCommand::Run), error texts included: Python and the command line accept and refuse the
-// same settings.
-SimulationSettings ApplyOverrides(const Scene& scene, const SimulateOverrides& o) {
-  SimulationSettings s = scene.defaults();
-  if (o.method) {
-    const auto method = MethodFromString(*o.method);
-    if (!method) {
-      throw InvalidInputError("method: unknown method '" + *o.method +
-                              "' (known: implicit, explicit, zoh, zoh-explicit)");
-    }
-    s.method = *method;
-    // "explicit" means the classical explicit Euler scheme unless a θ (γ) is asked for.
-    if (s.method == Method::kExplicit && !o.theta) s.theta = 0.0;
-    if (s.method == Method::kExplicit && !o.gamma) s.gamma = 0.0;
-  }
-  if (o.h) s.h = *o.h;
-  if (o.T) s.T = *o.T;
-  if (o.theta) s.theta = *o.theta;
-  if (o.gamma) s.gamma = *o.gamma;
+SceneOverrides ToSceneOverrides(const SimulateOverrides& o) {
+  SceneOverrides s;
+  s.method = o.method;
+  s.h = o.h;
+  s.T = o.T;
+  s.theta = o.theta;
+  s.gamma = o.gamma;
   if (!o.x0.is_none()) s.x0 = ToVector(o.x0, "x0");
-  for (const auto& [name, value] : o.parameters) {
-    if (!scene.defaults().parameters.count(name)) {
-      std::string known;
-      for (const auto& [k, v] : scene.defaults().parameters) known += (known.empty() ? "" : ", ") + k;
-      throw InvalidInputError("parameters: the scene has no parameter '" + name + "' (parameters: " +
-                              (known.empty() ? "none" : known) + ")");
-    }
-    s.parameters[name] = value;
-  }
-  if (o.algorithm) {
-    const auto algorithm = NonlinearAlgorithmFromString(*o.algorithm);
-    if (!algorithm) {
-      throw InvalidInputError("algorithm: unknown algorithm '" + *o.algorithm + "' (known: newton-mlcp, mcp)");
-    }
-    s.algorithm = *algorithm;
-  }
-  if (o.newton_tolerance) s.newton_tolerance = *o.newton_tolerance;
-  if (o.newton_max_iterations) s.newton_max_iterations = *o.newton_max_iterations;
-  s.stepper.solver.tolerance = o.tolerance;
-  if (o.max_iterations) s.stepper.solver.max_iterations = *o.max_iterations;
-  s.stepper.warm_start = o.warm_start;
-  s.stepper.solver.polish = o.polish;
-  if (o.on_failure == "stop") {
-    s.stepper.on_failure = FailurePolicy::kStop;
-  } else if (o.on_failure == "continue") {
-    s.stepper.on_failure = FailurePolicy::kContinue;
-  } else {
-    throw InvalidInputError("on_failure: expected 'stop' or 'continue', got '" + o.on_failure + "'");
-  }
-  s.stepper.record = true;  // Python gets the whole trajectory
-  s.Validate(scene.info().n);
-  if (!scene.Supports(s.method)) {
-    throw InvalidInputError("method '" + std::string(ToString(s.method)) +
-                            "' needs a ZOH plant (system type zoh); this scene runs implicit or explicit");
-  }
+  s.parameters.assign(o.parameters.begin(), o.parameters.end());
+  s.solver = o.solver;
+  s.algorithm = o.algorithm;
+  s.newton_tolerance = o.newton_tolerance;
+  s.newton_max_iterations = o.newton_max_iterations;
+  s.tolerance = o.tolerance;
+  s.max_iterations = o.max_iterations;
+  s.warm_start = o.warm_start;
+  s.polish = o.polish;
+  s.on_failure = o.on_failure;
+  s.plant_substeps = o.plant_substeps;
+  s.reach_tolerance = o.reach_tolerance;
   return s;
 }
+
+// Every row a sink receives, kept (the plant's rows between samples: s·N + 1 of them, for Python's arrays).
+class RowCollector final : public TrajectorySink {
+ public:
+  void OnRows(const TrajectoryBlock& block) override {
+    n_ = block.n;
+    m_ = block.m;
+    for (std::int64_t c = 0; c < block.rows; ++c) {
+      const auto col = static_cast<Eigen::Index>(c);
+      t_.push_back(block.t[static_cast<std::size_t>(c)]);
+      for (int i = 0; i < block.n; ++i) x_.push_back(block.x(i, col));
+      for (int i = 0; i < block.m; ++i) {
+        s_.push_back(block.s(i, col));
+        y_.push_back(block.y(i, col));
+        u_.push_back(block.has_input() ? block.u(i, col) : std::numeric_limits<double>::quiet_NaN());
+      }
+    }
+  }
+  // {t, x, s, y, u}: t of shape (rows,), the others (rows, n or m).
+  py::dict ToDict() const {
+    const auto rows = static_cast<py::ssize_t>(t_.size());
+    const auto table = [rows](const std::vector<double>& values, int columns) {
+      return py::array_t<double>({rows, static_cast<py::ssize_t>(columns)}, values.data());
+    };
+    py::dict out;
+    out["t"] = py::array_t<double>(rows, t_.data());
+    out["x"] = table(x_, n_);
+    out["s"] = table(s_, m_);
+    out["y"] = table(y_, m_);
+    out["u"] = table(u_, m_);
+    return out;
+  }
+
+ private:
+  int n_ = 0, m_ = 0;
+  std::vector<double> t_, x_, s_, y_, u_;
+};
 
 py::dict Simulate(const std::string& scene_text, bool is_document, const SimulateOverrides& o,
                   const py::dict& backend_options) {
   const std::unique_ptr<Scene> scene =
       is_document ? std::unique_ptr<Scene>(LinearScene::FromText(scene_text, "scene dict")) : LoadScene(scene_text);
   const SceneInfo& info = scene->info();
-  const SimulationSettings s = ApplyOverrides(*scene, o);
+  SceneRunSettings run = ApplySceneOverrides(*scene, ToSceneOverrides(o), OverrideSpelling::kPython);
+  SimulationSettings& s = run.settings;
+  s.stepper.record = true;  // Python gets the whole trajectory
 
-  // The backend, only for methods that solve a one-step problem: the override, else the scene's, else auto
-  // (newton for Algorithm 1 on a nonlinear scene), as `smcbench simulate` chooses.
-  const bool nonlinear = dynamic_cast<const NonlinearSceneAdapter*>(scene.get()) != nullptr;
   std::unique_ptr<Solver> solver;
-  std::string solver_name;
-  if (IsImplicit(s.method)) {
-    const bool mcp = nonlinear && s.algorithm == NonlinearAlgorithm::kMcp;
-    solver_name = o.solver ? *o.solver : !s.solver.empty() ? s.solver : mcp ? "newton" : "auto";
-    solver = CreateSolver(solver_name);
-    if (mcp && !solver->info().mcp) {
-      throw InvalidInputError("algorithm 'mcp' needs a backend that solves nonlinear MCPs (newton); '" + solver_name +
-                              "' solves box-MLCPs only: use algorithm='newton-mlcp' with it");
-    }
+  if (!run.backend.empty()) {
+    solver = CreateSolver(run.backend);
+    CheckSceneBackend(run, *solver, OverrideSpelling::kPython);
     for (const auto& [key, value] : backend_options) {
       const std::string option = py::str(key);
       std::string error;
       if (!solver->SetOption(option, OptionValueText(value, option), &error)) {
-        throw InvalidInputError(solver_name + ": " + error);
+        throw InvalidInputError(run.backend + ": " + error);
       }
     }
   } else if (!backend_options.empty()) {
     throw InvalidInputError("backend_options given, but method '" + std::string(ToString(s.method)) +
                             "' solves no one-step problem");
   }
+  // The plant between samples (ZOH runs with plant_substeps > 1): built before the run, so a scene without a ZOH
+  // plant fails before simulating.
+  std::unique_ptr<ZohSmcSystem> plant;
+  if (s.plant_substeps > 1) plant = std::make_unique<ZohSmcSystem>(ZohPlantOf(*scene, s.parameters));
 
   Trajectory trajectory;
   std::optional<ReferenceComparison> reference;
+  RowCollector plant_rows;
   double wall = 0.0;
   std::string summary_text;
   {
@@ -143,9 +148,13 @@ py::dict Simulate(const std::string& scene_text, bool is_document, const Simulat
     const auto start = std::chrono::steady_clock::now();
     scene->Run(s, solver.get(), &trajectory);
     wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (plant) {
+      SampledPlantSink sampled(*plant, s.h, s.plant_substeps, &plant_rows);
+      FeedRecorded(trajectory, &sampled);
+      sampled.Finish();
+    }
     if (o.reference) reference = CompareWithReferenceRun(*scene, s, trajectory);
-    const double reach_tol = o.reach_tolerance ? *o.reach_tolerance : 10.0 * o.tolerance;
-    summary_text = SimulationSummary(*scene, s, solver_name, trajectory, reach_tol, wall,
+    summary_text = SimulationSummary(*scene, s, run.backend, trajectory, run.reach_tolerance, wall,
                                      reference ? &*reference : nullptr)
                        .dump();
   }
@@ -153,11 +162,13 @@ py::dict Simulate(const std::string& scene_text, bool is_document, const Simulat
   py::dict out;
   out["scene"] = info.name;
   out["description"] = trajectory.description;
-  out["solver"] = solver_name.empty() ? py::object(py::none()) : py::object(py::str(solver_name));
+  out["solver"] = run.backend.empty() ? py::object(py::none()) : py::object(py::str(run.backend));
   out["t"] = py::array_t<double>(static_cast<py::ssize_t>(trajectory.t.size()), trajectory.t.data());
   out["x"] = ToNumpyTransposed(trajectory.x);
   out["s"] = ToNumpyTransposed(trajectory.s);
   out["y"] = ToNumpyTransposed(trajectory.y);
+  // The input applied over [t_k, t_k+1) (the CLI's u columns); None when the run has none.
+  out["u"] = trajectory.has_input ? py::object(ToNumpyTransposed(trajectory.u)) : py::object(py::none());
   out["iterations"] = py::array_t<int>(static_cast<py::ssize_t>(trajectory.iterations.size()),
                                        trajectory.iterations.data());
   out["residual"] = py::array_t<double>(static_cast<py::ssize_t>(trajectory.residual.size()),
@@ -167,6 +178,8 @@ py::dict Simulate(const std::string& scene_text, bool is_document, const Simulat
   out["status"] = status;
   out["summary_json"] = summary_text;
   out["wall_seconds"] = wall;
+  out["plant"] = plant ? py::object(plant_rows.ToDict()) : py::object(py::none());
+  out["notes"] = run.notes;
   return out;
 }
 
@@ -199,6 +212,7 @@ void BindSimulate(py::module_& m) {
       .def_readwrite("newton_tol", &SimulateOverrides::newton_tolerance)
       .def_readwrite("newton_max_iterations", &SimulateOverrides::newton_max_iterations)
       .def_readwrite("reach_tol", &SimulateOverrides::reach_tolerance)
+      .def_readwrite("plant_substeps", &SimulateOverrides::plant_substeps)
       .def_readwrite("reference", &SimulateOverrides::reference);
   m.def("_simulate", &Simulate, "scene"_a, "is_document"_a, "overrides"_a, "backend_options"_a,
         "Run a scene (see smcbench.simulate); returns a dict.");

@@ -4,6 +4,9 @@ Brogliato 2009, from the scene's name, its file and a dict."""
 
 import json
 import math
+import os
+import pathlib
+import subprocess
 
 import numpy as np
 import pytest
@@ -82,3 +85,70 @@ def test_bad_overrides_raise():
 def test_scene_list():
     names = smcbench.scenes()
     assert names[0] == "sign" and "observer" in names and "parasitic" in names
+
+
+def cli_binary():
+    """The smcbench program of the same build: $SMCBENCH_CLI (ctest sets it), else beside the module's build."""
+    beside = pathlib.Path(smcbench.__file__).resolve().parents[2] / "tools" / "smcbench"
+    path = os.environ.get("SMCBENCH_CLI") or str(beside)
+    if not os.access(path, os.X_OK):
+        pytest.skip(f"no smcbench program at {path} (set SMCBENCH_CLI)")
+    return path
+
+
+def cli_trajectory(tmp_path, *args):
+    """`smcbench simulate ... --out CSV` read back: its header and its rows as floats (nan included)."""
+    csv = tmp_path / "trajectory.csv"
+    subprocess.run([cli_binary(), "simulate", *args, "--out", str(csv)], check=True, capture_output=True)
+    lines = csv.read_text().splitlines()
+    return lines[0].split(","), np.array([[float(v) for v in line.split(",")] for line in lines[1:]])
+
+
+def columns(header, rows, prefix):
+    return rows[:, [i for i, name in enumerate(header) if name.startswith(prefix) and name[len(prefix):].isdigit()]]
+
+
+@pytest.mark.parametrize("scene", ["sign", "zoh-mimo"])
+def test_u_is_the_input_the_cli_writes(tmp_path, scene):
+    header, rows = cli_trajectory(tmp_path, scene, "--solver", "lemke")
+    run = smcbench.simulate(scene, solver="lemke", reference=False)
+    assert run.u is not None and run.u.shape == run.s.shape
+    # The CSV's numbers are shortest round-trip text: the same doubles, bit for bit (NaN in the last row: no step
+    # applies it).
+    np.testing.assert_array_equal(run.t, rows[:, 0])
+    np.testing.assert_array_equal(run.x, columns(header, rows, "x"))
+    np.testing.assert_array_equal(run.u, columns(header, rows, "u"))
+    assert np.all(np.isnan(run.u[-1])) and not np.any(np.isnan(run.u[:-1]))
+
+
+def test_u_of_implicit_sign_is_minus_the_multiplier():
+    # S1 is x' = u with u = -s, s in Sgn(x): implicit Euler's x_{k+1} = x_k + h u_k, u_k = -s_{k+1}.
+    run = smcbench.simulate("sign", x0=[0.505], h=0.01, reference=False)
+    np.testing.assert_array_equal(run.u[:-1, 0], -run.s[1:, 0])
+    np.testing.assert_allclose(np.diff(run.x[:, 0]), 0.01 * run.u[:-1, 0], atol=1e-15)
+
+
+def test_plant_rows_between_samples_are_the_cli_rows(tmp_path, source_dir):
+    scene = str(source_dir / "problems" / "scenes" / "smc-disturbed.json")
+    header, rows = cli_trajectory(tmp_path, scene, "--T", "0.1", "--plant-substeps", "10")
+    run = smcbench.simulate(scene, T=0.1, plant_substeps=10, reference=False)
+    plant = run.plant
+    assert plant is not None and plant.t.shape == (10 * 10 + 1,)
+    np.testing.assert_array_equal(plant.t, rows[:, 0])
+    for name in ("x", "s", "y", "u"):
+        np.testing.assert_array_equal(getattr(plant, name), columns(header, rows, name), err_msg=name)
+    # Every 10th row is a sample of the run itself.
+    np.testing.assert_array_equal(plant.x[::10], run.x)
+    np.testing.assert_array_equal(plant.u[::10], run.u)
+    assert smcbench.simulate(scene, T=0.1, reference=False).plant is None
+
+
+def test_plant_substeps_follow_the_cli_rules():
+    with pytest.raises(ValueError, match="plant_substeps 3 needs method zoh or zoh-explicit"):
+        smcbench.simulate("zoh-siso", method="implicit", plant_substeps=3)
+    with pytest.raises(ValueError, match="plant_substeps must be an integer >= 1, got 0"):
+        smcbench.simulate("zoh-siso", plant_substeps=0)
+    with pytest.raises(ValueError, match="max_iterations must be an integer >= 0"):
+        smcbench.simulate("sign", max_iterations=-1)
+    run = smcbench.simulate("sign", gamma=0.5, reference=False)
+    assert run.notes == ["gamma has no effect on a linear scene (g(x) = B is constant)"]

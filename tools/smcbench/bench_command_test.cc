@@ -15,6 +15,7 @@
 #include <sstream>
 #include <unistd.h>
 
+#include "bench/figures/gnuplot_figure.h"
 #include "bench/replay/jobs.h"
 #include "bench/run/bench_plan.h"
 #include "bench/run/run_shard.h"
@@ -23,7 +24,6 @@
 #include "tools/smcbench/bench_command.h"
 #include "tools/smcbench/bench_report.h"
 #include "tools/smcbench/cli_test_runner.h"
-#include "tools/smcbench/simulate.h"
 
 namespace smcbench {
 namespace {

@@ -14,9 +14,9 @@
 #include <set>
 #include <sstream>
 
+#include "bench/figures/gnuplot_figure.h"
 #include "solvers/core/duration_text.h"
 #include "solvers/registry/registry.h"
-#include "tools/smcbench/simulate.h"
 
 namespace smcbench {
 namespace {
@@ -68,7 +68,7 @@ double Slope(const std::vector<double>& x, const std::vector<double>& y) {
 // body: the settings and the plot command, naming the data file as 'STEM.dat'.
 void WriteFigure(const std::string& dir, const std::string& stem, const std::string& data, const std::string& body,
                  int width, int height) {
-  WriteGnuplotFigure(dir, stem, data, body, width, height, "report");  // the one figure writer (simulate.h)
+  WriteGnuplotFigure(dir, stem, data, body, width, height, "report");  // the one figure writer (bench/figures)
 }
 
 // The markdown of a figure: the PNG, with its SVG, data and script linked below it.

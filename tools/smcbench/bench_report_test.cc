@@ -22,7 +22,7 @@
 #include "bench/replay/size_band.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_report.h"
-#include "tools/smcbench/simulate.h"
+#include "bench/figures/gnuplot_figure.h"
 
 namespace smcbench {
 namespace {

@@ -12,7 +12,7 @@
 #include "bench/replay/results_io.h"
 #include "solvers/core/number_text.h"
 #include "solvers/core/problem.h"
-#include "tools/smcbench/simulate.h"
+#include "bench/figures/gnuplot_figure.h"
 
 namespace smcbench {
 

@@ -16,7 +16,7 @@
 #include "bench/compare/compare_runs.h"
 #include "bench/replay/results_io.h"
 #include "tools/smcbench/cli_test_runner.h"
-#include "tools/smcbench/simulate.h"
+#include "bench/figures/gnuplot_figure.h"
 
 namespace smcbench {
 namespace {

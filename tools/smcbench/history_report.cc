@@ -9,9 +9,9 @@
 #include <sstream>
 #include <vector>
 
+#include "bench/figures/gnuplot_figure.h"
 #include "bench/perf/perf_record.h"
 #include "solvers/core/problem.h"
-#include "tools/smcbench/simulate.h"
 
 namespace smcbench {
 namespace {

@@ -10,9 +10,9 @@
 #include <ostream>
 #include <sstream>
 
+#include "bench/figures/gnuplot_figure.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/paper/study.h"
-#include "tools/smcbench/simulate.h"
 
 namespace smcbench {
 namespace {

@@ -20,10 +20,13 @@
 #include <string>
 #include <vector>
 
+#include "bench/figures/gnuplot_figure.h"
 #include "problems/library/capture.h"
 #include "problems/library/problem_set_io.h"
 #include "problems/scenes/linear_scene.h"
+#include "problems/scenes/reference_run.h"
 #include "problems/scenes/registry.h"
+#include "problems/scenes/run_summary.h"
 #include "solvers/registry/registry.h"
 #include "tests/support/malloc_counter.h"
 #include "tools/smcbench/cli_test_runner.h"
@@ -278,10 +281,16 @@ TEST_F(Simulate, UnknownSceneListsTheKnownNames) {
 }
 
 TEST_F(Simulate, BadSettingsAreOneLineErrorsWithExitOne) {
-  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--h", "0"}), {"simulate sign", "h must be", "got 0"});
-  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--h", "-0.5"}), {"h must be", "-0.5"});
-  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--T", "-1"}), {"T must be", "-1"});
-  ExpectOneLineError(RunSmcbench({"simulate", "observer", "--theta", "1.5"}), {"theta must lie in [0, 1]", "1.5"});
+  // Numbers out of range name the flag and the value.
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--h", "0"}), {"simulate sign", "--h must be", "got 0"});
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--h", "-0.5"}), {"--h must be", "-0.5"});
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--T", "-1"}), {"--T must be", "-1"});
+  ExpectOneLineError(RunSmcbench({"simulate", "observer", "--theta", "1.5"}), {"--theta must lie in [0, 1]", "1.5"});
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--theta", "2"}), {"--theta must lie in [0, 1], got 2"});
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--max-iter", "-1"}),
+                     {"--max-iter must be an integer >= 0", "got -1"});
+  ExpectOneLineError(RunSmcbench({"simulate", "sign", "--tol", "0"}),
+                     {"--tol must be a positive finite number, got 0"});
   ExpectOneLineError(RunSmcbench({"simulate", "sign", "--gamma", "2"}), {"gamma must lie in [0, 1]"});
   ExpectOneLineError(RunSmcbench({"simulate", "galias-yu-2007", "--x0", "1,2,3"}), {"x0 has 3 entries", "n = 2"});
   ExpectOneLineError(RunSmcbench({"simulate", "galias-yu-2007", "--x0", "1,abc"}), {"--x0", "'abc' is not a number"});
@@ -300,8 +309,34 @@ TEST_F(Simulate, WithoutOutputFilesNothingIsRecordedOrWritten) {
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("750 of 750 steps"));
   EXPECT_THAT(r.out, Not(HasSubstr("recording")));
-  EXPECT_THAT(r.out, Not(HasSubstr("surfaces reached")));  // needs the history, which was not kept
   EXPECT_TRUE(fs::is_empty(dir_));
+}
+
+// The outcome is on stdout whatever the outputs: the reaching step and, after it, the σ band and the input's
+// chattering, the numbers the summary holds.
+TEST_F(Simulate, PrintsTheOutcomeWithoutOutputFiles) {
+  const CliRun bare = RunSmcbench({"simulate", "sign", "--x0", "0.505", "--h", "0.01"});
+  ASSERT_EQ(bare.code, 0) << bare.err;
+  const std::string summary = Path("sign.json");
+  const CliRun with_summary = RunSmcbench({"simulate", "sign", "--x0", "0.505", "--h", "0.01", "--summary", summary});
+  ASSERT_EQ(with_summary.code, 0) << with_summary.err;
+  const auto j = ReadJson(summary);
+  const std::int64_t reaching = j["reaching_step"].get<std::int64_t>();
+  EXPECT_EQ(reaching, 51);  // x0/h = 50.5: x = 0 exactly from step 51 on (Lemma yahoo)
+  EXPECT_THAT(bare.out, HasSubstr("surfaces reached at step " + std::to_string(reaching) + " (t = 0.51)"));
+  EXPECT_THAT(bare.out, HasSubstr("sign changes of the switching part " +
+                                  std::to_string(j["chattering"]["switching_sign_changes"].get<std::int64_t>())));
+  EXPECT_THAT(bare.out, HasSubstr("sigma band 0"));
+  // The same lines with and without files, but the wall time and the summary's reference run.
+  const auto without_wall = [](const std::string& text) {
+    std::string kept;
+    std::istringstream in(text);
+    for (std::string line; std::getline(in, line);) {
+      if (line.find("  wall ") != 0 && line.find("  against the certified reference") != 0) kept += line + "\n";
+    }
+    return kept;
+  };
+  EXPECT_EQ(without_wall(bare.out), without_wall(with_summary.out));
 }
 
 TEST_F(Simulate, ParametersMethodsAndScenePathsFromTheCommandLine) {
@@ -609,74 +644,6 @@ TEST_F(Simulate, SubnormalStatesAreZeroByDefaultAndKeptWithIeeeSubnormals) {
   EXPECT_LT(largest, std::numeric_limits<double>::min());
   ExpectOneLineError(RunSmcbench({"simulate", "sign", "--flush-subnormals", "--ieee-subnormals"}),
                      {"--flush-subnormals and --ieee-subnormals exclude each other"});
-}
-
-// --plot keeps per bucket the minimum and maximum of each series: a one-step spike and a chattering series stay
-// visible in a 10⁵-row run, with at most 2 points per bucket; a short run keeps every row.
-TEST(TrajectoryPlotData, KeepsExtremesPerBucketInBoundedMemory) {
-  constexpr std::int64_t kRows = 100000;
-  TrajectoryPlotData data(2, 1, kRows);
-  TrajectoryBlock block;
-  block.n = 2, block.m = 1;
-  block.t.resize(1000), block.x.resize(2, 1000), block.s.resize(1, 1000), block.y.resize(1, 1000);
-  block.iterations.resize(1000), block.residual.resize(1000), block.status.resize(1000);
-  for (std::int64_t first = 0; first < kRows; first += 1000) {
-    block.first_row = first;
-    block.rows = 1000;
-    for (Eigen::Index j = 0; j < 1000; ++j) {
-      const std::int64_t k = first + j;
-      block.t[static_cast<std::size_t>(j)] = 0.001 * static_cast<double>(k);
-      block.x(0, j) = k == 54321 ? 7.0 : 1.0;  // a single-step spike
-      block.x(1, j) = -static_cast<double>(k);
-      block.s(0, j) = k % 2 ? 1.0 : -1.0;      // chattering every step
-      block.y(0, j) = 0.0;
-    }
-    data.OnRows(block);
-  }
-  std::ostringstream out;
-  data.WriteData(out);
-  // Blocks two blank lines apart: x1, x2, s1, y1, phase.
-  std::vector<std::vector<std::pair<double, double>>> series(1);
-  std::istringstream in(out.str());
-  int blank = 0;
-  for (std::string line; std::getline(in, line);) {
-    if (line.empty()) {
-      if (++blank == 2) series.emplace_back(), blank = 0;
-      continue;
-    }
-    blank = 0;
-    std::istringstream fields(line);
-    double a = 0, b = 0;
-    fields >> a >> b;
-    series.back().emplace_back(a, b);
-  }
-  ASSERT_EQ(series.size(), 5u);
-  for (const auto& points : series) EXPECT_LE(static_cast<std::int64_t>(points.size()), 2 * kPlotBuckets + 2);
-  const auto has = [](const std::vector<std::pair<double, double>>& points, double t, double v) {
-    for (const auto& [pt, pv] : points) {
-      if (pt == t && pv == v) return true;
-    }
-    return false;
-  };
-  EXPECT_TRUE(has(series[0], 0.001 * 54321.0, 7.0)) << "the spike of x1";
-  // s: both +1 and −1 in every bucket (the chattering band), in time order.
-  int plus = 0, minus = 0;
-  for (const auto& [t, v] : series[2]) plus += v == 1.0, minus += v == -1.0;
-  EXPECT_GE(plus, 2000);  // 2041 buckets of 49 rows
-  EXPECT_GE(minus, 2000);
-  for (std::size_t i = 1; i < series[2].size(); ++i) EXPECT_LT(series[2][i - 1].first, series[2][i].first);
-  // The phase portrait starts at x0 and holds the spike as a true state (x1, x2) = (7, −54321).
-  EXPECT_EQ(series[4].front(), std::make_pair(1.0, 0.0));
-  EXPECT_TRUE(has(series[4], 7.0, -54321.0));
-
-  // A short run: every row, s from row 1.
-  TrajectoryPlotData small(2, 1, 10);
-  block.first_row = 0, block.rows = 10;
-  small.OnRows(block);
-  std::ostringstream short_out;
-  small.WriteData(short_out);
-  const std::string text = short_out.str();
-  EXPECT_EQ(std::count(text.begin(), text.end(), '\n'), 10 + 2 + 10 + 2 + 9 + 2 + 10 + 2 + 10);
 }
 
 // Issue 15: a ZOH scene's CSV carries u1..um, each row's u consistent with the next state (x_{k+1} − e^{Fh} x_k =

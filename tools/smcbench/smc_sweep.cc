@@ -8,11 +8,11 @@
 #include <ostream>
 #include <sstream>
 
+#include "bench/figures/gnuplot_figure.h"
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/registry.h"
 #include "solvers/core/number_text.h"
 #include "solvers/registry/registry.h"
-#include "tools/smcbench/simulate.h"
 
 namespace smcbench {
 namespace {

@@ -7,9 +7,9 @@
 #include <filesystem>
 #include <unistd.h>
 
+#include "bench/figures/gnuplot_figure.h"
 #include "problems/scenes/registry.h"
 #include "solvers/core/problem.h"
-#include "tools/smcbench/simulate.h"
 #include "tools/smcbench/smc_sweep.h"
 
 namespace smcbench {

@@ -3,9 +3,9 @@
 // The paper's scenes: docs/scenes.md.
 #include <ostream>
 
+#include "problems/scenes/run_summary.h"
 #include "problems/stepper/metrics.h"
 #include "tools/smcbench/paper/study.h"
-#include "tools/smcbench/simulate.h"
 
 namespace smcbench::paper {
 namespace {

@@ -7,10 +7,11 @@
 #include <fstream>
 #include <ostream>
 
+#include "bench/figures/gnuplot_figure.h"
+#include "bench/figures/trajectory_plot.h"
 #include "problems/scenes/registry.h"
 #include "problems/stepper/metrics.h"
 #include "solvers/registry/registry.h"
-#include "tools/smcbench/simulate.h"
 
 namespace smcbench::paper {
 
@@ -186,11 +187,7 @@ void Studies::Figures(const std::vector<FigureRun>& figures) {
 void Studies::Figure(const Trajectory& tr, const std::string& stem, const std::string& title) {
   if (!options_.plots) return;
   const std::string png = stem + ".png";
-  const fs::path csv = fs::temp_directory_path() / ("smcbench-paper-" + stem + ".csv");
-  WriteTrajectoryCsvFile(tr, csv.string());
-  PlotTrajectory(tr, csv.string(), title, (fs::path(options_.out_dir) / png).string());
-  std::error_code ec;
-  fs::remove(csv, ec);
+  PlotTrajectory(tr, title, (fs::path(options_.out_dir) / png).string());
   figures_ << "![" << title << "](" << png << ")\n\n";
 }
 

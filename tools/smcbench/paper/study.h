@@ -111,7 +111,6 @@ class Studies {
   SimulationSettings Defaults(const std::string& name);
   // Classical explicit Euler (θ = γ = 0, s_{k+1} = sgn(y_k)) or explicit ZOH.
   static SimulationSettings Explicit(SimulationSettings s);
-  static bool IsImplicit(Method m) { return m == Method::kImplicit || m == Method::kZoh; }
 
   // One run of a scene; implicit steps by `backend` (empty: the --solver one).
   Trajectory Run(const std::string& name, const SimulationSettings& s, const std::string& backend = "");
