@@ -7,7 +7,7 @@
 
 #include <string>
 
-#include "problems/generators/random_problems.h"
+#include "solvers/generators/random_problems.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {

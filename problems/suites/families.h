@@ -9,8 +9,8 @@
 #include <string_view>
 #include <vector>
 
-#include "problems/generators/random_problems.h"
 #include "problems/library/problem_set.h"
+#include "solvers/generators/random_problems.h"
 
 namespace smcbench {
 

@@ -8,9 +8,9 @@
 #include <string>
 #include <utility>
 
-#include "problems/generators/seeded_random.h"
 #include "problems/library/problem_set.h"
 #include "solvers/core/number_text.h"
+#include "solvers/generators/seeded_random.h"
 
 namespace smcbench::suites_detail {
 

@@ -12,8 +12,7 @@
 #include <set>
 #include <string>
 
-#include "problems/generators/random_problems.h"
-#include "problems/io/siconos_format.h"
+#include "solvers/generators/random_problems.h"
 #include "solvers/registry/registry.h"
 #include "tests/support/malloc_counter.h"
 
@@ -278,7 +277,11 @@ TEST(SiconosWrongSuccess, LemkeBasisRejectedBySiconosOwnCheckIsInaccurateNotARay
   // On lcp_CPS_3.dat lcp_lexicolemke ends as if it had found a complementary basis (algorithm info 0) whose answer
   // has residual 0.5; the driver's final check turns it into info 1. Both codes are kept, the status says what
   // happened (an inaccurate answer), not a secondary ray.
-  const BoxMLCP p = ReadSiconosFile(SMCBENCH_PEER_DATA_DIR "/siconos/lcp/lcp_CPS_3.dat");
+  // tests/data/siconos/lcp/lcp_CPS_3.dat (a bimatrix game, CPS 2009 example 4.4.23), written out: solvers/ does
+  // not use the readers of problems/.
+  DenseMatrix M(4, 4);
+  M << 0, 0, 10, 30, 0, 0, 20, 15, 10, 30, 0, 0, 20, 15, 0, 0;
+  const BoxMLCP p = BoxMLCP::LCP(M, Vector::Constant(4, -1.0), "lcp_CPS_3");
   SolverOptions raw;
   raw.polish = false;  // Siconos' own answer
   const SolveResult r = Make("siconos-lcp-lemke")->Solve(p, raw);
