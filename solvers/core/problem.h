@@ -32,6 +32,16 @@ struct Residual {
   double scaled = kInf;
 };
 
+// The acceptance rule of a box-MLCP: "solved" means the relative residual and the residual in units of z are both
+// within the tolerance (docs/verdict.md); a NaN never passes. The one rule of Solver::Finish, the polish, sessions,
+// the verdict, the conformance checks and the backends' own stopping tests.
+inline bool PassesBoxMlcpTolerance(const Residual& r, double tolerance) {
+  return r.rel <= tolerance && r.scaled <= tolerance;
+}
+// The acceptance rule of an MCP: the scale-free residual alone (Residual::scaled from McpMerit), since the relative
+// one is not invariant under row scaling.
+inline bool PassesMcpTolerance(const Residual& r, double tolerance) { return r.scaled <= tolerance; }
+
 // ‖z − Π_[l,u](z − w)‖∞ for a given w = F(z). Returns +∞ if any entry is NaN, so a NaN never passes a test.
 double NaturalResidualNorm(const Vector& z, const Vector& w, const Vector& l, const Vector& u);
 // ‖z − Π_[l,u](z − D⁻¹w)‖∞ / (1 + ‖z‖∞) with D⁻¹ = diag(inv_row_scale): Residual::scaled. +∞ on NaN.

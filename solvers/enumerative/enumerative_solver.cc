@@ -247,10 +247,6 @@ inline BlockPivots FactoredPivots(const double* a, int ld, int k, const int* piv
   return p;
 }
 
-// "Solved" as Solver::Finish means it, on the (row-equilibrated) problem the search was given: relative residual
-// and residual in units of z both within the tolerance.
-inline bool Passes(const Residual& r, double tolerance) { return r.rel <= tolerance && r.scaled <= tolerance; }
-
 // Why the box-MLCP is known to have a solution, or nullptr; for the failure path of the search only (allocates):
 // every bound finite (a continuous map on a compact box), M + Mᵀ positive definite with a margin (the Cholesky
 // factorization of (M + Mᵀ)/2 − δI, δ = 1e3·n·ε·‖M‖∞, succeeds), or, from the search itself, every free block's
@@ -566,7 +562,7 @@ void ReportUnsolved(const BoxMLCP& problem, const SolverOptions& options, SolveS
                     SolveResult* result) {
   const bool have_best = std::isfinite(t.best_merit);
   // The merit function has the last word: a point it accepts is an answer, whatever the search's own tests said.
-  if (have_best && Passes(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
+  if (have_best && PassesBoxMlcpTolerance(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
     result->status = SolveStatus::kSolved;
     return;
   }
@@ -728,7 +724,7 @@ template <int N>
   for (int i = 0; i < N; ++i) z_norm = std::max(z_norm, std::abs(z[i]));
   const double abs = FixedSizeMerit<N>(problem, result).abs;
   if (!(abs <= options.tolerance * std::min(problem.residual_scale(), 1.0 + z_norm) * (1.0 - 4.0 * kEps)) &&
-      !Passes(FixedSizeMerit<N>(problem, result), options.tolerance)) {
+      !PassesBoxMlcpTolerance(FixedSizeMerit<N>(problem, result), options.tolerance)) {
     for (int i = 0; i < N; ++i) zr[i] = z0[i];  // the search starts from the caller's point
     return false;
   }
@@ -1083,7 +1079,8 @@ class EnumerativeSolver::ActiveSetSearch {
     const double reject = options.tolerance * std::max(problem.residual_scale(), 1.0 + z_norm);
     if (merit <= 2.0 * reject) {
       for (int i = 0; i < n; ++i) result->z[i] = b.z[i];
-      if (merit <= 0.5 * accept || Passes(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
+      if (merit <= 0.5 * accept ||
+          PassesBoxMlcpTolerance(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
         if (verbose) Trace(examined, b.state, n, "solves; merit", merit);
         return Outcome::kSolution;
       }

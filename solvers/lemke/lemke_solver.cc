@@ -335,11 +335,6 @@ const char* FreeModeName(FreeMode mode) {
   return "?";
 }
 
-// What "solved" means inside DoSolve: the merit function of the (row-equilibrated) problem it was given, relative
-// residual and residual in units of z both within the tolerance, as Solver::Finish requires. The relative one
-// alone is blind when ‖q‖ dwarfs the rows (a bound row with a huge multiplier): it let sign violations of order
-// tol·‖q‖ through.
-bool Passes(const Residual& r, double tolerance) { return r.rel <= tolerance && r.scaled <= tolerance; }
 // The larger of the two, for "is this point better" comparisons (NaN-safe: NaN compares as not better).
 double Worst(const Residual& r) { return std::max(r.rel, r.scaled); }
 
@@ -748,7 +743,7 @@ Residual PolishActiveSet(LemkeRun* run, Residual current) {
       best = r;
       run->polished = true;
     }
-    if (Passes(best, run->options.tolerance) || !changed) break;
+    if (PassesBoxMlcpTolerance(best, run->options.tolerance) || !changed) break;
   }
   return best;
 }
@@ -809,11 +804,11 @@ bool AcceptWithoutArtificial(LemkeRun* run, double dmax, int* exit_polishes) {
   Recover(run, true);
   run->exit_residual = run->problem.NaturalResidual(run->z, &run->ws.w);
   const bool negligible_in_z = run->z0_value * dmax <= tolerance * (1.0 + run->z.cwiseAbs().maxCoeff());
-  if (!Passes(run->exit_residual, tolerance) && negligible_in_z && *exit_polishes < 3) {
+  if (!PassesBoxMlcpTolerance(run->exit_residual, tolerance) && negligible_in_z && *exit_polishes < 3) {
     ++*exit_polishes;
     run->exit_residual = PolishActiveSet(run, run->exit_residual);
   }
-  run->z0_exit = Passes(run->exit_residual, tolerance);
+  run->z0_exit = PassesBoxMlcpTolerance(run->exit_residual, tolerance);
   return run->z0_exit;
 }
 
@@ -1074,7 +1069,8 @@ void LemkeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, 
   // The pivots accumulate rounding of order ε·max|β|, and β holds q̂ (a huge multiplier on one row, a base-point
   // shift M·l): an answer that is not at the rounding level in units of z has its active set solved again.
   const double rounding_level = 1e3 * run.n * kEps;
-  if (status == SolveStatus::kSolved && !(Passes(res, options.tolerance) && res.scaled <= rounding_level)) {
+  if (status == SolveStatus::kSolved &&
+      !(PassesBoxMlcpTolerance(res, options.tolerance) && res.scaled <= rounding_level)) {
     res = PolishActiveSet(&run, res);
   }
   if (status == SolveStatus::kSolved && !std::isfinite(res.abs)) {
@@ -1082,7 +1078,9 @@ void LemkeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, 
     run.failure = "the solution contains NaN or Inf";
   }
   // The merit function decides: wherever the method stopped, a point it accepts is a solution.
-  if (status != SolveStatus::kSolved && Passes(res, options.tolerance)) status = SolveStatus::kSolved;
+  if (status != SolveStatus::kSolved && PassesBoxMlcpTolerance(res, options.tolerance)) {
+    status = SolveStatus::kSolved;
+  }
   // A secondary ray is no verdict on the problem (in floating point not even for copositive-plus M): on a problem
   // known to have a solution it is a failure of the method.
   const char* exists = status == SolveStatus::kRayTermination ? SolutionExistsReason(problem) : nullptr;
