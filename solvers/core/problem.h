@@ -150,7 +150,8 @@ class BoxMLCP {
     q_inf_norm_ = norm;
   }
 
-  // Matrix-class queries (not cached; O(nnz)). Symmetric within rel_tol·max|M_ij|.
+  // Matrix-class queries (not cached; O(nnz)). Symmetric within rel_tol·max|M_ij| (ClassifySymmetry of
+  // matrix_class.h, which also names the offending pair).
   bool IsSymmetric(double rel_tol = 1e-12) const;
   // Dense copy of M (allocates); for backends that only work densely on small sparse inputs.
   DenseMatrix ToDense() const;

@@ -2,6 +2,7 @@
 #include "solvers/enumerative/enumerative_solver.h"
 
 #include "solvers/core/dense_lu.h"
+#include "solvers/core/matrix_class.h"
 
 #include <algorithm>
 #include <array>
@@ -248,8 +249,8 @@ inline BlockPivots FactoredPivots(const double* a, int ld, int k, const int* piv
 }
 
 // Why the box-MLCP is known to have a solution, or nullptr; for the failure path of the search only (allocates):
-// every bound finite (a continuous map on a compact box), M + Mᵀ positive definite with a margin (the Cholesky
-// factorization of (M + Mᵀ)/2 − δI, δ = 1e3·n·ε·‖M‖∞, succeeds), or, from the search itself, every free block's
+// every bound finite (a continuous map on a compact box), M + Mᵀ positive definite with a margin (matrix_class.h's
+// Cholesky test: (M + Mᵀ)/2 − δI factors, δ = 1e3·n·ε·‖(M + Mᵀ)/2‖∞), or, from the search itself, every free block's
 // determinant of one sign with clear pivots (the Schur complement of the always-free rows is then a P-matrix).
 const char* SolutionExistsReason(const BoxMLCP& problem, bool determinants_of_one_sign) {
   const Vector& l = problem.l();
@@ -258,10 +259,9 @@ const char* SolutionExistsReason(const BoxMLCP& problem, bool determinants_of_on
   bool all_finite = true;
   for (int i = 0; i < n; ++i) all_finite = all_finite && l[i] > -kInf && u[i] < kInf;
   if (all_finite) return "every bound is finite";
-  const DenseMatrix& M = problem.dense_matrix();
-  DenseMatrix S = 0.5 * (M + M.transpose());
-  S.diagonal().array() -= 1e3 * n * kEps * S.cwiseAbs().rowwise().sum().maxCoeff();
-  if (Eigen::LLT<DenseMatrix>(S).info() == Eigen::Success) return "M + Mᵀ is positive definite";
+  if (ClassifySymmetricPartPositiveDefinite(problem.dense_matrix()).answer == MatrixClassAnswer::kYes) {
+    return "M + Mᵀ is positive definite";
+  }
   if (determinants_of_one_sign) return "every free block's determinant has the same sign (a P-matrix problem)";
   return nullptr;
 }

@@ -4,6 +4,7 @@
 #include "solvers/lemke/lemke_solver.h"
 
 #include "solvers/core/dense_lu.h"
+#include "solvers/core/matrix_class.h"
 
 #include <algorithm>
 #include <cmath>
@@ -338,53 +339,6 @@ const char* FreeModeName(FreeMode mode) {
 // The larger of the two, for "is this point better" comparisons (NaN-safe: NaN compares as not better).
 double Worst(const Residual& r) { return std::max(r.rel, r.scaled); }
 
-// Largest LCP size for which the ray-termination path tests every principal minor (2^n − 1 LU factorizations).
-constexpr int kMaxPMatrixTestSize = 12;
-
-// True when every principal minor of the dense n×n M is positive with a margin (each LU pivot of each principal
-// submatrix above 1e3·k·ε times its largest entry, so that the sign is not rounding): M is a P-matrix. Only on the
-// failure path (a ray): 2^n small factorizations, allocating.
-bool IsPMatrix(const DenseMatrix& M) {
-  const int n = static_cast<int>(M.rows());
-  if (n > kMaxPMatrixTestSize) return false;
-  std::vector<double> a(size_t(n) * n);
-  std::vector<int> idx(n), perm(n);
-  for (unsigned mask = 1; mask < (1u << n); ++mask) {
-    int k = 0;
-    for (int i = 0; i < n; ++i) {
-      if (mask >> i & 1u) idx[k++] = i;
-    }
-    double amax = 0.0;
-    for (int r = 0; r < k; ++r) {
-      for (int c = 0; c < k; ++c) {
-        a[r + size_t(c) * k] = M(idx[r], idx[c]);
-        amax = std::max(amax, std::abs(a[r + size_t(c) * k]));
-      }
-    }
-    if (!dense_lu::FactorRelative(a.data(), k, k, perm.data())) return false;
-    double sign = 1.0, pmin = kInf;
-    for (int r = 0; r < k; ++r) {
-      const double d = a[r + size_t(r) * k];
-      sign *= d > 0.0 ? 1.0 : -1.0;
-      if (perm[r] != r) sign = -sign;
-      pmin = std::min(pmin, std::abs(d));
-    }
-    if (!(sign > 0.0) || !(pmin > 1e3 * k * kEps * amax)) return false;
-  }
-  return true;
-}
-
-// True when the symmetric part S = (M + Mᵀ)/2 is positive definite with a margin: the Cholesky factorization of
-// S − δI, δ = 1e3·n·ε·‖S‖∞, succeeds (rounding in forming and factoring S cannot make it so).
-bool SymmetricPartPositiveDefinite(const DenseMatrix& M) {
-  const int n = static_cast<int>(M.rows());
-  DenseMatrix S = 0.5 * (M + M.transpose());
-  const double delta = 1e3 * n * kEps * S.cwiseAbs().rowwise().sum().maxCoeff();
-  S.diagonal().array() -= delta;
-  Eigen::LLT<DenseMatrix> llt(S);
-  return llt.info() == Eigen::Success;
-}
-
 // Why the box-MLCP is known to have a solution, or nullptr: every bound finite (a continuous map on a compact box
 // always has one), M with a positive definite symmetric part, or M a P-matrix (the box-MLCP then has exactly one
 // solution whatever the bounds). Positive row scaling keeps all three, so the equilibrated M serves. Only called
@@ -396,8 +350,11 @@ const char* SolutionExistsReason(const BoxMLCP& problem) {
   for (int i = 0; i < problem.size(); ++i) all_finite = all_finite && l[i] > -kInf && u[i] < kInf;
   if (all_finite) return "every bound is finite";
   const DenseMatrix& M = problem.dense_matrix();
-  if (SymmetricPartPositiveDefinite(M)) return "the symmetric part of M is positive definite";
-  if (IsPMatrix(M)) return "M is a P-matrix";
+  if (ClassifySymmetricPartPositiveDefinite(M).answer == MatrixClassAnswer::kYes) {
+    return "the symmetric part of M is positive definite";
+  }
+  // Every principal minor up to n = 12 (2^n − 1 small factorizations, allocating: only on this failure path).
+  if (ClassifyPMatrix(M).answer == MatrixClassAnswer::kYes) return "M is a P-matrix";
   return nullptr;
 }
 
