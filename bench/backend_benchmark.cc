@@ -9,7 +9,7 @@
 #include <iterator>
 #include <string>
 
-#include "problems/generators/random_problems.h"
+#include "solvers/generators/random_problems.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {

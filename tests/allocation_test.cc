@@ -6,7 +6,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "problems/generators/random_problems.h"
+#include "solvers/generators/random_problems.h"
 #include "solvers/registry/registry.h"
 #include "tests/support/malloc_counter.h"
 #include "tests/support/test_backend.h"

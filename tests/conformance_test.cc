@@ -8,8 +8,8 @@
 #include <set>
 #include <string>
 
-#include "problems/generators/random_problems.h"
 #include "solvers/conformance/conformance.h"
+#include "solvers/generators/random_problems.h"
 #include "solvers/registry/registry.h"
 #include "solvers/siconos/external_backends.h"
 #include "tests/support/test_backend.h"

@@ -15,8 +15,8 @@
 #include <string>
 #include <vector>
 
-#include "problems/generators/random_problems.h"
 #include "solvers/core/verdict.h"
+#include "solvers/generators/random_problems.h"
 #include "solvers/registry/registry.h"
 #include "tests/support/test_backend.h"
 

@@ -17,7 +17,7 @@
 // The certified reference solutions of the benchmark.
 #include "solvers/reference/certify.h"
 // Problem sources: Siconos files, seeded generators with known solutions, the problem library (.smcps).
-#include "problems/generators/random_problems.h"
+#include "solvers/generators/random_problems.h"
 #include "problems/io/siconos_format.h"
 #include "problems/library/problem_set.h"
 #include "problems/library/problem_set_io.h"

@@ -16,7 +16,7 @@
 
 #include <unistd.h>
 
-#include "problems/generators/random_problems.h"
+#include "solvers/generators/random_problems.h"
 
 namespace smcbench {
 namespace {

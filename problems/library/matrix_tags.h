@@ -14,13 +14,15 @@ struct ClassifyOptions {
   int max_minors_size = 10;
 };
 
+// Every test is one of solvers/core/matrix_class.h:
 // symmetric: BoxMLCP::IsSymmetric (within 1e-12·max|M_ij|).
-// positive_definite (of H = (M + Mᵀ)/2): λ_min(H) > τ → yes, λ_min(H) < −τ → no, else unknown,
-//   with τ = 8 n ε max|λ(H)|; unknown above max_eigen_size.
+// positive_definite (of H = (M + Mᵀ)/2, DefinitenessTest::kEigenvalues): λ_min(H) > τ → yes, λ_min(H) < −τ → no,
+//   else unknown, with τ = 8 n ε max|λ(H)|; unknown above max_eigen_size.
 // p_matrix: yes if positive_definite is yes (xᵀMx > 0 makes every principal minor positive); no if a diagonal
-//   entry is ≤ 0 (an exact 1×1 minor); for n ≤ max_minors_size every principal minor is computed by LU and
-//   judged against 16 k ε times Hadamard's bound ∏‖columns‖₂ of the k×k submatrix: one clearly negative minor
-//   → no, all clearly positive → yes, else unknown. Otherwise unknown.
+//   entry is ≤ 0 (an exact 1×1 minor); for n ≤ max_minors_size (at most 30) every principal minor is computed by
+//   LU and judged against 16 k ε times Hadamard's bound ∏‖columns‖₂ of the k×k submatrix
+//   (PrincipalMinorTest::kDeterminantVsHadamard): one clearly negative minor → no, all clearly positive → yes,
+//   else unknown. Otherwise unknown.
 MatrixTags ClassifyMatrix(const BoxMLCP& problem, const ClassifyOptions& options = {});
 
 }  // namespace smcbench

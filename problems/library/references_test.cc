@@ -13,9 +13,9 @@
 #include <stdexcept>
 #include <string>
 
-#include "problems/generators/random_problems.h"
 #include "problems/library/capture.h"
 #include "problems/suites/families.h"
+#include "solvers/generators/random_problems.h"
 
 namespace smcbench {
 namespace {

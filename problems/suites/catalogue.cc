@@ -4,13 +4,13 @@
 #include <cstdio>
 #include <sstream>
 
-#include "problems/generators/random_problems.h"
 #include "problems/io/siconos_format.h"
 #include "problems/library/capture.h"
 #include "problems/library/problem_set_io.h"
 #include "problems/library/references.h"
 #include "problems/suites/families.h"
 #include "problems/suites/hard_cases.h"
+#include "solvers/generators/random_problems.h"
 
 namespace smcbench {
 

@@ -9,15 +9,15 @@
 #include <string_view>
 #include <vector>
 
-#include "problems/generators/random_problems.h"
 #include "problems/library/problem_set.h"
+#include "solvers/generators/random_problems.h"
 
 namespace smcbench {
 
 // Ids are "<suite>/<family>/<parameters>"; every function below uses the suite "families" unless told otherwise.
 inline constexpr std::string_view kFamiliesSuite = "families";
 
-// --- Wrappers of problems/generators (GenerateProblem): SPD, nonsymmetric P-matrix, diagonally dominant. -------
+// --- Wrappers of solvers/generators (GenerateProblem): SPD, nonsymmetric P-matrix, diagonally dominant. -------
 // Id "families/<spd|pmatrix|diagdom>-<bounds>/m<m>/s<seed>" (plus "-deg<fraction>" when degenerate rows are asked
 // for), tags: family, bounds, "degenerate" if any. All three are P-matrices: expected solvable, z* is the unique
 // solution. PD of the symmetric part: yes for spd and pmatrix (by construction), computed for diagdom.

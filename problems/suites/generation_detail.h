@@ -8,13 +8,13 @@
 #include <string>
 #include <utility>
 
-#include "problems/generators/seeded_random.h"
 #include "problems/library/problem_set.h"
 #include "solvers/core/number_text.h"
+#include "solvers/generators/seeded_random.h"
 
 namespace smcbench::suites_detail {
 
-// The reproducible RNG of problems/generators (same seed, same numbers on every platform).
+// The reproducible RNG of solvers/generators (same seed, same numbers on every platform).
 using Random = SeededRandom;
 
 // A step size for ids: "0.1", "0.01", "0.001", "1e-04", ... ("%g", stable and short).

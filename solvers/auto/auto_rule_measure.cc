@@ -15,9 +15,9 @@
 #include <utility>
 #include <vector>
 
-#include "problems/generators/random_problems.h"
 #include "solvers/auto/auto_solver.h"
 #include "solvers/core/duration_text.h"
+#include "solvers/generators/random_problems.h"
 
 namespace smcbench {
 namespace {

@@ -63,7 +63,8 @@ double LemkeOverPsor(int m, int lemke_size, double rcond) {
 }
 
 // The reciprocal condition estimate of M if it is symmetric positive definite (a Cholesky attempt: m³/3 flops,
-// once per matrix), else 0.
+// once per matrix), else 0. Symmetry is matrix_class.h's test; the Cholesky stays here without a margin because
+// the rule needs its condition estimate, which a tiny λ_min already makes small.
 double SpdReciprocalCondition(const BoxMLCP& problem) {
   if (!problem.IsSymmetric()) return 0.0;
   const Eigen::LLT<DenseMatrix> cholesky(problem.dense_matrix());

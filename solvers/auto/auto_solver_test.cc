@@ -1,5 +1,5 @@
 // Tests of the `auto` backend: which backend it picks on each problem class, answers judged against planted
-// solutions (problems/generators, or built here with z* first), the fallback path, and that it never reports
+// solutions (solvers/generators, or built here with z* first), the fallback path, and that it never reports
 // "infeasible" unless an exact backend proved it.
 #include "solvers/auto/auto_solver.h"
 
@@ -8,7 +8,7 @@
 #include <cmath>
 #include <string>
 
-#include "problems/generators/random_problems.h"
+#include "solvers/generators/random_problems.h"
 #include "solvers/ipopt/ipopt_qp_solver.h"
 #include "solvers/psor/psor_solver.h"
 #include "tests/support/small_mcps.h"

@@ -230,7 +230,7 @@ void CheckSessionReuse(const SolverFactory& create, const ConformanceOptions& op
           findings.Fail(where, "Solve solved it, the session did not: " + b.message);
           break;
         }
-        if (!(b.residual_rel <= options.tolerance && b.residual_scaled <= options.tolerance)) {
+        if (!PassesBoxMlcpTolerance(b.residual(), options.tolerance)) {
           findings.Fail(where, "the session's solved answer has residuals " + Num(b.residual_rel) + " / " +
                                    Num(b.residual_scaled) + " above the tolerance");
         }

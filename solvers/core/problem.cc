@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "solvers/core/matrix_class.h"
+
 namespace smcbench {
 namespace {
 
@@ -282,13 +284,9 @@ Residual BoxMLCP::NaturalResidualGeneric(const Vector& z, Vector* w) const {
 }
 
 bool BoxMLCP::IsSymmetric(double rel_tol) const {
-  if (is_sparse_) {
-    const SparseMatrix diff = SparseMatrix(sparse_.transpose()) - sparse_;
-    const double scale = sparse_.nonZeros() ? sparse_.coeffs().cwiseAbs().maxCoeff() : 0.0;
-    return diff.nonZeros() == 0 || diff.coeffs().cwiseAbs().maxCoeff() <= rel_tol * scale;
-  }
-  const double scale = dense_.cwiseAbs().maxCoeff();
-  return (dense_ - dense_.transpose()).cwiseAbs().maxCoeff() <= rel_tol * scale;
+  const SymmetryOptions options{rel_tol};
+  const SymmetryResult r = is_sparse_ ? ClassifySymmetry(sparse_, options) : ClassifySymmetry(dense_, options);
+  return r.answer == MatrixClassAnswer::kYes;
 }
 
 DenseMatrix BoxMLCP::ToDense() const { return is_sparse_ ? DenseMatrix(sparse_) : dense_; }

@@ -32,6 +32,16 @@ struct Residual {
   double scaled = kInf;
 };
 
+// The acceptance rule of a box-MLCP: "solved" means the relative residual and the residual in units of z are both
+// within the tolerance (docs/verdict.md); a NaN never passes. The one rule of Solver::Finish, the polish, sessions,
+// the verdict, the conformance checks and the backends' own stopping tests.
+inline bool PassesBoxMlcpTolerance(const Residual& r, double tolerance) {
+  return r.rel <= tolerance && r.scaled <= tolerance;
+}
+// The acceptance rule of an MCP: the scale-free residual alone (Residual::scaled from McpMerit), since the relative
+// one is not invariant under row scaling.
+inline bool PassesMcpTolerance(const Residual& r, double tolerance) { return r.scaled <= tolerance; }
+
 // ‖z − Π_[l,u](z − w)‖∞ for a given w = F(z). Returns +∞ if any entry is NaN, so a NaN never passes a test.
 double NaturalResidualNorm(const Vector& z, const Vector& w, const Vector& l, const Vector& u);
 // ‖z − Π_[l,u](z − D⁻¹w)‖∞ / (1 + ‖z‖∞) with D⁻¹ = diag(inv_row_scale): Residual::scaled. +∞ on NaN.
@@ -140,7 +150,8 @@ class BoxMLCP {
     q_inf_norm_ = norm;
   }
 
-  // Matrix-class queries (not cached; O(nnz)). Symmetric within rel_tol·max|M_ij|.
+  // Matrix-class queries (not cached; O(nnz)). Symmetric within rel_tol·max|M_ij| (ClassifySymmetry of
+  // matrix_class.h, which also names the offending pair).
   bool IsSymmetric(double rel_tol = 1e-12) const;
   // Dense copy of M (allocates); for backends that only work densely on small sparse inputs.
   DenseMatrix ToDense() const;

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "solvers/core/problem.h"
 #include "solvers/core/status.h"
 #include "solvers/core/types.h"
 
@@ -37,6 +38,7 @@ struct SolveResult {
   int num_details = 0;
 
   bool solved() const { return status == SolveStatus::kSolved; }
+  Residual residual() const { return {residual_abs, residual_rel, residual_scaled}; }
   // Adds or overwrites a detail (names compare by text); silently ignores overflow past kMaxDetails. Set details
   // only through it: it keeps names unique. Inline and usually without comparing text: backends set the same
   // literals in the same order on every solve into a result reused across solves (see distinct_prefix_).

@@ -240,7 +240,7 @@ bool SolveSession::TryReusedActiveSet(SolveResult* result) {
     if (!fixed && ((row == RowState::kLower && w[i] < 0.0) || (row == RowState::kUpper && w[i] > 0.0))) return false;
   }
   // The verdict's two tests, as Solver::Finish applies them to every backend's answer.
-  if (!(r.rel <= options_.tolerance && r.scaled <= options_.tolerance)) return false;
+  if (!PassesBoxMlcpTolerance(r, options_.tolerance)) return false;
   result->status = SolveStatus::kSolved;
   result->residual_abs = r.abs;
   result->residual_rel = r.rel;

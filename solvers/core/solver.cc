@@ -82,7 +82,7 @@ bool Polishable(SolveStatus status) {
 
 // A short stop whose point passes the tolerance is a success (the polish made it so, or it already was).
 void UpgradeShortStop(double tolerance, const Residual& r, SolveResult* result) {
-  if (result->status != SolveStatus::kSolved && r.rel <= tolerance && r.scaled <= tolerance) {
+  if (result->status != SolveStatus::kSolved && PassesBoxMlcpTolerance(r, tolerance)) {
     result->status = SolveStatus::kSolved;
     result->message.clear();
   }
@@ -181,8 +181,7 @@ namespace {
 
 void Solver::Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result) {
   // The rule: the merit function, not the backend, decides what "solved" means.
-  if (result->status == SolveStatus::kSolved &&
-      !(result->residual_rel <= tolerance && result->residual_scaled <= tolerance)) {
+  if (result->status == SolveStatus::kSolved && !PassesBoxMlcpTolerance(result->residual(), tolerance)) {
     Downgrade(tolerance, result);
   }
   StampEnd(start, result);
@@ -334,7 +333,7 @@ void Solver::ConcludeMcp(const MCP& problem, const SolverOptions& options, bool 
     result->residual_scaled = r.scaled;
   }
   // The MCP rule: the scale-free residual decides; residual_rel does not (it is not invariant under row scaling).
-  if (result->status == SolveStatus::kSolved && !(result->residual_scaled <= tolerance)) {
+  if (result->status == SolveStatus::kSolved && !PassesMcpTolerance(result->residual(), tolerance)) {
     std::ostringstream s;
     s << "backend reported success but the scale-free residual (rows divided by the Jacobian's row scales at z, in "
          "units of z) is "

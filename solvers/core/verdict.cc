@@ -109,7 +109,7 @@ Judgement Judge(const BoxMLCP& problem, ExpectedOutcome expected, const Referenc
   const bool known_solvable =
       expected == ExpectedOutcome::kSolvable || (reference != nullptr && reference->verified());
   j.verdict = Classify(status, expected, known_solvable,
-                       has_z && j.residual.rel <= tolerance && j.residual.scaled <= tolerance, j);
+                       has_z && PassesBoxMlcpTolerance(j.residual, tolerance), j);
   return j;
 }
 
@@ -162,7 +162,7 @@ Judgement JudgeMCP(const MCP& problem, ExpectedOutcome expected, const std::vect
   }
   bool known_solvable = expected == ExpectedOutcome::kSolvable;
   for (const ReferenceSolution& reference : references) known_solvable = known_solvable || reference.verified();
-  j.verdict = Classify(status, expected, known_solvable, has_z && j.residual.scaled <= tolerance, j);
+  j.verdict = Classify(status, expected, known_solvable, has_z && PassesMcpTolerance(j.residual, tolerance), j);
   return j;
 }
 

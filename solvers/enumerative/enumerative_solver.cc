@@ -2,6 +2,7 @@
 #include "solvers/enumerative/enumerative_solver.h"
 
 #include "solvers/core/dense_lu.h"
+#include "solvers/core/matrix_class.h"
 
 #include <algorithm>
 #include <array>
@@ -247,13 +248,9 @@ inline BlockPivots FactoredPivots(const double* a, int ld, int k, const int* piv
   return p;
 }
 
-// "Solved" as Solver::Finish means it, on the (row-equilibrated) problem the search was given: relative residual
-// and residual in units of z both within the tolerance.
-inline bool Passes(const Residual& r, double tolerance) { return r.rel <= tolerance && r.scaled <= tolerance; }
-
 // Why the box-MLCP is known to have a solution, or nullptr; for the failure path of the search only (allocates):
-// every bound finite (a continuous map on a compact box), M + Mᵀ positive definite with a margin (the Cholesky
-// factorization of (M + Mᵀ)/2 − δI, δ = 1e3·n·ε·‖M‖∞, succeeds), or, from the search itself, every free block's
+// every bound finite (a continuous map on a compact box), M + Mᵀ positive definite with a margin (matrix_class.h's
+// Cholesky test: (M + Mᵀ)/2 − δI factors, δ = 1e3·n·ε·‖(M + Mᵀ)/2‖∞), or, from the search itself, every free block's
 // determinant of one sign with clear pivots (the Schur complement of the always-free rows is then a P-matrix).
 const char* SolutionExistsReason(const BoxMLCP& problem, bool determinants_of_one_sign) {
   const Vector& l = problem.l();
@@ -262,10 +259,9 @@ const char* SolutionExistsReason(const BoxMLCP& problem, bool determinants_of_on
   bool all_finite = true;
   for (int i = 0; i < n; ++i) all_finite = all_finite && l[i] > -kInf && u[i] < kInf;
   if (all_finite) return "every bound is finite";
-  const DenseMatrix& M = problem.dense_matrix();
-  DenseMatrix S = 0.5 * (M + M.transpose());
-  S.diagonal().array() -= 1e3 * n * kEps * S.cwiseAbs().rowwise().sum().maxCoeff();
-  if (Eigen::LLT<DenseMatrix>(S).info() == Eigen::Success) return "M + Mᵀ is positive definite";
+  if (ClassifySymmetricPartPositiveDefinite(problem.dense_matrix()).answer == MatrixClassAnswer::kYes) {
+    return "M + Mᵀ is positive definite";
+  }
   if (determinants_of_one_sign) return "every free block's determinant has the same sign (a P-matrix problem)";
   return nullptr;
 }
@@ -566,7 +562,7 @@ void ReportUnsolved(const BoxMLCP& problem, const SolverOptions& options, SolveS
                     SolveResult* result) {
   const bool have_best = std::isfinite(t.best_merit);
   // The merit function has the last word: a point it accepts is an answer, whatever the search's own tests said.
-  if (have_best && Passes(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
+  if (have_best && PassesBoxMlcpTolerance(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
     result->status = SolveStatus::kSolved;
     return;
   }
@@ -728,7 +724,7 @@ template <int N>
   for (int i = 0; i < N; ++i) z_norm = std::max(z_norm, std::abs(z[i]));
   const double abs = FixedSizeMerit<N>(problem, result).abs;
   if (!(abs <= options.tolerance * std::min(problem.residual_scale(), 1.0 + z_norm) * (1.0 - 4.0 * kEps)) &&
-      !Passes(FixedSizeMerit<N>(problem, result), options.tolerance)) {
+      !PassesBoxMlcpTolerance(FixedSizeMerit<N>(problem, result), options.tolerance)) {
     for (int i = 0; i < N; ++i) zr[i] = z0[i];  // the search starts from the caller's point
     return false;
   }
@@ -1083,7 +1079,8 @@ class EnumerativeSolver::ActiveSetSearch {
     const double reject = options.tolerance * std::max(problem.residual_scale(), 1.0 + z_norm);
     if (merit <= 2.0 * reject) {
       for (int i = 0; i < n; ++i) result->z[i] = b.z[i];
-      if (merit <= 0.5 * accept || Passes(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
+      if (merit <= 0.5 * accept ||
+          PassesBoxMlcpTolerance(problem.NaturalResidual(result->z, &result->w), options.tolerance)) {
         if (verbose) Trace(examined, b.state, n, "solves; merit", merit);
         return Outcome::kSolution;
       }

@@ -20,8 +20,9 @@
 //   With formulation = kQp the same QP is used for symmetrizable indefinite M (detail formulation = 3): every
 //   KKT point of it, which is what Ipopt converges to, still solves the MLCP.
 //   Symmetry: |S_ij - S_ji| <= symmetry_tolerance * max|S|. PSD: Cholesky of (S+S')/2 + delta I succeeds with
-//   delta = psd_tolerance * ||S||_inf, i.e. lambda_min > -delta. The test is cached for repeated solves with
-//   the same M (compared entry by entry, O(nnz), against the O(n^3) factorization).
+//   delta = psd_tolerance * ||S||_inf, i.e. lambda_min > -delta (both tests from solvers/core/matrix_class.h).
+//   The test is cached for repeated solves with the same M (compared entry by entry, O(nnz), against the O(n^3)
+//   factorization).
 //
 // Formulation 2 — complementarity-gap NLP (any other M; detail formulation = 2):
 //     variables  z (n), w_i for rows with finite l_i < u_i, v_i for rows with finite u_i > l_i,
@@ -96,6 +97,7 @@
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
 
+#include "solvers/core/matrix_class.h"
 #include "solvers/ipopt/ipopt_names.h"
 
 namespace smcbench {
@@ -264,7 +266,7 @@ class Session {
   SparseMatrix cached_sparse_;
   bool symmetric_ = false;
   bool psd_ = false;
-  Eigen::LLT<DenseMatrix, Eigen::Lower> llt_;
+  Eigen::LLT<DenseMatrix> llt_;  // storage of the PSD test's factorization, kept across matrices
 
   // Polish workspace.
   Vector pol_z_, pol_r_, pol_w_, pol_rhs_, pol_delta_, pol_best_;
@@ -632,57 +634,20 @@ void Session::Classify(const BoxMLCP& p, const IpoptOptions& o) {
   const bool have_weights = SymmetrizingWeights(p);
   if (!have_weights) weights_.setOnes(n);
   const bool unweighted = (weights_.array() == 1.0).all();
-  double max_abs = 0.0, max_asym = 0.0;
-  if (!p.is_sparse()) {
-    const DenseMatrix& M = p.dense_matrix();
-    for (int j = 0; j < n; ++j) {
-      for (int i = 0; i < n; ++i) max_abs = std::max(max_abs, std::abs(weights_[i] * M(i, j)));
-      for (int i = j + 1; i < n; ++i) {
-        max_asym = std::max(max_asym, std::abs(weights_[i] * M(i, j) - weights_[j] * M(j, i)));
-      }
-    }
-  } else {
-    const SparseMatrix& M = p.sparse_matrix();
-    for (int j = 0; j < M.outerSize(); ++j) {
-      for (SparseMatrix::InnerIterator it(M, j); it; ++it) {
-        const int i = static_cast<int>(it.row());
-        max_abs = std::max(max_abs, std::abs(weights_[i] * it.value()));
-        if (i != j) max_asym = std::max(max_asym, std::abs(weights_[i] * it.value() - weights_[j] * M.coeff(j, i)));
-      }
-    }
-  }
-  exact_symmetric_ = have_weights && unweighted && max_asym == 0.0;
-  symmetric_ = have_weights && max_asym <= o.symmetry_tolerance * max_abs;
+  const SymmetryOptions symmetry{o.symmetry_tolerance};
+  const SymmetryResult asymmetry = p.is_sparse() ? ClassifySymmetry(p.sparse_matrix(), symmetry, &weights_)
+                                                 : ClassifySymmetry(p.dense_matrix(), symmetry, &weights_);
+  exact_symmetric_ = have_weights && unweighted && asymmetry.max_asymmetry == 0.0;
+  symmetric_ = have_weights && asymmetry.answer == MatrixClassAnswer::kYes;
   psd_ = false;
   if (symmetric_) {
-    // (S + S')/2 and its norm, S = diag(e) M.
+    // (S + S')/2 + delta I by Cholesky, delta = psd_tolerance ||S||_inf, S = diag(e) M.
     if (!p.is_sparse()) {
       const DenseMatrix S = weights_.asDiagonal() * p.dense_matrix();
-      const double norm = S.cwiseAbs().rowwise().sum().maxCoeff();
-      if (norm == 0.0) {
-        psd_ = true;  // M = 0
-      } else {
-        // Evaluated straight into the factorization's own storage (no further n x n temporary).
-        llt_.compute(0.5 * (S + S.transpose()) + o.psd_tolerance * norm * DenseMatrix::Identity(n, n));
-        psd_ = llt_.info() == Eigen::Success;
-      }
+      psd_ = ClassifySymmetricPartPositiveSemidefinite(S, o.psd_tolerance, &llt_).answer == MatrixClassAnswer::kYes;
     } else {
       const SparseMatrix W = weights_.asDiagonal() * p.sparse_matrix();
-      SparseMatrix S = 0.5 * (W + SparseMatrix(W.transpose()));
-      Vector row_sums = Vector::Zero(n);  // ||W||_inf in one pass over the columns
-      for (int j = 0; j < W.outerSize(); ++j) {
-        for (SparseMatrix::InnerIterator it(W, j); it; ++it) row_sums[it.row()] += std::abs(it.value());
-      }
-      const double norm = n > 0 ? row_sums.maxCoeff() : 0.0;
-      if (norm == 0.0) {
-        psd_ = true;
-      } else {
-        SparseMatrix shift(n, n);
-        shift.setIdentity();
-        S += o.psd_tolerance * norm * shift;
-        Eigen::SimplicialLLT<SparseMatrix, Eigen::Lower> llt(S);
-        psd_ = llt.info() == Eigen::Success;
-      }
+      psd_ = ClassifySymmetricPartPositiveSemidefinite(W, o.psd_tolerance).answer == MatrixClassAnswer::kYes;
     }
   }
   cache_sparse_ = p.is_sparse();

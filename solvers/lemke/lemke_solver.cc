@@ -4,6 +4,7 @@
 #include "solvers/lemke/lemke_solver.h"
 
 #include "solvers/core/dense_lu.h"
+#include "solvers/core/matrix_class.h"
 
 #include <algorithm>
 #include <cmath>
@@ -335,60 +336,8 @@ const char* FreeModeName(FreeMode mode) {
   return "?";
 }
 
-// What "solved" means inside DoSolve: the merit function of the (row-equilibrated) problem it was given, relative
-// residual and residual in units of z both within the tolerance, as Solver::Finish requires. The relative one
-// alone is blind when ‖q‖ dwarfs the rows (a bound row with a huge multiplier): it let sign violations of order
-// tol·‖q‖ through.
-bool Passes(const Residual& r, double tolerance) { return r.rel <= tolerance && r.scaled <= tolerance; }
 // The larger of the two, for "is this point better" comparisons (NaN-safe: NaN compares as not better).
 double Worst(const Residual& r) { return std::max(r.rel, r.scaled); }
-
-// Largest LCP size for which the ray-termination path tests every principal minor (2^n − 1 LU factorizations).
-constexpr int kMaxPMatrixTestSize = 12;
-
-// True when every principal minor of the dense n×n M is positive with a margin (each LU pivot of each principal
-// submatrix above 1e3·k·ε times its largest entry, so that the sign is not rounding): M is a P-matrix. Only on the
-// failure path (a ray): 2^n small factorizations, allocating.
-bool IsPMatrix(const DenseMatrix& M) {
-  const int n = static_cast<int>(M.rows());
-  if (n > kMaxPMatrixTestSize) return false;
-  std::vector<double> a(size_t(n) * n);
-  std::vector<int> idx(n), perm(n);
-  for (unsigned mask = 1; mask < (1u << n); ++mask) {
-    int k = 0;
-    for (int i = 0; i < n; ++i) {
-      if (mask >> i & 1u) idx[k++] = i;
-    }
-    double amax = 0.0;
-    for (int r = 0; r < k; ++r) {
-      for (int c = 0; c < k; ++c) {
-        a[r + size_t(c) * k] = M(idx[r], idx[c]);
-        amax = std::max(amax, std::abs(a[r + size_t(c) * k]));
-      }
-    }
-    if (!dense_lu::FactorRelative(a.data(), k, k, perm.data())) return false;
-    double sign = 1.0, pmin = kInf;
-    for (int r = 0; r < k; ++r) {
-      const double d = a[r + size_t(r) * k];
-      sign *= d > 0.0 ? 1.0 : -1.0;
-      if (perm[r] != r) sign = -sign;
-      pmin = std::min(pmin, std::abs(d));
-    }
-    if (!(sign > 0.0) || !(pmin > 1e3 * k * kEps * amax)) return false;
-  }
-  return true;
-}
-
-// True when the symmetric part S = (M + Mᵀ)/2 is positive definite with a margin: the Cholesky factorization of
-// S − δI, δ = 1e3·n·ε·‖S‖∞, succeeds (rounding in forming and factoring S cannot make it so).
-bool SymmetricPartPositiveDefinite(const DenseMatrix& M) {
-  const int n = static_cast<int>(M.rows());
-  DenseMatrix S = 0.5 * (M + M.transpose());
-  const double delta = 1e3 * n * kEps * S.cwiseAbs().rowwise().sum().maxCoeff();
-  S.diagonal().array() -= delta;
-  Eigen::LLT<DenseMatrix> llt(S);
-  return llt.info() == Eigen::Success;
-}
 
 // Why the box-MLCP is known to have a solution, or nullptr: every bound finite (a continuous map on a compact box
 // always has one), M with a positive definite symmetric part, or M a P-matrix (the box-MLCP then has exactly one
@@ -401,8 +350,11 @@ const char* SolutionExistsReason(const BoxMLCP& problem) {
   for (int i = 0; i < problem.size(); ++i) all_finite = all_finite && l[i] > -kInf && u[i] < kInf;
   if (all_finite) return "every bound is finite";
   const DenseMatrix& M = problem.dense_matrix();
-  if (SymmetricPartPositiveDefinite(M)) return "the symmetric part of M is positive definite";
-  if (IsPMatrix(M)) return "M is a P-matrix";
+  if (ClassifySymmetricPartPositiveDefinite(M).answer == MatrixClassAnswer::kYes) {
+    return "the symmetric part of M is positive definite";
+  }
+  // Every principal minor up to n = 12 (2^n − 1 small factorizations, allocating: only on this failure path).
+  if (ClassifyPMatrix(M).answer == MatrixClassAnswer::kYes) return "M is a P-matrix";
   return nullptr;
 }
 
@@ -748,7 +700,7 @@ Residual PolishActiveSet(LemkeRun* run, Residual current) {
       best = r;
       run->polished = true;
     }
-    if (Passes(best, run->options.tolerance) || !changed) break;
+    if (PassesBoxMlcpTolerance(best, run->options.tolerance) || !changed) break;
   }
   return best;
 }
@@ -809,11 +761,11 @@ bool AcceptWithoutArtificial(LemkeRun* run, double dmax, int* exit_polishes) {
   Recover(run, true);
   run->exit_residual = run->problem.NaturalResidual(run->z, &run->ws.w);
   const bool negligible_in_z = run->z0_value * dmax <= tolerance * (1.0 + run->z.cwiseAbs().maxCoeff());
-  if (!Passes(run->exit_residual, tolerance) && negligible_in_z && *exit_polishes < 3) {
+  if (!PassesBoxMlcpTolerance(run->exit_residual, tolerance) && negligible_in_z && *exit_polishes < 3) {
     ++*exit_polishes;
     run->exit_residual = PolishActiveSet(run, run->exit_residual);
   }
-  run->z0_exit = Passes(run->exit_residual, tolerance);
+  run->z0_exit = PassesBoxMlcpTolerance(run->exit_residual, tolerance);
   return run->z0_exit;
 }
 
@@ -1074,7 +1026,8 @@ void LemkeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, 
   // The pivots accumulate rounding of order ε·max|β|, and β holds q̂ (a huge multiplier on one row, a base-point
   // shift M·l): an answer that is not at the rounding level in units of z has its active set solved again.
   const double rounding_level = 1e3 * run.n * kEps;
-  if (status == SolveStatus::kSolved && !(Passes(res, options.tolerance) && res.scaled <= rounding_level)) {
+  if (status == SolveStatus::kSolved &&
+      !(PassesBoxMlcpTolerance(res, options.tolerance) && res.scaled <= rounding_level)) {
     res = PolishActiveSet(&run, res);
   }
   if (status == SolveStatus::kSolved && !std::isfinite(res.abs)) {
@@ -1082,7 +1035,9 @@ void LemkeSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, 
     run.failure = "the solution contains NaN or Inf";
   }
   // The merit function decides: wherever the method stopped, a point it accepts is a solution.
-  if (status != SolveStatus::kSolved && Passes(res, options.tolerance)) status = SolveStatus::kSolved;
+  if (status != SolveStatus::kSolved && PassesBoxMlcpTolerance(res, options.tolerance)) {
+    status = SolveStatus::kSolved;
+  }
   // A secondary ray is no verdict on the problem (in floating point not even for copositive-plus M): on a problem
   // known to have a solution it is a failure of the method.
   const char* exists = status == SolveStatus::kRayTermination ? SolutionExistsReason(problem) : nullptr;

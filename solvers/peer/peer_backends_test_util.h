@@ -7,7 +7,7 @@
 #include <cmath>
 #include <string>
 
-#include "problems/generators/random_problems.h"
+#include "solvers/generators/random_problems.h"
 #include "solvers/core/solver.h"
 #include "solvers/registry/registry.h"
 

@@ -9,7 +9,7 @@
 #include <limits>
 #include <random>
 
-#include "problems/generators/random_problems.h"
+#include "solvers/generators/random_problems.h"
 #include "solvers/enumerative/enumerative_solver.h"
 
 namespace smcbench {

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-#include "problems/generators/random_problems.h"
+#include "solvers/generators/random_problems.h"
 #include "solvers/registry/registry.h"
 #include "tests/support/malloc_counter.h"
 

@@ -175,6 +175,7 @@ struct BlockLu {
 };
 
 // H = S + Sᵀ positive definite, tested by LDLᵀ of H − τI with τ = kDefiniteShift·‖H‖∞ (every pivot positive).
+// Not solvers/core/matrix_class.h's double-precision test on purpose: a certificate must hold beyond double rounding.
 bool SymmetricPartPositiveDefinite(const std::vector<Quad>& s, int n) {
   std::vector<Quad> h(Index(n, 0, n));
   Quad norm = 0;

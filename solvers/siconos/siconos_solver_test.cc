@@ -12,8 +12,7 @@
 #include <set>
 #include <string>
 
-#include "problems/generators/random_problems.h"
-#include "problems/io/siconos_format.h"
+#include "solvers/generators/random_problems.h"
 #include "solvers/registry/registry.h"
 #include "tests/support/malloc_counter.h"
 
@@ -278,7 +277,11 @@ TEST(SiconosWrongSuccess, LemkeBasisRejectedBySiconosOwnCheckIsInaccurateNotARay
   // On lcp_CPS_3.dat lcp_lexicolemke ends as if it had found a complementary basis (algorithm info 0) whose answer
   // has residual 0.5; the driver's final check turns it into info 1. Both codes are kept, the status says what
   // happened (an inaccurate answer), not a secondary ray.
-  const BoxMLCP p = ReadSiconosFile(SMCBENCH_PEER_DATA_DIR "/siconos/lcp/lcp_CPS_3.dat");
+  // tests/data/siconos/lcp/lcp_CPS_3.dat (a bimatrix game, CPS 2009 example 4.4.23), written out: solvers/ does
+  // not use the readers of problems/.
+  DenseMatrix M(4, 4);
+  M << 0, 0, 10, 30, 0, 0, 20, 15, 10, 30, 0, 0, 20, 15, 0, 0;
+  const BoxMLCP p = BoxMLCP::LCP(M, Vector::Constant(4, -1.0), "lcp_CPS_3");
   SolverOptions raw;
   raw.polish = false;  // Siconos' own answer
   const SolveResult r = Make("siconos-lcp-lemke")->Solve(p, raw);
@@ -452,63 +455,7 @@ bool SameBits(const Vector& a, const Vector& b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), sizeof(double) * a.size()) == 0;
 }
 
-// Every file of the Siconos collection (tests/data/siconos) the reader accepts.
-std::vector<std::filesystem::path> CollectionFiles() {
-  namespace fs = std::filesystem;
-  const fs::path collection = SMCBENCH_PEER_DATA_DIR "/siconos";
-  std::vector<fs::path> files;
-  for (const char* sub : {"lcp", "relay", "mlcp"}) {
-    for (const auto& e : fs::directory_iterator(collection / sub)) {
-      // Rectangular_mlcp.dat has no box-MLCP reading (tests/siconos_collection_test.cc).
-      if (e.path().extension() == ".dat" && e.path().filename() != "Rectangular_mlcp.dat") files.push_back(e.path());
-    }
-  }
-  std::sort(files.begin(), files.end());
-  return files;
-}
-
-TEST(SiconosProbe, InProcessAnswerEqualsTheProbesBitForBitOnTheSiconosCollection) {
-  // A fresh backend per file: its first solve is the probe in the worker, its second the same call in this
-  // process. Both start from the same Siconos state (a fresh session, the direct solvers' cache empty), so the
-  // status, Siconos' code and z must agree to the last bit.
-  const auto files = CollectionFiles();
-  ASSERT_EQ(files.size(), 44u);
-  SolverOptions options;
-  options.time_limit_seconds = 1.0;  // mlcp_FB runs for more than 30 s on deltasigma_mlcp (README)
-  int compared = 0, not_back = 0;
-  std::set<std::string> backends_compared;
-  for (const std::string& name : SiconosNames()) {
-    for (const auto& file : files) {
-      SCOPED_TRACE(name + " on " + file.filename().string());
-      const BoxMLCP p = ReadSiconosFile(file.string());
-      auto solver = Make(name);
-      const SolveResult probe = solver->Solve(p, options);
-      if (std::isnan(probe.GetDetail("in_process"))) continue;  // refused before any Siconos call
-      EXPECT_EQ(probe.GetDetail("in_process"), 0.0);
-      const bool came_back = probe.status != SolveStatus::kTimeLimit && std::isnan(probe.GetDetail("siconos_signal")) &&
-                             !std::isnan(probe.GetDetail("siconos_info"));
-      if (!came_back) {  // probed again under the same 1 s limit, never run here
-        ++not_back;
-        EXPECT_EQ(solver->Solve(p, options).GetDetail("in_process"), 0.0);
-        continue;
-      }
-      // The second call gets a limit no probe reaches: a problem whose probe took longer than the call's limit
-      // stays in the worker (with its warm direct-* cache), which on a slow machine is a probe near 1 s.
-      SolverOptions generous = options;
-      generous.time_limit_seconds = 600.0;
-      const SolveResult again = solver->Solve(p, generous);
-      EXPECT_EQ(again.GetDetail("in_process"), 1.0);
-      EXPECT_EQ(again.status, probe.status) << probe.message << " / " << again.message;
-      EXPECT_EQ(again.GetDetail("siconos_info"), probe.GetDetail("siconos_info"));
-      EXPECT_EQ(again.iterations, probe.iterations);
-      EXPECT_TRUE(SameBits(again.z, probe.z));
-      ++compared;
-      backends_compared.insert(name);
-    }
-  }
-  EXPECT_GE(compared, 250) << not_back << " probes did not come back";
-  EXPECT_EQ(backends_compared.size(), 12u);
-}
+// (The probe against in-process answers on the whole Siconos collection: tests/siconos_probe_test.cc.)
 
 TEST(SiconosProbe, ACrashOrAHangIsAStatusOnEverySolveAndNeverRunsInProcess) {
   // mlcp_lcp_lemke aborts on an MLCP without equality rows: had any of these solves run in this process, the test

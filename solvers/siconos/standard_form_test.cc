@@ -4,8 +4,8 @@
 
 #include <gtest/gtest.h>
 
-#include "problems/generators/random_problems.h"
 #include "solvers/enumerative/enumerative_solver.h"
+#include "solvers/generators/random_problems.h"
 #include "tests/support/malloc_counter.h"
 
 namespace smcbench {

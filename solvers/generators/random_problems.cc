@@ -6,7 +6,7 @@
 // every floating-point reduction is an explicit loop in a fixed order (Eigen's products change their summation
 // order with the SIMD width). The output is therefore bit-identical wherever IEEE double arithmetic is, i.e.
 // unless the compiler contracts a*b+c into FMAs (-ffp-contract=fast with an FMA-capable -march).
-#include "problems/generators/random_problems.h"
+#include "solvers/generators/random_problems.h"
 
 #include <Eigen/QR>
 #include <algorithm>
@@ -14,8 +14,8 @@
 #include <string>
 #include <vector>
 
-#include "problems/generators/seeded_random.h"
 #include "solvers/core/number_text.h"
+#include "solvers/generators/seeded_random.h"
 
 namespace smcbench {
 namespace {

@@ -1,6 +1,6 @@
 // The generators: z* solves every generated problem (residual recomputed here), the matrix families have the
 // properties they promise, degenerate rows are degenerate, and the output is a pure function of the options.
-#include "problems/generators/random_problems.h"
+#include "solvers/generators/random_problems.h"
 
 #include <gtest/gtest.h>
 
