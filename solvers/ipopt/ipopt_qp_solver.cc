@@ -96,6 +96,7 @@
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
 
+#include "solvers/core/active_set.h"
 #include "solvers/ipopt/ipopt_names.h"
 
 namespace smcbench {
@@ -114,7 +115,6 @@ double IpoptBound(double b) { return std::isfinite(b) ? b : (b > 0 ? kIpoptInf :
 enum Formulation : int { kNone = 0, kConvexQp = 1, kGapNlp = 2, kForcedQp = 3 };
 enum EarlyStop : int { kNoEarlyStop = 0, kMeritAtIterate = 1, kEarlyPolish = 2, kWarmPolish = 3 };
 enum StopReason { kNotStopped, kStopMerit, kStopPolished, kStopTime };
-enum ActiveState : signed char { kFree = 0, kAtLower = 1, kAtUpper = 2 };
 enum MultiplierKind : signed char { kLowerMult = 0, kUpperMult = 1, kFixedMult = 2 };
 
 // True if dlopen finds the library (then closed again): Ipopt's run-time loaded linear solvers.
@@ -269,14 +269,12 @@ class Session {
   // Polish workspace.
   Vector pol_z_, pol_r_, pol_w_, pol_rhs_, pol_delta_, pol_best_;
   std::vector<signed char> state_, prev_state_, tried_state_;
-  std::vector<int> free_idx_, pos_;
+  std::vector<int> free_idx_;
   DenseMatrix block_;
   Eigen::PartialPivLU<DenseMatrix> lu_;
   Eigen::CompleteOrthogonalDecomposition<DenseMatrix> cod_;
   bool use_cod_ = false;
-  SparseMatrix sparse_block_;
-  std::vector<Eigen::Triplet<double, int>> triplets_;
-  Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> slu_;
+  SparseFreeBlock sparse_block_;  // the active-set kernel's sparse LU of M_FF
   Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>> sqr_;
   bool use_sqr_ = false;
 };
@@ -840,20 +838,16 @@ void Session::ActiveSet(const Vector& z, const Vector& w, std::vector<signed cha
   const Vector& u = problem_->u();
   state->resize(n_);
   for (int i = 0; i < n_; ++i) {
-    const double p = z[i] - w[i];
-    if (l[i] == u[i] || p <= l[i]) {
-      (*state)[i] = kAtLower;
-    } else if (p >= u[i]) {
-      (*state)[i] = kAtUpper;
-    } else {
-      (*state)[i] = kFree;
-    }
+    const RowState s = l[i] == u[i] ? RowState::kFixed : ClassifyRow(z[i], w[i], l[i], u[i]);
+    (*state)[i] = static_cast<signed char>(s);
   }
 }
 
 // Factorizes M_FF (F = free_idx_, k = |F|) into lu_/cod_ or slu_/sqr_. False if no factorization is usable.
 bool Session::SolveFreeBlock(int k) {
   if (!problem_->is_sparse()) {
+    // Eigen's LU, not the kernel's dense_lu: its condition estimate picks the minimum-norm COD for a singular PSD
+    // block, which dense_lu cannot offer.
     const DenseMatrix& M = problem_->dense_matrix();
     if (block_.rows() != k) block_.resize(k, k);
     for (int b = 0; b < k; ++b) {
@@ -865,24 +859,9 @@ bool Session::SolveFreeBlock(int k) {
     if (use_cod_) cod_.compute(block_);
     return true;
   }
-  const SparseMatrix& M = problem_->sparse_matrix();
-  pos_.assign(n_, -1);
-  for (int a = 0; a < k; ++a) pos_[free_idx_[a]] = a;
-  triplets_.clear();
-  for (int b = 0; b < k; ++b) {
-    for (SparseMatrix::InnerIterator it(M, free_idx_[b]); it; ++it) {
-      const int a = pos_[it.row()];
-      if (a >= 0) triplets_.emplace_back(a, b, it.value());
-    }
-  }
-  sparse_block_.resize(k, k);
-  sparse_block_.setFromTriplets(triplets_.begin(), triplets_.end());
-  sparse_block_.makeCompressed();
-  slu_.analyzePattern(sparse_block_);
-  slu_.factorize(sparse_block_);
-  use_sqr_ = slu_.info() != Eigen::Success;
+  use_sqr_ = !sparse_block_.Factor(problem_->sparse_matrix(), free_idx_.data(), k);
   if (use_sqr_) {
-    sqr_.compute(sparse_block_);
+    sqr_.compute(sparse_block_.block());
     if (sqr_.info() != Eigen::Success) return false;
   }
   return true;
@@ -901,12 +880,11 @@ double Session::Polish(const Vector& z_in, Vector* z_out) {
     prev_state_ = state_;
     free_idx_.clear();
     for (int i = 0; i < n_; ++i) {
-      if (state_[i] == kAtLower) {
-        pol_z_[i] = l[i];
-      } else if (state_[i] == kAtUpper) {
-        pol_z_[i] = u[i];
+      const auto s = static_cast<RowState>(state_[i]);
+      if (s == RowState::kFree) {
+        free_idx_.push_back(i);  // keeps its value: the solve below is a correction from the snapped point
       } else {
-        free_idx_.push_back(i);
+        pol_z_[i] = PlacedValue(s, l[i], u[i]);
       }
     }
     problem_->Affine(pol_z_, &pol_r_);
@@ -920,7 +898,11 @@ double Session::Polish(const Vector& z_in, Vector* z_out) {
       for (int step = 0; step < 2 && finite; ++step) {
         for (int a = 0; a < k; ++a) pol_rhs_[a] = -pol_r_[free_idx_[a]];
         if (problem_->is_sparse()) {
-          pol_delta_ = use_sqr_ ? Vector(sqr_.solve(pol_rhs_)) : Vector(slu_.solve(pol_rhs_));
+          if (use_sqr_) {
+            pol_delta_ = sqr_.solve(pol_rhs_);
+          } else {
+            sparse_block_.Solve(pol_rhs_, &pol_delta_);  // the natural residual below judges the point
+          }
         } else if (use_cod_) {
           pol_delta_.noalias() = cod_.solve(pol_rhs_);
         } else {
