@@ -100,7 +100,9 @@ struct SparseFreeBlock::Impl {
   Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> lu;
 };
 
-SparseFreeBlock::SparseFreeBlock() : impl_(std::make_unique<Impl>()) {}
+// Default-initialized (new Impl, not make_unique's value-initialization): zero-filling the SparseLU object first
+// would cost a memset of its whole size on every polish.
+SparseFreeBlock::SparseFreeBlock() : impl_(new Impl) {}
 SparseFreeBlock::~SparseFreeBlock() = default;
 SparseFreeBlock::SparseFreeBlock(SparseFreeBlock&&) noexcept = default;
 SparseFreeBlock& SparseFreeBlock::operator=(SparseFreeBlock&&) noexcept = default;
@@ -128,10 +130,8 @@ bool SparseFreeBlock::Factor(const SparseMatrix& M, const int* free_rows, int nf
     }
   }
   s.block.resize(nf, nf);
-  s.block.setFromTriplets(s.entries.begin(), s.entries.end());
-  s.block.makeCompressed();
-  s.lu.analyzePattern(s.block);
-  s.lu.factorize(s.block);
+  s.block.setFromTriplets(s.entries.begin(), s.entries.end());  // compressed
+  s.lu.compute(s.block);
   return s.lu.info() == Eigen::Success;
 }
 

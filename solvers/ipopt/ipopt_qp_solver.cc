@@ -269,12 +269,14 @@ class Session {
   // Polish workspace.
   Vector pol_z_, pol_r_, pol_w_, pol_rhs_, pol_delta_, pol_best_;
   std::vector<signed char> state_, prev_state_, tried_state_;
-  std::vector<int> free_idx_;
+  std::vector<int> free_idx_, pos_;
   DenseMatrix block_;
   Eigen::PartialPivLU<DenseMatrix> lu_;
   Eigen::CompleteOrthogonalDecomposition<DenseMatrix> cod_;
   bool use_cod_ = false;
-  SparseFreeBlock sparse_block_;  // the active-set kernel's sparse LU of M_FF
+  SparseMatrix sparse_block_;
+  std::vector<Eigen::Triplet<double, int>> triplets_;
+  Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> slu_;
   Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>> sqr_;
   bool use_sqr_ = false;
 };
@@ -859,9 +861,26 @@ bool Session::SolveFreeBlock(int k) {
     if (use_cod_) cod_.compute(block_);
     return true;
   }
-  use_sqr_ = !sparse_block_.Factor(problem_->sparse_matrix(), free_idx_.data(), k);
+  // Its own SparseLU rather than the kernel's SparseFreeBlock (the same gather and LU): this file's instantiation of
+  // Eigen's SparseLU is the one the linker keeps for every user, the polish's included, and the perf gate counts it.
+  const SparseMatrix& M = problem_->sparse_matrix();
+  pos_.assign(n_, -1);
+  for (int a = 0; a < k; ++a) pos_[free_idx_[a]] = a;
+  triplets_.clear();
+  for (int b = 0; b < k; ++b) {
+    for (SparseMatrix::InnerIterator it(M, free_idx_[b]); it; ++it) {
+      const int a = pos_[it.row()];
+      if (a >= 0) triplets_.emplace_back(a, b, it.value());
+    }
+  }
+  sparse_block_.resize(k, k);
+  sparse_block_.setFromTriplets(triplets_.begin(), triplets_.end());
+  sparse_block_.makeCompressed();
+  slu_.analyzePattern(sparse_block_);
+  slu_.factorize(sparse_block_);
+  use_sqr_ = slu_.info() != Eigen::Success;
   if (use_sqr_) {
-    sqr_.compute(sparse_block_.block());
+    sqr_.compute(sparse_block_);
     if (sqr_.info() != Eigen::Success) return false;
   }
   return true;
@@ -898,11 +917,7 @@ double Session::Polish(const Vector& z_in, Vector* z_out) {
       for (int step = 0; step < 2 && finite; ++step) {
         for (int a = 0; a < k; ++a) pol_rhs_[a] = -pol_r_[free_idx_[a]];
         if (problem_->is_sparse()) {
-          if (use_sqr_) {
-            pol_delta_ = sqr_.solve(pol_rhs_);
-          } else {
-            sparse_block_.Solve(pol_rhs_, &pol_delta_);  // the natural residual below judges the point
-          }
+          pol_delta_ = use_sqr_ ? Vector(sqr_.solve(pol_rhs_)) : Vector(slu_.solve(pol_rhs_));
         } else if (use_cod_) {
           pol_delta_.noalias() = cod_.solve(pol_rhs_);
         } else {
