@@ -1,8 +1,8 @@
 // The one kernel that solves an identified active set of a box-MLCP exactly: each row free or at a bound, bound rows
 // placed at their bound, the reduced block M_FF factored (dense LU with partial pivoting, or sparse LU) and solved
 // for z_F = −M_FF⁻¹(q_F + M_FB z_B), z_F checked against its box and the bound rows' w against their signs. The
-// base's polish (polish.h), a session's reused active set (session.h), lemke's and ipopt's polishes and the
-// enumerative search build on it; each keeps only its own policy (which set to try, what to do when it fails).
+// base's polish (polish.h), a session's reused active set (session.h) and lemke's polish build on it, ipopt's polish
+// on its row states; enum keeps its own copies (enumerative_solver.cc says why). Callers keep only their policy.
 #pragma once
 
 #include <algorithm>
@@ -150,7 +150,7 @@ inline bool BoundRowSignsHold(int n_runtime, const signed char* state, const dou
   return true;
 }
 
-// The blocked entry point, for a search that factors many small free blocks (the enumerative backend): the k×k
+// The blocked entry point, for a search that factors many small free blocks (enum keeps internal copies): the k×k
 // block A factored in place by dense_lu with k ≤ 4 unrolled at compile time and k = 1 its own pivot. False if a
 // pivot is ≤ small (numerically singular) or NaN. Split from the solve so a caller can keep factors per set.
 inline bool FactorBlock(double* a, int ld, int k, int* piv, double small) {
