@@ -4,113 +4,10 @@
 #include <chrono>
 #include <cmath>
 
-#include "solvers/core/dense_lu.h"
-#include "solvers/core/polish.h"
+#include "solvers/core/active_set.h"
 #include "solvers/core/solver.h"
 
 namespace smcbench {
-
-void ActiveSetFactors::Resize(int n) {
-  n_ = n;
-  nf_ = 0;
-  valid_ = false;
-  state_.assign(n, 0);
-  free_rows_.assign(n, 0);
-  pivots_.assign(n, 0);
-  lu_.assign(static_cast<std::size_t>(n) * n, 0.0);
-  rhs_.assign(n, 0.0);
-}
-
-bool ActiveSetFactors::Factor(const DenseMatrix& M, const signed char* state) {
-  valid_ = false;
-  const int n = n_;
-  nf_ = 0;
-  for (int i = 0; i < n; ++i) {
-    state_[i] = state[i];
-    if (static_cast<RowState>(state[i]) == RowState::kFree) free_rows_[nf_++] = i;
-  }
-  const int nf = nf_;
-  double* a = lu_.data();
-  for (int c = 0; c < nf; ++c) {
-    for (int r = 0; r < nf; ++r) a[r + c * n] = M(free_rows_[r], free_rows_[c]);
-  }
-  if (!dense_lu::Factor(a, n, nf, pivots_.data(), 0.0)) return false;  // a zero (or NaN) pivot
-  double largest = 0.0, smallest = kInf;
-  for (int k = 0; k < nf; ++k) {
-    const double pivot = std::abs(a[k + k * n]);
-    if (!std::isfinite(pivot)) return false;
-    largest = std::max(largest, pivot);
-    smallest = std::min(smallest, pivot);
-  }
-  valid_ = nf == 0 || smallest >= kMinPivotRatio * largest;
-  return valid_;
-}
-
-template <int N>
-bool ActiveSetFactors::Solve(const DenseMatrix& M, const double* q, const double* l, const double* u,
-                             double* z) const {
-  const int n = N > 0 ? N : n_;
-  const int nf = nf_;
-  const double* m = M.data();
-  const signed char* state = state_.data();
-  for (int i = 0; i < n; ++i) {
-    const auto s = static_cast<RowState>(state[i]);
-    z[i] = s == RowState::kFree ? 0.0 : (s == RowState::kLower ? l[i] : u[i]);
-  }
-  if (nf == 0) return true;
-  // b = −(q_F + M_FB z_B) (z is 0 on the free rows, so a full row times z is the bound part).
-  double* b = const_cast<double*>(rhs_.data());  // scratch, sized in Resize; logically not state
-  for (int k = 0; k < nf; ++k) {
-    const int f = free_rows_[k];
-    double sum = q[f];
-    for (int j = 0; j < n; ++j) sum += m[f + j * n] * z[j];
-    b[k] = -sum;
-  }
-  dense_lu::Solve(lu_.data(), n, nf, pivots_.data(), b);
-  for (int k = 0; k < nf; ++k) {
-    const int i = free_rows_[k];
-    const double x = b[k];
-    if (!(x >= l[i] && x <= u[i])) return false;  // also false for NaN
-    z[i] = x;
-  }
-  return true;
-}
-
-void ActiveSetFactors::AffineMap(const DenseMatrix& M, const double* l, const double* u, double* A, double* c,
-                                 int* free_row) const {
-  const int n = n_, nf = nf_;
-  *free_row = nf == 1 ? free_rows_[0] : -1;
-  std::fill(A, A + n * n, 0.0);
-  for (int i = 0; i < n; ++i) {
-    const auto s = static_cast<RowState>(state_[i]);
-    c[i] = s == RowState::kFree ? 0.0 : (s == RowState::kLower ? l[i] : u[i]);
-  }
-  // Column j of A restricted to F is −M_FF⁻¹ e_j (j ∈ F); c_F = −M_FF⁻¹ M_FB c_B. One LU solve per column.
-  double* b = const_cast<double*>(rhs_.data());
-  for (int col = 0; col <= nf; ++col) {  // col < nf: e_{F[col]}; col = nf: the bound part
-    for (int k = 0; k < nf; ++k) {
-      if (col < nf) {
-        b[k] = k == col ? -1.0 : 0.0;
-      } else {
-        double sum = 0.0;
-        for (int j = 0; j < n; ++j) sum += M(free_rows_[k], j) * c[j];
-        b[k] = -sum;
-      }
-    }
-    dense_lu::Solve(lu_.data(), n, nf, pivots_.data(), b);
-    for (int k = 0; k < nf; ++k) {
-      const int i = free_rows_[k];
-      if (col < nf) {
-        A[i + free_rows_[col] * n] = b[k];
-      } else {
-        c[i] = b[k];
-      }
-    }
-  }
-}
-
-template bool ActiveSetFactors::Solve<0>(const DenseMatrix&, const double*, const double*, const double*,
-                                         double*) const;
 
 SolveSession::SolveSession(Solver* backend, const BoxMLCP& problem, const SolverOptions& options,
                            const SessionOptions& session)
@@ -232,13 +129,7 @@ bool SolveSession::TryReusedActiveSet(SolveResult* result) {
   // The sign check of the active set, exact: a bound row's F = M z + q must push against its bound (≥ 0 at the
   // lower, ≤ 0 at the upper). The merit function alone would accept a wrong sign of rounding size, i.e. keep a row
   // at its bound whose exact solution has just left it (s = x/h = 1 − ε on the sliding surface, not 1).
-  const signed char* state = factors_.state();
-  const double* w = result->w.data();
-  for (int i = 0; i < n; ++i) {
-    const auto row = static_cast<RowState>(state[i]);
-    const bool fixed = l[i] == u[i];  // any F is complementary to a fixed row
-    if (!fixed && ((row == RowState::kLower && w[i] < 0.0) || (row == RowState::kUpper && w[i] > 0.0))) return false;
-  }
+  if (!active_set::BoundRowSignsHold<N>(n, factors_.state(), result->w.data(), l, u, 0.0)) return false;
   // The verdict's two tests, as Solver::Finish applies them to every backend's answer.
   if (!PassesBoxMlcpTolerance(r, options_.tolerance)) return false;
   result->status = SolveStatus::kSolved;

@@ -7,6 +7,7 @@
 #include <string_view>
 #include <vector>
 
+#include "solvers/core/active_set.h"
 #include "solvers/core/options.h"
 #include "solvers/core/problem.h"
 #include "solvers/core/result.h"
@@ -28,40 +29,6 @@ struct SessionOptions {
 enum class SessionPath : int {
   kBackend = 0,          // the backend's own algorithm (then the base's polish and merit function)
   kReusedActiveSet = 1,  // the previous answer's active set, re-solved for the new q; iterations = 0
-};
-
-// The LU factors (partial pivoting) of one active set's free block M_FF, for dense n×n M: what the warm path
-// re-solves with. Storage is sized once (n), so refactoring for a new active set allocates nothing.
-class ActiveSetFactors {
- public:
-  void Resize(int n);
-  // Factors M_FF for the row states in `state` (RowState values). False when M_FF is singular or its pivots span
-  // more than the ratio below (then the warm path is not tried for this set).
-  bool Factor(const DenseMatrix& M, const signed char* state);
-  // z for right-hand side q: bound rows at their bound, z_F = −M_FF⁻¹(q_F + M_FB z_B). False unless every z_F is
-  // finite and inside [l_F, u_F]. N = n when known at compile time (the small-solve path), else 0.
-  template <int N>
-  bool Solve(const DenseMatrix& M, const double* q, const double* l, const double* u, double* z) const;
-  // For n ≤ BoxMLCP::kSmallSize: the same solution as an affine map of q, z = A q + c (A column-major n×n, zero on
-  // bound rows; c the bounds there), so the warm path of a small problem is n² multiply-adds and no substitution.
-  // Requires valid(). free_row: the only free row when there is exactly one (then z_f is computed by one division
-  // instead, as the polish does, to keep its bits), else −1.
-  void AffineMap(const DenseMatrix& M, const double* l, const double* u, double* A, double* c, int* free_row) const;
-  bool valid() const { return valid_; }
-  void Invalidate() { valid_ = false; }
-  const signed char* state() const { return state_.data(); }
-
-  // Smallest |pivot| / largest |pivot| accepted: below it the block is too close to singular for a stored
-  // factorization to be trusted, and the backend (whose own safeguards handle it) answers instead.
-  static constexpr double kMinPivotRatio = 1e-13;
-
- private:
-  int n_ = 0;
-  int nf_ = 0;
-  bool valid_ = false;
-  std::vector<signed char> state_;
-  std::vector<int> free_rows_, pivots_;  // pivots_: dense_lu's row swaps
-  std::vector<double> lu_, rhs_;  // lu_: dense_lu's factors of M_FF, nf×nf column-major with leading dimension n
 };
 
 // A prepared solve of one problem (M, l, u fixed; q per call) by one backend. Made by Solver::Prepare; holds a

@@ -198,6 +198,10 @@ int LeastNormSolve(double* a, double* t, int ld, int k, const double* xref, doub
   return r;
 }
 
+// The search's own copies of the active-set kernel's blocked entry point (active_set::FactorBlock, SolveFactored,
+// SolveBlock, FactoredPivots): with internal linkage GCC inlines them, and the paths around them, into the
+// enumeration's fixed-size hot path, which the kernel's external-linkage inlines do not get. Its row states and
+// placement are its own too: they are the enumeration's digits (four states, compared as whole sets).
 // Factors the k×k free block A in place for SolveFactored (dense_lu: partial pivoting, unrolled for k ≤ 4; k = 1
 // is its own pivot). False if a pivot is ≤ small (numerically singular) or NaN. Split from the solve so the fast
 // path can keep factors per active set.

@@ -97,6 +97,7 @@
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
 
+#include "solvers/core/active_set.h"
 #include "solvers/core/matrix_class.h"
 #include "solvers/ipopt/ipopt_names.h"
 
@@ -116,7 +117,6 @@ double IpoptBound(double b) { return std::isfinite(b) ? b : (b > 0 ? kIpoptInf :
 enum Formulation : int { kNone = 0, kConvexQp = 1, kGapNlp = 2, kForcedQp = 3 };
 enum EarlyStop : int { kNoEarlyStop = 0, kMeritAtIterate = 1, kEarlyPolish = 2, kWarmPolish = 3 };
 enum StopReason { kNotStopped, kStopMerit, kStopPolished, kStopTime };
-enum ActiveState : signed char { kFree = 0, kAtLower = 1, kAtUpper = 2 };
 enum MultiplierKind : signed char { kLowerMult = 0, kUpperMult = 1, kFixedMult = 2 };
 
 // True if dlopen finds the library (then closed again): Ipopt's run-time loaded linear solvers.
@@ -805,20 +805,16 @@ void Session::ActiveSet(const Vector& z, const Vector& w, std::vector<signed cha
   const Vector& u = problem_->u();
   state->resize(n_);
   for (int i = 0; i < n_; ++i) {
-    const double p = z[i] - w[i];
-    if (l[i] == u[i] || p <= l[i]) {
-      (*state)[i] = kAtLower;
-    } else if (p >= u[i]) {
-      (*state)[i] = kAtUpper;
-    } else {
-      (*state)[i] = kFree;
-    }
+    const RowState s = l[i] == u[i] ? RowState::kFixed : ClassifyRow(z[i], w[i], l[i], u[i]);
+    (*state)[i] = static_cast<signed char>(s);
   }
 }
 
 // Factorizes M_FF (F = free_idx_, k = |F|) into lu_/cod_ or slu_/sqr_. False if no factorization is usable.
 bool Session::SolveFreeBlock(int k) {
   if (!problem_->is_sparse()) {
+    // Eigen's LU, not the kernel's dense_lu: its condition estimate picks the minimum-norm COD for a singular PSD
+    // block, which dense_lu cannot offer.
     const DenseMatrix& M = problem_->dense_matrix();
     if (block_.rows() != k) block_.resize(k, k);
     for (int b = 0; b < k; ++b) {
@@ -830,6 +826,8 @@ bool Session::SolveFreeBlock(int k) {
     if (use_cod_) cod_.compute(block_);
     return true;
   }
+  // Its own SparseLU rather than the kernel's SparseFreeBlock (the same gather and LU): this file's instantiation of
+  // Eigen's SparseLU is the one the linker keeps for every user, the polish's included, and the perf gate counts it.
   const SparseMatrix& M = problem_->sparse_matrix();
   pos_.assign(n_, -1);
   for (int a = 0; a < k; ++a) pos_[free_idx_[a]] = a;
@@ -866,12 +864,11 @@ double Session::Polish(const Vector& z_in, Vector* z_out) {
     prev_state_ = state_;
     free_idx_.clear();
     for (int i = 0; i < n_; ++i) {
-      if (state_[i] == kAtLower) {
-        pol_z_[i] = l[i];
-      } else if (state_[i] == kAtUpper) {
-        pol_z_[i] = u[i];
+      const auto s = static_cast<RowState>(state_[i]);
+      if (s == RowState::kFree) {
+        free_idx_.push_back(i);  // keeps its value: the solve below is a correction from the snapped point
       } else {
-        free_idx_.push_back(i);
+        pol_z_[i] = PlacedValue(s, l[i], u[i]);
       }
     }
     problem_->Affine(pol_z_, &pol_r_);

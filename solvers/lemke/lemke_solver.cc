@@ -3,6 +3,7 @@
 // kept basic, or split x⁺ − x⁻) and the numerical safeguards are documented at the top of lemke_solver.h.
 #include "solvers/lemke/lemke_solver.h"
 
+#include "solvers/core/active_set.h"
 #include "solvers/core/dense_lu.h"
 #include "solvers/core/matrix_class.h"
 
@@ -604,8 +605,12 @@ void Recover(LemkeRun* run, bool have_basis) {
   }
 }
 
-// Where a row sits in the polish's active set.
-enum PolishState : signed char { kInE = 0, kAtLower = 1, kAtUpper = 2, kPinned = 3 };
+// Where a row sits in the polish's active set (the kernel's states, active_set.h): free rows are the set E solved
+// for, fixed rows are pinned and never switch.
+constexpr signed char kInE = static_cast<signed char>(RowState::kFree);
+constexpr signed char kAtLower = static_cast<signed char>(RowState::kLower);
+constexpr signed char kAtUpper = static_cast<signed char>(RowState::kUpper);
+constexpr signed char kPinned = static_cast<signed char>(RowState::kFixed);
 
 // The polish's first active set: from the final basis (x basic: in E; y basic: at u; else at its base bound).
 void ActiveSetOfBasis(const LemkeRun& run, signed char* state) {
@@ -629,25 +634,18 @@ bool SolveActiveRows(LemkeRun* run, const signed char* state) {
   const DenseMatrix& M = problem.dense_matrix();
   const Vector& l = problem.l();
   const Vector& u = problem.u();
-  int e = 0;
-  for (int i = 0; i < run->n; ++i) {
-    if (state[i] == kInE) {
-      ws.active_list[e++] = i;
-      ws.z_polish[i] = 0.0;
-    } else {
-      ws.z_polish[i] = state[i] == kAtUpper ? u[i] : l[i];
-    }
-  }
+  const int e =
+      active_set::PlaceBoundRows(run->n, state, l.data(), u.data(), ws.z_polish.data(), ws.active_list.data());
   Ensure(&ws.active_lu, size_t(e) * e);
   Ensure(&ws.active_perm, e);
   Ensure(&ws.active_res, e);
   if (e == 0) return true;
   const int* E = ws.active_list.data();
+  // The right-hand side from Eigen's product in the original data, and a row-oriented solve with one refinement
+  // step: lemke's own answers (the kernel's column sums and substitutions round differently).
   problem.Affine(ws.z_polish, &ws.w);  // with z_E = 0: w_E = q_E + M_EN z_N
-  for (int a = 0; a < e; ++a) {
-    ws.active_res[a] = -ws.w[E[a]];
-    for (int b = 0; b < e; ++b) ws.active_lu[a + size_t(b) * e] = M(E[a], E[b]);
-  }
+  for (int a = 0; a < e; ++a) ws.active_res[a] = -ws.w[E[a]];
+  active_set::GatherFreeBlock(M.data(), run->n, E, e, ws.active_lu.data(), e);
   if (!dense_lu::FactorRelative(ws.active_lu.data(), e, e, ws.active_perm.data())) return false;
   dense_lu::SolveRows(ws.active_lu.data(), e, e, ws.active_perm.data(), ws.active_res.data(), 1);
   for (int a = 0; a < e; ++a) ws.z_polish[E[a]] = ws.active_res[a];
