@@ -118,7 +118,7 @@ TEST(RunShard, ABackendPastItsBudgetIsNotRunOnTheRestOfTheSuite) {
     EXPECT_EQ(skip.suite, "tiny");
     EXPECT_FALSE(skip.mcp);
     EXPECT_EQ(skip.problems, 5u);
-    EXPECT_EQ(skip.skipped, 4 + sweep_skipped[skip.solver]) << skip.solver;
+    EXPECT_EQ(skip.skipped, 4) << skip.solver;  // problems: the skipped ladder rungs are not counted
   }
 }
 

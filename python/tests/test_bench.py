@@ -54,9 +54,14 @@ def test_a_list_of_problems_is_run_as_one_suite():
     problem = smcbench.Problem(id="mine/2x2", M=np.array([[2.0, 1.0], [1.0, 2.0]]), q=np.array([-1.0, -1.0]),
                                l=np.zeros(2), u=np.full(2, np.inf), expected="solvable")
     df = smcbench.bench([problem], solvers="lemke", repetitions=1, quick=True)
-    assert list(df.suite) == ["python"] and list(df.problem) == ["mine/2x2"]
-    assert df.verdict[0] == "solved"
-    assert df.forward_error[0] <= 1e-14
+    cold = df[df["mode"] == "cold"].reset_index(drop=True)
+    assert list(cold.suite) == ["python"] and list(cold.problem) == ["mine/2x2"]
+    assert cold.verdict[0] == "solved"
+    assert cold.forward_error[0] <= 1e-14
+    # The tolerance ladder: the same problem at each rung, solved at every one (lemke is exact).
+    ladder = df[df["mode"] == "sweep"]
+    assert sorted(ladder.tolerance) == [1e-12, 1e-9, 1e-6, 1e-3]
+    assert (ladder.verdict == "solved").all()
 
 
 def test_bad_input_is_a_value_error_naming_it():
