@@ -61,8 +61,10 @@ std::vector<std::size_t> SweepProblemIndices(std::size_t problems, int sweep_pro
 
 std::optional<int> BackendReturnCode(const SolveResult& result) {
   const double info = result.GetDetail("siconos_info");
-  if (std::isnan(info)) return std::nullopt;
-  return static_cast<int>(info);
+  if (!std::isnan(info)) return static_cast<int>(info);
+  const double success = result.GetDetail("peer_success");  // Bullet's and DART's bool, as a code: 0 = success
+  if (!std::isnan(success)) return success != 0.0 ? 0 : 1;
+  return std::nullopt;
 }
 
 void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& options, const ReplayOptions& replay,

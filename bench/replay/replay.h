@@ -107,8 +107,9 @@ inline constexpr double kSweepTolerances[] = {1e-3, 1e-6, 1e-9, 1e-12};
 // whole suite (its sizes and families) rather than its first problems. Empty when sweep_problems ≤ 0.
 std::vector<std::size_t> SweepProblemIndices(std::size_t problems, int sweep_problems);
 
-// The external library's own return code stored in result's details (detail "siconos_info" of the siconos-*
-// backends, box and MCP), or empty when the result has none.
+// The external library's own claim stored in result's details, as a code with 0 = success: detail "siconos_info"
+// of the siconos-* backends (box and MCP), or "peer_success" of bullet-* and dart-* (1 → 0, 0 → 1); empty when the
+// result has neither (our backends, or a peer that was never called).
 std::optional<int> BackendReturnCode(const SolveResult& result);
 
 // The backends by name (empty: every registered one) with options.settings applied, in the order of *names (filled

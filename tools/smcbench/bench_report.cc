@@ -592,8 +592,8 @@ void WriteStatusesAndClaims(std::ostream& md, const SuiteResults& suite) {
   }
   md << "**Statuses returned and the audit of claims**: how each backend's answers ended in its own words, and "
         "whether its success flag was right — a claim is right when it says solved exactly when our verdict is "
-        "solved. The flag is Siconos' own return code (`info` = 0, column `backend_code` of results.csv) where the "
-        "record has one, before our base layer re-judged the answer (with the polish on, a false failure can be a "
+        "solved. The flag is the external library's own (Siconos' `info` = 0, Bullet's and DART's success flag; column "
+        "`backend_code` of results.csv, 0 = success) where the record has one, before our base layer re-judged the answer (with the polish on, a false failure can be a "
         "short stop our polish finished); else the status.\n\n| backend | ";
   for (SolveStatus s : met) md << "`" << ToString(s) << "` | ";
   md << "flag right | false success (said solved, is not) | false failure (said failed, is solved) | flag from the "

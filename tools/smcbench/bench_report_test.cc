@@ -278,6 +278,18 @@ TEST(ReportAudit, OwnSuccessFlagAgainstTheVerdict) {
   EXPECT_THAT(md, HasSubstr("| ours | 2 | 1 | 0 | 1 | 0 | 3/4 (75%) | **1** | 0 | 0/4 |\n"));
 }
 
+// The library's own claim as a code, 0 = success: Siconos' info as it is, Bullet's and DART's flag 1 → 0, 0 → 1.
+TEST(ReportAudit, BackendReturnCodeReadsSiconosInfoAndThePeersFlag) {
+  SolveResult siconos, peer_yes, peer_no, ours;
+  siconos.SetDetail("siconos_info", 2.0);
+  peer_yes.SetDetail("peer_success", 1.0);
+  peer_no.SetDetail("peer_success", 0.0);
+  EXPECT_EQ(BackendReturnCode(siconos), std::optional<int>(2));
+  EXPECT_EQ(BackendReturnCode(peer_yes), std::optional<int>(0));
+  EXPECT_EQ(BackendReturnCode(peer_no), std::optional<int>(1));
+  EXPECT_EQ(BackendReturnCode(ours), std::nullopt);
+}
+
 // The return code survives results.json and results.csv (empty when there is none).
 TEST(ReportAudit, ReturnCodeRoundTripsThroughTheResultFiles) {
   ReplayRecord with = Rec("p1", "siconos-x", Verdict::kSolved, 1e-6);
