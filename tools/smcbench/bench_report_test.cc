@@ -76,7 +76,7 @@ std::string ReportOf(const SuiteResults& suite, const std::string& name, bool pl
 }
 
 // Three problems: lemke solves all, psor two (an iteration limit on the third), enum refuses all three on size
-// (the newcomer's case of issue 27: a 20×20 suite and enum's size limit).
+// (a user's own suite of 20×20 problems meets enum's size limit this way).
 SuiteResults SizeLimitedSuite() {
   SuiteResults s;
   s.suite = "mine";
