@@ -37,7 +37,7 @@ BoxMLCP SmallRelay() {
   return GenerateProblem(g).problem;
 }
 
-TEST(PeerIsolation, RepeatedSolvesInTheWorkerDoNotAllocateInThisProcess) {
+TEST(IsolationPolicy, RepeatedSolvesInTheWorkerDoNotAllocateInThisProcess) {
   if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";
   const BoxMLCP problem = SmallRelay();
   for (const std::string& name : PeerNames()) {
@@ -56,7 +56,7 @@ TEST(PeerIsolation, RepeatedSolvesInTheWorkerDoNotAllocateInThisProcess) {
   }
 }
 
-TEST(PeerIsolation, InProcessSolvesAllocateNoMoreThanTheLibraryDoesItself) {
+TEST(IsolationPolicy, InProcessSolvesAllocateNoMoreThanTheLibraryDoesItself) {
   if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";
   const BoxMLCP problem = SmallRelay();
   for (const std::string& name : PeerNames()) {

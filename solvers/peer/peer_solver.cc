@@ -68,18 +68,6 @@ bool PeerOptions::IsValid(std::string* why) const {
   return true;
 }
 
-std::string_view ToString(PeerIsolation isolation) {
-  switch (isolation) {
-    case PeerIsolation::kNever:
-      return "never";
-    case PeerIsolation::kFirst:
-      return "first";
-    case PeerIsolation::kAlways:
-      return "always";
-  }
-  return "?";
-}
-
 PeerBoxSolver::PeerBoxSolver(Shape shape, const PeerOptions& options) : BackendWithOptions(options), shape_(shape) {}
 
 PeerBoxSolver::~PeerBoxSolver() {
@@ -88,9 +76,9 @@ PeerBoxSolver::~PeerBoxSolver() {
 
 void PeerBoxSolver::BindOptions(OptionBinder* binder) {
   binder->Add("isolate", &options_.isolate,
-              {{"first", static_cast<int>(PeerIsolation::kFirst)},
-               {"always", static_cast<int>(PeerIsolation::kAlways)},
-               {"never", static_cast<int>(PeerIsolation::kNever)}},
+              {{"first", static_cast<int>(IsolationPolicy::kFirst)},
+               {"always", static_cast<int>(IsolationPolicy::kAlways)},
+               {"never", static_cast<int>(IsolationPolicy::kNever)}},
               "where the library runs: first (default: a problem's first solve in this backend's worker process, "
               "later solves of the same problem in process once it came back), always (in the worker), never (in "
               "process, no protection)");
@@ -202,17 +190,17 @@ std::array<ProbedProblems::Part, 6> PeerBoxSolver::RequestParts() const {
 bool PeerBoxSolver::RunWherePolicySays(const SolverOptions& options, std::chrono::steady_clock::time_point start,
                                        SolveResult* result) {
   using Clock = std::chrono::steady_clock;
-  const PeerIsolation isolation = options_.isolate;
+  const IsolationPolicy isolation = options_.isolate;
   const double limit =
       std::isfinite(options.time_limit_seconds) ? options.time_limit_seconds : options_.default_time_limit;
   const ProbedProblems::Outcome* probed = nullptr;
-  if (isolation == PeerIsolation::kFirst) {
+  if (isolation == IsolationPolicy::kFirst) {
     probed_.set_limits(options_.remembered_problems,
                        static_cast<std::size_t>(options_.remembered_megabytes * 1024.0 * 1024.0));
     probed = probed_.Find(RequestParts());
   }
-  const bool probe = isolation == PeerIsolation::kFirst && probed == nullptr;
-  const bool in_process = isolation == PeerIsolation::kNever || (probed != nullptr && probed->seconds <= limit);
+  const bool probe = isolation == IsolationPolicy::kFirst && probed == nullptr;
+  const bool in_process = isolation == IsolationPolicy::kNever || (probed != nullptr && probed->seconds <= limit);
   result->SetDetail("in_process", in_process ? 1.0 : 0.0);
   if (in_process) {
     RunInProcess();

@@ -33,17 +33,8 @@
 
 namespace smcbench {
 
-// Where a peer backend runs its library (PeerOptions::isolate).
-enum class PeerIsolation {
-  kNever,   // always in this process: no crash or hang protection
-  kFirst,   // a problem's first solve in the worker (the probe); once it came back normally, in this process
-  kAlways,  // every solve in the worker
-};
-// "never", "first", "always".
-std::string_view ToString(PeerIsolation isolation);
-
 struct PeerOptions {
-  PeerIsolation isolate = PeerIsolation::kFirst;
+  IsolationPolicy isolate = IsolationPolicy::kFirst;
   // kFirst: how many probed problems are remembered, and how much memory their copies may take (8·(N² + 4N) bytes).
   int remembered_problems = 32;
   double remembered_megabytes = 64.0;

@@ -18,6 +18,19 @@
 #include <thread>
 
 namespace smcbench {
+
+std::string_view ToString(IsolationPolicy isolation) {
+  switch (isolation) {
+    case IsolationPolicy::kNever:
+      return "never";
+    case IsolationPolicy::kFirst:
+      return "first";
+    case IsolationPolicy::kAlways:
+      return "always";
+  }
+  return "?";
+}
+
 namespace {
 
 // The worker's end of the socket is moved here; every descriptor above it is closed.

@@ -21,8 +21,18 @@
 #include <cstddef>
 #include <initializer_list>
 #include <string>
+#include <string_view>
 
 namespace smcbench {
+
+// Where an external adapter (siconos-*, bullet-*, dart-*) runs the other library's code (its `isolate` option).
+enum class IsolationPolicy {
+  kNever,   // always in this process: fastest, no crash or hang protection
+  kFirst,   // a problem's first solve in the worker (the probe); once it came back normally, in this process
+  kAlways,  // every solve in the worker
+};
+// "never", "first", "always".
+std::string_view ToString(IsolationPolicy isolation);
 
 class ChildProcess {
  public:

@@ -499,18 +499,6 @@ bool SiconosOptions::IsValid(std::string* why) const {
   return true;
 }
 
-std::string_view ToString(SiconosIsolation isolation) {
-  switch (isolation) {
-    case SiconosIsolation::kNever:
-      return "never";
-    case SiconosIsolation::kFirst:
-      return "first";
-    case SiconosIsolation::kAlways:
-      return "always";
-  }
-  return "?";
-}
-
 SiconosSolver::SiconosSolver(SiconosMethod method) : SiconosSolver(method, SiconosOptions{}) {}
 
 SiconosSolver::SiconosSolver(SiconosMethod method, const SiconosOptions& options)
@@ -527,9 +515,9 @@ int SiconosSolver::SiconosId(SiconosMethod method) { return SpecOf(method).sicon
 
 void SiconosSolver::BindOptions(OptionBinder* binder) {
   binder->Add("isolate", &options_.isolate,
-              {{"first", static_cast<int>(SiconosIsolation::kFirst)},
-               {"always", static_cast<int>(SiconosIsolation::kAlways)},
-               {"never", static_cast<int>(SiconosIsolation::kNever)}},
+              {{"first", static_cast<int>(IsolationPolicy::kFirst)},
+               {"always", static_cast<int>(IsolationPolicy::kAlways)},
+               {"never", static_cast<int>(IsolationPolicy::kNever)}},
               {"never", "always"},  // the option's old boolean spelling: 0 isolated no solve, 1 every solve
               "where Siconos runs: first (default: a problem's first solve in this backend's worker process, "
               "later solves of the same problem in process once it came back), always (in the worker: "
@@ -744,18 +732,18 @@ void SiconosSolver::PrepareRequest(const BoxMLCP& problem, const SolverOptions& 
 bool SiconosSolver::RunWherePolicySays(const SolverOptions& options, std::chrono::steady_clock::time_point start,
                                        Outcome* outcome, SolveResult* result) {
   using Clock = std::chrono::steady_clock;
-  const SiconosIsolation isolation = options_.isolate;
+  const IsolationPolicy isolation = options_.isolate;
   const double limit =
       std::isfinite(options.time_limit_seconds) ? options.time_limit_seconds : options_.default_time_limit;
   const ProbedProblems::Outcome* probed = nullptr;
-  if (isolation == SiconosIsolation::kFirst) {
+  if (isolation == IsolationPolicy::kFirst) {
     probed_.set_limits(options_.remembered_problems,
                        static_cast<std::size_t>(options_.remembered_megabytes * 1024.0 * 1024.0));
     probed = probed_.Find(RequestParts(*outcome));
   }
-  const bool probe = isolation == SiconosIsolation::kFirst && probed == nullptr;
+  const bool probe = isolation == IsolationPolicy::kFirst && probed == nullptr;
   const bool in_process =
-      isolation == SiconosIsolation::kNever || (probed != nullptr && probed->seconds <= limit);
+      isolation == IsolationPolicy::kNever || (probed != nullptr && probed->seconds <= limit);
   result->SetDetail("in_process", in_process ? 1.0 : 0.0);
   if (in_process) {
     // What to silence: the C streams always (free of system calls, and what Siconos prints may depend on its state,

@@ -20,7 +20,7 @@
 // kSolved; info = 0 is only a claim, which the base class checks with our merit function (kInaccurate if it
 // fails). Siconos' own code is recorded as detail "siconos_info".
 //
-// Isolation (option isolate, SiconosIsolation; default kFirst). Siconos aborts or hangs on some inputs, so a call
+// Isolation (option isolate, IsolationPolicy; default kFirst). Siconos aborts or hangs on some inputs, so a call
 // can run in this backend's own worker process (child_process.h): a crash becomes kNumericalFailure naming the
 // signal, a solve that outlasts the time limit (options.time_limit_seconds, else default_time_limit) is killed and
 // reported as kTimeLimit, console output is discarded. That costs a socket round trip (≈ 7 µs) per solve, far more
@@ -77,18 +77,10 @@ enum class SiconosMethod : int {
 };
 inline constexpr int kNumSiconosMethods = 12;
 
-// Where a backend runs Siconos (SiconosOptions::isolate).
-enum class SiconosIsolation {
-  kNever,   // always in this process: fastest, no crash or hang protection
-  kFirst,   // a problem's first solve in the worker (the probe); once it came back normally, in this process
-  kAlways,  // every solve in the worker (the behaviour before the probe policy)
-};
-// "never", "first", "always".
-std::string_view ToString(SiconosIsolation isolation);
 
 struct SiconosOptions {
-  // Where Siconos runs: see SiconosIsolation and the header comment.
-  SiconosIsolation isolate = SiconosIsolation::kFirst;
+  // Where Siconos runs: see IsolationPolicy and the header comment.
+  IsolationPolicy isolate = IsolationPolicy::kFirst;
   // kFirst: how many probed problems are remembered (the most recent ones), and how much memory their copies may
   // take (a problem is M, q, bounds and start point of the rewritten form: 8·(N² + 4N) bytes). A problem that is
   // not remembered, or no longer, is probed again. 0 problems: every solve is a probe (like kAlways).

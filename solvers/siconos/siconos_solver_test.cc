@@ -349,7 +349,7 @@ TEST(SiconosNoFalseInfeasible, NoAdapterClaimsInfeasibleEvenWithoutASolution) {
 
 // --- Isolation ---
 
-TEST(SiconosIsolation, AHangIsKilledAtTheTimeLimitAndTheNextSolveWorks) {
+TEST(IsolationPolicy, AHangIsKilledAtTheTimeLimitAndTheNextSolveWorks) {
   // Enumeration of an infeasible 22-variable LCP visits 4 million configurations: far beyond 0.3 s.
   auto solver = Make("siconos-mlcp-enum", {{"max_enumerated", "22"}});
   const BoxMLCP hard = BoxMLCP::LCP(DenseMatrix::Zero(22, 22), Vector::Constant(22, -1.0), "lcp-22-infeasible");
@@ -370,7 +370,7 @@ TEST(SiconosIsolation, AHangIsKilledAtTheTimeLimitAndTheNextSolveWorks) {
   EXPECT_GT(siconos->worker_pid(), 0);
 }
 
-TEST(SiconosIsolation, ACrashIsAStatusNamingTheSignal) {
+TEST(IsolationPolicy, ACrashIsAStatusNamingTheSignal) {
   // mlcp_lcp_lemke on an MLCP without equality rows: LAPACK rejects the empty block, then an assertion aborts.
   auto solver = Make("siconos-mlcp-lemke", {{"allow_known_crashes", "1"}});
   const BoxMLCP lcp = BoxMLCP::LCP(DenseMatrix::Identity(2, 2) * 2.0, Vector::Constant(2, -1.0));
@@ -391,7 +391,7 @@ TEST(SiconosIsolation, ACrashIsAStatusNamingTheSignal) {
   EXPECT_TRUE(next.solved()) << next.message;
 }
 
-TEST(SiconosIsolation, InProcessGivesTheSameAnswersAndStaysSilent) {
+TEST(IsolationPolicy, InProcessGivesTheSameAnswersAndStaysSilent) {
   for (const std::string& name : SiconosNames()) {
     SCOPED_TRACE(name);
     auto isolated = Make(name, {{"isolate", "1"}});  // the old spelling: 1 = always in the worker
@@ -428,7 +428,7 @@ TEST(SiconosIsolation, InProcessGivesTheSameAnswersAndStaysSilent) {
   EXPECT_EQ(printed, "");
 }
 
-TEST(SiconosIsolation, RepeatedIsolatedSolvesDoNotAllocateInThisProcess) {
+TEST(IsolationPolicy, RepeatedIsolatedSolvesDoNotAllocateInThisProcess) {
   if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";
   for (const char* name : {"siconos-relay-avi", "siconos-lcp-lemke", "siconos-mlcp-direct-enum"}) {
     auto solver = Make(name, {{"isolate", "1"}});  // every solve in the worker
@@ -632,29 +632,29 @@ TEST(SiconosProbe, InProcessDirectSolversOfSeveralInstancesEachSolveTheirOwnProb
 
 TEST(SiconosProbe, IsolationPolicyIsAnOptionWithTheOldSpelling) {
   SiconosSolver solver(SiconosMethod::kRelayLemke);
-  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kFirst);  // the default
+  EXPECT_EQ(solver.options().isolate, IsolationPolicy::kFirst);  // the default
   std::string error;
   ASSERT_TRUE(solver.SetOption("isolate", "0", &error)) << error;
-  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kNever);
+  EXPECT_EQ(solver.options().isolate, IsolationPolicy::kNever);
   ASSERT_TRUE(solver.SetOption("isolate", "1", &error)) << error;
-  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kAlways);
+  EXPECT_EQ(solver.options().isolate, IsolationPolicy::kAlways);
   ASSERT_TRUE(solver.SetOption("isolate", "never", &error)) << error;
-  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kNever);
+  EXPECT_EQ(solver.options().isolate, IsolationPolicy::kNever);
   ASSERT_TRUE(solver.SetOption("isolate", "first", &error)) << error;
-  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kFirst);
+  EXPECT_EQ(solver.options().isolate, IsolationPolicy::kFirst);
   EXPECT_FALSE(solver.SetOption("isolate", "2", &error)) << "named values, not codes";
   EXPECT_NE(error.find("isolate"), std::string::npos) << error;
   EXPECT_NE(error.find("first, always, never"), std::string::npos) << error;
-  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kFirst);  // a rejected value is not kept
+  EXPECT_EQ(solver.options().isolate, IsolationPolicy::kFirst);  // a rejected value is not kept
   EXPECT_FALSE(solver.SetOption("remembered_problems", "-1", &error));
   EXPECT_NE(error.find("remembered_problems"), std::string::npos) << error;
   SiconosOptions always;
-  always.isolate = SiconosIsolation::kAlways;
+  always.isolate = IsolationPolicy::kAlways;
   solver.set_options(always);
-  EXPECT_EQ(solver.options().isolate, SiconosIsolation::kAlways);
+  EXPECT_EQ(solver.options().isolate, IsolationPolicy::kAlways);
   const SolveResult r = solver.Solve(BoxMLCP::Relay(DenseMatrix::Identity(1, 1), Vector::Constant(1, 0.5)));
   EXPECT_EQ(r.GetDetail("in_process"), 0.0);
-  solver.mutable_options().isolate = SiconosIsolation::kNever;  // the in-place accessor every backend has
+  solver.mutable_options().isolate = IsolationPolicy::kNever;  // the in-place accessor every backend has
   const SolveResult here = solver.Solve(BoxMLCP::Relay(DenseMatrix::Identity(1, 1), Vector::Constant(1, 0.5)));
   EXPECT_EQ(here.GetDetail("in_process"), 1.0);
   EXPECT_TRUE(here.solved()) << here.message;
