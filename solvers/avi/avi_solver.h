@@ -1,0 +1,35 @@
+// Solving an AVI with any box backend, through the exact reduction of avi_reduction.h: the backend solves the
+// normalized reduced box-MLCP z = (λ, μ̃, ν̃) with the usual base-class work (equilibration, polish, the merit
+// function), and the answer is mapped back and judged by the AVI verdict (avi_verdict.h).
+#pragma once
+
+#include <string>
+#include <string_view>
+
+#include "solvers/avi/affine_vi.h"
+#include "solvers/avi/avi_reduction.h"
+#include "solvers/avi/avi_verdict.h"
+#include "solvers/core/result.h"
+#include "solvers/core/solver.h"
+
+namespace smcbench {
+
+struct AviResult {
+  SolveStatus status = SolveStatus::kNotRun;  // the backend's status on the reduction (its refusals included)
+  std::string message;                        // why, for anything but solved
+  std::string_view solver;                    // the backend's registered name
+  AviSolution solution;                       // λ, μ, ν as stated, mapped back from the backend's z
+  int iterations = 0;
+  double solve_seconds = 0.0;
+  SolveResult reduced;      // the backend's whole result on the normalized reduction (z, w, residuals, details)
+  AviJudgement judgement;   // the AVI verdict (expected outcome from ExpectedAviOutcome, the given reference)
+  bool solved() const { return status == SolveStatus::kSolved; }
+};
+
+// Solves avi with solver. options.warm_start may be empty, λ alone (size n: multipliers start at 0) or (λ, μ, ν)
+// as stated (size n + m + p); any other size reaches the backend, which reports it (kInvalidOptions). Never throws
+// for a valid AVI (as Solver::Solve). Allocates: it builds the reduction on every call.
+AviResult SolveAvi(const AffineVI& avi, Solver& solver, const SolverOptions& options = {},
+                   const AviReference* reference = nullptr);
+
+}  // namespace smcbench

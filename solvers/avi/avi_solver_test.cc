@@ -1,0 +1,236 @@
+// SolveAvi over every registered box backend, and the AVI verdict: planted strictly monotone AVIs (λ unique, the
+// forward error judged against a certified reference), a singular M whose λ is not unique (residual rule alone),
+// the verdict's invariance under scaling (M, q) and the rows of (H, K), an AVI without a solution, warm starts.
+#include "solvers/avi/avi_solver.h"
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include <cstdio>
+#include <memory>
+#include <string>
+
+#include "solvers/avi/planted_avi_test_util.h"
+#include "solvers/registry/registry.h"
+
+namespace smcbench {
+namespace {
+
+DenseMatrix Mat(std::initializer_list<std::initializer_list<double>> rows) {
+  DenseMatrix M(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.begin()->size()));
+  int i = 0;
+  for (const auto& row : rows) {
+    int j = 0;
+    for (double v : row) M(i, j++) = v;
+    ++i;
+  }
+  return M;
+}
+
+Vector Vec(std::initializer_list<double> values) {
+  Vector v(static_cast<Eigen::Index>(values.size()));
+  int i = 0;
+  for (double x : values) v[i++] = x;
+  return v;
+}
+
+// Backends that solve every reduction of a strictly monotone AVI here (exact pivoting on a positive semidefinite
+// reduced matrix; the exhaustive enumeration): the others may refuse or fail, never answer wrongly.
+const char* const kSolvesMonotoneAvis[] = {"lemke", "enum"};
+
+bool MustSolve(std::string_view name) {
+  for (const char* n : kSolvesMonotoneAvis) {
+    if (name == n) return true;
+  }
+  return false;
+}
+
+TEST(SolveAvi, EveryBoxBackendOnPlantedAvis) {
+  std::vector<PlantedAvi> problems;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) problems.push_back(MakePlantedAvi(4, 3, 2, 1, seed));
+  problems.push_back(MakePlantedAvi(3, 5, 3, 0, 11));  // a vertex of P: three active rows, no equality
+  std::vector<AviReference> references;
+  for (const PlantedAvi& p : problems) {
+    references.push_back(CertifyAvi(p.avi, {p.solution}));
+    ASSERT_TRUE(references.back().verified()) << p.avi.name();
+    ASSERT_TRUE(references.back().lambda_unique) << p.avi.name();
+  }
+  for (const std::string_view name : SolverNames()) {
+    const std::unique_ptr<Solver> solver = CreateSolver(name);
+    if (!solver->info().box) continue;
+    int solved = 0;
+    std::string first_failure;
+    for (std::size_t k = 0; k < problems.size(); ++k) {
+      const AviResult r = SolveAvi(problems[k].avi, *solver, {}, &references[k]);
+      EXPECT_FALSE(IsWrong(r.judgement.verdict))
+          << name << " on " << problems[k].avi.name() << ": " << ToString(r.judgement.verdict);
+      EXPECT_EQ(r.solver, name);
+      if (r.judgement.verdict == Verdict::kSolved) {
+        ++solved;
+        EXPECT_TRUE(r.judgement.forward_error_applicable);
+        EXPECT_LE(r.judgement.forward_error, r.judgement.forward_allowance);
+      } else {
+        EXPECT_FALSE(r.solved()) << name;  // a status other than solved, with its message
+        EXPECT_FALSE(r.message.empty()) << name;
+      }
+      if (r.judgement.verdict != Verdict::kSolved && first_failure.empty()) {
+        first_failure = std::string(ToString(r.status)) + ": " + r.message.substr(0, 80);
+      }
+      if (MustSolve(name)) {
+        EXPECT_EQ(r.judgement.verdict, Verdict::kSolved) << name << ": " << r.message;
+      }
+    }
+    std::printf("%-24s solved %d of %zu planted AVIs %s\n", std::string(name).c_str(), solved, problems.size(),
+                first_failure.c_str());
+  }
+}
+
+TEST(SolveAvi, CertifiedReferenceIsThePlantedSolution) {
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    const PlantedAvi planted = MakePlantedAvi(3, 2, 1, 1, seed);
+    // From the cold point alone (no candidate): the certifier's own search finds it.
+    const AviReference reference = CertifyAvi(planted.avi, {});
+    ASSERT_TRUE(reference.verified()) << planted.avi.name();
+    EXPECT_EQ(reference.strictly_monotone, MatrixClassAnswer::kYes);
+    EXPECT_TRUE(reference.lambda_unique);
+    EXPECT_LE((reference.solution.lambda - planted.solution.lambda).cwiseAbs().maxCoeff(), 1e-14);
+    EXPECT_LE((reference.solution.mu - planted.solution.mu).cwiseAbs().maxCoeff(), 1e-13);
+    // Judged against itself: solved with zero forward error; a λ moved by 1e-3 with its multipliers: inaccurate
+    // or wrongly claimed, never solved.
+    const AviJudgement self =
+        JudgeAvi(planted.avi, ExpectedOutcome::kSolvable, &reference, SolveStatus::kSolved, reference.solution, 1e-10);
+    EXPECT_EQ(self.verdict, Verdict::kSolved);
+    EXPECT_EQ(self.forward_error, 0.0);
+    AviSolution moved = reference.solution;
+    moved.lambda[0] += 1e-3;
+    const AviJudgement wrong =
+        JudgeAvi(planted.avi, ExpectedOutcome::kSolvable, &reference, SolveStatus::kSolved, moved, 1e-10);
+    EXPECT_TRUE(IsWrong(wrong.verdict)) << ToString(wrong.verdict);
+  }
+}
+
+// M = diag(1, 0) on the square [−1, 1]², q = (0.5, 0): λ₁ = −0.5, and every λ₂ ∈ [−1, 1] solves it (F₂ ≡ 0), with
+// μ = 0. λ is not unique, so the forward error does not apply: the residual rule alone decides.
+TEST(SolveAvi, SingularMatrixJudgedByTheResidualAlone) {
+  const AffineVI avi(Mat({{1, 0}, {0, 0}}), Vec({0.5, 0}), Mat({{1, 0}, {-1, 0}, {0, 1}, {0, -1}}),
+                     Vec({-1, -1, -1, -1}), "segment-of-solutions");
+  const AviReference reference = CertifyAvi(avi, {AviSolution{Vec({-0.5, 0.3}), Vector::Zero(4), {}}});
+  ASSERT_TRUE(reference.verified());
+  EXPECT_NE(reference.strictly_monotone, MatrixClassAnswer::kYes);
+  EXPECT_FALSE(reference.lambda_unique);
+  for (const double t : {-1.0, -0.2, 0.3, 1.0}) {
+    const AviJudgement j = JudgeAvi(avi, ExpectedOutcome::kSolvable, &reference, SolveStatus::kSolved,
+                                    AviSolution{Vec({-0.5, t}), Vector::Zero(4), {}}, 1e-10);
+    EXPECT_EQ(j.verdict, Verdict::kSolved) << t;
+    EXPECT_FALSE(j.forward_error_applicable);
+    EXPECT_TRUE(std::isnan(j.forward_error));
+  }
+  // A λ₁ off by 1e-4: the residual sees it.
+  const AviJudgement off = JudgeAvi(avi, ExpectedOutcome::kSolvable, &reference, SolveStatus::kSolved,
+                                    AviSolution{Vec({-0.5001, 0.3}), Vector::Zero(4), {}}, 1e-10);
+  EXPECT_EQ(off.verdict, Verdict::kWronglyClaimed);
+  // Outside P (λ₂ = 1.5): primal infeasibility, wrongly claimed.
+  const AviJudgement outside = JudgeAvi(avi, ExpectedOutcome::kSolvable, &reference, SolveStatus::kSolved,
+                                        AviSolution{Vec({-0.5, 1.5}), Vector::Zero(4), {}}, 1e-10);
+  EXPECT_EQ(outside.verdict, Verdict::kWronglyClaimed);
+  EXPECT_NEAR(outside.primal_infeasibility, 0.5 / 2.5, 1e-15);
+  for (const char* name : kSolvesMonotoneAvis) {
+    const std::unique_ptr<Solver> solver = CreateSolver(name);
+    const AviResult r = SolveAvi(avi, *solver, {}, &reference);
+    EXPECT_EQ(r.judgement.verdict, Verdict::kSolved) << name << ": " << r.message;
+    EXPECT_NEAR(r.solution.lambda[0], -0.5, 1e-12) << name;
+  }
+}
+
+// Positive semidefinite singular M (rank 1, as the one-step matrix of a controller acting through one channel):
+// λ is not unique, but for a monotone AVI with symmetric M every solution has the same Mλ (Mλ is what moves the
+// state x, the quantity twisting's verdict is about). Every backend that solves it gives the same Mλ.
+TEST(SolveAvi, SingularMonotoneAvisAgreeOnMLambda) {
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const PlantedAvi planted = MakePlantedAvi(3, 3, 1, 0, seed, /*strictly_monotone=*/false);
+    const AviReference reference = CertifyAvi(planted.avi, {planted.solution});
+    ASSERT_TRUE(reference.verified()) << planted.avi.name();
+    const Vector m_lambda = planted.avi.M() * planted.solution.lambda;
+    for (const std::string_view name : SolverNames()) {
+      const std::unique_ptr<Solver> solver = CreateSolver(name);
+      if (!solver->info().box) continue;
+      const AviResult r = SolveAvi(planted.avi, *solver, {}, &reference);
+      EXPECT_FALSE(IsWrong(r.judgement.verdict)) << name << " on " << planted.avi.name();
+      if (!reference.lambda_unique) {
+        EXPECT_FALSE(r.judgement.forward_error_applicable);
+      }
+      if (r.judgement.verdict != Verdict::kSolved) continue;
+      EXPECT_LE((planted.avi.M() * r.solution.lambda - m_lambda).cwiseAbs().maxCoeff(), 1e-7)
+          << name << " on " << planted.avi.name();
+    }
+  }
+}
+
+// Scaling (M, q) by α and row i of (H, K) by β_i leaves P and the solutions λ unchanged, and the stated multipliers
+// become αμ_i/β_i: the verdict's residuals are the same to rounding.
+TEST(SolveAvi, VerdictIsScaleFree) {
+  const PlantedAvi planted = MakePlantedAvi(4, 3, 2, 1, 7);
+  const AffineVI& a = planted.avi;
+  AviSolution answer = planted.solution;
+  answer.lambda[1] += 1e-7;  // not a solution: a residual well above rounding
+  const AviJudgement base = JudgeAvi(a, ExpectedOutcome::kSolvable, nullptr, SolveStatus::kSolved, answer, 1e-10);
+  for (const double alpha : {1e-8, 1e6}) {
+    Vector beta(a.inequality_count());
+    for (int i = 0; i < beta.size(); ++i) beta[i] = i % 2 ? 1e-5 : 1e4;
+    const double gamma = 1e3;  // the equality row's scale
+    const AffineVI scaled(alpha * a.M(), alpha * a.q(), beta.asDiagonal() * a.H(), beta.cwiseProduct(a.K()),
+                          gamma * a.E(), gamma * a.f());
+    const AviSolution mapped{answer.lambda, alpha * answer.mu.cwiseQuotient(beta), alpha * answer.nu / gamma};
+    const AviJudgement j = JudgeAvi(scaled, ExpectedOutcome::kSolvable, nullptr, SolveStatus::kSolved, mapped, 1e-10);
+    EXPECT_EQ(j.verdict, base.verdict);
+    EXPECT_NEAR(j.residual.rel, base.residual.rel, 1e-6 * base.residual.rel) << alpha;
+    EXPECT_NEAR(j.residual.scaled, base.residual.scaled, 1e-6 * base.residual.scaled) << alpha;
+    EXPECT_NEAR(j.primal_infeasibility, base.primal_infeasibility, 1e-12) << alpha;
+    // And lemke finds the same λ on the scaled problem.
+    const std::unique_ptr<Solver> lemke = CreateSolver("lemke");
+    const AviResult r = SolveAvi(scaled, *lemke);
+    EXPECT_EQ(r.judgement.verdict, Verdict::kSolved) << r.message;
+    EXPECT_LE((r.solution.lambda - planted.solution.lambda).cwiseAbs().maxCoeff(), 1e-9);
+  }
+  EXPECT_GT(base.residual.scaled, 1e-9);
+  EXPECT_EQ(base.verdict, Verdict::kWronglyClaimed);
+}
+
+// P = {λ ≥ 0} (unbounded), M = 0, q = −1: −1 + N_P(λ) never contains 0, so there is no solution. The expected
+// outcome is unknown (P unbounded): no backend may claim solved; enum's certified "infeasible" is correct when the
+// caller knows the AVI is infeasible.
+TEST(SolveAvi, NoSolutionIsNeverSolved) {
+  const AffineVI avi(Mat({{0}}), Vec({-1}), Mat({{1}}), Vec({0}), "ray");
+  EXPECT_EQ(avi.boundedness(), PolytopeBoundedness::kUnbounded);
+  EXPECT_EQ(ExpectedAviOutcome(avi), ExpectedOutcome::kUnknown);
+  for (const std::string_view name : SolverNames()) {
+    const std::unique_ptr<Solver> solver = CreateSolver(name);
+    if (!solver->info().box) continue;
+    const AviResult r = SolveAvi(avi, *solver);
+    EXPECT_FALSE(r.solved()) << name;
+    EXPECT_FALSE(IsWrong(r.judgement.verdict)) << name;
+    if (r.status == SolveStatus::kInfeasible) {
+      const AviJudgement j = JudgeAvi(avi, ExpectedOutcome::kInfeasible, nullptr, r.status, r.solution, 1e-10);
+      EXPECT_EQ(j.verdict, Verdict::kCorrectlyRefused) << name;
+    }
+  }
+}
+
+TEST(SolveAvi, WarmStartsOfLambdaOrOfEveryUnknown) {
+  const PlantedAvi planted = MakePlantedAvi(3, 2, 1, 1, 5);
+  const std::unique_ptr<Solver> solver = CreateSolver("newton");
+  const int total = planted.avi.size() + planted.avi.inequality_count() + planted.avi.equality_count();
+  SolverOptions options;
+  options.warm_start = planted.solution.lambda;
+  const AviResult from_lambda = SolveAvi(planted.avi, *solver, options);
+  EXPECT_NE(from_lambda.status, SolveStatus::kInvalidOptions) << from_lambda.message;
+  options.warm_start.resize(total);
+  options.warm_start << planted.solution.lambda, planted.solution.mu, planted.solution.nu;
+  const AviResult from_all = SolveAvi(planted.avi, *solver, options);
+  EXPECT_EQ(from_all.judgement.verdict, Verdict::kSolved) << from_all.message;
+  options.warm_start = Vector::Zero(total - 1);
+  EXPECT_EQ(SolveAvi(planted.avi, *solver, options).status, SolveStatus::kInvalidOptions);
+}
+
+}  // namespace
+}  // namespace smcbench

@@ -1,0 +1,45 @@
+// The polytope P = {λ : Hλ ≥ K, Eλ = f} of an affine variational inequality: a point of it (or the proof that the
+// linear program finds none) and whether it is bounded, both by a dense phase-1 simplex. Used once, when an
+// AffineVI is built; not on any per-step path.
+#pragma once
+
+#include <cstdint>
+#include <string_view>
+
+#include "solvers/core/types.h"
+
+namespace smcbench {
+
+// Whether P is bounded. Append-only, explicit values (a future file format may store it).
+enum class PolytopeBoundedness : std::uint8_t {
+  kNotDecided = 0,  // too many unknowns to test (kMaxBoundednessCheckSize)
+  kBounded = 1,     // no nonzero direction d with Hd ≥ 0, Ed = 0
+  kUnbounded = 2,   // such a direction exists (the AVI may then have no solution)
+};
+std::string_view ToString(PolytopeBoundedness value);  // "not decided", "bounded", "unbounded"
+
+// Boundedness costs 2n phase-1 simplex solves (one per ±e_j): above this many unknowns it is not decided.
+inline constexpr int kMaxBoundednessCheckSize = 100;
+
+// What the phase-1 simplex found. Rows are first divided by their largest coefficient (so the tolerances are in
+// units of λ); the infeasibility is max((K_i − H_iλ)⁺/h_i, |E_jλ − f_j|/e_j) at the point, recomputed from the data.
+struct PolytopePoint {
+  bool found = false;          // a point within the tolerance was found
+  Vector point;                // λ (size n) when found
+  double infeasibility = kInf; // at point, in units of λ after the row division
+  double phase1_objective = kInf;  // the simplex's optimal Σ artificials (> 0 with margin: P is empty)
+  int pivots = 0;
+  bool pivot_limit = false;    // stopped at the pivot budget (not a proof either way)
+};
+
+// Phase-1 simplex with Bland's rule on λ = λ⁺ − λ⁻, Hλ − s = K, Eλ = f, λ±, s ≥ 0, one artificial per row.
+// found when the recomputed infeasibility ≤ tolerance·(1 + ‖λ‖∞ + ‖K̃, f̃‖∞), K̃, f̃ the divided right-hand sides.
+// H is m×n (m may be 0), E p×n (p may be 0); every row must be nonzero (AffineVI checks it before calling).
+PolytopePoint FindPolytopePoint(const DenseMatrix& H, const Vector& K, const DenseMatrix& E, const Vector& f,
+                                double tolerance = 1e-9);
+
+// Bounded iff the recession cone {d : Hd ≥ 0, Ed = 0} is {0}: for each j and sign σ, FindPolytopePoint on it with
+// the extra row d_j = σ must find nothing. kNotDecided when n > kMaxBoundednessCheckSize.
+PolytopeBoundedness ClassifyPolytopeBoundedness(const DenseMatrix& H, const DenseMatrix& E);
+
+}  // namespace smcbench
