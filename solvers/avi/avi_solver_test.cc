@@ -234,3 +234,30 @@ TEST(SolveAvi, WarmStartsOfLambdaOrOfEveryUnknown) {
 
 }  // namespace
 }  // namespace smcbench
+
+namespace smcbench {
+namespace {
+
+// docs/avi.md's example, as printed there: the projection of c = (2, 3) onto implicit twisting's parallelogram
+// |λ₁| ≤ 1, |λ₂ − (h/2)λ₁| ≤ 1 (h = 0.1) is the AVI with M = I, q = −c. By hand: the vertex where λ₁ = 1 and
+// λ₂ − 0.05λ₁ = 1 meet, λ = (1, 1.05), and c − λ = (1, 1.95) = 1.0975·(1, 0) + 1.95·(−0.05, 1) is in its normal cone.
+TEST(SolveAvi, DocsExample) {
+  DenseMatrix H(4, 2);
+  H << 1, 0, -1, 0, -0.05, 1, 0.05, -1;  // rows of Hλ ≥ K
+  const AffineVI avi(DenseMatrix::Identity(2, 2), -Eigen::Vector2d(2, 3), H, Vector::Constant(4, -1.0),
+                     "twisting-projection");
+  std::unique_ptr<Solver> lemke = CreateSolver("lemke");
+  const AviResult r = SolveAvi(avi, *lemke);
+  // r.solution.lambda = (1, 1.05), r.solution.mu = (0, 1.0975, 0, 1.95), r.judgement.verdict = solved.
+  EXPECT_EQ(r.judgement.verdict, Verdict::kSolved);
+  EXPECT_NEAR(r.solution.lambda[0], 1.0, 1e-14);
+  EXPECT_NEAR(r.solution.lambda[1], 1.05, 1e-14);
+  EXPECT_NEAR(r.solution.mu[0], 0.0, 1e-14);
+  EXPECT_NEAR(r.solution.mu[1], 1.0975, 1e-14);
+  EXPECT_NEAR(r.solution.mu[2], 0.0, 1e-14);
+  EXPECT_NEAR(r.solution.mu[3], 1.95, 1e-14);
+  EXPECT_EQ(avi.boundedness(), PolytopeBoundedness::kBounded);
+}
+
+}  // namespace
+}  // namespace smcbench
