@@ -1,12 +1,135 @@
 #include "solvers/avi/avi_solver.h"
 
+#include <chrono>
+#include <string>
 #include <utility>
+#include <vector>
 
 namespace smcbench {
+
+namespace {
+
+// Rows within this distance of their bound (in units of λ, relative to 1 + ‖λ‖∞) may carry a multiplier.
+constexpr double kActiveRowTolerance = 1e-9;
+
+// Least squares for the multipliers of the rows in `active` (indices into H) and of every row of E.
+void SolveMultipliers(const AffineVI& avi, const std::vector<int>& active, const Vector& target, AviSolution* out) {
+  const int n = avi.size(), k = static_cast<int>(active.size()), p = avi.equality_count();
+  DenseMatrix A(n, k + p);
+  for (int c = 0; c < k; ++c) A.col(c) = avi.H().row(active[static_cast<std::size_t>(c)]).transpose();
+  if (p > 0) A.rightCols(p) = avi.E().transpose();
+  out->mu = Vector::Zero(avi.inequality_count());
+  out->nu = Vector::Zero(p);
+  if (k + p == 0) return;
+  const Vector x = A.colPivHouseholderQr().solve(target);
+  for (int c = 0; c < k; ++c) out->mu[active[static_cast<std::size_t>(c)]] = x[c];
+  out->nu = x.tail(p);
+}
+
+// The shared work after a DirectAviBackend: multipliers, the merit function of the normalized reduction at the
+// answer (into result's z, w and residuals), the rule for "solved".
+void ConcludeDirect(const AffineVI& avi, const AviReduction& reduction, const SolverOptions& options,
+                    AviSolution* solution, SolveResult* result) {
+  const int total = reduction.n + reduction.m + reduction.p;
+  if (solution->lambda.size() != avi.size() || !solution->lambda.allFinite()) {
+    if (result->status == SolveStatus::kSolved) {
+      result->status = SolveStatus::kNumericalFailure;
+      result->message = "the backend returned a λ of the wrong size or with non-finite entries";
+    }
+    return;
+  }
+  if (solution->mu.size() != avi.inequality_count() || solution->nu.size() != avi.equality_count()) {
+    *solution = AviMultipliersAt(avi, solution->lambda);
+  }
+  result->z = JoinReducedSolution(reduction, *solution);
+  result->w.resize(total);
+  const Residual r = reduction.problem.NaturalResidual(result->z, &result->w);
+  result->residual_abs = r.abs;
+  result->residual_rel = r.rel;
+  result->residual_scaled = r.scaled;
+  if (result->status == SolveStatus::kSolved && !PassesBoxMlcpTolerance(r, options.tolerance)) {
+    result->status = SolveStatus::kInaccurate;
+    result->message = "the backend reported success but the residual of the normalized reduction is " +
+                      std::to_string(r.rel) + " (relative), " + std::to_string(r.scaled) + " (scaled) > " +
+                      std::to_string(options.tolerance);
+  }
+}
+
+}  // namespace
+
+AviSolution AviMultipliersAt(const AffineVI& avi, const Vector& lambda) {
+  const int m = avi.inequality_count();
+  AviSolution out;
+  out.lambda = lambda;
+  const Vector target = avi.M() * lambda + avi.q();
+  const double threshold = kActiveRowTolerance * (1.0 + lambda.cwiseAbs().maxCoeff());
+  std::vector<int> active;
+  for (int i = 0; i < m; ++i) {
+    const double scale = avi.H().row(i).cwiseAbs().maxCoeff();
+    if ((avi.H().row(i).dot(lambda) - avi.K()[i]) / scale <= threshold) active.push_back(i);
+  }
+  SolveMultipliers(avi, active, target, &out);
+  const double mu_scale = 1.0 + (m ? out.mu.cwiseAbs().maxCoeff() : 0.0);
+  if (m == 0 || out.mu.minCoeff() >= -kActiveRowTolerance * mu_scale) {
+    out.mu = out.mu.cwiseMax(0.0);
+    return out;
+  }
+  // A nonnegative choice: μ_A ≥ 0 with H_Aᵀμ_A + Eᵀν = Mλ + q (ν = ν⁺ − ν⁻ through the free variables of the
+  // simplex), then least squares again on its support for full precision.
+  const int k = static_cast<int>(active.size()), p = avi.equality_count(), n = avi.size();
+  DenseMatrix G = DenseMatrix::Zero(k, k + p);  // μ_A ≥ 0 (ν unconstrained)
+  for (int c = 0; c < k; ++c) G(c, c) = 1.0;
+  DenseMatrix stationarity(n, k + p);
+  for (int c = 0; c < k; ++c) stationarity.col(c) = avi.H().row(active[static_cast<std::size_t>(c)]).transpose();
+  if (p > 0) stationarity.rightCols(p) = avi.E().transpose();
+  std::vector<int> rows;  // FindPolytopePoint needs nonzero rows
+  for (int j = 0; j < n; ++j) {
+    if (stationarity.row(j).cwiseAbs().maxCoeff() > 0.0) rows.push_back(j);
+  }
+  DenseMatrix E(static_cast<Eigen::Index>(rows.size()), k + p);
+  Vector f(static_cast<Eigen::Index>(rows.size()));
+  for (std::size_t r = 0; r < rows.size(); ++r) {
+    E.row(static_cast<Eigen::Index>(r)) = stationarity.row(rows[r]);
+    f[static_cast<Eigen::Index>(r)] = target[rows[r]];
+  }
+  const PolytopePoint point = FindPolytopePoint(G, Vector::Zero(k), E, f);
+  if (!point.found) return out;
+  std::vector<int> support;
+  for (int c = 0; c < k; ++c) {
+    if (point.point[c] > 0.0) support.push_back(active[static_cast<std::size_t>(c)]);
+  }
+  SolveMultipliers(avi, support, target, &out);
+  out.mu = out.mu.cwiseMax(0.0);
+  return out;
+}
 
 AviResult SolveAvi(const AffineVI& avi, Solver& solver, const SolverOptions& options, const AviReference* reference) {
   AviResult out;
   const AviReduction reduction = ReduceToBoxMlcp(avi, AviReductionScaling::kNormalized);
+  if (auto* direct = dynamic_cast<DirectAviBackend*>(&solver)) {
+    out.reduced.Reset();
+    out.reduced.solver = solver.info().name;
+    std::string why;
+    if (!options.IsValid(&why)) {
+      out.reduced.status = SolveStatus::kInvalidOptions;
+      out.reduced.message = why;
+    } else {
+      const auto start = std::chrono::steady_clock::now();
+      direct->SolveAviDirect(avi, options, &out.solution, &out.reduced);
+      ConcludeDirect(avi, reduction, options, &out.solution, &out.reduced);
+      if (options.measure_time) {
+        out.reduced.solve_seconds =
+            std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      }
+    }
+    out.status = out.reduced.status;
+    out.message = out.reduced.message;
+    out.solver = out.reduced.solver;
+    out.iterations = out.reduced.iterations;
+    out.solve_seconds = out.reduced.solve_seconds;
+    out.judgement = JudgeAvi(avi, ExpectedAviOutcome(avi), reference, out.status, out.solution, options.tolerance);
+    return out;
+  }
   const int n = reduction.n, total = n + reduction.m + reduction.p;
   SolverOptions reduced_options = options;
   if (options.warm_start.size() == n && total != n) {

@@ -26,7 +26,26 @@ struct AviResult {
   bool solved() const { return status == SolveStatus::kSolved; }
 };
 
-// Solves avi with solver. options.warm_start may be empty, λ alone (size n: multipliers start at 0) or (λ, μ, ν)
+// A backend that works on P directly (Cao–Ferris' pivoting on the polytope) rather than on the reduction. SolveAvi
+// calls it instead of Solver::Solve, then does the shared work itself: the multipliers when the backend gives none
+// (AviMultipliersAt), the residual and the rule for "solved" (a claim the verdict's residuals reject becomes
+// kInaccurate, as in the box base class), the timing.
+class DirectAviBackend {
+ public:
+  virtual ~DirectAviBackend() = default;
+  // Must set result->status (and message when not solved), result->iterations, and solution->lambda (size n);
+  // solution->mu and nu when the method has them (as stated), else left empty. options are valid.
+  virtual void SolveAviDirect(const AffineVI& avi, const SolverOptions& options, AviSolution* solution,
+                              SolveResult* result) = 0;
+};
+
+// Multipliers for a given λ: rows of (H, K) within 1e-9·(1 + ‖λ‖∞) of active (each row divided by its largest
+// coefficient) may carry μ_i ≥ 0, the others 0, and Hᵀμ + Eᵀν = Mλ + q is solved by least squares (column-pivoted
+// QR); when that gives a clearly negative μ_i (a degenerate vertex with several choices), a phase-1 simplex finds
+// a nonnegative one and the least squares is repeated on its support. Best effort: the verdict judges the result.
+AviSolution AviMultipliersAt(const AffineVI& avi, const Vector& lambda);
+
+// Solves avi with solver: through the reduction, or directly for a DirectAviBackend. options.warm_start may be empty, λ alone (size n: multipliers start at 0) or (λ, μ, ν)
 // as stated (size n + m + p); any other size reaches the backend, which reports it (kInvalidOptions). Never throws
 // for a valid AVI (as Solver::Solve). Allocates: it builds the reduction on every call.
 AviResult SolveAvi(const AffineVI& avi, Solver& solver, const SolverOptions& options = {},

@@ -261,3 +261,81 @@ TEST(SolveAvi, DocsExample) {
 
 }  // namespace
 }  // namespace smcbench
+
+namespace smcbench {
+namespace {
+
+// A backend on P directly, for the test of SolveAvi's direct path: it answers a fixed λ (no multipliers) with the
+// status it is given, as an external AVI code that returns λ alone would.
+class FixedAnswerAviBackend final : public Solver, public DirectAviBackend {
+ public:
+  FixedAnswerAviBackend(Vector lambda, SolveStatus status) : lambda_(std::move(lambda)), status_(status) {}
+  const SolverInfo& info() const override {
+    static const SolverInfo kInfo{"fixed-avi-answer", "returns a given λ", "a test", true, false, false, true};
+    return kInfo;
+  }
+  void SolveAviDirect(const AffineVI& /*avi*/, const SolverOptions& /*options*/, AviSolution* solution,
+                      SolveResult* result) override {
+    solution->lambda = lambda_;
+    solution->mu.resize(0);
+    solution->nu.resize(0);
+    result->status = status_;
+    result->iterations = 1;
+    if (status_ != SolveStatus::kSolved) result->message = "as told";
+  }
+
+ protected:
+  void DoSolve(const BoxMLCP& /*problem*/, const SolverOptions& /*options*/, SolveResult* result) override {
+    result->status = SolveStatus::kNotApplicable;
+    result->message = "AVIs only";
+  }
+
+ private:
+  Vector lambda_;
+  SolveStatus status_;
+};
+
+TEST(SolveAvi, DirectBackendGetsMultipliersAndTheRule) {
+  const PlantedAvi planted = MakePlantedAvi(4, 3, 2, 1, 21);
+  const AviReference reference = CertifyAvi(planted.avi, {planted.solution});
+  FixedAnswerAviBackend right(planted.solution.lambda, SolveStatus::kSolved);
+  const AviResult r = SolveAvi(planted.avi, right, {}, &reference);
+  EXPECT_EQ(r.status, SolveStatus::kSolved) << r.message;
+  EXPECT_EQ(r.judgement.verdict, Verdict::kSolved);
+  EXPECT_EQ(r.solver, "fixed-avi-answer");
+  EXPECT_LE((r.solution.mu - planted.solution.mu).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LE((r.solution.nu - planted.solution.nu).cwiseAbs().maxCoeff(), 1e-12);
+  EXPECT_LE(r.reduced.residual_scaled, 1e-14);
+  // A wrong λ claimed solved: the shared rule makes it inaccurate (a failure, not a wrong verdict).
+  Vector off = planted.solution.lambda;
+  off[0] += 1e-3;
+  FixedAnswerAviBackend wrong(off, SolveStatus::kSolved);
+  const AviResult w = SolveAvi(planted.avi, wrong, {}, &reference);
+  EXPECT_EQ(w.status, SolveStatus::kInaccurate);
+  EXPECT_THAT(w.message, ::testing::HasSubstr("reported success"));
+  EXPECT_EQ(w.judgement.verdict, Verdict::kFailed);
+  // A λ of the wrong size claimed solved: numerical failure.
+  FixedAnswerAviBackend short_answer(Vector::Zero(2), SolveStatus::kSolved);
+  EXPECT_EQ(SolveAvi(planted.avi, short_answer).status, SolveStatus::kNumericalFailure);
+  // The box path of such a backend is its own refusal.
+  EXPECT_EQ(right.Solve(ReduceToBoxMlcp(planted.avi).problem).status, SolveStatus::kNotApplicable);
+}
+
+// A degenerate vertex: λ = 0 with three active rows λ₁ ≥ 0, λ₂ ≥ 0, λ₁ − λ₂ ≥ 0 and Mλ + q = (1, 1). The
+// multipliers are not unique (μ = (1 − t, 1 + t, t), t ∈ [0, 1]); a least-squares basis can pick a negative one
+// (Eigen's column-pivoted QR gives t = −1 here), and AviMultipliersAt must return a nonnegative choice.
+TEST(AviMultipliersAt, NonnegativeAtADegenerateVertex) {
+  const AffineVI avi(DenseMatrix::Identity(2, 2), Vec({1, 1}), Mat({{1, 0}, {0, 1}, {1, -1}, {-1, 0}, {0, -1}}),
+                     Vec({0, 0, 0, -1, -1}));
+  const AviSolution s = AviMultipliersAt(avi, Vec({0, 0}));
+  ASSERT_EQ(s.mu.size(), 5);
+  EXPECT_GE(s.mu.minCoeff(), 0.0);
+  EXPECT_EQ(s.mu[3], 0.0);  // inactive rows carry none
+  EXPECT_EQ(s.mu[4], 0.0);
+  EXPECT_LE((avi.H().transpose() * s.mu - Vec({1, 1})).cwiseAbs().maxCoeff(), 1e-14);
+  EXPECT_EQ(JudgeAvi(avi, ExpectedOutcome::kSolvable, nullptr, SolveStatus::kSolved, s, 1e-10).verdict,
+            Verdict::kSolved);
+}
+
+}  // namespace
+}  // namespace smcbench
