@@ -26,6 +26,19 @@ void SolveMultipliers(const AffineVI& avi, const std::vector<int>& active, const
   out->nu = x.tail(p);
 }
 
+// The AVI's rule for "solved" (PassesAviTolerance) on a backend's claim: the box rule its Solve applied to the
+// reduction does not see λ leave its face by tol·‖μ̃‖∞ (avi_verdict.h, AviJudgement::complementarity).
+void ApplyAviRule(const AffineVI& avi, double tolerance, const AviSolution& solution, SolveResult* result) {
+  if (result->status != SolveStatus::kSolved) return;
+  const AviJudgement j = JudgeAvi(avi, ExpectedOutcome::kUnknown, nullptr, SolveStatus::kSolved, solution, tolerance);
+  if (PassesAviTolerance(j, tolerance)) return;
+  result->status = SolveStatus::kInaccurate;
+  result->message = "the backend reported success but the AVI residual is above the tolerance " +
+                    std::to_string(tolerance) + " (normalized reduction: " + std::to_string(j.residual.rel) +
+                    " relative, " + std::to_string(j.residual.scaled) + " scaled; complementarity in units of λ " +
+                    std::to_string(j.complementarity) + ")";
+}
+
 // The shared work after a DirectAviBackend: multipliers, the merit function of the normalized reduction at the
 // answer (into result's z, w and residuals), the rule for "solved".
 void ConcludeDirect(const AffineVI& avi, const AviReduction& reduction, const SolverOptions& options,
@@ -47,12 +60,7 @@ void ConcludeDirect(const AffineVI& avi, const AviReduction& reduction, const So
   result->residual_abs = r.abs;
   result->residual_rel = r.rel;
   result->residual_scaled = r.scaled;
-  if (result->status == SolveStatus::kSolved && !PassesBoxMlcpTolerance(r, options.tolerance)) {
-    result->status = SolveStatus::kInaccurate;
-    result->message = "the backend reported success but the residual of the normalized reduction is " +
-                      std::to_string(r.rel) + " (relative), " + std::to_string(r.scaled) + " (scaled) > " +
-                      std::to_string(options.tolerance);
-  }
+  ApplyAviRule(avi, options.tolerance, *solution, result);
 }
 
 }  // namespace
@@ -140,12 +148,13 @@ AviResult SolveAvi(const AffineVI& avi, Solver& solver, const SolverOptions& opt
         reduction, {w.head(n), w.segment(n, reduction.m), w.tail(reduction.p)});
   }
   solver.Solve(reduction.problem, reduced_options, &out.reduced);
+  if (out.reduced.z.size() == total) out.solution = SplitReducedSolution(reduction, out.reduced.z);
+  ApplyAviRule(avi, options.tolerance, out.solution, &out.reduced);
   out.status = out.reduced.status;
   out.message = out.reduced.message;
   out.solver = out.reduced.solver;
   out.iterations = out.reduced.iterations;
   out.solve_seconds = out.reduced.solve_seconds;
-  if (out.reduced.z.size() == total) out.solution = SplitReducedSolution(reduction, out.reduced.z);
   out.judgement = JudgeAvi(avi, ExpectedAviOutcome(avi), reference, out.status, out.solution, options.tolerance);
   return out;
 }

@@ -61,23 +61,28 @@ AviJudgement JudgeAvi(const AffineVI& avi, ExpectedOutcome expected, const AviRe
   const Judgement box = Judge(reduction.problem, expected, nullptr, status, z, tolerance);
   out.residual = box.residual;
   const Vector& lambda = answer.lambda;
-  double infeasibility = 0.0;
+  double infeasibility = 0.0, complementarity = 0.0;
   const int n = reduction.n, m = reduction.m, p = reduction.p;
   const DenseMatrix& reduced_matrix = reduction.problem.dense_matrix();
   const Vector& reduced_q = reduction.problem.q();
-  for (int i = 0; i < m; ++i) {  // row n + i of the reduction: H̃_iλ − K̃_i
-    infeasibility = std::max(infeasibility, -(reduced_matrix.row(n + i).head(n).dot(lambda) + reduced_q[n + i]));
+  for (int i = 0; i < m; ++i) {  // row n + i of the reduction: H̃_iλ − K̃_i, its multiplier z[n + i] = μ̃_i
+    const double slack = reduced_matrix.row(n + i).head(n).dot(lambda) + reduced_q[n + i];
+    infeasibility = std::max(infeasibility, -slack);
+    complementarity = std::max(complementarity, std::abs(std::min(z[n + i], slack)));
   }
   for (int j = 0; j < p; ++j) {
     const int row = n + m + j;
-    infeasibility = std::max(infeasibility, std::abs(reduced_matrix.row(row).head(n).dot(lambda) + reduced_q[row]));
+    const double violation = std::abs(reduced_matrix.row(row).head(n).dot(lambda) + reduced_q[row]);
+    infeasibility = std::max(infeasibility, violation);
+    complementarity = std::max(complementarity, violation);
   }
-  out.primal_infeasibility = std::isfinite(infeasibility) ? infeasibility / (1.0 + InfNorm(lambda)) : kInf;
+  const double scale = 1.0 + InfNorm(lambda);
+  const bool finite = std::isfinite(infeasibility) && std::isfinite(complementarity) && z.allFinite();
+  out.primal_infeasibility = finite ? infeasibility / scale : kInf;
+  out.complementarity = finite ? complementarity / scale : kInf;
   if (status == SolveStatus::kSolved) {
     out.verdict = box.verdict;
-    if (out.verdict == Verdict::kSolved && !(out.primal_infeasibility <= tolerance)) {
-      out.verdict = Verdict::kWronglyClaimed;
-    }
+    if (out.verdict == Verdict::kSolved && !PassesAviTolerance(out, tolerance)) out.verdict = Verdict::kWronglyClaimed;
   }
   if (reference != nullptr && reference->verified() && reference->lambda_unique) {
     const Vector& star = reference->solution.lambda;

@@ -44,6 +44,11 @@ struct AviJudgement {
   // max over rows of (K̃_i − H̃_iλ)⁺ and |Ẽ_jλ − f̃_j| (each row divided by its largest coefficient, so in units of
   // λ), relative to 1 + ‖λ‖∞.
   double primal_infeasibility = kInf;
+  // max over rows of |min(μ̃_i, H̃_iλ − K̃_i)| and |Ẽ_jλ − f̃_j|, relative to 1 + ‖λ‖∞: the complementarity rows of
+  // the residual in units of λ. Why besides `residual`: the multipliers grow like ‖q̃‖ (like 1/h when M = O(h), as
+  // in a time step), and a residual relative to 1 + ‖(λ, μ̃, ν̃)‖∞ would let λ leave its face by tol·‖μ̃‖∞.
+  // It bounds primal_infeasibility (for μ̃ ≥ 0).
+  double complementarity = kInf;
   // The forward error is judged only where λ is unique (AviReference::lambda_unique) and a reference verified:
   // when M is singular and λ is not unique (twisting: several λ give the same state x), the residual rule alone
   // decides and these stay NaN.
@@ -54,8 +59,8 @@ struct AviJudgement {
 };
 
 // The AVI verdict, with the meaning of Judge (verdict.h):
-//   solved:     Judge's residual rule (rel ≤ tol and scaled ≤ tol) on the normalized reduction at the answer, and
-//               primal_infeasibility ≤ tol; else wrongly claimed (also on an expected-infeasible AVI). Where the
+//   solved:     Judge's residual rule (rel ≤ tol and scaled ≤ tol) on the normalized reduction at the answer,
+//               complementarity ≤ tol and primal_infeasibility ≤ tol (PassesAviTolerance); else wrongly claimed (also on an expected-infeasible AVI). Where the
 //               forward error applies, ‖λ − λ*‖∞ ≤ forward_allowance, else inaccurate.
 //   infeasible: wrongly refused when the AVI is known solvable (expected solvable, or a verified reference),
 //               correctly refused when expected infeasible, else failed.
@@ -63,6 +68,13 @@ struct AviJudgement {
 // An answer of the wrong size has residual +∞ (so "solved" with it is wrongly claimed); empty μ or ν read as 0.
 AviJudgement JudgeAvi(const AffineVI& avi, ExpectedOutcome expected, const AviReference* reference,
                       SolveStatus status, const AviSolution& answer, double tolerance);
+
+// The residual part of the AVI rule: residual.rel, residual.scaled, complementarity and primal_infeasibility all
+// ≤ tolerance (NaN never passes). SolveAvi sets its status by it, JudgeAvi its verdict.
+inline bool PassesAviTolerance(const AviJudgement& j, double tolerance) {
+  return PassesBoxMlcpTolerance(j.residual, tolerance) && j.complementarity <= tolerance &&
+         j.primal_infeasibility <= tolerance;
+}
 
 // What a correct backend does: on a bounded P an AVI always has a solution (Hartman–Stampacchia): kSolvable; on an
 // unbounded or undecided P it may have none: kUnknown.
