@@ -15,7 +15,9 @@
 namespace smcbench {
 
 struct AviResult {
-  SolveStatus status = SolveStatus::kNotRun;  // the backend's status on the reduction (its refusals included)
+  // The backend's status on the reduction (its refusals included), except that a "solved" failing the AVI rule
+  // (PassesAviTolerance) is kInaccurate: status solved ⇒ the verdict's residual parts pass.
+  SolveStatus status = SolveStatus::kNotRun;
   std::string message;                        // why, for anything but solved
   std::string_view solver;                    // the backend's registered name
   AviSolution solution;                       // λ, μ, ν as stated, mapped back from the backend's z
