@@ -1,6 +1,7 @@
 #include "solvers/avi/avi_solver.h"
 
 #include <chrono>
+#include <cmath>
 #include <string>
 #include <utility>
 #include <vector>
@@ -157,6 +158,48 @@ AviResult SolveAvi(const AffineVI& avi, Solver& solver, const SolverOptions& opt
   out.solve_seconds = out.reduced.solve_seconds;
   out.judgement = JudgeAvi(avi, ExpectedAviOutcome(avi), reference, out.status, out.solution, options.tolerance);
   return out;
+}
+
+AviSession::AviSession(const AffineVI& avi, Solver& solver, const SolverOptions& options)
+    : reduction_(ReduceToBoxMlcp(avi, AviReductionScaling::kNormalized)),
+      solver_(&solver),
+      options_(options),
+      reduced_q_(reduction_.problem.q()) {
+  const int n = reduction_.n;
+  solution_.lambda.resize(n);
+  solution_.mu.resize(reduction_.m);
+  solution_.nu.resize(reduction_.p);
+}
+
+SolveStatus AviSession::Solve(const Eigen::Ref<const Vector>& q) {
+  const int n = reduction_.n, m = reduction_.m, p = reduction_.p;
+  if (q.size() != n) {
+    throw InvalidInputError("AviSession: q has size " + std::to_string(q.size()) + " but the AVI has n = " +
+                            std::to_string(n));
+  }
+  for (int j = 0; j < n; ++j) {
+    if (!std::isfinite(q[j])) {
+      throw InvalidInputError("AviSession: q[" + std::to_string(j) + "] is " + (std::isnan(q[j]) ? "NaN" : "infinite"));
+    }
+    reduced_q_[j] = q[j] / reduction_.sigma;  // a division, as ReduceToBoxMlcp: the same bits
+  }
+  reduction_.problem.set_q(reduced_q_);
+  solver_->Solve(reduction_.problem, options_, &result_);
+  if (result_.z.size() != n + m + p) return result_.status;
+  const Vector& z = result_.z;
+  solution_.lambda = z.head(n);
+  solution_.mu = reduction_.sigma * z.segment(n, m).cwiseQuotient(reduction_.inequality_scale);
+  solution_.nu = reduction_.sigma * z.tail(p).cwiseQuotient(reduction_.equality_scale);
+  if (result_.status == SolveStatus::kSolved) {
+    // The box rule holds (Solver::Solve); the AVI's own part, without allocating.
+    const AviFaceResidual face = ComputeAviFaceResidual(reduction_, z);
+    if (!(face.complementarity <= options_.tolerance && face.primal_infeasibility <= options_.tolerance)) {
+      result_.status = SolveStatus::kInaccurate;
+      result_.message = "the backend reported success but the complementarity in units of λ is " +
+                        std::to_string(face.complementarity) + " > " + std::to_string(options_.tolerance);
+    }
+  }
+  return result_.status;
 }
 
 }  // namespace smcbench

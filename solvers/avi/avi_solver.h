@@ -53,4 +53,30 @@ AviSolution AviMultipliersAt(const AffineVI& avi, const Vector& lambda);
 AviResult SolveAvi(const AffineVI& avi, Solver& solver, const SolverOptions& options = {},
                    const AviReference* reference = nullptr);
 
+// Prepare once, solve many (a time-stepper with a polytope law: M, H, K, E, f fixed, q new every step): the
+// normalized reduction is built once, and each Solve(q) replaces its q in place and calls the backend on it, so
+// repeated solves allocate nothing after the first (for a backend with info().allocation_free; pinned by
+// avi_test). The rule for "solved" is SolveAvi's; the verdict against a reference is JudgeAvi's business. Solves
+// through the reduction only (a DirectAviBackend is called by SolveAvi). The solver must outlive the session.
+class AviSession {
+ public:
+  AviSession(const AffineVI& avi, Solver& solver, const SolverOptions& options = {});
+
+  // Solves the AVI with q (size n, finite: InvalidInputError naming the index otherwise, as AffineVI::set_q).
+  SolveStatus Solve(const Eigen::Ref<const Vector>& q);
+  // The last answer as stated (λ, μ, ν), valid when the backend returned a z of the reduction's size.
+  const AviSolution& solution() const { return solution_; }
+  // The backend's result on the reduction (status, message, z = (λ, μ̃, ν̃), residuals, details).
+  const SolveResult& result() const { return result_; }
+  const AviReduction& reduction() const { return reduction_; }
+
+ private:
+  AviReduction reduction_;
+  Solver* solver_;
+  SolverOptions options_;
+  Vector reduced_q_;  // q̃ of the reduction, its tail (−K̃, −f̃) fixed
+  SolveResult result_;
+  AviSolution solution_;
+};
+
 }  // namespace smcbench

@@ -16,6 +16,7 @@
 
 #include "solvers/avi/planted_avi_test_util.h"
 #include "solvers/registry/registry.h"
+#include "tests/support/malloc_counter.h"
 
 namespace smcbench {
 namespace {
@@ -422,6 +423,57 @@ TEST(SolveAvi, ImplicitTwistingFromAFarStart) {
     EXPECT_LE(run.worst_relative, 1e-10) << name;
     EXPECT_LE(run.x.cwiseAbs().maxCoeff(), 1e-6) << name;
   }
+}
+
+}  // namespace
+}  // namespace smcbench
+
+namespace smcbench {
+namespace {
+
+// The prepared session answers as SolveAvi does (the same reduction, the same backend), step after step of the
+// implicit-twisting loop, and allocates nothing after the first solve for an allocation-free backend.
+TEST(AviSession, AnswersAsSolveAviWithoutAllocating) {
+  constexpr double kTs = 10e-3, kG = 10.0, kBeta = 0.1;
+  DenseMatrix M(2, 2);
+  M << kG * kTs * kTs / 2.0, kBeta * kG * kTs * kTs / 2.0, kG * kTs, kBeta * kG * kTs;
+  const DenseMatrix H = Mat({{1, 0}, {-kTs / 2.0, 1}, {-1, 0}, {kTs / 2.0, -1}});
+  for (const char* name : kSolvesMonotoneAvis) {
+    const std::unique_ptr<Solver> solver = CreateSolver(name);
+    SolverOptions options;
+    options.measure_time = false;
+    AffineVI avi(M, Vec({10.0, -5.0}), H, Vector::Constant(4, -1.0));
+    AviSession session(avi, *solver, options);
+    Vector q(2), x(2);
+    x << 10.0, -5.0;
+    for (int step = 0; step < 200; ++step) {
+      q << x[0] + kTs * x[1], x[1];
+      ASSERT_EQ(session.Solve(q), SolveStatus::kSolved) << name << " step " << step << ": " << session.result().message;
+      avi.set_q(q);
+      const AviResult reference = SolveAvi(avi, *solver, options);
+      ASSERT_EQ(reference.status, SolveStatus::kSolved) << name;
+      EXPECT_LE((session.solution().lambda - reference.solution.lambda).cwiseAbs().maxCoeff(), 1e-15) << name;
+      EXPECT_LE((session.solution().mu - reference.solution.mu).cwiseAbs().maxCoeff(), 1e-12) << name;
+      x = M * session.solution().lambda + q;
+    }
+    if (!test_support::CanCountMallocs()) continue;
+    // The comparison above gave the backend other matrices: one solve to make its per-matrix copies again.
+    q << x[0] + kTs * x[1], x[1];
+    session.Solve(q);
+    const long mallocs = test_support::CountMallocs([&] {
+      for (int step = 0; step < 100; ++step) {
+        q << x[0] + kTs * x[1], x[1];
+        session.Solve(q);
+        x.noalias() = M * session.solution().lambda;
+        x += q;
+      }
+    });
+    EXPECT_EQ(mallocs, 0) << name;
+  }
+  const std::unique_ptr<Solver> lemke = CreateSolver("lemke");
+  AviSession session(AffineVI(M, Vec({1, 1}), H, Vector::Constant(4, -1.0)), *lemke);
+  EXPECT_THROW(session.Solve(Vec({1, 2, 3})), InvalidInputError);
+  EXPECT_THROW(session.Solve(Vec({1, kNaN})), InvalidInputError);
 }
 
 }  // namespace

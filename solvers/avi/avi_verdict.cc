@@ -35,6 +35,38 @@ AviReference CertifyAvi(const AffineVI& avi, const std::vector<AviSolution>& can
   return out;
 }
 
+AviFaceResidual ComputeAviFaceResidual(const AviReduction& reduction, const Vector& z) {
+  const int n = reduction.n, m = reduction.m, p = reduction.p;
+  const DenseMatrix& reduced_matrix = reduction.problem.dense_matrix();
+  const Vector& reduced_q = reduction.problem.q();
+  double infeasibility = 0.0, complementarity = 0.0, lambda_norm = 0.0;
+  bool finite = true;
+  for (int j = 0; j < n; ++j) {
+    lambda_norm = std::max(lambda_norm, std::abs(z[j]));
+    finite = finite && std::isfinite(z[j]);
+  }
+  const auto row_times_lambda = [&](int row) {  // H̃_iλ or Ẽ_jλ: the first n columns of the reduced row
+    double sum = 0.0;
+    for (int j = 0; j < n; ++j) sum += reduced_matrix(row, j) * z[j];
+    return sum;
+  };
+  for (int i = 0; i < m; ++i) {  // row n + i of the reduction: H̃_iλ − K̃_i, its multiplier z[n + i] = μ̃_i
+    const double slack = row_times_lambda(n + i) + reduced_q[n + i];
+    infeasibility = std::max(infeasibility, -slack);
+    complementarity = std::max(complementarity, std::abs(std::min(z[n + i], slack)));
+    finite = finite && std::isfinite(z[n + i]) && std::isfinite(slack);
+  }
+  for (int j = 0; j < p; ++j) {
+    const int row = n + m + j;
+    const double violation = std::abs(row_times_lambda(row) + reduced_q[row]);
+    infeasibility = std::max(infeasibility, violation);
+    complementarity = std::max(complementarity, violation);
+    finite = finite && std::isfinite(z[row]) && std::isfinite(violation);
+  }
+  if (!finite) return {};
+  return {infeasibility / (1.0 + lambda_norm), complementarity / (1.0 + lambda_norm)};
+}
+
 ExpectedOutcome ExpectedAviOutcome(const AffineVI& avi) {
   return avi.boundedness() == PolytopeBoundedness::kBounded ? ExpectedOutcome::kSolvable : ExpectedOutcome::kUnknown;
 }
@@ -60,26 +92,10 @@ AviJudgement JudgeAvi(const AffineVI& avi, ExpectedOutcome expected, const AviRe
   // The box verdict on the reduction: its residual rule and its handling of the expected outcome.
   const Judgement box = Judge(reduction.problem, expected, nullptr, status, z, tolerance);
   out.residual = box.residual;
+  const AviFaceResidual face = ComputeAviFaceResidual(reduction, z);
+  out.primal_infeasibility = face.primal_infeasibility;
+  out.complementarity = face.complementarity;
   const Vector& lambda = answer.lambda;
-  double infeasibility = 0.0, complementarity = 0.0;
-  const int n = reduction.n, m = reduction.m, p = reduction.p;
-  const DenseMatrix& reduced_matrix = reduction.problem.dense_matrix();
-  const Vector& reduced_q = reduction.problem.q();
-  for (int i = 0; i < m; ++i) {  // row n + i of the reduction: H̃_iλ − K̃_i, its multiplier z[n + i] = μ̃_i
-    const double slack = reduced_matrix.row(n + i).head(n).dot(lambda) + reduced_q[n + i];
-    infeasibility = std::max(infeasibility, -slack);
-    complementarity = std::max(complementarity, std::abs(std::min(z[n + i], slack)));
-  }
-  for (int j = 0; j < p; ++j) {
-    const int row = n + m + j;
-    const double violation = std::abs(reduced_matrix.row(row).head(n).dot(lambda) + reduced_q[row]);
-    infeasibility = std::max(infeasibility, violation);
-    complementarity = std::max(complementarity, violation);
-  }
-  const double scale = 1.0 + InfNorm(lambda);
-  const bool finite = std::isfinite(infeasibility) && std::isfinite(complementarity) && z.allFinite();
-  out.primal_infeasibility = finite ? infeasibility / scale : kInf;
-  out.complementarity = finite ? complementarity / scale : kInf;
   if (status == SolveStatus::kSolved) {
     out.verdict = box.verdict;
     if (out.verdict == Verdict::kSolved && !PassesAviTolerance(out, tolerance)) out.verdict = Verdict::kWronglyClaimed;

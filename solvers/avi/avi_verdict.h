@@ -69,6 +69,15 @@ struct AviJudgement {
 AviJudgement JudgeAvi(const AffineVI& avi, ExpectedOutcome expected, const AviReference* reference,
                       SolveStatus status, const AviSolution& answer, double tolerance);
 
+// The two parts of the AVI rule in units of λ (AviJudgement::primal_infeasibility and complementarity) at z =
+// (λ, μ̃, ν̃) of a normalized reduction, both relative to 1 + ‖λ‖∞; +∞ on NaN. No allocation (AviSession's per-step
+// rule).
+struct AviFaceResidual {
+  double primal_infeasibility = kInf;
+  double complementarity = kInf;
+};
+AviFaceResidual ComputeAviFaceResidual(const AviReduction& reduction, const Vector& z);
+
 // The residual part of the AVI rule: residual.rel, residual.scaled, complementarity and primal_infeasibility all
 // ≤ tolerance (NaN never passes). SolveAvi sets its status by it, JudgeAvi its verdict.
 inline bool PassesAviTolerance(const AviJudgement& j, double tolerance) {
