@@ -19,6 +19,7 @@ Usage: docs_numbers.py [--source-dir ROOT] [--write] [--outputs DIR] [FILE ...]
 """
 import argparse
 import builtins
+import decimal
 import functools
 import json as jsonlib
 import math
@@ -99,6 +100,21 @@ class Sources:
         header, rows = self.table_with(path, under, column)
         return [cells[header.index(column)] for cells in rows]
 
+    def table(self, path, under, column):
+        """The whole first table of the section that has COLUMN, on lines of its own: for a span whose tags stand on
+        the lines before and after a table copied from a results file."""
+        lines, inside_table = [], False
+        for line in self.section(path, under) + [""]:
+            if line.startswith("|"):
+                lines.append(line)
+                inside_table = True
+            elif inside_table:
+                header = [c.strip() for c in lines[0].strip().strip("|").split("|")]
+                if column in header:
+                    return "\n" + "\n".join(lines) + "\n"
+                lines, inside_table = [], False
+        raise SourceError(f"{path}{' under ' + repr(under) if under else ''}: no table has a column {column!r}")
+
     def match(self, path, regex, under=None, group=1):
         """Group GROUP of the first match of REGEX (multiline) in the section UNDER of PATH."""
         found = re.search(regex, "\n".join(self.section(path, under)), re.M)
@@ -134,7 +150,7 @@ class Sources:
         return self.output(block_id, rf"^({escaped}\s.*)$").split()
 
     def namespace(self):
-        return {"cell": self.cell, "column": self.column, "match": self.match, "json": self.json, "csv": self.csv,
+        return {"cell": self.cell, "column": self.column, "table": self.table, "match": self.match, "json": self.json, "csv": self.csv,
                 "output": self.output, "fields": self.fields, "findall": findall, "num": num, "sig": sig, "sci": sci, "g": g,
                 "fixed": fixed}
 
@@ -160,8 +176,9 @@ def sig(value, digits=2):
         return f"{value:g}"
     exponent = math.floor(math.log10(abs(value)))
     if -4 <= exponent < 6:
+        # Half up on the shortest decimal text (2.65 → 2.7, as a reader rounds the report's 2.65), not on the binary.
         decimals = digits - 1 - exponent
-        rounded = round(value, decimals)
+        rounded = decimal.Decimal(repr(value)).quantize(decimal.Decimal(1).scaleb(-decimals), decimal.ROUND_HALF_UP)
         return f"{rounded:.{max(decimals, 0)}f}"
     return sci(value, digits - 1)
 
@@ -185,6 +202,26 @@ def fixed(value, decimals):
     return f"{value:.{decimals}f}"
 
 
+FENCE = re.compile(r"^[ \t]*(`{3,}|~{3,})", re.M)
+
+
+def code_ranges(text):
+    """(start, end) offsets of the fenced code blocks: spans and definitions shown as examples there are not live."""
+    ranges, opened = [], None
+    for fence in FENCE.finditer(text):
+        if opened is None:
+            opened = fence
+        elif fence.group(1)[0] == opened.group(1)[0] and len(fence.group(1)) >= len(opened.group(1)):
+            ranges.append((opened.start(), fence.end()))
+            opened = None
+    return ranges
+
+
+def live(matches, text):
+    ranges = code_ranges(text)
+    return [m for m in matches if not any(start <= m.start() < end for start, end in ranges)]
+
+
 class Span:
     def __init__(self, page, name, text, start, end, line):
         self.page, self.name, self.text, self.start, self.end, self.line = page, name, text, start, end, line
@@ -193,7 +230,7 @@ class Span:
 def definitions(page, text):
     """NAME → expression text, from the page's `<!-- numbers` blocks, in order (continuation lines joined)."""
     defs = {}
-    for block in DEFINITIONS.finditer(text):
+    for block in live(DEFINITIONS.finditer(text), text):
         lines = []
         for line in block["body"].splitlines():
             if not line.strip() or line.lstrip().startswith("#"):
@@ -212,7 +249,7 @@ def definitions(page, text):
 
 def spans(page, text):
     return [Span(page, m["name"], m["text"], m.start("text"), m.end("text"), text.count("\n", 0, m.start()) + 1)
-            for m in SPAN.finditer(text)]
+            for m in live(SPAN.finditer(text), text)]
 
 
 def evaluate(defs, sources, page):
