@@ -87,11 +87,12 @@ class Sources:
 
     # --- the helpers definitions call ---
     def cell(self, path, under, row, column):
-        """The cell in COLUMN of the row whose first cell is ROW (backticks ignored), in the first table of the
-        section UNDER that has COLUMN."""
+        """The cell in COLUMN of the row whose first cell is ROW (backticks ignored; a tuple ROW matches the first
+        cells in turn), in the first table of the section UNDER that has COLUMN."""
         header, rows = self.table_with(path, under, column)
+        keys = [str(k) for k in (row if isinstance(row, tuple) else (row,))]
         for cells in rows:
-            if cells[0].strip("`") == str(row):
+            if [c.strip("`") for c in cells[:len(keys)]] == keys:
                 return cells[header.index(column)]
         raise SourceError(f"{path} under {under!r}: the table with column {column!r} has no row {row!r}")
 
