@@ -151,9 +151,9 @@ class Sources:
         return self.output(block_id, rf"^({escaped}\s.*)$").split()
 
     def namespace(self):
-        return {"cell": self.cell, "column": self.column, "table": self.table, "match": self.match, "json": self.json, "csv": self.csv,
-                "output": self.output, "fields": self.fields, "findall": findall, "num": num, "sig": sig, "sci": sci, "g": g,
-                "fixed": fixed}
+        return {"cell": self.cell, "column": self.column, "table": self.table, "match": self.match,
+                "json": self.json, "csv": self.csv, "output": self.output, "fields": self.fields, "findall": findall,
+                "num": num, "sig": sig, "sci": sci, "g": g, "fixed": fixed}
 
 
 def num(text):
@@ -170,8 +170,8 @@ def findall(regex, text):
 
 
 def sig(value, digits=2):
-    """VALUE with DIGITS significant digits, as a page writes it: 2.82 → '2.8', 1675.7 → '1680', 1.67e-16 → '1.7e-16'
-    (e notation below 1e-4 and from 1e6 on)."""
+    """VALUE with DIGITS significant digits, as a page writes it: 2.82 → '2.8', 1675.7 → '1680',
+    1.67e-16 → '1.7e-16' (e notation below 1e-4 and from 1e6 on)."""
     value = num(value) if isinstance(value, str) else float(value)
     if value == 0 or not math.isfinite(value):
         return f"{value:g}"
@@ -185,14 +185,14 @@ def sig(value, digits=2):
 
 
 def sci(value, decimals):
-    """VALUE in e notation with DECIMALS digits after the point and a short exponent: sci(0.019165, 3) → '1.917e-2'."""
+    """VALUE in e notation, DECIMALS digits after the point, a short exponent: sci(0.019165, 3) → '1.917e-2'."""
     value = num(value) if isinstance(value, str) else float(value)
     mantissa, _, exponent = f"{value:.{decimals}e}".partition("e")
     return f"{mantissa}e{int(exponent)}"
 
 
 def g(value, digits):
-    """VALUE as Python's general format with DIGITS significant digits (trailing zeros dropped): g(0.4596, 3) → '0.46'."""
+    """VALUE in Python's general format, DIGITS significant digits, no trailing zeros: g(0.4596, 3) → '0.46'."""
     value = num(value) if isinstance(value, str) else float(value)
     return f"{value:.{digits}g}"
 
@@ -244,6 +244,8 @@ def definitions(page, text):
             name, sep, expression = line.partition("=")
             if not sep or not re.fullmatch(r"[\w.\-/+]+", name.strip()):
                 raise SourceError(f"{page}: a numbers line must be NAME = EXPRESSION, not {line!r}")
+            if name.strip() in defs:
+                raise SourceError(f"{page}: {name.strip()} is defined twice")
             defs[name.strip()] = expression.strip()
     return defs
 
@@ -254,8 +256,9 @@ def spans(page, text):
 
 
 def evaluate(defs, sources, page):
-    """(NAME → value or the exception its definition raised, the names that quote a block's output). Names with dots are looked up as written, so a
-    definition may use an earlier one through `v('paper.auto.sgm')`; plain identifiers are also variables."""
+    """(NAME → value or the exception its definition raised, the names that quote a block's output). Dotted names
+    are not Python names: a definition reads an earlier one with v('paper.auto.sgm'); plain identifiers (R = ...)
+    are variables for the lines below."""
     values, from_output, scope = {}, set(), sources.namespace()
     scope["v"] = lambda name: _value(values, name, page)
     scope["__builtins__"] = SAFE_BUILTINS  # one globals dict, so generator expressions see the helpers too
@@ -288,8 +291,10 @@ def _value(values, name, page):
     return values[name]
 
 
-SAFE_BUILTINS = {name: getattr(builtins, name) for name in ("abs", "all", "any", "float", "int", "len", "max", "min", "round", "sorted", "str",
-                              "sum", "list", "set", "dict", "tuple", "zip", "range", "enumerate", "isinstance")}
+# What a definition may call besides the helpers: arithmetic and containers, no I/O or imports.
+SAFE_BUILTINS = {name: getattr(builtins, name)
+                 for name in ("abs", "all", "any", "float", "int", "len", "max", "min", "round", "sorted", "str", "sum",
+                              "list", "set", "dict", "tuple", "zip", "range", "enumerate", "isinstance")}
 
 
 def check_page(path, root, sources, write=False, only_outputs=False):

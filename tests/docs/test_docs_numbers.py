@@ -26,6 +26,11 @@ REPORT = """# report
 
 Fastest against the sparse path: speed-up median 126.4×, min 2.82×.
 
+| scene | backend | cold/warm |
+|---|---|---|
+| sign | lemke | 1.01 |
+| sign | ipopt | 3.23 |
+
 ## Suite `hard`: hard ones
 
 | backend | solved | SGM time |
@@ -50,13 +55,14 @@ csv.rows = str(len(csv('results/data.csv')))
 csv.paper-mean = g(csv('results/data.csv').query("suite == 'paper'").time_median.mean() * 1e9, 3)
 broken.column = cell(R, 'Suite `paper`', 'lemke', 'no such column')
 run.ratio = fields('ratios', 'ratio')[1]
+warm.ipopt = sig(cell(R, 'Suite `paper`', ('sign', 'ipopt'), 'cold/warm'))
 -->
 
 The paper suite has <!--n paper.problems-->12<!--/n--> problems (<!--n paper.unique-->9<!--/n--> unique);
 | lemke | <!--n paper.lemke.sgm-->300 ns<!--/n--> | psor <!--n paper.psor.solved-->11<!--/n--> |
 hard: <!--n hard.lemke.solved-->5<!--/n-->, speed-up <!--n paper.speedup-->126<!--/n-->×,
 <!--n csv.rows-->3<!--/n--> rows, mean <!--n csv.paper-mean-->600<!--/n--> ns, <!--n broken.column-->?<!--/n-->,
-<!--n undefined.name-->1<!--/n-->.
+<!--n undefined.name-->1<!--/n-->, warm <!--n warm.ipopt-->3.2<!--/n-->×.
 
 ```sh runnable=quick id=ratios
 echo "ratio 0.40"
@@ -88,7 +94,8 @@ def check(condition, message, output=""):
 
 def test_formats():
     """The formatters write numbers as the pages do (known answers)."""
-    cases = [(docs_numbers.sig(2.82), "2.8"), (docs_numbers.sig("2.65×"), "2.7"), (docs_numbers.sig(1675.7, 3), "1680"), (docs_numbers.sig(316, 3), "316"),
+    cases = [(docs_numbers.sig(2.82), "2.8"), (docs_numbers.sig("2.65×"), "2.7"),
+             (docs_numbers.sig(1675.7, 3), "1680"), (docs_numbers.sig(316, 3), "316"),
              (docs_numbers.sig(1.67e-16), "1.7e-16"), (docs_numbers.sig(0.0019401, 3), "0.00194"),
              (docs_numbers.sig("4.15× slower"), "4.2"), (docs_numbers.sig(0), "0"),
              (docs_numbers.sci(0.019165, 3), "1.917e-2"), (docs_numbers.sci(148.0, 1), "1.5e2"),
@@ -125,8 +132,9 @@ def main():
         check(any("undefined.name: no definition" in l for l in lines), "a span with no definition is named", out)
         check("example.only" not in out, "a span shown inside a code block is not checked", out)
         check(not any(n in out for n in ("paper.problems", "paper.unique", "paper.psor.solved", "hard.lemke.solved",
-                                          "paper.speedup", "csv.rows")), "numbers that match are not named", out)
-        check(lines[-1].startswith("docs numbers: 8 checked in 2 files, 4 stale or broken, 1 from block output"),
+                                          "paper.speedup", "csv.rows", "warm.ipopt")),
+              "numbers that match are not named", out)
+        check(lines[-1].startswith("docs numbers: 9 checked in 2 files, 4 stale or broken, 1 from block output"),
               "the summary counts checked, stale and deferred numbers", out)
 
         status, out = run([NUMBERS, "--source-dir", root, "--write"])
@@ -149,7 +157,8 @@ def main():
         outputs = pathlib.Path(tmp) / "outputs"
         status, out = run([RUNNER, "--source-dir", root, "--build-dir", build, "--class", "quick",
                            "--save-outputs", outputs])
-        check(status == 1 and any(l.startswith(f"FAILED docs/page.md:{line_of(page.read_text(encoding='utf-8'), 'run.ratio-->')}: run.ratio: the page says '0.42'")
+        ratio_line = line_of(page.read_text(encoding="utf-8"), "run.ratio-->")
+        check(status == 1 and any(l.startswith(f"FAILED docs/page.md:{ratio_line}: run.ratio: the page says '0.42'")
                                   for l in out.splitlines()), "the runner names a number its block no longer prints",
               out)
         check((outputs / "ratios.out").read_text(encoding="utf-8") == "ratio 0.40\n", "the output is saved by id", out)
