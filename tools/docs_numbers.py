@@ -47,8 +47,14 @@ class Sources:
         self.root, self.outputs = pathlib.Path(root), outputs
         self.read_output = False  # set by output(): the definition being evaluated quotes a block's output
 
-    @functools.lru_cache(maxsize=None)
     def text(self, path):
+        """The file's text; `output:ID` is what the block with id=ID printed, so cell() and match() read it too."""
+        if path.startswith("output:"):
+            return self.output(path[len("output:"):], r"\A((?:.|\n)*)\Z")
+        return self.file_text(path)
+
+    @functools.lru_cache(maxsize=None)
+    def file_text(self, path):
         try:
             return (self.root / path).read_text(encoding="utf-8")
         except OSError as error:
