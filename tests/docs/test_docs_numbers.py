@@ -56,6 +56,7 @@ csv.paper-mean = g(csv('results/data.csv').query("suite == 'paper'").time_median
 broken.column = cell(R, 'Suite `paper`', 'lemke', 'no such column')
 run.ratio = fields('ratios', 'ratio')[1]
 warm.ipopt = sig(cell(R, 'Suite `paper`', ('sign', 'ipopt'), 'cold/warm'))
+run.sweeps = cell('output:ratios', None, '16', 'sweeps')
 -->
 
 The paper suite has <!--n paper.problems-->12<!--/n--> problems (<!--n paper.unique-->9<!--/n--> unique);
@@ -66,9 +67,10 @@ hard: <!--n hard.lemke.solved-->5<!--/n-->, speed-up <!--n paper.speedup-->126<!
 
 ```sh runnable=quick id=ratios
 echo "ratio 0.40"
+printf '| m | sweeps |\n|---|---|\n| 16 | 45 |\n'
 ```
 
-The block prints ratio <!--n run.ratio-->0.42<!--/n-->.
+The block prints ratio <!--n run.ratio-->0.42<!--/n--> and <!--n run.sweeps-->45<!--/n--> sweeps.
 
 ````text
 An example, not a live number: <!--n example.only-->1<!--/n-->
@@ -134,7 +136,7 @@ def main():
         check(not any(n in out for n in ("paper.problems", "paper.unique", "paper.psor.solved", "hard.lemke.solved",
                                           "paper.speedup", "csv.rows", "warm.ipopt")),
               "numbers that match are not named", out)
-        check(lines[-1].startswith("docs numbers: 9 checked in 2 files, 4 stale or broken, 1 from block output"),
+        check(lines[-1].startswith("docs numbers: 9 checked in 2 files, 4 stale or broken, 2 from block output"),
               "the summary counts checked, stale and deferred numbers", out)
 
         status, out = run([NUMBERS, "--source-dir", root, "--write"])
@@ -161,12 +163,14 @@ def main():
         check(status == 1 and any(l.startswith(f"FAILED docs/page.md:{ratio_line}: run.ratio: the page says '0.42'")
                                   for l in out.splitlines()), "the runner names a number its block no longer prints",
               out)
-        check((outputs / "ratios.out").read_text(encoding="utf-8") == "ratio 0.40\n", "the output is saved by id", out)
+        check((outputs / "ratios.out").read_text(encoding="utf-8").startswith("ratio 0.40\n| m |"),
+              "the output is saved by id", out)
+        check("run.sweeps" not in out, "a table in a block's output is read with cell('output:ID', ...)", out)
         status, out = run([NUMBERS, "--source-dir", root, "--outputs", outputs, "--write"])
         check("<!--n run.ratio-->0.40<!--/n-->" in page.read_text(encoding="utf-8"),
               "--write --outputs regenerates the numbers quoted from a saved output", out)
         status, out = run([RUNNER, "--source-dir", root, "--build-dir", build, "--class", "quick"])
-        check(status == 0 and "docs numbers from block output: 1 checked" in out, "then the runner passes", out)
+        check(status == 0 and "docs numbers from block output: 2 checked" in out, "then the runner passes", out)
     print("docs numbers self-test: all checks passed")
     return 0
 
