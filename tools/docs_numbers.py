@@ -108,8 +108,9 @@ class Sources:
         return [cells[header.index(column)] for cells in rows]
 
     def table(self, path, under, column):
-        """The whole first table of the section that has COLUMN, on lines of its own: for a span whose tags stand on
-        the lines before and after a table copied from a results file."""
+        """The whole first table of the section that has COLUMN, between blank lines: for a span whose tags stand on
+        lines of their own around a table copied from a results file (the blank line keeps the closing tag from
+        being read as one more table row)."""
         lines, inside_table = [], False
         for line in self.section(path, under) + [""]:
             if line.startswith("|"):
@@ -118,7 +119,7 @@ class Sources:
             elif inside_table:
                 header = [c.strip() for c in lines[0].strip().strip("|").split("|")]
                 if column in header:
-                    return "\n" + "\n".join(lines) + "\n"
+                    return "\n\n" + "\n".join(lines) + "\n\n"
                 lines, inside_table = [], False
         raise SourceError(f"{path}{' under ' + repr(under) if under else ''}: no table has a column {column!r}")
 
@@ -303,6 +304,19 @@ SAFE_BUILTINS = {name: getattr(builtins, name)
                               "list", "set", "dict", "tuple", "zip", "range", "enumerate", "isinstance")}
 
 
+def short(text):
+    """TEXT quoted for a message, cut after 80 characters."""
+    text = str(text)
+    return repr(text) if len(text) <= 80 else repr(text[:77]) + "…"
+
+
+def first_difference(page_text, value):
+    """(line offset, page's line, source's line) of the first line where a copied table differs."""
+    ours, theirs = page_text.split("\n"), value.split("\n")
+    k = next((i for i, (a, b) in enumerate(zip(ours, theirs)) if a != b), min(len(ours), len(theirs)))
+    return k, ours[k] if k < len(ours) else "(nothing)", theirs[k] if k < len(theirs) else "(nothing)"
+
+
 def check_page(path, root, sources, write=False, only_outputs=False):
     """(problems, checked, deferred) for one page; with write, stale spans are rewritten in the file."""
     text = path.read_text(encoding="utf-8")
@@ -337,7 +351,13 @@ def check_page(path, root, sources, write=False, only_outputs=False):
             if write:
                 replacements.append((span, str(value)))
             else:
-                problems.append(f"{where}: the page says {span.text!r}, {defs[span.name]} gives {str(value)!r}")
+                if "\n" in span.text + str(value):  # a copied table: name its first differing line
+                    k, ours, theirs = first_difference(span.text, str(value))
+                    problems.append(f"{page}:{span.line + k}: {span.name}: the page says {short(ours)}, "
+                                    f"{defs[span.name]} gives {short(theirs)}")
+                else:
+                    problems.append(f"{where}: the page says {short(span.text)}, "
+                                    f"{defs[span.name]} gives {short(value)}")
     for name in defs:
         if name not in used and "." in name:
             problems.append(f"{page}: {name} is defined but no span quotes it")
@@ -346,7 +366,7 @@ def check_page(path, root, sources, write=False, only_outputs=False):
             text = text[:span.start] + value + text[span.end:]
         path.write_text(text, encoding="utf-8")
         for span, value in replacements:
-            print(f"rewrote {page}:{span.line}: {span.name}: {span.text!r} -> {value!r}")
+            print(f"rewrote {page}:{span.line}: {span.name}: {short(span.text)} -> {short(value)}")
     return problems, checked, deferred
 
 

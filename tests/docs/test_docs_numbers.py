@@ -57,6 +57,7 @@ broken.column = cell(R, 'Suite `paper`', 'lemke', 'no such column')
 run.ratio = fields('ratios', 'ratio')[1]
 warm.ipopt = sig(cell(R, 'Suite `paper`', ('sign', 'ipopt'), 'cold/warm'))
 run.sweeps = cell('output:ratios', None, '16', 'sweeps')
+hard.table = table(R, 'Suite `hard`', 'SGM time')
 -->
 
 The paper suite has <!--n paper.problems-->12<!--/n--> problems (<!--n paper.unique-->9<!--/n--> unique);
@@ -71,6 +72,14 @@ printf '| m | sweeps |\n|---|---|\n| 16 | 45 |\n'
 ```
 
 The block prints ratio <!--n run.ratio-->0.42<!--/n--> and <!--n run.sweeps-->45<!--/n--> sweeps.
+
+<!--n hard.table-->
+
+| backend | solved | SGM time |
+|---|---|---|
+| lemke | 4 | 9 µs |
+
+<!--/n-->
 
 ````text
 An example, not a live number: <!--n example.only-->1<!--/n-->
@@ -132,15 +141,19 @@ def main():
         check(any("broken.column" in l and "no table has a column 'no such column'" in l for l in lines),
               "a definition whose column is missing says which", out)
         check(any("undefined.name: no definition" in l for l in lines), "a span with no definition is named", out)
+        check(any(l.startswith(f"docs/page.md:{line_of(PAGE, '| lemke | 4 |')}: hard.table: the page says "
+                               "'| lemke | 4 | 9 µs |'") and "'| lemke | 5 | 9 µs |'" in l for l in lines),
+              "a stale row of a copied table is named with its own line", out)
         check("example.only" not in out, "a span shown inside a code block is not checked", out)
         check(not any(n in out for n in ("paper.problems", "paper.unique", "paper.psor.solved", "hard.lemke.solved",
                                           "paper.speedup", "csv.rows", "warm.ipopt")),
               "numbers that match are not named", out)
-        check(lines[-1].startswith("docs numbers: 9 checked in 2 files, 4 stale or broken, 2 from block output"),
+        check(lines[-1].startswith("docs numbers: 10 checked in 2 files, 5 stale or broken, 2 from block output"),
               "the summary counts checked, stale and deferred numbers", out)
 
         status, out = run([NUMBERS, "--source-dir", root, "--write"])
         text = page.read_text(encoding="utf-8")
+        check("| lemke | 5 | 9 µs |" in text and "| lemke | 4 |" not in text, "--write rewrites a copied table", out)
         check("<!--n paper.lemke.sgm-->312 ns<!--/n-->" in text and "<!--n csv.paper-mean-->650<!--/n-->" in text,
               "--write rewrites the stale spans", out)
         check(f"rewrote docs/page.md:{sgm_line}: paper.lemke.sgm: '300 ns' -> '312 ns'" in out,
