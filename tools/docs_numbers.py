@@ -358,7 +358,7 @@ def check_page(path, root, sources, write=False, only_outputs=False):
                 else:
                     problems.append(f"{where}: the page says {short(span.text)}, "
                                     f"{defs[span.name]} gives {short(value)}")
-    for name in defs:
+    for name in defs if not only_outputs else ():  # the docs runner leaves this to the file check
         if name not in used and "." in name:
             problems.append(f"{page}: {name} is defined but no span quotes it")
     if replacements:
