@@ -4,7 +4,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdio>
+
+#include <Eigen/LU>
 
 namespace smcbench {
 namespace {
@@ -22,6 +25,23 @@ signed char Flipped(signed char state, double z, double l) {
 
 // Rows whose state is forced by their bounds: l = u is fixed (kept at l, any w), l = −∞ and u = +∞ always free.
 bool FixedRow(double l, double u) { return l == u; }
+
+// Above this many free rows the free block is factored by Eigen's blocked LU (matrix-matrix updates) instead of the
+// unblocked dense_lu: the factorization is the whole cost of an iteration there.
+constexpr int kBlockedLuRows = 64;
+
+// LU with partial pivoting of the k×k block (column-major, leading dimension ld) in dense_lu's storage: L unit lower
+// and U in place, piv[j] the row swapped with row j at step j (Eigen's row transpositions are the same record), so
+// dense_lu::Solve solves with either. False when a pivot is ≤ small or not finite.
+bool FactorFreeBlock(double* a, int ld, int k, int* piv, double small) {
+  if (k <= kBlockedLuRows) return dense_lu::Factor(a, ld, k, piv, small);
+  int transpositions = 0;
+  Eigen::internal::partial_lu_impl<double, Eigen::ColMajor, int>::blocked_lu(k, k, a, ld, piv, transpositions);
+  for (int j = 0; j < k; ++j) {
+    if (!(std::abs(a[j + static_cast<std::ptrdiff_t>(j) * ld]) > small)) return false;  // NaN too
+  }
+  return true;
+}
 
 template <typename... Args>
 void SetMessage(SolveResult* result, const char* format, Args... args) {
@@ -87,12 +107,16 @@ void BppSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, So
 template <>
 bool BppSolver::SolveActiveSet<false>(const BoxMLCP& problem, double* z) {
   const int n = problem.size();
-  int free_count = 0;
-  const ActiveSetOutcome outcome =
-      active_set::SolveDense<0>(problem.dense_matrix().data(), n, problem.q().data(), problem.l().data(),
-                                problem.u().data(), dense_.For(n).state, options_.pivot_tolerance, dense_.For(n), z,
-                                &free_count);
-  return outcome == ActiveSetOutcome::kSolved || outcome == ActiveSetOutcome::kOutsideBox;
+  const ActiveSetScratch s = dense_.For(n);
+  const double* m = problem.dense_matrix().data();
+  const double *l = problem.l().data(), *u = problem.u().data();
+  const int nf = active_set::PlaceBoundRows<0>(n, s.state, l, u, z, s.free_rows);
+  if (nf == 0) return true;
+  active_set::ReducedRhs<0>(m, n, problem.q().data(), z, s.free_rows, nf, s.rhs);
+  active_set::GatherFreeBlock(m, n, s.free_rows, nf, s.block, n);
+  if (!FactorFreeBlock(s.block, n, nf, s.pivots, options_.pivot_tolerance)) return false;
+  dense_lu::Solve(s.block, n, nf, s.pivots, s.rhs);
+  return active_set::ScatterFreeRows(s.rhs, s.free_rows, nf, l, u, z) != FreeRowsFit::kNonFinite;
 }
 
 template <>

@@ -31,9 +31,12 @@
 // a 1×1 problem is solved by its first set. A warm start from the solution's own active set solves in one
 // iteration. Nothing is remembered between solves (the session's reused active set does that).
 //
-// Dense M: nothing is allocated after the first solve of a size. Sparse M: each free block is gathered and factored
-// by Eigen's SparseLU (SparseFreeBlock), which allocates. Every set is refactored from scratch (no low-rank updates
-// of the factors). iterations = active sets solved; details block_pivots, single_pivots, singular_blocks.
+// Dense M: free blocks up to 64 rows are factored by dense_lu, larger ones by Eigen's blocked in-place LU on the same
+// storage (as newton does); nothing is allocated after the first solve of a size, except inside Eigen's level-3
+// kernels, which take scratch beyond 128 KiB from malloc (free blocks above about 300 rows). Sparse M: each free
+// block is gathered and factored by Eigen's SparseLU (SparseFreeBlock), which allocates. Every set is refactored from
+// scratch (no low-rank updates of the factors; no Cholesky for symmetric M, whose symmetry the row equilibration
+// hides). iterations = active sets solved; details block_pivots, single_pivots, singular_blocks.
 #pragma once
 
 #include <string>

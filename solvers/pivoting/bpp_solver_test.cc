@@ -158,6 +158,27 @@ TEST(BppSolver, DegenerateProblemsAgreeWithEnum) {
   }
 }
 
+// Free blocks above 64 rows take the blocked LU; the answers must not change in kind.
+TEST(BppSolver, LargeFreeBlocksTakeTheBlockedFactorization) {
+  BppSolver solver;
+  for (MatrixFamily family : {MatrixFamily::kSymmetricPositiveDefinite, MatrixFamily::kNonsymmetricPMatrix}) {
+    for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay}) {
+      GeneratorOptions g;
+      g.family = family;
+      g.bounds = bounds;
+      g.size = 300;
+      g.seed = 3;
+      const GeneratedProblem gen = GenerateProblem(g);
+      SolverOptions options;
+      options.polish = false;
+      const SolveResult r = solver.Solve(gen.problem, options);
+      ASSERT_TRUE(r.solved()) << gen.problem.name() << ": " << r.message;
+      EXPECT_LE(NaturalResidual(gen.problem, r.z), 1e-9) << gen.problem.name();
+      EXPECT_LE(ForwardError(r.z, gen.z_star), 1e-8) << gen.problem.name();
+    }
+  }
+}
+
 TEST(BppSolver, SparseProblemsUseTheSparseFreeBlock) {
   BppSolver solver;
   for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kMixed}) {
