@@ -244,6 +244,30 @@ TEST(BppSolver, WarmStartFromTheSolutionSolvesInOneIteration) {
   }
 }
 
+// In a session whose reused active set is off, every call reaches bpp; the previous answer as warm start is its
+// first set, so a repeated q costs one set and a nearby q few.
+TEST(BppSolver, SessionWarmStartsGiveTheFirstActiveSet) {
+  BppSolver solver;
+  GeneratorOptions g;
+  g.family = MatrixFamily::kSymmetricPositiveDefinite;
+  g.bounds = BoundKind::kRelay;
+  g.size = 50;
+  g.seed = 4;
+  const GeneratedProblem gen = GenerateProblem(g);
+  SessionOptions no_reuse;
+  no_reuse.reuse_active_set = false;
+  SolveSession session = solver.Prepare(gen.problem, SolverOptions{}, no_reuse);
+  SolveResult result;
+  session.Solve(gen.problem.q(), &result);
+  ASSERT_TRUE(result.solved()) << result.message;
+  const Vector first = result.z;
+  session.Solve(gen.problem.q(), &result, &first);
+  ASSERT_TRUE(result.solved()) << result.message;
+  EXPECT_EQ(result.iterations, 1);
+  EXPECT_EQ(result.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+  EXPECT_LE(ForwardError(result.z, gen.z_star), 1e-8);
+}
+
 // Outside the P-matrices: M = 0, q = −1 has no solution; the one free block is singular. A status, no crash.
 TEST(BppSolver, SingularFreeBlockIsAStatus) {
   BppSolver solver;
