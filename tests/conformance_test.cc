@@ -137,7 +137,7 @@ TEST(Registry, CreatesEveryListedBackendAndRejectsUnknownNames) {
   }
   // The five benchmarked backends, the `auto` meta-backend, and the certifier "reference" once it is registered.
   own.erase("reference");
-  EXPECT_EQ(own, (std::set<std::string>{"lemke", "psor", "newton", "enum", "ipopt", "newton-min", "auto"}));
+  EXPECT_EQ(own, (std::set<std::string>{"lemke", "psor", "newton", "enum", "ipopt", "newton-min", "bpp", "auto"}));
   try {
     CreateSolver("simplex");
     FAIL() << "no error";

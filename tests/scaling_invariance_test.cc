@@ -1,11 +1,11 @@
-// The property that keeps issue 12's adversarial campaign fixed: a positive scaling of the rows of a box-MLCP, a
-// scaling of M and q together, and a permutation of rows and columns together leave its solution set unchanged, so
-// every backend of ours must give the same status on the transformed problem as on the problem as given, and when
-// that status is "solved", the planted solution z* (unique: every matrix here is a P-matrix) within the forward-error
-// allowance of solvers/core/verdict.h. The campaign (about 2,100 generated problems, residuals rechecked in exact
-// arithmetic) found lemke "solving" a 2×2 P-matrix box problem with rows scaled by 1e6 and 1e-5 at the wrong vertex,
-// and psor, newton, ipopt, enum and lemke reporting different, wrong points as solved once M and q were scaled
-// together by 1e-150, 1e-8, 1e8 or 1e150.
+// The property that keeps the adversarial scaling campaign's failures fixed: a positive scaling of the rows of a
+// box-MLCP, a scaling of M and q together, and a permutation of rows and columns together leave its solution set
+// unchanged, so every backend of ours must give the same status on the transformed problem as on the problem as
+// given, and when that status is "solved", the planted solution z* (unique: every matrix here is a P-matrix) within
+// the forward-error allowance of solvers/core/verdict.h. The campaign (about 2,100 generated problems, residuals
+// rechecked in exact arithmetic) found lemke "solving" a 2×2 P-matrix box problem with rows scaled by 1e6 and 1e-5
+// at the wrong vertex, and psor, newton, ipopt, enum and lemke reporting different, wrong points as solved once M
+// and q were scaled together by 1e-150, 1e-8, 1e8 or 1e150.
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -17,10 +17,11 @@ smcbench=./build/release/tools/smcbench
 # stderr) but are not a failure of this job; a wrong answer from one of our backends is (status 3). The other two
 # steps still run, so the job's results are complete either way.
 # --out results/bench --overwrite: `bench` writes to a fresh folder unless told otherwise; the main job's results are
-# the committed ones. --backend-budget 300: one backend may spend 5 min on one suite (the slowest measured, a
-# siconos-mlcp-* backend on the siconos suite, takes about 65 s), so the main job's tables stay complete while a
-# runaway backend is still bounded; `bench`'s own default is 60 s. --siconos-dir: the collection vendored in this
-# repository (tests/data/siconos), so the job needs nothing outside the checkout.
+# the committed ones. --backend-budget 300: one backend may spend 5 min on one suite (several times what the
+# slowest, a siconos-mlcp-* backend on the siconos suite, needs; results/bench has the measured times), so the
+# main job's tables stay complete while a runaway backend is still bounded; `bench`'s own default is 60 s.
+# --siconos-dir: the collection vendored in this repository (tests/data/siconos), so the job needs nothing outside
+# the checkout.
 bench_status=0
 "$smcbench" bench --out results/bench --overwrite --backend-budget 300 --report --allow-wrong external \
   --siconos-dir tests/data/siconos "$@" ||

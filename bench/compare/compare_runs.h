@@ -29,8 +29,8 @@ struct CompareOptions {
   double confidence = 0.95;   // of the percentile interval, in (0, 1)
   std::uint64_t seed = 20261126;
   // Added to every time before the geometric mean, so that sub-microsecond solves near the clock's floor do not
-  // dominate it. Smaller than the report's 1 µs: the m ≤ 4 problems solve in 50–300 ns, where a 1 µs shift would
-  // hide a 2× slowdown (a ratio of 1.1).
+  // dominate it. Smaller than the report's 1 µs: the m ≤ 4 problems solve in a fraction of a microsecond
+  // (docs/benchmarks.md), where a 1 µs shift would hide most of a 2× slowdown.
   double shift_seconds = 1e-7;
   // Empty, or InvalidInputError-style text naming the field that is out of range.
   std::string Invalid() const;

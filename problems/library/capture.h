@@ -19,8 +19,8 @@ namespace smcbench {
 
 // Captured problems up to this many rows get a certified reference as they are recorded (ComputeReference,
 // problems/library/references.h, with the run's z as the only candidate besides Certify's own): at most
-// 3⁴ = 81 active sets of at most 4 rows in quad precision, tens of microseconds a problem, next to a record path
-// that already copies every problem. Larger ones would need the backends and up to 3⁸ sets (milliseconds a step):
+// 3⁴ = 81 active sets of at most 4 rows in quad precision, cheap next to a record path that already copies every
+// problem. Larger ones would need the backends and up to 3⁸ sets a step (81 times as many, each larger):
 // they keep Certificate::kNone, and `smcbench library FILE --certify OUT` attaches them afterwards.
 inline constexpr int kCaptureReferenceMaxSize = 4;
 

@@ -19,7 +19,7 @@
 namespace smcbench {
 
 // Format version written by this build. Version 2 added each problem's certified reference (certificate,
-// condition, z*); version 1 files are still read, their problems with Certificate::kNone. Version 3 (issue 13:
+// condition, z*); version 1 files are still read, their problems with Certificate::kNone. Version 3 (for
 // captures of long runs) added the bounds table (l and u stored once, like M) and lets a problem continue the
 // previous one's source, tags and metadata, storing only the entries that differ; a file that uses neither is
 // laid out as version 2, and versions 1 and 2 are still read.

@@ -981,7 +981,8 @@ TEST(MatrixTags, OneByOne) {
 }
 
 // ------------------------------------------------------------------------------------------------------------
-// Version 3 (issue 13): the bounds table, and problems that continue the previous one's source, tags and metadata.
+// Version 3 (captures of long runs): the bounds table, and problems that continue the previous one's source, tags
+// and metadata.
 // Offsets below come from the specification (problems/library/README.md), not from the reader.
 
 // count problems of a capture: same M (2×2), source, tags and bounds [−1, 1]; metadata differing in "step" only.

@@ -1,4 +1,4 @@
-// Certified reference solutions for library problems (issue 12): so that a backend's answer is judged by its
+// Certified reference solutions for library problems: so that a backend's answer is judged by its
 // forward error ‖z − z*‖∞ against a z* proven in extended precision (solvers/reference/certify.h), not only by its
 // residual. Suites, captures and `smcbench library --certify` attach them; the .smcps format stores them.
 #pragma once

@@ -77,7 +77,8 @@ void AttachReferences(McpLibraryProblem* p, const std::vector<Vector>& known_sol
     std::unique_ptr<Solver> solver = CreateSolver(name);
     if (!solver->info().mcp) continue;
     // A large sparse problem takes candidates from the backends that work on its sparse Jacobian in our process
-    // (an external code's dense method on 10⁴ unknowns is minutes per start, and cannot be interrupted).
+    // (an external code's dense method factors a dense 10⁴ × 10⁴ Jacobian per iteration, and cannot be
+    // interrupted).
     if (!small && (!solver->info().sparse || solver->info().external)) continue;
     for (const Vector& start : p->starts) {
       SolverOptions solver_options;

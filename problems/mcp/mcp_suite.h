@@ -17,7 +17,8 @@ namespace smcbench {
 std::vector<std::string> McpSuiteIds(bool quick);
 
 // The suite with its references attached (AttachMcpReferences on every problem). Runs every registered MCP backend
-// from every start of every problem: about a second quick, minutes full (the 10⁴-unknown references).
+// from every start of every problem: the full suite takes far longer than the quick one (the 10⁴-unknown
+// references).
 McpProblemSet BuildMcpSuite(bool quick);
 
 // The MCP of a built-in id (any id of McpSuiteIds, and any size of a family or step of a scene of the same form).

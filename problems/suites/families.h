@@ -51,7 +51,7 @@ LibraryProblem SceneStepProblem(std::string_view scene, double h, std::uint64_t 
 // h = 1e-1, 1e-2, ..., 1e-8: one problem per decade.
 std::vector<double> HSweepSteps();
 
-// --- The small-h family: W = h·G as h → 0 (issue 12). -----------------------------------------------------------
+// --- The small-h family: W = h·G as h → 0. ----------------------------------------------------------------------
 // Relay bounds [−1, 1]. Planted s*: at least one row strictly inside (w*_i = 0) and at least one at a bound (m ≥ 2),
 // the slack of a bound row correctly signed and of order h, w*_i = ±h·c_i with c_i ∈ [0.1, 1.1] (w* > 0 at −1,
 // w* < 0 at +1), q = w* − W s*. Every datum is then O(h): the problem is h times a fixed unit problem, on which a

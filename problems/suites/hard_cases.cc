@@ -134,8 +134,8 @@ LibraryProblem NearSingular(bool relay, int n, std::uint64_t seed, int log10_con
 // rows are then scaled by 1e6 and 1e-5. z* = (0.25, 0.5): row 1 strictly inside [−1, 1] (w* = 0), row 2 at its upper
 // bound 0.5 of [−2, 0.5] with w* = −0.7 < 0; q0 = w* − M0 z*. A positive row scaling d leaves the solution set alone
 // (d_i w_i has the sign of w_i) and keeps every principal minor positive: P-matrix, unique solution z*. The scaled
-// matrix's symmetric part is indefinite (its determinant 4e6·3e-5 − (5e5)² < 0). Issue 12:
-// lemke, working on the unscaled rows, left its pivot path early (z0 negligible) at the wrong vertex.
+// matrix's symmetric part is indefinite (its determinant 4e6·3e-5 − (5e5)² < 0). It caught lemke, working on the
+// unscaled rows, leaving its pivot path early (z0 negligible) at the wrong vertex.
 LibraryProblem RowScaledPMatrix() {
   const double d[2] = {1e6, 1e-5};
   const double M0[2][2] = {{4.0, -1.0}, {2.0, 3.0}};
@@ -166,7 +166,7 @@ LibraryProblem RowScaledPMatrix() {
 
 // A P-matrix box-MLCP (families' nonsymmetric P-matrix, mixed bounds: free, LCP, upper-only and box rows) with M and
 // q scaled together by `factor`: (factor·M) z + factor·q = factor·(w − v) has the same solutions for factor > 0, and
-// factor·M is still a P-matrix. Issue 12: at 1e±150 backends reported different, wrong points as solved.
+// factor·M is still a P-matrix. At 1e±150 it caught backends reporting different, wrong points as solved.
 LibraryProblem JointlyScaled(double factor, const std::string& name) {
   LibraryProblem base = RandomFamilyProblem(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kMixed, 8, 1);
   DenseMatrix M = factor * base.problem.dense_matrix();

@@ -1,5 +1,5 @@
 // The hard-case suite: a named list of problems on which backends are known or expected to struggle, each with the
-// outcome a correct backend must produce, so that "no backend may wrongly claim success" is a test (issue 4).
+// outcome a correct backend must produce, so that "no backend may wrongly claim success" is a test.
 #pragma once
 
 #include <string>

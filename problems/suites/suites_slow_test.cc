@@ -1,6 +1,7 @@
 // The scale family at full size (label "slow"): m = 1e5 generates in well under a second with a planted solution
 // that checks, and semismooth Newton (UMFPACK inside) solves m = 1e2 … 1e5 to relative residual 1e-10 — the
-// issue's goal is m = 1e5 under 2 s with near-linear growth; the measured times and the fitted exponent are printed.
+// goal is m = 1e5 under 2 s with near-linear growth; the measured times and the fitted exponent are printed
+// (docs/benchmarks.md, "Scale", holds the published figures).
 #include <gtest/gtest.h>
 
 #include <algorithm>

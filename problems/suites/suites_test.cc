@@ -1,6 +1,6 @@
 // The suites keep their promises: planted solutions solve their problems, generation is a pure function of the
 // seed, infeasible problems carry a certificate, matrix-class tags are true, Murty's family is exponential for
-// Lemke, and on the hard suite no registered backend ever claims a solution it does not have (issue 4).
+// Lemke, and on the hard suite no registered backend ever claims a solution it does not have.
 #include <gtest/gtest.h>
 
 #include <Eigen/Cholesky>
@@ -528,7 +528,7 @@ TEST(SmallHFamily, PMatrixGIsTheSameForEveryHAndHasTheProvedCondition) {
 
 // --- Murty's family: exponential for raw Lemke, not for ours. --------------------------------------------------------
 // Murty's theorem is about Lemke with covering vector e on (M̃, q̂). Our backends receive the row-equilibrated problem
-// (D⁻¹M̃, D⁻¹q̂) with D = the row maxima (1, 2, …, 2) (solvers/core, issue 12): for lemke that is the path of covering
+// (D⁻¹M̃, D⁻¹q̂) with D = the row maxima (1, 2, …, 2) (solvers/core): for lemke that is the path of covering
 // vector d on the original rows, which Murty's construction does not force through 2ⁿ cones. Siconos' Lemke gets
 // the problem as written (SolverInfo::equilibrate false) and still shows the exponential growth.
 TEST(MurtyFamily, RawLemkeIsExponentialOurEquilibratedLemkeSolvesItExactly) {
@@ -577,7 +577,7 @@ TEST(HardSuite, EveryCaseIsNamedAndExplained) {
   EXPECT_EQ(kinds, (std::set<std::string>{"cycling", "degenerate", "h-to-zero", "infeasible", "near-singular",
                                           "non-unique", "parasitic", "siconos", "small-h", "row-scaling",
                                           "joint-scaling", "free-row"}));
-  // Issue 12's failures, by name.
+  // The cases where residual-only verdicts passed wrong answers, by name.
   std::set<std::string> ids;
   for (const LibraryProblem& p : set.problems) ids.insert(p.id);
   for (const char* id : {"hard/small-h/relay-h1e-8-m4", "hard/row-scaling/pmatrix-1e6-1e-5",
@@ -589,7 +589,7 @@ TEST(HardSuite, EveryCaseIsNamedAndExplained) {
   EXPECT_THROW(HardSuite("/nonexistent/siconos"), InvalidInputError);
 }
 
-// THE test of issue 4: every registered backend on every hard case; none may claim a solution it does not have.
+// THE test of the hard suite: every registered backend on every hard case; none may claim a solution it does not have.
 TEST(HardSuite, NoBackendWronglyClaimsSuccess) {
   const ProblemSet& set = HardCases();
   SolverOptions options;
@@ -625,7 +625,7 @@ TEST(HardSuite, NoBackendWronglyClaimsSuccess) {
   }
 }
 
-// THE test of issue 12 on the suites: each of our backends on every families and hard problem, judged by the one
+// THE test of the one verdict on the suites: each of our backends on every families and hard problem, judged by the one
 // verdict with certified references (forward error against z*, false "infeasible" claims): no wrong answer at all,
 // and the small-h family (h down to 1e-10) solved by the exact backends.
 const ProblemSet& WithReferences(const ProblemSet& set) {

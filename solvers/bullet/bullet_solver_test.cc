@@ -60,7 +60,7 @@ TEST(BulletBackends, ASolveOverItsTimeLimitIsKilledAndReportedAsTimeLimit) {
   EXPECT_EQ(Detail(next, "peer_success"), 1.0);  // answered by a fresh worker (Bullet's PGS always says true)
 }
 
-// The observation: Dantzig assumes symmetry (LDL^T updates); on nonsymmetric P-matrix relays Bullet's
+// Dantzig assumes symmetry (LDL^T updates); on nonsymmetric P-matrix relays Bullet's
 // returns false (on each of these ten) and leaves x at the start. Whatever its flag says, our verdict decides.
 TEST(BulletBackends, DantzigOnANonsymmetricPMatrixRelayIsNotSolvedWhateverItsFlagSays) {
   SolverOptions raw;
@@ -78,7 +78,7 @@ TEST(BulletBackends, DantzigOnANonsymmetricPMatrixRelayIsNotSolvedWhateverItsFla
   }
 }
 
-// The other observation: btSolveProjectedGaussSeidel always returns true. After its default 10 sweeps on a
+// A success flag that says nothing: btSolveProjectedGaussSeidel always returns true. After its default 10 sweeps on a
 // nonsymmetric P-matrix relay the natural residual is large; the detail keeps its claim, our verdict says failed.
 TEST(BulletBackends, PgsClaimsSuccessFarFromTheSolutionAndOurVerdictSaysInaccurate) {
   SolverOptions raw;

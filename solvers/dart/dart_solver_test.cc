@@ -61,9 +61,9 @@ TEST(DartBackends, TheProbeAndTheInProcessCallGiveTheSameAnswer) {
   }
 }
 
-// The observation, worse in DART: with earlyTermination = false (DART's default) ODE's Dantzig "pushes hard"
-// and returns true on each of these ten nonsymmetric P-matrix relays, at a natural residual of about 0.3. The flag
-// stays a detail; our verdict says kInaccurate, never solved.
+// Dantzig assumes symmetry (as in bullet_solver_test.cc), and DART makes it worse: with earlyTermination = false
+// (DART's default) ODE's Dantzig "pushes hard" and returns true on each of these ten nonsymmetric P-matrix relays,
+// at a natural residual of about 0.3. The flag stays a detail; our verdict says kInaccurate, never solved.
 TEST(DartBackends, DantzigOnANonsymmetricPMatrixRelayIsNotSolvedWhateverItsFlagSays) {
   SolverOptions raw;
   raw.polish = false;

@@ -746,7 +746,7 @@ TEST(EnumerativeSolver, TwoByTwoFreeBlocksWellAndIllConditioned) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// Regression tests for issue 12 ("Verdicts that see the error in s").
+// Regression tests for verdicts that see the error in s: answers a residual test alone would pass as solved.
 
 // A fixed orthogonal 3×3 matrix: the Householder reflection I − 2 v vᵀ / vᵀv.
 DenseMatrix Householder3(const Vector& v) {
@@ -852,9 +852,10 @@ TEST(Enumerative, ReportedNumericalFailureOnAnAnswerWithinTolerance) {
   EXPECT_GT(tested, 100);
 }
 
-// The small-h relay family of issue 12: W = h·G with G a fixed nonsymmetric 6×6 matrix with a positive definite
+// The small-h relay family: W = h·G with G a fixed nonsymmetric 6×6 matrix with a positive definite
 // symmetric part (condition ≈ 230), planted s* with rows at ±1 and inside, q = −W s* + h·c (c ≤ 0 at +1, ≥ 0 at −1).
-// At h = 1e-8 enum used to return a wrong active set (|s − s*|∞ = 1) as solved.
+// At h = 1e-8 a wrong active set (|s − s*|∞ = 1) leaves a residual of order h, small enough to pass as solved;
+// enum must not return it.
 TEST(Enumerative, SmallStepRelayReturnedAWrongActiveSet) {
   constexpr int n = 6;
   std::mt19937 rng(2026);

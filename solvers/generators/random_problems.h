@@ -4,7 +4,7 @@
 // Every family is a P-matrix, so z* is the unique solution. Rows of z*: at l with w ∈ [0.1, 1.1], at u with
 // w ∈ [−1.1, −0.1], or at least 0.1 (10% of a finite box) inside with w = 0, with equal odds among the states
 // the row's bounds allow; degenerate rows sit at a finite bound with w = 0. Sizes are capped (dense 8192,
-// sparse 4,000,000); the dense build costs n³/2 flops (about 1 s at n = 1024).
+// sparse 4,000,000); the dense build costs n³/2 flops, which dominates generating a large dense problem.
 #pragma once
 
 #include <cstdint>

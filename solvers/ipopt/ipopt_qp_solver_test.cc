@@ -274,7 +274,7 @@ TEST(IpoptQpSolverTest, LcpWithoutSolutionNonPsdIsInfeasible) {
   const SolveResult r = solver.Solve(p);
   EXPECT_NE(r.status, SolveStatus::kSolved);
   EXPECT_EQ(r.status, SolveStatus::kInfeasible) << r.message;
-  // Only with a certificate checked by the backend (issue 12: a claim of no solution is a verdict too).
+  // Only with a certificate checked by the backend: a claim of no solution is a verdict too, and must be earned.
   EXPECT_NE(r.message.find("Farkas certificate"), std::string::npos) << r.message;
   EXPECT_GT(Residual(p, r.z), kTol);
   EXPECT_EQ(r.GetDetail("formulation"), 2.0);
@@ -598,12 +598,12 @@ TEST(IpoptFuzzRegression, Ma97WithoutHslIsAnInvalidOptionNotAProcessExit) {
   EXPECT_NE(r.message.find("ma97"), std::string::npos) << r.message;
 }
 
-// ---- Small h (issue 12): relay W = h·G with a planted s* ------------------------------------------------------
+// ---- Small h: relay W = h·G with a planted s* -----------------------------------------------------------------
 // The fixture (G, s*, the reference with μ) and the check are tests/support/small_h_relay.h.
 
 TEST(IpoptQpSolverTest, SolvedWithWrongSAtSmallH) {
-  // Issue 12: on relay problems W = h·G, the backend reported |s − s*|∞ between 1e-5 and 0.2 as "solved" at
-  // h = 1e-4 … 1e-8, because "solved" meant a residual within tol·(1 + ‖q‖∞) and q = O(h).
+  // On relay problems W = h·G, a residual within tol·(1 + ‖q‖∞) alone passes |s − s*|∞ up to 0.2 as "solved"
+  // at h = 1e-4 … 1e-8, since q = O(h); this pins the forward-error check.
   // Without the base's polish, Ipopt's own active-set polish stays on and ends within the allowance.
   IpoptQpSolver solver;
   test_support::ExpectSolvedWithinAllowanceAtSmallH(solver);

@@ -10,7 +10,7 @@
 //      of the proximal subproblem centred at z. It exists for monotone/P0 problems whose Newton matrix is
 //      singular (non-isolated solutions) and keeps fast local convergence because μ → 0 with ‖Phi‖
 //      (Levenberg–Marquardt-type choice; Yamashita–Fukushima 2001). On random monotone LCPs with rank-deficient
-//      M this turned ~5% failures (crawling gradient steps) into none;
+//      M it replaces the crawling gradient steps on which some of them otherwise fail;
 //   3. the steepest-descent direction −∇Psi.
 //   Stopping test: the natural residual the base class reports (never Psi). A box-MLCP arrives row-equilibrated
 //   (Solver's base), and the test is the base's verdict on that problem: its residual r, in units of z, at most
@@ -43,8 +43,8 @@
 // which is exact when those Db_i are exactly 0 and an inexact Newton step of relative error ≤ threshold
 // otherwise. Near a strictly complementary solution Db_i → 0 quadratically on the active rows, so the
 // factorization only sees the rows that are inactive or degenerate; at a cold start z = 0 of an LCP every row
-// with q_i > 0 drops out. The factorization cost is what limits dense speed (an LU of 256 is ~0.6 ms, of 1024
-// ~60 ms on this machine without -march=native), so this is where the time goes and where the reduction pays.
+// with q_i > 0 drops out. The factorization cost is what limits dense speed (O(|R|³) against the O(n²) of the
+// rest of an iteration), so this is where the time goes and where the reduction pays.
 // For a symmetric M the reduced matrix is symmetric positive (semi)definite when M is, and Cholesky is tried
 // first (half the flops). Both kernels are Eigen's blocked in-place routines run on a preallocated n×n buffer
 // with a preallocated transposition array: Eigen's PartialPivLU/LLT objects would reallocate whenever |R|

@@ -220,7 +220,7 @@ template <typename Columns>
 
 // The stall message: a residual already at rounding level (tolerance too tight) and a genuinely nonconvergent M
 // (cycling) look alike here; it says which one it is. Takes values, not the run: a run whose address escapes
-// stays in memory, which costs the m ≤ 4 sweep loop ~15 % (measured with callgrind).
+// stays in memory, which costs the m ≤ 4 sweep loop a large share of its instructions (callgrind shows it).
 [[gnu::noinline]] void StallMessage(double best, double rel, int sweeps, int n, const PsorOptions& opt,
                                     SolveResult* result) {
   const bool at_rounding_level = best <= 100.0 * n * std::numeric_limits<double>::epsilon();
@@ -234,7 +234,8 @@ template <typename Columns>
 
 // The merit test after a sweep: kNotRun to sweep on, else the status the solve ends with (message set).
 // fixed_point: the sweep moved nothing; swept_with_exact_w: it started from an exact w.
-// Inlined into the sweep loop: on the m ≤ 4 problems of the time-steppers a call here costs ~15 % of a solve.
+// Inlined into the sweep loop: on the m ≤ 4 problems of the time-steppers a call here is a large share of a
+// solve.
 template <typename Columns, typename TimeUp>
 [[gnu::always_inline]] inline SolveStatus Checkpoint(PsorRun<Columns>* run, int updates, bool swept_with_exact_w, const TimeUp& time_up,
                        SolveResult* result) {

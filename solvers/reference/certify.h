@@ -17,8 +17,8 @@
 //
 // Why __float128: GCC's and clang's quad type (113-bit significand, ≈ 34 digits) needs no new dependency (basic
 // arithmetic is in libgcc; nothing here calls libquadmath), unlike Boost.Multiprecision, is fast enough for
-// n ≤ 64 (a 64-row set costs about 10 ms), and its 34 digits leave a usable margin for condition numbers up to
-// about 1e20, where double has none beyond 1e16.
+// n ≤ 64 (one elimination per set, in software arithmetic), and its 34 digits leave a usable margin for
+// condition numbers up to about 1e20, where double has none beyond 1e16.
 #pragma once
 
 #include <cstdint>

@@ -12,6 +12,7 @@
 #include "solvers/lemke/lemke_solver.h"
 #include "solvers/newton/newton_min_solver.h"
 #include "solvers/newton/semismooth_newton_solver.h"
+#include "solvers/pivoting/bpp_solver.h"
 #include "solvers/psor/psor_solver.h"
 #include "solvers/siconos/external_backends.h"
 
@@ -36,6 +37,7 @@ constexpr std::pair<std::string_view, std::unique_ptr<Solver> (*)()> kBackends[]
     {"enum", &Make<EnumerativeSolver>},
     {"ipopt", &Make<IpoptQpSolver>},
     {"newton-min", &Make<NewtonMinSolver>},
+    {"bpp", &Make<BppSolver>},
     // The default of the commands: one of the four above per problem (solvers/auto/auto_solver.h).
     {"auto", &MakeAuto},
 };

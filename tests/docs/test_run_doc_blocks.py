@@ -42,6 +42,24 @@ sleep 100
 ```sh
 echo unmarked, never run > unmarked.txt
 ```
+
+```bash runnable=no reason="needs root (apt-get)"
+apt-get install something
+```
+
+```python runnable=no
+print("no reason given")
+```
+
+```text
+output, not a command
+```
+"""
+
+PYTHON_PAGE = """```python runnable=quick writes=py.txt
+import os, sys
+open("py.txt", "w").write(sys.executable + " " + os.environ["PYTHONPATH"])
+```
 """
 
 
@@ -81,13 +99,22 @@ def main():
         check(any(l.startswith("FAILED README.md:24 ") and "would land in the repository" in l for l in lines),
               "a write into the checkout is refused", out)
         check(not (root / "docs" / "escaped.txt").exists(), "the refused block was not run", out)
-        check(lines[-1].startswith("docs (quick): 6 blocks in 1 files: 2 passed, 1 skipped, 3 failed"),
+        check(any(l.startswith("FAILED README.md:40: runnable=no needs reason=") for l in lines),
+              "runnable=no without a reason fails", out)
+        check(lines[-1].startswith("docs (quick): 6 blocks in 1 files: 2 passed, 1 skipped, 4 failed"),
               "the summary counts", out)
         check(not (root / "out.txt").exists() and not (root / "unmarked.txt").exists(),
               "nothing is written into the repository", out)
 
         status, out = run(["--source-dir", str(root), "--build-dir", str(build), "--list-unmarked"])
-        check(status == 0 and out.strip() == "unmarked: README.md:32", "the unmarked shell block is listed", out)
+        listed = [":".join(l.split(":")[:3]) for l in out.splitlines() if l.startswith("unmarked:")]
+        check(status == 1 and listed == ["unmarked: README.md:32", "unmarked: README.md:40"],
+              "the unmarked shell block and the reasonless runnable=no are listed (text and reasoned ones are not), "
+              "and the listing fails", out)
+
+        (root / "README.md").write_text(PYTHON_PAGE, encoding="utf-8")
+        status, out = run(["--source-dir", str(root), "--build-dir", str(build)])
+        check(status == 0 and "PASSED README.md:1 " in " ".join(out.split()), "a python block runs with python3", out)
 
         (root / "README.md").write_text("```sh runnable=quick\nsleep 0.3\n```\n", encoding="utf-8")
         status, out = run(["--source-dir", str(root), "--build-dir", str(build), "--budget", "0.1"])

@@ -84,7 +84,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 
   // One default-constructed instance per backend, kept between inputs while it stays in its default state (a
   // rejected option must not change it, which is checked), replaced once an option was accepted: creating an
-  // Ipopt or Lemke backend costs milliseconds under ASan.
+  // Ipopt or Lemke backend under ASan costs far more than checking one input.
   static std::vector<std::unique_ptr<smcbench::Solver>> pool;
   const std::vector<std::string_view> names = smcbench::SolverNames();
   if (pool.empty()) {

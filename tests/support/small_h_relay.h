@@ -1,5 +1,5 @@
-// The small-h relay of issue 12 shared by the backends' tests: W = h·G with a planted solution s*, on which
-// "solved" used to let wrong s through (the residual is O(h)), and the check each backend's test runs on it.
+// The small-h relay shared by the backends' tests: W = h·G with a planted solution s*, on which a residual test
+// alone lets wrong s through as "solved" (the residual is O(h)), and the check each backend's test runs on it.
 // Header-only: each backend test includes it.
 #pragma once
 
@@ -71,7 +71,7 @@ inline SmallHRelay MakeSmallHRelay(int n, double h) {
 
 inline constexpr double kSmallHs[] = {1e-2, 1e-4, 1e-6, 1e-8, 1e-10};
 
-// Issue 12's check on one backend: at n = 4, 6, 8 and every h of kSmallHs, "solved" with ‖z − s*‖∞ within the
+// The small-h check on one backend: at n = 4, 6, 8 and every h of kSmallHs, "solved" with ‖z − s*‖∞ within the
 // forward-error allowance, with the base's exact polish and without it (the backend's own stopping test then
 // decides). GoogleTest assertions: call it from a TEST.
 inline void ExpectSolvedWithinAllowanceAtSmallH(Solver& solver) {

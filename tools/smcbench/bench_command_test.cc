@@ -103,7 +103,7 @@ TEST(Bench, TinySuiteEndToEndWithReport) {
     ASSERT_EQ(rep.code, 0) << rep.err;
     EXPECT_TRUE(fs::is_regular_file(dir / "profile-tiny.png"));
     EXPECT_TRUE(fs::is_regular_file(dir / "work-precision-galias-yu-2007.png"));
-    // Issue 14: every figure also as SVG, with its data and gnuplot script beside it, which remake it from there.
+    // Every figure also as SVG, with its data and gnuplot script beside it, which remake it from there.
     for (const char* file : {"profile-tiny.svg", "profile-tiny.dat", "profile-tiny.gp",
                              "work-precision-galias-yu-2007.svg", "work-precision-galias-yu-2007.gp"}) {
       EXPECT_TRUE(fs::is_regular_file(dir / file)) << file;
@@ -352,12 +352,12 @@ TEST(Bench, BadInputIsAOneLineError) {
   EXPECT_THAT(r.err, HasSubstr("cannot read"));
 }
 
-// Issue 14: names and options are checked before any suite is built or any folder made, so a typo costs a second.
+// Names and options are checked before any suite is built or any folder made, so a typo costs a second.
 TEST(Bench, ChecksSuitesAndOptionsBeforeAnyWork) {
   const fs::path out = fs::temp_directory_path() / ("smcbench-bench-early-" + std::to_string(::getpid()));
   fs::remove_all(out);
   const auto start = std::chrono::steady_clock::now();
-  // The paper suite comes first and takes tens of seconds to capture: the unknown second suite must fail before it.
+  // The paper suite comes first and is slow to capture: the unknown second suite must fail before it.
   CliRun r = RunSmcbench({"bench", "--suite", "paper", "--suite", "papr", "--out", out.string()});
   EXPECT_EQ(r.code, 1);
   EXPECT_THAT(r.err, HasSubstr("unknown suite 'papr'"));
@@ -386,7 +386,7 @@ TEST(Bench, ChecksSuitesAndOptionsBeforeAnyWork) {
   EXPECT_FALSE(fs::exists(out)) << "no folder is made for a request that fails its checks";
 }
 
-// Issue 27: a problem-set file that cannot be read, or holds no problem, fails before the output folder exists.
+// A problem-set file that cannot be read, or holds no problem, fails before the output folder exists.
 TEST(Bench, AnUnreadableOrEmptySuiteFileLeavesNoFolder) {
   const fs::path scratch = fs::temp_directory_path() / ("smcbench-bench-empty-" + std::to_string(::getpid()));
   fs::remove_all(scratch);
@@ -404,7 +404,7 @@ TEST(Bench, AnUnreadableOrEmptySuiteFileLeavesNoFolder) {
   fs::remove_all(scratch);
 }
 
-// Issue 27: the time-stepper studies run the paper's scenes, so a run of other suites (a user's problem-set file)
+// The time-stepper studies run the paper's scenes, so a run of other suites (a user's problem-set file)
 // has none unless --stepper asks for them.
 TEST(Bench, StepperStudiesOnlyForSceneSuitesOrWhenAsked) {
   const fs::path scratch = fs::temp_directory_path() / ("smcbench-bench-stepper-" + std::to_string(::getpid()));
@@ -644,7 +644,7 @@ TEST(Report, InaccurateAndWronglyRefusedAreCountedAsWrong) {
 
 
 // ------------------------------------------------------------------------------------------------------------
-// Issue 17: sharded runs, merge, resume, frozen suites.
+// Sharded runs, merge, resume, frozen suites.
 
 // A record of results.json without what depends on the clock or the machine (times, sample counts, host, how many
 // jobs shared it): what a sharded run must reproduce exactly.
@@ -769,7 +769,7 @@ TEST(Shards, ThreeShardsMergedEqualTheSingleRunAndAKilledShardResumes) {
   fs::remove_all(root);
 }
 
-// Issue 16 item 7: every number of results.csv reads back to the double results.json holds.
+// Every number of results.csv reads back to the double results.json holds.
 TEST(Shards, ResultsCsvNumbersRoundTrip) {
   const fs::path dir = fs::temp_directory_path() / ("smcbench-csv-" + std::to_string(::getpid()));
   fs::remove_all(dir);

@@ -292,7 +292,8 @@ int RunCollection(const std::string& dir, const SolveSettings& s, const std::str
   return 0;
 }
 
-// The per-size goals (ns per cold solve at tolerance 1e-10); 0 = no goal stated for that size.
+// The per-size goals of docs/benchmarks.md, 'Performance against the goals' (ns per cold solve at tolerance
+// 1e-10); 0 = no goal stated for that size.
 double GoalNs(int m) {
   if (m <= 2) return 50;
   if (m == 4) return 150;

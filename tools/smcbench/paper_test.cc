@@ -66,7 +66,7 @@ class Paper : public ::testing::Test {
 fs::path* Paper::dir_ = nullptr;
 PaperReport* Paper::report_ = nullptr;
 
-// One test runs the studies once (≈ 20 s) and checks everything: ctest runs each TEST in its own process.
+// One test runs the (slow) studies once and checks everything: ctest runs each TEST in its own process.
 TEST_F(Paper, ReproducesTheClaimsTable) {
   CheckRows();
   CheckSchemeVerdicts();

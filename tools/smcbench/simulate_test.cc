@@ -92,7 +92,7 @@ TEST_F(Simulate, SignSceneWritesCsvAndSummary) {
   const auto lines = ReadLines(csv);
   ASSERT_EQ(lines.size(), 1u + 201u);  // header + rows k = 0..200 (T = 2)
   EXPECT_EQ(lines[0].rfind("t,x1,s1", 0), 0u) << lines[0];
-  EXPECT_EQ(lines[0], "t,x1,s1,y1,iterations,residual,u1");  // S1 is a controller: u = −s (issue 15)
+  EXPECT_EQ(lines[0], "t,x1,s1,y1,iterations,residual,u1");  // S1 is a controller: u = −s
   const auto row0 = SplitNumbers(lines[1]);
   ASSERT_GE(row0.size(), 3u);
   EXPECT_EQ(row0[0], 0.0);
@@ -128,8 +128,8 @@ TEST_F(Simulate, SignSceneWritesCsvAndSummary) {
   EXPECT_LE(j["errors"]["s"]["l1"].get<double>(), 0.02);
 }
 
-// Lemma (yahoo) through the command line with issue 12's example (x0 = 1.7771, h = 0.021, T = 8), where x sat at
-// 1.7e-18 (lemke) and 1e-10 (newton) after the arrival: with every backend at its default settings x is exactly
+// Lemma (yahoo) through the command line with the reported example (x0 = 1.7771, h = 0.021, T = 8), where x was
+// seen at 1.7e-18 (lemke) and 1e-10 (newton) after the arrival: with every backend at its default settings x is exactly
 // 0 from k0+1 (or k0+2) to the end, k0 the first step with |x_k| ≤ h.
 TEST_F(Simulate, LemmaYahooIssueExampleIsExactlyZeroWithEveryBackend) {
   for (const char* solver : {"", "lemke", "psor", "newton", "enum", "ipopt"}) {
@@ -152,7 +152,7 @@ TEST_F(Simulate, LemmaYahooIssueExampleIsExactlyZeroWithEveryBackend) {
   }
 }
 
-// Accuracy in the units users read (issue 12): s_error_max and y_error_max against a run stepped with certified
+// Accuracy in the units users read: s_error_max and y_error_max against a run stepped with certified
 // solves. enum solves each one-step problem exactly, so it matches the reference to rounding; PSOR without the
 // polish at tolerance 1e-4 stops early and its s and y are measurably off.
 TEST_F(Simulate, SummaryReportsTheErrorInSAndYAgainstACertifiedReferenceRun) {
@@ -455,11 +455,11 @@ TEST_F(Simulate, RecordWritesEveryOneStepProblem) {
 }
 
 // ------------------------------------------------------------------------------------------------------------
-// Issue 13: the outputs are computed while the run goes, in memory independent of its length.
+// Streaming: the outputs are computed while the run goes, in memory independent of its length.
 
 // The summary `simulate` computes on the fly against the whole-trajectory computation of the same run (recorded
-// trajectory, ComputeMetrics, ComputeErrors, CompareWithReference after a recorded reference run: the path
-// `simulate` took before issue 13, kept in SimulationSummary's recorded overload). Every key must be equal;
+// trajectory, ComputeMetrics, ComputeErrors, CompareWithReference after a recorded reference run: the path that
+// keeps the whole trajectory, kept in SimulationSummary's recorded overload). Every key must be equal;
 // doubles compare exactly (the accumulators add the same terms in the same order, and the JSON text round-trips
 // doubles), except wall_seconds, steps_per_second and reference.wall_seconds, which are timings.
 TEST_F(Simulate, StreamedSummaryEqualsTheWholeTrajectoryComputation) {
@@ -564,8 +564,8 @@ TEST_F(Simulate, StreamedSummaryEqualsTheWholeTrajectoryComputation) {
 // Every output at once (--summary with its reference run, --out, --record) for N and 10 N steps: the heap the run
 // adds to the process must not grow with N. Measured at the malloc level (tests/support/malloc_counter.h: live
 // bytes, whatever allocates them, Eigen included), not through /proc (VmHWM does not see the heap on every kernel this runs on).
-// Before issue 13, 10⁵ steps of S2 held ≈ 11 MB of trajectory (the run's and the reference run's rows) plus
-// ≈ 10 MB of --record ids at once; here the peak of the 10 N run may exceed the N run's by at most 1 MB.
+// Holding the whole trajectory (the run's and the reference run's rows) and the --record ids at once would grow
+// the peak by megabytes per 10⁵ steps of S2; here the peak of the 10 N run may exceed the N run's by at most 1 MB.
 TEST_F(Simulate, OutputsStreamInMemoryIndependentOfTheNumberOfSteps) {
   if (!test_support::CanCountMallocs()) GTEST_SKIP() << "the allocator is not ours to observe (sanitizer build)";
   const auto peak_bytes = [&](const char* T) {
@@ -646,7 +646,7 @@ TEST_F(Simulate, SubnormalStatesAreZeroByDefaultAndKeptWithIeeeSubnormals) {
                      {"--flush-subnormals and --ieee-subnormals exclude each other"});
 }
 
-// Issue 15: a ZOH scene's CSV carries u1..um, each row's u consistent with the next state (x_{k+1} − e^{Fh} x_k =
+// A ZOH scene's CSV carries u1..um, each row's u consistent with the next state (x_{k+1} − e^{Fh} x_k =
 // Ψ G u_k with e^{Fh}, Ψ by a Taylor series here: F = 0 for smc-disturbed, so e^{Fh} = I, Ψ = hI, plus the
 // disturbance ∫ G d = G·(0.5/50)(cos 50t_k − cos 50t_{k+1})), and the summary's chattering keys.
 TEST_F(Simulate, ZohSceneWritesItsInputAndChatteringKeys) {
@@ -693,7 +693,7 @@ TEST_F(Simulate, ZohSceneWritesItsInputAndChatteringKeys) {
   EXPECT_TRUE(ReadJson(summary)["chattering"]["u_total_variation"].is_null());
 }
 
-// Issue 15 item 4: the plant between samples. A ZOH plant with F ≠ 0, Siconos' θ = 0.5 controller and a matched
+// The plant between samples. A ZOH plant with F ≠ 0, Siconos' θ = 0.5 controller and a matched
 // disturbance 0.1 + 0.5 sin(20 t + 0.3), plant_substeps 4 in the file: the CSV has 4N + 1 rows, the sample rows are
 // those of the samples-only run (--plant-substeps 1 overrides the file) text for text, and every point between
 // samples, those of the last interval included, matches a fine RK4 written here of x' = F x + G (u_k + d(t)) from

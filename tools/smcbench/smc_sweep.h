@@ -1,4 +1,4 @@
-// `smcbench smc-sweep`: the study a control engineer asks of an SMC implementation (issue 15) — for one ZOH scene,
+// `smcbench smc-sweep`: the study a control engineer asks of an SMC implementation — for one ZOH scene,
 // the steady-state band of σ and the input's total variation against h, implicit (`zoh`) against explicit
 // (`zoh-explicit`), as a markdown table with the fitted orders in h and two log-log figures (PNG + SVG, each beside
 // its data and gnuplot script). A subcommand rather than a `paper` study: it takes any ZOH scene file and its own

@@ -1,0 +1,286 @@
+// bpp backend: block principal pivoting on the box (bpp_solver.h states the method, the pivot rule and its
+// safeguards).
+#include "solvers/pivoting/bpp_solver.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdio>
+
+#include <Eigen/LU>
+
+namespace smcbench {
+namespace {
+
+constexpr auto kLower = static_cast<signed char>(RowState::kLower);
+constexpr auto kUpper = static_cast<signed char>(RowState::kUpper);
+constexpr auto kFree = static_cast<signed char>(RowState::kFree);
+
+// The set a row moves to when it is infeasible in the solved set: a free row to the bound it crossed, a bound row
+// to free.
+signed char Flipped(signed char state, double z, double l) {
+  if (state != kFree) return kFree;
+  return z < l ? kLower : kUpper;
+}
+
+// Rows whose state is forced by their bounds: l = u is fixed (kept at l, any w), l = −∞ and u = +∞ always free.
+bool FixedRow(double l, double u) { return l == u; }
+
+// Above this many free rows the free block is factored by Eigen's blocked LU (matrix-matrix updates) instead of the
+// unblocked dense_lu: the factorization is the whole cost of an iteration there.
+constexpr int kBlockedLuRows = 64;
+
+// LU with partial pivoting of the k×k block (column-major, leading dimension ld) in dense_lu's storage: L unit lower
+// and U in place, piv[j] the row swapped with row j at step j (Eigen's row transpositions are the same record), so
+// dense_lu::Solve solves with either. False when a pivot is ≤ small or not finite.
+bool FactorFreeBlock(double* a, int ld, int k, int* piv, double small) {
+  if (k <= kBlockedLuRows) return dense_lu::Factor(a, ld, k, piv, small);
+  int transpositions = 0;
+  Eigen::internal::partial_lu_impl<double, Eigen::ColMajor, int>::blocked_lu(k, k, a, ld, piv, transpositions);
+  for (int j = 0; j < k; ++j) {
+    if (!(std::abs(a[j + static_cast<std::ptrdiff_t>(j) * ld]) > small)) return false;  // NaN too
+  }
+  return true;
+}
+
+template <typename... Args>
+void SetMessage(SolveResult* result, const char* format, Args... args) {
+  char buffer[400];
+  std::snprintf(buffer, sizeof buffer, format, args...);
+  result->message.assign(buffer);
+}
+
+}  // namespace
+
+bool BppOptions::IsValid(std::string* why) const {
+  if (block_steps_without_progress < 0) {
+    if (why) *why = "bpp: block_steps_without_progress must be >= 0";
+    return false;
+  }
+  if (!(pivot_tolerance >= 0.0 && pivot_tolerance < 1.0)) {
+    if (why) *why = "bpp: pivot_tolerance must lie in [0, 1) (units of the row-equilibrated M, max |M_ij| = 1)";
+    return false;
+  }
+  return true;
+}
+
+const SolverInfo& BppSolver::info() const {
+  static const SolverInfo kInfo{
+      "bpp",
+      "block principal pivoting on the box (each row free / at l / at u, n variables), Murty's least-index single "
+      "pivots after non-improving block steps; exact LU of each free block",
+      "Judice & Pires, Comput. Oper. Res. 21 (1994); Kostreva, Linear Algebra Appl. 21 (1978); Murty, Opsearch 11 "
+      "(1974)",
+      /*dense=*/true,
+      /*sparse=*/true,
+      /*symmetric_only=*/false,
+      // Finite on P-matrix LCPs (Murty's least-index fallback), not proven for rows with two finite bounds.
+      /*exact=*/false,
+      /*mcp=*/false,
+      /*default_size_limit=*/0,
+      /*equilibrate=*/true,
+      /*delegates=*/false,
+      /*external=*/false,
+      /*allocation_free=*/true,
+      /*solves_every_p_matrix=*/true};
+  return kInfo;
+}
+
+void BppSolver::BindOptions(OptionBinder* binder) {
+  binder->Add("block_steps_without_progress", &options_.block_steps_without_progress,
+              "block pivots allowed while the infeasible count does not improve (>= 0), then least-index single "
+              "pivots");
+  binder->Add("pivot_tolerance", &options_.pivot_tolerance,
+              "free-block LU pivots at or below this are singular (row-equilibrated M), in [0, 1)");
+}
+
+bool BppSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }
+
+void BppSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  if (problem.is_sparse()) {
+    Pivot<true>(problem, options, result);
+  } else {
+    Pivot<false>(problem, options, result);
+  }
+}
+
+template <>
+bool BppSolver::SolveActiveSet<false>(const BoxMLCP& problem, double* z) {
+  const int n = problem.size();
+  const ActiveSetScratch s = dense_.For(n);
+  const double* m = problem.dense_matrix().data();
+  const double *l = problem.l().data(), *u = problem.u().data();
+  const int nf = active_set::PlaceBoundRows<0>(n, s.state, l, u, z, s.free_rows);
+  if (nf == 0) return true;
+  active_set::ReducedRhs<0>(m, n, problem.q().data(), z, s.free_rows, nf, s.rhs);
+  active_set::GatherFreeBlock(m, n, s.free_rows, nf, s.block, n);
+  if (!FactorFreeBlock(s.block, n, nf, s.pivots, options_.pivot_tolerance)) return false;
+  dense_lu::Solve(s.block, n, nf, s.pivots, s.rhs);
+  return active_set::ScatterFreeRows(s.rhs, s.free_rows, nf, l, u, z) != FreeRowsFit::kNonFinite;
+}
+
+template <>
+bool BppSolver::SolveActiveSet<true>(const BoxMLCP& problem, double* z) {
+  const int n = problem.size();
+  const ActiveSetScratch s = dense_.For(n);
+  if (placed_.size() != n) placed_.resize(n);
+  const int nf = active_set::PlaceBoundRows<0>(n, s.state, problem.l().data(), problem.u().data(), placed_.data(),
+                                               s.free_rows);
+  std::copy(placed_.data(), placed_.data() + n, z);
+  if (nf == 0) return true;
+  w_.noalias() = problem.sparse_matrix() * placed_;
+  w_ += problem.q();
+  if (sparse_rhs_.size() != nf) sparse_rhs_.resize(nf);
+  for (int k = 0; k < nf; ++k) sparse_rhs_[k] = -w_[s.free_rows[k]];
+  if (!sparse_block_.Factor(problem.sparse_matrix(), s.free_rows, nf)) return false;
+  if (!sparse_block_.Solve(sparse_rhs_, &sparse_x_)) return false;
+  return active_set::ScatterFreeRows(sparse_x_.data(), s.free_rows, nf, problem.l().data(), problem.u().data(), z) !=
+         FreeRowsFit::kNonFinite;
+}
+
+template <bool Sparse>
+void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  const int n = problem.size();
+  const ActiveSetScratch s = dense_.For(n);
+  if (w_.size() != n) w_.resize(n);
+  if (static_cast<int>(previous_state_.size()) != n) previous_state_.assign(n, 0);
+  if (static_cast<int>(infeasible_.size()) != n) infeasible_.assign(n, 0);
+  const double* l = problem.l().data();
+  const double* u = problem.u().data();
+  double* z = result->z.data();
+  const auto multiply = [&] {
+    if constexpr (Sparse) {
+      w_.noalias() = problem.sparse_matrix() * result->z;
+    } else {
+      w_.noalias() = problem.dense_matrix() * result->z;
+    }
+    w_ += problem.q();
+  };
+
+  // The first active set: the warm start's own, else the Jacobi-scaled natural map at Π(0) (result->z holds it).
+  const bool warm = options.warm_start.size() == n;
+  if (!warm) multiply();
+  for (int i = 0; i < n; ++i) {
+    signed char state = kFree;
+    if (FixedRow(l[i], u[i])) {
+      state = kLower;
+    } else if (warm) {
+      state = z[i] <= l[i] ? kLower : (z[i] >= u[i] ? kUpper : kFree);
+    } else {
+      double diagonal = 1.0;
+      if constexpr (Sparse) {
+        diagonal = problem.sparse_matrix().coeff(i, i);
+      } else {
+        diagonal = problem.dense_matrix()(i, i);
+      }
+      const double step = diagonal > 0.0 ? w_[i] / diagonal : w_[i];
+      state = static_cast<signed char>(ClassifyRow(z[i], step, l[i], u[i]));
+    }
+    s.state[i] = state;
+  }
+
+  const double q_norm = problem.residual_scale() - 1.0;
+  const int budget = IterationBudget(options, std::max(kBppDefaultMinIterations, 20 * n));
+  int best_count = n + 1;       // fewest infeasible rows seen
+  int credit = options_.block_steps_without_progress;
+  bool last_was_block = false;  // the current set came from a block pivot (a singular block steps back)
+  bool force_single = false;    // stepped back from a singular block: the next pivot is a single one
+  int iterations = 0, block_pivots = 0, single_pivots = 0, singular_blocks = 0;
+  const auto finish = [&](SolveStatus status) {
+    result->status = status;
+    result->iterations = iterations;
+    result->SetDetail("block_pivots", block_pivots);
+    result->SetDetail("single_pivots", single_pivots);
+    result->SetDetail("singular_blocks", singular_blocks);
+    if (options.verbosity > 0) {
+      std::fprintf(stderr, "bpp: %s after %d active sets (%d block, %d single pivots, %d singular blocks)\n",
+                   std::string(ToString(status)).c_str(), iterations, block_pivots, single_pivots, singular_blocks);
+    }
+  };
+
+  for (;;) {
+    if (iterations >= budget) {
+      SetMessage(result, "bpp: iteration budget of %d active sets exhausted (best infeasible count %d)", budget,
+                 best_count);
+      finish(SolveStatus::kIterationLimit);
+      return;
+    }
+    if (options.time_limit_seconds < kInf && TimeLimitReached()) {
+      SetMessage(result, "bpp: time limit reached after %d active sets", iterations);
+      finish(SolveStatus::kTimeLimit);
+      return;
+    }
+    ++iterations;
+    if (!SolveActiveSet<Sparse>(problem, z)) {
+      ++singular_blocks;
+      if (last_was_block) {
+        // Step back to the set before the block pivot and change one row only (Murty's rule) from there.
+        std::copy(previous_state_.begin(), previous_state_.end(), s.state);
+        last_was_block = false;
+        force_single = true;
+        continue;
+      }
+      if (iterations == 1) {
+        // The guessed first set is singular: start again from every row at a bound (Júdice–Pires' F = ∅), free
+        // only where no bound is finite.
+        for (int i = 0; i < n; ++i) {
+          s.state[i] = l[i] > -kInf ? kLower : (u[i] < kInf ? kUpper : kFree);
+        }
+        continue;
+      }
+      SetMessage(result,
+                 "bpp: the free block of active set %d is singular or its solution not finite (pivot tolerance %g); "
+                 "M is not a P-matrix",
+                 iterations, options_.pivot_tolerance);
+      finish(SolveStatus::kSingular);
+      return;
+    }
+    multiply();
+    double z_norm = 0.0;
+    for (int i = 0; i < n; ++i) z_norm = std::max(z_norm, std::abs(z[i]));
+    const double margin = 0.5 * options.tolerance * (1.0 + std::min(z_norm, q_norm));
+    int count = 0;
+    for (int i = 0; i < n; ++i) {
+      const signed char state = s.state[i];
+      const bool bad = state == kFree ? (z[i] < l[i] - margin || z[i] > u[i] + margin)
+                                      : (!FixedRow(l[i], u[i]) &&
+                                         (state == kLower ? w_[i] < -margin : w_[i] > margin));
+      if (bad) infeasible_[count++] = i;
+    }
+    if (count == 0) {
+      for (int i = 0; i < n; ++i) z[i] = std::min(std::max(z[i], l[i]), u[i]);
+      finish(SolveStatus::kSolved);
+      return;
+    }
+    if (options.verbosity > 1) {
+      std::fprintf(stderr, "bpp: set %d  infeasible %d (best %d)\n", iterations, count, best_count);
+    }
+    std::copy(s.state, s.state + n, previous_state_.begin());
+    bool block = false;
+    if (!force_single) {
+      if (count < best_count) {
+        best_count = count;
+        credit = options_.block_steps_without_progress;
+        block = true;
+      } else if (credit > 0) {
+        --credit;
+        block = true;
+      }
+    }
+    force_single = false;
+    if (block) {
+      for (int k = 0; k < count; ++k) {
+        const int i = infeasible_[k];
+        s.state[i] = Flipped(s.state[i], z[i], l[i]);
+      }
+      ++block_pivots;
+    } else {
+      const int i = infeasible_[0];  // least index: rows were collected in increasing order
+      s.state[i] = Flipped(s.state[i], z[i], l[i]);
+      ++single_pivots;
+    }
+    last_was_block = block;
+  }
+}
+
+}  // namespace smcbench
