@@ -38,7 +38,7 @@ AviReference CertifyAvi(const AffineVI& avi, const std::vector<AviSolution>& can
 struct AviJudgement {
   Verdict verdict = Verdict::kFailed;
   // The natural residual of the normalized reduction at (λ, μ̃, ν̃), recomputed here (Residual of BoxMLCP): rel is
-  // relative to 1 + ‖(q̃, K̃, f̃)‖∞, scaled is in units of λ relative to 1 + ‖(λ, μ̃, ν̃)‖∞. Both scale-free: they do
+  // relative to 1 + ‖(q̃, K̃, f̃)‖∞, scaled is relative to 1 + ‖(λ, μ̃, ν̃)‖∞. Both scale-free: they do
   // not change when (M, q) are scaled together or a row of (H, K) or (E, f) is scaled by a positive number.
   Residual residual;
   // max over rows of (K̃_i − H̃_iλ)⁺ and |Ẽ_jλ − f̃_j| (each row divided by its largest coefficient, so in units of
@@ -60,8 +60,9 @@ struct AviJudgement {
 
 // The AVI verdict, with the meaning of Judge (verdict.h):
 //   solved:     Judge's residual rule (rel ≤ tol and scaled ≤ tol) on the normalized reduction at the answer,
-//               complementarity ≤ tol and primal_infeasibility ≤ tol (PassesAviTolerance); else wrongly claimed (also on an expected-infeasible AVI). Where the
-//               forward error applies, ‖λ − λ*‖∞ ≤ forward_allowance, else inaccurate.
+//               complementarity ≤ tol and primal_infeasibility ≤ tol (PassesAviTolerance); else wrongly claimed
+//               (also on an expected-infeasible AVI). Where the forward error applies, ‖λ − λ*‖∞ ≤
+//               forward_allowance, else inaccurate.
 //   infeasible: wrongly refused when the AVI is known solvable (expected solvable, or a verified reference),
 //               correctly refused when expected infeasible, else failed.
 //   otherwise:  correctly refused on an expected-infeasible AVI, else failed.
