@@ -58,7 +58,8 @@ TEST(AffineVIValidation, EachErrorNamesItsField) {
   };
   const std::vector<Case> cases = {
       {"empty M", [&] { AffineVI(DenseMatrix(), Vector(), SquareH(), SquareK()); }, "AffineVI: M is 0x0"},
-      {"non-square M", [&] { AffineVI(DenseMatrix::Ones(2, 3), q, SquareH(), SquareK()); }, "M is 2x3 but must be square"},
+      {"non-square M", [&] { AffineVI(DenseMatrix::Ones(2, 3), q, SquareH(), SquareK()); },
+       "M is 2x3 but must be square"},
       {"q size", [&] { AffineVI(I, Vec({1, 2, 3}), SquareH(), SquareK()); }, "q has size 3 but M is 2x2"},
       {"H columns", [&] { AffineVI(I, q, DenseMatrix::Ones(2, 3), Vec({0, 0})); }, "H is 2x3 but must have n = 2"},
       {"K size", [&] { AffineVI(I, q, SquareH(), Vec({0, 0})); }, "K has size 2 but H has 4 rows"},
@@ -66,7 +67,8 @@ TEST(AffineVIValidation, EachErrorNamesItsField) {
       {"Inf in H", [&] { AffineVI(I, q, Mat({{1, 0}, {kInf, 0}}), Vec({0, 0})); }, "H(1,0) is infinite"},
       {"NaN in q", [&] { AffineVI(I, Vec({nan, 0}), SquareH(), SquareK()); }, "q[0] is NaN"},
       {"Inf in K", [&] { AffineVI(I, q, SquareH(), Vec({-1, -kInf, -1, -1})); }, "K[1] is infinite"},
-      {"E columns", [&] { AffineVI(I, q, SquareH(), SquareK(), Mat({{1}}), Vec({0})); }, "E is 1x1 but must have n = 2"},
+      {"E columns", [&] { AffineVI(I, q, SquareH(), SquareK(), Mat({{1}}), Vec({0})); },
+       "E is 1x1 but must have n = 2"},
       {"f size", [&] { AffineVI(I, q, SquareH(), SquareK(), Mat({{1, 1}}), Vec({0, 0})); }, "f has size 2 but E has 1"},
       {"NaN in f", [&] { AffineVI(I, q, SquareH(), SquareK(), Mat({{1, 1}}), Vec({nan})); }, "f[0] is NaN"},
       {"zero row of H", [&] { AffineVI(I, q, Mat({{1, 0}, {0, 0}}), Vec({0, -1})); }, "H row 1 is zero"},

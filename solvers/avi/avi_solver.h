@@ -47,9 +47,10 @@ class DirectAviBackend {
 // a nonnegative one and the least squares is repeated on its support. Best effort: the verdict judges the result.
 AviSolution AviMultipliersAt(const AffineVI& avi, const Vector& lambda);
 
-// Solves avi with solver: through the reduction, or directly for a DirectAviBackend. options.warm_start may be empty, λ alone (size n: multipliers start at 0) or (λ, μ, ν)
-// as stated (size n + m + p); any other size reaches the backend, which reports it (kInvalidOptions). Never throws
-// for a valid AVI (as Solver::Solve). Allocates: it builds the reduction on every call.
+// Solves avi with solver: through the reduction, or directly for a DirectAviBackend. options.warm_start may be
+// empty, λ alone (size n: multipliers start at 0) or (λ, μ, ν) as stated (size n + m + p); any other size reaches
+// the backend, which reports it (kInvalidOptions). Never throws for a valid AVI (as Solver::Solve). Allocates: it
+// builds the reduction on every call (AviSession does not).
 AviResult SolveAvi(const AffineVI& avi, Solver& solver, const SolverOptions& options = {},
                    const AviReference* reference = nullptr);
 

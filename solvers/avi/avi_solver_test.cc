@@ -368,7 +368,8 @@ TwistingRun RunImplicitTwisting(const Eigen::Vector2d& x0, Solver& solver, const
   DenseMatrix M(2, 2);
   M << kG * kTs * kTs / 2.0, kBeta * kG * kTs * kTs / 2.0, kG * kTs, kBeta * kG * kTs;
   const DenseMatrix H = Mat({{1, 0}, {-kTs / 2.0, 1}, {-1, 0}, {kTs / 2.0, -1}});
-  const DenseMatrix vertices = Mat({{-1, -1 - kTs / 2.0}, {-1, 1 - kTs / 2.0}, {1, 1 + kTs / 2.0}, {1, -1 + kTs / 2.0}});
+  const DenseMatrix vertices =
+      Mat({{-1, -1 - kTs / 2.0}, {-1, 1 - kTs / 2.0}, {1, 1 + kTs / 2.0}, {1, -1 + kTs / 2.0}});
   AffineVI avi(M, Vec({x0[0] + kTs * x0[1], x0[1]}), H, Vector::Constant(4, -1.0), "siconos-implicit-twisting");
   TwistingRun run;
   run.x = x0;
