@@ -115,7 +115,8 @@ SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>
   f.algorithm_opt = command_->add_option(
       "--algorithm", f.algorithm,
       "nonlinear scenes: newton-mlcp (Algorithm 2: outer Newton, each iteration a box-MLCP on any backend; "
-      "default) | mcp (Algorithm 1: the step's MCP, backend newton)");
+      "default) | mcp (Algorithm 1: the step's MCP, backend newton); super-twisting scenes: closed-form (default) | "
+      "mcp (the step's generalized equation as an MCP, backend newton)");
   f.newton_tol_opt = command_->add_option("--newton-tol", f.newton_tol,
                                           "nonlinear scenes: Newton stopping tolerance on the step's relative "
                                           "residual (default 1e-10)");
