@@ -7,6 +7,8 @@
 // origin, where plain IEEE arithmetic spends most of its time on subnormal numbers: `.../prefactored-long` runs
 // the default StepperOptions (SubnormalPolicy::kZeroState: a state component below 2.2e-308 becomes 0),
 // `-long-flush` SubnormalPolicy::kFlushToZero (x86 FTZ/DAZ) and `-long-ieee` SubnormalPolicy::kIeee.
+// The super-twisting scenes (stepper/super-twisting*/...) time the two routes of the implicit step, its closed form
+// and its MCP on newton and auto, and the explicit Euler scheme, one whole run per iteration.
 // After the run a table on stderr gives, per scene and backend, prefactored vs rebuild steps/s, their ratio and
 // the goal (≥ 20 M steps/s for S1–S8); docs/benchmarks.md, 'Time-stepper throughput', has the measured rates and
 // those of the reference, Siconos 4.4.
@@ -21,6 +23,7 @@
 
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/registry.h"
+#include "problems/scenes/super_twisting_scene.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {
@@ -81,6 +84,39 @@ void StepperBenchmark(benchmark::State& state, Case c, Path path) {
   state.counters["N"] = static_cast<double>(steps);
 }
 
+// One run of a super-twisting scene per iteration: route "closed-form", "explicit", or a backend name (the MCP route).
+void SuperTwistingBenchmark(benchmark::State& state, std::shared_ptr<const Scene> scene, std::string route) {
+  SimulationSettings settings = scene->defaults();
+  settings.stepper.record = false;
+  std::unique_ptr<Solver> solver;
+  if (route == "explicit") {
+    settings.method = Method::kExplicit;
+  } else if (route == "closed-form") {
+    settings.method = Method::kImplicit;
+    settings.algorithm = NonlinearAlgorithm::kClosedForm;
+  } else {
+    settings.method = Method::kImplicit;
+    settings.algorithm = NonlinearAlgorithm::kMcp;
+    solver = CreateSolver(route);
+  }
+  Trajectory tr;
+  scene->Run(settings, solver.get(), &tr);  // warm-up; a failed step is an error, not a fast time
+  if (!tr.ok()) return ReportFailure(state, tr);
+  for (auto _ : state) {
+    scene->Run(settings, solver.get(), &tr);
+    benchmark::DoNotOptimize(tr.x_final.data());
+    benchmark::ClobberMemory();
+  }
+  if (!tr.ok()) return ReportFailure(state, tr);
+  const double total = static_cast<double>(tr.steps_taken) * static_cast<double>(state.iterations());
+  state.counters["steps/s"] = benchmark::Counter(total, benchmark::Counter::kIsRate);
+  state.counters["s/step"] = benchmark::Counter(total, benchmark::Counter::kIsRate | benchmark::Counter::kInvert);
+  state.counters["iter/step"] =
+      tr.steps_taken ? static_cast<double>(tr.total_iterations) / static_cast<double>(tr.steps_taken) : 0.0;
+  state.counters["max_residual"] = tr.max_residual;
+  state.counters["N"] = static_cast<double>(tr.steps_taken);
+}
+
 // Forwards to the default display reporter and keeps every run's steps/s for the ratio table.
 class CollectingReporter final : public benchmark::BenchmarkReporter {
  public:
@@ -127,6 +163,20 @@ void RegisterAll() {
   g_backends.emplace_back("explicit");
   for (auto name : SceneNames()) {
     std::shared_ptr<Scene> scene = LoadScene(name);
+    if (std::dynamic_pointer_cast<const SuperTwistingScene>(scene)) {
+      if (scene->defaults().method != Method::kImplicit) continue;  // the explicit files: the same runs as below
+      // Every backend that solves MCPs takes the MCP route (capabilities, not names).
+      std::vector<std::string> routes = {"closed-form", "explicit"};
+      for (auto b : SolverNames()) {
+        if (CreateSolver(b)->info().mcp) routes.emplace_back(b);
+      }
+      for (const std::string& route : routes) {
+        benchmark::RegisterBenchmark(("stepper/" + std::string(name) + "/" + route).c_str(), SuperTwistingBenchmark,
+                                     scene, route)
+            ->Unit(benchmark::kMicrosecond);
+      }
+      continue;
+    }
     auto linear = std::dynamic_pointer_cast<const LinearScene>(scene);
     if (!linear) continue;  // nonlinear scenes have their own stepper
     g_scenes.emplace_back(name);

@@ -101,6 +101,7 @@ struct LinearScene::Spec {
   ScalarMatrix E, B, C;
   std::vector<Scalar> D;         // empty: zero
   std::vector<ForcingEntry> forcing;  // empty: none
+  std::vector<ForcingEntry> relation_offset;  // e(t) of y = C x + D + e(t), m entries; empty: none
   Scalar alpha;
   std::string exact;             // "" or "sign"
   bool control_input = false;    // sign: u = −s through B is reported
@@ -259,12 +260,15 @@ SceneParameters ReadParameters(const Reader& r, const json& doc) {
   return parameters;
 }
 
-std::vector<ForcingEntry> ReadForcing(const Reader& r, const json& node, int n, const SceneParameters& parameters) {
-  const std::string field = "system.forcing";
-  if (!node.is_array()) r.Fail(field, std::string("expected an array of n entries, got ") + node.type_name());
+// system.forcing (n entries, size_text "the state has n = 2 (the size of E)") or system.relation_offset (m entries):
+// each a number, an expression or {"type": "sin", amplitude, omega, phase, offset}.
+std::vector<ForcingEntry> ReadForcing(const Reader& r, const json& node, const std::string& field, int n,
+                                      const std::string& size_text, const SceneParameters& parameters) {
+  if (!node.is_array()) {
+    r.Fail(field, std::string("expected an array of ") + std::to_string(n) + " entries, got " + node.type_name());
+  }
   if (static_cast<int>(node.size()) != n) {
-    r.FailSentence(field + " has " + std::to_string(node.size()) + " entries but the state has n = " +
-                   std::to_string(n) + " (the size of E)");
+    r.FailSentence(field + " has " + std::to_string(node.size()) + " entries but " + size_text);
   }
   std::vector<ForcingEntry> out(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
@@ -391,7 +395,7 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
   spec->type = r.String(r.Require(system, "system", "type"), "system.type");
   int n = 0, m = 0;
   if (spec->type == "sign") {
-    r.CheckKeys(system, "system", {"type", "E", "B", "C", "D", "forcing", "control_input"});
+    r.CheckKeys(system, "system", {"type", "E", "B", "C", "D", "forcing", "relation_offset", "control_input"});
     if (const json* input = r.Optional(system, "control_input")) {
       if (!input->is_boolean()) r.Fail("system.control_input", std::string("expected true or false, got ") + input->type_name());
       spec->control_input = input->get<bool>();
@@ -413,7 +417,14 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
                        std::to_string(m) + " rows");
       }
     }
-    if (const json* forcing = r.Optional(system, "forcing")) spec->forcing = ReadForcing(r, *forcing, n, parameters);
+    if (const json* forcing = r.Optional(system, "forcing")) {
+      spec->forcing = ReadForcing(r, *forcing, "system.forcing", n,
+                                  "the state has n = " + std::to_string(n) + " (the size of E)", parameters);
+    }
+    if (const json* offset = r.Optional(system, "relation_offset")) {
+      spec->relation_offset = ReadForcing(r, *offset, "system.relation_offset", m,
+                                          "C has m = " + std::to_string(m) + " rows (y = C x + D + e(t))", parameters);
+    }
   } else if (spec->type == "zoh") {
     r.CheckKeys(system, "system", {"type", "F", "G", "C", "alpha", "equivalent_control", "disturbance"});
     spec->E = r.Matrix(r.Require(system, "system", "F"), "system.F", parameters);
@@ -604,6 +615,31 @@ LinearModel LinearScene::ModelWithoutName(const SceneParameters& overrides) cons
       };
     }
   }
+  if (!s.relation_offset.empty()) {
+    // e(t) = constant part (added to D) + sinusoids, as the forcing's entries.
+    const int m = s.info.m;
+    if (sys.D.size() == 0) sys.D = Vector::Zero(m);
+    std::vector<SinTerm> terms(static_cast<std::size_t>(m), SinTerm{0.0, 0.0, 0.0});
+    bool time_dependent = false;
+    for (int i = 0; i < m; ++i) {
+      const ForcingEntry& e = s.relation_offset[static_cast<std::size_t>(i)];
+      if (!e.is_sin) {
+        sys.D[i] += e.constant.Evaluate(values);
+        continue;
+      }
+      sys.D[i] += e.offset.Evaluate(values);
+      terms[static_cast<std::size_t>(i)] = {e.amplitude.Evaluate(values), e.omega.Evaluate(values),
+                                            e.phase.Evaluate(values)};
+      time_dependent = time_dependent || terms[static_cast<std::size_t>(i)].amplitude != 0.0;
+    }
+    if (time_dependent) {
+      sys.relation_offset = [terms = std::move(terms)](double t, Eigen::Ref<Vector> e) {
+        for (std::size_t i = 0; i < terms.size(); ++i) {
+          e[static_cast<Eigen::Index>(i)] = terms[i].amplitude * std::sin(terms[i].omega * t + terms[i].phase);
+        }
+      };
+    }
+  }
   sys.Validate();
   return sys;
 }
@@ -636,6 +672,7 @@ std::optional<ExactSolution> LinearScene::Exact(const SimulationSettings& settin
   if (sys->E(0, 0) != 0.0) return fail("E = " + NumberText(sys->E(0, 0)));
   if (sys->D.size() && sys->D[0] != 0.0) return fail("D = " + NumberText(sys->D[0]));
   if (sys->g.size() || sys->forcing) return fail("the system has a forcing");
+  if (sys->relation_offset) return fail("the relation has a time-varying term e(t)");
   const double b = sys->B(0, 0), c = sys->C(0, 0);
   if (!(b * c > 0.0)) return fail("b c = " + NumberText(b * c));
   if (settings.x0.size() != 1) return fail("x0 has " + std::to_string(settings.x0.size()) + " entries");

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <system_error>
 
+#include "problems/scenes/super_twisting_scene.h"
 #include "solvers/reference/certify.h"
 
 namespace smcbench {
@@ -49,6 +50,15 @@ void SetReferenceErrors(const ReferenceErrors& errors, const Trajectory& run, Re
   }
 }
 
+// The reference backend certifies box-MLCPs: a scene whose steps are none has no reference run.
+std::string SceneSkipReason(const Scene& scene) {
+  if (dynamic_cast<const SuperTwistingScene*>(&scene)) {
+    return "a super-twisting step is a scalar generalized equation (closed form or MCP), not a box-MLCP the "
+           "reference backend certifies";
+  }
+  return "";
+}
+
 }  // namespace
 
 std::string ReferenceRunSkipReason(const SimulationSettings& settings, int m, std::int64_t num_steps) {
@@ -75,6 +85,7 @@ ReferenceComparison CompareWithReferenceRun(const Scene& scene, const Simulation
   } else {
     out.skipped = ReferenceRunSkipReason(settings, run.m, run.num_steps);
   }
+  if (out.skipped.empty()) out.skipped = SceneSkipReason(scene);
   if (!out.skipped.empty()) return out;
 
   SimulationSettings reference_settings = ReferenceSettings(settings);
@@ -190,6 +201,7 @@ ReferenceComparison CompareWithReferenceRun(const Scene& scene, const Simulation
                                             const Trajectory& run, RunRowsForReference* rows) {
   ReferenceComparison out;
   out.skipped = ReferenceRunSkipReason(settings, run.m, run.num_steps);
+  if (out.skipped.empty()) out.skipped = SceneSkipReason(scene);
   if (out.skipped.empty() && rows == nullptr) out.skipped = "the run's rows were not kept";
   if (!out.skipped.empty()) return out;
 

@@ -1,11 +1,15 @@
 #include "problems/scenes/registry.h"
 
 #include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
 #include <system_error>
 
 #include "problems/io/data_dirs.h"
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/nonlinear_scene.h"
+#include "problems/scenes/super_twisting_scene.h"
 
 namespace smcbench {
 namespace {
@@ -31,7 +35,25 @@ constexpr Entry kScenes[] = {
     {"hypomonotone", "", &MakeHypomonotoneScene},        // S9
     {"arctan", "", &MakeArctanScene},                    // S10
     {"parasitic", "parasitic.json", nullptr},            // S11
+    // Higher-order sliding modes (docs/smc.md): super-twisting, implicit (BPE 2020) and explicit Euler.
+    {"super-twisting", "super-twisting.json", nullptr},
+    {"super-twisting-explicit", "super-twisting-explicit.json", nullptr},
+    {"super-twisting-disturbed", "super-twisting-disturbed.json", nullptr},
+    {"super-twisting-disturbed-explicit", "super-twisting-disturbed-explicit.json", nullptr},
 };
+
+// A scene file: a super-twisting scene if its system type says so, else a linear scene (whose reader reports every
+// defect, unreadable or malformed files included).
+std::unique_ptr<Scene> SceneFromFile(const std::string& path) {
+  std::ifstream in(path);
+  if (in) {
+    std::ostringstream text;
+    text << in.rdbuf();
+    const nlohmann::json doc = nlohmann::json::parse(text.str(), nullptr, /*allow_exceptions=*/false);
+    if (!doc.is_discarded() && IsSuperTwistingDocument(doc)) return SuperTwistingScene::FromJson(doc, path);
+  }
+  return LinearScene::FromFile(path);
+}
 
 }  // namespace
 
@@ -47,7 +69,7 @@ std::unique_ptr<Scene> LoadScene(std::string_view name_or_path) {
   for (const Entry& e : kScenes) {
     if (e.name != name_or_path) continue;
     if (e.make) return e.make();
-    auto scene = LinearScene::FromFile((std::filesystem::path(ScenesDirectory()) / e.file).string());
+    auto scene = SceneFromFile((std::filesystem::path(ScenesDirectory()) / e.file).string());
     if (scene->info().name != e.name) {
       throw InvalidInputError("scene file for '" + std::string(e.name) + "' declares the name '" +
                               scene->info().name + "'");
@@ -58,7 +80,7 @@ std::unique_ptr<Scene> LoadScene(std::string_view name_or_path) {
   std::error_code ec;
   const bool looks_like_path = path.find('/') != std::string::npos ||
                                (path.size() > 5 && path.compare(path.size() - 5, 5, ".json") == 0);
-  if (looks_like_path || std::filesystem::is_regular_file(path, ec)) return LinearScene::FromFile(path);
+  if (looks_like_path || std::filesystem::is_regular_file(path, ec)) return SceneFromFile(path);
   std::string known;
   for (const Entry& e : kScenes) known += (known.empty() ? "" : ", ") + std::string(e.name);
   throw InvalidInputError("unknown scene '" + path + "' (known: " + known + "; or give the path of a scene file)");

@@ -6,6 +6,7 @@
 #include <nlohmann/json.hpp>
 
 #include "problems/scenes/nonlinear_scene.h"
+#include "problems/scenes/super_twisting_scene.h"
 
 namespace smcbench {
 namespace {
@@ -22,6 +23,9 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
   RunMetrics metrics;
   metrics.metrics = ComputeMetrics(tr, reach_tol);
   if (tr.m > 0) metrics.chattering = ComputeChattering(tr, reach_tol);
+  if (const auto* st = dynamic_cast<const SuperTwistingScene*>(&scene)) {
+    metrics.super_twisting = ComputeSuperTwistingPrecision(tr, st->convergence_band());
+  }
   try {
     if (const auto exact = scene.Exact(settings)) metrics.exact_errors = ComputeErrors(tr, *exact);
   } catch (const InvalidInputError& e) {
@@ -49,6 +53,10 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
     j["algorithm"] = std::string(ToString(settings.algorithm));
     j["newton_tolerance"] = settings.newton_tolerance;
     j["newton_max_iterations"] = settings.newton_max_iterations;
+  }
+  // The implicit super-twisting step's route (closed-form or mcp); the explicit scheme solves nothing.
+  if (dynamic_cast<const SuperTwistingScene*>(&scene) && settings.method == Method::kImplicit) {
+    j["algorithm"] = std::string(ToString(settings.algorithm));
   }
   j["x0"] = VectorJson(settings.x0);
   j["parameters"] = json::object();
@@ -110,6 +118,7 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
   j["total_variation_total"] = tv_total;
   j["surfaces"] = surfaces;
   j["chattering"] = ChatteringJson(run_metrics.chattering, tr.t0, tr.h);
+  if (run_metrics.super_twisting) j["super_twisting"] = SuperTwistingJson(*run_metrics.super_twisting, tr.t0, tr.h);
 
   // The error in s and y against the certified reference run (keys always present; null when there is none).
   if (reference != nullptr && reference->errors) {
@@ -145,6 +154,17 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
     j["errors"] = errors;
   }
   return j;
+}
+
+json SuperTwistingJson(const SuperTwistingPrecision& p, double t0, double h) {
+  const auto time = [&](std::int64_t k) { return k >= 0 ? json(t0 + static_cast<double>(k) * h) : json(nullptr); };
+  return {{"band", p.band},
+          {"convergence_step", p.convergence_step >= 0 ? json(p.convergence_step) : json(nullptr)},
+          {"convergence_time", time(p.convergence_step)},
+          {"tail_from_step", p.tail_from},
+          {"tail_from_time", time(p.tail_from)},
+          {"max_abs_sigma_tail", p.max_abs_sigma_tail},
+          {"max_abs_sigma_dot_tail", p.max_abs_sigma_dot_tail}};
 }
 
 json ChatteringJson(const std::optional<ChatteringMetrics>& chattering, double t0, double h) {

@@ -10,6 +10,7 @@
 
 #include "problems/scenes/reference_run.h"
 #include "problems/scenes/scene.h"
+#include "problems/stepper/super_twisting.h"
 
 namespace smcbench {
 
@@ -29,6 +30,10 @@ namespace smcbench {
 //                             u_max_jump, u_max_abs, switching_sign_changes, rows}; the u keys are null when the run
 //                             has no control input (class-(2) scenes without control_input, Euler runs of ZOH plants),
 //                             from_time null and the after-reaching keys 0 when a surface is never reached.
+//   super_twisting            super-twisting scenes only (super_twisting_scene.h): {band, convergence_step,
+//                             convergence_time, tail_from_step, tail_from_time, max_abs_sigma_tail,
+//                             max_abs_sigma_dot_tail} (super_twisting.h: SuperTwistingPrecision; the tail is the
+//                             second half of the run, σ' the difference quotient (σ_{k+1} − σ_k)/h).
 nlohmann::json SimulationSummary(const Scene& scene, const SimulationSettings& settings, std::string_view solver,
                                  const Trajectory& trajectory, double reach_tol, double wall_seconds,
                                  const ReferenceComparison* reference = nullptr);
@@ -40,7 +45,10 @@ struct RunMetrics {
   std::optional<SolutionErrors> exact_errors;  // against the scene's exact solution, when it has one
   std::string exact_unavailable;               // why Exact() refused these settings (errors: null); else empty
   std::optional<ChatteringMetrics> chattering; // null: the summary's chattering is null
+  std::optional<SuperTwistingPrecision> super_twisting;  // super-twisting scenes
 };
+// The summary's "super_twisting" object; h and t0 give the times.
+nlohmann::json SuperTwistingJson(const SuperTwistingPrecision& precision, double t0, double h);
 // The summary's "chattering" object (null for nullopt); h and t0 give from_time.
 nlohmann::json ChatteringJson(const std::optional<ChatteringMetrics>& chattering, double t0, double h);
 // The summary from metrics computed elsewhere; run gives the counters, finals and sizes (it need not be recorded).

@@ -5,6 +5,7 @@
 
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/nonlinear_scene.h"
+#include "problems/scenes/super_twisting_scene.h"
 #include "solvers/core/number_text.h"
 
 namespace smcbench {
@@ -104,7 +105,9 @@ void ApplyNonlinear(const SceneOverrides& o, const Checker& check, bool nonlinea
                     std::vector<std::string>* notes) {
   if (o.algorithm) {
     const auto algorithm = NonlinearAlgorithmFromString(*o.algorithm);
-    if (!algorithm) check.Fail("algorithm", ": unknown algorithm '" + *o.algorithm + "' (known: newton-mlcp, mcp)");
+    if (!algorithm) {
+      check.Fail("algorithm", ": unknown algorithm '" + *o.algorithm + "' (known: newton-mlcp, mcp, closed-form)");
+    }
     s->algorithm = *algorithm;
   }
   if (o.newton_tolerance) {
@@ -188,6 +191,7 @@ std::string BackendName(const SceneOverrides& o, const Checker& check, const Sce
   }
   if (o.solver) return *o.solver;
   if (!s.solver.empty()) return s.solver;
+  if (run.nonlinear && s.algorithm == NonlinearAlgorithm::kClosedForm) return "";  // nothing to solve numerically
   return run.nonlinear && s.algorithm == NonlinearAlgorithm::kMcp ? "newton" : kDefaultSceneBackend;
 }
 
@@ -203,12 +207,21 @@ std::string OverrideName(std::string_view field, OverrideSpelling spelling) {
 SceneRunSettings ApplySceneOverrides(const Scene& scene, const SceneOverrides& o, OverrideSpelling spelling) {
   const Checker check(spelling);
   SceneRunSettings run;
-  run.nonlinear = dynamic_cast<const NonlinearSceneAdapter*>(&scene) != nullptr;
+  const bool super_twisting = dynamic_cast<const SuperTwistingScene*>(&scene) != nullptr;
+  run.nonlinear = super_twisting || dynamic_cast<const NonlinearSceneAdapter*>(&scene) != nullptr;
   SimulationSettings& s = run.settings;
   s = scene.defaults();
   ApplyMethodAndStep(o, check, &s);
   ApplyParameters(scene, o, check, &s);
   ApplyNonlinear(o, check, run.nonlinear, &s, &run.notes);
+  // Each scene kind takes the algorithms that solve its steps: Algorithms 1 and 2 for S9/S10, closed-form or mcp for
+  // super-twisting (its step is a scalar generalized equation, not a box-MLCP).
+  if (super_twisting && s.algorithm == NonlinearAlgorithm::kNewtonMlcp) {
+    check.Fail("algorithm", " newton-mlcp: a super-twisting step is not a box-MLCP; use closed-form or mcp");
+  }
+  if (!super_twisting && run.nonlinear && s.algorithm == NonlinearAlgorithm::kClosedForm) {
+    check.Fail("algorithm", " closed-form solves the super-twisting scenes' steps only; use newton-mlcp or mcp");
+  }
   ApplyStepper(o, check, &s.stepper);
   ApplyPlantSubsteps(o, check, &s, &run.notes);
   run.reach_tolerance = o.reach_tolerance ? *o.reach_tolerance : 10.0 * s.stepper.solver.tolerance;

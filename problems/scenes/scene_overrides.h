@@ -43,7 +43,7 @@ struct SceneOverrides {
 struct SceneRunSettings {
   SimulationSettings settings;
   double reach_tolerance = 0.0;
-  bool nonlinear = false;           // the scene is a NonlinearSceneAdapter (algorithm and Newton settings apply)
+  bool nonlinear = false;           // a NonlinearSceneAdapter or a SuperTwistingScene (the algorithm applies)
   std::string backend;              // the backend to create; empty for explicit methods (no one-step problem)
   std::vector<std::string> notes;   // overrides that have no effect here, said in one line each
 };

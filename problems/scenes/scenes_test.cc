@@ -73,7 +73,8 @@ TEST(Registry, NamesAreThoseOfScenesMd) {
   for (auto n : SceneNames()) names.emplace_back(n);
   EXPECT_THAT(names, ::testing::ElementsAre("sign", "galias-yu-2007", "multi-surface", "filippov", "zoh-siso",
                                             "zoh-mimo", "lyapunov", "observer", "hypomonotone", "arctan",
-                                            "parasitic"));
+                                            "parasitic", "super-twisting", "super-twisting-explicit",
+                                            "super-twisting-disturbed", "super-twisting-disturbed-explicit"));
 }
 
 TEST(Registry, UnknownNameListsTheKnownOnes) {

@@ -95,6 +95,7 @@ OneStepData DiscretizeThetaUnchecked(const LinearSignSystem& system, double h, d
     d.forcing = system.forcing;
     d.forcing_theta = theta;
   }
+  d.relation_offset = system.relation_offset;
   if (system.control_input) {  // u_k = −s_{k+1} through B
     d.input_x = DenseMatrix::Zero(system.m(), n);
     d.input_s = -DenseMatrix::Identity(system.m(), system.m());

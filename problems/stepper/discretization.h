@@ -78,6 +78,9 @@ struct OneStepData {
   Vector p;       // n, the constant part of p_k
   DenseMatrix P;  // n×n, h (I − hθE)⁻¹; empty when there is no time-dependent forcing
   Forcing forcing;            // null when there is none
+  // e(t) of y = C x + D + e(t) (size m; LinearSignSystem::relation_offset), null when there is none: q gets
+  // −e(t_{k+1}) and every y_k has e(t_k).
+  Forcing relation_offset;
   double forcing_theta = 1.0; // θ used to weight g(t_k), g(t_{k+1})
   double h = 0.0;
   SignTreatment sign = SignTreatment::kImplicit;
@@ -96,6 +99,7 @@ struct OneStepData {
   int n() const { return static_cast<int>(R.rows()); }
   int m() const { return static_cast<int>(C.rows()); }
   bool has_forcing() const { return static_cast<bool>(forcing); }
+  bool has_relation_offset() const { return static_cast<bool>(relation_offset); }
   bool has_input() const { return input_s.rows() > 0; }
   bool has_disturbance() const { return disturbance.present(); }
   // w_k at t_k added into w (size n), allocation-free; nothing without a disturbance.

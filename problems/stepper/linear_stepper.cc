@@ -165,7 +165,7 @@ class KernelImpl final : public LinearStepper::Kernel {
       Us_.setZero(m, m);
     }
     x_.resize(n), xn_.resize(n), b_.resize(n), g_prev_.resize(n), g_next_.resize(n), gbar_.resize(n);
-    s_.resize(m), q_.resize(m), y_.resize(m), u_.resize(m);
+    s_.resize(m), q_.resize(m), y_.resize(m), u_.resize(m), e_.resize(m);
   }
 
   bool fixed_size() const override { return N != Eigen::Dynamic && M != Eigen::Dynamic; }
@@ -197,10 +197,11 @@ class KernelImpl final : public LinearStepper::Kernel {
     CVecN p = p_;
     CVecM D = D_, c0 = c0_;
     WVecN x = x_, xn = xn_, b = b_, g_prev = g_prev_, g_next = g_next_, gbar = gbar_;
-    WVecM s = s_, q = q_, y = y_, u = u_;
+    WVecM s = s_, q = q_, y = y_, u = u_, e = e_;
 
     const bool implicit = d.sign == SignTreatment::kImplicit;
     const bool forced = d.has_forcing();
+    const bool offset = d.has_relation_offset();
     const bool record = options.record;
     const bool stream = options.sink != nullptr;
     const bool need_y = record || stream || !implicit;
@@ -228,6 +229,10 @@ class KernelImpl final : public LinearStepper::Kernel {
     s.setZero();
     y = D;
     y.noalias() += C * x;
+    if (offset) {
+      d.relation_offset(t0, e);
+      y += e;
+    }
     if (record) Record(0, t0, x, s, y, 0, 0.0, SolveStatus::kNotRun, out);
     if (stream) stream_.Add(0, t0, x, s, y, 0, 0.0, SolveStatus::kNotRun, n, m);
     if (forced) d.forcing(t0, g_prev);
@@ -246,6 +251,8 @@ class KernelImpl final : public LinearStepper::Kernel {
         gbar = theta * g_next + (1.0 - theta) * g_prev;
         g_prev = g_next;
       }
+      // e(t_{k+1}): in q (implicit) and in y_{k+1}.
+      if (offset) d.relation_offset(t_next, e);
       SolveStatus status = SolveStatus::kNotRun;
       int iterations = 0;
       double residual = 0.0;
@@ -253,6 +260,7 @@ class KernelImpl final : public LinearStepper::Kernel {
         q = -c0;
         q.noalias() -= CR * x;
         if (forced) q.noalias() -= CP * gbar;
+        if (offset) q -= e;
         if (!q.allFinite()) {
           // Only when C R x_k overflows; set_q would throw, and this must be a status.
           status = SolveStatus::kNumericalFailure;
@@ -310,6 +318,7 @@ class KernelImpl final : public LinearStepper::Kernel {
       if (need_y) {
         y = D;
         y.noalias() += C * x;
+        if (offset) y += e;
       }
       ++k;
       if (record) Record(k, t_next, x, s, y, iterations, residual, status, out);
@@ -326,6 +335,7 @@ class KernelImpl final : public LinearStepper::Kernel {
     if (!need_y) {
       y = D;
       y.noalias() += C * x;
+      if (offset) y += e;
     }
     if (session != nullptr && k > 0) problem->set_q(session->problem().q());  // LinearStepper::problem(): the last q
     stream_.Flush();
@@ -360,7 +370,7 @@ class KernelImpl final : public LinearStepper::Kernel {
   VecN p_;
   VecM D_, c0_;
   VecN x_, xn_, b_, g_prev_, g_next_, gbar_;
-  VecM s_, q_, y_, u_;
+  VecM s_, q_, y_, u_, e_;  // e_: e(t) of the relation
   SolverOptions solver_options_;
   SolveResult result_;
   TrajectoryStream stream_;
@@ -439,7 +449,11 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
   solver_options.measure_time = false;
   SolveResult result;
   Vector x = x0, s = Vector::Zero(m), y = first.C * x + first.D;
-  Vector g_prev(n), g_next(n), gbar(n);
+  Vector g_prev(n), g_next(n), gbar(n), e = Vector::Zero(m);
+  if (first.has_relation_offset()) {
+    first.relation_offset(options.t0, e);
+    y += e;
+  }
   if (first.has_forcing()) first.forcing(options.t0, g_prev);
   TrajectoryStream stream;
   stream.Start(n, m, options.sink, first.has_input());
@@ -463,11 +477,12 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
       g_prev = g_next;
       p += d.P * gbar;
     }
+    if (d.has_relation_offset()) d.relation_offset(t_next, e);
     SolveStatus status = SolveStatus::kNotRun;
     int iterations = 0;
     double residual = 0.0;
     if (implicit) {
-      Vector q = -(d.C * (d.R * x) + d.C * p + d.D);  // `eq:TDS3`
+      Vector q = -(d.C * (d.R * x) + d.C * p + d.D + e);  // `eq:TDS3`, e(t_{k+1}) of the relation
       if (!q.allFinite()) {
         status = SolveStatus::kNumericalFailure;
         residual = kInf;
@@ -509,7 +524,7 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
         if (std::abs(x[i]) < zero_below) x[i] = 0.0;
       }
     }
-    y = d.C * x + d.D;
+    y = d.C * x + d.D + e;
     ++k;
     record(k, t_next, iterations, residual, status);
     const bool finite = x.allFinite();

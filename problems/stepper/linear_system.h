@@ -26,6 +26,9 @@ struct LinearSignSystem {
   Vector D;          // m; empty means 0
   Vector g;          // n; constant forcing, empty means 0
   Forcing forcing;   // time-dependent forcing, null means 0
+  // A time-dependent term of the relation, y = C x + D + e(t) (Siconos' ParallelInverter): writes e(t) into a vector
+  // of size m; null means 0. A constant e belongs in D. The implicit step's q takes e(t_{k+1}).
+  Forcing relation_offset;
   // The relay u = −s entering through B is the system's control input (S1: x' ∈ −sgn x is the controller
   // u = −sgn(x) on x' = u): runs then report u_k = −s_{k+1} (trajectory columns u1..um, the input summary keys).
   bool control_input = false;

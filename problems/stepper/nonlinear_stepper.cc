@@ -36,6 +36,7 @@ std::string_view ToString(NonlinearAlgorithm algorithm) {
   switch (algorithm) {
     case NonlinearAlgorithm::kMcp: return "mcp";
     case NonlinearAlgorithm::kNewtonMlcp: return "newton-mlcp";
+    case NonlinearAlgorithm::kClosedForm: return "closed-form";
   }
   return "unknown";
 }
@@ -43,6 +44,7 @@ std::string_view ToString(NonlinearAlgorithm algorithm) {
 std::optional<NonlinearAlgorithm> NonlinearAlgorithmFromString(std::string_view name) {
   if (name == "mcp") return NonlinearAlgorithm::kMcp;
   if (name == "newton-mlcp") return NonlinearAlgorithm::kNewtonMlcp;
+  if (name == "closed-form") return NonlinearAlgorithm::kClosedForm;
   return std::nullopt;
 }
 
@@ -57,7 +59,7 @@ bool NonlinearStepperOptions::IsValid(std::string* why) const {
     return false;
   }
   if (algorithm != NonlinearAlgorithm::kMcp && algorithm != NonlinearAlgorithm::kNewtonMlcp) {
-    if (why) *why = "algorithm is not one of mcp, newton-mlcp";
+    if (why) *why = "algorithm must be mcp or newton-mlcp (closed-form solves the super-twisting scenes' steps only)";
     return false;
   }
   return true;

@@ -58,9 +58,10 @@ struct NonlinearScheme {
   std::string Description() const;
 };
 
-// Which solution path an implicit step takes.
-enum class NonlinearAlgorithm { kMcp, kNewtonMlcp };
-// "mcp" (Algorithm 1), "newton-mlcp" (Algorithm 2).
+// Which solution path an implicit step takes. kClosedForm is for the super-twisting scenes (super_twisting.h), whose
+// scalar one-step generalized equation has one; the nonlinear stepper refuses it.
+enum class NonlinearAlgorithm { kMcp, kNewtonMlcp, kClosedForm };
+// "mcp" (Algorithm 1), "newton-mlcp" (Algorithm 2), "closed-form".
 std::string_view ToString(NonlinearAlgorithm algorithm);
 std::optional<NonlinearAlgorithm> NonlinearAlgorithmFromString(std::string_view name);
 

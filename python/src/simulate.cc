@@ -22,6 +22,7 @@
 #include "problems/scenes/registry.h"
 #include "problems/scenes/run_summary.h"
 #include "problems/scenes/scene_overrides.h"
+#include "problems/scenes/super_twisting_scene.h"
 #include "problems/stepper/sampled_plant.h"
 #include "solvers/registry/registry.h"
 
@@ -109,10 +110,17 @@ class RowCollector final : public TrajectorySink {
   std::vector<double> t_, x_, s_, y_, u_;
 };
 
+// A scene given as a dict: a super-twisting scene if its system type says so, else a linear scene (whose reader
+// names every defect, invalid JSON included).
+std::unique_ptr<Scene> SceneFromDocument(const std::string& text) {
+  const nlohmann::json doc = nlohmann::json::parse(text, nullptr, /*allow_exceptions=*/false);
+  if (!doc.is_discarded() && IsSuperTwistingDocument(doc)) return SuperTwistingScene::FromJson(doc, "scene dict");
+  return LinearScene::FromText(text, "scene dict");
+}
+
 py::dict Simulate(const std::string& scene_text, bool is_document, const SimulateOverrides& o,
                   const py::dict& backend_options) {
-  const std::unique_ptr<Scene> scene =
-      is_document ? std::unique_ptr<Scene>(LinearScene::FromText(scene_text, "scene dict")) : LoadScene(scene_text);
+  const std::unique_ptr<Scene> scene = is_document ? SceneFromDocument(scene_text) : LoadScene(scene_text);
   const SceneInfo& info = scene->info();
   SceneRunSettings run = ApplySceneOverrides(*scene, ToSceneOverrides(o), OverrideSpelling::kPython);
   SimulationSettings& s = run.settings;

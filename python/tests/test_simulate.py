@@ -128,6 +128,24 @@ def test_u_of_implicit_sign_is_minus_the_multiplier():
     np.testing.assert_allclose(np.diff(run.x[:, 0]), 0.01 * run.u[:-1, 0], atol=1e-15)
 
 
+def test_super_twisting_scene_returns_u_and_its_summary(tmp_path):
+    # sigma' = u (no disturbance): sigma_{k+1} = sigma_k + h u_k; the implicit run reaches sigma = v = 0 exactly.
+    run = smcbench.simulate("super-twisting", reference=False)
+    assert run.solver is None and run.u is not None and run.x.shape == (run.t.shape[0], 2)
+    np.testing.assert_allclose(np.diff(run.x[:, 0]), 0.01 * run.u[:-1, 0], atol=1e-15)
+    st = run.summary["super_twisting"]
+    assert st["convergence_step"] is not None and st["max_abs_sigma_tail"] == 0.0
+    assert np.all(run.x[st["convergence_step"] + 1 :] == 0.0)
+    # The same scene as a dict, and the MCP route on newton: the same trajectory.
+    document = json.loads((pathlib.Path(smcbench.scenes_directory()) / "super-twisting.json").read_text())
+    via_mcp = smcbench.simulate(document, algorithm="mcp", reference=False)
+    assert via_mcp.solver == "newton"
+    np.testing.assert_allclose(via_mcp.x, run.x, atol=1e-8)
+    # The CLI writes the same u.
+    header, rows = cli_trajectory(tmp_path, "super-twisting")
+    np.testing.assert_array_equal(run.u, columns(header, rows, "u"))
+
+
 def test_plant_rows_between_samples_are_the_cli_rows(tmp_path, source_dir):
     scene = str(source_dir / "problems" / "scenes" / "smc-disturbed.json")
     header, rows = cli_trajectory(tmp_path, scene, "--T", "0.1", "--plant-substeps", "10")

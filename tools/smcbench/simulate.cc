@@ -20,6 +20,7 @@
 #include "problems/scenes/registry.h"
 #include "problems/scenes/run_summary.h"
 #include "problems/scenes/scene_overrides.h"
+#include "problems/scenes/super_twisting_scene.h"
 #include "problems/stepper/sampled_plant.h"
 #include "solvers/core/duration_text.h"
 #include "solvers/core/number_text.h"
@@ -114,7 +115,8 @@ SimulateCommand::SimulateCommand(CLI::App* app) : flags_(std::make_unique<Flags>
   f.algorithm_opt = command_->add_option(
       "--algorithm", f.algorithm,
       "nonlinear scenes: newton-mlcp (Algorithm 2: outer Newton, each iteration a box-MLCP on any backend; "
-      "default) | mcp (Algorithm 1: the step's MCP, backend newton)");
+      "default) | mcp (Algorithm 1: the step's MCP, backend newton); super-twisting scenes: closed-form (default) | "
+      "mcp (the step's generalized equation as an MCP, backend newton)");
   f.newton_tol_opt = command_->add_option("--newton-tol", f.newton_tol,
                                           "nonlinear scenes: Newton stopping tolerance on the step's relative "
                                           "residual (default 1e-10)");
@@ -271,6 +273,7 @@ struct SimulateOutputs {
   std::optional<MetricsAccumulator> metrics;
   std::optional<ChatteringAccumulator> chattering;
   std::optional<ErrorsAccumulator> exact_errors;
+  std::optional<SuperTwistingPrecisionAccumulator> super_twisting;  // super-twisting scenes
   std::string exact_unavailable;
   std::unique_ptr<RunRowsForReference> run_rows;
   std::string no_run_rows;
@@ -284,6 +287,10 @@ void SetUpRecorder(const Flags& f, SimulatePlan* plan, const std::string& solver
   SimulationSettings& s = plan->settings;
   if (!IsImplicit(s.method)) {
     plan->Fail("--record: method '" + std::string(ToString(s.method)) + "' solves no one-step problem: nothing to record");
+  }
+  if (dynamic_cast<const SuperTwistingScene*>(plan->scene.get())) {
+    plan->Fail("--record captures box-MLCPs; a super-twisting step is a scalar generalized equation (closed form "
+               "or MCP): there is nothing to record");
   }
   if (plan->nonlinear && s.algorithm == NonlinearAlgorithm::kMcp) {
     plan->Fail("--record captures box-MLCPs, but --algorithm mcp solves each step as a nonlinear MCP; use --algorithm "
@@ -347,6 +354,10 @@ void SetUpOutputs(const Flags& f, SimulatePlan* plan, std::int64_t num_steps, Si
   o->sinks.Add(&*o->metrics);
   o->chattering.emplace(info.m, plan->reach_tol);
   o->sinks.Add(&*o->chattering);
+  if (const auto* st = dynamic_cast<const SuperTwistingScene*>(plan->scene.get())) {
+    o->super_twisting.emplace(st->convergence_band(), num_steps, s.h);
+    o->sinks.Add(&*o->super_twisting);
+  }
   if (!f.summary.empty()) {
     try {
       if (auto exact = plan->scene->Exact(s)) {
@@ -403,6 +414,7 @@ std::optional<ReferenceComparison> WriteSummaryAndPlot(const Flags& f, const Sim
     if (o->exact_errors) run_metrics.exact_errors = o->exact_errors->Result();
     run_metrics.exact_unavailable = o->exact_unavailable;
     run_metrics.chattering = o->chattering->Result();
+    if (o->super_twisting) run_metrics.super_twisting = o->super_twisting->Result();
     const json summary =
         SimulationSummary(*plan.scene, plan.settings, solver_name, tr, run_metrics, plan.reach_tol, wall, &*reference);
     std::ofstream js(f.summary);
@@ -441,6 +453,13 @@ void ReportMetrics(const SimulateOutputs& o, double reach_tol, const Trajectory&
           << NumberText(c.u_max_jump) << ", max |u| " << NumberText(c.u_max_abs);
     }
     out << ", sign changes of the switching part " << c.switching_sign_changes << "\n";
+  }
+  if (o.super_twisting) {
+    const SuperTwistingPrecision p = o.super_twisting->Result();
+    out << "  super-twisting: |sigma| <= " << NumberText(p.band) << " from "
+        << (p.convergence_step >= 0 ? "t = " + NumberText(tr.time(p.convergence_step)) : std::string("never"))
+        << "; from t = " << NumberText(tr.time(p.tail_from)) << ": max |sigma| " << NumberText(p.max_abs_sigma_tail)
+        << ", max |sigma'| " << NumberText(p.max_abs_sigma_dot_tail) << "\n";
   }
 }
 
