@@ -89,10 +89,11 @@ double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptio
 
 double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions& options) {
   if (sequence.steps.empty()) return 0.0;
-  const double step = EstimateJobSeconds(sequence.steps.front(), options, JobKind::kCold);
-  const double solve = step - std::min(options.max_seconds_per_pair,
-                                       options.repetitions * std::max(options.min_sample_seconds, step));
-  const double pass = static_cast<double>(sequence.steps.size()) * std::max(solve, 1e-7);
+  const LibraryProblem& head = sequence.steps.front();
+  const double m = head.size();
+  const double nnz = head.sparse() ? static_cast<double>(head.problem.sparse_matrix().nonZeros()) : m * m;
+  // A step: the cold guess, but at least the ≈ 1 µs fixed cost of a call.
+  const double pass = static_cast<double>(sequence.steps.size()) * std::max(1e-9 * m * (m + nnz), 1e-6);
   return pass + std::min(options.max_seconds_per_pair, options.repetitions * pass);
 }
 

@@ -62,7 +62,8 @@ double EstimateJobSeconds(const LibraryProblem& problem, const ReplayOptions& op
 // The same guess for one MCP job: 20 Newton steps, each 1e-9·n·(n + nnz(J)) s with nnz(J) taken as n² (dense J) or
 // 10·n (sparse J; not evaluated for an estimate).
 double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptions& options);
-// The same guess for one warm job: an untimed and the timed passes of every step, each step a cold solve's guess.
+// The same guess for one warm job: an untimed and the timed passes of every step, each step a cold solve's guess
+// (at least 1 µs, a call's fixed cost).
 double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions& options);
 
 struct JobListRequest {
