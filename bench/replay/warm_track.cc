@@ -92,16 +92,27 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
   session_options.reuse_active_set = true;  // the session itself leaves it off for external backends
   // One result per step, so step k starts from step k−1's answer without a copy; storage reused pass after pass.
   std::vector<SolveResult> results(steps);
+  // A step that ran into the time limit ends the pass: the steps after it are not run (a time-stepper stops there
+  // too), so a backend that cannot solve the sequence costs one time limit, not one per step.
+  std::size_t steps_run = 0;
   const auto pass = [&] {
     SolveSession session = solver->Prepare(head.problem, o, session_options);
+    steps_run = 0;
     for (std::size_t k = 0; k < steps; ++k) {
       session.Solve(sequence.steps[k].problem.q(), &results[k], k == 0 ? nullptr : &results[k - 1].z);
+      ++steps_run;
+      if (results[k].status == SolveStatus::kTimeLimit) break;
     }
   };
-  pass();  // untimed: sizes every result's storage, and is a siconos-* backend's probe of the problem
+  // Untimed: sizes every result's storage, and is a siconos-* backend's probe of the problem.
+  const auto first_start = Clock::now();
+  pass();
+  const double first = std::chrono::duration<double>(Clock::now() - first_start).count();
   std::vector<double> samples;
+  const bool timed_out = results[steps_run - 1].status == SolveStatus::kTimeLimit;
+  if (timed_out) samples.push_back(first / static_cast<double>(steps_run));  // the limit, not a measurement
   const auto start = Clock::now();
-  const int wanted = std::max(1, options.repetitions);
+  const int wanted = timed_out ? 1 : std::max(1, options.repetitions);
   while (static_cast<int>(samples.size()) < wanted) {
     const auto s0 = Clock::now();
     pass();
@@ -128,6 +139,15 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
   bool first_failure = true;
   for (std::size_t k = 0; k < steps; ++k) {
     const LibraryProblem& step = sequence.steps[k];
+    if (k >= steps_run) {  // after a time limit: not run, no answer
+      if (first_failure) {
+        first_failure = false;
+        r.verdict = Verdict::kFailed;
+        r.status = SolveStatus::kTimeLimit;
+        r.message = "step " + std::to_string(k) + " (" + step.id + ") not run: an earlier step ran into the time limit";
+      }
+      continue;
+    }
     const SolveResult& result = results[k];
     const Judgement j = Judge(step, result.status, result.z, tolerance);
     const bool has_z = result.z.size() == step.size();
@@ -161,7 +181,7 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
   if (first_failure) r.backend_code = BackendReturnCode(results.back());
   if (answers) {
     answers->clear();
-    for (const SolveResult& result : results) answers->push_back(result.z);
+    for (std::size_t k = 0; k < steps_run; ++k) answers->push_back(results[k].z);
   }
   r.iterations = static_cast<int>(std::min<std::int64_t>(c.iterations, std::numeric_limits<int>::max()));
   return out;

@@ -62,7 +62,8 @@ struct WarmRecord {
 // Runs sequence on solver: an untimed pass, then timed passes of the whole sequence (each with a fresh session,
 // its set-up timed with it: a stepper prepares once per run) until options.repetitions or
 // options.max_seconds_per_pair; the last pass's answers are judged at tolerance (and copied to *answers, one per
-// step, when given). A backend that fails is a record.
+// step run, when given). A step that runs into the time limit ends a pass (the rest are not run: failed) and the
+// untimed pass is then the only sample. A backend that fails is a record.
 WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, const std::string& solver_name,
                               const ReplayOptions& options, double tolerance, std::vector<Vector>* answers = nullptr);
 

@@ -106,6 +106,22 @@ TEST(WarmTrack, StepsInOrderGiveTheColdAnswersWithNoMoreIterations) {
   }
 }
 
+TEST(WarmTrack, AStepOverTheTimeLimitEndsThePassAndIsNotRepeated) {
+  const std::vector<WarmSequence> sequences = TrajectoryWarmSequences("families", /*quick=*/true);
+  const WarmSequence& sequence = sequences.back();  // m = 64: no solve ends within a nanosecond
+  ReplayOptions options = FewRepeats();
+  options.time_limit_seconds = 1e-9;
+  const std::unique_ptr<Solver> newton = CreateSolver("newton");
+  std::vector<Vector> answers;
+  const WarmRecord w = ReplayWarmSequence(sequence, newton.get(), "newton", options, 1e-10, &answers);
+  EXPECT_EQ(w.record.status, SolveStatus::kTimeLimit);
+  EXPECT_EQ(w.record.verdict, Verdict::kFailed);
+  EXPECT_EQ(w.record.samples, 1);
+  EXPECT_EQ(answers.size(), 1u);  // the pass stopped at step 0
+  EXPECT_EQ(w.counts.steps_solved, 0);
+  EXPECT_EQ(w.counts.steps, 8);
+}
+
 TEST(WarmTrack, TrajectoryMovesOnlyQAndASequenceWithAnotherMIsRefused) {
   const std::vector<WarmSequence> sequences = TrajectoryWarmSequences("families", /*quick=*/true);
   const WarmSequence& sequence = sequences.back();  // P-matrix LCP, m = 64
