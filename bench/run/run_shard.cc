@@ -59,9 +59,9 @@ class ShardRunner {
     } else if (job.kind == JobKind::kWarm) {
       line.has_warm = true;
       if (OverBudget(job)) {
+        // Not counted in skipped_, whose counts are the suite's problems (a sequence is not one of them).
         line.warm.record = NotRunRecord(job);
         line.warm.source = plan_.warm_sequences.at(job.suite).at(job.problem).source;
-        ++skipped_[{job.suite, job.solver}];
       } else {
         const auto start = Clock::now();
         const WarmSequence& sequence = plan_.warm_sequences.at(job.suite).at(job.problem);
