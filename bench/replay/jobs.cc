@@ -31,7 +31,8 @@ std::uint64_t Fnv1a64(const std::string& text) {
 }
 
 JobKind JobKindFromText(const std::string& text, const std::string& where) {
-  for (JobKind k : {JobKind::kCold, JobKind::kGenericSparse, JobKind::kSweep, JobKind::kStepper, JobKind::kMcp}) {
+  for (JobKind k : {JobKind::kCold, JobKind::kGenericSparse, JobKind::kSweep, JobKind::kStepper, JobKind::kMcp,
+                    JobKind::kWarm}) {
     if (text == ToString(k)) return k;
   }
   throw InvalidInputError(where + ": unknown job kind '" + text + "'");
@@ -43,7 +44,7 @@ std::string JobId(const BenchJob& job) {
     return job.suite_name + "|" + job.problem_id + "@" + job.start_label + "|" + job.solver + "|cold|" +
            NumberText(job.tolerance);
   }
-  const char* mode = job.kind == JobKind::kSweep ? "sweep" : "cold";
+  const char* mode = job.kind == JobKind::kSweep ? "sweep" : job.kind == JobKind::kWarm ? "warm" : "cold";
   return job.suite_name + "|" + job.problem_id + "|" + job.solver + "|" + mode + "|" + NumberText(job.tolerance);
 }
 
@@ -56,6 +57,7 @@ const char* ToString(JobKind kind) {
     case JobKind::kSweep: return "sweep";
     case JobKind::kStepper: return "stepper";
     case JobKind::kMcp: return "mcp";
+    case JobKind::kWarm: return "warm";
   }
   return "?";
 }
@@ -83,6 +85,16 @@ double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptio
   const double sampling =
       std::min(options.max_seconds_per_pair, options.repetitions * std::max(options.min_sample_seconds, solve));
   return std::min(options.time_limit_seconds, solve) + sampling;
+}
+
+double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions& options) {
+  if (sequence.steps.empty()) return 0.0;
+  const LibraryProblem& head = sequence.steps.front();
+  const double m = head.size();
+  const double nnz = head.sparse() ? static_cast<double>(head.problem.sparse_matrix().nonZeros()) : m * m;
+  // A step: the cold guess, but at least the ≈ 1 µs fixed cost of a call.
+  const double pass = static_cast<double>(sequence.steps.size()) * std::max(1e-9 * m * (m + nnz), 1e-6);
+  return pass + std::min(options.max_seconds_per_pair, options.repetitions * pass);
 }
 
 std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites, const ReplayOptions& options,
@@ -140,6 +152,27 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
           job.solver = solver;
           job.tolerance = options.tolerance;
           job.cost = EstimateMcpJobSeconds(problem, options);
+          job.id = JobId(job);
+          jobs.push_back(std::move(job));
+        }
+      }
+    }
+  }
+  if (request.warm) {
+    for (std::size_t s = 0; s < suites.size() && s < request.warm->size(); ++s) {
+      const std::vector<WarmSequence>& sequences = (*request.warm)[s];
+      for (std::size_t q = 0; q < sequences.size(); ++q) {
+        for (const std::string& solver : request.solvers) {
+          BenchJob job;
+          job.index = jobs.size();
+          job.kind = JobKind::kWarm;
+          job.suite = s;
+          job.problem = q;
+          job.suite_name = suites[s].name;
+          job.problem_id = sequences[q].id;
+          job.solver = solver;
+          job.tolerance = options.tolerance;
+          job.cost = EstimateWarmJobSeconds(sequences[q], options);
           job.id = JobId(job);
           jobs.push_back(std::move(job));
         }
@@ -237,6 +270,7 @@ json JobLineToJson(const JobLine& line) {
   if (line.skipped) j["skipped"] = true;
   if (line.has_record) j["record"] = ReplayRecordToJson(line.record);
   if (line.has_stepper) j["stepper"] = StepperStudyToJson(line.stepper);
+  if (line.has_warm) j["warm_record"] = WarmRecordToJson(line.warm);
   return j;
 }
 
@@ -278,6 +312,7 @@ std::vector<JobLine> ReadJobLines(const std::string& path, bool truncate_partial
       line.skipped = j.value("skipped", false);
       if (j.contains("record")) line.has_record = true, line.record = ReplayRecordFromJson(j.at("record"));
       if (j.contains("stepper")) line.has_stepper = true, line.stepper = StepperStudyFromJson(j.at("stepper"));
+      if (j.contains("warm_record")) line.has_warm = true, line.warm = WarmRecordFromJson(j.at("warm_record"));
       lines.push_back(std::move(line));
     } catch (const json::exception& e) {
       throw InvalidInputError(where + ": malformed job line: " + e.what());
@@ -439,6 +474,10 @@ BenchResults AssembleResults(const RunManifest& m, const std::map<std::size_t, J
     const BenchJob& job = m.jobs[index];
     if (job.kind == JobKind::kStepper) {
       if (line.has_stepper) out.has_stepper = true, out.stepper = line.stepper;
+      continue;
+    }
+    if (job.kind == JobKind::kWarm) {
+      if (line.has_warm) out.suites[job.suite].warm.push_back(line.warm);
       continue;
     }
     if (!line.has_record) continue;

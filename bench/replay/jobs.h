@@ -30,6 +30,7 @@ enum class JobKind {
   kSweep,          // problem × backend at one tolerance of kSweepTolerances (mode "sweep")
   kStepper,        // the time-stepper studies (warm/cold starts, work-precision), one job
   kMcp,            // nonlinear MCP × start × MCP backend at the run's tolerance (ReplayMcpOne, mode "cold")
+  kWarm,           // warm sequence × backend at the run's tolerance (ReplayWarmSequence, mode "warm")
 };
 const char* ToString(JobKind kind);
 
@@ -37,7 +38,7 @@ struct BenchJob {
   std::size_t index = 0;    // position in the run's job list (the order of a single run's results)
   JobKind kind = JobKind::kCold;
   std::size_t suite = 0;    // index of the suite in the run (not used by kStepper)
-  std::size_t problem = 0;  // index of the problem in its suite
+  std::size_t problem = 0;  // index of the problem in its suite (kWarm: of the sequence in the suite's sequences)
   std::size_t start = 0;    // kMcp: index of the start in McpLibraryProblem::starts
   std::string suite_name, problem_id, solver;
   std::string start_label;  // kMcp: McpLibraryProblem::start_labels[start]
@@ -46,7 +47,7 @@ struct BenchJob {
   double cost = 0.0;
   // "suite|problem|solver|mode|tolerance" (tolerance in shortest round-trip form): the job's identity across
   // processes, machines and resumed runs; "suite|problem@start|solver|cold|tolerance" for an MCP job (start: its
-  // label); "stepper" for the stepper job.
+  // label); "suite|sequence|solver|warm|tolerance" for a warm job; "stepper" for the stepper job.
   std::string id;
 };
 
@@ -61,6 +62,9 @@ double EstimateJobSeconds(const LibraryProblem& problem, const ReplayOptions& op
 // The same guess for one MCP job: 20 Newton steps, each 1e-9·n·(n + nnz(J)) s with nnz(J) taken as n² (dense J) or
 // 10·n (sparse J; not evaluated for an estimate).
 double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptions& options);
+// The same guess for one warm job: an untimed and the timed passes of every step, each step a cold solve's guess
+// (at least 1 µs, a call's fixed cost).
+double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions& options);
 
 struct JobListRequest {
   std::vector<std::string> solvers;  // resolved names (never empty)
@@ -69,12 +73,15 @@ struct JobListRequest {
   // The backends of the MCP jobs: the resolved names whose backend has SolverInfo::mcp (McpSolverNames). The
   // others are not run on MCPs.
   std::vector<std::string> mcp_solvers;
+  // The warm sequences of each box suite (indexed as the suites; null or shorter: none), run on every backend of
+  // solvers (warm_track.h).
+  const std::vector<std::vector<WarmSequence>>* warm = nullptr;
 };
 
 // Every job of a run, in the order a single run writes its results: per suite the cold jobs (problem, then
 // backend), the generic sparse path (problem), the sweep (SweepProblemIndices, backend, tolerance); then per MCP
 // suite its jobs (problem, start, MCP backend; BenchJob::suite counts on after the box suites: suites.size() + k);
-// then the stepper job.
+// then the warm jobs (box suite, sequence, backend); then the stepper job.
 std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites, const ReplayOptions& options,
                                     const JobListRequest& request);
 std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
@@ -119,6 +126,8 @@ struct JobLine {
   ReplayRecord record;
   bool has_stepper = false;
   StepperStudy stepper;
+  bool has_warm = false;  // a warm job's record (has_record false)
+  WarmRecord warm;
 };
 nlohmann::json JobLineToJson(const JobLine& line);
 
@@ -164,7 +173,7 @@ std::string ManifestMismatch(const RunManifest& a, const RunManifest& b);
 
 // The results of the finished jobs in lines, in the job list's order (what a single run of the same jobs writes):
 // suites as the manifest lists them, records of cold and generic jobs, sweep records, the stepper study when its
-// job finished. Lines for jobs not in the list are ignored.
+// job finished, warm records. Lines for jobs not in the list are ignored.
 BenchResults AssembleResults(const RunManifest& manifest, const std::map<std::size_t, JobLine>& lines);
 
 struct MergeReport {

@@ -177,6 +177,40 @@ ReplayRecord ReplayRecordFromJson(const json& record) {
   }
 }
 
+json WarmRecordToJson(const WarmRecord& record) {
+  json j = RecordJson(record.record);
+  const WarmCounts& c = record.counts;
+  j["warm"] = {{"source", ToString(record.source)}, {"steps", c.steps}, {"steps_solved", c.steps_solved},
+               {"active_set_changes", c.active_set_changes}, {"iterations", c.iterations}, {"reuse", c.reuse},
+               {"reused_steps", c.reused_steps}, {"fallbacks", c.fallbacks}};
+  return j;
+}
+
+WarmRecord WarmRecordFromJson(const json& j) {
+  try {
+    WarmRecord out;
+    out.record = RecordFromJson(j);
+    const json& w = j.at("warm");
+    const std::string source = w.at("source").get<std::string>();
+    bool known = false;
+    for (WarmSource s : {WarmSource::kScene, WarmSource::kTrajectory, WarmSource::kCapture}) {
+      if (source == ToString(s)) out.source = s, known = true;
+    }
+    if (!known) throw InvalidInputError("record: warm.source '" + source + "' is not scene, trajectory or capture");
+    WarmCounts& c = out.counts;
+    c.steps = w.at("steps").get<int>();
+    c.steps_solved = w.at("steps_solved").get<int>();
+    c.active_set_changes = w.at("active_set_changes").get<int>();
+    c.iterations = w.at("iterations").get<std::int64_t>();
+    c.reuse = w.at("reuse").get<bool>();
+    c.reused_steps = w.at("reused_steps").get<int>();
+    c.fallbacks = w.at("fallbacks").get<int>();
+    return out;
+  } catch (const json::exception& e) {
+    throw InvalidInputError(std::string("record: malformed warm record: ") + e.what());
+  }
+}
+
 json StepperStudyToJson(const StepperStudy& study) {
   json st;
   st["reference_h_factor"] = study.reference_h_factor;
@@ -284,6 +318,10 @@ json ToJson(const BenchResults& results, const json& environment) {
     for (const auto& r : s.replay.records) suite["records"].push_back(RecordJson(r));
     suite["sweep"] = json::array();
     for (const auto& r : s.replay.sweep) suite["sweep"].push_back(RecordJson(r));
+    if (!s.warm.empty()) {
+      suite["warm"] = json::array();
+      for (const auto& r : s.warm) suite["warm"].push_back(WarmRecordToJson(r));
+    }
     j["suites"].push_back(suite);
   }
   if (results.has_stepper) j["stepper"] = StepperStudyToJson(results.stepper);
@@ -306,6 +344,9 @@ BenchResults BenchResultsFromJson(const json& j) {
       suite.checksum = s.value("checksum", std::string());
       for (const json& r : s.at("records")) suite.replay.records.push_back(RecordFromJson(r));
       for (const json& r : s.at("sweep")) suite.replay.sweep.push_back(RecordFromJson(r));
+      if (s.contains("warm")) {  // written since the warm track
+        for (const json& r : s.at("warm")) suite.warm.push_back(WarmRecordFromJson(r));
+      }
       out.suites.push_back(std::move(suite));
     }
     if (j.contains("stepper")) {
@@ -340,7 +381,10 @@ void WriteBenchResults(const BenchResults& results, const std::string& dir, cons
          "forward_error,forward_error_rel,forward_allowance,certificate,timed_in_worker,host,concurrent_jobs,start,"
          "backend_code\n";
   for (const SuiteResults& s : results.suites) {
-    for (const auto* records : {&s.replay.records, &s.replay.sweep}) {
+    std::vector<ReplayRecord> warm;  // the warm records' replay part (their counts are in results.json)
+    for (const WarmRecord& w : s.warm) warm.push_back(w.record);
+    const std::vector<ReplayRecord>* lists[] = {&s.replay.records, &s.replay.sweep, &warm};
+    for (const std::vector<ReplayRecord>* records : lists) {
       for (const ReplayRecord& r : *records) {
         csv << CsvField(r.suite) << ',' << CsvField(r.problem) << ',' << CsvField(r.solver) << ',' << r.mode << ','
             << r.size << ',' << (r.sparse ? 1 : 0) << ',' << ToString(r.expected) << ',' << ToString(r.status) << ','

@@ -9,6 +9,7 @@
 
 #include "bench/replay/replay.h"
 #include "bench/replay/stepper_study.h"
+#include "bench/replay/warm_track.h"
 
 namespace smcbench {
 
@@ -28,6 +29,9 @@ ReplayRecord ReplayRecordFromJson(const nlohmann::json& record);
 // The time-stepper studies as results.json holds them, and back.
 nlohmann::json StepperStudyToJson(const StepperStudy& study);
 StepperStudy StepperStudyFromJson(const nlohmann::json& study);
+// One warm-track record (the replay record plus "warm": source and counts), and back.
+nlohmann::json WarmRecordToJson(const WarmRecord& record);
+WarmRecord WarmRecordFromJson(const nlohmann::json& record);
 
 struct SuiteResults {
   std::string suite;        // "paper", "families", ...
@@ -37,6 +41,7 @@ struct SuiteResults {
   // results written before issue 17.
   std::string checksum;
   ReplayResults replay;
+  std::vector<WarmRecord> warm = {};  // mode "warm": one per warm sequence of the suite × backend (warm_track.h)
 };
 
 struct BenchResults {

@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/replay/mcp_replay.h"
+#include "bench/run/warm_sequences.h"
 #include "problems/library/references.h"
 #include "problems/mcp/mcp_suite.h"
 #include "solvers/registry/backend_settings.h"
@@ -177,6 +178,27 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
   }
   jobs.generic_sparse_path = request.solvers.empty() ||
                              std::find(request.solvers.begin(), request.solvers.end(), "newton") != request.solvers.end();
+  if (request.warm) {
+    std::size_t box = 0;
+    for (const std::string& name : plan.suite_names) {
+      if (IsMcpSuiteName(name)) continue;
+      const ProblemSet& set = plan.suites[box++];
+      const bool is_file =
+          std::find(std::begin(kBenchSuiteNames), std::end(kBenchSuiteNames), name) == std::end(kBenchSuiteNames);
+      const auto warm_start = Clock::now();
+      plan.warm_sequences.push_back(
+          WarmSequencesForSuite(set, WarmSuiteKindOf(name, is_file), request.quick, request.certify));
+      if (log && !plan.warm_sequences.back().empty()) {
+        std::size_t steps = 0;
+        for (const WarmSequence& w : plan.warm_sequences.back()) steps += w.steps.size();
+        char line[200];
+        std::snprintf(line, sizeof line, "warm track of suite %s: %zu sequences, %zu steps (built and certified in "
+                      "%.2f s)", set.name.c_str(), plan.warm_sequences.back().size(), steps, SecondsSince(warm_start));
+        log(line);
+      }
+    }
+    jobs.warm = &plan.warm_sequences;
+  }
   plan.stepper = IncludesStepperStudy(plan.suite_names, request.stepper);
   jobs.stepper = plan.stepper;
   if (!plan.mcp_suites.empty()) {
@@ -222,6 +244,7 @@ nlohmann::json PlanOptionsJson(const BenchPlan& plan) {
           {"polish", o.polish},
           {"quick", plan.request.quick},
           {"stepper", plan.stepper},
+          {"warm", plan.request.warm},
           {"backend_budget", plan.request.backend_budget_seconds}};
 }
 

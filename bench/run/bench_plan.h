@@ -12,6 +12,7 @@
 #include <nlohmann/json_fwd.hpp>
 
 #include "bench/replay/jobs.h"
+#include "bench/replay/warm_track.h"
 #include "problems/mcp/mcp_library.h"
 #include "problems/suites/catalogue.h"
 
@@ -48,6 +49,9 @@ struct BenchRequest {
   bool quick = false;                 // smaller suites, fewer samples, a shorter sweep and stepper study (CI)
   bool polish = true;                 // SolverOptions::polish of every solve (false: time the raw algorithms)
   StepperStudyChoice stepper = StepperStudyChoice::kIfSceneSuite;
+  // The warm track (bench/replay/warm_track.h): sequences of the suites that have them (paper, families, a
+  // problem-set file; bench/run/warm_sequences.h) replayed in order on every box backend. `bench --no-warm`: off.
+  bool warm = true;
   // Attach certified references to the suites' problems. Off only to list the jobs (their cost does not depend
   // on them): verdicts without references cannot judge forward errors.
   bool certify = true;
@@ -61,6 +65,8 @@ struct BenchPlan {
   std::vector<ProblemSet> suites;        // the box suites, in the order named
   std::vector<McpProblemSet> mcp_suites;  // the MCP suites; BenchJob::suite counts them after suites
   bool stepper = false;                  // the job list ends with the stepper job
+  // The warm sequences of each box suite (indexed as suites; empty without request.warm).
+  std::vector<std::vector<WarmSequence>> warm_sequences;
   std::vector<BenchJob> jobs;            // every job, in the order a single run writes its results
 };
 

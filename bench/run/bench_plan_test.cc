@@ -97,6 +97,42 @@ TEST(BenchPlan, StepperStudiesOnlyWithASceneSuiteOrWhenAsked) {
   EXPECT_EQ(PlanOptionsJson(plan)["stepper"], true);
 }
 
+// The warm track: the families suite's trajectories as warm jobs after the cold ones (one per sequence × backend),
+// none for a suite without sequences (tiny), none with --no-warm; the run's options record the choice.
+TEST(BenchPlan, WarmJobsForTheFamiliesSequencesUnlessTurnedOff) {
+  BenchRequest request;
+  request.suites = {"families", "tiny"};
+  request.solvers = {"lemke", "psor"};
+  request.quick = true;
+  request.stepper = StepperStudyChoice::kNever;
+  request.certify = false;  // listing only
+  const BenchPlan plan = MakeBenchPlan(request);
+  ASSERT_EQ(plan.warm_sequences.size(), 2u);
+  EXPECT_EQ(plan.warm_sequences[0].size(), 2u);  // quick: P-matrix relay m = 8, P-matrix LCP m = 64
+  EXPECT_TRUE(plan.warm_sequences[1].empty());   // tiny: no problems sharing M, l, u
+  std::vector<std::string> warm_ids;
+  bool warm_seen = false;
+  for (const BenchJob& job : plan.jobs) {
+    if (job.kind == JobKind::kWarm) {
+      warm_seen = true;
+      warm_ids.push_back(job.id);
+    } else {
+      EXPECT_FALSE(warm_seen) << "a " << ToString(job.kind) << " job after the warm ones";
+    }
+  }
+  EXPECT_THAT(warm_ids, ::testing::ElementsAre("families|families/warm/pmatrix-relay/m8/s1|lemke|warm|1e-10",
+                                               "families|families/warm/pmatrix-relay/m8/s1|psor|warm|1e-10",
+                                               "families|families/warm/pmatrix-lcp/m64/s1|lemke|warm|1e-10",
+                                               "families|families/warm/pmatrix-lcp/m64/s1|psor|warm|1e-10"));
+  EXPECT_EQ(PlanOptionsJson(plan)["warm"], true);
+
+  request.warm = false;
+  const BenchPlan cold = MakeBenchPlan(request);
+  EXPECT_TRUE(cold.warm_sequences.empty());
+  EXPECT_EQ(cold.jobs.size(), plan.jobs.size() - 4);
+  EXPECT_EQ(PlanOptionsJson(cold)["warm"], false);
+}
+
 TEST(BenchPlan, EveryBadInputIsRefusedNamingTheField) {
   BenchRequest r = TinyRequest();
   r.suites = {"tiny", "tinny"};

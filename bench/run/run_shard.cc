@@ -10,6 +10,7 @@
 
 #include "bench/replay/mcp_replay.h"
 #include "bench/replay/stepper_study.h"
+#include "bench/replay/warm_track.h"
 #include "solvers/reference/certify.h"
 #include "solvers/registry/backend_settings.h"
 #include "solvers/registry/registry.h"
@@ -55,6 +56,18 @@ class ShardRunner {
     if (job.kind == JobKind::kStepper) {
       line.has_stepper = true;
       line.stepper = RunStepper();
+    } else if (job.kind == JobKind::kWarm) {
+      line.has_warm = true;
+      if (OverBudget(job)) {
+        // Not counted in skipped_, whose counts are the suite's problems (a sequence is not one of them).
+        line.warm.record = NotRunRecord(job);
+        line.warm.source = plan_.warm_sequences.at(job.suite).at(job.problem).source;
+      } else {
+        const auto start = Clock::now();
+        const WarmSequence& sequence = plan_.warm_sequences.at(job.suite).at(job.problem);
+        line.warm = ReplayWarmSequence(sequence, SolverFor(job.solver), job.solver, plan_.options, job.tolerance);
+        spent_[{job.suite, job.solver}] += SecondsSince(start);
+      }
     } else if (OverBudget(job)) {
       line.skipped = job.kind == JobKind::kSweep;
       line.has_record = !line.skipped;
@@ -68,6 +81,7 @@ class ShardRunner {
     }
     line.concurrent_jobs = std::max(before, activity_.Count());
     if (line.has_record) line.record.host = line.host, line.record.concurrent_jobs = line.concurrent_jobs;
+    if (line.has_warm) line.warm.record.host = line.host, line.warm.record.concurrent_jobs = line.concurrent_jobs;
     return line;
   }
 
@@ -142,6 +156,23 @@ class ShardRunner {
       const McpProblemSet& set = plan_.mcp_suites.at(job.suite - plan_.suites.size());
       return McpNotRunRecord(set, set.problems.at(job.problem), job.start, job.solver, job.tolerance,
                              NotRunMessage(job));
+    }
+    if (job.kind == JobKind::kWarm) {
+      const WarmSequence& sequence = plan_.warm_sequences.at(job.suite).at(job.problem);
+      ReplayRecord r;
+      r.suite = sequence.suite;
+      r.problem = sequence.id;
+      r.solver = job.solver;
+      r.size = sequence.steps.front().size();
+      r.sparse = sequence.steps.front().sparse();
+      r.expected = sequence.steps.front().expected;
+      r.mode = "warm";
+      r.status = SolveStatus::kTimeLimit;
+      r.message = NotRunMessage(job);
+      r.verdict = Verdict::kFailed;
+      r.residual_abs = r.residual_rel = r.residual_scaled = kInf;
+      r.tolerance = job.tolerance;
+      return r;
     }
     const LibraryProblem& p = plan_.suites.at(job.suite).problems.at(job.problem);
     ReplayRecord r;

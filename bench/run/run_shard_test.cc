@@ -1,5 +1,5 @@
 // Running a plan's jobs: known verdicts on the tiny suite, the budget, resuming with the jobs done, shards that
-// cover every job exactly once, and answers that do not depend on which shard ran a job.
+// cover every job exactly once, answers that do not depend on which shard ran a job, and warm jobs.
 #include "bench/run/run_shard.h"
 
 #include <gmock/gmock.h>
@@ -8,6 +8,8 @@
 #include <cmath>
 #include <map>
 #include <set>
+
+#include "bench/run/warm_sequences.h"
 
 namespace smcbench {
 namespace {
@@ -80,6 +82,42 @@ TEST(RunShard, ExactBackendsSolveThePlantedProblemsAndRefuseTheInfeasibleOne) {
   EXPECT_EQ(results.suites[0].replay.records[1].solver, "enum");
   EXPECT_FALSE(results.suites[0].replay.sweep.empty());
   EXPECT_FALSE(results.has_stepper);
+}
+
+// Warm jobs: each sequence × backend replayed (a warm record in the suite's results), or recorded as not run past
+// the budget.
+TEST(RunShard, WarmJobsReplayTheirSequencesOrAreNotRunPastTheBudget) {
+  BenchPlan plan = TinyPlan();
+  WarmSequence sequence = TrajectoryWarmSequences("tiny", /*quick=*/true).front();  // P-matrix relay, m = 8
+  CertifyWarmSequence(&sequence);
+  plan.warm_sequences = {{sequence}};
+  JobListRequest request;
+  request.solvers = plan.solvers;
+  request.warm = &plan.warm_sequences;
+  plan.jobs = ListBenchJobs(plan.suites, plan.options, request);
+  const std::map<std::size_t, JobLine> lines = RunLines(plan, {}, {});
+  int warm = 0;
+  for (const auto& [index, line] : lines) {
+    if (plan.jobs[index].kind != JobKind::kWarm) continue;
+    ++warm;
+    ASSERT_TRUE(line.has_warm) << line.id;
+    EXPECT_FALSE(line.has_record) << line.id;
+    EXPECT_EQ(line.warm.record.mode, "warm");
+    EXPECT_EQ(line.warm.counts.steps, 8);
+    if (line.warm.record.solver != "psor") {  // the exact backends solve every step
+      EXPECT_EQ(line.warm.record.verdict, Verdict::kSolved) << line.id << ": " << line.warm.record.message;
+    }
+  }
+  EXPECT_EQ(warm, 3);
+  EXPECT_EQ(PlanResults(plan, lines).suites.at(0).warm.size(), 3u);
+
+  plan.request.backend_budget_seconds = 1e-12;  // spent by each backend's first job
+  for (const auto& [index, line] : RunLines(plan, {}, {})) {
+    if (plan.jobs[index].kind != JobKind::kWarm) continue;
+    ASSERT_TRUE(line.has_warm) << line.id;
+    EXPECT_EQ(line.warm.record.status, SolveStatus::kTimeLimit) << line.id;
+    EXPECT_THAT(line.warm.record.message, HasSubstr("spent its budget of 1e-12 s on suite tiny"));
+  }
 }
 
 TEST(RunShard, ABackendPastItsBudgetIsNotRunOnTheRestOfTheSuite) {

@@ -66,7 +66,7 @@ struct BenchCommand::Flags {
   std::string shard, resume;
   bool list_jobs = false;
   bool overwrite = false, stepper = false, no_stepper = false, quick = false, report = false, no_plots = false,
-       report_no_plots = false, no_polish = false;
+       report_no_plots = false, no_polish = false, no_warm = false;
 };
 
 BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
@@ -105,6 +105,9 @@ BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
   bench_->add_flag("--stepper", f.stepper, "run the time-stepper studies (warm/cold, work-precision on the paper's "
                                            "scenes) whatever the suites (default: only with suite paper or all)");
   bench_->add_flag("--no-stepper", f.no_stepper, "skip the time-stepper studies, even with suite paper or all");
+  bench_->add_flag("--no-warm", f.no_warm, "skip the warm track (sequences of one-step problems replayed in order, "
+                                           "each backend warm-started from the previous step: suites paper, "
+                                           "families and problem-set files)");
   bench_->add_flag("--quick", f.quick, "smaller suites and fewer samples (CI)");
   bench_->add_flag("--report", f.report, "also write DIR/report.md (as `smcbench report DIR`)");
   bench_->add_flag("--no-plots", f.no_plots, "with --report: no PNG plots");
@@ -271,6 +274,7 @@ BenchRequest MakeRequest(const BenchCommand::Flags& f) {
                     : f.no_stepper ? StepperStudyChoice::kNever
                                    : StepperStudyChoice::kIfSceneSuite;
   request.certify = !f.list_jobs;  // the job list does not depend on the references
+  request.warm = !f.no_warm;
   return request;
 }
 

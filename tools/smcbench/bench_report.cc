@@ -425,6 +425,78 @@ double GrowthExponent(const SuiteResults& suite, const std::string& solver) {
   return Slope(x, y);
 }
 
+SuiteResults SizeBandSlice(const SuiteResults& suite, SizeBand band) {
+  SuiteResults slice;
+  slice.suite = suite.suite + " " + std::string(ShortName(band));
+  slice.description = suite.description;
+  std::set<std::string> problems;
+  for (const ReplayRecord& r : suite.replay.records) {
+    if (SizeBandOf(r.size) != band) continue;
+    slice.replay.records.push_back(r);
+    problems.insert(Instance(r));
+  }
+  slice.problems = static_cast<int>(problems.size());
+  return slice;
+}
+
+SuiteResults WarmTrackAsSuite(const SuiteResults& suite) {
+  SuiteResults warm;
+  warm.suite = suite.suite + " warm";
+  warm.description = "warm track of suite " + suite.suite;
+  std::set<std::string> sequences;
+  for (const WarmRecord& w : suite.warm) {
+    warm.replay.records.push_back(w.record);
+    sequences.insert(w.record.problem);
+  }
+  warm.problems = static_cast<int>(sequences.size());
+  return warm;
+}
+
+std::vector<PeerRatioRow> OursAgainstPeersPerBand(const SuiteResults& suite) {
+  std::vector<PeerRatioRow> out;
+  const auto rows = [&](const std::vector<ReplayRecord>& records, bool warm) {
+    // problem → fastest correct time of ours, and of each peer family; problem → size.
+    std::map<std::string, double> ours;
+    std::map<std::string, std::map<std::string, double>> peers;
+    std::map<std::string, int> sizes;
+    for (const ReplayRecord& r : records) {
+      if (r.verdict != Verdict::kSolved || r.solver == "newton-sparse-path") continue;
+      const std::string key = Instance(r);
+      sizes[key] = r.size;
+      if (!IsExternalBackendName(r.solver)) {
+        auto [it, inserted] = ours.emplace(key, r.time_median);
+        if (!inserted) it->second = std::min(it->second, r.time_median);
+        continue;
+      }
+      const std::string family = r.solver.substr(0, r.solver.find('-'));
+      auto [it, inserted] = peers[family].emplace(key, r.time_median);
+      if (!inserted) it->second = std::min(it->second, r.time_median);
+    }
+    std::map<SizeBand, PeerRatioRow> by_band;
+    for (const auto& [family, times] : peers) {
+      for (const auto& [key, t] : times) {
+        if (!ours.count(key)) continue;
+        PeerRatioRow& row = by_band[SizeBandOf(sizes.at(key))];
+        row.band = SizeBandOf(sizes.at(key));
+        row.warm = warm;
+        row.by_peer[family].push_back(t / ours.at(key));
+      }
+    }
+    for (auto& [band, row] : by_band) {
+      for (auto& [family, ratios] : row.by_peer) std::sort(ratios.begin(), ratios.end());
+    }
+    return by_band;
+  };
+  std::vector<ReplayRecord> warm_records;
+  for (const WarmRecord& w : suite.warm) warm_records.push_back(w.record);
+  std::map<SizeBand, PeerRatioRow> cold = rows(suite.replay.records, false), warm = rows(warm_records, true);
+  for (SizeBand band : kSizeBands) {
+    if (cold.count(band)) out.push_back(cold.at(band));
+    if (warm.count(band)) out.push_back(warm.at(band));
+  }
+  return out;
+}
+
 std::string SharedHostWarning(const BenchResults& results) {
   std::set<std::string> hosts;
   std::size_t timed = 0, shared = 0;
@@ -531,7 +603,7 @@ const char* const kPenaltyConvention =
 
 // Per backend: verdict counts, success, SGM time and worst errors (SummarizeSuite). Backends that solved nothing
 // are listed apart (WriteSolvedNothing): their SGM would be the penalty alone.
-void WriteBackendTable(std::ostream& md, const SuiteResults& suite) {
+void WriteBackendTableOnly(std::ostream& md, const SuiteResults& suite) {
   const std::vector<BackendSummary> summary = SummarizeSuite(suite);
   md << "| backend | solved | correctly refused | failed | **wrongly claimed** | **inaccurate** | **wrongly "
         "refused** | success | SGM time | worst residual (solved) | worst residual (eq.) | worst forward error "
@@ -547,7 +619,12 @@ void WriteBackendTable(std::ostream& md, const SuiteResults& suite) {
     if (b.forward_error_defined) md << " (" << b.forward_error_defined << " with z*)";
     md << " |\n";
   }
-  md << "\n" << kPenaltyConvention << " Worst residuals and forward error are over the solved answers (blank: none "
+  md << "\n";
+}
+
+void WriteBackendTable(std::ostream& md, const SuiteResults& suite) {
+  WriteBackendTableOnly(md, suite);
+  md << kPenaltyConvention << " Worst residuals and forward error are over the solved answers (blank: none "
      << "solved; –: no solved problem has a unique certified reference).\n\n";
 }
 
@@ -763,7 +840,8 @@ void WriteSiconosComparison(std::ostream& md, const SiconosComparison& c) {
 }
 
 // Dolan–Moré performance profile of the suite: dir/profile-SUITE.{png,svg,dat,gp} and its markdown.
-void WritePerformanceProfile(std::ostream& md, const SuiteResults& suite, const std::string& dir) {
+void WritePerformanceProfile(std::ostream& md, const SuiteResults& suite, const std::string& dir,
+                             bool explain = true) {
   const auto ratios = PerformanceRatios(suite);
   if (ratios.empty()) return;
   std::ostringstream data;
@@ -810,6 +888,13 @@ void WritePerformanceProfile(std::ostream& md, const SuiteResults& suite, const 
   if (index > 0) {
     WriteFigure(dir, stem, data.str(), g.str(), 1100, 600);
     md << FigureMarkdown("performance profile, " + suite.suite, stem);
+  }
+  if (!explain && never.empty()) return;
+  if (!explain) {
+    md << "Not drawn (solved none of these problems):";
+    for (std::size_t i = 0; i < never.size(); ++i) md << (i ? ", " : " ") << never[i];
+    md << ".\n\n";
+    return;
   }
   md << "Performance profile: ρ(τ) = the fraction of problems a backend solved within τ × the fastest solved time "
         "on that problem; a failure or a wrong answer never counts (it sits at τ = ∞), and problems no backend "
@@ -1054,6 +1139,110 @@ void WriteScaleTable(std::ostream& md, const SuiteResults& suite) {
   md << "\n";
 }
 
+// The bands a suite's records fall in, smallest first.
+std::vector<SizeBand> BandsOf(const std::vector<ReplayRecord>& records) {
+  std::set<SizeBand> bands;
+  for (const ReplayRecord& r : records) bands.insert(SizeBandOf(r.size));
+  return {bands.begin(), bands.end()};
+}
+
+// Every backend table and profile again per size band (one table and one figure per band), when the suite spans
+// more than one band: rankings flip with size.
+void WritePerBand(std::ostream& md, const SuiteResults& suite, const std::string& dir, bool plots,
+                  const std::string& what) {
+  const std::vector<SizeBand> bands = BandsOf(suite.replay.records);
+  if (bands.size() < 2) {
+    if (bands.size() == 1) md << "Every " << what << " record is in the band " << ToString(bands[0]) << ".\n\n";
+    return;
+  }
+  md << "**Per size band (" << what << ")**: the table above again, one band at a time (penalties from the band's "
+        "problems alone)" << (plots ? ", with its performance profile" : "") << ".\n\n";
+  for (SizeBand band : bands) {
+    const SuiteResults slice = SizeBandSlice(suite, band);
+    md << "*" << what << ", " << ToString(band) << "* (" << slice.problems << " problems):\n\n";
+    WriteBackendTableOnly(md, slice);
+    if (plots) WritePerformanceProfile(md, slice, dir, /*explain=*/false);
+  }
+}
+
+// Ours against the best of each external library per band, cold and warm (OursAgainstPeersPerBand).
+void WritePeerRatios(std::ostream& md, const SuiteResults& suite) {
+  const std::vector<PeerRatioRow> rows = OursAgainstPeersPerBand(suite);
+  if (rows.empty()) return;
+  std::set<std::string> families;
+  for (const PeerRatioRow& row : rows) {
+    for (const auto& [family, ratios] : row.by_peer) families.insert(family);
+  }
+  md << "**Ours against each library's best, per size band, cold and warm**: on each problem (warm: each "
+        "sequence, time per step) the fastest correct answer of our backends and of each library's (`siconos-*`, "
+        "`bullet-*`, `dart-*`); the library's time / ours, median [min – max] over the problems both solve (n). "
+        "Above 1×: ours is faster.\n\n| size band | track |";
+  for (const std::string& f : families) md << " " << f << " |";
+  md << "\n|---|---|";
+  for (std::size_t i = 0; i < families.size(); ++i) md << "---|";
+  md << "\n";
+  for (const PeerRatioRow& row : rows) {
+    md << "| " << ToString(row.band) << " | " << (row.warm ? "warm" : "cold") << " |";
+    for (const std::string& f : families) {
+      const auto it = row.by_peer.find(f);
+      if (it == row.by_peer.end()) {
+        md << " |";
+        continue;
+      }
+      const std::vector<double>& r = it->second;
+      md << " " << G(r[r.size() / 2]) << "× [" << G(r.front()) << " – " << G(r.back()) << "] (" << r.size() << ") |";
+    }
+    md << "\n";
+  }
+  md << "\n";
+}
+
+// The warm track of a suite: per backend over its sequences (time per step), the winners per band, the profile, per
+// band again, and per sequence its counts.
+void WriteWarmTrack(std::ostream& md, const SuiteResults& suite, const std::string& dir, bool plots) {
+  if (suite.warm.empty()) return;
+  const SuiteResults warm = WarmTrackAsSuite(suite);
+  md << "### Warm track of suite `" << suite.suite << "`\n\n"
+     << warm.problems << " sequences of one-step problems (M, l, u fixed, q moving) replayed in order, every step "
+        "started from the previous step's answer by each backend's own warm mechanism: ours through one solve "
+        "session whose reused active set answers when it still fits; `siconos-*`, `bullet-*` and `dart-*` through "
+        "the same adapter instance kept alive (Siconos' direct solvers keep their cache) with the previous answer "
+        "as start. Time = seconds per step, the median over repeats of the whole sequence (its set-up included). "
+        "A sequence counts as solved only when every step is solved by the verdict of the cold records.\n\n";
+  WriteBackendTableOnly(md, warm);
+  WriteBandWinners(md, warm);
+  if (plots) WritePerformanceProfile(md, warm, dir, /*explain=*/false);
+  WritePerBand(md, warm, dir, plots, "warm");
+  // Per sequence: the counts, and its fastest correct backend.
+  std::map<std::string, std::vector<const WarmRecord*>> by_sequence;
+  for (const WarmRecord& w : suite.warm) by_sequence[w.record.problem].push_back(&w);
+  md << "Per sequence: steps, active-set changes between consecutive steps (of the fastest correct backend's "
+        "answers), its pivots or iterations over the sequence, and our fastest backend's reused-set steps and "
+        "fallbacks (steps where the previous active set did not answer and the backend ran).\n\n"
+        "| sequence | source | m | steps | active-set changes | fastest correct | time per step | its iterations | "
+        "ours fastest | reused / fallbacks | correct backends |\n|---|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const auto& [sequence, records] : by_sequence) {
+    const WarmRecord* best = nullptr;
+    const WarmRecord* ours = nullptr;
+    int correct = 0;
+    for (const WarmRecord* w : records) {
+      if (w->record.verdict != Verdict::kSolved) continue;
+      ++correct;
+      if (!best || w->record.time_median < best->record.time_median) best = w;
+      if (w->counts.reuse && (!ours || w->record.time_median < ours->record.time_median)) ours = w;
+    }
+    const WarmRecord& head = *records.front();
+    md << "| " << sequence << " | " << ToString(head.source) << " | " << head.record.size << " | "
+       << head.counts.steps << " | " << (best ? std::to_string(best->counts.active_set_changes) : "") << " | "
+       << (best ? best->record.solver : "none") << " | " << (best ? Seconds(best->record.time_median) : "") << " | "
+       << (best ? std::to_string(best->counts.iterations) : "") << " | " << (ours ? ours->record.solver : "")
+       << " | "
+       << (ours ? std::to_string(ours->counts.reused_steps) + " / " + std::to_string(ours->counts.fallbacks) : "")
+       << " | " << correct << "/" << records.size() << " |\n";
+  }
+  md << "\n";
+}
+
 void WriteSuite(std::ostream& md, const SuiteResults& suite, const std::string& dir, bool plots) {
   if (suite.replay.records.empty() && suite.replay.sweep.empty()) {
     md << "## Suite `" << suite.suite << "`: " << suite.description << "\n\nNo records: no chosen backend ran on it "
@@ -1068,10 +1257,13 @@ void WriteSuite(std::ostream& md, const SuiteResults& suite, const std::string& 
   WriteWrongAnswers(md, suite);
   WriteSparsePathComparison(md, CompareWithSparsePath(suite));
   WriteSiconosComparison(md, CompareWithSiconos(suite));
+  WritePeerRatios(md, suite);
   if (plots) WritePerformanceProfile(md, suite, dir);
+  WritePerBand(md, suite, dir, plots, "cold");
   WriteToleranceLadder(md, suite);
   WriteToleranceSweep(md, suite, dir, plots);
   WriteScaleTable(md, suite);
+  WriteWarmTrack(md, suite, dir, plots);
 }
 
 // The time-stepper: warm against cold starts, per scene and backend (records come in warm, cold pairs).

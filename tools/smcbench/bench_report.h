@@ -126,6 +126,24 @@ std::string BackendStyle(const std::string& label);
 // Returns, per backend, the ratios r_p = t_p / min_s t_p (∞ for problems it does not solve), sorted.
 std::vector<std::pair<std::string, std::vector<double>>> PerformanceRatios(const SuiteResults& suite);
 
+// The cold records of one size band of a suite (suite name "<suite> <band's ShortName>", the same description), so
+// every table and profile of a suite can be given per band.
+SuiteResults SizeBandSlice(const SuiteResults& suite, SizeBand band);
+// The suite's warm-track records (SuiteResults::warm) as the records of a suite named "<suite> warm": each warm
+// sequence × backend one record (time per step), so the cold tables, profiles and band winners apply to them.
+SuiteResults WarmTrackAsSuite(const SuiteResults& suite);
+
+// Ours against each external library's best, per size band, cold and warm: on each problem (warm: sequence) the
+// fastest correct answer of our backends and of each peer family (the name's first part: "siconos", "bullet",
+// "dart"), and the ratio peer time / our time over the problems both solve, sorted.
+struct PeerRatioRow {
+  SizeBand band = SizeBand::kTiny;
+  bool warm = false;
+  std::map<std::string, std::vector<double>> by_peer;  // family → sorted ratios
+};
+// Bands smallest first, for each the cold row then the warm row (a row only when some ratio exists).
+std::vector<PeerRatioRow> OursAgainstPeersPerBand(const SuiteResults& suite);
+
 // Least-squares slope of log(time) against log(size) over the solved records of one backend (NaN if < 2 sizes).
 double GrowthExponent(const SuiteResults& suite, const std::string& solver);
 

@@ -1,0 +1,190 @@
+#include "bench/replay/warm_track.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <limits>
+
+#include "bench/replay/sample_times.h"
+#include "solvers/core/active_set.h"
+#include "solvers/core/session.h"
+
+namespace smcbench {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+bool SameMatrix(const BoxMLCP& a, const BoxMLCP& b) {
+  if (a.is_sparse() != b.is_sparse() || a.size() != b.size()) return false;
+  if (a.is_sparse()) {
+    const SparseMatrix& x = a.sparse_matrix();
+    const SparseMatrix& y = b.sparse_matrix();
+    return x.nonZeros() == y.nonZeros() && DenseMatrix(x) == DenseMatrix(y);
+  }
+  return a.dense_matrix() == b.dense_matrix();
+}
+
+// The active set of an answer, in the natural map's classification (ClassifyRow): what a warm start can reuse.
+void ClassifyAnswer(const BoxMLCP& problem, const SolveResult& result, std::vector<signed char>* state) {
+  const int n = problem.size();
+  state->assign(static_cast<std::size_t>(n), 0);
+  if (result.z.size() != n || result.w.size() != n) return;
+  for (int i = 0; i < n; ++i) {
+    (*state)[static_cast<std::size_t>(i)] = static_cast<signed char>(
+        ClassifyRow(result.z[i], result.w[i], problem.l()[i], problem.u()[i]));
+  }
+}
+
+std::string JoinTags(const std::vector<std::string>& tags) {
+  std::string out;
+  for (const auto& t : tags) out += (out.empty() ? "" : ",") + t;
+  return out;
+}
+
+}  // namespace
+
+const char* ToString(WarmSource source) {
+  switch (source) {
+    case WarmSource::kScene: return "scene";
+    case WarmSource::kTrajectory: return "trajectory";
+    case WarmSource::kCapture: return "capture";
+  }
+  return "?";
+}
+
+void CheckWarmSequence(const WarmSequence& sequence) {
+  if (sequence.steps.empty()) throw InvalidInputError("warm sequence '" + sequence.id + "': steps is empty");
+  const BoxMLCP& first = sequence.steps.front().problem;
+  for (std::size_t k = 1; k < sequence.steps.size(); ++k) {
+    const BoxMLCP& p = sequence.steps[k].problem;
+    if (!SameMatrix(first, p) || p.l() != first.l() || p.u() != first.u()) {
+      throw InvalidInputError("warm sequence '" + sequence.id + "': step " + std::to_string(k) + " ('" +
+                              sequence.steps[k].id + "') has another M, l or u than step 0 (only q may move)");
+    }
+  }
+}
+
+WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, const std::string& solver_name,
+                              const ReplayOptions& options, double tolerance, std::vector<Vector>* answers) {
+  CheckWarmSequence(sequence);
+  const LibraryProblem& head = sequence.steps.front();
+  const std::size_t steps = sequence.steps.size();
+  WarmRecord out;
+  out.source = sequence.source;
+  ReplayRecord& r = out.record;
+  r.suite = sequence.suite;
+  r.problem = sequence.id;
+  r.solver = solver_name;
+  r.size = head.size();
+  r.sparse = head.sparse();
+  r.tags = JoinTags(head.tags);
+  r.expected = head.expected;
+  r.mode = "warm";
+  r.tolerance = tolerance;
+  r.certificate = std::string(ToString(head.reference.certificate));
+
+  SolverOptions o;
+  o.tolerance = tolerance;
+  o.time_limit_seconds = options.time_limit_seconds;
+  o.measure_time = false;  // timed from outside, around the whole sequence
+  o.polish = options.polish;
+  SessionOptions session_options;
+  session_options.reuse_active_set = true;  // the session itself leaves it off for external backends
+  // One result per step, so step k starts from step k−1's answer without a copy; storage reused pass after pass.
+  std::vector<SolveResult> results(steps);
+  // A step that ran into the time limit ends the pass: the steps after it are not run (a time-stepper stops there
+  // too), so a backend that cannot solve the sequence costs one time limit, not one per step.
+  std::size_t steps_run = 0;
+  const auto pass = [&] {
+    SolveSession session = solver->Prepare(head.problem, o, session_options);
+    steps_run = 0;
+    for (std::size_t k = 0; k < steps; ++k) {
+      session.Solve(sequence.steps[k].problem.q(), &results[k], k == 0 ? nullptr : &results[k - 1].z);
+      ++steps_run;
+      if (results[k].status == SolveStatus::kTimeLimit) break;
+    }
+  };
+  // Untimed: sizes every result's storage, and is a siconos-* backend's probe of the problem.
+  const auto first_start = Clock::now();
+  pass();
+  const double first = std::chrono::duration<double>(Clock::now() - first_start).count();
+  std::vector<double> samples;
+  const bool timed_out = results[steps_run - 1].status == SolveStatus::kTimeLimit;
+  if (timed_out) samples.push_back(first / static_cast<double>(steps_run));  // the limit, not a measurement
+  const auto start = Clock::now();
+  const int wanted = timed_out ? 1 : std::max(1, options.repetitions);
+  while (static_cast<int>(samples.size()) < wanted) {
+    const auto s0 = Clock::now();
+    pass();
+    samples.push_back(std::chrono::duration<double>(Clock::now() - s0).count() / static_cast<double>(steps));
+    if (std::chrono::duration<double>(Clock::now() - start).count() > options.max_seconds_per_pair) break;
+  }
+  r.samples = static_cast<int>(samples.size());
+  r.solves_per_sample = static_cast<std::int64_t>(steps);
+  r.time_median = replay_internal::Median(samples);
+  r.time_min = *std::min_element(samples.begin(), samples.end());
+  r.time_max = *std::max_element(samples.begin(), samples.end());
+  std::vector<double> deviations;
+  for (double s : samples) deviations.push_back(std::abs(s - r.time_median));
+  r.time_mad = replay_internal::Median(deviations);
+
+  // Judge the last pass step by step.
+  WarmCounts& c = out.counts;
+  c.steps = static_cast<int>(steps);
+  c.reuse = !solver->info().external && !head.sparse();
+  r.status = SolveStatus::kSolved;
+  r.verdict = Verdict::kSolved;
+  r.residual_abs = r.residual_rel = r.residual_scaled = 0.0;
+  std::vector<signed char> state, previous;
+  bool first_failure = true;
+  for (std::size_t k = 0; k < steps; ++k) {
+    const LibraryProblem& step = sequence.steps[k];
+    if (k >= steps_run) {  // after a time limit: not run, no answer
+      if (first_failure) {
+        first_failure = false;
+        r.verdict = Verdict::kFailed;
+        r.status = SolveStatus::kTimeLimit;
+        r.message = "step " + std::to_string(k) + " (" + step.id + ") not run: an earlier step ran into the time limit";
+      }
+      continue;
+    }
+    const SolveResult& result = results[k];
+    const Judgement j = Judge(step, result.status, result.z, tolerance);
+    const bool has_z = result.z.size() == step.size();
+    r.residual_abs = std::max(r.residual_abs, has_z ? j.residual.abs : result.residual_abs);
+    r.residual_rel = std::max(r.residual_rel, has_z ? j.residual.rel : result.residual_rel);
+    r.residual_scaled = std::max(r.residual_scaled, has_z ? j.residual.scaled : result.residual_scaled);
+    if (!std::isnan(j.forward_error) && !(j.forward_error <= r.forward_error)) {
+      r.forward_error = j.forward_error;
+      r.forward_error_rel = j.forward_error_rel;
+      r.forward_allowance = j.forward_allowance;
+    }
+    c.iterations += result.iterations;
+    if (j.verdict == Verdict::kSolved) {
+      ++c.steps_solved;
+    } else if (first_failure) {
+      first_failure = false;
+      r.verdict = j.verdict;
+      r.status = result.status;
+      r.message = "step " + std::to_string(k) + " (" + step.id + "): " + std::string(ToString(j.verdict)) +
+                  (result.message.empty() ? "" : ": " + result.message);
+      r.backend_code = BackendReturnCode(result);
+    }
+    ClassifyAnswer(step.problem, result, &state);
+    if (k > 0 && state != previous) ++c.active_set_changes;
+    std::swap(state, previous);
+    if (c.reuse && k > 0) {
+      const bool reused = result.GetDetail("path") == static_cast<double>(SessionPath::kReusedActiveSet);
+      (reused ? c.reused_steps : c.fallbacks) += 1;
+    }
+  }
+  if (first_failure) r.backend_code = BackendReturnCode(results.back());
+  if (answers) {
+    answers->clear();
+    for (std::size_t k = 0; k < steps_run; ++k) answers->push_back(results[k].z);
+  }
+  r.iterations = static_cast<int>(std::min<std::int64_t>(c.iterations, std::numeric_limits<int>::max()));
+  return out;
+}
+
+}  // namespace smcbench
