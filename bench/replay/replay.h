@@ -26,7 +26,7 @@ struct ReplayOptions {
   bool polish = true;
   // The timed solves run through one solve session per problem × backend (solvers/core/session.h). Off (the
   // default): every solve runs the backend's own algorithm, what the report compares; on: each repeat may be answered
-  // by the previous answer's active set (what a time-stepper gets).
+  // by the previous answer's active set (what a time-stepper gets), so a "cold" record becomes "cached" (TimeSolves).
   bool reuse_active_set = false;
   double time_limit_seconds = 10.0;  // per solve; a backend over it gets kTimeLimit (and is timed once)
   int repetitions = 7;               // timing samples per problem × backend (median and spread over these)
