@@ -133,8 +133,8 @@ ReplayRecord ReplayOne(const ProblemSet& set, const LibraryProblem& problem, Sol
 // Cold means cold: every timed solve starts from the state the first one did. A backend that kept nothing after
 // the warm-up (ForgetWarmState: nothing_remembered) is timed back to back; for one that keeps something (Siconos'
 // mlcp_direct_* cache, auto's choice after a fallback) the session's ForgetWarmState runs untimed before each timed
-// solve, which is then timed alone (bench/replay/sample_times.h). A record whose solves could not start cold (a backend that
-// cannot forget, or replay.reuse_active_set on) has mode "cached" instead of "cold".
+// solve, which is then timed alone (bench/replay/sample_times.h). A record whose solves could not start cold (a
+// backend that cannot forget, or replay.reuse_active_set on) has mode "cached" instead of "cold".
 void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& options, const ReplayOptions& replay,
                 SolveResult* result, ReplayRecord* record);
 

@@ -110,9 +110,10 @@ struct ColdRepeatReport {
 //    1e-8·(1 + ‖z‖∞). Run again on an instance whose external library runs in process (option isolate=never,
 //    where the backend has it), as the timing below does.
 //  - time: the median of those in-process repeats is at least the least of the first solves of the problem by
-//    `fresh_instances` other instances divided by time_factor (a loaded machine only adds time to a measurement). Each of them (in process too: an external adapter's
-//    first solve would otherwise run in its isolation worker) has solved another problem of the same shape before,
-//    so that what an instance pays once is not counted as the problem's cold cost.
+//    `fresh_instances` other instances divided by time_factor (a loaded machine only adds time to a measurement).
+//    Each of them (in process too: an external adapter's first solve would otherwise run in its isolation worker)
+//    has solved another problem of the same shape before, so that what an instance pays once is not counted as the
+//    problem's cold cost.
 // Throws InvalidInputError if create is empty or returns null; a backend that throws is reported as a failure.
 ColdRepeatReport CheckColdRepeat(const SolverFactory& create, const ColdRepeatOptions& options = {});
 ColdRepeatReport CheckColdRepeat(std::string_view registered_name, const ColdRepeatOptions& options = {});
