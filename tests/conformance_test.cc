@@ -59,6 +59,95 @@ INSTANTIATE_TEST_SUITE_P(EveryBackend, Conformance, ::testing::ValuesIn(AllSolve
                            return name;
                          });
 
+// Every registered backend, external adapters included, asked of the registry: a cold repeat of a problem does no
+// less work than its first solve (ForgetWarmState), so no backend's cold benchmark times come from a cache.
+std::vector<std::string> EveryRegisteredBackend() {
+  test_support::RegisterTestBackend();
+  std::vector<std::string> names;
+  for (auto n : SolverNames()) names.emplace_back(n);
+  return names;
+}
+
+class ColdRepeat : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(ColdRepeat, DoesNoLessWorkThanTheFirstSolve) {
+  const std::string name = GetParam();
+  const ColdRepeatReport report = CheckColdRepeat(name);
+  EXPECT_TRUE(report.passed()) << name << ":\n" << ToString(report);
+  // A box-MLCP backend takes at least one of the problems (an MCP-only adapter refuses them all).
+  if (CreateSolver(name)->info().box) {
+    EXPECT_GT(report.problems_checked, 0) << ToString(report);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(EveryBackend, ColdRepeat, ::testing::ValuesIn(EveryRegisteredBackend()),
+                         [](const auto& info) {
+                           std::string name = info.param;
+                           std::replace(name.begin(), name.end(), '-', '_');
+                           return name;
+                         });
+
+// lemke behind a cache of its last answer, as Siconos' mlcp_direct_* keep theirs: a repeat of the same q is
+// answered from it with 0 iterations. Made with forgets true, its ForgetWarmState drops the cache; with false it
+// keeps the default (nothing to forget), the defect the cold-repeat check is there to catch.
+class CachedAnswer final : public Solver {
+ public:
+  explicit CachedAnswer(bool forgets) : forgets_(forgets) {}
+  const SolverInfo& info() const override {
+    static const SolverInfo kInfo{"cached-answer", "lemke behind a cache of its last answer", "none"};
+    return kInfo;
+  }
+  WarmStateReset ForgetWarmState() override {
+    if (!forgets_ || !cached_) return WarmStateReset::kNothingRemembered;
+    cached_ = false;
+    return WarmStateReset::kForgotten;
+  }
+
+ protected:
+  void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override {
+    if (cached_ && problem.q() == cached_q_) {
+      result->z = cached_z_;
+      result->iterations = 0;
+      result->status = SolveStatus::kSolved;
+      return;
+    }
+    *result = lemke_->Solve(problem, options);
+    cached_ = result->solved();
+    cached_q_ = problem.q();
+    cached_z_ = result->z;
+  }
+
+ private:
+  bool forgets_;
+  bool cached_ = false;
+  Vector cached_q_, cached_z_;
+  std::unique_ptr<Solver> lemke_ = CreateSolver("lemke");
+};
+
+TEST(ColdRepeatCheck, FailsABackendWhoseRepeatsComeFromItsCache) {
+  const ColdRepeatReport report = CheckColdRepeat([] { return std::make_unique<CachedAnswer>(false); });
+  ASSERT_FALSE(report.passed());
+  bool iterations_caught = false;
+  for (const ConformanceFailure& f : report.failures) {
+    EXPECT_EQ(f.check, "cold-repeat");
+    iterations_caught |= f.message.find("0 iterations where the first solve took") != std::string::npos;
+  }
+  EXPECT_TRUE(iterations_caught) << ToString(report);
+}
+
+TEST(ColdRepeatCheck, PassesTheSameBackendOnceItForgets) {
+  const ColdRepeatReport report = CheckColdRepeat([] { return std::make_unique<CachedAnswer>(true); });
+  EXPECT_TRUE(report.passed()) << ToString(report);
+  EXPECT_EQ(report.problems_checked, 5);
+  // Per problem: a first solve and 7 repeats on two instances, and 3 other instances' two solves each.
+  EXPECT_EQ(report.solves, 5 * (2 * (1 + 7) + 3 * 2));
+}
+
+TEST(ColdRepeatCheck, RejectsAnEmptyFactory) {
+  EXPECT_THROW(CheckColdRepeat(SolverFactory{}), InvalidInputError);
+  EXPECT_THROW(CheckColdRepeat("simplex"), InvalidInputError);
+}
+
 // A backend that always answers z = 0 and claims to be done: the base's merit function turns that into a failure
 // status on every problem whose solution is not 0, so "must solve" fails.
 class ZeroAnswer final : public Solver {

@@ -26,7 +26,7 @@ struct ReplayOptions {
   bool polish = true;
   // The timed solves run through one solve session per problem × backend (solvers/core/session.h). Off (the
   // default): every solve runs the backend's own algorithm, what the report compares; on: each repeat may be answered
-  // by the previous answer's active set (what a time-stepper gets).
+  // by the previous answer's active set (what a time-stepper gets), so a "cold" record becomes "cached" (TimeSolves).
   bool reuse_active_set = false;
   double time_limit_seconds = 10.0;  // per solve; a backend over it gets kTimeLimit (and is timed once)
   int repetitions = 7;               // timing samples per problem × backend (median and spread over these)
@@ -75,7 +75,9 @@ struct ReplayRecord {
   double time_mad = 0.0;
   int samples = 0;
   std::int64_t solves_per_sample = 0;
-  std::string mode = "cold";  // "cold", or "sweep" for tolerance-sweep records
+  // "cold"; "sweep" for tolerance-sweep records; "cached" for a record whose timed solves could not all start from
+  // the same state (TimeSolves): the report keeps it out of its cold tables.
+  std::string mode = "cold";
   // The timed solves went through an isolation worker, so the times include its inter-process round trip (≈ 7 µs):
   // a siconos-* backend with isolate=always, or a problem whose probe crashed or ran out of time (it is never
   // solved in process). False for every backend of ours, and for siconos-* ones by default: the untimed warm-up
@@ -124,11 +126,15 @@ ReplayRecord ReplayOne(const ProblemSet& set, const LibraryProblem& problem, Sol
                        const std::string& solver_name, const ReplayOptions& options, const std::string& mode,
                        double tolerance);
 
-// Times one solve configuration: repeated solves of problem with solver/options through one session (cold unless
-// replay.reuse_active_set) into *result, honouring
-// min_sample_seconds, repetitions and max_seconds (writes median/min/max/mad/samples/solves_per_sample and
+// Times one solve configuration: repeated solves of problem with solver/options through one session into *result,
+// honouring min_sample_seconds, repetitions and max_seconds (writes median/min/max/mad/samples/solves_per_sample and
 // timed_in_worker). An untimed warm-up solve comes first: it sizes the workspace and, for a siconos-* backend, is
 // the probe in its isolation worker, after which the timed solves of that problem run in process.
+// Cold means cold: every timed solve starts from the state the first one did. A backend that kept nothing after
+// the warm-up (ForgetWarmState: nothing_remembered) is timed back to back; for one that keeps something (Siconos'
+// mlcp_direct_* cache, auto's choice after a fallback) the session's ForgetWarmState runs untimed before each timed
+// solve, which is then timed alone (bench/replay/sample_times.h). A record whose solves could not start cold (a
+// backend that cannot forget, or replay.reuse_active_set on) has mode "cached" instead of "cold".
 void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& options, const ReplayOptions& replay,
                 SolveResult* result, ReplayRecord* record);
 

@@ -21,11 +21,20 @@ inline double Median(std::vector<double> v) {
   return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
 }
 
+// The forget() of a configuration whose solves keep nothing between them (an MCP solve, a backend's plain Solve).
+struct NothingToForget {
+  WarmStateReset operator()() const { return WarmStateReset::kNothingRemembered; }
+};
+
 // solve() runs one solve into *result (the same object every call). Writes median/min/max/mad/samples/
 // solves_per_sample and timed_in_worker of *record.
-template <typename SolveOnce>
+// forget() (SolveSession::ForgetWarmState) runs untimed after the warm-up. When it found nothing remembered, the
+// timed solves run back to back, count per sample. Otherwise every timed solve starts cold: forget() before each
+// one, outside the clock, each solve timed alone and count of them summed into one sample; and when something could
+// not be forgotten (kCannotForget), a "cold" record becomes "cached" (the report keeps it out of its cold tables).
+template <typename SolveOnce, typename Forget = NothingToForget>
 void SampleSolveTimes(SolveOnce&& solve, const SolveResult* result, const ReplayOptions& replay,
-                      ReplayRecord* record) {
+                      ReplayRecord* record, Forget&& forget = Forget{}) {
   using Clock = std::chrono::steady_clock;
   // Warm-up: sizes the workspace, tells how long one solve takes, and is a siconos-* backend's probe (its first
   // solve of a problem runs in its isolation worker; the timed ones then run in process, unless the probe crashed
@@ -43,6 +52,10 @@ void SampleSolveTimes(SolveOnce&& solve, const SolveResult* result, const Replay
   // Which path answered the timed solves (detail "in_process", NaN for our backends): one worker answer taints all.
   const auto answered_in_worker = [&] { return result->GetDetail("in_process") == 0.0; };
   record->timed_in_worker = false;
+  const WarmStateReset after_warm_up = forget();
+  const bool forgetting = after_warm_up != WarmStateReset::kNothingRemembered;
+  bool cached = after_warm_up == WarmStateReset::kCannotForget;
+  bool forgotten = true;  // the state the next timed solve starts from is the forgotten one
   const int wanted = std::max(1, replay.repetitions);
   // A solve that ran into the time limit is not repeated: its time is the limit, not a measurement.
   if (result->status == SolveStatus::kTimeLimit) {
@@ -51,12 +64,25 @@ void SampleSolveTimes(SolveOnce&& solve, const SolveResult* result, const Replay
     record->timed_in_worker = answered_in_worker();
   }
   while (static_cast<int>(samples.size()) < wanted) {
-    const auto s0 = Clock::now();
-    for (std::int64_t i = 0; i < count; ++i) solve();
-    samples.push_back(std::chrono::duration<double>(Clock::now() - s0).count() / static_cast<double>(count));
+    double seconds = 0.0;
+    if (!forgetting) {
+      const auto s0 = Clock::now();
+      for (std::int64_t i = 0; i < count; ++i) solve();
+      seconds = std::chrono::duration<double>(Clock::now() - s0).count();
+    } else {
+      for (std::int64_t i = 0; i < count; ++i) {
+        if (!forgotten) cached = forget() == WarmStateReset::kCannotForget || cached;
+        forgotten = false;
+        const auto s0 = Clock::now();
+        solve();
+        seconds += std::chrono::duration<double>(Clock::now() - s0).count();
+      }
+    }
+    samples.push_back(seconds / static_cast<double>(count));
     record->timed_in_worker = record->timed_in_worker || answered_in_worker();
     if (std::chrono::duration<double>(Clock::now() - pair_start).count() > replay.max_seconds_per_pair) break;
   }
+  if (cached && record->mode == "cold") record->mode = "cached";
   record->samples = static_cast<int>(samples.size());
   record->solves_per_sample = count;
   record->time_median = Median(samples);

@@ -235,6 +235,18 @@ Solver* AutoSolver::DelegateFor(const BoxMLCP& problem, const SolverOptions&) {
   return &candidate(ChoiceFor(problem).chosen());
 }
 
+WarmStateReset AutoSolver::ForgetWarmState() {
+  WarmStateReset reset = WarmStateReset::kNothingRemembered;
+  if (choice_.first != 0) {
+    choice_.first = 0;
+    reset = WarmStateReset::kForgotten;
+  }
+  for (const std::unique_ptr<Solver>& c : candidates_) {
+    if (c != nullptr) reset = LeastCold(reset, c->ForgetWarmState());
+  }
+  return reset;
+}
+
 const SolverOptions& AutoSolver::UntimedOptions(const SolverOptions& options) {
   if (!options.measure_time) return options;
   delegate_options_ = options;  // no allocation while the warm start keeps its size

@@ -21,7 +21,8 @@
 // candidate would refuse them). Any other status (iteration limit, stall, ray, singular, numerical failure, a
 // refusal such as kNotApplicable) passes the problem on. kInfeasible from a backend that is not exact is never
 // reported as such: it becomes kNumericalFailure. When a later candidate solved the problem, later calls on the
-// same matrix start with it ("what the last call showed"); DelegateFor returns that same backend.
+// same matrix start with it ("what the last call showed"); DelegateFor returns that same backend. That is warm
+// state: ForgetWarmState drops it, so a cold repeat runs the whole chain again.
 //
 // Details: "chosen" = the AutoCandidate index (AutoCandidateName) of the backend whose answer is returned,
 // "fallbacks" = how many candidates failed before it; the chosen backend's own details are kept. The result's
@@ -106,6 +107,10 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
   // The backend auto would hand this problem to first (owned by this AutoSolver), without solving; nullptr while
   // auto's own options are invalid (Solve then reports them).
   Solver* DelegateFor(const BoxMLCP& problem, const SolverOptions& options) override;
+  // Forgets the candidate a fallback made the first choice for the current matrix (the chain starts at the rule's
+  // choice again; the classification itself depends on M alone and stays), and whatever each created candidate
+  // keeps (their ForgetWarmState).
+  WarmStateReset ForgetWarmState() override;
   // The candidates auto tries on this problem, in order (cached per matrix_id; may cost a Cholesky of M once).
   const AutoChoice& ChoiceFor(const BoxMLCP& problem);
   // The instance auto uses for one candidate (its options can be changed there). The box candidates always exist;

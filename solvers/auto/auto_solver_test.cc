@@ -315,6 +315,17 @@ TEST(AutoSolver, FallsBackWhenTheChoiceFailsWithoutProof) {
   EXPECT_EQ(Chosen(again), AutoCandidate::kLemke);
   EXPECT_EQ(again.GetDetail("fallbacks"), 0.0);
   EXPECT_EQ(again.z, r.z);
+
+  // That is warm state: forgotten, the chain starts at the rule's choice again and a repeat falls back as the first
+  // solve did (a cold benchmark repeat does the whole work).
+  EXPECT_EQ(solver.ForgetWarmState(), WarmStateReset::kForgotten);
+  EXPECT_EQ(solver.DelegateFor(gen.problem, options), &solver.candidate(AutoCandidate::kPsor));
+  const SolveResult cold = solver.Solve(gen.problem, options);
+  ASSERT_TRUE(cold.solved());
+  EXPECT_EQ(cold.GetDetail("fallbacks"), 1.0);
+  EXPECT_EQ(cold.z, r.z);
+  EXPECT_EQ(solver.ForgetWarmState(), WarmStateReset::kForgotten);
+  EXPECT_EQ(solver.ForgetWarmState(), WarmStateReset::kNothingRemembered);  // nothing left since
 }
 
 // An SPD relay problem on which psor refuses when its min_diagonal is raised: M is block diagonal with blocks

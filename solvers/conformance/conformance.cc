@@ -2,6 +2,7 @@
 #include "solvers/conformance/conformance.h"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <exception>
 #include <memory>
@@ -437,7 +438,161 @@ void CheckMcpNotApplicable(const SolverFactory& create, const ConformanceOptions
   }
 }
 
+// ---- cold-repeat (conformance.h, CheckColdRepeat) ----
+
+// A first solve that refuses the problem leaves nothing to compare a repeat with.
+bool Refused(SolveStatus status) {
+  return status == SolveStatus::kNotApplicable || status == SolveStatus::kSizeLimit ||
+         status == SolveStatus::kInvalidOptions;
+}
+
+double MedianOf(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  const std::size_t n = v.size();
+  return n == 0 ? 0.0 : n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+double SecondsOfSolve(Solver* solver, const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  const auto start = std::chrono::steady_clock::now();
+  solver->Solve(problem, options, result);
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+// A first solve, then `repeats` solves each after ForgetWarmState on the same instance; a failure for each repeat
+// that did less work than the first or answered differently. The repeats' times go to *times. False when the
+// first solve refused the problem.
+bool CompareColdRepeats(Solver* solver, const BoxMLCP& problem, const SolverOptions& options, int repeats,
+                        const std::string& label, Findings* findings, ColdRepeatReport* report,
+                        std::vector<double>* times) {
+  SolveResult first, repeat;
+  solver->Solve(problem, options, &first);
+  ++report->solves;
+  if (Refused(first.status)) return false;
+  for (int k = 1; k <= repeats; ++k) {
+    solver->ForgetWarmState();
+    times->push_back(SecondsOfSolve(solver, problem, options, &repeat));
+    ++report->solves;
+    const std::string where = label + ", cold repeat " + std::to_string(k);
+    if (repeat.status != first.status) {
+      findings->Fail(where, std::string(ToString(repeat.status)) + " where the first solve was " +
+                                std::string(ToString(first.status)));
+    } else if (repeat.iterations < first.iterations) {
+      findings->Fail(where, std::to_string(repeat.iterations) + " iterations where the first solve took " +
+                                std::to_string(first.iterations) +
+                                ": answered from what an earlier solve left behind (ForgetWarmState)");
+    } else if (first.solved() && repeat.z.size() == first.z.size() &&
+               !((repeat.z - first.z).lpNorm<Eigen::Infinity>() <= 1e-8 * (1.0 + first.z.lpNorm<Eigen::Infinity>()))) {
+      findings->Fail(where, "z differs from the first solve's by " +
+                                Num((repeat.z - first.z).lpNorm<Eigen::Infinity>()));
+    }
+  }
+  return true;
+}
+
+// The external library in this process (its option isolate=never), so that a first solve is timed as a solve, not
+// as its isolation worker's start-up; a backend without the option keeps its defaults.
+std::unique_ptr<Solver> InProcess(const SolverFactory& create) {
+  std::unique_ptr<Solver> solver = Make(create);
+  std::string ignored;
+  if (solver->info().external) solver->SetOption("isolate", "never", &ignored);
+  return solver;
+}
+
+// other: a problem of the same shape (another seed), which each fresh instance solves before its timed first solve
+// of problem: what is paid once per instance (workspace sizes, a /dev/null opened for an external library's
+// output) is then paid, as it is on the instance that repeats, and a cache of problem is not.
+void CheckColdRepeatOn(const SolverFactory& create, const ColdRepeatOptions& options, const BoxMLCP& problem,
+                       const BoxMLCP& other, Findings* findings, ColdRepeatReport* report) {
+  SolverOptions o;
+  o.tolerance = options.tolerance;
+  o.time_limit_seconds = options.time_limit_seconds;
+  o.measure_time = false;
+  std::vector<double> ignored_times, repeat_times;
+  const std::unique_ptr<Solver> by_default = Make(create);
+  if (!CompareColdRepeats(by_default.get(), problem, o, options.repeats, problem.name(), findings, report,
+                          &ignored_times)) {
+    return;
+  }
+  ++report->problems_checked;
+  const std::unique_ptr<Solver> in_process = InProcess(create);
+  CompareColdRepeats(in_process.get(), problem, o, options.repeats, problem.name() + " (in process)", findings,
+                     report, &repeat_times);
+  std::vector<double> fresh_times;
+  for (int i = 0; i < options.fresh_instances; ++i) {
+    const std::unique_ptr<Solver> fresh = InProcess(create);
+    SolveResult result;
+    fresh->Solve(other, o, &result);
+    fresh_times.push_back(SecondsOfSolve(fresh.get(), problem, o, &result));
+    report->solves += 2;
+  }
+  // A loaded machine only adds time (preemption): the least disturbed first solve is the fastest one, while the
+  // repeats' median only passes more easily for it.
+  const double fresh = *std::min_element(fresh_times.begin(), fresh_times.end());
+  if (fresh < options.min_timed_seconds || repeat_times.empty()) return;
+  ++report->problems_timed;
+  const double repeated = MedianOf(repeat_times);
+  if (repeated < fresh / options.time_factor) {
+    findings->Fail(problem.name(), "a cold repeat took " + Num(repeated) + " s (median) where another instance's "
+                                   "first solve took " + Num(fresh) + " s (least): more than " +
+                                   Num(options.time_factor) +
+                                   " times faster, as if answered from what an earlier solve left behind");
+  }
+}
+
 }  // namespace
+
+ColdRepeatReport CheckColdRepeat(const SolverFactory& create, const ColdRepeatOptions& options) {
+  if (!create) throw InvalidInputError("CheckColdRepeat: the factory is empty");
+  Make(create);  // a null backend is a usage error, not a failed check
+  ColdRepeatReport report;
+  ConformanceReport failures;  // Findings' sink, moved into the report at the end
+  Findings findings("cold-repeat", &failures);
+  struct Shape {
+    MatrixFamily family;
+    BoundKind bounds;
+    int size;
+  };
+  // A 6-row relay is 12 variables in LCP form (within an enumeration's reach); the mixed rows include free ones
+  // (what siconos-mlcp-lemke needs).
+  const Shape shapes[] = {{MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 20},
+                          {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 20},
+                          {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 6},
+                          {MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 8},
+                          {MatrixFamily::kNonsymmetricPMatrix, BoundKind::kMixed, 10}};
+  for (const Shape& shape : shapes) {
+    GeneratorOptions g;
+    g.size = shape.size;
+    g.family = shape.family;
+    g.bounds = shape.bounds;
+    g.seed = 7;
+    const GeneratedProblem generated = GenerateProblem(g);
+    g.seed = 8;
+    const GeneratedProblem other = GenerateProblem(g);
+    try {
+      CheckColdRepeatOn(create, options, generated.problem, other.problem, &findings, &report);
+    } catch (const std::exception& e) {
+      findings.Fail(generated.problem.name(), std::string("threw: ") + e.what());
+    }
+  }
+  report.failures = std::move(failures.failures);
+  return report;
+}
+
+ColdRepeatReport CheckColdRepeat(std::string_view registered_name, const ColdRepeatOptions& options) {
+  CreateSolver(registered_name);  // unknown name: InvalidInputError listing the known ones
+  const std::string name(registered_name);
+  return CheckColdRepeat(SolverFactory([name] { return CreateSolver(name); }), options);
+}
+
+std::string ToString(const ColdRepeatReport& report) {
+  if (report.passed()) {
+    return "passed (" + std::to_string(report.solves) + " solves, " + std::to_string(report.problems_checked) +
+           " problems compared, " + std::to_string(report.problems_timed) + " timed)";
+  }
+  std::string text;
+  for (const ConformanceFailure& f : report.failures) text += f.check + ": " + f.problem + ": " + f.message + "\n";
+  return text;
+}
 
 ConformanceReport CheckConformance(const SolverFactory& create, const ConformanceOptions& options) {
   if (!create) throw InvalidInputError("CheckConformance: the factory is empty");

@@ -77,4 +77,48 @@ ConformanceReport CheckConformance(std::string_view registered_name, const Confo
 // backend that solves MCPs, how many MCP answers were checked).
 std::string ToString(const ConformanceReport& report);
 
+// The cold-repeat check: a cold repeat of a problem does no less work than its first solve, so that what a benchmark
+// times as cold is never answered from what an earlier solve left behind (Solver::ForgetWarmState). Meant for every
+// registered backend, external adapters included (tests/conformance_test.cc runs it so).
+struct ColdRepeatOptions {
+  double tolerance = 1e-10;        // SolverOptions::tolerance of every solve
+  double time_limit_seconds = 20;  // per solve
+  int repeats = 7;                 // cold repeats per problem on one instance, ForgetWarmState before each
+  int fresh_instances = 3;         // instances whose first solve of the problem gives the reference time
+  // The repeats' median time may not fall below the least of those first solves divided by this. Generous, since a
+  // first solve meets colder caches; a cache hit is far below it (Siconos' mlcp_direct_FB: microseconds against
+  // milliseconds).
+  double time_factor = 5.0;
+  // The time test applies only when the least of those first solves takes at least this long: below it, clock reads
+  // and cache misses are of the order of the solve itself, and the iteration test alone decides.
+  double min_timed_seconds = 2e-5;
+};
+
+struct ColdRepeatReport {
+  std::vector<ConformanceFailure> failures;  // check "cold-repeat"
+  int solves = 0;
+  int problems_checked = 0;  // problems the backend took (first solve not refused): its repeats were compared
+  int problems_timed = 0;    // of them, those where the time test applied (ColdRepeatOptions::min_timed_seconds)
+  bool passed() const { return failures.empty(); }
+};
+
+// On seeded problems (nonsymmetric P-matrix relays of 6 and 20 rows, SPD LCPs of 8 and 20 rows, a 10-row
+// nonsymmetric P-matrix problem with free, one-sided and box rows), each one the backend does not refuse
+// (not_applicable, size_limit, invalid_options):
+//  - iterations: on one instance with its default options, a first solve, then `repeats` solves each after
+//    ForgetWarmState: every repeat has the first solve's status, at least its iterations, and (solved) its z to
+//    1e-8·(1 + ‖z‖∞). Run again on an instance whose external library runs in process (option isolate=never,
+//    where the backend has it), as the timing below does.
+//  - time: the median of those in-process repeats is at least the least of the first solves of the problem by
+//    `fresh_instances` other instances divided by time_factor (a loaded machine only adds time to a measurement).
+//    Each of them (in process too: an external adapter's first solve would otherwise run in its isolation worker)
+//    has solved another problem of the same shape before, so that what an instance pays once is not counted as the
+//    problem's cold cost.
+// Throws InvalidInputError if create is empty or returns null; a backend that throws is reported as a failure.
+ColdRepeatReport CheckColdRepeat(const SolverFactory& create, const ColdRepeatOptions& options = {});
+ColdRepeatReport CheckColdRepeat(std::string_view registered_name, const ColdRepeatOptions& options = {});
+
+// One line per failure, or "passed (N solves, P problems compared, T timed)".
+std::string ToString(const ColdRepeatReport& report);
+
 }  // namespace smcbench

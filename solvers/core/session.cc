@@ -9,6 +9,15 @@
 
 namespace smcbench {
 
+std::string_view ToString(WarmStateReset reset) {
+  switch (reset) {
+    case WarmStateReset::kNothingRemembered: return "nothing_remembered";
+    case WarmStateReset::kForgotten: return "forgotten";
+    case WarmStateReset::kCannotForget: return "cannot_forget";
+  }
+  return "unknown";
+}
+
 SolveSession::SolveSession(Solver* backend, const BoxMLCP& problem, const SolverOptions& options,
                            const SessionOptions& session)
     : backend_(backend), problem_(problem), options_(options), session_(session) {
@@ -37,6 +46,17 @@ void SolveSession::set_options(const SolverOptions& options) {
   options_ = options;
   ResolveDelegate(meta_ != nullptr ? meta_ : backend_);
   CheckBackendOptions();
+}
+
+WarmStateReset SolveSession::ForgetWarmState() {
+  WarmStateReset reset = WarmStateReset::kNothingRemembered;
+  if (factors_.valid()) {
+    factors_.Invalidate();
+    reset = WarmStateReset::kForgotten;
+  }
+  reset = LeastCold(reset, backend_->ForgetWarmState());
+  if (meta_ != nullptr) reset = LeastCold(reset, meta_->ForgetWarmState());
+  return reset;
 }
 
 void SolveSession::CheckBackendOptions() {

@@ -25,6 +25,20 @@ struct SessionOptions {
   bool reuse_active_set = true;
 };
 
+// What Solver::ForgetWarmState (and SolveSession::ForgetWarmState) found. Explicit values, append only.
+enum class WarmStateReset : int {
+  kNothingRemembered = 0,  // nothing learned from earlier solves was kept: the next solve starts cold anyway
+  kForgotten = 1,          // something was kept (a cache, an active set, a chosen candidate) and is dropped now
+  kCannotForget = 2,       // something is kept that the backend cannot drop: its next solve may start warm
+};
+// "nothing_remembered", "forgotten", "cannot_forget".
+std::string_view ToString(WarmStateReset reset);
+// The outcome of forgetting in several places (a session, its backend, a meta-backend's candidates): the least
+// cold of them.
+inline WarmStateReset LeastCold(WarmStateReset a, WarmStateReset b) {
+  return static_cast<int>(a) >= static_cast<int>(b) ? a : b;
+}
+
 // Which path produced a session's answer: SolveResult detail "path".
 enum class SessionPath : int {
   kBackend = 0,          // the backend's own algorithm (then the base's polish and merit function)
@@ -51,6 +65,11 @@ class SolveSession {
   // shape of OSQP's update_settings): a caller that runs the same problem again with other options. No allocation
   // when warm_start keeps its size.
   void set_options(const SolverOptions& options);
+
+  // The next call starts as the first did: the remembered active set is dropped, and so is what the backend keeps
+  // (Solver::ForgetWarmState), and the meta-backend it was chosen by. Not timed by anyone: a benchmark calls it
+  // between timed cold solves. Returns the least cold outcome of the three.
+  WarmStateReset ForgetWarmState();
 
   // The problem as last solved (q of the last call).
   const BoxMLCP& problem() const { return problem_; }

@@ -104,6 +104,14 @@ class Solver {
   // nothing per step. nullptr (every real backend): this backend solves the problem itself.
   virtual Solver* DelegateFor(const BoxMLCP& /*problem*/, const SolverOptions& /*options*/) { return nullptr; }
 
+  // The next solve starts as if it were the first: no cache, no remembered active set, no candidate chosen by an
+  // earlier answer. What depends on the problem's M alone and is prepared once (the equilibrated copy, enum's block
+  // factors, auto's classification, an external library's initialisation for the last problem) may stay: that is
+  // set-up, not warm state. A backend that keeps anything learned from earlier answers overrides this; work that
+  // is a separate call (Siconos' MLCP driver reset and init) runs here, so a caller timing cold solves keeps it
+  // out of the timed region (bench/replay/replay.h, TimeSolves). Default: nothing is kept.
+  virtual WarmStateReset ForgetWarmState() { return WarmStateReset::kNothingRemembered; }
+
   // Typed backend options set from text ("omega", "1.5"); false with *error on unknown name or bad value,
   // in which case the option keeps its previous value.
   bool SetOption(std::string_view name, std::string_view value, std::string* error);

@@ -694,6 +694,37 @@ TEST(Session, ReusesTheActiveSetWhileItHoldsAndSaysSo) {
   EXPECT_EQ(session.calls(), 4);
 }
 
+// ForgetWarmState drops the remembered active set: the next call goes to the backend, as the first did.
+TEST(Session, ForgetWarmStateSendsTheNextCallToTheBackend) {
+  DenseMatrix M(2, 2);
+  M << 2.0, 1.0, 1.0, 2.0;
+  const Vector ones = Vector::Ones(2);
+  const BoxMLCP p(M, (Vector(2) << -1.0, -1.0).finished(), -ones, ones, "box");
+  ScriptedSolver solver;
+  solver.z_to_report = (Vector(2) << 1.0 / 3.0, 1.0 / 3.0).finished();
+  SolverOptions options;
+  options.polish = false;
+  SolveSession session = solver.Prepare(p, options);
+  EXPECT_EQ(session.ForgetWarmState(), WarmStateReset::kNothingRemembered);  // nothing solved yet
+  SolveResult r;
+  session.Solve(p.q(), &r);
+  session.Solve(p.q(), &r);
+  ASSERT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kReusedActiveSet));
+  EXPECT_EQ(session.ForgetWarmState(), WarmStateReset::kForgotten);
+  session.Solve(p.q(), &r);
+  EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+  EXPECT_EQ(r.iterations, 7);
+  EXPECT_EQ(session.reused(), 1);
+  // Without reuse a session remembers nothing, and a plain backend neither (Solver::ForgetWarmState's default).
+  SessionOptions no_reuse;
+  no_reuse.reuse_active_set = false;
+  SolveSession plain = solver.Prepare(p, options, no_reuse);
+  plain.Solve(p.q(), &r);
+  EXPECT_EQ(plain.ForgetWarmState(), WarmStateReset::kNothingRemembered);
+  EXPECT_EQ(solver.ForgetWarmState(), WarmStateReset::kNothingRemembered);
+  EXPECT_EQ(ToString(WarmStateReset::kCannotForget), "cannot_forget");
+}
+
 TEST(Session, ReuseOffAlwaysCallsTheBackend) {
   ScriptedSolver solver;
   solver.z_to_report = (Vector(2) << 1.0, 0.0).finished();

@@ -133,6 +133,9 @@ const Spec& SpecOf(SiconosMethod method) {
 
 // Fixed-size messages between the backend and its worker; the arrays follow them on the socket.
 constexpr std::int32_t kMagic = 0x53494331;  // "SIC1"
+// A Request with this magic (nothing follows it) asks the worker to start its next solve cold
+// (SiconosSession::StartColdAgain); it answers with a Response carrying the same magic.
+constexpr std::int32_t kForgetMagic = 0x53494346;  // "SICF"
 constexpr int kMaxWireSize = 1 << 15;        // largest N the worker accepts
 
 struct Request {
@@ -225,10 +228,19 @@ class SiconosSession {
   // entry and Siconos' answer on return.
   Response Solve(const Request& r, const double* M, const double* q, const double* lb, const double* ub,
                  double* x);
+  // For a direct method (mlcp_direct_*): drops its active-set cache and initialises Siconos' MLCP state for this
+  // problem now (mlcp_driver_reset, then mlcp_driver_init), so that the next Solve of it starts from an empty cache
+  // without paying the initialisation inside the solve, as a time-stepper's first step does. Other methods keep
+  // nothing learned between solves: nothing to do.
+  void StartCold(const Request& r, const double* M, const double* q);
+  // The same for the problem last solved here (the worker's answer to kForgetMagic); nothing when there is none.
+  void StartColdAgain();
+  // Releases every Siconos struct of this session: the next Solve starts from nothing.
+  void Release();
 
  private:
-  void Release();
-  void PrepareMlcp(const Request& r, const Spec& spec, const double* M, const double* q);
+  // fresh: initialise even when the previous solve's state could be kept.
+  void PrepareMlcp(const Request& r, const Spec& spec, const double* M, const double* q, bool fresh);
 
   int method_ = -1;
   int size_ = -1;
@@ -238,6 +250,7 @@ class SiconosSession {
   ::SolverOptions* options_ = nullptr;  // Siconos' options (not smcbench::SolverOptions)
   NumericsMatrix* matrix_ = nullptr;
   bool mlcp_initialised_ = false;
+  Request last_request_{};  // of the last Solve or StartCold (while method_ ≥ 0)
   MixedLinearComplementarityProblem mlcp_{};
   std::vector<double> q_, lb_, ub_, w_, last_M_;
   std::vector<double> A_, B_, C_, D_, a_, b_;  // the MLCP's ABCD storage (mlcp_lcp_lemke reads it)
@@ -256,12 +269,13 @@ void SiconosSession::Release() {
   num_equalities_ = -1;
 }
 
-void SiconosSession::PrepareMlcp(const Request& r, const Spec& spec, const double* M, const double* q) {
+void SiconosSession::PrepareMlcp(const Request& r, const Spec& spec, const double* M, const double* q,
+                                 bool fresh) {
   const int N = r.size, n = r.num_equalities, m = N - n;
   // The direct solvers' cache describes M: it survives only while M (and the split) stays the same.
   const bool same_matrix = last_M_.size() == static_cast<std::size_t>(N) * N &&
                            std::memcmp(last_M_.data(), M, sizeof(double) * N * N) == 0;
-  const bool reuse = spec.direct && r.keep_cache && mlcp_initialised_ && mlcp_state_holder == this &&
+  const bool reuse = !fresh && spec.direct && r.keep_cache && mlcp_initialised_ && mlcp_state_holder == this &&
                      method_ == r.method && size_ == N && num_equalities_ == n && same_matrix;
   if (!reuse) {
     if (mlcp_state_holder != nullptr && mlcp_state_holder != this) mlcp_state_holder->Release();
@@ -269,13 +283,13 @@ void SiconosSession::PrepareMlcp(const Request& r, const Spec& spec, const doubl
     options_ = solver_options_create(spec.siconos_id);
     default_budget_ = options_->iparam[SICONOS_IPARAM_MAX_ITER];
     matrix_ = NM_create(NM_DENSE, N, N);
-    last_M_.assign(M, M + static_cast<std::size_t>(N) * N);
+    if (M != last_M_.data()) last_M_.assign(M, M + static_cast<std::size_t>(N) * N);
     method_ = r.method;
     size_ = N;
     num_equalities_ = n;
   }
   std::memcpy(matrix_->matrix0, M, sizeof(double) * N * N);
-  q_.assign(q, q + N);
+  if (q != q_.data()) q_.assign(q, q + N);
   A_.resize(static_cast<std::size_t>(n) * n);
   B_.resize(static_cast<std::size_t>(m) * m);
   C_.resize(static_cast<std::size_t>(n) * m);
@@ -319,15 +333,29 @@ void SiconosSession::PrepareMlcp(const Request& r, const Spec& spec, const doubl
   }
 }
 
+void SiconosSession::StartCold(const Request& r, const double* M, const double* q) {
+  const Spec& spec = SpecOf(static_cast<SiconosMethod>(r.method));
+  if (spec.family != Family::kMlcp || !spec.direct || !r.keep_cache) return;
+  numerics_set_verbose(r.verbose);
+  PrepareMlcp(r, spec, M, q, /*fresh=*/true);
+  last_request_ = r;
+}
+
+void SiconosSession::StartColdAgain() {
+  if (method_ < 0 || method_ != last_request_.method) return;  // nothing solved, or released since
+  StartCold(last_request_, last_M_.data(), q_.data());
+}
+
 Response SiconosSession::Solve(const Request& r, const double* M, const double* q, const double* lb,
                                const double* ub, double* x) {
   const Spec& spec = SpecOf(static_cast<SiconosMethod>(r.method));
   const int N = r.size;
   numerics_set_verbose(r.verbose);
   w_.assign(N, 0.0);
+  last_request_ = r;
   Response out;
   if (spec.family == Family::kMlcp) {
-    PrepareMlcp(r, spec, M, q);
+    PrepareMlcp(r, spec, M, q, /*fresh=*/false);
   } else {
     if (method_ != r.method || size_ != N) {
       Release();
@@ -452,7 +480,16 @@ void ServeSiconos(int fd, void* context) {
   for (;;) {
     Request r;
     ChildProcess::WaitReadable(fd, std::chrono::microseconds(100));
-    if (!ChildProcess::ReadAll(fd, &r, sizeof r) || r.magic != kMagic) return;
+    if (!ChildProcess::ReadAll(fd, &r, sizeof r)) return;
+    if (r.magic == kForgetMagic) {
+      session.StartColdAgain();
+      TakeConsole(capture);  // what the initialisation printed belongs to no solve
+      Response ack;
+      ack.magic = kForgetMagic;
+      if (!ChildProcess::WriteAll(fd, &ack, sizeof ack)) return;
+      continue;
+    }
+    if (r.magic != kMagic) return;
     if (r.size <= 0 || r.size > kMaxWireSize || r.method < 0 || r.method >= kNumSiconosMethods) return;
     const std::size_t N = static_cast<std::size_t>(r.size);
     payload.resize(N * N + (r.has_bounds ? 4 : 2) * N);
@@ -502,7 +539,7 @@ bool SiconosOptions::IsValid(std::string* why) const {
 SiconosSolver::SiconosSolver(SiconosMethod method) : SiconosSolver(method, SiconosOptions{}) {}
 
 SiconosSolver::SiconosSolver(SiconosMethod method, const SiconosOptions& options)
-    : BackendWithOptions(options), method_(method) {}
+    : BackendWithOptions(options), method_(method), last_(std::make_unique<Outcome>()) {}
 
 SiconosSolver::~SiconosSolver() {
   if (dev_null_ >= 0) close(dev_null_);
@@ -691,12 +728,16 @@ void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
     return;
   }
   if (Refused(method_, spec, rows, options_, result)) return;
-  Outcome outcome;
+  Outcome& outcome = *last_;
+  outcome = Outcome{};
   PrepareRequest(problem, options, &outcome, result);
+  last_came_back_ = false;
   if (!RunWherePolicySays(options, start, &outcome, result)) {
     form_.ToBox(problem, x_, &result->z);  // the start point: Siconos' answer never arrived
     return;
   }
+  last_came_back_ = true;
+  if (spec.direct) (result->GetDetail("in_process") == 1.0 ? cache_in_process_ : cache_in_worker_) = true;
   const Response& out = outcome.response;
   form_.ToBox(problem, x_, &result->z);
   result->iterations = out.iterations;
@@ -771,6 +812,42 @@ bool SiconosSolver::RunWherePolicySays(const SolverOptions& options, std::chrono
                     std::chrono::duration<double>(Clock::now() - start).count()});
   }
   return true;
+}
+
+// The in-process state is re-initialised here for the last problem (or released when that problem never came back
+// or never runs in process), the worker's by a message; both outside any solve a caller times.
+WarmStateReset SiconosSolver::ForgetWarmState() {
+  if (!cache_in_process_ && !cache_in_worker_) return WarmStateReset::kNothingRemembered;
+  if (cache_in_worker_ && worker_.running()) ForgetInWorker();
+  cache_in_process_ = cache_in_worker_ = false;
+  // In process even when the last call ran in the worker: a probe's next solve of the problem runs here.
+  if (session_ != nullptr || options_.isolate != IsolationPolicy::kAlways) {
+    if (session_ == nullptr) session_ = std::make_unique<SiconosSession>();
+    if (last_came_back_ && options_.isolate != IsolationPolicy::kAlways) {
+      if (options_.quiet && stdio_sink_ == nullptr) stdio_sink_ = std::fopen("/dev/null", "we");
+      const SwappedStdio swapped(options_.quiet ? stdio_sink_ : nullptr);
+      session_->StartCold(last_->request, form_.M().data(), form_.q().data());
+    } else {
+      session_->Release();
+    }
+  }
+  return WarmStateReset::kForgotten;
+}
+
+void SiconosSolver::ForgetInWorker() {
+  using Clock = std::chrono::steady_clock;
+  using Io = ChildProcess::Io;
+  Request forget;
+  forget.magic = kForgetMagic;
+  Response ack;
+  const Clock::time_point deadline =
+      Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                         std::chrono::duration<double>(options_.default_time_limit));
+  if (worker_.Write(&forget, sizeof forget) == Io::kOk && worker_.Read(&ack, sizeof ack, deadline) == Io::kOk &&
+      ack.magic == kForgetMagic) {
+    return;
+  }
+  worker_.Stop();  // a worker that did not confirm keeps no cache once it is gone
 }
 
 std::array<ProbedProblems::Part, 6> SiconosSolver::RequestParts(const Outcome& outcome) const {

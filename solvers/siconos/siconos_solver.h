@@ -122,6 +122,11 @@ class SiconosSolver final : public BackendWithOptions<SiconosOptions> {
   // Siconos' own solver id (SICONOS_RELAY_LEMKE, ...) for a method.
   static int SiconosId(SiconosMethod method);
 
+  // mlcp_direct_* (siconos-mlcp-direct-*): drops their active-set cache, in this process and in the worker, and
+  // initialises Siconos for the last problem again (mlcp_driver_reset, mlcp_driver_init) here rather than in the
+  // next solve. The other methods keep nothing learned between solves.
+  WarmStateReset ForgetWarmState() override;
+
  protected:
   void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
   void BindOptions(OptionBinder* binder) override;
@@ -139,10 +144,17 @@ class SiconosSolver final : public BackendWithOptions<SiconosOptions> {
                    Outcome* outcome, SolveResult* result);
   // silence: what to silence around the call (ProbedProblems::Console).
   void RunInProcess(ProbedProblems::Console silence, Outcome* outcome);
+  // ForgetWarmState's message to the worker; a worker that does not confirm within default_time_limit is stopped.
+  void ForgetInWorker();
 
   SiconosMethod method_;
   StandardForm form_;
   Vector x_;  // unknowns of the rewritten problem: start point in, Siconos' answer out
+  std::unique_ptr<Outcome> last_;  // the request made from form_ (always the two of one problem) and its answer
+  bool last_came_back_ = false;    // that request's call returned normally (in process, or the worker answered)
+  // A direct method's call came back, here or in the worker, since the last ForgetWarmState: a cache to drop there.
+  bool cache_in_process_ = false;
+  bool cache_in_worker_ = false;
   std::unique_ptr<SiconosSession> session_;  // in-process Siconos state, created on first in-process solve
   ChildProcess worker_;
   bool worker_keeps_output_ = false;

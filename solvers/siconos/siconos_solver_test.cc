@@ -736,6 +736,71 @@ TEST(SiconosDirect, CacheIsDroppedWhenTheMatrixChanges) {
   }
 }
 
+// A 6-row nonsymmetric P-matrix relay: mlcp_direct_FB needs Newton iterations for it from an empty cache.
+BoxMLCP SixRowRelay() {
+  GeneratorOptions g;
+  g.size = 6;
+  g.family = MatrixFamily::kNonsymmetricPMatrix;
+  g.bounds = BoundKind::kRelay;
+  g.seed = 5;
+  return GenerateProblem(g).problem;
+}
+
+TEST(SiconosDirect, ForgetWarmStateMakesEveryRepeatStartFromAnEmptyCache) {
+  // mlcp_direct_FB answers a repeat of a problem from its active-set cache with 0 iterations. After ForgetWarmState
+  // each repeat runs Fischer-Burmeister again, with the first solve's iterations and answer, wherever Siconos runs:
+  // in process (never), in the worker (always: the worker is told), or a probe followed by in-process solves.
+  const BoxMLCP problem = SixRowRelay();
+  for (const char* isolate : {"first", "always", "never"}) {
+    SCOPED_TRACE(isolate);
+    auto solver = Make("siconos-mlcp-direct-fb", {{"isolate", isolate}});
+    EXPECT_EQ(solver->ForgetWarmState(), WarmStateReset::kNothingRemembered);  // nothing solved yet
+    const SolveResult first = solver->Solve(problem);
+    ASSERT_TRUE(first.solved()) << first.message;
+    ASSERT_GT(first.iterations, 0);
+    for (int k = 0; k < 3; ++k) {
+      EXPECT_EQ(solver->ForgetWarmState(), WarmStateReset::kForgotten);
+      const SolveResult repeat = solver->Solve(problem);
+      EXPECT_EQ(repeat.status, first.status);
+      EXPECT_EQ(repeat.iterations, first.iterations);
+      EXPECT_TRUE(SameBits(repeat.z, first.z));
+      EXPECT_EQ(repeat.GetDetail("in_process"), std::string(isolate) == "always" ? 0.0 : 1.0);
+    }
+    const SolveResult cached = solver->Solve(problem);  // not forgotten: the cache answers
+    EXPECT_TRUE(cached.solved()) << cached.message;
+    EXPECT_EQ(cached.iterations, 0);
+  }
+}
+
+TEST(SiconosDirect, ForgetWarmStateMakesTheEnumerationRunAgain) {
+  // mlcp_direct_enum counts no iterations, but its fallback to enumeration prints a warning and its cached path
+  // does not (quiet=0 lets it through): a repeat after ForgetWarmState enumerates again.
+  const BoxMLCP problem = SixRowRelay();
+  auto solver = Make("siconos-mlcp-direct-enum", {{"isolate", "never"}, {"quiet", "0"}});
+  const auto printed_by_solve = [&] {
+    ::testing::internal::CaptureStdout();
+    const SolveResult r = solver->Solve(problem);
+    EXPECT_TRUE(r.solved()) << r.message;
+    return ::testing::internal::GetCapturedStdout();
+  };
+  const std::string first = printed_by_solve();
+  ASSERT_NE(first, "");
+  EXPECT_EQ(printed_by_solve(), "");  // answered from the cache
+  EXPECT_EQ(solver->ForgetWarmState(), WarmStateReset::kForgotten);
+  EXPECT_EQ(printed_by_solve(), first);
+}
+
+TEST(SiconosDirect, MethodsWithoutACacheHaveNothingToForget) {
+  const BoxMLCP problem = SixRowRelay();
+  for (const char* name : {"siconos-mlcp-fb", "siconos-mlcp-enum", "siconos-relay-lemke", "siconos-lcp-lemke"}) {
+    SCOPED_TRACE(name);
+    auto solver = Make(name);
+    solver->Solve(problem);
+    solver->Solve(problem);
+    EXPECT_EQ(solver->ForgetWarmState(), WarmStateReset::kNothingRemembered);
+  }
+}
+
 TEST(SiconosAdapters, WarmStartReachesTheIterativeMethods) {
   GeneratorOptions g;
   g.bounds = BoundKind::kRelay;

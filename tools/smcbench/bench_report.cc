@@ -1243,6 +1243,27 @@ void WriteWarmTrack(std::ostream& md, const SuiteResults& suite, const std::stri
   md << "\n";
 }
 
+// The suite without its records whose timed solves could not all start cold (mode "cached": bench/replay/replay.h,
+// TimeSolves), which no cold table or profile may compare; *cached receives "backend on problem" for each.
+SuiteResults WithoutCachedRecords(const SuiteResults& suite, std::vector<std::string>* cached) {
+  SuiteResults cold = suite;
+  auto& records = cold.replay.records;
+  for (const auto& r : records) {
+    if (r.mode == "cached") cached->push_back(r.solver + " on " + Instance(r));
+  }
+  const auto is_cached = [](const ReplayRecord& r) { return r.mode == "cached"; };
+  records.erase(std::remove_if(records.begin(), records.end(), is_cached), records.end());
+  return cold;
+}
+
+void WriteCachedNote(std::ostream& md, const std::vector<std::string>& cached) {
+  if (cached.empty()) return;
+  md << "Left out of the tables and profiles above: " << cached.size()
+     << " record(s) whose timed solves could not all start cold (mode `cached`): ";
+  for (std::size_t i = 0; i < cached.size(); ++i) md << (i ? ", " : "") << cached[i];
+  md << ".\n\n";
+}
+
 void WriteSuite(std::ostream& md, const SuiteResults& suite, const std::string& dir, bool plots) {
   if (suite.replay.records.empty() && suite.replay.sweep.empty()) {
     md << "## Suite `" << suite.suite << "`: " << suite.description << "\n\nNo records: no chosen backend ran on it "
@@ -1353,7 +1374,11 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
   }
   std::ostringstream md;
   WriteHeader(md, dir, results, env);
-  for (const SuiteResults& suite : results.suites) WriteSuite(md, suite, dir, plots);
+  for (const SuiteResults& suite : results.suites) {
+    std::vector<std::string> cached;
+    WriteSuite(md, WithoutCachedRecords(suite, &cached), dir, plots);
+    WriteCachedNote(md, cached);
+  }
   if (results.has_stepper) {
     WriteWarmStart(md, results.stepper);
     WriteWorkPrecision(md, results.stepper, dir, plots);

@@ -138,6 +138,23 @@ TEST(ReportFailures, SolvedNothingIsListedApartWithItsReasonAndStatusesAreTabled
                             "| enum | 0 | 0 | 3 | 3/3 (100%) | 0 | 0 | 0/3 |\n"));
 }
 
+// A record whose timed solves could not all start cold (mode "cached") is in no table: here lemke's time would
+// otherwise be 1 ns on p1 and p2. A line names each such record.
+TEST(ReportCached, CachedRecordsStayOutOfTheTablesWithALineNamingThem) {
+  SuiteResults s = SizeLimitedSuite();
+  for (const char* p : {"p1", "p2"}) {
+    ReplayRecord cached = Rec(p, "lemke", Verdict::kSolved, 1e-9, 20);
+    cached.mode = "cached";
+    s.replay.records.push_back(cached);
+  }
+  const std::string md = ReportOf(s, "cached");
+  EXPECT_THAT(md, HasSubstr("| lemke | 3 | 0 | 0 | 0 | 0 | 0 | 100% | 2 µs |"));  // as without them
+  EXPECT_THAT(md, Not(HasSubstr("1 ns")));
+  EXPECT_THAT(md, HasSubstr("Left out of the tables and profiles above: 2 record(s) whose timed solves could not all "
+                            "start cold (mode `cached`): lemke on p1, lemke on p2.\n"));
+  EXPECT_THAT(ReportOf(SizeLimitedSuite(), "not-cached"), Not(HasSubstr("Left out of the tables")));
+}
+
 // "worst residual (solved)" of a backend that solved nothing is blank, never a 0 that reads as exact.
 TEST(ReportFailures, BlankNotZeroWhereNothingWasSolved) {
   SuiteResults s;

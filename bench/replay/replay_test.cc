@@ -1,0 +1,171 @@
+// TimeSolves' cold timing (replay.h): every timed solve of a cold record starts from the state the first one did,
+// for a backend that keeps something between solves too; a record that could not start cold says so ("cached") and
+// that survives the results files.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <memory>
+#include <nlohmann/json.hpp>
+
+#include "bench/replay/replay.h"
+#include "bench/replay/results_io.h"
+#include "solvers/generators/random_problems.h"
+#include "solvers/registry/registry.h"
+
+namespace smcbench {
+namespace {
+
+// lemke behind a cache of its last answer: a repeat of the same q is answered from it with 0 iterations, as Siconos'
+// mlcp_direct_* answer from their active-set cache. ForgetWarmState drops the cache, or, for a backend made with
+// can_forget false, reports that it cannot.
+class CachingBackend final : public Solver {
+ public:
+  explicit CachingBackend(bool can_forget) : can_forget_(can_forget) {}
+  const SolverInfo& info() const override {
+    static const SolverInfo kInfo{"caching", "lemke behind a cache of its last answer", "none"};
+    return kInfo;
+  }
+  WarmStateReset ForgetWarmState() override {
+    if (!cached_) return WarmStateReset::kNothingRemembered;
+    if (!can_forget_) return WarmStateReset::kCannotForget;
+    cached_ = false;
+    return WarmStateReset::kForgotten;
+  }
+  int answered_from_cache() const { return answered_from_cache_; }
+  int solved_by_lemke() const { return solved_by_lemke_; }
+
+ protected:
+  void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override {
+    if (cached_ && cached_q_ == problem.q()) {
+      result->z = cached_z_;
+      result->iterations = 0;
+      result->status = SolveStatus::kSolved;
+      ++answered_from_cache_;
+      return;
+    }
+    lemke_->Solve(problem, options, &lemke_result_);
+    result->z = lemke_result_.z;
+    result->iterations = lemke_result_.iterations;
+    result->status = lemke_result_.status;
+    ++solved_by_lemke_;
+    cached_ = lemke_result_.solved();
+    cached_q_ = problem.q();
+    cached_z_ = lemke_result_.z;
+  }
+
+ private:
+  bool can_forget_;
+  bool cached_ = false;
+  Vector cached_q_, cached_z_;
+  SolveResult lemke_result_;
+  int answered_from_cache_ = 0, solved_by_lemke_ = 0;
+  std::unique_ptr<Solver> lemke_ = CreateSolver("lemke");
+};
+
+BoxMLCP TwentyRowRelay() {
+  GeneratorOptions g;
+  g.size = 20;
+  g.family = MatrixFamily::kNonsymmetricPMatrix;
+  g.bounds = BoundKind::kRelay;
+  g.seed = 3;
+  return GenerateProblem(g).problem;
+}
+
+ReplayOptions QuickTiming() {
+  ReplayOptions replay;
+  replay.repetitions = 5;
+  replay.min_sample_seconds = 1e-3;  // several solves per sample: the cold loop must forget between them too
+  return replay;
+}
+
+SolverOptions Untimed() {
+  SolverOptions o;
+  o.measure_time = false;
+  return o;
+}
+
+TEST(TimeSolves, EveryTimedSolveOfABackendWithACacheStartsCold) {
+  const BoxMLCP problem = TwentyRowRelay();
+  CachingBackend backend(/*can_forget=*/true);
+  SolveResult result;
+  ReplayRecord record;
+  TimeSolves(&backend, problem, Untimed(), QuickTiming(), &result, &record);
+  EXPECT_EQ(backend.answered_from_cache(), 0);
+  EXPECT_EQ(backend.solved_by_lemke(), 1 + record.samples * record.solves_per_sample);  // the warm-up and each
+  EXPECT_GT(record.solves_per_sample, 1);
+  EXPECT_GT(result.iterations, 0);
+  EXPECT_TRUE(result.solved());
+  EXPECT_EQ(record.mode, "cold");
+  EXPECT_GT(record.time_min, 0.0);
+  EXPECT_LE(record.time_min, record.time_median);
+  EXPECT_LE(record.time_median, record.time_max);
+}
+
+TEST(TimeSolves, ABackendThatCannotForgetGivesACachedRecord) {
+  const BoxMLCP problem = TwentyRowRelay();
+  CachingBackend backend(/*can_forget=*/false);
+  SolveResult result;
+  ReplayRecord record;
+  TimeSolves(&backend, problem, Untimed(), QuickTiming(), &result, &record);
+  EXPECT_GT(backend.answered_from_cache(), 0);
+  EXPECT_EQ(result.iterations, 0);
+  EXPECT_EQ(record.mode, "cached");
+}
+
+// Warm by request: the session's reused active set may answer the repeats, so the record is not a cold one.
+TEST(TimeSolves, ReusingTheActiveSetGivesACachedRecord) {
+  const BoxMLCP problem = TwentyRowRelay();
+  const std::unique_ptr<Solver> lemke = CreateSolver("lemke");
+  ReplayOptions replay = QuickTiming();
+  replay.reuse_active_set = true;
+  SolveResult result;
+  ReplayRecord record;
+  TimeSolves(lemke.get(), problem, Untimed(), replay, &result, &record);
+  EXPECT_EQ(result.GetDetail("path"), static_cast<double>(SessionPath::kReusedActiveSet));
+  EXPECT_EQ(record.mode, "cached");
+  // A sweep record keeps its mode: "cached" replaces "cold" only.
+  ReplayRecord sweep;
+  sweep.mode = "sweep";
+  TimeSolves(lemke.get(), problem, Untimed(), replay, &result, &sweep);
+  EXPECT_EQ(sweep.mode, "sweep");
+}
+
+// A backend that keeps nothing is timed back to back, as before: the same answer bits as a plain Solve.
+TEST(TimeSolves, ABackendThatKeepsNothingAnswersAsAPlainSolve) {
+  const BoxMLCP problem = TwentyRowRelay();
+  const std::unique_ptr<Solver> lemke = CreateSolver("lemke");
+  SolveResult timed;
+  ReplayRecord record;
+  TimeSolves(lemke.get(), problem, Untimed(), QuickTiming(), &timed, &record);
+  const SolveResult plain = CreateSolver("lemke")->Solve(problem, Untimed());
+  EXPECT_EQ(record.mode, "cold");
+  EXPECT_EQ(timed.status, plain.status);
+  EXPECT_EQ(timed.iterations, plain.iterations);
+  EXPECT_EQ(timed.z, plain.z);
+  EXPECT_GT(record.solves_per_sample, 1);
+}
+
+TEST(ResultsIo, ACachedRecordKeepsItsModeThroughTheResultsFiles) {
+  ReplayRecord record;
+  record.suite = "mine";
+  record.problem = "p1";
+  record.solver = "caching";
+  record.mode = "cached";
+  EXPECT_EQ(ReplayRecordFromJson(ReplayRecordToJson(record)).mode, "cached");
+  BenchResults results;
+  SuiteResults suite;
+  suite.suite = "mine";
+  suite.problems = 1;
+  suite.replay.records.push_back(record);
+  results.suites.push_back(suite);
+  const std::filesystem::path dir = std::filesystem::path(testing::TempDir()) / "replay-cached-roundtrip";
+  std::filesystem::remove_all(dir);
+  WriteBenchResults(results, dir.string(), nlohmann::json::object());
+  const BenchResults back = ReadBenchResults(dir.string());
+  ASSERT_EQ(back.suites.size(), 1u);
+  ASSERT_EQ(back.suites[0].replay.records.size(), 1u);
+  EXPECT_EQ(back.suites[0].replay.records[0].mode, "cached");
+}
+
+}  // namespace
+}  // namespace smcbench
