@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bench/replay/replay.h"
+#include "solvers/siconos/child_process.h"
 
 namespace smcbench::replay_internal {
 
@@ -40,8 +41,8 @@ void SampleSolveTimes(SolveOnce&& solve, const SolveResult* result, const Replay
   }
   count = std::min<std::int64_t>(count, 1 << 20);
   std::vector<double> samples;
-  // Which path answered the timed solves (detail "in_process", NaN for our backends): one worker answer taints all.
-  const auto answered_in_worker = [&] { return result->GetDetail("in_process") == 0.0; };
+  // Which process answered the timed solves (none for our backends): one worker answer taints all.
+  const auto answered_in_worker = [&] { return AnswerProcessOf(*result) == AnswerProcess::kWorker; };
   record->timed_in_worker = false;
   const int wanted = std::max(1, replay.repetitions);
   // A solve that ran into the time limit is not repeated: its time is the limit, not a measurement.
