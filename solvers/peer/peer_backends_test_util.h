@@ -58,7 +58,8 @@ inline void ExpectSameAnswerInWorkerAndInProcess(const std::string& backend, con
     std::string error;
     ASSERT_TRUE(other->SetOption("isolate", isolate, &error)) << error;
     const SolveResult r = other->Solve(problem, options);
-    EXPECT_EQ(AnswerProcessOf(r), std::string(isolate) == "never" ? AnswerProcess::kThisProcess : AnswerProcess::kWorker);
+    const AnswerProcess expected = std::string(isolate) == "never" ? AnswerProcess::kThisProcess : AnswerProcess::kWorker;
+    EXPECT_EQ(AnswerProcessOf(r), expected);
     EXPECT_EQ(r.status, probe.status) << isolate;
     EXPECT_EQ(r.z, probe.z) << isolate;
   }

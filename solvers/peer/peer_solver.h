@@ -11,8 +11,8 @@
 // backend's worker process (child_process.h), so a crash is kNumericalFailure naming the signal and a hang is
 // killed at the time limit (kTimeLimit); once the probe came back, later solves of exactly the same bytes run in
 // process (probed_problems.h). Detail "in_process" says which process answered (AnswerProcessOf). In process, the
-// C streams point to /dev/null during the call (the libraries print on some failures). In-process instances must not run
-// concurrently on different threads.
+// C streams point to /dev/null during the call (the libraries print on some failures). In-process instances must
+// not run concurrently on different threads.
 //
 // The problem goes to the library as the user wrote it (SolverInfo::equilibrate = false), in double precision.
 #pragma once

@@ -113,7 +113,9 @@ std::string FormatRecordLine(const SolveRecord& record) {
     }
     line += buffer;
   }
-  if (const std::optional<AutoCandidate> chosen = ChosenCandidateOf(r)) line += "   chose " + std::string(ToString(*chosen));
+  if (const std::optional<AutoCandidate> chosen = ChosenCandidateOf(r)) {
+    line += "   chose " + std::string(ToString(*chosen));
+  }
   if (record.warm) line += "   [warm: session, from the previous answer]";
   if (record.timed_in_worker) line += "   [timed through the isolation worker: IPC included]";
   if (!r.solved() && !r.message.empty()) line += "   (" + r.message + ")";
