@@ -14,6 +14,7 @@
 
 #include "problems/io/siconos_format.h"
 #include "solvers/registry/registry.h"
+#include "solvers/siconos/child_process.h"
 
 // Siconos leaks a few bytes per call in some solvers: tell LeakSanitizer (ASan builds only) that those leaks are
 // Siconos' (as solvers/siconos/siconos_solver_test.cc does).
@@ -68,13 +69,13 @@ TEST(SiconosProbe, InProcessAnswerEqualsTheProbesBitForBitOnTheSiconosCollection
       const BoxMLCP p = ReadSiconosFile(file.string());
       auto solver = Make(name);
       const SolveResult probe = solver->Solve(p, options);
-      if (std::isnan(probe.GetDetail("in_process"))) continue;  // refused before any Siconos call
-      EXPECT_EQ(probe.GetDetail("in_process"), 0.0);
+      if (!AnswerProcessOf(probe).has_value()) continue;  // refused before any Siconos call
+      EXPECT_EQ(AnswerProcessOf(probe), AnswerProcess::kWorker);
       const bool came_back = probe.status != SolveStatus::kTimeLimit && std::isnan(probe.GetDetail("siconos_signal")) &&
                              !std::isnan(probe.GetDetail("siconos_info"));
       if (!came_back) {  // probed again under the same 1 s limit, never run here
         ++not_back;
-        EXPECT_EQ(solver->Solve(p, options).GetDetail("in_process"), 0.0);
+        EXPECT_EQ(AnswerProcessOf(solver->Solve(p, options)), AnswerProcess::kWorker);
         continue;
       }
       // The second call gets a limit no probe reaches: a problem whose probe took longer than the call's limit
@@ -82,7 +83,7 @@ TEST(SiconosProbe, InProcessAnswerEqualsTheProbesBitForBitOnTheSiconosCollection
       SolverOptions generous = options;
       generous.time_limit_seconds = 600.0;
       const SolveResult again = solver->Solve(p, generous);
-      EXPECT_EQ(again.GetDetail("in_process"), 1.0);
+      EXPECT_EQ(AnswerProcessOf(again), AnswerProcess::kThisProcess);
       EXPECT_EQ(again.status, probe.status) << probe.message << " / " << again.message;
       EXPECT_EQ(again.GetDetail("siconos_info"), probe.GetDetail("siconos_info"));
       EXPECT_EQ(again.iterations, probe.iterations);

@@ -121,7 +121,7 @@ TEST(TimeSolves, ReusingTheActiveSetGivesACachedRecord) {
   SolveResult result;
   ReplayRecord record;
   TimeSolves(lemke.get(), problem, Untimed(), replay, &result, &record);
-  EXPECT_EQ(result.GetDetail("path"), static_cast<double>(SessionPath::kReusedActiveSet));
+  EXPECT_EQ(SessionPathOf(result), SessionPath::kReusedActiveSet);
   EXPECT_EQ(record.mode, "cached");
   // A sweep record keeps its mode: "cached" replaces "cold" only.
   ReplayRecord sweep;

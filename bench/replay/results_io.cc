@@ -11,6 +11,8 @@
 #include <ctime>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <suitesparse/umfpack.h>
@@ -119,11 +121,9 @@ ReplayRecord RecordFromJson(const json& j) {
       j.at("expected").get<std::string>(),
       std::array{ExpectedOutcome::kUnknown, ExpectedOutcome::kSolvable, ExpectedOutcome::kInfeasible}, "expected");
   const std::string status = j.at("status").get<std::string>();
-  bool found = false;
-  for (int s = 0; s < 64 && !found; ++s) {
-    if (ToString(static_cast<SolveStatus>(s)) == status) r.status = static_cast<SolveStatus>(s), found = true;
-  }
-  if (!found) throw InvalidInputError("results.json: unknown status '" + status + "'");
+  const std::optional<SolveStatus> known_status = SolveStatusFromString(status);
+  if (!known_status) throw InvalidInputError("results.json: field 'status': unknown status '" + status + "'");
+  r.status = *known_status;
   r.message = j.at("message").get<std::string>();
   // Every Verdict value (append-only, explicit values; ToString gives "?" past the last one).
   std::vector<Verdict> verdicts;
@@ -403,18 +403,145 @@ void WriteBenchResults(const BenchResults& results, const std::string& dir, cons
   if (!csv) throw InvalidInputError("bench: cannot write " + (fs::path(dir) / "results.csv").string());
 }
 
+namespace {
+
+// A char iterator over a document that publishes how far the parser has read (*consumed), so that a SAX handler
+// knows where in the text the value it was just given ends.
+class CountingIterator {
+ public:
+  using iterator_category = std::forward_iterator_tag;
+  using value_type = char;
+  using difference_type = std::ptrdiff_t;
+  using pointer = const char*;
+  using reference = const char&;
+
+  CountingIterator(const char* at, const char** consumed) : at_(at), consumed_(consumed) {}
+  reference operator*() const { return *at_; }
+  CountingIterator& operator++() {
+    *consumed_ = ++at_;
+    return *this;
+  }
+  CountingIterator operator++(int) {
+    CountingIterator before = *this;
+    ++*this;
+    return before;
+  }
+  bool operator==(const CountingIterator& other) const { return at_ == other.at_; }
+  bool operator!=(const CountingIterator& other) const { return at_ != other.at_; }
+
+ private:
+  const char* at_;
+  const char** consumed_;
+};
+
+// Finds the first record status (suites[i].records[j].status or .sweep[j].status) that is not a SolveStatus name,
+// and where its string starts in the text.
+class UnknownStatusFinder : public nlohmann::json_sax<json> {
+ public:
+  UnknownStatusFinder(const char* begin, const char** consumed) : begin_(begin), consumed_(consumed) {}
+
+  bool found() const { return found_; }
+  const std::string& name() const { return name_; }
+  std::size_t offset() const { return offset_; }
+
+  bool null() override { return Value(); }
+  bool boolean(bool) override { return Value(); }
+  bool number_integer(number_integer_t) override { return Value(); }
+  bool number_unsigned(number_unsigned_t) override { return Value(); }
+  bool number_float(number_float_t, const string_t&) override { return Value(); }
+  bool binary(binary_t&) override { return Value(); }
+  bool string(string_t& value) override {
+    if (AtRecordStatus() && !SolveStatusFromString(value)) {
+      // The parser has just read the closing quote: step back to the opening one (a quote not escaped).
+      const char* end = *consumed_ - 1;
+      const char* open = end - 1;
+      while (open > begin_ && !(*open == '"' && open[-1] != '\\')) --open;
+      found_ = true;
+      name_ = value;
+      offset_ = static_cast<std::size_t>(open - begin_);
+      return false;  // stop parsing
+    }
+    return Value();
+  }
+  bool start_object(std::size_t) override { return Open(false); }
+  bool key(string_t& name) override {
+    frames_.back().key = name;
+    return true;
+  }
+  bool end_object() override { return Close(); }
+  bool start_array(std::size_t) override { return Open(true); }
+  bool end_array() override { return Close(); }
+  bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception&) override { return false; }
+
+ private:
+  struct Frame {
+    bool array = false;
+    std::string key;  // the object's current key
+  };
+  bool Open(bool array) {
+    frames_.push_back({array, {}});
+    return true;
+  }
+  bool Close() {
+    frames_.pop_back();
+    return true;
+  }
+  bool Value() { return true; }
+  // Document object → "suites" array → suite object → "records"/"sweep" array → record object, at key "status".
+  bool AtRecordStatus() const {
+    return frames_.size() == 5 && !frames_[0].array && frames_[0].key == "suites" && frames_[1].array &&
+           !frames_[2].array && (frames_[2].key == "records" || frames_[2].key == "sweep") && frames_[3].array &&
+           !frames_[4].array && frames_[4].key == "status";
+  }
+
+  const char* begin_;
+  const char** consumed_;
+  std::vector<Frame> frames_;
+  bool found_ = false;
+  std::string name_;
+  std::size_t offset_ = 0;
+};
+
+// "line:column" (both from 1) of a byte offset in the text.
+std::string LineAndColumn(const std::string& text, std::size_t offset) {
+  std::size_t line = 1, column = 1;
+  for (std::size_t i = 0; i < offset && i < text.size(); ++i) {
+    if (text[i] == '\n') {
+      ++line;
+      column = 1;
+    } else {
+      ++column;
+    }
+  }
+  return std::to_string(line) + ":" + std::to_string(column);
+}
+
+}  // namespace
+
 BenchResults ReadBenchResults(const std::string& dir, json* environment) {
   const fs::path path = fs::path(dir) / "results.json";
   std::ifstream in(path);
   if (!in) throw InvalidInputError("report: cannot read '" + path.string() + "' (run `smcbench bench --out " + dir + "` first)");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   json j;
   try {
-    in >> j;
+    j = json::parse(text);
   } catch (const json::exception& e) {
     throw InvalidInputError("report: '" + path.string() + "' is not valid JSON: " + e.what());
   }
   if (environment) *environment = j.value("environment", json::object());
-  return BenchResultsFromJson(j);
+  try {
+    return BenchResultsFromJson(j);
+  } catch (const InvalidInputError&) {
+    // The parsed document has no positions: read the text again, only now, to say where an unknown status is.
+    const char* consumed = text.data();
+    UnknownStatusFinder finder(text.data(), &consumed);
+    json::sax_parse(CountingIterator(text.data(), &consumed), CountingIterator(text.data() + text.size(), &consumed),
+                    &finder);
+    if (!finder.found()) throw;
+    throw InvalidInputError(path.string() + ":" + LineAndColumn(text, finder.offset()) +
+                            ": field 'status': unknown status '" + finder.name() + "'");
+  }
 }
 
 }  // namespace smcbench

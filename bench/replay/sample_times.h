@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "bench/replay/replay.h"
+#include "solvers/siconos/child_process.h"
 
 namespace smcbench::replay_internal {
 
@@ -49,8 +50,8 @@ void SampleSolveTimes(SolveOnce&& solve, const SolveResult* result, const Replay
   }
   count = std::min<std::int64_t>(count, 1 << 20);
   std::vector<double> samples;
-  // Which path answered the timed solves (detail "in_process", NaN for our backends): one worker answer taints all.
-  const auto answered_in_worker = [&] { return result->GetDetail("in_process") == 0.0; };
+  // Which process answered the timed solves (none for our backends): one worker answer taints all.
+  const auto answered_in_worker = [&] { return AnswerProcessOf(*result) == AnswerProcess::kWorker; };
   record->timed_in_worker = false;
   const WarmStateReset after_warm_up = forget();
   const bool forgetting = after_warm_up != WarmStateReset::kNothingRemembered;

@@ -174,7 +174,7 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
     if (k > 0 && state != previous) ++c.active_set_changes;
     std::swap(state, previous);
     if (c.reuse && k > 0) {
-      const bool reused = result.GetDetail("path") == static_cast<double>(SessionPath::kReusedActiveSet);
+      const bool reused = SessionPathOf(result) == SessionPath::kReusedActiveSet;
       (reused ? c.reused_steps : c.fallbacks) += 1;
     }
   }

@@ -192,11 +192,11 @@ TEST(LemmaYahoo, EveryBackendReachesExactlyZeroAndStays) {
   }
 }
 
-// Counts the steps each session path answered (SolveResult detail "path", SessionPath).
+// Counts the steps each session path answered (SessionPathOf).
 class PathCounter final : public StepObserver {
  public:
   void OnStep(std::int64_t, int, const BoxMLCP&, const SolveResult& result) override {
-    ++(result.GetDetail("path") == static_cast<double>(SessionPath::kReusedActiveSet) ? reused : by_backend);
+    ++(SessionPathOf(result) == SessionPath::kReusedActiveSet ? reused : by_backend);
   }
   int reused = 0, by_backend = 0;
 };

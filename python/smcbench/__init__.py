@@ -13,7 +13,7 @@ from __future__ import annotations
 import json
 import os
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional
+from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Union
 
 import numpy as np
 
@@ -33,7 +33,8 @@ class SolveResult:
 
     status: the status name ("solved", "iteration_limit", "infeasible", ...); solved: status == "solved".
     z, w: the returned point and F(z) (M z + q for a box-MLCP). residual_*: the merit function at z
-    (docs/verdict.md). time_seconds: wall time of the C++ Solve call. details: backend-specific numbers.
+    (docs/verdict.md). time_seconds: wall time of the C++ Solve call. details: backend-specific numbers, and codes
+    by name (lemke's "free_row_mode": "schur"; auto's "chosen": "enum"; an external adapter's "in_process": "worker").
     solver: the backend that was asked; chosen: for "auto", the backend whose answer this is (else None).
     """
 
@@ -46,7 +47,7 @@ class SolveResult:
     residual_rel: float
     residual_scaled: float
     time_seconds: float
-    details: Dict[str, float]
+    details: Dict[str, Union[float, str]]
     solver: str
     chosen: Optional[str]
     message: str

@@ -3,6 +3,7 @@
 
 #include <cmath>
 #include <cstdint>
+#include <optional>
 #include <string_view>
 
 #include "solvers/auto/auto_solver.h"
@@ -116,16 +117,19 @@ py::dict ResultToDict(const SolveResult& result) {
   out["residual_scaled"] = result.residual_scaled;
   out["time_seconds"] = result.solve_seconds;
   py::dict details;
-  for (int i = 0; i < result.num_details; ++i) details[result.details[i].name] = result.details[i].value;
-  out["details"] = details;
-  // auto: the backend whose answer this is (detail "chosen", an AutoCandidate index).
-  py::object chosen = py::none();
-  const double index = result.GetDetail("chosen");
-  if (result.solver == "auto" && std::isfinite(index)) {
-    const std::string_view name = AutoCandidateName(static_cast<int>(index));
-    if (!name.empty()) chosen = py::str(std::string(name));
+  for (int i = 0; i < result.num_details; ++i) {
+    // A code by its name ("reused_active_set"), a measurement as a number.
+    const std::string_view code = SolveResult::CodeText(result.details[i]);
+    if (code.empty()) {
+      details[result.details[i].name] = result.details[i].value;
+    } else {
+      details[result.details[i].name] = std::string(code);
+    }
   }
-  out["chosen"] = chosen;
+  out["details"] = details;
+  // auto: the backend whose answer this is.
+  const std::optional<AutoCandidate> chosen = ChosenCandidateOf(result);
+  out["chosen"] = chosen ? py::object(py::str(std::string(ToString(*chosen)))) : py::object(py::none());
   return out;
 }
 

@@ -41,7 +41,24 @@ def test_auto_reports_the_backend_it_chose():
     result = smcbench.solve(np.array([[2.0, 1.0], [1.0, 2.0]]), [-5.0, -6.0])
     assert result.solver == "auto"
     assert result.chosen in ("enum", "psor", "lemke", "newton")
-    assert "chosen" in result.details
+    # The detail is the backend's name, not a number standing for it.
+    assert result.details["chosen"] == result.chosen
+    assert result.details["fallbacks"] == 0.0
+
+
+def test_code_details_are_names_and_measurements_numbers():
+    # One free row (l = -inf, u = +inf) with M_FF = 2 well conditioned: lemke eliminates it by a Schur complement.
+    # z1 free: 2 z1 + z2 = 5; z2 >= 0: z1 + 2 z2 - 6 >= 0 complementary -> z = (4/3, 7/3) with w2 = 0.
+    M = np.array([[2.0, 1.0], [1.0, 2.0]])
+    result = smcbench.solve(M, [-5.0, -6.0], l=[-np.inf, 0.0], u=[np.inf, np.inf], solver="lemke")
+    assert result.solved
+    np.testing.assert_allclose(result.z, [4 / 3, 7 / 3], atol=1e-12)
+    assert result.details["free_row_mode"] == "schur"
+    assert isinstance(result.details["lcp_size"], float) and result.details["lcp_size"] == 1.0
+    # Without free rows the detail is absent, and a backend other than auto has no choice.
+    plain = smcbench.solve(M, [-5.0, -6.0], solver="lemke")
+    assert "free_row_mode" not in plain.details
+    assert plain.chosen is None
 
 
 def test_fortran_order_and_integer_matrix_are_copied_correctly():

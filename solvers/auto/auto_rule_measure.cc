@@ -116,7 +116,8 @@ void Sizes() {
               failure = std::string(ToString(result.status));
             }
             if (column == 4) {
-              const std::string name(AutoCandidateName(static_cast<int>(result.GetDetail("chosen"))));
+              const std::optional<AutoCandidate> chosen = ChosenCandidateOf(result);
+              const std::string name(chosen ? ToString(*chosen) : "?");
               if (chose.find(name) == std::string::npos) chose += (chose.empty() ? "" : ", ") + name;
             }
           }
@@ -149,7 +150,7 @@ void Condition() {
         std::printf("| %d | %s | %.0e | %.2e | %s%s | %d | %s%s | %d | %s |\n", m, relay ? "relay" : "LCP", condition,
                     cholesky.rcond(), Ns(tp).c_str(), p.solved() ? "" : (" " + std::string(ToString(p.status))).c_str(),
                     p.iterations, Ns(tl).c_str(), l.solved() ? "" : (" " + std::string(ToString(l.status))).c_str(),
-                    l.iterations, std::string(AutoCandidateName(static_cast<int>(chosen))).c_str());
+                    l.iterations, std::string(ToString(chosen)).c_str());
         std::fflush(stdout);
       }
     }

@@ -84,9 +84,16 @@ int AutoCandidateIndex(std::string_view name) {
   return -1;
 }
 
+std::string_view ToString(AutoCandidate candidate) { return AutoCandidateName(static_cast<int>(candidate)); }
+
+std::optional<AutoCandidate> AutoCandidateFromString(std::string_view name) {
+  const int index = AutoCandidateIndex(name);
+  return index >= 0 ? std::optional(static_cast<AutoCandidate>(index)) : std::nullopt;
+}
+
 void LabelAutoAnswer(AutoCandidate chosen, int fallbacks, SolveResult* result) {
   result->solver = "auto";
-  result->SetDetail("chosen", static_cast<double>(static_cast<int>(chosen)));
+  kAutoChosenDetail.Set(result, chosen);
   result->SetDetail("fallbacks", static_cast<double>(fallbacks));
 }
 

@@ -24,7 +24,7 @@
 // same matrix start with it ("what the last call showed"); DelegateFor returns that same backend. That is warm
 // state: ForgetWarmState drops it, so a cold repeat runs the whole chain again.
 //
-// Details: "chosen" = the AutoCandidate index (AutoCandidateName) of the backend whose answer is returned,
+// Details: "chosen" = the AutoCandidate of the backend whose answer is returned (read it with ChosenCandidateOf),
 // "fallbacks" = how many candidates failed before it; the chosen backend's own details are kept. The result's
 // solver name is "auto".
 #pragma once
@@ -33,6 +33,7 @@
 #include <cstdint>
 #include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -41,8 +42,8 @@
 
 namespace smcbench {
 
-// The backends auto chooses from, in a fixed order: detail "chosen" is this index, so values are never renumbered
-// (new candidates are appended).
+// The backends auto chooses from, in a fixed order: detail "chosen" stores this value, so values are never
+// renumbered (new candidates are appended).
 enum class AutoCandidate : int {
   kEnum = 0,
   kPsor = 1,
@@ -58,6 +59,16 @@ inline constexpr int kAutoCandidateCount = 6;
 std::string_view AutoCandidateName(int index);
 // The inverse: the candidate index of a registry name, −1 for a name that is not a candidate.
 int AutoCandidateIndex(std::string_view name);
+// The candidate's registry name: the text of detail "chosen" in JSON and Python.
+std::string_view ToString(AutoCandidate candidate);
+std::optional<AutoCandidate> AutoCandidateFromString(std::string_view name);
+
+// Detail "chosen": the candidate whose answer auto returns (set by LabelAutoAnswer).
+inline constexpr CodeDetail<AutoCandidate, kAutoCandidateCount> kAutoChosenDetail{"chosen"};
+// The candidate that answered, for a result labelled as auto's; nullopt for any other backend's result.
+inline std::optional<AutoCandidate> ChosenCandidateOf(const SolveResult& result) {
+  return result.solver == "auto" ? kAutoChosenDetail.Get(result) : std::nullopt;
+}
 
 // Labels an answer as auto's own Solve labels it: solver "auto", detail "chosen" = the candidate that answered,
 // "fallbacks" = how many candidates failed before it. Auto's Solve uses it, and so does a caller whose session or

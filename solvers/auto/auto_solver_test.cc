@@ -39,8 +39,11 @@ GeneratedProblem Generate(MatrixFamily family, BoundKind bounds, int size, bool 
   return GenerateProblem(g);
 }
 
+// The candidate auto reports (detail "chosen"); fails the test when it reports none.
 AutoCandidate Chosen(const SolveResult& r) {
-  return static_cast<AutoCandidate>(static_cast<int>(r.GetDetail("chosen")));
+  const std::optional<AutoCandidate> chosen = ChosenCandidateOf(r);
+  EXPECT_TRUE(chosen.has_value()) << "no detail chosen";
+  return chosen.value_or(AutoCandidate::kEnum);
 }
 
 // Solves a planted problem and checks the answer against z*, the backend auto reports, and that DelegateFor names
@@ -53,7 +56,7 @@ void ExpectChoice(const GeneratedProblem& gen, AutoCandidate expected) {
   const std::string where = gen.problem.name();
   ASSERT_TRUE(r.solved()) << where << ": " << ToString(r.status) << " " << r.message;
   EXPECT_EQ(r.solver, "auto") << where;
-  EXPECT_EQ(Chosen(r), expected) << where << " went to " << AutoCandidateName(static_cast<int>(r.GetDetail("chosen")));
+  EXPECT_EQ(Chosen(r), expected) << where << " went to " << ToString(Chosen(r));
   EXPECT_EQ(r.GetDetail("fallbacks"), 0.0) << where;
   EXPECT_LE(IndependentResidual(gen.problem, r.z), kTol) << where;
   // P-matrix families: z* is the only solution.
@@ -61,7 +64,7 @@ void ExpectChoice(const GeneratedProblem& gen, AutoCandidate expected) {
   Solver* delegate = solver.DelegateFor(gen.problem, options);
   ASSERT_NE(delegate, nullptr);
   EXPECT_EQ(delegate, &solver.candidate(expected)) << where;
-  EXPECT_EQ(delegate->info().name, AutoCandidateName(static_cast<int>(expected))) << where;
+  EXPECT_EQ(delegate->info().name, ToString(expected)) << where;
 }
 
 TEST(AutoSolver, InfoAndCandidateNames) {
@@ -86,6 +89,33 @@ TEST(AutoSolver, InfoAndCandidateNames) {
   EXPECT_EQ(AutoCandidateIndex("ipopt"), 5);
   EXPECT_EQ(AutoCandidateName(-1), "");
   EXPECT_EQ(AutoCandidateName(kAutoCandidateCount), "");
+}
+
+TEST(AutoSolver, ChosenDetailByName) {
+  // Every candidate's name reads back to it, and the detail stores exactly that candidate.
+  for (int i = 0; i < kAutoCandidateCount; ++i) {
+    const auto candidate = static_cast<AutoCandidate>(i);
+    EXPECT_EQ(AutoCandidateFromString(ToString(candidate)), candidate) << i;
+    SolveResult r;
+    LabelAutoAnswer(candidate, 1, &r);
+    EXPECT_EQ(ChosenCandidateOf(r), candidate) << i;
+    ASSERT_EQ(r.num_details, 2);
+    EXPECT_EQ(SolveResult::CodeText(r.details[0]), ToString(candidate)) << "JSON and Python print the name";
+    EXPECT_EQ(SolveResult::CodeText(r.details[1]), "") << "fallbacks is a count, not a code";
+  }
+  EXPECT_EQ(AutoCandidateFromString("siconos-lemke"), std::nullopt);
+  EXPECT_EQ(AutoCandidateFromString(""), std::nullopt);
+  EXPECT_EQ(AutoCandidateFromString("auto"), std::nullopt);
+  // Only a result labelled as auto's has a choice: a backend's own result, or a number past the last candidate, has
+  // none.
+  SolveResult r;
+  LabelAutoAnswer(AutoCandidate::kLemke, 0, &r);
+  r.solver = "lemke";
+  EXPECT_EQ(ChosenCandidateOf(r), std::nullopt);
+  r.solver = "auto";
+  r.SetDetail("chosen", kAutoCandidateCount);
+  EXPECT_EQ(ChosenCandidateOf(r), std::nullopt);
+  EXPECT_EQ(SolveResult::CodeText(r.details[0]), "");
 }
 
 TEST(AutoSolver, SmallDenseRelayGoesToEnum) {
@@ -411,7 +441,7 @@ TEST(AutoSolver, DelegateAnswersLikeAuto) {
     ASSERT_NE(delegate, nullptr);
     const SolveResult direct = delegate->Solve(gen.problem);
     ASSERT_TRUE(direct.solved()) << gen.problem.name();
-    EXPECT_EQ(direct.solver, AutoCandidateName(static_cast<int>(via_auto.GetDetail("chosen"))));
+    EXPECT_EQ(direct.solver, ToString(Chosen(via_auto)));
     EXPECT_EQ(via_auto.status, direct.status) << gen.problem.name();
     EXPECT_EQ(via_auto.iterations, direct.iterations) << gen.problem.name();
     EXPECT_LE((via_auto.z - direct.z).cwiseAbs().maxCoeff(), 1e-14 * (1.0 + direct.z.cwiseAbs().maxCoeff()))

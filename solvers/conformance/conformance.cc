@@ -182,7 +182,7 @@ void CheckSessionBits(const SolverFactory& create, const ConformanceOptions& opt
           differs += " residuals";
         }
         if (a.iterations != b.iterations) differs += " iterations";
-        if (b.GetDetail("path") != static_cast<double>(SessionPath::kBackend)) differs += " path";
+        if (SessionPathOf(b) != SessionPath::kBackend) differs += " path";
         if (a.num_details + 1 != b.num_details) {
           differs += " details(count)";
         } else {
@@ -239,7 +239,7 @@ void CheckSessionReuse(const SolverFactory& create, const ConformanceOptions& op
         if (!(gap <= 1e-9 * (1.0 + a.z.lpNorm<Eigen::Infinity>()))) {
           findings.Fail(where, "the session's z differs from Solve's by " + Num(gap));
         }
-        if (b.GetDetail("path") == static_cast<double>(SessionPath::kReusedActiveSet)) {
+        if (SessionPathOf(b) == SessionPath::kReusedActiveSet) {
           if (b.iterations != 0) findings.Fail(where, "a reused active set reports iterations");
           ++reused;
         }

@@ -13,15 +13,16 @@ bool SameText(const char* a, const char* b) {
 }
 }  // namespace
 
-void SolveResult::SetDetailByText(const char* name, double value) {
+void SolveResult::SetEntryByText(const char* name, double value, CodeName code_name) {
   for (int i = 0; i < num_details; ++i) {
     if (SameText(details[i].name, name)) {
       details[i].value = value;
+      details[i].code_name = code_name;
       return;
     }
   }
   if (num_details < kMaxDetails) {
-    details[num_details++] = {name, value};
+    details[num_details++] = {name, value, code_name};
     distinct_prefix_ = num_details;  // older names after the new one may repeat it
   }
 }
@@ -31,6 +32,13 @@ double SolveResult::GetDetail(std::string_view name) const {
     if (details[i].name == name) return details[i].value;
   }
   return std::numeric_limits<double>::quiet_NaN();
+}
+
+std::string_view SolveResult::CodeText(const Detail& detail) {
+  // The range check keeps the cast defined; the namer rejects what its enum lacks.
+  if (detail.code_name == nullptr || !(detail.value >= 0.0 && detail.value < 1e9)) return {};
+  if (detail.value != static_cast<double>(static_cast<int>(detail.value))) return {};
+  return detail.code_name(static_cast<int>(detail.value));
 }
 
 }  // namespace smcbench

@@ -156,7 +156,7 @@ bool SolveSession::TryReusedActiveSet(SolveResult* result) {
   result->residual_abs = r.abs;
   result->residual_rel = r.rel;
   result->residual_scaled = r.scaled;
-  result->SetDetail("path", static_cast<double>(SessionPath::kReusedActiveSet));
+  kSessionPathDetail.Set(result, SessionPath::kReusedActiveSet);
   if (options_.measure_time) result->solve_seconds = std::chrono::duration<double>(Clock::now() - start).count();
   ++reused_;
   return true;
@@ -164,7 +164,7 @@ bool SolveSession::TryReusedActiveSet(SolveResult* result) {
 
 void SolveSession::ConcludeBackendCall(SolveResult* result) {
   if (meta_ != nullptr && !result->solved()) meta_->Solve(problem_, options_, result);
-  result->SetDetail("path", static_cast<double>(SessionPath::kBackend));
+  kSessionPathDetail.Set(result, SessionPath::kBackend);
   if (reuse_ && result->solved()) RememberActiveSet(*result);
 }
 
@@ -184,6 +184,21 @@ void SolveSession::RememberActiveSet(const SolveResult& result) {
   if (factors_.Factor(problem_.dense_matrix(), state_.data()) && n <= BoxMLCP::kSmallSize) {
     factors_.AffineMap(problem_.dense_matrix(), l, u, small_.A, small_.c, &small_.free_row);
   }
+}
+
+std::string_view ToString(SessionPath path) {
+  switch (path) {
+    case SessionPath::kBackend: return "backend";
+    case SessionPath::kReusedActiveSet: return "reused_active_set";
+  }
+  return "unknown";
+}
+
+std::optional<SessionPath> SessionPathFromString(std::string_view name) {
+  for (const SessionPath path : {SessionPath::kBackend, SessionPath::kReusedActiveSet}) {
+    if (ToString(path) == name) return path;
+  }
+  return std::nullopt;
 }
 
 }  // namespace smcbench

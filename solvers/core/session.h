@@ -4,6 +4,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string_view>
 #include <vector>
 
@@ -39,11 +40,17 @@ inline WarmStateReset LeastCold(WarmStateReset a, WarmStateReset b) {
   return static_cast<int>(a) >= static_cast<int>(b) ? a : b;
 }
 
-// Which path produced a session's answer: SolveResult detail "path".
+// Which path produced a session's answer: SolveResult detail "path" (read it with SessionPathOf).
 enum class SessionPath : int {
   kBackend = 0,          // the backend's own algorithm (then the base's polish and merit function)
   kReusedActiveSet = 1,  // the previous answer's active set, re-solved for the new q; iterations = 0
 };
+// "backend", "reused_active_set" (the detail's text in JSON and Python).
+std::string_view ToString(SessionPath path);
+std::optional<SessionPath> SessionPathFromString(std::string_view name);
+inline constexpr CodeDetail<SessionPath, 2> kSessionPathDetail{"path"};
+// The path that answered, or nullopt for a result that did not come from a session.
+inline std::optional<SessionPath> SessionPathOf(const SolveResult& result) { return kSessionPathDetail.Get(result); }
 
 // A prepared solve of one problem (M, l, u fixed; q per call) by one backend. Made by Solver::Prepare; holds a
 // pointer to the backend, which must outlive it. Not thread-safe (the backend is not). Movable.

@@ -201,6 +201,42 @@ TEST(SolveResultDetails, NamesStayUniqueWhenReusedInAnotherOrder) {
   EXPECT_EQ(r.GetDetail("beta"), 10.0);
 }
 
+TEST(SolveResultDetails, CodesAreReadAsTheirEnumAndNamedForPrinting) {
+  SolveResult r;
+  EXPECT_EQ(SessionPathOf(r), std::nullopt) << "no session, no path";
+  r.SetDetail("sweeps", 3.0);
+  kSessionPathDetail.Set(&r, SessionPath::kReusedActiveSet);
+  ASSERT_EQ(r.num_details, 2);
+  EXPECT_EQ(SessionPathOf(r), SessionPath::kReusedActiveSet);
+  EXPECT_EQ(SolveResult::CodeText(r.details[1]), "reused_active_set");
+  EXPECT_EQ(SolveResult::CodeText(r.details[0]), "") << "a measurement has no name";
+  // Reused across solves: the same code again overwrites in place, and a number that is no SessionPath reads as none.
+  r.Reset();
+  r.SetDetail("sweeps", 4.0);
+  kSessionPathDetail.Set(&r, SessionPath::kBackend);
+  EXPECT_EQ(r.num_details, 2);
+  EXPECT_EQ(SessionPathOf(r), SessionPath::kBackend);
+  EXPECT_EQ(SolveResult::CodeText(r.details[1]), "backend");
+  for (double stray : {2.0, -1.0, 0.5, std::nan("")}) {
+    r.SetCodeDetail(kSessionPathDetail.name, 0, kSessionPathDetail.NameOf);
+    r.details[1].value = stray;
+    EXPECT_EQ(SessionPathOf(r), std::nullopt) << stray;
+    EXPECT_EQ(SolveResult::CodeText(r.details[1]), "") << stray;
+  }
+  // A measurement written over a code's name drops the namer.
+  r.SetDetail("path", 1.0);
+  EXPECT_EQ(SolveResult::CodeText(r.details[1]), "");
+}
+
+TEST(SessionPathNames, RoundTrip) {
+  for (const SessionPath path : {SessionPath::kBackend, SessionPath::kReusedActiveSet}) {
+    EXPECT_EQ(SessionPathFromString(ToString(path)), path);
+  }
+  EXPECT_EQ(ToString(SessionPath::kReusedActiveSet), "reused_active_set");
+  EXPECT_FALSE(SessionPathFromString("1").has_value());
+  EXPECT_FALSE(SessionPathFromString("Backend").has_value());
+}
+
 TEST(SolverBase, TypedBackendOptionsFromText) {
   ScriptedSolver solver;
   std::string error;
@@ -604,7 +640,7 @@ TEST(Session, NonFiniteWarmStartIsStillRefusedPerCall) {
   EXPECT_EQ(r.status, SolveStatus::kSolved);
   EXPECT_EQ(r.solver, "scripted");
   EXPECT_EQ(r.GetDetail("answer"), 42.0);
-  EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+  EXPECT_EQ(SessionPathOf(r), SessionPath::kBackend);
   warm[1] = std::nan("");
   session.Solve(p.q(), &r, &warm);
   EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
@@ -665,13 +701,13 @@ TEST(Session, ReusesTheActiveSetWhileItHoldsAndSaysSo) {
   SolveResult r;
   session.Solve(p.q(), &r);
   ASSERT_EQ(r.status, SolveStatus::kSolved);
-  EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+  EXPECT_EQ(SessionPathOf(r), SessionPath::kBackend);
   EXPECT_EQ(r.iterations, 7);
 
   solver.z_to_report = Vector::Zero(2);  // the backend would now be wrong: only the warm path can answer
   session.Solve((Vector(2) << -1.3, -0.5).finished(), &r);
   ASSERT_EQ(r.status, SolveStatus::kSolved);
-  EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kReusedActiveSet));
+  EXPECT_EQ(SessionPathOf(r), SessionPath::kReusedActiveSet);
   EXPECT_EQ(r.iterations, 0);
   EXPECT_NEAR(r.z[0], 0.7, 1e-15);
   EXPECT_NEAR(r.z[1], -0.1, 1e-15);
@@ -683,12 +719,12 @@ TEST(Session, ReusesTheActiveSetWhileItHoldsAndSaysSo) {
   solver.z_to_report = (Vector(2) << 1.0, -0.5).finished();
   session.Solve((Vector(2) << -9.0, 0.0).finished(), &r);
   ASSERT_EQ(r.status, SolveStatus::kSolved);
-  EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+  EXPECT_EQ(SessionPathOf(r), SessionPath::kBackend);
   // ... and its active set is the one tried next: q = (−9, 0.2) → z = (1, −0.6).
   solver.z_to_report = Vector::Zero(2);
   session.Solve((Vector(2) << -9.0, 0.2).finished(), &r);
   ASSERT_EQ(r.status, SolveStatus::kSolved);
-  EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kReusedActiveSet));
+  EXPECT_EQ(SessionPathOf(r), SessionPath::kReusedActiveSet);
   EXPECT_EQ(r.z[0], 1.0);
   EXPECT_NEAR(r.z[1], -0.6, 1e-15);
   EXPECT_EQ(session.calls(), 4);
@@ -709,10 +745,10 @@ TEST(Session, ForgetWarmStateSendsTheNextCallToTheBackend) {
   SolveResult r;
   session.Solve(p.q(), &r);
   session.Solve(p.q(), &r);
-  ASSERT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kReusedActiveSet));
+  ASSERT_EQ(SessionPathOf(r), SessionPath::kReusedActiveSet);
   EXPECT_EQ(session.ForgetWarmState(), WarmStateReset::kForgotten);
   session.Solve(p.q(), &r);
-  EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+  EXPECT_EQ(SessionPathOf(r), SessionPath::kBackend);
   EXPECT_EQ(r.iterations, 7);
   EXPECT_EQ(session.reused(), 1);
   // Without reuse a session remembers nothing, and a plain backend neither (Solver::ForgetWarmState's default).
@@ -733,7 +769,7 @@ TEST(Session, ReuseOffAlwaysCallsTheBackend) {
   SolveResult r;
   for (int k = 0; k < 3; ++k) {
     session.Solve(p.q(), &r);
-    EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+    EXPECT_EQ(SessionPathOf(r), SessionPath::kBackend);
     EXPECT_EQ(r.iterations, 7);
   }
   EXPECT_EQ(session.reused(), 0);
@@ -774,7 +810,7 @@ TEST(Session, SmallSparseProblemGoesToTheBackendThroughTheGeneralPath) {
       session.Solve(q, &r);
       EXPECT_EQ(r.status, SolveStatus::kSolved) << r.message;
       EXPECT_EQ(r.z, (Vector(2) << 1.0, 0.0).finished());
-      EXPECT_EQ(r.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+      EXPECT_EQ(SessionPathOf(r), SessionPath::kBackend);
     }
     EXPECT_EQ(session.reused(), 0);
   }

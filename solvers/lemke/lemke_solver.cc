@@ -337,6 +337,17 @@ const char* FreeModeName(FreeMode mode) {
   return "?";
 }
 
+// The run's mode as the option value that names it (detail "free_row_mode"); only asked when there are free rows.
+LemkeOptions::FreeRows FreeRowsUsed(FreeMode mode) {
+  switch (mode) {
+    case FreeMode::kSchur: return LemkeOptions::FreeRows::kSchur;
+    case FreeMode::kBasic: return LemkeOptions::FreeRows::kBasic;
+    case FreeMode::kSplit: return LemkeOptions::FreeRows::kSplit;
+    case FreeMode::kNone: break;
+  }
+  return LemkeOptions::FreeRows::kAutomatic;
+}
+
 // The larger of the two, for "is this point better" comparisons (NaN-safe: NaN compares as not better).
 double Worst(const Residual& r) { return std::max(r.rel, r.scaled); }
 
@@ -903,7 +914,7 @@ void Report(const LemkeRun& run, SolveStatus status, const char* exists, const R
   result->SetDetail("lcp_size", run.p);
   result->SetDetail("reinversions", run.reinversions);
   if (run.f > 0) {
-    result->SetDetail("free_row_mode", static_cast<double>(run.mode));  // 1 Schur, 2 basic, 3 split
+    kFreeRowModeDetail.Set(result, FreeRowsUsed(run.mode));
     const LemkeOptions::FreeRows method = run.lemke.free_row_method;
     if (method == LemkeOptions::FreeRows::kAutomatic || method == LemkeOptions::FreeRows::kSchur) {
       result->SetDetail("free_block_rcond", run.rcond);
@@ -937,6 +948,14 @@ std::string_view ToString(LemkeOptions::FreeRows method) {
     case LemkeOptions::FreeRows::kSplit: return "split";
   }
   return "?";
+}
+
+std::optional<LemkeOptions::FreeRows> FreeRowsFromString(std::string_view name) {
+  using FreeRows = LemkeOptions::FreeRows;
+  for (const FreeRows method : {FreeRows::kAutomatic, FreeRows::kSchur, FreeRows::kBasic, FreeRows::kSplit}) {
+    if (ToString(method) == name) return method;
+  }
+  return std::nullopt;
 }
 
 bool LemkeOptions::IsValid(std::string* why) const {

@@ -59,6 +59,7 @@
 // reinversions do not.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -101,6 +102,14 @@ struct LemkeOptions {
 // The names `--set` accepts and `smcbench list` prints ("ones", "auto", ...).
 std::string_view ToString(LemkeOptions::Covering covering);
 std::string_view ToString(LemkeOptions::FreeRows method);
+std::optional<LemkeOptions::FreeRows> FreeRowsFromString(std::string_view name);
+
+// Detail "free_row_mode", set when the problem has free rows: the method that handled them (kSchur, kBasic or
+// kSplit; under free_row_method = auto the first that applied).
+inline constexpr CodeDetail<LemkeOptions::FreeRows, 4> kFreeRowModeDetail{"free_row_mode"};
+inline std::optional<LemkeOptions::FreeRows> FreeRowModeOf(const SolveResult& result) {
+  return kFreeRowModeDetail.Get(result);
+}
 
 // Default pivot budget when SolverOptions::max_iterations ≤ 0: max(2^17, 50·p). 2^17 covers Murty's exponential
 // examples (2^n pivots) up to n = 16; 50·p is far beyond the O(p) pivots Lemke usually needs.

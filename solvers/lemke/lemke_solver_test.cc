@@ -531,6 +531,7 @@ TEST(LemkeSolver, MixedBoundsWithFreeRows) {
   for (FreeRows method : {FreeRows::kAutomatic, FreeRows::kSchur, FreeRows::kBasic, FreeRows::kSplit}) {
     LemkeSolver solver;
     solver.mutable_options().free_row_method = method;
+    int with_free_rows = 0;
     for (unsigned seed = 1; seed <= 20; ++seed) {
       for (int n : {1, 3, 6, 16, 40}) {
         for (Family family : {Family::kSpd, Family::kNonsymmetricPd}) {
@@ -541,10 +542,36 @@ TEST(LemkeSolver, MixedBoundsWithFreeRows) {
             EXPECT_LE((r.z - k.z_star).cwiseAbs().maxCoeff(), 1e-8 * (1.0 + k.z_star.cwiseAbs().maxCoeff()))
                 << k.problem.name() << " method=" << ToString(method);
           }
+          // Detail free_row_mode names the method that handled the free rows: the one asked for (a definite
+          // M_FF needs no fallback), or under auto never auto itself.
+          const bool free_rows = (k.problem.l().array() == -kInf && k.problem.u().array() == kInf).any();
+          EXPECT_EQ(FreeRowModeOf(r).has_value(), free_rows) << k.problem.name();
+          if (!free_rows) continue;
+          ++with_free_rows;
+          if (method == FreeRows::kAutomatic) {
+            EXPECT_NE(FreeRowModeOf(r), FreeRows::kAutomatic) << k.problem.name();
+          } else {
+            EXPECT_EQ(FreeRowModeOf(r), method) << k.problem.name();
+          }
         }
       }
     }
+    EXPECT_GT(with_free_rows, 0) << "the mixed bounds include free rows";
   }
+}
+
+TEST(LemkeSolver, FreeRowMethodNamesRoundTrip) {
+  using FreeRows = LemkeOptions::FreeRows;
+  for (FreeRows method : {FreeRows::kAutomatic, FreeRows::kSchur, FreeRows::kBasic, FreeRows::kSplit}) {
+    EXPECT_EQ(FreeRowsFromString(ToString(method)), method);
+  }
+  EXPECT_FALSE(FreeRowsFromString("schur-only").has_value());
+  EXPECT_FALSE(FreeRowsFromString("2").has_value()) << "a name, not the old number";
+  // JSON and Python print the detail by its name.
+  SolveResult r;
+  kFreeRowModeDetail.Set(&r, FreeRows::kBasic);
+  ASSERT_EQ(r.num_details, 1);
+  EXPECT_EQ(SolveResult::CodeText(r.details[0]), "basic");
 }
 
 TEST(LemkeSolver, SingularFreeBlockKeepsFreeVariablesBasic) {
@@ -556,7 +583,7 @@ TEST(LemkeSolver, SingularFreeBlockKeepsFreeVariablesBasic) {
   LemkeSolver solver;
   const SolveResult r = solver.Solve(p);
   ExpectSolved(p, r);
-  EXPECT_EQ(r.GetDetail("free_row_mode"), 2.0);
+  EXPECT_EQ(FreeRowModeOf(r), LemkeOptions::FreeRows::kBasic);
   EXPECT_NEAR(r.z[1], 2.0, 1e-14);
   EXPECT_NEAR(r.z[0], 3.0, 1e-14);
 
@@ -566,7 +593,7 @@ TEST(LemkeSolver, SingularFreeBlockKeepsFreeVariablesBasic) {
   const BoxMLCP p2(M2, Vector{{0.0, -1.0}}, Vector{{-kInf, 0.0}}, Vector{{kInf, kInf}}, "zero_free_column");
   const SolveResult r2 = solver.Solve(p2);
   ExpectSolved(p2, r2);
-  EXPECT_EQ(r2.GetDetail("free_row_mode"), 3.0);
+  EXPECT_EQ(FreeRowModeOf(r2), LemkeOptions::FreeRows::kSplit);
   EXPECT_NEAR(r2.z[1], 1.0, 1e-14);
 }
 

@@ -10,6 +10,7 @@
 #include "solvers/generators/random_problems.h"
 #include "solvers/core/solver.h"
 #include "solvers/registry/registry.h"
+#include "solvers/siconos/child_process.h"
 
 namespace smcbench::peer_checks {
 
@@ -47,8 +48,8 @@ inline void ExpectSameAnswerInWorkerAndInProcess(const std::string& backend, con
   const auto solver = CreateSolver(backend);
   const SolveResult probe = solver->Solve(problem, options);
   const SolveResult again = solver->Solve(problem, options);
-  EXPECT_EQ(Detail(probe, "in_process"), 0.0);
-  EXPECT_EQ(Detail(again, "in_process"), 1.0);
+  EXPECT_EQ(AnswerProcessOf(probe), AnswerProcess::kWorker);
+  EXPECT_EQ(AnswerProcessOf(again), AnswerProcess::kThisProcess);
   EXPECT_EQ(probe.status, again.status);
   EXPECT_EQ(probe.z, again.z);
   EXPECT_EQ(Detail(probe, "peer_success"), Detail(again, "peer_success"));
@@ -57,7 +58,8 @@ inline void ExpectSameAnswerInWorkerAndInProcess(const std::string& backend, con
     std::string error;
     ASSERT_TRUE(other->SetOption("isolate", isolate, &error)) << error;
     const SolveResult r = other->Solve(problem, options);
-    EXPECT_EQ(Detail(r, "in_process"), std::string(isolate) == "never" ? 1.0 : 0.0);
+    const AnswerProcess expected = std::string(isolate) == "never" ? AnswerProcess::kThisProcess : AnswerProcess::kWorker;
+    EXPECT_EQ(AnswerProcessOf(r), expected);
     EXPECT_EQ(r.status, probe.status) << isolate;
     EXPECT_EQ(r.z, probe.z) << isolate;
   }

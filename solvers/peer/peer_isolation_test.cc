@@ -10,6 +10,7 @@
 
 #include "solvers/generators/random_problems.h"
 #include "solvers/registry/registry.h"
+#include "solvers/siconos/child_process.h"
 #include "tests/support/malloc_counter.h"
 
 namespace smcbench {
@@ -52,7 +53,7 @@ TEST(IsolationPolicy, RepeatedSolvesInTheWorkerDoNotAllocateInThisProcess) {
     });
     EXPECT_EQ(count, 0);
     EXPECT_TRUE(result.solved());
-    EXPECT_EQ(result.GetDetail("in_process"), 0.0);
+    EXPECT_EQ(AnswerProcessOf(result), AnswerProcess::kWorker);
   }
 }
 
@@ -69,7 +70,7 @@ TEST(IsolationPolicy, InProcessSolvesAllocateNoMoreThanTheLibraryDoesItself) {
     first->Solve(problem, options, &a);
     never->Solve(problem, options, &b);
     never->Solve(problem, options, &b);
-    ASSERT_EQ(a.GetDetail("in_process"), 1.0);
+    ASSERT_EQ(AnswerProcessOf(a), AnswerProcess::kThisProcess);
     const long with_probe_policy = test_support::CountMallocs([&] {
       for (int k = 0; k < 10; ++k) first->Solve(problem, options, &a);
     });

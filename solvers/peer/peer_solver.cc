@@ -201,7 +201,7 @@ bool PeerBoxSolver::RunWherePolicySays(const SolverOptions& options, std::chrono
   }
   const bool probe = isolation == IsolationPolicy::kFirst && probed == nullptr;
   const bool in_process = isolation == IsolationPolicy::kNever || (probed != nullptr && probed->seconds <= limit);
-  result->SetDetail("in_process", in_process ? 1.0 : 0.0);
+  kAnswerProcessDetail.Set(result, in_process ? AnswerProcess::kThisProcess : AnswerProcess::kWorker);
   if (in_process) {
     RunInProcess();
     return true;

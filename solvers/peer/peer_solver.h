@@ -10,9 +10,9 @@
 // Isolation (option isolate), as the Siconos adapters do it (siconos_solver.h): a problem's first solve runs in this
 // backend's worker process (child_process.h), so a crash is kNumericalFailure naming the signal and a hang is
 // killed at the time limit (kTimeLimit); once the probe came back, later solves of exactly the same bytes run in
-// process (probed_problems.h). Detail "in_process" says which path answered. In process, the C streams point to
-// /dev/null during the call (the libraries print on some failures). In-process instances must not run
-// concurrently on different threads.
+// process (probed_problems.h). Detail "in_process" says which process answered (AnswerProcessOf). In process, the
+// C streams point to /dev/null during the call (the libraries print on some failures). In-process instances must
+// not run concurrently on different threads.
 //
 // The problem goes to the library as the user wrote it (SolverInfo::equilibrate = false), in double precision.
 #pragma once

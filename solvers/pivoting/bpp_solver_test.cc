@@ -264,7 +264,7 @@ TEST(BppSolver, SessionWarmStartsGiveTheFirstActiveSet) {
   session.Solve(gen.problem.q(), &result, &first);
   ASSERT_TRUE(result.solved()) << result.message;
   EXPECT_EQ(result.iterations, 1);
-  EXPECT_EQ(result.GetDetail("path"), static_cast<double>(SessionPath::kBackend));
+  EXPECT_EQ(SessionPathOf(result), SessionPath::kBackend);
   EXPECT_LE(ForwardError(result.z, gen.z_star), 1e-8);
 }
 

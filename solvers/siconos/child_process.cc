@@ -31,6 +31,23 @@ std::string_view ToString(IsolationPolicy isolation) {
   return "?";
 }
 
+std::string_view ToString(AnswerProcess where) {
+  switch (where) {
+    case AnswerProcess::kWorker:
+      return "worker";
+    case AnswerProcess::kThisProcess:
+      return "this_process";
+  }
+  return "unknown";
+}
+
+std::optional<AnswerProcess> AnswerProcessFromString(std::string_view name) {
+  for (const AnswerProcess where : {AnswerProcess::kWorker, AnswerProcess::kThisProcess}) {
+    if (ToString(where) == name) return where;
+  }
+  return std::nullopt;
+}
+
 namespace {
 
 // The worker's end of the socket is moved here; every descriptor above it is closed.

@@ -20,8 +20,11 @@
 #include <chrono>
 #include <cstddef>
 #include <initializer_list>
+#include <optional>
 #include <string>
 #include <string_view>
+
+#include "solvers/core/result.h"
 
 namespace smcbench {
 
@@ -33,6 +36,20 @@ enum class IsolationPolicy {
 };
 // "never", "first", "always".
 std::string_view ToString(IsolationPolicy isolation);
+
+// Where an external adapter's answer was computed: SolveResult detail "in_process" (read it with AnswerProcessOf).
+enum class AnswerProcess : int {
+  kWorker = 0,       // the isolation worker: a probe, isolate=always, or a problem whose probe failed
+  kThisProcess = 1,  // this process
+};
+// "worker", "this_process" (the detail's text in JSON and Python).
+std::string_view ToString(AnswerProcess where);
+std::optional<AnswerProcess> AnswerProcessFromString(std::string_view name);
+inline constexpr CodeDetail<AnswerProcess, 2> kAnswerProcessDetail{"in_process"};
+// nullopt for a result no external adapter answered (our backends, or a problem refused before the library ran).
+inline std::optional<AnswerProcess> AnswerProcessOf(const SolveResult& result) {
+  return kAnswerProcessDetail.Get(result);
+}
 
 class ChildProcess {
  public:

@@ -17,6 +17,7 @@
 #include "NumericsMatrix.h"
 #include "NumericsVerbose.h"
 #include "SolverOptions.h"
+#include "solvers/siconos/child_process.h"
 #include "solvers/siconos/mcp_standard_form.h"
 #include "solvers/siconos/swapped_stdio.h"
 
@@ -127,7 +128,7 @@ void SiconosMcpSolver::DoSolve(const BoxMLCP&, const SolverOptions&, SolveResult
 
 void SiconosMcpSolver::DoSolveMCP(const MCP& problem, const SolverOptions& options, SolveResult* result) {
   const int n = problem.size();
-  result->SetDetail("in_process", 1.0);
+  kAnswerProcessDetail.Set(result, AnswerProcess::kThisProcess);
   // F and J at the start: a failure there is a status before Siconos runs.
   Vector F(n);
   problem.Evaluate(result->z, &F);

@@ -737,7 +737,7 @@ void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
     return;
   }
   last_came_back_ = true;
-  if (spec.direct) (result->GetDetail("in_process") == 1.0 ? cache_in_process_ : cache_in_worker_) = true;
+  if (spec.direct) (AnswerProcessOf(*result) == AnswerProcess::kThisProcess ? cache_in_process_ : cache_in_worker_) = true;
   const Response& out = outcome.response;
   form_.ToBox(problem, x_, &result->z);
   result->iterations = out.iterations;
@@ -785,7 +785,7 @@ bool SiconosSolver::RunWherePolicySays(const SolverOptions& options, std::chrono
   const bool probe = isolation == IsolationPolicy::kFirst && probed == nullptr;
   const bool in_process =
       isolation == IsolationPolicy::kNever || (probed != nullptr && probed->seconds <= limit);
-  result->SetDetail("in_process", in_process ? 1.0 : 0.0);
+  kAnswerProcessDetail.Set(result, in_process ? AnswerProcess::kThisProcess : AnswerProcess::kWorker);
   if (in_process) {
     // What to silence: the C streams always (free of system calls, and what Siconos prints may depend on its state,
     // e.g. a direct solver's cache that is warm in the worker and cold here), the descriptors too when the probe

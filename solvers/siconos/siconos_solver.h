@@ -27,9 +27,9 @@
 // than a small solve itself, so by default only a problem's first solve (the probe) runs there; once a probe came
 // back normally (any status, but no crash, no signal, no deadline), later solves of exactly the same bytes (request,
 // options that reach Siconos, M, q, bounds, start point) run in this process, with the same answer bit for bit.
-// Detail "in_process" says which path answered. In process there is no time limit and no protection (a problem
-// whose probe failed is never run here, a call whose time limit is shorter than its probe took goes to the
-// worker); the C streams stdout/stderr point to /dev/null during the call (no system
+// Detail "in_process" says which process answered (AnswerProcessOf). In process there is no time limit and no
+// protection (a problem whose probe failed is never run here, a call whose time limit is shorter than its probe
+// took goes to the worker); the C streams stdout/stderr point to /dev/null during the call (no system
 // call), descriptors 1 and 2 are redirected too only if the probe saw Siconos write there (or, for kNever, unless
 // quiet is off); Siconos' file-static MLCP state (the "direct" solvers' active-set cache) is handed between
 // instances (SiconosSession). In-process instances must not run concurrently on different threads.

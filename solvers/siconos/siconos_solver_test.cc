@@ -406,8 +406,8 @@ TEST(IsolationPolicy, InProcessGivesTheSameAnswersAndStaysSilent) {
       const SolveResult b = in_process->Solve(gen.problem);
       EXPECT_EQ(a.status, b.status);
       if (a.status == SolveStatus::kNotApplicable) continue;  // refused before any Siconos call
-      EXPECT_EQ(a.GetDetail("in_process"), 0.0);
-      EXPECT_EQ(b.GetDetail("in_process"), 1.0);
+      EXPECT_EQ(AnswerProcessOf(a), AnswerProcess::kWorker);
+      EXPECT_EQ(AnswerProcessOf(b), AnswerProcess::kThisProcess);
       if (a.solved()) {
         EXPECT_LE((a.z - b.z).cwiseAbs().maxCoeff(), 1e-12);
       }
@@ -445,7 +445,7 @@ TEST(IsolationPolicy, RepeatedIsolatedSolvesDoNotAllocateInThisProcess) {
     });
     EXPECT_EQ(count, 0) << name;
     EXPECT_TRUE(result.solved());
-    EXPECT_EQ(result.GetDetail("in_process"), 0.0);
+    EXPECT_EQ(AnswerProcessOf(result), AnswerProcess::kWorker);
   }
 }
 
@@ -468,7 +468,7 @@ TEST(SiconosProbe, ACrashOrAHangIsAStatusOnEverySolveAndNeverRunsInProcess) {
     const SolveResult r = crashing->Solve(lcp, raw);
     EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
     EXPECT_EQ(r.GetDetail("siconos_signal"), 6.0) << r.message;
-    EXPECT_EQ(r.GetDetail("in_process"), 0.0);
+    EXPECT_EQ(AnswerProcessOf(r), AnswerProcess::kWorker);
   }
   // A hang: killed at the deadline, and again on the next solve of the same problem.
   auto hanging = Make("siconos-mlcp-enum", {{"max_enumerated", "22"}});
@@ -478,14 +478,14 @@ TEST(SiconosProbe, ACrashOrAHangIsAStatusOnEverySolveAndNeverRunsInProcess) {
   for (int k = 0; k < 2; ++k) {
     const SolveResult r = hanging->Solve(hard, limited);
     EXPECT_EQ(r.status, SolveStatus::kTimeLimit) << r.message;
-    EXPECT_EQ(r.GetDetail("in_process"), 0.0);
+    EXPECT_EQ(AnswerProcessOf(r), AnswerProcess::kWorker);
   }
   // The same backend still moves a problem that came back into this process.
   const BoxMLCP easy = BoxMLCP::LCP(DenseMatrix::Identity(2, 2), Vector::Constant(2, -1.0));
-  EXPECT_EQ(hanging->Solve(easy, limited).GetDetail("in_process"), 0.0);
+  EXPECT_EQ(AnswerProcessOf(hanging->Solve(easy, limited)), AnswerProcess::kWorker);
   const SolveResult e = hanging->Solve(easy, limited);
   EXPECT_TRUE(e.solved()) << e.message;
-  EXPECT_EQ(e.GetDetail("in_process"), 1.0);
+  EXPECT_EQ(AnswerProcessOf(e), AnswerProcess::kThisProcess);
 }
 
 TEST(SiconosProbe, AProblemIsTheExactBytesSentToSiconosAndTheMemoryIsBounded) {
@@ -496,38 +496,38 @@ TEST(SiconosProbe, AProblemIsTheExactBytesSentToSiconosAndTheMemoryIsBounded) {
   const auto path = [&](const BoxMLCP& problem, const SolverOptions& options = {}) {
     const SolveResult r = solver->Solve(problem, options);
     EXPECT_TRUE(r.solved()) << r.message;
-    return r.GetDetail("in_process");
+    return AnswerProcessOf(r);
   };
-  EXPECT_EQ(path(p[0]), 0.0);
-  EXPECT_EQ(path(p[1]), 0.0);
-  EXPECT_EQ(path(p[2]), 0.0);  // remembers p1, p2: p0 forgotten
-  EXPECT_EQ(path(p[2]), 1.0);
-  EXPECT_EQ(path(p[1]), 1.0);
-  EXPECT_EQ(path(p[0]), 0.0);  // probed again; now p2, p0 (p1 was the oldest)
-  EXPECT_EQ(path(p[0]), 1.0);
-  EXPECT_EQ(path(p[1]), 0.0);
+  EXPECT_EQ(path(p[0]), AnswerProcess::kWorker);
+  EXPECT_EQ(path(p[1]), AnswerProcess::kWorker);
+  EXPECT_EQ(path(p[2]), AnswerProcess::kWorker);  // remembers p1, p2: p0 forgotten
+  EXPECT_EQ(path(p[2]), AnswerProcess::kThisProcess);
+  EXPECT_EQ(path(p[1]), AnswerProcess::kThisProcess);
+  EXPECT_EQ(path(p[0]), AnswerProcess::kWorker);  // probed again; now p2, p0 (p1 was the oldest)
+  EXPECT_EQ(path(p[0]), AnswerProcess::kThisProcess);
+  EXPECT_EQ(path(p[1]), AnswerProcess::kWorker);
   // The options that reach Siconos and the start point are part of the problem.
   SolverOptions tighter;
   tighter.tolerance = 1e-12;
-  EXPECT_EQ(path(p[1], tighter), 0.0);
-  EXPECT_EQ(path(p[1], tighter), 1.0);
+  EXPECT_EQ(path(p[1], tighter), AnswerProcess::kWorker);
+  EXPECT_EQ(path(p[1], tighter), AnswerProcess::kThisProcess);
   SolverOptions warm;
   warm.warm_start = Vector::Constant(2, 0.5);
-  EXPECT_EQ(path(p[1], warm), 0.0);
+  EXPECT_EQ(path(p[1], warm), AnswerProcess::kWorker);
   // A problem with the same bits in a new object is the same problem.
-  EXPECT_EQ(path(BoxMLCP::LCP(M, Vector::Constant(2, -2.0)), warm), 1.0);
+  EXPECT_EQ(path(BoxMLCP::LCP(M, Vector::Constant(2, -2.0)), warm), AnswerProcess::kThisProcess);
   // A time limit shorter than the probe took: the call goes to the worker, which enforces limits, and the problem
   // is still remembered for solves under a longer one.
   warm.time_limit_seconds = 1e-9;
   const SolveResult limited = solver->Solve(p[1], warm);
-  EXPECT_EQ(limited.GetDetail("in_process"), 0.0);
+  EXPECT_EQ(AnswerProcessOf(limited), AnswerProcess::kWorker);
   EXPECT_TRUE(limited.status == SolveStatus::kTimeLimit || limited.solved()) << limited.message;
   warm.time_limit_seconds = kInf;
-  EXPECT_EQ(path(p[1], warm), 1.0);
+  EXPECT_EQ(path(p[1], warm), AnswerProcess::kThisProcess);
   // No memory at all: every solve is a probe.
   auto forgetful = Make("siconos-lcp-lemke", {{"remembered_megabytes", "0"}});
-  EXPECT_EQ(forgetful->Solve(p[0]).GetDetail("in_process"), 0.0);
-  EXPECT_EQ(forgetful->Solve(p[0]).GetDetail("in_process"), 0.0);
+  EXPECT_EQ(AnswerProcessOf(forgetful->Solve(p[0])), AnswerProcess::kWorker);
+  EXPECT_EQ(AnswerProcessOf(forgetful->Solve(p[0])), AnswerProcess::kWorker);
 }
 
 TEST(SiconosProbe, InProcessSolveIsSilencedWhenTheProbeSawSiconosPrint) {
@@ -544,7 +544,7 @@ TEST(SiconosProbe, InProcessSolveIsSilencedWhenTheProbeSawSiconosPrint) {
   ::testing::internal::CaptureStdout();
   const SolveResult r = pgs->Solve(p, options);
   const std::string printed = ::testing::internal::GetCapturedStdout();
-  EXPECT_EQ(r.GetDetail("in_process"), 1.0);
+  EXPECT_EQ(AnswerProcessOf(r), AnswerProcess::kThisProcess);
   EXPECT_EQ(r.status, SolveStatus::kIterationLimit);
   EXPECT_EQ(r.status, probe.status);
   EXPECT_EQ(printed, "");
@@ -555,12 +555,12 @@ TEST(SiconosProbe, InProcessSolveIsSilencedWhenTheProbeSawSiconosPrint) {
   const DenseMatrix two = DenseMatrix::Identity(2, 2) * 2.0;
   const BoxMLCP q1 = BoxMLCP::LCP(two, Vector::Constant(2, -1.0)), q2 = BoxMLCP::LCP(two, Vector::Constant(2, -2.0));
   ASSERT_TRUE(direct->Solve(q1).solved());  // probe: enumeration, then the active set is cached in the worker
-  ASSERT_EQ(direct->Solve(q2).GetDetail("in_process"), 0.0);  // probe: the cached active set, silent
+  ASSERT_EQ(AnswerProcessOf(direct->Solve(q2)), AnswerProcess::kWorker);  // probe: the cached active set, silent
   ::testing::internal::CaptureStdout();
   ::testing::internal::CaptureStderr();
   const SolveResult cold = direct->Solve(q2);
   const std::string out = ::testing::internal::GetCapturedStdout() + ::testing::internal::GetCapturedStderr();
-  EXPECT_EQ(cold.GetDetail("in_process"), 1.0);
+  EXPECT_EQ(AnswerProcessOf(cold), AnswerProcess::kThisProcess);
   EXPECT_TRUE(cold.solved()) << cold.message;
   EXPECT_EQ(out, "");
   // quiet=0 asks for the bare call: Siconos' message comes through.
@@ -590,7 +590,7 @@ TEST(SiconosProbe, InProcessSolvesAllocateNoMoreThanSiconosDoesItself) {
     first->Solve(gen.problem, options, &a);  // in process: sizes the session
     never->Solve(gen.problem, options, &b);
     never->Solve(gen.problem, options, &b);
-    ASSERT_EQ(a.GetDetail("in_process"), 1.0);
+    ASSERT_EQ(AnswerProcessOf(a), AnswerProcess::kThisProcess);
     const long with_probe_policy = test_support::CountMallocs([&] {
       for (int k = 0; k < 10; ++k) first->Solve(gen.problem, options, &a);
     });
@@ -653,10 +653,10 @@ TEST(SiconosProbe, IsolationPolicyIsAnOptionWithTheOldSpelling) {
   solver.set_options(always);
   EXPECT_EQ(solver.options().isolate, IsolationPolicy::kAlways);
   const SolveResult r = solver.Solve(BoxMLCP::Relay(DenseMatrix::Identity(1, 1), Vector::Constant(1, 0.5)));
-  EXPECT_EQ(r.GetDetail("in_process"), 0.0);
+  EXPECT_EQ(AnswerProcessOf(r), AnswerProcess::kWorker);
   solver.mutable_options().isolate = IsolationPolicy::kNever;  // the in-place accessor every backend has
   const SolveResult here = solver.Solve(BoxMLCP::Relay(DenseMatrix::Identity(1, 1), Vector::Constant(1, 0.5)));
-  EXPECT_EQ(here.GetDetail("in_process"), 1.0);
+  EXPECT_EQ(AnswerProcessOf(here), AnswerProcess::kThisProcess);
   EXPECT_TRUE(here.solved()) << here.message;
 }
 
@@ -764,7 +764,9 @@ TEST(SiconosDirect, ForgetWarmStateMakesEveryRepeatStartFromAnEmptyCache) {
       EXPECT_EQ(repeat.status, first.status);
       EXPECT_EQ(repeat.iterations, first.iterations);
       EXPECT_TRUE(SameBits(repeat.z, first.z));
-      EXPECT_EQ(repeat.GetDetail("in_process"), std::string(isolate) == "always" ? 0.0 : 1.0);
+      const AnswerProcess expected =
+          std::string(isolate) == "always" ? AnswerProcess::kWorker : AnswerProcess::kThisProcess;
+      EXPECT_EQ(AnswerProcessOf(repeat), expected);
     }
     const SolveResult cached = solver->Solve(problem);  // not forgotten: the cache answers
     EXPECT_TRUE(cached.solved()) << cached.message;

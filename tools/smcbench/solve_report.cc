@@ -10,6 +10,7 @@
 
 #include "solvers/auto/auto_solver.h"
 #include "solvers/core/duration_text.h"
+#include "solvers/siconos/child_process.h"
 
 namespace smcbench {
 
@@ -18,15 +19,9 @@ namespace {
 // auto's fallback path, which labels its own) is labelled as auto's Solve labels it, with no fallback.
 void LabelDelegatedAnswer(const Solver& solver, const SolveSession& session, SolveResult* result) {
   if (&session.backend() == &solver || result->solver != session.backend().info().name) return;
-  const int chosen = AutoCandidateIndex(result->solver);
-  if (chosen >= 0) LabelAutoAnswer(static_cast<AutoCandidate>(chosen), 0, result);
-}
-
-// The backend auto handed the problem to (detail "chosen"), "" for any other backend's record.
-std::string_view AutoChoiceOf(const SolveRecord& record) {
-  const double chosen = record.result.GetDetail("chosen");
-  return record.solver == "auto" && !std::isnan(chosen) ? AutoCandidateName(static_cast<int>(chosen))
-                                                         : std::string_view();
+  if (const std::optional<AutoCandidate> chosen = AutoCandidateFromString(result->solver)) {
+    LabelAutoAnswer(*chosen, 0, result);
+  }
 }
 }  // namespace
 
@@ -51,7 +46,7 @@ SolveRecord TimedSolve(Solver& solver, const BoxMLCP& problem, const SolverOptio
       for (Eigen::Index i = 0; i < start.size(); ++i) start[i] = record.result.z[i];
     }
   };
-  const auto in_worker = [&] { return record.result.GetDetail("in_process") == 0.0; };
+  const auto in_worker = [&] { return AnswerProcessOf(record.result) == AnswerProcess::kWorker; };
   // The first solve, timed by the base class's own clock: the workspace, a siconos-* backend's probe (its later
   // solves then run in process), and the whole record when it hit the time limit or is the only one.
   solve();
@@ -118,7 +113,9 @@ std::string FormatRecordLine(const SolveRecord& record) {
     }
     line += buffer;
   }
-  if (const std::string_view chosen = AutoChoiceOf(record); !chosen.empty()) line += "   chose " + std::string(chosen);
+  if (const std::optional<AutoCandidate> chosen = ChosenCandidateOf(r)) {
+    line += "   chose " + std::string(ToString(*chosen));
+  }
   if (record.warm) line += "   [warm: session, from the previous answer]";
   if (record.timed_in_worker) line += "   [timed through the isolation worker: IPC included]";
   if (!r.solved() && !r.message.empty()) line += "   (" + r.message + ")";
@@ -162,9 +159,13 @@ nlohmann::json RecordToJson(const SolveRecord& record) {
   for (Eigen::Index i = 0; i < r.z.size(); ++i) z.push_back(Number(r.z[i]));
   j["z"] = std::move(z);
   nlohmann::json details = nlohmann::json::object();
-  for (int i = 0; i < r.num_details; ++i) details[r.details[i].name] = Number(r.details[i].value);
+  for (int i = 0; i < r.num_details; ++i) {
+    // A code by its name ("reused_active_set"), a measurement as a number.
+    const std::string_view code = SolveResult::CodeText(r.details[i]);
+    details[r.details[i].name] = code.empty() ? Number(r.details[i].value) : nlohmann::json(std::string(code));
+  }
   j["details"] = std::move(details);
-  if (const std::string_view chosen = AutoChoiceOf(record); !chosen.empty()) j["chosen"] = std::string(chosen);
+  if (const std::optional<AutoCandidate> chosen = ChosenCandidateOf(r)) j["chosen"] = std::string(ToString(*chosen));
   j["warm"] = record.warm;
   return j;
 }

@@ -20,7 +20,7 @@ struct SolveRecord {
   int repeats = 0;
   int solves_per_sample = 1;  // the repeats are timed in batches of this many solves (TimedSolve)
   bool warm = false;  // timed through a session, each repeat from the previous answer
-  // Some timed solve was answered by a siconos-* backend's isolation worker (detail "in_process" = 0), so the times
+  // Some timed solve was answered by a siconos-* backend's isolation worker (AnswerProcessOf: kWorker), so the times
   // include its inter-process round trip (≈ 7 µs): `--repeat 1` (the one solve is the probe), isolate=always, or a
   // problem whose probe crashed or timed out. False for our backends.
   bool timed_in_worker = false;
