@@ -2,7 +2,7 @@
 # a relocatable CMake package (find_package(smcbench CONFIG) → smcbench::<library>, smcbench::smcbench). Tests and
 # benchmarks are not installed. Included at the end of the top-level CMakeLists.txt, once every target exists.
 # Layout (GNUInstallDirs): bin/smcbench, lib/libsmcbench_*.a, include/smcbench/{smcbench.h,version.h,solvers/,
-# problems/,bench/,tools/}, share/smcbench/{scenes,siconos}/, lib/cmake/smcbench/.
+# problems/,bench/,tools/} (the public headers only), share/smcbench/{scenes,siconos}/, lib/cmake/smcbench/.
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
@@ -10,14 +10,14 @@ set(SMCBENCH_INSTALL_CMAKEDIR ${CMAKE_INSTALL_LIBDIR}/cmake/smcbench CACHE STRIN
   "Where the CMake package of smcbench is installed, relative to the prefix")
 
 # The umbrella target: the library API (every backend, the conformance checks, problems, scenes, steppers, the
-# problem library and the replay engine). smcbench::cli (the commands) is separate: only a program that runs the
-# command line needs it.
+# problem library, a benchmark run and its replay engine). smcbench::cli (the commands) is separate: only a program
+# that runs the command line needs it.
 add_library(smcbench_all INTERFACE)
 add_library(smcbench::smcbench ALIAS smcbench_all)
 set_target_properties(smcbench_all PROPERTIES EXPORT_NAME smcbench)
-target_link_libraries(smcbench_all INTERFACE smcbench::solvers smcbench::conformance smcbench::reference
+target_link_libraries(smcbench_all INTERFACE smcbench::solvers smcbench::avi smcbench::conformance smcbench::reference
   smcbench::problems smcbench::library smcbench::references smcbench::capture smcbench::scenes smcbench::stepper
-  smcbench::suites smcbench::replay smcbench::version)
+  smcbench::suites smcbench::replay smcbench::bench_run smcbench::version)
 target_include_directories(smcbench_all INTERFACE ${SMCBENCH_INCLUDE_DIRS})
 
 get_property(installed_targets GLOBAL PROPERTY SMCBENCH_INSTALLED_TARGETS)
@@ -25,16 +25,30 @@ install(TARGETS ${installed_targets} smcbench_all EXPORT smcbenchTargets
   ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT development)
 install(TARGETS smcbench RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 
-# Headers keep their paths from the checkout's root, under include/smcbench (so "solvers/core/solver.h" never
-# collides with another package's headers in <prefix>/include). Tests' helpers are left out.
-foreach(dir solvers problems bench/replay bench/run bench/compare bench/figures bench/perf tools/smcbench)
-  install(DIRECTORY ${PROJECT_SOURCE_DIR}/${dir}/ DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/smcbench/${dir}
-    COMPONENT development
-    FILES_MATCHING PATTERN "*.h"
-    PATTERN "*test*" EXCLUDE PATTERN "testdata" EXCLUDE)
+# Only the public headers (cmake/SmcbenchPublicHeaders.cmake, one list) are installed, under include/smcbench with
+# their paths from the checkout's root (so "solvers/core/solver.h" never collides with another package's headers in
+# <prefix>/include); include/smcbench/ of the checkout gives <smcbench/smcbench.h>. Every other header is internal.
+include(SmcbenchPublicHeaders)
+foreach(header IN LISTS SMCBENCH_PUBLIC_HEADERS)
+  get_filename_component(folder ${header} DIRECTORY)
+  if(folder MATCHES "^include(/|$)")
+    string(REGEX REPLACE "^include/?" "" destination "${folder}")
+    set(destination ${CMAKE_INSTALL_INCLUDEDIR}/${destination})
+  else()
+    set(destination ${CMAKE_INSTALL_INCLUDEDIR}/smcbench/${folder})
+  endif()
+  install(FILES ${PROJECT_SOURCE_DIR}/${header} DESTINATION ${destination} COMPONENT development)
 endforeach()
-install(FILES ${PROJECT_SOURCE_DIR}/include/smcbench/smcbench.h ${PROJECT_SOURCE_DIR}/include/smcbench/version.h
-  DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/smcbench COMPONENT development)
+if(SMCBENCH_BUILD_TESTS)
+  # A public header includes only public headers (so the installed tree is closed); the second test shows the
+  # check fails, naming both headers, when one does not (polish.h includes the internal active_set.h).
+  add_test(NAME public_headers COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
+    -P ${PROJECT_SOURCE_DIR}/cmake/CheckPublicHeaders.cmake)
+  add_test(NAME public_headers_names_an_internal_include COMMAND ${CMAKE_COMMAND} -DSOURCE_DIR=${PROJECT_SOURCE_DIR}
+    -DHEADERS=solvers/core/polish.h -P ${PROJECT_SOURCE_DIR}/cmake/CheckPublicHeaders.cmake)
+  set_tests_properties(public_headers_names_an_internal_include PROPERTIES PASS_REGULAR_EXPRESSION
+    "solvers/core/polish.h includes \"solvers/core/active_set.h\", which is internal")
+endif()
 
 # The data folders: the scene files and the vendored Siconos collection (unchanged, with its README, LICENSE and
 # SOURCE_COMMIT). The installed smcbench and Python module find them beside themselves, wherever the prefix is moved

@@ -45,6 +45,61 @@ if compgen -G "$prefix/bin/*_test" >/dev/null || compgen -G "$prefix/lib/*test_s
   fail "tests were installed: $(ls "$prefix/bin" "$prefix/lib")"
 fi
 
+step "the installed headers are the public ones (cmake/SmcbenchPublicHeaders.cmake) and include only each other"
+# The list's entries as paths under P/include: smcbench/X for X, Y for include/Y.
+public_list="$source_dir/cmake/SmcbenchPublicHeaders.cmake"
+printf '%s\n' 'include(${LIST})' 'foreach(h IN LISTS SMCBENCH_PUBLIC_HEADERS)' 'message("${h}")' 'endforeach()' \
+  >"$work/print-public-headers.cmake"
+expected=$(cmake -DLIST="$public_list" -P "$work/print-public-headers.cmake" 2>&1 |
+  sed -E '/^include\//!s|^|smcbench/|; s|^include/||' | sort)
+[[ -n "$expected" ]] || fail "no public header read from $public_list"
+installed_headers=$(cd "$prefix/include" && find . -type f | sed 's|^\./||' | sort)
+if [[ "$expected" != "$installed_headers" ]]; then
+  diff <(echo "$expected") <(echo "$installed_headers") >&2 || true
+  fail "the installed headers differ from the public list (<: listed, not installed; >: installed, not listed)"
+fi
+for internal in solvers/core/dense_lu.h solvers/core/polish.h solvers/core/active_set.h \
+                problems/suites/generation_detail.h; do
+  [[ ! -e "$prefix/include/smcbench/$internal" ]] || fail "an internal header was installed: $internal"
+done
+# A quoted include of an installed header must name another installed header (paths from include/smcbench, or
+# from include/ for "smcbench/...").
+while read -r header; do
+  while read -r included; do
+    [[ -f "$prefix/include/smcbench/$included" || -f "$prefix/include/$included" ]] ||
+      fail "installed $header includes \"$included\", which is not installed"
+  done < <(sed -nE 's/^[[:space:]]*#[[:space:]]*include[[:space:]]*"([^"]+)".*/\1/p' "$prefix/include/$header")
+done <<<"$installed_headers"
+
+step "each installed header compiles alone against the prefix (-Wall -Wextra -Werror)"
+# One translation unit per header, in a project that sees nothing but the prefix: a header that needs another one
+# it does not include, or an internal one, fails here.
+alone="$work/headers-alone"
+mkdir -p "$alone"
+count=0
+while read -r header; do
+  count=$((count + 1))
+  name=${header#smcbench/}
+  # As a user writes it: "solvers/core/solver.h" for the tree's headers, <smcbench/smcbench.h> for the top ones.
+  if [[ "$name" == */* ]]; then printf '#include "%s"\n' "$name"; else printf '#include <%s>\n' "$header"; fi \
+    >"$alone/h$count.cc"
+done <<<"$installed_headers"
+cat >"$alone/CMakeLists.txt" <<'CMAKE'
+cmake_minimum_required(VERSION 3.25)
+project(smcbench_headers_alone LANGUAGES CXX)
+set(CMAKE_CXX_STANDARD 17)
+find_package(smcbench 0.1 CONFIG REQUIRED)
+file(GLOB sources ${CMAKE_CURRENT_SOURCE_DIR}/*.cc)
+add_library(headers_alone OBJECT ${sources})
+target_compile_options(headers_alone PRIVATE -Wall -Wextra -Werror)
+target_link_libraries(headers_alone PRIVATE smcbench::smcbench smcbench::cli smcbench::compare smcbench::scene_runs)
+CMAKE
+cmake -S "$alone" -B "$alone/build" -DCMAKE_PREFIX_PATH="$prefix" -DCMAKE_BUILD_TYPE=Release \
+  >"$work/headers-alone-configure.log" 2>&1 || { cat "$work/headers-alone-configure.log"; fail "configure headers-alone"; }
+cmake --build "$alone/build" -j "$jobs" >"$work/headers-alone-build.log" 2>&1 ||
+  { grep -E "error|h[0-9]+\.cc" "$work/headers-alone-build.log" | head -40; fail "an installed header does not compile alone"; }
+echo "$count installed headers, each compiled alone"
+
 step "no installed text file names the source or build tree"
 if leaks=$(grep -rIl -e "$source_dir" -e "$build_dir" "$prefix"); then
   echo "$leaks" >&2

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <memory>
 
 #include "solvers/core/active_set.h"
 #include "solvers/core/solver.h"
@@ -18,6 +19,10 @@ std::string_view ToString(WarmStateReset reset) {
   return "unknown";
 }
 
+namespace internal {
+struct SessionFactors : ActiveSetFactors {};
+}  // namespace internal
+
 SolveSession::SolveSession(Solver* backend, const BoxMLCP& problem, const SolverOptions& options,
                            const SessionOptions& session)
     : backend_(backend), problem_(problem), options_(options), session_(session) {
@@ -26,11 +31,16 @@ SolveSession::SolveSession(Solver* backend, const BoxMLCP& problem, const Solver
   small_dense_ = !problem_.is_sparse() && n <= BoxMLCP::kSmallSize;
   reuse_ = session_.reuse_active_set && !backend_->info().external && !problem_.is_sparse() && n <= kMaxReusedSize;
   if (reuse_) {
-    factors_.Resize(n);
+    factors_ = std::make_unique<internal::SessionFactors>();
+    factors_->Resize(n);
     state_.assign(n, 0);
   }
   CheckBackendOptions();
 }
+
+SolveSession::~SolveSession() = default;
+SolveSession::SolveSession(SolveSession&&) noexcept = default;
+SolveSession& SolveSession::operator=(SolveSession&&) noexcept = default;
 
 void SolveSession::ResolveDelegate(Solver* prepared) {
   meta_ = nullptr;
@@ -50,8 +60,8 @@ void SolveSession::set_options(const SolverOptions& options) {
 
 WarmStateReset SolveSession::ForgetWarmState() {
   WarmStateReset reset = WarmStateReset::kNothingRemembered;
-  if (factors_.valid()) {
-    factors_.Invalidate();
+  if (factors_ && factors_->valid()) {
+    factors_->Invalidate();
     reset = WarmStateReset::kForgotten;
   }
   reset = LeastCold(reset, backend_->ForgetWarmState());
@@ -85,14 +95,14 @@ void SolveSession::Solve(const Eigen::Ref<const Vector>& q, SolveResult* result,
 template <int N>
 void SolveSession::SolveFixed(const double* q, SolveResult* result) {
   problem_.set_q<N>(q);
-  if (reuse_ && factors_.valid() && TryReusedActiveSet<N>(result)) return;
+  if (reuse_ && factors_->valid() && TryReusedActiveSet<N>(result)) return;
   TakeWarmStart();
   backend_->SolveValidated<N>(problem_, options_, result);
   ConcludeBackendCall(result);
 }
 
 void SolveSession::SolveGeneral(SolveResult* result) {
-  if (fast_ && reuse_ && factors_.valid() && TryReusedActiveSet<0>(result)) return;
+  if (fast_ && reuse_ && factors_->valid() && TryReusedActiveSet<0>(result)) return;
   TakeWarmStart();
   backend_->Solve(problem_, options_, result);
   ConcludeBackendCall(result);
@@ -138,7 +148,7 @@ bool SolveSession::TryReusedActiveSet(SolveResult* result) {
     for (int i = 0; i < N; ++i) inside = inside && z[i] >= l[i] && z[i] <= u[i];
     if (!inside) return false;
   } else {
-    if (!factors_.Solve<0>(M, q, l, u, z)) return false;
+    if (!factors_->Solve<0>(M, q, l, u, z)) return false;
   }
   Residual r;
   if constexpr (N > 0) {
@@ -149,7 +159,7 @@ bool SolveSession::TryReusedActiveSet(SolveResult* result) {
   // The sign check of the active set, exact: a bound row's F = M z + q must push against its bound (≥ 0 at the
   // lower, ≤ 0 at the upper). The merit function alone would accept a wrong sign of rounding size, i.e. keep a row
   // at its bound whose exact solution has just left it (s = x/h = 1 − ε on the sliding surface, not 1).
-  if (!active_set::BoundRowSignsHold<N>(n, factors_.state(), result->w.data(), l, u, 0.0)) return false;
+  if (!active_set::BoundRowSignsHold<N>(n, factors_->state(), result->w.data(), l, u, 0.0)) return false;
   // The verdict's two tests, as Solver::Finish applies them to every backend's answer.
   if (!PassesBoxMlcpTolerance(r, options_.tolerance)) return false;
   result->status = SolveStatus::kSolved;
@@ -173,16 +183,16 @@ void SolveSession::RememberActiveSet(const SolveResult& result) {
   if (result.z.size() != n || result.w.size() != n) return;
   const double *z = result.z.data(), *w = result.w.data(), *inv_d = problem_.inv_row_scale().data();
   const double *l = problem_.l().data(), *u = problem_.u().data();
-  bool same = factors_.valid();
-  const signed char* known = factors_.state();
+  bool same = factors_->valid();
+  const signed char* known = factors_->state();
   for (int i = 0; i < n; ++i) {
     // In units of z (the equilibrated w), as the polish classifies rows.
     state_[i] = static_cast<signed char>(ClassifyRow(z[i], w[i] * inv_d[i], l[i], u[i]));
     same = same && state_[i] == known[i];
   }
   if (same) return;
-  if (factors_.Factor(problem_.dense_matrix(), state_.data()) && n <= BoxMLCP::kSmallSize) {
-    factors_.AffineMap(problem_.dense_matrix(), l, u, small_.A, small_.c, &small_.free_row);
+  if (factors_->Factor(problem_.dense_matrix(), state_.data()) && n <= BoxMLCP::kSmallSize) {
+    factors_->AffineMap(problem_.dense_matrix(), l, u, small_.A, small_.c, &small_.free_row);
   }
 }
 

@@ -4,11 +4,11 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string_view>
 #include <vector>
 
-#include "solvers/core/active_set.h"
 #include "solvers/core/options.h"
 #include "solvers/core/problem.h"
 #include "solvers/core/result.h"
@@ -16,6 +16,12 @@
 namespace smcbench {
 
 class Solver;
+
+namespace internal {
+// A session's remembered active set and the LU factors of its free block (solvers/core/active_set.h, not
+// installed): defined in session.cc.
+struct SessionFactors;
+}  // namespace internal
 
 // How a session may answer.
 struct SessionOptions {
@@ -62,6 +68,9 @@ class SolveSession {
  public:
   SolveSession(Solver* backend, const BoxMLCP& problem, const SolverOptions& options,
                const SessionOptions& session = {});
+  ~SolveSession();
+  SolveSession(SolveSession&&) noexcept;
+  SolveSession& operator=(SolveSession&&) noexcept;
 
   // Solves with this q (size n, finite; else InvalidInputError naming q) into *result (storage reused: no
   // allocation after the first call, for every backend but ipopt and siconos-*). warm_start: the start point for
@@ -126,7 +135,7 @@ class SolveSession {
   // The warm path applies: dense, at most kMaxReusedSize rows, reuse on, not an external backend
   // (SolverInfo::external).
   bool reuse_ = false;
-  ActiveSetFactors factors_;
+  std::unique_ptr<internal::SessionFactors> factors_;  // made when reuse_ holds
   std::vector<signed char> state_;
   // factors_ as an affine map of q, for n ≤ BoxMLCP::kSmallSize (ActiveSetFactors::AffineMap).
   struct SmallMap {

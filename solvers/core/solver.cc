@@ -2,12 +2,24 @@
 
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <sstream>
 #include <string>
 
+#include "solvers/core/mcp_merit.h"
 #include "solvers/core/polish.h"
 
 namespace smcbench {
+
+namespace internal {
+struct SolverWorkspace {
+  PolishWorkspace polish;
+  McpMeritWorkspace mcp_merit;
+};
+}  // namespace internal
+
+Solver::Solver() = default;
+Solver::~Solver() = default;
 
 bool Solver::RejectOptions(int n, const SolverOptions& options, SolveResult* result) {
   std::string why;
@@ -110,7 +122,8 @@ template <int N>
       if (!PolishSparse(equilibrated, result->z, &polish_z_)) return;
     } else {
       if (n > kMaxPolishDenseSize) return;
-      if (!PolishDense<0>(equilibrated, result->z.data(), polish_z_.data(), polish_workspace_.For(n))) return;
+      if (!workspace_) workspace_ = std::make_unique<internal::SolverWorkspace>();
+      if (!PolishDense<0>(equilibrated, result->z.data(), polish_z_.data(), workspace_->polish.For(n))) return;
     }
     candidate = problem.NaturalResidual(polish_z_, &polish_w_);
   }
@@ -324,7 +337,9 @@ void Solver::ConcludeMcp(const MCP& problem, const SolverOptions& options, bool 
   if (recompute) {
     std::string why;  // written only when the merit function cannot be evaluated
     Residual r;
-    if (!McpMerit(problem, result->z, &result->w, &mcp_merit_, &r, &why) && !NothingRan(result->status)) {
+    if (!workspace_) workspace_ = std::make_unique<internal::SolverWorkspace>();
+    if (!internal::McpMerit(problem, result->z, &result->w, &workspace_->mcp_merit, &r, &why) &&
+        !NothingRan(result->status)) {
       result->status = SolveStatus::kNumericalFailure;
       result->message = result->message.empty() ? why : why + " (backend: " + result->message + ")";
     }
@@ -361,8 +376,8 @@ void Solver::DoSolveMCP(const MCP&, const SolverOptions&, SolveResult* result) {
   result->message = "backend does not solve nonlinear MCPs";
 }
 
-bool McpMerit(const MCP& problem, const Vector& z, Vector* F, McpMeritWorkspace* workspace, Residual* r,
-              std::string* why) {
+bool internal::McpMerit(const MCP& problem, const Vector& z, Vector* F, McpMeritWorkspace* workspace, Residual* r,
+                        std::string* why) {
   const Eigen::Index n = problem.size();
   *r = Residual{};
   McpMeritWorkspace& ws = *workspace;

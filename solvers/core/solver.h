@@ -6,32 +6,23 @@
 #include <chrono>
 #include <cstdint>
 #include <cstring>
+#include <memory>
 #include <optional>
 #include <string>
 #include <string_view>
 
 #include "solvers/core/options.h"
-#include "solvers/core/polish.h"
 #include "solvers/core/problem.h"
 #include "solvers/core/result.h"
 #include "solvers/core/session.h"
 
 namespace smcbench {
 
-// The MCP's merit function at z, one home for Solver::Solve and JudgeMCP (verdict.h). Into *r: abs = ‖z − Π(z − F)‖∞,
-// rel = abs / (1 + ‖F(Π(0))‖∞) (information only: not invariant under row scaling) and scaled = McpScaledResidual
-// with the row scales of the Jacobian at z, the one that decides "solved". *F receives F(z). False with *why when F
-// or the Jacobian throws (std::runtime_error, std::logic_error; other exceptions propagate, as in Solver::Solve), the
-// Jacobian has the wrong size, or z has the wrong size (the entries of *r not computed stay +∞). A z or F(z) with
-// NaN/Inf has r = +∞ and returns true; no Jacobian is asked for there.
-struct McpMeritWorkspace {
-  Vector scale_point;            // Π(0)
-  DenseMatrix jacobian_dense;    // the Jacobian at z, of the kind the problem provides
-  SparseMatrix jacobian_sparse;
-  Vector row_scale;              // McpRowScales of it
-};
-bool McpMerit(const MCP& problem, const Vector& z, Vector* F, McpMeritWorkspace* workspace, Residual* r,
-              std::string* why);
+namespace internal {
+// A backend's storage for the polish of run-time sizes and the MCP merit function (internal headers polish.h and
+// mcp_merit.h, not installed): defined in solver.cc.
+struct SolverWorkspace;
+}  // namespace internal
 
 // What `smcbench list` prints about a backend.
 struct SolverInfo {
@@ -74,7 +65,11 @@ class Solver {
   // A dense-only backend given a sparse problem up to this size solves a dense copy (detail "densified" = 1).
   static constexpr int kMaxDensifiedSize = 4096;
 
-  virtual ~Solver() = default;
+  Solver();
+  // A backend owns its workspaces: not copyable.
+  Solver(const Solver&) = delete;
+  Solver& operator=(const Solver&) = delete;
+  virtual ~Solver();
   virtual const SolverInfo& info() const = 0;
 
   // Solves problem into *result, reusing its storage. Never throws for a valid problem: every outcome,
@@ -187,8 +182,8 @@ class Solver {
   // start == time_point{} means "not timed" (options.measure_time off).
   void Finish(double tolerance, std::chrono::steady_clock::time_point start, SolveResult* result);
   // After DoSolveMCP: the MCP's merit function at result->z (F there into result->w, the Jacobian there into the
-  // workspace below; skipped for a delegating backend, whose delegate's Solve computed it), the MCP rule for
-  // "solved", then the end every solve shares. A failure to evaluate is a status (McpMerit).
+  // workspace; skipped for a delegating backend, whose delegate's Solve computed it), the MCP rule for
+  // "solved", then the end every solve shares. A failure to evaluate is a status (internal::McpMerit).
   void ConcludeMcp(const MCP& problem, const SolverOptions& options, bool recompute,
                    std::chrono::steady_clock::time_point start, SolveResult* result);
 
@@ -196,11 +191,12 @@ class Solver {
   std::optional<BoxMLCP> equilibrated_;
   std::uint64_t equilibrated_source_ = 0;
   Vector polish_z_, polish_w_;  // the polished candidate, kept to avoid allocating per solve
-  PolishWorkspace polish_workspace_;
+  // Made on the first solve that needs it (the polish of a dense problem larger than BoxMLCP::kSmallSize, an MCP's
+  // merit function), then reused, so repeated solves of one size do not allocate.
+  std::unique_ptr<internal::SolverWorkspace> workspace_;
   std::uint64_t option_generation_ = 1;
   std::chrono::steady_clock::time_point deadline_{};
   bool has_deadline_ = false;
-  McpMeritWorkspace mcp_merit_;  // kept so that repeated MCP solves of one size do not allocate
 };
 
 }  // namespace smcbench

@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <vector>
 
+#include "solvers/core/active_set.h"
 #include "solvers/core/verdict.h"
 
 namespace smcbench {

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <string>
 
+#include "solvers/core/mcp_merit.h"
 #include "solvers/core/solver.h"
 
 namespace smcbench {
@@ -133,9 +134,9 @@ Judgement JudgeMCP(const MCP& problem, ExpectedOutcome expected, const std::vect
   const Vector& c = problem.variable_scale();
   if (has_z) {
     Vector F;
-    McpMeritWorkspace workspace;
+    internal::McpMeritWorkspace workspace;
     std::string why;
-    McpMerit(problem, z, &F, &workspace, &j.residual, &why);  // on failure the residual stays +∞: not solved
+    internal::McpMerit(problem, z, &F, &workspace, &j.residual, &why);  // on failure the residual stays +∞: not solved
     // The reference the answer is judged against: the nearest verified one when every solution is listed, else the
     // one certified unique.
     const ReferenceSolution* reference = nullptr;
