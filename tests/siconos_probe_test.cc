@@ -60,7 +60,7 @@ TEST(SiconosProbe, InProcessAnswerEqualsTheProbesBitForBitOnTheSiconosCollection
   const auto files = CollectionFiles();
   ASSERT_EQ(files.size(), 44u);
   SolverOptions options;
-  options.time_limit_seconds = 1.0;  // mlcp_FB runs for more than 30 s on deltasigma_mlcp (README)
+  options.time_limit_seconds = 1.0;  // mlcp_FB runs far past any test's budget on deltasigma_mlcp (README)
   int compared = 0, not_back = 0;
   std::set<std::string> backends_compared;
   for (const std::string& name : SiconosNames()) {

@@ -30,8 +30,8 @@ struct ReplayOptions {
   bool reuse_active_set = false;
   double time_limit_seconds = 10.0;  // per solve; a backend over it gets kTimeLimit (and is timed once)
   int repetitions = 7;               // timing samples per problem × backend (median and spread over these)
-  // Each sample repeats the solve until it lasts at least this long (so a 100 ns solve is not timed by a
-  // 25 ns clock read); the per-solve time is the sample divided by the count.
+  // Each sample repeats the solve until it lasts at least this long (so a small solve is not timed by a clock read
+  // that costs about as much: docs/benchmarks.md); the per-solve time is the sample divided by the count.
   double min_sample_seconds = 2e-4;
   double max_seconds_per_pair = 2.0;  // stop sampling a problem × backend after this much time (≥ 1 sample)
   // Tolerance sweep (the report's tolerance ladder and speed against error): on this many problems of the set,
@@ -78,7 +78,8 @@ struct ReplayRecord {
   // "cold"; "sweep" for tolerance-sweep records; "cached" for a record whose timed solves could not all start from
   // the same state (TimeSolves): the report keeps it out of its cold tables.
   std::string mode = "cold";
-  // The timed solves went through an isolation worker, so the times include its inter-process round trip (≈ 7 µs):
+  // The timed solves went through an isolation worker, so the times include its inter-process round trip
+  // (far more than a small solve: solvers/siconos/README.md, "Isolation"):
   // a siconos-* backend with isolate=always, or a problem whose probe crashed or ran out of time (it is never
   // solved in process). False for every backend of ours, and for siconos-* ones by default: the untimed warm-up
   // solve is the probe, the timed ones run in process (detail "in_process" of solvers/siconos/siconos_solver.h).
@@ -89,8 +90,8 @@ struct ReplayRecord {
   // called (refused, crashed, timed out); the report's audit of claims then takes `status`.
   std::optional<int> backend_code;
   // Where it ran (gethostname) and the most bench jobs that ran on that host at once while it ran, itself included
-  // (HostActivity, bench/replay/jobs.h): times measured beside other jobs disturb each other. Empty / 0 in results
-  // written before sharding (issue 17).
+  // (HostActivity, bench/replay/jobs.h): times measured beside other jobs disturb each other. Empty / 0 in older
+  // results that did not record them.
   std::string host;
   int concurrent_jobs = 0;
 };

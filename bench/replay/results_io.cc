@@ -132,7 +132,7 @@ ReplayRecord RecordFromJson(const json& j) {
   r.iterations = j.at("iterations").get<int>();
   r.residual_abs = Number(j.at("residual_abs"));
   r.residual_rel = Number(j.at("residual_rel"));
-  // Written since the scale-free verdict (issue 12); results.json files from before it read as NaN / "none".
+  // Optional: results.json files from before the scale-free verdict lack them and read as NaN / "none".
   r.residual_scaled = OptionalNumber(j, "residual_scaled");
   r.forward_error = OptionalNumber(j, "forward_error");
   r.forward_error_rel = OptionalNumber(j, "forward_error_rel");
@@ -146,11 +146,11 @@ ReplayRecord RecordFromJson(const json& j) {
   r.samples = j.at("samples").get<int>();
   r.solves_per_sample = j.at("solves_per_sample").get<std::int64_t>();
   r.mode = j.at("mode").get<std::string>();
-  // Written since Siconos is timed in process after its probe (issue 13); every results.json before it timed each
-  // siconos-* solve through the isolation worker.
+  // Absent from results.json files older than the probe policy (Siconos timed in process after its probe): those
+  // timed every siconos-* solve through the isolation worker.
   r.timed_in_worker = j.contains("timed_in_worker") ? j.at("timed_in_worker").get<bool>()
                                                     : r.solver.rfind("siconos-", 0) == 0;
-  // Written since sharded runs (issue 17).
+  // Optional: results written before runs recorded their host read as empty / 0.
   r.host = j.value("host", std::string());
   r.concurrent_jobs = j.value("concurrent_jobs", 0);
   // Written since the report's audit of claims; null (or absent, in older results) when there is none.

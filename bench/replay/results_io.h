@@ -38,7 +38,7 @@ struct SuiteResults {
   std::string description;
   int problems = 0;
   // ProblemSetContentChecksum (problems/suites/catalogue.h) of the problems run, references attached; empty in
-  // results written before issue 17.
+  // older results that did not record it.
   std::string checksum;
   ReplayResults replay;
   std::vector<WarmRecord> warm = {};  // mode "warm": one per warm sequence of the suite × backend (warm_track.h)

@@ -1,7 +1,7 @@
 // How `bench` times one solve configuration, shared by the box replay (TimeSolves) and the MCP replay
 // (TimeMcpSolves): an untimed warm-up solve, then samples of repeated solves, each lasting at least
-// min_sample_seconds, until repetitions or max_seconds_per_pair. A template so the box's 100 ns solves are not
-// timed through an indirect call. Private to bench/replay.
+// min_sample_seconds, until repetitions or max_seconds_per_pair. A template so the box's smallest solves are not
+// timed through an indirect call, whose cost would be a visible part of theirs. Private to bench/replay.
 #pragma once
 
 #include <algorithm>

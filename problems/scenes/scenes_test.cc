@@ -570,7 +570,7 @@ TEST(SceneFuzzRegression, DeeplyNestedExpressionIsAnErrorNotAStackOverflow) {
 
 
 // ---------------------------------------------------------------------------------------------------------------
-// Issue 15: Siconos' equivalent control, the plant disturbance and the control input in scene files.
+// Siconos' equivalent control, the plant disturbance and the control input in scene files.
 
 TEST(SceneFormat, DisturbedSmcSceneReadsItsControllerAndDisturbance) {
   const auto scene = LoadScene(std::string(SMCBENCH_SCENES_TEST_DIR) + "/smc-disturbed.json");
@@ -606,7 +606,7 @@ TEST(SceneFormat, DisturbedSmcSceneReadsItsControllerAndDisturbance) {
   EXPECT_FALSE(galias_yu->Run(galias_yu->defaults(), &reference).has_input);
 }
 
-// Issue 15 item 4: simulation.plant_substeps, a whole number ≥ 1 on ZOH plants only.
+// simulation.plant_substeps, a whole number ≥ 1 on ZOH plants only.
 TEST_F(MalformedScene, PlantSubstepsIsAWholeNumberOnZohPlants) {
   auto doc = nlohmann::json::parse(R"({
     "name": "z", "description": "zoh",

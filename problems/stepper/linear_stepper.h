@@ -46,8 +46,8 @@ class StepObserver {
 
 // What a run does about subnormal numbers (|v| < 2.2e-308, float_mode.h): a state decaying to the origin enters
 // that range and, in IEEE arithmetic, stays there for good (the smallest subnormal divided by 1.3 rounds back to
-// itself), and every operation on a subnormal costs 10–100× more (measured: zoh-mimo's 1000×-horizon run at half
-// the steps per second, docs/benchmarks.md, "Long runs and subnormal numbers").
+// itself), and on common hardware every operation on a subnormal is many times slower than on a normal number
+// (docs/benchmarks.md, "Long runs and subnormal numbers", has the measured effect on a long run).
 //   kZeroState (default): after each implicit step, a state component whose magnitude is below the smallest normal
 //     double (std::numeric_limits<double>::min(), 2.2e-308) is set to exactly 0. The state then reaches the origin
 //     exactly instead of parking on subnormals, and 0 is a fixed point. It changes a component by less than

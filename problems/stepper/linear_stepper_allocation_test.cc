@@ -101,7 +101,7 @@ TEST(StepperAllocation, RepeatedRunsDoNotAllocate) {
   }
 }
 
-// Issue 15: runs that report their control input (u columns, set one step late through the stream) and carry a plant
+// Runs that report their control input (u columns, set one step late through the stream) and carry a plant
 // disturbance (sines evaluated per step) allocate nothing either.
 
 TEST(StepperAllocation, InputAndDisturbanceRunsDoNotAllocate) {
@@ -136,7 +136,7 @@ TEST(StepperAllocation, InputAndDisturbanceRunsDoNotAllocate) {
   }
 }
 
-// Issue 15 item 4: the plant between samples (sampled_plant.h) is made of exponentials computed once; streaming a
+// The plant between samples (sampled_plant.h) is made of exponentials computed once; streaming a
 // run through it (its points inserted, a row held back, Finish) allocates nothing either.
 TEST(StepperAllocation, PlantBetweenSamplesDoesNotAllocate) {
   if (!test_support::CanCountMallocs()) GTEST_SKIP() << "the allocator is not ours to observe (sanitizer build)";

@@ -92,9 +92,9 @@ TEST(LemmaYahoo, ImplicitEulerReachesZeroExactlyAndStays) {
 
 // The same claim with every registered backend that solves the steps, at tolerance 1e-12: arrival at k0+1 or
 // k0+2 to within 2·tol and staying there, and s_{k+1} = Π(x_k/h) to within 2·tol/h (the residual divided by
-// M = h). Before issue 12 the iterative backends left x at their tolerance level (lemke 1e-17, psor 7e-14,
-// newton 8e-13, ipopt 7e-14); with the base's exact polish and the stepper's zeroed rounding residue every one
-// now prints 0, and EveryBackendReachesExactlyZeroAndStays below asserts the exact claim at default settings.
+// M = h). Without the base's exact polish and the stepper's zeroed rounding residue an iterative backend leaves x
+// at its tolerance level rather than at 0; with them every one prints 0, and EveryBackendReachesExactlyZeroAndStays
+// below asserts the exact claim at default settings.
 TEST(LemmaYahoo, HoldsToSolverToleranceWithEveryBackend) {
   const double tol = 1e-12;
   for (std::string_view name : SolverNames()) {
@@ -127,9 +127,9 @@ TEST(LemmaYahoo, HoldsToSolverToleranceWithEveryBackend) {
 
 // Lemma (yahoo) with every backend at its default settings (tolerance 1e-10, exact polish on), over many (x0, h):
 // x is exactly 0.0 from step k0+1 on, or from k0+2 when x_{k0+1} is a rounding residue, and stays exactly 0 to the
-// end; k0 is the first step with |x_k| ≤ h. Issue 12 saw x stuck at 1.7e-18 (lemke) and 1e-10 (newton) after the
-// arrival at x0 = 1.7771, h = 0.021, T = 8: a backend's s within tolerance of x_k/h leaves x_{k+1} = x_k − h s at
-// that level forever, because s = 0 then passes the tolerance at every later step.
+// end; k0 is the first step with |x_k| ≤ h. The pairs include x0 = 1.7771, h = 0.021, T = 8, where an answer only
+// within tolerance leaves x stuck near 0 after the arrival: a backend's s within tolerance of x_k/h leaves
+// x_{k+1} = x_k − h s at that level forever, because s = 0 then passes the tolerance at every later step.
 struct YahooPair {
   double x0, h, T;
 };
@@ -140,8 +140,8 @@ std::vector<YahooPair> YahooResiduePairs() {
 }
 
 std::vector<YahooPair> YahooPairs() {
-  // The issue's example, the report's three h, and two pairs whose h makes fl(h·fl(r/h)) ≠ r for the residue r at
-  // every step (YahooResiduePairs): with the plain update x stays nonzero ~20 steps after k0+1.
+  // The stuck-at-a-residue example above, the report's three h, and two pairs whose h makes fl(h·fl(r/h)) ≠ r for the
+  // residue r at every step (YahooResiduePairs): with the plain update x stays nonzero ~20 steps after k0+1.
   std::vector<YahooPair> pairs{{1.7771, 0.021, 8.0}, {1.01, 0.2, 2.0}, {1.01, 0.02, 2.0}, {1.01, 0.01, 2.0}};
   for (const YahooPair& p : YahooResiduePairs()) pairs.push_back(p);
   std::mt19937_64 rng(20261124);

@@ -1,6 +1,6 @@
-// Sliding-surface accuracy metrics of a run (issue 3's JSON summary) and error norms against an exact solution
+// Sliding-surface accuracy metrics of a run (its JSON summary) and error norms against an exact solution
 // (the report's `eq:trivial-conv1`, with its "∞-norm" read as the max, not the sum it prints): from a recorded
-// trajectory, or accumulated while the run goes in memory independent of its length (issue 13: the *Accumulator
+// trajectory, or accumulated while the run goes in memory independent of its length (the *Accumulator
 // sinks give the same numbers bit for bit).
 // The paper's labels cited here (eq:..., neuf, Lemma yahoo): docs/glossary.md; its scenes S1-S11: docs/scenes.md.
 #pragma once
@@ -79,7 +79,7 @@ class MetricsAccumulator final : public TrajectorySink {
   std::int64_t last_row_ = -1;
 };
 
-// What a control engineer judges an SMC implementation by (issue 15): the chattering of the input and the band of σ
+// What a control engineer judges an SMC implementation by: the chattering of the input and the band of σ
 // once the surfaces are reached. "Reached" is the classical reaching time, forwards and independent of any later
 // behaviour (a chattering scheme, whose |σ| stays O(h) above any small tolerance, also reaches): from_step is the
 // first row k by which every σ_i = y_i has been on its surface, i.e. |y_i,j| ≤ tol at some row j ≤ k or y_i changed
@@ -170,7 +170,7 @@ class ErrorsAccumulator final : public TrajectorySink {
   Sums x_, s_;
 };
 
-// The error of a run in the units its users read (issue 12): s is the control, y = Cx + D the sliding variable.
+// The error of a run in the units its users read: s is the control, y = Cx + D the sliding variable.
 // Against a reference run of the same scene, h, method and x0 (`smcbench simulate` steps it with certified solves):
 //   s_error_max = max_k ‖s_k − s_ref,k‖∞,  y_error_max = max_k ‖y_k − y_ref,k‖∞,
 // over the steps k = 1..steps_compared both runs took without a failure of the reference (k = 0 is the shared

@@ -1,4 +1,4 @@
-// Issue 15: Siconos' θ-weighted equivalent-control SMC, the control input u of a run and the plant disturbance,
+// Siconos' θ-weighted equivalent-control SMC, the control input u of a run and the plant disturbance,
 // each checked against an implementation written here with plain Eigen (own ZOH by a Taylor series, own relay
 // projection by enumeration), never against the stepper's own output.
 #include <gmock/gmock.h>
@@ -174,7 +174,8 @@ TEST(SiconosEquivalentControl, ThetaZeroWithCGOneIsThePaperScheme) {
 }
 
 TEST(SiconosEquivalentControl, AbsentKeyLeavesThePaperSchemeBitForBit) {
-  // The paper's formulas (`ZOH1`, `eq:ZOHGAMMA`) evaluated here as the issue-6 code did: equal to the last bit.
+  // The paper's formulas (`ZOH1`, `eq:ZOHGAMMA`) evaluated here in the same operations: without the
+  // equivalent-control key, DiscretizeZoh must equal them to the last bit.
   for (const ZohSmcSystem& sys : {stepper_test::ZohSisoScene(), stepper_test::ZohMimoScene()}) {
     const double h = 0.3;
     const auto n = sys.F.rows(), m = sys.G.cols();

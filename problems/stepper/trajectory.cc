@@ -26,7 +26,7 @@ std::string CsvHeader(int n, int m, bool has_input) {
   for (int i = 1; i <= m; ++i) line += ",s" + std::to_string(i);
   for (int i = 1; i <= m; ++i) line += ",y" + std::to_string(i);
   line += ",iterations,residual";
-  // After the columns of issue 3, so that readers by position keep working.
+  // After the original columns, so that readers by position keep working.
   for (int i = 1; has_input && i <= m; ++i) line += ",u" + std::to_string(i);
   line += "\n";
   return line;

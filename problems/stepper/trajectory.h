@@ -1,7 +1,7 @@
 // What a time-stepper run produces: the discrete trajectory (t_k, x_k, s_k, y_k) and, per step, what the
 // backend reported; the streaming hook that hands the rows out while the run goes (TrajectorySink: outputs of
-// long runs in constant memory, issue 13); and the CSV writer of issue 3 (`t,x1..xn,s1..sm,y1..ym,iterations,
-// residual`, then u1..um when the run has a control input: issue 15), for a recorded trajectory or streamed.
+// long runs in constant memory); and the CSV writer (`t,x1..xn,s1..sm,y1..ym,iterations,residual`, then u1..um
+// when the run has a control input), for a recorded trajectory or streamed.
 #pragma once
 
 #include <algorithm>

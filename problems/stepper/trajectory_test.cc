@@ -205,7 +205,7 @@ TEST(ReferenceErrors, StopsBeforeTheReferenceFailsAndTreatsNaNAsInfinite) {
 }
 
 // ----------------------------------------------------------------------------------------------------------
-// The streamed counterparts (issue 13): the same numbers, bit for bit, from rows handed out in blocks.
+// The streamed counterparts: the same numbers, bit for bit, from rows handed out in blocks.
 
 // A recorded trajectory with m surfaces from explicit rows (x = y, n = m).
 Trajectory HandmadeRows(const std::vector<std::vector<double>>& y, const std::vector<std::vector<double>>& s) {

@@ -56,7 +56,8 @@ RowCounts CountRows(const BoxMLCP& problem) {
 
 // Predicted time of lemke over that of psor on SPD M (docs/auto.md, measured at m = 16 … 256, condition 1e2 … 1e8):
 // psor takes about 3·√(1/rcond) sweeps of m² entry updates (rcond: the reciprocal 1-norm condition estimate of M),
-// lemke about p/2 pivots of p² updates on its LCP of size p, each update costing about 0.16 ns and 0.2 ns here.
+// lemke about p/2 pivots of p² updates on its LCP of size p; the cost of an update of each (the two constants
+// below) was measured on the reference machine (docs/auto.md, "Why these thresholds").
 double LemkeOverPsor(int m, int lemke_size, double rcond) {
   const double m2 = static_cast<double>(m) * m, p = lemke_size;
   return (0.5 * p * p * p * 0.2) / (3.0 * std::sqrt(1.0 / rcond) * m2 * 0.16);

@@ -24,7 +24,7 @@ struct SolverOptions {
   // 0 silent, 1 summary line, 2 per iteration (to stderr).
   int verbosity = 0;
   double time_limit_seconds = kInf;
-  // Stamp SolveResult::solve_seconds. Reading the clock twice costs ~40 ns, comparable to a whole m ≤ 2 solve,
+  // Stamp SolveResult::solve_seconds. Reading the clock twice costs about as much as a whole m ≤ 2 solve,
   // so time-steppers and benchmarks that time many solves externally turn it off.
   bool measure_time = true;
   // Exact polish of the backend's answer (polish.h): identify the active set, solve the reduced system, keep the

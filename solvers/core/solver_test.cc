@@ -328,7 +328,7 @@ class ScriptedMcpSolver final : public Solver {
   }
 };
 
-// The general-equilibrium failure in one price: p ≥ 1e-8 (F is undefined at 0), F(p) = row·(1 − 1/p), the
+// A general-equilibrium failure reduced to one price: p ≥ 1e-8 (F is undefined at 0), F(p) = row·(1 − 1/p), the
 // unique solution p* = 1. At Π(0) = 1e-8, |F| = 1e8·row, so a residual relative to 1 + ‖F(Π(0))‖∞ lets through
 // answers off by ~1e-2; near p*, J = row/p² is modest.
 FunctionMCP PriceMcp(double row = 1.0) {
@@ -423,7 +423,7 @@ TEST(JudgeMCP, SolvedAndWronglyClaimedFollowTheScaleFreeResidual) {
   EXPECT_EQ(j.verdict, Verdict::kSolved);
   EXPECT_NEAR(j.forward_error, 1e-12, 1e-15);
   EXPECT_DOUBLE_EQ(j.forward_allowance, ForwardErrorAllowance(unique[0], 1e-10));
-  // The case: relative residual ≤ tol, scale-free residual 5e-5.
+  // The case a relative residual lets through: relative residual ≤ tol, scale-free residual 5e-5.
   j = JudgeMCP(mcp, ExpectedOutcome::kSolvable, unique, false, SolveStatus::kSolved, Vector::Constant(1, 1.0001),
                1e-10);
   EXPECT_LE(j.residual.rel, 1e-10);

@@ -336,8 +336,8 @@ TEST(LemkeSolver, NoSolutionIsRayTermination) {
   ExpectHonestRay(solver.Solve(p2));
 }
 
-// Issue 12: the ray message said "when M is positive semidefinite this proves the problem has no solution", also on
-// problems that have one. On a class that always has a solution a ray is a failure of the method.
+// On a class that always has a solution a ray is a failure of the method, not a proof: the message must say so
+// rather than "when M is positive semidefinite this proves the problem has no solution", false on these problems.
 TEST(LemkeSolver, RayClaimedAProofOnProblemsThatHaveASolution) {
   LemkeSolver solver;
   SolverOptions raw;
@@ -775,9 +775,9 @@ TEST(LemkeSolver, ReinversionKeepsAccuracy) {
   }
 }
 
-// Issue 12: a 2×2 P-matrix box problem whose rows are scaled by 1e6 and 1e-5 was "solved" at the wrong vertex: Lemke
-// left the pivot path early (z0_negligible_exit) because the relative residual, scaled by 1 + ‖q‖∞ ≈ 1e6, could not
-// see the 1e-5 row's sign condition. Lemke now gets the row-equilibrated problem, and the early exit requires the
+// A 2×2 P-matrix box problem whose rows are scaled by 1e6 and 1e-5 can be "solved" at the wrong vertex: leaving the
+// pivot path early (z0_negligible_exit) on the relative residual alone, scaled by 1 + ‖q‖∞ ≈ 1e6, cannot see the
+// 1e-5 row's sign condition. So Lemke gets the row-equilibrated problem, and the early exit requires the
 // residual in units of z as well; the equilibrated analogue (one bound row's multiplier 1e12 times its row, so that
 // its q dwarfs the other row's) is covered too. The planted z* must come back to 1e-12, polish on and off.
 TEST(LemkeSolver, ScaledRowsLeftThePathEarlyAtTheWrongVertex) {
@@ -831,10 +831,10 @@ TEST(LemkeSolver, ScaledRowsLeftThePathEarlyAtTheWrongVertex) {
   EXPECT_EQ(cases, 2 * 4 * 2 * 6 * 2 * 2);
 }
 
-// The small-h relay family of issue 12: W = h·G with G a fixed nonsymmetric 6×6 matrix whose symmetric part is
+// The small-h relay family: W = h·G with G a fixed nonsymmetric 6×6 matrix whose symmetric part is
 // positive definite (eigenvalues 1 … 300; G's condition ≈ 230), planted s* with rows at +1, at −1 and inside,
-// q = −W s* + h·c with the slack c of the sign that keeps each bound row at its bound. At h = 1e-8 lemke used to
-// return a wrong active set (|s − s*|∞ = 1) as solved.
+// q = −W s* + h·c with the slack c of the sign that keeps each bound row at its bound. At h = 1e-8 a wrong active
+// set (|s − s*|∞ = 1) leaves a residual of order h, small enough to pass as solved; lemke must not return it.
 DenseMatrix RelayFamilyG() {
   constexpr int n = 6;
   std::mt19937 rng(2026);

@@ -38,7 +38,7 @@ class ProbedProblems {
   };
   // What Siconos wrote to the console during the probe: nothing, through the C streams (printf, fprintf(stderr)),
   // or to descriptors 1 and 2 directly (LAPACK's Fortran messages). An in-process solve of the same problem always
-  // silences the C streams (swapping FILE pointers, no system call) and redirects the descriptors (≈ 1 µs) only
+  // silences the C streams (swapping FILE pointers, no system call) and redirects the descriptors (system calls) only
   // after kDescriptors.
   enum class Console { kSilent, kStdio, kDescriptors };
   struct Outcome {

@@ -23,10 +23,11 @@
 // Isolation (option isolate, IsolationPolicy; default kFirst). Siconos aborts or hangs on some inputs, so a call
 // can run in this backend's own worker process (child_process.h): a crash becomes kNumericalFailure naming the
 // signal, a solve that outlasts the time limit (options.time_limit_seconds, else default_time_limit) is killed and
-// reported as kTimeLimit, console output is discarded. That costs a socket round trip (≈ 7 µs) per solve, far more
-// than a small solve itself, so by default only a problem's first solve (the probe) runs there; once a probe came
-// back normally (any status, but no crash, no signal, no deadline), later solves of exactly the same bytes (request,
-// options that reach Siconos, M, q, bounds, start point) run in this process, with the same answer bit for bit.
+// reported as kTimeLimit, console output is discarded. That costs a socket round trip per solve, far more than a small
+// solve itself (solvers/siconos/README.md, "Isolation", has the measured cost), so by default only a problem's first
+// solve (the probe) runs there; once a probe came back normally (any status, but no crash, no signal, no deadline),
+// later solves of exactly the same bytes (request, options that reach Siconos, M, q, bounds, start point) run in this
+// process, with the same answer bit for bit.
 // Detail "in_process" says which process answered (AnswerProcessOf). In process there is no time limit and no
 // protection (a problem whose probe failed is never run here, a call whose time limit is shorter than its probe
 // took goes to the worker); the C streams stdout/stderr point to /dev/null during the call (no system
@@ -98,7 +99,7 @@ struct SiconosOptions {
   // complementarity rows) instead of refusing them with kNotApplicable. For demonstrating the isolation.
   bool allow_known_crashes = false;
   // In process: redirect stdout/stderr to /dev/null around a Siconos call (some of its messages are unconditional
-  // printf). Costs a few system calls (~1 µs) per solve, so kFirst does it only for a problem whose probe saw
+  // printf). Costs a few system calls per solve, so kFirst does it only for a problem whose probe saw
   // Siconos print; kNever, which has no probe, does it on every call. false: never (the bare call, output
   // through). Verbosity ≥ 2 keeps Siconos' output in every mode.
   bool quiet = true;

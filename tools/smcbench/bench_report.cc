@@ -784,7 +784,7 @@ void WriteSparsePathComparison(std::ostream& md, const SparsePathComparison& c) 
 // Ours against the external adapters (siconos-*), per size: best of each side per problem, Siconos time / ours.
 // in_process: Siconos timed in process (each Siconos problem's untimed first solve is the probe in its isolation
 // worker, the timed ones call Siconos directly); through_worker: Siconos records timed through the worker
-// (isolate=always, a probe that crashed, results from before the probe policy), ≈ 7 µs of IPC per solve included.
+// (isolate=always, a probe that crashed, results from before the probe policy), each solve's IPC round trip included.
 struct SiconosComparison {
   std::map<int, std::vector<double>> in_process, through_worker;  // m → sorted ratios
 };

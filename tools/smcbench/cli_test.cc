@@ -316,7 +316,7 @@ void ExpectRelay2x2Answer(const CliRun& r) {
   EXPECT_NEAR(j[0]["z"][1].get<double>(), -0.5, 1e-12);
 }
 
-// Issue 14: a relay file outside a folder named relay/ was read as an LCP and failed with "trailing data". Now a
+// A relay file outside a folder named relay/ must not be read as an LCP (which fails with "trailing data"): a
 // name that says nothing lets the content decide, and a misleading folder gives an error that says what was
 // assumed, why, and the --format that reads it.
 TEST(CliFormats, RelayFileWithANeutralNameIsReadByItsContent) {

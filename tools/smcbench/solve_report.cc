@@ -58,8 +58,8 @@ SolveRecord TimedSolve(Solver& solver, const BoxMLCP& problem, const SolverOptio
     record.timed_in_worker = in_worker();
     return record;
   }
-  // The repeats in batches of b solves between two clock reads (a clock read costs about as much as a small solve,
-  // ≈ 20–30 ns): b is chosen from a calibration run so that a batch lasts ≈ 20 µs. Each sample is a batch's time
+  // The repeats in batches of b solves between two clock reads (a clock read costs about as much as a small
+  // solve): b is chosen from a calibration run so that a batch lasts ≈ 20 µs. Each sample is a batch's time
   // divided by b; median, min and max are over the samples.
   SolverOptions untimed = options;
   untimed.measure_time = false;

@@ -21,7 +21,7 @@ struct SolveRecord {
   int solves_per_sample = 1;  // the repeats are timed in batches of this many solves (TimedSolve)
   bool warm = false;  // timed through a session, each repeat from the previous answer
   // Some timed solve was answered by a siconos-* backend's isolation worker (AnswerProcessOf: kWorker), so the times
-  // include its inter-process round trip (≈ 7 µs): `--repeat 1` (the one solve is the probe), isolate=always, or a
+  // include its inter-process round trip: `--repeat 1` (the one solve is the probe), isolate=always, or a
   // problem whose probe crashed or timed out. False for our backends.
   bool timed_in_worker = false;
   std::string error;              // set when the backend could not even be configured
