@@ -125,10 +125,10 @@ ReplayRecord RecordFromJson(const json& j) {
   if (!known_status) throw InvalidInputError("results.json: field 'status': unknown status '" + status + "'");
   r.status = *known_status;
   r.message = j.at("message").get<std::string>();
-  // Every Verdict value (append-only, explicit values; ToString gives "?" past the last one).
-  std::vector<Verdict> verdicts;
-  for (int v = 0; v < 64 && ToString(static_cast<Verdict>(v)) != "?"; ++v) verdicts.push_back(static_cast<Verdict>(v));
-  r.verdict = EnumFromText<Verdict>(j.at("verdict").get<std::string>(), verdicts, "verdict");
+  const std::string verdict = j.at("verdict").get<std::string>();
+  const std::optional<Verdict> known_verdict = VerdictFromString(verdict);
+  if (!known_verdict) throw InvalidInputError("results.json: field 'verdict': unknown verdict '" + verdict + "'");
+  r.verdict = *known_verdict;
   r.iterations = j.at("iterations").get<int>();
   r.residual_abs = Number(j.at("residual_abs"));
   r.residual_rel = Number(j.at("residual_rel"));

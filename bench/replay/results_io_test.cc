@@ -135,5 +135,27 @@ TEST(ResultsIo, OneRecordWithAnUnknownStatusNamesTheField) {
   }
 }
 
+TEST(ResultsIo, EveryVerdictReadsBackByItsNameAndAnUnknownOneNamesTheField) {
+  nlohmann::json record = ReplayRecordToJson(EveryStatus().suites[0].replay.records[1]);
+  for (const Verdict v : {Verdict::kSolved, Verdict::kCorrectlyRefused, Verdict::kFailed, Verdict::kWronglyClaimed,
+                          Verdict::kInaccurate, Verdict::kWronglyRefused}) {
+    record["verdict"] = std::string(ToString(v));
+    EXPECT_EQ(ReplayRecordFromJson(record).verdict, v) << ToString(v);
+    EXPECT_EQ(VerdictFromString(ToString(v)), v);
+  }
+  for (const char* text : {"3", "wrongly claimed", "?", ""}) {  // numbers, other spellings, ToString's "?"
+    EXPECT_FALSE(VerdictFromString(text).has_value()) << text;
+    record["verdict"] = text;
+    try {
+      ReplayRecordFromJson(record);
+      ADD_FAILURE() << "verdict '" << text << "' was read";
+    } catch (const InvalidInputError& e) {
+      EXPECT_NE(std::string(e.what()).find("field 'verdict': unknown verdict '" + std::string(text) + "'"),
+                std::string::npos)
+          << e.what();
+    }
+  }
+}
+
 }  // namespace
 }  // namespace smcbench

@@ -71,6 +71,14 @@ std::string_view ToString(Verdict verdict) {
   return "?";
 }
 
+std::optional<Verdict> VerdictFromString(std::string_view text) {
+  for (const Verdict v : {Verdict::kSolved, Verdict::kCorrectlyRefused, Verdict::kFailed, Verdict::kWronglyClaimed,
+                          Verdict::kInaccurate, Verdict::kWronglyRefused}) {
+    if (ToString(v) == text) return v;
+  }
+  return std::nullopt;
+}
+
 double ForwardErrorAllowance(const ReferenceSolution& reference, double tolerance) {
   const double z_norm = reference.z.size() ? reference.z.cwiseAbs().maxCoeff() : 0.0;
   return kForwardErrorFactor * std::max(1.0, reference.condition) * tolerance * (1.0 + z_norm);

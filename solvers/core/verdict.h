@@ -61,6 +61,8 @@ enum class Verdict : std::uint8_t {
   kWronglyRefused = 5,    // status infeasible (a claim that no solution exists) on a problem that has one
 };
 std::string_view ToString(Verdict verdict);  // "solved", "correctly refused", "failed", "WRONGLY CLAIMED", ...
+// The inverse of ToString (exact text), empty for any other text.
+std::optional<Verdict> VerdictFromString(std::string_view text);
 // Wrong answers: wrongly claimed, inaccurate (a wrong z reported as solved) and wrongly refused. Must be 0.
 inline bool IsWrong(Verdict v) {
   return v == Verdict::kWronglyClaimed || v == Verdict::kInaccurate || v == Verdict::kWronglyRefused;
