@@ -224,9 +224,11 @@ TEST(Registry, CreatesEveryListedBackendAndRejectsUnknownNames) {
   for (const auto& name : seen) {
     if (!IsExternalBackend(name) && !IsRegisteredAtRunTime(name)) own.insert(name);
   }
-  // The five benchmarked backends, the `auto` meta-backend, and the certifier "reference" once it is registered.
-  own.erase("reference");
-  EXPECT_EQ(own, (std::set<std::string>{"lemke", "psor", "newton", "enum", "ipopt", "newton-min", "bpp", "auto"}));
+  // The paper's five benchmarked backends and the `auto` meta-backend are always built in; a backend added in tree
+  // later (e.g. bpp) only has to be registered, so this is a lower bound, not the list.
+  for (const char* name : {"lemke", "psor", "newton", "enum", "ipopt", "newton-min", "auto"}) {
+    EXPECT_EQ(own.count(name), 1u) << name;
+  }
   try {
     CreateSolver("simplex");
     FAIL() << "no error";
