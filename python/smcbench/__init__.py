@@ -457,10 +457,11 @@ def write_problem_set(path, problems: Iterable, name: str = "python", descriptio
 
 
 def bench(suites, solvers=None, tol: float = 1e-10, repetitions: int = 7, time_limit: float = 10.0, *,
-          settings: Optional[List[str]] = None, quick: bool = False, polish: bool = True, backend_budget: float = 60.0,
-          siconos_dir=None, out=None):
+          settings: Optional[List[str]] = None, quick: bool = False, polish: bool = True, warm: bool = True,
+          backend_budget: float = 60.0, siconos_dir=None, out=None):
     """Run a benchmark as `smcbench bench` does, through the same engine: a pandas DataFrame with the columns of
-    results.csv, one row per record (problem × backend, then the tolerance sweep's rows, mode "sweep").
+    results.csv, one row per record (problem × backend, then the tolerance sweep's rows, mode "sweep", then the warm
+    track's rows, mode "warm": one per sequence × backend, seconds per step; warm=False skips them, as --no-warm).
 
     suites: a suite name ("tiny", "paper", "families", "hard", "siconos", "scale", "mcp", "all"), the path of a .smcps
     file, a list of those, or a list of Problem (read_problem_set's list, or your own), run as one suite named
@@ -487,7 +488,7 @@ def bench(suites, solvers=None, tol: float = 1e-10, repetitions: int = 7, time_l
             paths = [os.fspath(item) for item in items]
         folder = os.fspath(out) if out is not None else os.path.join(scratch, "results")
         _smcbench._bench(paths, names, list(settings or []), float(tol), int(repetitions), float(time_limit),
-                         float(backend_budget), bool(quick), bool(polish),
+                         float(backend_budget), bool(quick), bool(polish), bool(warm),
                          "" if siconos_dir is None else os.fspath(siconos_dir), folder)
         return pd.read_csv(os.path.join(folder, "results.csv"))
 

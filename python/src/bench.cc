@@ -20,10 +20,10 @@ namespace {
 
 // Runs the suites (names or problem-set files) on the backends and writes out_dir/results.{json,csv}. Every bad
 // input is an InvalidInputError before anything runs or is written. No stepper studies: the DataFrame holds the
-// replay records only.
+// replay records only (cold, sweep, and warm-track rows when warm).
 void Bench(const std::vector<std::string>& suites, const std::vector<std::string>& solvers,
            const std::vector<std::string>& settings, double tolerance, int repetitions, double time_limit,
-           double backend_budget, bool quick, bool polish, const std::string& siconos_dir,
+           double backend_budget, bool quick, bool polish, bool warm, const std::string& siconos_dir,
            const std::string& out_dir) {
   BenchRequest request;
   request.suites = suites;
@@ -37,6 +37,7 @@ void Bench(const std::vector<std::string>& suites, const std::vector<std::string
   request.backend_budget_seconds = backend_budget;
   request.quick = quick;
   request.polish = polish;
+  request.warm = warm;
   request.stepper = StepperStudyChoice::kNever;
   // The run touches no Python object: other Python threads may run meanwhile.
   py::gil_scoped_release release;
@@ -53,7 +54,7 @@ void Bench(const std::vector<std::string>& suites, const std::vector<std::string
 void BindBench(py::module_& m) {
   using namespace pybind11::literals;
   m.def("_bench", &Bench, "suites"_a, "solvers"_a, "settings"_a, "tol"_a, "repetitions"_a, "time_limit"_a,
-        "backend_budget"_a, "quick"_a, "polish"_a, "siconos_dir"_a, "out_dir"_a,
+        "backend_budget"_a, "quick"_a, "polish"_a, "warm"_a, "siconos_dir"_a, "out_dir"_a,
         "Run a benchmark as `smcbench bench` does and write out_dir/results.{json,csv} (see smcbench.bench).");
 }
 

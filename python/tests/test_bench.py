@@ -64,6 +64,21 @@ def test_a_list_of_problems_is_run_as_one_suite():
     assert (ladder.verdict == "solved").all()
 
 
+def test_problems_sharing_m_l_u_are_also_replayed_in_order_as_a_warm_sequence():
+    # Three steps of one time-stepper: M, l, u fixed, q moving; z*_k = M^-1 (-q_k) stays inside the box (l = -inf).
+    M = np.array([[2.0, 1.0], [1.0, 2.0]])
+    steps = [smcbench.Problem(id=f"run/step{k}", M=M, q=np.array([-1.0 - 0.1 * k, -1.0]), l=np.full(2, -np.inf),
+                              u=np.full(2, np.inf), expected="solvable") for k in range(3)]
+    df = smcbench.bench(steps, solvers="lemke", repetitions=1, quick=True)
+    warm = df[df["mode"] == "warm"]
+    assert len(warm) == 1 and warm.verdict.iloc[0] == "solved", "one sequence of three steps, every step solved"
+    no_warm = smcbench.bench(steps, solvers="lemke", repetitions=1, quick=True, warm=False)
+    assert not (no_warm["mode"] == "warm").any()
+    cold = ["problem", "status", "verdict", "iterations", "residual_abs"]
+    pd.testing.assert_frame_equal(df[df["mode"] == "cold"][cold].reset_index(drop=True),
+                                  no_warm[no_warm["mode"] == "cold"][cold].reset_index(drop=True))
+
+
 def test_bad_input_is_a_value_error_naming_it():
     with pytest.raises(ValueError, match="unknown suite 'tinny'"):
         smcbench.bench(["tiny", "tinny"], solvers=["lemke"])
