@@ -23,6 +23,30 @@ void LabelDelegatedAnswer(const Solver& solver, const SolveSession& session, Sol
     LabelAutoAnswer(*chosen, 0, result);
   }
 }
+
+// The repeats of a backend that keeps nothing between solves, in batches of b solves between two clock reads (a
+// clock read costs about as much as a small solve): b is chosen from a calibration run so that a batch lasts ≈ 20 µs.
+// Each sample is a batch's time divided by b.
+template <typename Solve, typename InWorker>
+void TimeBatches(const Solve& solve, const InWorker& in_worker, SolveRecord* record, std::vector<double>* samples) {
+  using Clock = std::chrono::steady_clock;
+  int calibration = 0;
+  const Clock::time_point c0 = Clock::now();
+  while (calibration < record->repeats && Clock::now() - c0 < std::chrono::microseconds(20)) {
+    solve();
+    ++calibration;
+  }
+  const double per_solve = std::chrono::duration<double>(Clock::now() - c0).count() / std::max(1, calibration);
+  const int batch = std::clamp(static_cast<int>(std::ceil(2e-5 / std::max(per_solve, 1e-10))), 1, record->repeats);
+  record->solves_per_sample = batch;
+  samples->reserve(static_cast<std::size_t>(record->repeats / batch + 1));
+  for (int done = 0; done < record->repeats; done += batch) {
+    const Clock::time_point t0 = Clock::now();
+    for (int i = 0; i < batch; ++i) solve();
+    samples->push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / batch);
+    record->timed_in_worker = record->timed_in_worker || in_worker();
+  }
+}
 }  // namespace
 
 SolveRecord TimedSolve(Solver& solver, const BoxMLCP& problem, const SolverOptions& options, int repeat,
@@ -58,28 +82,26 @@ SolveRecord TimedSolve(Solver& solver, const BoxMLCP& problem, const SolverOptio
     record.timed_in_worker = in_worker();
     return record;
   }
-  // The repeats in batches of b solves between two clock reads (a clock read costs about as much as a small
-  // solve): b is chosen from a calibration run so that a batch lasts ≈ 20 µs. Each sample is a batch's time
-  // divided by b; median, min and max are over the samples.
+  // The timed repeats (median, min and max over their samples), each on the session's own clock-free path.
   SolverOptions untimed = options;
   untimed.measure_time = false;
   session.set_options(untimed);
-  int calibration = 0;
-  const Clock::time_point c0 = Clock::now();
-  while (calibration < record.repeats && Clock::now() - c0 < std::chrono::microseconds(20)) {
-    solve();
-    ++calibration;
-  }
-  const double per_solve = std::chrono::duration<double>(Clock::now() - c0).count() / std::max(1, calibration);
-  const int batch = std::clamp(static_cast<int>(std::ceil(2e-5 / std::max(per_solve, 1e-10))), 1, record.repeats);
-  record.solves_per_sample = batch;
   std::vector<double> samples;
-  samples.reserve(record.repeats / batch + 1);
-  for (int done = 0; done < record.repeats; done += batch) {
-    const Clock::time_point t0 = Clock::now();
-    for (int i = 0; i < batch; ++i) solve();
-    samples.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count() / batch);
-    record.timed_in_worker = record.timed_in_worker || in_worker();
+  const WarmStateReset after_first = warm ? WarmStateReset::kNothingRemembered : session.ForgetWarmState();
+  if (after_first != WarmStateReset::kNothingRemembered) {
+    // Cold means cold: each repeat alone, the backend's memory of the previous one dropped before it, untimed.
+    record.forgot_between_repeats = true;
+    record.cached = after_first == WarmStateReset::kCannotForget;
+    samples.reserve(static_cast<std::size_t>(record.repeats));
+    for (int done = 0; done < record.repeats; ++done) {
+      if (done > 0) record.cached = session.ForgetWarmState() == WarmStateReset::kCannotForget || record.cached;
+      const Clock::time_point t0 = Clock::now();
+      solve();
+      samples.push_back(std::chrono::duration<double, std::nano>(Clock::now() - t0).count());
+      record.timed_in_worker = record.timed_in_worker || in_worker();
+    }
+  } else {
+    TimeBatches(solve, in_worker, &record, &samples);
   }
   LabelDelegatedAnswer(solver, session, &record.result);
   std::sort(samples.begin(), samples.end());
@@ -118,6 +140,7 @@ std::string FormatRecordLine(const SolveRecord& record) {
   }
   if (record.warm) line += "   [warm: session, from the previous answer]";
   if (record.timed_in_worker) line += "   [timed through the isolation worker: IPC included]";
+  if (record.cached) line += "   [cached: the backend cannot forget between repeats, so they may not start cold]";
   if (!r.solved() && !r.message.empty()) line += "   (" + r.message + ")";
   return line;
 }
@@ -155,6 +178,8 @@ nlohmann::json RecordToJson(const SolveRecord& record) {
   j["repeats"] = record.repeats;
   j["solves_per_sample"] = record.solves_per_sample;
   j["timed_in_worker"] = record.timed_in_worker;
+  j["forgot_between_repeats"] = record.forgot_between_repeats;
+  j["cached"] = record.cached;
   nlohmann::json z = nlohmann::json::array();
   for (Eigen::Index i = 0; i < r.z.size(); ++i) z.push_back(Number(r.z[i]));
   j["z"] = std::move(z);

@@ -24,6 +24,12 @@ struct SolveRecord {
   // include its inter-process round trip: `--repeat 1` (the one solve is the probe), isolate=always, or a
   // problem whose probe crashed or timed out. False for our backends.
   bool timed_in_worker = false;
+  // Cold repeats (not warm) of a backend that remembers something between solves (Solver::ForgetWarmState: a Siconos
+  // direct solver's active-set cache, auto's fallback choice) are each timed alone, after an untimed forget, so no
+  // repeat is answered from that memory (solves_per_sample 1). cached: the backend said it cannot forget, so its
+  // repeats may not have started cold.
+  bool forgot_between_repeats = false;
+  bool cached = false;
   std::string error;              // set when the backend could not even be configured
   // With `solve --reference`: the judgement against the certified reference (forward errors NaN when the
   // reference does not prove z* unique). has_judgement false: not judged, the keys are not written.
@@ -37,7 +43,9 @@ struct SolveRecord {
 // (solvers/siconos/siconos_solver.h); a first solve that hit the time limit, or repeat 1, is the record by itself
 // (its own clock). The repeats are timed in batches of solves_per_sample solves between two clock reads (a clock
 // read costs as much as a small solve), each sample a batch's time over its size.
-// warm false (cold): every repeat runs the backend's own algorithm from the options' start point. warm: each repeat
+// warm false (cold): every repeat runs the backend's own algorithm from the options' start point; a backend that
+// remembers something between solves forgets it before each repeat, untimed, and each repeat is then timed alone
+// (forgot_between_repeats). warm: each repeat
 // starts from the previous answer with the session's reused active set on, as a time-stepper's steps do (never for
 // an external backend, SolverInfo::external: Siconos' own warm behaviour is timed).
 SolveRecord TimedSolve(Solver& solver, const BoxMLCP& problem, const SolverOptions& options, int repeat,
@@ -47,7 +55,8 @@ SolveRecord TimedSolve(Solver& solver, const BoxMLCP& problem, const SolverOptio
 // "   fwd err 1.11e-16 (rel 1.11e-16, allowed 2.00e-09)   solved" (or "fwd err n/a") when judged.
 std::string FormatRecordLine(const SolveRecord& record);
 // The stable JSON keys scripts depend on: solver, status, iterations, residual_abs, residual_rel,
-// residual_scaled, time_ns_median, z (plus problem, message, time_ns_min/max, repeats, solves_per_sample, timed_in_worker, details);
+// residual_scaled, time_ns_median, z (plus problem, message, time_ns_min/max, repeats, solves_per_sample, timed_in_worker,
+// forgot_between_repeats, cached, details);
 // when judged against a reference also forward_error, forward_error_rel (null when not defined), forward_allowance,
 // verdict.
 nlohmann::json RecordToJson(const SolveRecord& record);
