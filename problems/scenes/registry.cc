@@ -40,6 +40,11 @@ constexpr Entry kScenes[] = {
     {"super-twisting-explicit", "super-twisting-explicit.json", nullptr},
     {"super-twisting-disturbed", "super-twisting-disturbed.json", nullptr},
     {"super-twisting-disturbed-explicit", "super-twisting-disturbed-explicit.json", nullptr},
+    // Twisting (docs/smc.md, "Implicit twisting"): Siconos' tutorial and its three controllers on its regression plant.
+    {"twisting-double-integrator", "twisting-double-integrator.json", nullptr},
+    {"twisting", "twisting.json", nullptr},
+    {"regular-twisting", "regular-twisting.json", nullptr},
+    {"explicit-twisting", "explicit-twisting.json", nullptr},
 };
 
 // A scene file: a super-twisting scene if its system type says so, else a linear scene (whose reader reports every
