@@ -495,7 +495,9 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
     }
     if (const json* dist = r.Optional(system, "disturbance")) spec->disturbance = ReadDisturbance(r, *dist, n, m, parameters);
     if (const json* only = r.Optional(system, "switching_only")) {
-      if (!only->is_boolean()) r.Fail("system.switching_only", std::string("expected true or false, got ") + only->type_name());
+      if (!only->is_boolean()) {
+        r.Fail("system.switching_only", std::string("expected true or false, got ") + only->type_name());
+      }
       spec->switching_only = only->get<bool>();
       if (spec->switching_only && spec->equivalent_control_theta) {
         r.Fail("system.switching_only", "excludes system.equivalent_control (u = -alpha s has no equivalent part)");
