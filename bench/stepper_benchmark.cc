@@ -188,6 +188,7 @@ void RegisterAll() {
         const bool zoh = c.settings.method == Method::kZoh || c.settings.method == Method::kZohExplicit;
         c.settings.method = zoh ? Method::kZohExplicit : Method::kExplicit;
         if (!zoh) c.settings.theta = 0.0;
+        if (!linear->Supports(c.settings.method)) continue;  // a polytope law has no explicit scheme
       }
       for (Path path : {Path::kPrefactored, Path::kRebuild}) {
         benchmark::RegisterBenchmark(Name(std::string(name), backend, path).c_str(), StepperBenchmark, c, path)

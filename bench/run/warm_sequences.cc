@@ -100,7 +100,7 @@ std::vector<WarmSequence> SceneWarmSequences(const std::string& suite, bool quic
   if (quick) {
     names = {"sign", "galias-yu-2007"};
   } else {
-    for (std::string_view name : SceneNames()) names.emplace_back(name);
+    for (std::string_view name : PaperSceneNames()) names.emplace_back(name);
   }
   const int steps = quick ? 20 : 100;
   std::vector<WarmSequence> out;

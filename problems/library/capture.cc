@@ -162,7 +162,7 @@ ProblemSet CapturePaperSuite(const PaperSuiteOptions& options) {
   set.description = "one-step box-MLCPs of the report's scenes S1-S11 (implicit/ZOH runs with " + options.backend +
                     ", at most " + std::to_string(options.max_steps_per_scene) +
                     " steps per scene; Algorithm 2 inner problems for S9, S10)";
-  for (std::string_view name : SceneNames()) {
+  for (std::string_view name : PaperSceneNames()) {
     const std::unique_ptr<Scene> scene = LoadScene(name);
     const bool linear = dynamic_cast<const LinearScene*>(scene.get()) != nullptr;
     const bool nonlinear = dynamic_cast<const NonlinearSceneAdapter*>(scene.get()) != nullptr;

@@ -277,7 +277,7 @@ TEST(Capture, PaperSuite) {
     EXPECT_EQ(p.metadata.count("iteration"), nonlinear ? 1u : 0u);
   }
   std::set<std::string> names;
-  for (auto name : SceneNames()) names.emplace(name);
+  for (auto name : PaperSceneNames()) names.emplace(name);
   EXPECT_EQ(steps.size(), names.size());
   for (const auto& [scene, kept] : steps) {
     SCOPED_TRACE(scene);

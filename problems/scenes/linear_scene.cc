@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "solvers/avi/affine_vi.h"
 #include "solvers/core/number_text.h"
 
 namespace smcbench {
@@ -88,6 +89,15 @@ struct DisturbanceSpec {
   std::vector<SinusoidSpec> sinusoids;
 };
 
+// system.law = {"polytope": {"H": r×m, "K": r}}: s ∈ P = {s : H s ≥ K}. Entries may use h, the time step.
+struct LawSpec {
+  ScalarMatrix H;
+  std::vector<Scalar> K;
+};
+
+// The name the law's expressions use for the time step (implicit twisting's parallelogram depends on it).
+constexpr std::string_view kTimeStepName = "h";
+
 // S1's closed form needs x' ∈ −b sgn(c x) with bc > 0: |x| decreases at rate |b| until t* = |x0|/|b|.
 constexpr std::string_view kExactSign = "sign";
 
@@ -107,6 +117,8 @@ struct LinearScene::Spec {
   bool control_input = false;    // sign: u = −s through B is reported
   std::optional<Scalar> equivalent_control_theta;  // zoh: Siconos' scheme when present
   DisturbanceSpec disturbance;   // zoh
+  bool switching_only = false;   // zoh: u = −α s alone
+  std::optional<LawSpec> law;    // absent: the box
 };
 
 namespace {
@@ -369,6 +381,41 @@ DisturbanceSpec ReadDisturbance(const Reader& r, const json& node, int n, int m,
   return d;
 }
 
+// The parameters with the time step h added, for the law's expressions.
+SceneParameters WithTimeStep(const SceneParameters& parameters, double h) {
+  SceneParameters values = parameters;
+  values[std::string(kTimeStepName)] = h;
+  return values;
+}
+
+// system.law = {"polytope": {"H": [[...]], "K": [...]}} for m sliding surfaces; evaluated with h the time step.
+LawSpec ReadLaw(const Reader& r, const json& node, int m, const SceneParameters& parameters, double h) {
+  const std::string field = "system.law";
+  if (!node.is_object()) {
+    r.Fail(field, std::string("expected an object {\"polytope\": {\"H\": [[...]], \"K\": [...]}}, got ") +
+                      node.type_name());
+  }
+  r.CheckKeys(node, field, {"polytope"});
+  const json& polytope = r.Require(node, field, "polytope");
+  const std::string pfield = field + ".polytope";
+  r.RequireObject(polytope, pfield);
+  r.CheckKeys(polytope, pfield, {"H", "K"});
+  if (parameters.count(std::string(kTimeStepName))) {
+    r.Fail("parameters.h", "the name h is the time step in system.law's expressions; rename the parameter");
+  }
+  const SceneParameters values = WithTimeStep(parameters, h);
+  LawSpec law;
+  law.H = r.Matrix(r.Require(polytope, pfield, "H"), pfield + ".H", values);
+  r.CheckShape(law.H, pfield + ".H", law.H.rows, m, "P = {s : H s >= K} with s of size m = " + std::to_string(m) +
+                                                       " (the rows of C)");
+  law.K = r.ScalarVector(r.Require(polytope, pfield, "K"), pfield + ".K", values);
+  if (static_cast<int>(law.K.size()) != law.H.rows) {
+    r.FailSentence(pfield + ".K has " + std::to_string(law.K.size()) + " entries but " + pfield + ".H has " +
+                   std::to_string(law.H.rows) + " rows");
+  }
+  return law;
+}
+
 }  // namespace
 
 std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::string& source) {
@@ -395,7 +442,7 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
   spec->type = r.String(r.Require(system, "system", "type"), "system.type");
   int n = 0, m = 0;
   if (spec->type == "sign") {
-    r.CheckKeys(system, "system", {"type", "E", "B", "C", "D", "forcing", "relation_offset", "control_input"});
+    r.CheckKeys(system, "system", {"type", "E", "B", "C", "D", "forcing", "relation_offset", "control_input", "law"});
     if (const json* input = r.Optional(system, "control_input")) {
       if (!input->is_boolean()) r.Fail("system.control_input", std::string("expected true or false, got ") + input->type_name());
       spec->control_input = input->get<bool>();
@@ -426,7 +473,8 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
                                           "C has m = " + std::to_string(m) + " rows (y = C x + D + e(t))", parameters);
     }
   } else if (spec->type == "zoh") {
-    r.CheckKeys(system, "system", {"type", "F", "G", "C", "alpha", "equivalent_control", "disturbance"});
+    r.CheckKeys(system, "system",
+                {"type", "F", "G", "C", "alpha", "equivalent_control", "disturbance", "switching_only", "law"});
     spec->E = r.Matrix(r.Require(system, "system", "F"), "system.F", parameters);
     n = spec->E.rows;
     r.CheckShape(spec->E, "system.F", n, n, "F must be square, n x n");
@@ -446,6 +494,15 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
       spec->equivalent_control_theta = ReadEquivalentControl(r, *ec, parameters);
     }
     if (const json* dist = r.Optional(system, "disturbance")) spec->disturbance = ReadDisturbance(r, *dist, n, m, parameters);
+    if (const json* only = r.Optional(system, "switching_only")) {
+      if (!only->is_boolean()) {
+        r.Fail("system.switching_only", std::string("expected true or false, got ") + only->type_name());
+      }
+      spec->switching_only = only->get<bool>();
+      if (spec->switching_only && spec->equivalent_control_theta) {
+        r.Fail("system.switching_only", "excludes system.equivalent_control (u = -alpha s has no equivalent part)");
+      }
+    }
   } else {
     r.Fail("system.type", "unknown system type '" + spec->type + "' (known: sign, zoh)");
   }
@@ -489,6 +546,13 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
     d.plant_substeps = static_cast<int>(value);
   }
   d.parameters = parameters;
+  if (const json* law = r.Optional(system, "law")) {
+    spec->law = ReadLaw(r, *law, m, parameters, d.h);
+    if (!IsImplicit(d.method)) {
+      r.Fail("simulation.method", "'" + method + "' is explicit, but a polytope law needs an implicit method "
+                                  "(implicit or zoh)");
+    }
+  }
   try {
     NumSteps(d.T, d.h);
   } catch (const InvalidInputError& e) {
@@ -505,6 +569,17 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
   // must apply: both with the default parameters, so a broken file fails when it is read, not when it is run.
   try {
     const LinearModel model = scene->ModelWithoutName(parameters);
+    if (scene->spec_->law) {
+      // P must not be empty: AffineVI's phase-1 check on the law with the default parameters and h.
+      const auto law_of = [](const LinearModel& mod) -> const PolytopeLaw& {
+        if (const auto* z = std::get_if<ZohSmcSystem>(&mod)) return z->law;
+        return std::get<LinearSignSystem>(mod).law;
+      };
+      const PolytopeLaw& law = law_of(model);
+      const int m = scene->spec_->info.m;
+      const AffineVI check(DenseMatrix::Identity(m, m), Vector::Zero(m), law.H, law.K, "system.law");
+      (void)check;
+    }
     if (scene->spec_->exact == kExactSign) scene->Exact(scene->spec_->defaults);
   } catch (const InvalidInputError& e) {
     r.FailSentence(e.what());
@@ -539,18 +614,19 @@ const std::string& LinearScene::system_type() const { return spec_->type; }
 const SceneParameters& LinearScene::parameters() const { return spec_->defaults.parameters; }
 
 bool LinearScene::Supports(Method method) const {
+  if (spec_->law && !IsImplicit(method)) return false;  // the explicit sign is the box's
   return spec_->type == "zoh" || method == Method::kImplicit || method == Method::kExplicit;
 }
 
-LinearModel LinearScene::Model(const SceneParameters& overrides) const {
+LinearModel LinearScene::Model(const SceneParameters& overrides, std::optional<double> h) const {
   try {
-    return ModelWithoutName(overrides);
+    return ModelWithoutName(overrides, h);
   } catch (const InvalidInputError& e) {
     throw InvalidInputError("scene '" + spec_->info.name + "': " + e.what());
   }
 }
 
-LinearModel LinearScene::ModelWithoutName(const SceneParameters& overrides) const {
+LinearModel LinearScene::ModelWithoutName(const SceneParameters& overrides, std::optional<double> h) const {
   const Spec& s = *spec_;
   SceneParameters values = s.defaults.parameters;
   for (const auto& [name, value] : overrides) {
@@ -564,6 +640,12 @@ LinearModel LinearScene::ModelWithoutName(const SceneParameters& overrides) cons
     if (!std::isfinite(value)) throw InvalidInputError("parameter " + name + " is not finite (" + NumberText(value) + ")");
     it->second = value;
   }
+  PolytopeLaw law;
+  if (s.law) {
+    const SceneParameters with_h = WithTimeStep(values, h.value_or(s.defaults.h));
+    law.H = s.law->H.Evaluate(with_h);
+    law.K = EvaluateVector(s.law->K, with_h);
+  }
   if (s.type == "zoh") {
     ZohSmcSystem z;
     z.F = s.E.Evaluate(values);
@@ -571,6 +653,8 @@ LinearModel LinearScene::ModelWithoutName(const SceneParameters& overrides) cons
     z.C = s.C.Evaluate(values);
     z.alpha = s.alpha.Evaluate(values);
     if (s.equivalent_control_theta) z.equivalent_control = EquivalentControl{s.equivalent_control_theta->Evaluate(values)};
+    z.switching_only = s.switching_only;
+    z.law = std::move(law);
     if (s.disturbance.present) {
       const DisturbanceSpec& d = s.disturbance;
       z.disturbance.W = d.matched ? z.G : d.W.Evaluate(values);
@@ -589,6 +673,7 @@ LinearModel LinearScene::ModelWithoutName(const SceneParameters& overrides) cons
   sys.C = s.C.Evaluate(values);
   if (!s.D.empty()) sys.D = EvaluateVector(s.D, values);
   sys.control_input = s.control_input;
+  sys.law = std::move(law);
   if (!s.forcing.empty()) {
     const int n = s.info.n;
     sys.g = Vector::Zero(n);
@@ -646,12 +731,17 @@ LinearModel LinearScene::ModelWithoutName(const SceneParameters& overrides) cons
 
 OneStepData LinearScene::Discretization(const SimulationSettings& settings) const {
   settings.Validate(spec_->info.n);
+  if (spec_->law && !IsImplicit(settings.method)) {
+    throw InvalidInputError("scene '" + spec_->info.name + "' has a polytope law (system.law): method '" +
+                            std::string(ToString(settings.method)) +
+                            "' is explicit, whose sign sgn(y_k) is the box's; use an implicit method");
+  }
   if (!Supports(settings.method)) {
     throw InvalidInputError("scene '" + spec_->info.name + "' is a sign system (E, B, C): method '" +
                             std::string(ToString(settings.method)) +
                             "' needs a ZOH plant (F, G, C, alpha); use implicit or explicit");
   }
-  return Discretize(Model(settings.parameters), settings.method, settings.h, settings.theta);
+  return Discretize(Model(settings.parameters, settings.h), settings.method, settings.h, settings.theta);
 }
 
 void LinearScene::Run(const SimulationSettings& settings, Solver* solver, Trajectory* out) const {

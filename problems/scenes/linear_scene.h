@@ -26,6 +26,7 @@
 
 #include <memory>
 #include <nlohmann/json_fwd.hpp>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -53,8 +54,10 @@ class LinearScene final : public Scene {
   const std::string& system_type() const;
   // The declared parameters with their default values.
   const SceneParameters& parameters() const;
-  // The model with these parameter values (undeclared names are an error; missing ones take their defaults).
-  LinearModel Model(const SceneParameters& parameters) const;
+  // The model with these parameter values (undeclared names are an error; missing ones take their defaults). h is
+  // the time step a polytope law's expressions see (system.law may depend on it, as implicit twisting's
+  // parallelogram does); absent: the scene's simulation.h.
+  LinearModel Model(const SceneParameters& parameters, std::optional<double> h = std::nullopt) const;
   // Validates settings and discretizes Model(settings.parameters) with settings' method, h and θ: what Run
   // builds its LinearStepper from (benchmarks build it once and time the runs).
   OneStepData Discretization(const SimulationSettings& settings) const;
@@ -64,7 +67,7 @@ class LinearScene final : public Scene {
  private:
   explicit LinearScene(std::unique_ptr<Spec> spec);
   // Model() without the "scene 'name': " prefix on errors (the file reader adds its own).
-  LinearModel ModelWithoutName(const SceneParameters& parameters) const;
+  LinearModel ModelWithoutName(const SceneParameters& parameters, std::optional<double> h = std::nullopt) const;
   std::unique_ptr<Spec> spec_;
 };
 

@@ -20,26 +20,32 @@ struct Entry {
   std::string_view name;
   std::string_view file;  // a JSON file in ScenesDirectory(), or empty for a C++ scene
   Factory make;           // the C++ scene, or null for a file
+  bool paper = false;     // one of the report's S1–S11
 };
 
 // The registry, in the order of docs/scenes.md. Nonlinear scenes (S9 hypomonotone, S10 arctan) are C++ scenes.
 constexpr Entry kScenes[] = {
-    {"sign", "sign.json", nullptr},                      // S1
-    {"galias-yu-2007", "galias-yu-2007.json", nullptr},  // S2
-    {"multi-surface", "multi-surface.json", nullptr},    // S3
-    {"filippov", "filippov.json", nullptr},              // S4
-    {"zoh-siso", "zoh-siso.json", nullptr},              // S5
-    {"zoh-mimo", "zoh-mimo.json", nullptr},              // S6
-    {"lyapunov", "lyapunov.json", nullptr},              // S7
-    {"observer", "observer.json", nullptr},              // S8
-    {"hypomonotone", "", &MakeHypomonotoneScene},        // S9
-    {"arctan", "", &MakeArctanScene},                    // S10
-    {"parasitic", "parasitic.json", nullptr},            // S11
+    {"sign", "sign.json", nullptr, true},                      // S1
+    {"galias-yu-2007", "galias-yu-2007.json", nullptr, true},  // S2
+    {"multi-surface", "multi-surface.json", nullptr, true},    // S3
+    {"filippov", "filippov.json", nullptr, true},              // S4
+    {"zoh-siso", "zoh-siso.json", nullptr, true},              // S5
+    {"zoh-mimo", "zoh-mimo.json", nullptr, true},              // S6
+    {"lyapunov", "lyapunov.json", nullptr, true},              // S7
+    {"observer", "observer.json", nullptr, true},              // S8
+    {"hypomonotone", "", &MakeHypomonotoneScene, true},        // S9
+    {"arctan", "", &MakeArctanScene, true},                    // S10
+    {"parasitic", "parasitic.json", nullptr, true},            // S11
     // Higher-order sliding modes (docs/smc.md): super-twisting, implicit (BPE 2020) and explicit Euler.
-    {"super-twisting", "super-twisting.json", nullptr},
-    {"super-twisting-explicit", "super-twisting-explicit.json", nullptr},
-    {"super-twisting-disturbed", "super-twisting-disturbed.json", nullptr},
-    {"super-twisting-disturbed-explicit", "super-twisting-disturbed-explicit.json", nullptr},
+    {"super-twisting", "super-twisting.json", nullptr, false},
+    {"super-twisting-explicit", "super-twisting-explicit.json", nullptr, false},
+    {"super-twisting-disturbed", "super-twisting-disturbed.json", nullptr, false},
+    {"super-twisting-disturbed-explicit", "super-twisting-disturbed-explicit.json", nullptr, false},
+    // Twisting (docs/smc.md, "Implicit twisting"): Siconos' tutorial and its three controllers on its regression plant.
+    {"twisting-double-integrator", "twisting-double-integrator.json", nullptr, false},
+    {"twisting", "twisting.json", nullptr, false},
+    {"regular-twisting", "regular-twisting.json", nullptr, false},
+    {"explicit-twisting", "explicit-twisting.json", nullptr, false},
 };
 
 // A scene file: a super-twisting scene if its system type says so, else a linear scene (whose reader reports every
@@ -60,6 +66,14 @@ std::unique_ptr<Scene> SceneFromFile(const std::string& path) {
 std::vector<std::string_view> SceneNames() {
   std::vector<std::string_view> names;
   for (const Entry& e : kScenes) names.push_back(e.name);
+  return names;
+}
+
+std::vector<std::string_view> PaperSceneNames() {
+  std::vector<std::string_view> names;
+  for (const Entry& e : kScenes) {
+    if (e.paper) names.push_back(e.name);
+  }
   return names;
 }
 

@@ -13,6 +13,8 @@ namespace smcbench {
 
 // Registered names in the order of docs/scenes.md (S1 sign, S2 galias-yu-2007, ...).
 std::vector<std::string_view> SceneNames();
+// The report's scenes S1–S11 alone (the paper's suites and problem sets are made of these), in the same order.
+std::vector<std::string_view> PaperSceneNames();
 
 // The folder holding the scene files: DataDirectory(DataFolder::kScenes) (problems/io/data_dirs.h):
 // $SMCBENCH_SCENES_DIR if set, else the installed <prefix>/share/smcbench/scenes of an installed program or Python

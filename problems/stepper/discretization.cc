@@ -59,6 +59,11 @@ void OneStepData::Validate() const {
     stepper_detail::CheckFinite(kOwner, "input_s", input_s);
   }
   if (has_disturbance()) disturbance.Validate(kOwner, n());
+  law.Validate(kOwner, m());
+  if (has_polytope_law() && sign != SignTreatment::kImplicit) {
+    Fail(kOwner, "law: a polytope law needs an implicit method (implicit or zoh); the explicit sign sgn(y_k) is "
+                 "the box's");
+  }
 }
 
 void DisturbanceResponse::Validate(const char* owner, int n) const {
@@ -96,6 +101,7 @@ OneStepData DiscretizeThetaUnchecked(const LinearSignSystem& system, double h, d
     d.forcing_theta = theta;
   }
   d.relation_offset = system.relation_offset;
+  d.law = system.law;
   if (system.control_input) {  // u_k = −s_{k+1} through B
     d.input_x = DenseMatrix::Zero(system.m(), n);
     d.input_s = -DenseMatrix::Identity(system.m(), system.m());
@@ -148,14 +154,22 @@ OneStepData DiscretizeZohUnchecked(const ZohSmcSystem& system, double h, SignTre
   const int n = system.n();
   const int m = system.m();
   const DenseMatrix CG = system.C * system.G;
-  const Eigen::PartialPivLU<DenseMatrix> cg_lu(CG);
+  const Eigen::PartialPivLU<DenseMatrix> cg_lu(CG);  // used only when CG is invertible (not switching_only)
   OneStepData d;
   d.h = h;
   d.sign = sign;
   d.C = system.C;
   d.D = Vector::Zero(m);
   d.p = Vector::Zero(n);
-  if (!system.equivalent_control) {
+  d.law = system.law;
+  if (system.switching_only) {
+    // u = −α s alone: the controller's prediction is the plant's ZOH step.
+    const auto [expFh, PsiG] = ExpAndIntegral(system.F, system.G, h);
+    d.R = expFh;
+    d.S = system.alpha * PsiG;
+    d.input_x = DenseMatrix::Zero(m, n);
+    d.input_s = -system.alpha * DenseMatrix::Identity(m, m);
+  } else if (!system.equivalent_control) {
     // K = G (CG)⁻¹, solved as (CG)ᵀ Kᵀ = Gᵀ.
     const DenseMatrix K = CG.transpose().partialPivLu().solve(system.G.transpose()).transpose();
     // Van Loan: exp(h [[F, K], [0, 0]]) = [[e^{Fh}, ∫₀ʰ e^{Fτ}dτ K], [0, I]].
@@ -208,6 +222,7 @@ OneStepData DiscretizeTheta(const LinearSignSystem& system, double h, double the
   stepper_detail::CheckInvertible(kOwner, "I - h*theta*E", DenseMatrix::Identity(n, n) - (h * theta) * system.E);
   OneStepData d = stepper_detail::DiscretizeThetaUnchecked(system, h, theta, sign);
   d.description = "theta=" + NumberText(theta) + (sign == SignTreatment::kImplicit ? ", implicit sign" : ", explicit sign");
+  if (!system.law.empty()) d.description += ", polytope law";
   d.Validate();
   return d;
 }
@@ -230,6 +245,8 @@ OneStepData DiscretizeZoh(const ZohSmcSystem& system, double h, SignTreatment si
   if (system.equivalent_control) {
     d.description += ", equivalent control theta=" + NumberText(system.equivalent_control->theta);
   }
+  if (system.switching_only) d.description += ", switching part only";
+  if (!system.law.empty()) d.description += ", polytope law";
   if (!system.disturbance.empty()) d.description += ", disturbed";
   if (!d.input_x.allFinite() || !d.input_s.allFinite() ||
       (d.has_disturbance() && (!d.disturbance.cos_part.allFinite() || !d.disturbance.sin_part.allFinite() ||

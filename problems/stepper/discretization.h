@@ -96,12 +96,18 @@ struct OneStepData {
   // one step h; empty: none).
   DisturbanceResponse disturbance;
 
+  // s_{k+1} ∈ P = {s : H s ≥ K} instead of the box (the system's PolytopeLaw): the implicit step is the AVI
+  // 0 ∈ M s + q + N_P(s) with the same M and q, solved through AviSession (solvers/avi). Empty: the box.
+  // Implicit sign only (the explicit sgn(y_k) is the box's).
+  PolytopeLaw law;
+
   int n() const { return static_cast<int>(R.rows()); }
   int m() const { return static_cast<int>(C.rows()); }
   bool has_forcing() const { return static_cast<bool>(forcing); }
   bool has_relation_offset() const { return static_cast<bool>(relation_offset); }
   bool has_input() const { return input_s.rows() > 0; }
   bool has_disturbance() const { return disturbance.present(); }
+  bool has_polytope_law() const { return !law.empty(); }
   // w_k at t_k added into w (size n), allocation-free; nothing without a disturbance.
   template <typename W>
   void AddDisturbance(double t_k, W& w) const {
@@ -109,7 +115,8 @@ struct OneStepData {
   }
   // M = C S of `eq:TDS3` (allocates; the stepper calls it once).
   DenseMatrix OneStepMatrix() const { return C * S; }
-  // Sizes, finiteness, h > 0, θ ∈ [0, 1]; InvalidInputError naming the field.
+  // Sizes, finiteness, h > 0, θ ∈ [0, 1], the law's shapes and an implicit sign with it; InvalidInputError naming
+  // the field.
   void Validate() const;
 };
 
@@ -127,6 +134,8 @@ OneStepData DiscretizeExplicitEuler(const LinearSignSystem& system, double h);
 // ZOH discretization of x' = Fx + Gu with the ECB-SMC (`ZOH1`, `eq:ZOHGAMMA`):
 //   Γ = ∫₀ʰ e^{Fτ}dτ G(CG)⁻¹,  Φ = e^{Fh} − Γ C F,  R = Φ, S = α Γ, p = 0, D = 0;
 //   u_k = −(CG)⁻¹(C F x_k + α s_{k+1}).
+// With system.switching_only (Siconos' Twisting controllers): R = e^{Fh}, S = α ΨG, u_k = −α s_{k+1} (the controller
+// predicts the plant exactly; no equivalent part).
 // With system.equivalent_control (Siconos' LinearSMC / ExplicitLinearSMC, linear_system.h), K = (CG)⁻¹CF,
 // Ψ = ∫₀ʰ e^{Fτ}dτ: the prediction x̃_{k+1} = e^{Fh}x_k + ΨG u_eq with u_eq = −K((1−θ)x_k + θx̃_{k+1}) gives
 // x̃_{k+1} = (I + θΨGK)⁻¹(e^{Fh} − (1−θ)ΨGK) x_k =: Ã x_k, u_eq = −L x_k with L = K((1−θ)I + θÃ), and

@@ -344,6 +344,53 @@ TEST(DiscretizeZoh, RejectsBadInput) {
   ExpectError(zoh(bad, 1.0), "overflowed");
 }
 
+// Siconos' twisting controllers apply u = −α s alone: a double integrator with C G = 0 is then fine, and its ZOH
+// step is x_{k+1} = e^{Fh} x_k − α Ψ G s_{k+1} with e^{Fh} = [[1, h], [0, 1]], Ψ G = (h²/2, h) by hand.
+TEST(DiscretizeZoh, SwitchingOnlyNeedsNoEquivalentControl) {
+  ZohSmcSystem plant;
+  plant.F = Mat({{0.0, 1.0}, {0.0, 0.0}});
+  plant.G = Mat({{0.0}, {1.0}});
+  plant.C = Mat({{1.0, 0.0}});  // C G = 0
+  plant.alpha = 2.0;
+  ExpectError([&] { DiscretizeZoh(plant, 0.1, SignTreatment::kImplicit); }, "ZohSmcSystem: CG is singular");
+  plant.switching_only = true;
+  const double h = 0.1;
+  const OneStepData d = DiscretizeZoh(plant, h, SignTreatment::kImplicit);
+  EXPECT_LE((d.R - Mat({{1.0, h}, {0.0, 1.0}})).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_LE((d.S - Mat({{2.0 * h * h / 2.0}, {2.0 * h}})).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_EQ(d.input_x, DenseMatrix::Zero(1, 2));
+  EXPECT_EQ(d.input_s, Mat({{-2.0}}));
+  const LinearSignSystem closed = ClosedLoop(plant);  // the θ-method's view: E = F, B = α G
+  EXPECT_EQ(closed.E, plant.F);
+  EXPECT_EQ(closed.B, 2.0 * plant.G);
+  plant.equivalent_control = EquivalentControl{0.5};
+  ExpectError([&] { plant.Validate(); }, "switching_only and equivalent_control exclude each other");
+}
+
+TEST(PolytopeLaw, ShapesSignAndEmptinessAreChecked) {
+  LinearSignSystem sys = stepper_test::SignScene();  // m = 1
+  sys.law.H = Mat({{1.0, 0.0}});
+  sys.law.K = Vec({-1.0});
+  ExpectError([&] { sys.Validate(); }, "LinearSignSystem: law.H is 1x2 but must be 1x1");
+  sys.law.H = Mat({{1.0}, {-1.0}});
+  ExpectError([&] { sys.Validate(); }, "LinearSignSystem: law.K has size 1 but must have size 2");
+  sys.law.K = Vec({-1.0, -1.0});
+  ExpectError([&] { DiscretizeTheta(sys, 0.1, 1.0, SignTreatment::kExplicit); },
+              "OneStepData: law: a polytope law needs an implicit method");
+  sys.law.K = Vec({1.0, 1.0});  // s ≥ 1 and −s ≥ 1
+  ExpectError([&] { LinearStepper stepper(DiscretizeTheta(sys, 0.1, 1.0, SignTreatment::kImplicit)); }, "is empty");
+  sys.law.K = Vec({-1.0, -1.0});  // the box itself, as a polytope: the same run as the box law
+  LinearStepper polytope(DiscretizeTheta(sys, 0.1, 1.0, SignTreatment::kImplicit));
+  LinearStepper box(DiscretizeTheta(stepper_test::SignScene(), 0.1, 1.0, SignTreatment::kImplicit));
+  ASSERT_NE(polytope.avi(), nullptr);
+  EXPECT_EQ(box.avi(), nullptr);
+  stepper_test::ReferenceSolver reference;
+  const Trajectory a = polytope.Run(Vec({1.01}), 20, &reference);
+  const Trajectory b = box.Run(Vec({1.01}), 20, &reference);
+  ASSERT_TRUE(a.ok() && b.ok()) << a.first_failure_message;
+  EXPECT_LE((a.x - b.x).cwiseAbs().maxCoeff(), 1e-12);
+}
+
 TEST(OneStepData, ValidateNamesTheField) {
   OneStepData d = DiscretizeTheta(stepper_test::GaliasYuScene(), 0.1, 1.0, SignTreatment::kImplicit);
   d.S = DenseMatrix::Zero(3, 1);

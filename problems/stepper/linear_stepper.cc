@@ -11,6 +11,7 @@
 #include "problems/stepper/discretization_detail.h"
 #include "problems/stepper/float_mode.h"
 #include "problems/stepper/validation.h"
+#include "solvers/avi/avi_solver.h"
 #include "solvers/core/number_text.h"
 
 namespace smcbench {
@@ -125,8 +126,9 @@ class LinearStepper::Kernel {
  public:
   virtual ~Kernel() = default;
   virtual bool fixed_size() const = 0;
-  virtual void Run(const OneStepData& d, BoxMLCP* problem, const Vector& x0, std::int64_t num_steps,
-                   Solver* solver, const StepperOptions& options, Trajectory* out) = 0;
+  // avi: the one-step AVI of a polytope law (null for the box).
+  virtual void Run(const OneStepData& d, BoxMLCP* problem, const AffineVI* avi, const Vector& x0,
+                   std::int64_t num_steps, Solver* solver, const StepperOptions& options, Trajectory* out) = 0;
 };
 
 namespace {
@@ -177,8 +179,8 @@ class KernelImpl final : public LinearStepper::Kernel {
            std::numeric_limits<double>::epsilon();
   }
 
-  void Run(const OneStepData& d, BoxMLCP* problem, const Vector& x0, std::int64_t num_steps, Solver* solver,
-           const StepperOptions& options, Trajectory* out) override {
+  void Run(const OneStepData& d, BoxMLCP* problem, const AffineVI* avi, const Vector& x0, std::int64_t num_steps,
+           Solver* solver, const StepperOptions& options, Trajectory* out) override {
     // Fixed sizes: the matrices and the state are copied into locals the compiler keeps in registers. Dynamic
     // sizes: references to the member buffers (a local copy would allocate).
     constexpr bool kFixed = N != Eigen::Dynamic && M != Eigen::Dynamic;
@@ -208,7 +210,10 @@ class KernelImpl final : public LinearStepper::Kernel {
     // u_k = Ux x_k + Us s_{k+1} for the outputs only: a run that reports nothing computes no input.
     const bool report_input = d.has_input() && (record || stream);
     const bool disturbed = d.has_disturbance();
-    const bool warm = options.warm_start;
+    // A polytope law solves the AVI through its exact reduction (AviSession: built once per run, allocation-free
+    // per step); it takes no per-step warm start.
+    const bool polytope = implicit && avi != nullptr;
+    const bool warm = options.warm_start && !polytope;
     const double h = d.h;
     const double t0 = options.t0;
     const double theta = d.forcing_theta;
@@ -239,7 +244,13 @@ class KernelImpl final : public LinearStepper::Kernel {
 
     // Every step solves through one session (solvers/core/session.h): the checks that cannot change during the run
     // are made once, and each step first tries the previous step's active set (on a sliding surface, the same).
-    SolveSession* const session = implicit ? &SessionFor(solver, *problem, options.session) : nullptr;
+    SolveSession* const session = implicit && !polytope ? &SessionFor(solver, *problem, options.session) : nullptr;
+    if (polytope) {
+      avi_session_.reset();
+      avi_session_.emplace(*avi, *solver, solver_options_);
+      avi_q_.resize(m);
+    }
+    const SolveResult& step_result = polytope ? avi_session_->result() : result_;
 
     Counters counters;
     std::int64_t k = 0;
@@ -271,13 +282,24 @@ class KernelImpl final : public LinearStepper::Kernel {
             double* ws = solver_options_.warm_start.data();
             for (int i = 0; i < m; ++i) ws[i] = s[i];
           }
-          session->Solve(q, &result_, warm ? &solver_options_.warm_start : nullptr);
-          if (observer) observer->OnStep(k + 1, 0, session->problem(), result_);
-          const double* z = result_.z.data();
-          for (int i = 0; i < m; ++i) s[i] = z[i];
-          status = result_.status;
-          iterations = result_.iterations;
-          residual = result_.residual_rel;
+          if (polytope) {
+            // A dynamic copy of q: Solve's Ref<const Vector> would copy (allocate) a fixed-size one.
+            for (int i = 0; i < m; ++i) avi_q_[i] = q[i];
+            avi_session_->Solve(avi_q_);
+            if (observer) observer->OnStep(k + 1, 0, avi_session_->reduction().problem, step_result);
+            if (step_result.z.size() >= m) {
+              const double* lambda = step_result.z.data();  // z = (λ, μ̃): λ is s_{k+1}
+              for (int i = 0; i < m; ++i) s[i] = lambda[i];
+            }
+          } else {
+            session->Solve(q, &result_, warm ? &solver_options_.warm_start : nullptr);
+            if (observer) observer->OnStep(k + 1, 0, session->problem(), result_);
+            const double* z = result_.z.data();
+            for (int i = 0; i < m; ++i) s[i] = z[i];
+          }
+          status = step_result.status;
+          iterations = step_result.iterations;
+          residual = step_result.residual_rel;
         }
         counters.Add(iterations, residual);
       } else {
@@ -326,7 +348,7 @@ class KernelImpl final : public LinearStepper::Kernel {
       const bool finite = x.allFinite();
       if (!finite || (implicit && status != SolveStatus::kSolved)) {
         const bool has_nan = !finite && x.hasNaN();
-        if (HandleFailure(k, status, residual, finite, has_nan, implicit ? &result_.message : nullptr,
+        if (HandleFailure(k, status, residual, finite, has_nan, implicit ? &step_result.message : nullptr,
                           options.on_failure, &stream_, out)) {
           break;
         }
@@ -373,6 +395,8 @@ class KernelImpl final : public LinearStepper::Kernel {
   VecM s_, q_, y_, u_, e_;  // e_: e(t) of the relation
   SolverOptions solver_options_;
   SolveResult result_;
+  std::optional<AviSession> avi_session_;  // a polytope law's run
+  Vector avi_q_;                           // q handed to it (size m)
   TrajectoryStream stream_;
   std::optional<SolveSession> session_;
   Solver* session_solver_ = nullptr;  // the backend session_ was prepared with
@@ -403,6 +427,11 @@ LinearStepper::LinearStepper(OneStepData data) : data_(std::move(data)) {
   // M = C S and the box [−1, 1]^m are constant (`eq:TDS3`); q is replaced in place every step.
   problem_ = std::make_unique<BoxMLCP>(BoxMLCP::Relay(data_.OneStepMatrix(), Vector::Zero(data_.m()), -1.0, 1.0,
                                                       "one-step " + data_.description));
+  if (data_.has_polytope_law()) {
+    // The same M over P = {s : H s ≥ K}; AffineVI checks that P is not empty.
+    avi_ = std::make_unique<AffineVI>(problem_->dense_matrix(), Vector::Zero(data_.m()), data_.law.H, data_.law.K,
+                                      "one-step " + data_.description);
+  }
   kernel_ = MakeKernel(data_);
 }
 
@@ -417,7 +446,7 @@ void LinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* solver
   CheckRunArguments(kRunOwner, data_.n(), data_.sign, x0, num_steps, solver, options);
   PrepareTrajectory(data_, num_steps, options, out);
   const ScopedFlushSubnormals flush(options.subnormals == SubnormalPolicy::kFlushToZero);
-  kernel_->Run(data_, problem_.get(), x0, num_steps, solver, options, out);
+  kernel_->Run(data_, problem_.get(), avi_.get(), x0, num_steps, solver, options, out);
 }
 
 Trajectory LinearStepper::Run(const Vector& x0, std::int64_t num_steps, Solver* solver,
@@ -486,6 +515,18 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
       if (!q.allFinite()) {
         status = SolveStatus::kNumericalFailure;
         residual = kInf;
+      } else if (d.has_polytope_law()) {
+        // A fresh AVI and its reduction every step, as a general simulator would (SolveAvi builds the reduction).
+        const AffineVI avi(d.C * d.S, std::move(q), d.law.H, d.law.K);
+        const AviResult r = SolveAvi(avi, *solver, solver_options);
+        if (options.observer) {
+          options.observer->OnStep(k + 1, 0, ReduceToBoxMlcp(avi, AviReductionScaling::kNormalized).problem, r.reduced);
+        }
+        if (r.solution.lambda.size() == m) s = r.solution.lambda;
+        status = r.status;
+        iterations = r.iterations;
+        residual = r.reduced.residual_rel;
+        result.message = r.message;
       } else {
         const BoxMLCP problem = BoxMLCP::Relay(d.C * d.S, std::move(q));
         if (options.warm_start) solver_options.warm_start = s;

@@ -7,6 +7,9 @@
 //     n ≤ 4, m ≤ 2 (every linear scene of docs/scenes.md); larger systems use a dynamic kernel with preallocated
 //     buffers. Neither allocates per step. A run either records its history (O(N) memory) or hands its rows to a
 //     TrajectorySink as it goes (StepperOptions::sink: one bounded block), or keeps only the final state.
+//   A polytope law (OneStepData::law): each implicit step is the AVI 0 ∈ M s + q + N_P(s) with the same M and q,
+//     solved through AviSession (the exact reduction to a box-MLCP, built once per run; no per-step allocation
+//     after the first step with an allocation-free backend, no warm start).
 //   SimulateRebuildingEachStep: what a general simulator does: every step re-discretizes (LU of I − hθE or the
 //     matrix exponential), rebuilds M = C S and a fresh BoxMLCP, then solves. Same trajectory up to rounding;
 //     benchmarks compare the two to show what precomputation buys.
@@ -19,6 +22,7 @@
 
 #include "problems/stepper/discretization.h"
 #include "problems/stepper/trajectory.h"
+#include "solvers/avi/affine_vi.h"
 #include "solvers/core/solver.h"
 
 namespace smcbench {
@@ -104,8 +108,11 @@ class LinearStepper {
   LinearStepper& operator=(LinearStepper&&) noexcept;
 
   const OneStepData& data() const { return data_; }
-  // The one-step problem: M = C S (constant) and the q of the last step run.
+  // The one-step problem: M = C S (constant) and the q of the last step run. With a polytope law, the box-MLCP of
+  // the same M (its q is not updated); the one-step problem is then avi().
   const BoxMLCP& problem() const { return *problem_; }
+  // The one-step AVI of a polytope law (M = C S, q = 0, P = {s : H s ≥ K}), null for the box.
+  const AffineVI* avi() const { return avi_.get(); }
   // True when a fixed-size kernel serves this (n, m).
   bool uses_fixed_size_kernel() const;
 
@@ -120,6 +127,7 @@ class LinearStepper {
  private:
   OneStepData data_;
   std::unique_ptr<BoxMLCP> problem_;
+  std::unique_ptr<AffineVI> avi_;
   std::unique_ptr<Kernel> kernel_;
 };
 

@@ -24,6 +24,16 @@ void LinearSignSystem::Validate() const {
   stepper_detail::CheckFinite(kOwner, "C", C);
   ValidateFinite(kOwner, "D", D);
   ValidateFinite(kOwner, "g", g);
+  law.Validate(kOwner, m());
+}
+
+void PolytopeLaw::Validate(const char* owner, int m) const {
+  if (empty()) return;
+  const auto rows = static_cast<int>(H.rows());
+  stepper_detail::CheckShape(owner, "law.H", H, rows, m);
+  stepper_detail::CheckSize(owner, "law.K", K, rows);
+  stepper_detail::CheckFinite(owner, "law.H", H);
+  ValidateFinite(owner, "law.K", K);
 }
 
 void ZohSmcSystem::Validate() const {
@@ -39,8 +49,13 @@ void ZohSmcSystem::Validate() const {
   if (!(alpha > 0.0) || !std::isfinite(alpha)) {
     stepper_detail::Fail(kOwner, "alpha must be a positive finite number, got " + NumberText(alpha));
   }
-  // The equivalent control needs (CG)⁻¹ (report, Example ECB-SMC).
-  stepper_detail::CheckInvertible(kOwner, "CG", C * G);
+  // The equivalent control needs (CG)⁻¹ (report, Example ECB-SMC); the switching part alone does not.
+  if (!switching_only) stepper_detail::CheckInvertible(kOwner, "CG", C * G);
+  if (switching_only && equivalent_control) {
+    stepper_detail::Fail(kOwner, "switching_only and equivalent_control exclude each other (u = -alpha s has no "
+                                 "equivalent part)");
+  }
+  law.Validate(kOwner, m());
   if (equivalent_control) {
     const double theta = equivalent_control->theta;
     if (!(theta >= 0.0 && theta <= 1.0)) {
@@ -79,12 +94,18 @@ void Disturbance::Evaluate(double t, Eigen::Ref<Vector> w) const {
 
 LinearSignSystem ClosedLoop(const ZohSmcSystem& system) {
   system.Validate();
-  const DenseMatrix CG = system.C * system.G;
-  const DenseMatrix G_CGinv = CG.transpose().partialPivLu().solve(system.G.transpose()).transpose();  // G(CG)⁻¹
   LinearSignSystem out;
-  out.E = system.F - G_CGinv * system.C * system.F;
-  out.B = system.equivalent_control ? DenseMatrix(system.alpha * system.G) : DenseMatrix(system.alpha * G_CGinv);
+  if (system.switching_only) {
+    out.E = system.F;
+    out.B = system.alpha * system.G;
+  } else {
+    const DenseMatrix CG = system.C * system.G;
+    const DenseMatrix G_CGinv = CG.transpose().partialPivLu().solve(system.G.transpose()).transpose();  // G(CG)⁻¹
+    out.E = system.F - G_CGinv * system.C * system.F;
+    out.B = system.equivalent_control ? DenseMatrix(system.alpha * system.G) : DenseMatrix(system.alpha * G_CGinv);
+  }
   out.C = system.C;
+  out.law = system.law;
   out.D = Vector::Zero(system.m());
   out.control_input = false;  // u = −(CG)⁻¹(CF x + α s) mixes x_k and x_{k+1} under a θ-method: not reported
   if (!system.disturbance.empty()) {

@@ -17,6 +17,19 @@ namespace smcbench {
 // t_k is cached), so it may be slow-ish but must not allocate if the caller wants an allocation-free loop.
 using Forcing = std::function<void(double t, Eigen::Ref<Vector> g)>;
 
+// The set-valued law s ∈ P of the one-step problem when it is not the box [−1, 1]^m: a polytope
+// P = {s : H s ≥ K} (Siconos' NormalConeNSL; implicit twisting's parallelogram). The implicit step is then the AVI
+// 0 ∈ M s + q + N_P(s) (solvers/avi, docs/avi.md) instead of the box-MLCP; with H = [I; −I], K = −1 it is the box.
+// Empty H: the box. Non-emptiness of P is checked where the AVI is built (AffineVI).
+struct PolytopeLaw {
+  DenseMatrix H;  // r×m
+  Vector K;       // r
+
+  bool empty() const { return H.size() == 0; }
+  // Shapes (m columns, K of H's rows, at least one row) and finiteness; InvalidInputError naming owner and field.
+  void Validate(const char* owner, int m) const;
+};
+
 // x' ∈ E x + g + g(t) − B Sgn(C x + D)  (`eq:deux` with f(t,x) = E x + g + g(t)); Sgn componentwise,
 // sgn(0) = [−1, 1]. x ∈ Rⁿ, m sliding surfaces.
 struct LinearSignSystem {
@@ -32,6 +45,8 @@ struct LinearSignSystem {
   // The relay u = −s entering through B is the system's control input (S1: x' ∈ −sgn x is the controller
   // u = −sgn(x) on x' = u): runs then report u_k = −s_{k+1} (trajectory columns u1..um, the input summary keys).
   bool control_input = false;
+  // s ∈ P instead of s ∈ [−1, 1]^m (y ∈ N_P(s), the polytope's generalization of s ∈ Sgn(y)); empty: the box.
+  PolytopeLaw law;
 
   int n() const { return static_cast<int>(E.rows()); }
   int m() const { return static_cast<int>(C.rows()); }
@@ -77,18 +92,25 @@ struct ZohSmcSystem {
   std::optional<EquivalentControl> equivalent_control;
   // Acts on the plant only; the controller does not know it.
   Disturbance disturbance;
+  // u = −α s alone, no equivalent part (Siconos' Twisting, RegularTwisting, ExplicitTwisting: the controller applies
+  // its multiplier λ = −s directly); CG need not be invertible then. Excludes equivalent_control.
+  bool switching_only = false;
+  // s ∈ P instead of the box (PolytopeLaw); empty: the box.
+  PolytopeLaw law;
 
   int n() const { return static_cast<int>(F.rows()); }
   int m() const { return static_cast<int>(C.rows()); }
-  // Sizes, finiteness, α > 0, CG invertible (InvalidInputError "ZohSmcSystem: CG is singular ..."), θ of the
-  // equivalent control in [0, 1], the disturbance's shapes (W n×q, constant and every amplitude q, finite).
+  // Sizes, finiteness, α > 0, CG invertible unless switching_only (InvalidInputError "ZohSmcSystem: CG is singular
+  // ..."), θ of the equivalent control in [0, 1], the disturbance's shapes (W n×q, constant and every amplitude q,
+  // finite), the law's.
   void Validate() const;
 };
 
 // The continuous closed loop of a ZOH-SMC system as a class-(2) system (report, Example ECB-SMC):
 // x' = (F − G(CG)⁻¹CF) x − α G(CG)⁻¹ Sgn(C x), i.e. E = F − G(CG)⁻¹CF, B = α G(CG)⁻¹, D = 0; with Siconos'
 // equivalent control the switching part enters through G itself: B = α G. A disturbance becomes the forcing
-// g + g(t) = W d(t) (an Euler scheme of the closed loop sees it, unlike the ZOH controller).
+// g + g(t) = W d(t) (an Euler scheme of the closed loop sees it, unlike the ZOH controller). switching_only:
+// E = F, B = α G. The law is carried over.
 // Lets the same plant be run with Euler (θ-method) or ZOH (S5/S6 of docs/scenes.md compare both).
 LinearSignSystem ClosedLoop(const ZohSmcSystem& system);
 

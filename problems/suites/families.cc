@@ -810,7 +810,7 @@ ProblemSet FamiliesSuite(const FamiliesOptions& options) {
   // Small h: the paper's linear scenes with m ≥ 2, then P-matrices of growing condition (and size), each at every
   // h of SmallHSteps, one seed (the family varies h and the condition, not the draw).
   if (options.scenes) {
-    for (std::string_view scene : SceneNames()) {
+    for (std::string_view scene : PaperSceneNames()) {
       const std::unique_ptr<Scene> loaded = LoadScene(scene);
       if (dynamic_cast<const LinearScene*>(loaded.get()) == nullptr || loaded->info().m < 2 ||
           !fits(loaded->info().m)) {
