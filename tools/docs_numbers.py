@@ -94,13 +94,17 @@ class Sources:
     # --- the helpers definitions call ---
     def cell(self, path, under, row, column):
         """The cell in COLUMN of the row whose first cell is ROW (backticks ignored; a tuple ROW matches the first
-        cells in turn), in the first table of the section UNDER that has COLUMN."""
-        header, rows = self.table_with(path, under, column)
+        cells in turn), in the first table of the section UNDER that has both COLUMN and that row (a section may
+        hold several tables with a column of that name, e.g. "problems" per backend and per size)."""
+        self.table_with(path, under, column)  # names the missing column when no table has it
         keys = [str(k) for k in (row if isinstance(row, tuple) else (row,))]
-        for cells in rows:
-            if [c.strip("`") for c in cells[:len(keys)]] == keys:
-                return cells[header.index(column)]
-        raise SourceError(f"{path} under {under!r}: the table with column {column!r} has no row {row!r}")
+        for header, rows in self.tables(path, under):
+            if column not in header:
+                continue
+            for cells in rows:
+                if [c.strip("`") for c in cells[:len(keys)]] == keys:
+                    return cells[header.index(column)]
+        raise SourceError(f"{path} under {under!r}: no table with column {column!r} has a row {row!r}")
 
     def column(self, path, under, column):
         """Every cell of COLUMN in the first table of the section that has it."""

@@ -3,7 +3,9 @@
 if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,1000 noenhanced font ',10' } else { set terminal png size 1200,1000 noenhanced }
 set output 'S1-sign-explicit-h0.2.png'
 set grid
-set key top right
+set key outside right top
+set format x '%g'
+set format y '%g'
 set multiplot layout 3,1 title 'S1 sign, explicit Euler, h = 0.2'
 set xlabel 't'
 set title 'state x'
@@ -19,7 +21,9 @@ unset output
 set terminal svg size 1200,1000 dynamic noenhanced font 'sans,11'
 set output 'S1-sign-explicit-h0.2.svg'
 set grid
-set key top right
+set key outside right top
+set format x '%g'
+set format y '%g'
 set multiplot layout 3,1 title 'S1 sign, explicit Euler, h = 0.2'
 set xlabel 't'
 set title 'state x'

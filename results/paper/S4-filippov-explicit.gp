@@ -3,7 +3,9 @@
 if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,900 noenhanced font ',10' } else { set terminal png size 1200,900 noenhanced }
 set output 'S4-filippov-explicit.png'
 set grid
-set key top right
+set key outside right top
+set format x '%g'
+set format y '%g'
 set multiplot layout 2,2 title 'S4 filippov, explicit Euler, h = 0.002'
 set xlabel 't'
 set title 'state x'
@@ -23,7 +25,9 @@ unset output
 set terminal svg size 1200,900 dynamic noenhanced font 'sans,11'
 set output 'S4-filippov-explicit.svg'
 set grid
-set key top right
+set key outside right top
+set format x '%g'
+set format y '%g'
 set multiplot layout 2,2 title 'S4 filippov, explicit Euler, h = 0.002'
 set xlabel 't'
 set title 'state x'

@@ -3,7 +3,9 @@
 if (strstrt(GPVAL_TERMINALS, 'pngcairo') > 0) { set terminal pngcairo size 1200,900 noenhanced font ',10' } else { set terminal png size 1200,900 noenhanced }
 set output 'S6-zoh-mimo-implicit-h0.3.png'
 set grid
-set key top right
+set key outside right top
+set format x '%g'
+set format y '%g'
 set multiplot layout 2,2 title 'S6 zoh-mimo, implicit ZOH, h = 0.3'
 set xlabel 't'
 set title 'state x'
@@ -23,7 +25,9 @@ unset output
 set terminal svg size 1200,900 dynamic noenhanced font 'sans,11'
 set output 'S6-zoh-mimo-implicit-h0.3.svg'
 set grid
-set key top right
+set key outside right top
+set format x '%g'
+set format y '%g'
 set multiplot layout 2,2 title 'S6 zoh-mimo, implicit ZOH, h = 0.3'
 set xlabel 't'
 set title 'state x'
