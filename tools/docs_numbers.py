@@ -191,6 +191,9 @@ def sig(value, digits=2):
         # Half up on the shortest decimal text (2.65 → 2.7, as a reader rounds the report's 2.65), not on the binary.
         decimals = digits - 1 - exponent
         rounded = decimal.Decimal(repr(value)).quantize(decimal.Decimal(1).scaleb(-decimals), decimal.ROUND_HALF_UP)
+        if abs(rounded) >= decimal.Decimal(10) ** (exponent + 1):  # rounded up a decade (9.99 → 10): one digit less
+            decimals -= 1
+            rounded = rounded.quantize(decimal.Decimal(1).scaleb(-decimals), decimal.ROUND_HALF_UP)
         return f"{rounded:.{max(decimals, 0)}f}"
     return sci(value, digits - 1)
 

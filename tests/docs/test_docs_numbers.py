@@ -106,6 +106,7 @@ def check(condition, message, output=""):
 def test_formats():
     """The formatters write numbers as the pages do (known answers)."""
     cases = [(docs_numbers.sig(2.82), "2.8"), (docs_numbers.sig("2.65×"), "2.7"),
+             (docs_numbers.sig(9.99), "10"), (docs_numbers.sig(0.0999), "0.10"),  # rounded up a decade
              (docs_numbers.sig(1675.7, 3), "1680"), (docs_numbers.sig(316, 3), "316"),
              (docs_numbers.sig(1.67e-16), "1.7e-16"), (docs_numbers.sig(0.0019401, 3), "0.00194"),
              (docs_numbers.sig("4.15× slower"), "4.2"), (docs_numbers.sig(0), "0"),
