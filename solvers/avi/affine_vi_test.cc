@@ -10,29 +10,15 @@
 #include <vector>
 
 #include "solvers/avi/planted_avi_test_util.h"
+#include "tests/support/eigen_literals.h"
 
 namespace smcbench {
 namespace {
 
+using test_support::Mat;
+using test_support::Vec;
+
 using ::testing::HasSubstr;
-
-DenseMatrix Mat(std::initializer_list<std::initializer_list<double>> rows) {
-  DenseMatrix M(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.begin()->size()));
-  int i = 0;
-  for (const auto& row : rows) {
-    int j = 0;
-    for (double v : row) M(i, j++) = v;
-    ++i;
-  }
-  return M;
-}
-
-Vector Vec(std::initializer_list<double> values) {
-  Vector v(static_cast<Eigen::Index>(values.size()));
-  int i = 0;
-  for (double x : values) v[i++] = x;
-  return v;
-}
 
 // The square [−1, 1]² as H λ ≥ K.
 DenseMatrix SquareH() { return Mat({{1, 0}, {-1, 0}, {0, 1}, {0, -1}}); }

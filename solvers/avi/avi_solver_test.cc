@@ -16,28 +16,14 @@
 
 #include "solvers/avi/planted_avi_test_util.h"
 #include "solvers/registry/registry.h"
+#include "tests/support/eigen_literals.h"
 #include "tests/support/malloc_counter.h"
 
 namespace smcbench {
 namespace {
 
-DenseMatrix Mat(std::initializer_list<std::initializer_list<double>> rows) {
-  DenseMatrix M(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.begin()->size()));
-  int i = 0;
-  for (const auto& row : rows) {
-    int j = 0;
-    for (double v : row) M(i, j++) = v;
-    ++i;
-  }
-  return M;
-}
-
-Vector Vec(std::initializer_list<double> values) {
-  Vector v(static_cast<Eigen::Index>(values.size()));
-  int i = 0;
-  for (double x : values) v[i++] = x;
-  return v;
-}
+using test_support::Mat;
+using test_support::Vec;
 
 // Backends that solve every reduction of a strictly monotone AVI here (exact pivoting on a positive semidefinite
 // reduced matrix; the exhaustive enumeration): the others may refuse or fail, never answer wrongly.

@@ -13,8 +13,13 @@
 #include <string>
 #include <vector>
 
+#include "tests/support/eigen_literals.h"
+
 namespace smcbench {
 namespace {
+
+using test_support::Mat;
+using test_support::Vec;
 
 constexpr double kTol = 1e-10;
 
@@ -48,24 +53,6 @@ void ExpectSolved(const BoxMLCP& p, const SolveResult& r, const std::string& whe
     EXPECT_GE(r.z[i], p.l()[i]) << where << " row " << i;
     EXPECT_LE(r.z[i], p.u()[i]) << where << " row " << i;
   }
-}
-
-DenseMatrix Mat(std::initializer_list<std::initializer_list<double>> rows) {
-  DenseMatrix M(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.begin()->size()));
-  int i = 0;
-  for (const auto& row : rows) {
-    int j = 0;
-    for (double v : row) M(i, j++) = v;
-    ++i;
-  }
-  return M;
-}
-
-Vector Vec(std::initializer_list<double> values) {
-  Vector v(static_cast<Eigen::Index>(values.size()));
-  int i = 0;
-  for (double x : values) v[i++] = x;
-  return v;
 }
 
 // ---------------------------------------------------------------------------------------------------------

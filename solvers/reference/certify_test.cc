@@ -11,26 +11,13 @@
 #include <random>
 #include <vector>
 
+#include "tests/support/eigen_literals.h"
+
 namespace smcbench {
 namespace {
 
-DenseMatrix Mat(std::initializer_list<std::initializer_list<double>> rows) {
-  DenseMatrix M(static_cast<Eigen::Index>(rows.size()), static_cast<Eigen::Index>(rows.begin()->size()));
-  int i = 0;
-  for (const auto& row : rows) {
-    int j = 0;
-    for (double v : row) M(i, j++) = v;
-    ++i;
-  }
-  return M;
-}
-
-Vector Vec(std::initializer_list<double> values) {
-  Vector v(static_cast<Eigen::Index>(values.size()));
-  int i = 0;
-  for (double x : values) v[i++] = x;
-  return v;
-}
+using test_support::Mat;
+using test_support::Vec;
 
 Vector Filled(int n, double value) { return Vector::Constant(n, value); }
 
