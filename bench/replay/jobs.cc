@@ -32,7 +32,7 @@ std::uint64_t Fnv1a64(const std::string& text) {
 
 JobKind JobKindFromText(const std::string& text, const std::string& where) {
   for (JobKind k : {JobKind::kCold, JobKind::kGenericSparse, JobKind::kSweep, JobKind::kStepper, JobKind::kMcp,
-                    JobKind::kWarm}) {
+                    JobKind::kWarm, JobKind::kAvi}) {
     if (text == ToString(k)) return k;
   }
   throw InvalidInputError(where + ": unknown job kind '" + text + "'");
@@ -58,6 +58,7 @@ const char* ToString(JobKind kind) {
     case JobKind::kStepper: return "stepper";
     case JobKind::kMcp: return "mcp";
     case JobKind::kWarm: return "warm";
+    case JobKind::kAvi: return "avi";
   }
   return "?";
 }
@@ -87,6 +88,16 @@ double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptio
   return std::min(options.time_limit_seconds, solve) + sampling;
 }
 
+double EstimateAviJobSeconds(const AviLibraryProblem& problem, const ReplayOptions& options) {
+  if (!problem.problem) return 0.0;
+  const AffineVI& avi = *problem.problem;
+  const double rows = avi.size() + avi.inequality_count() + avi.equality_count();
+  const double solve = 2.0 * 1e-9 * rows * 2.0 * rows * rows;
+  const double sampling =
+      std::min(options.max_seconds_per_pair, options.repetitions * std::max(options.min_sample_seconds, solve));
+  return std::min(options.time_limit_seconds, solve) + sampling;
+}
+
 double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions& options) {
   if (sequence.steps.empty()) return 0.0;
   const LibraryProblem& head = sequence.steps.front();
@@ -105,6 +116,13 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites, const
 std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
                                     const std::vector<McpProblemSet>& mcp_suites,
                                     const ReplayOptions& options, const JobListRequest& request) {
+  return ListBenchJobs(suites, mcp_suites, {}, options, request);
+}
+
+std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
+                                    const std::vector<McpProblemSet>& mcp_suites,
+                                    const std::vector<AviProblemSet>& avi_suites, const ReplayOptions& options,
+                                    const JobListRequest& request) {
   std::vector<BenchJob> jobs;
   const auto add = [&](JobKind kind, std::size_t s, std::size_t p, const std::string& solver, double tolerance) {
     BenchJob job;
@@ -155,6 +173,25 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
           job.id = JobId(job);
           jobs.push_back(std::move(job));
         }
+      }
+    }
+  }
+  for (std::size_t k = 0; k < avi_suites.size(); ++k) {
+    const AviProblemSet& set = avi_suites[k];
+    for (std::size_t p = 0; p < set.problems.size(); ++p) {
+      for (const std::string& solver : request.avi_solvers) {
+        BenchJob job;
+        job.index = jobs.size();
+        job.kind = JobKind::kAvi;
+        job.suite = suites.size() + mcp_suites.size() + k;
+        job.problem = p;
+        job.suite_name = set.name;
+        job.problem_id = set.problems[p].id;
+        job.solver = solver;
+        job.tolerance = options.tolerance;
+        job.cost = EstimateAviJobSeconds(set.problems[p], options);
+        job.id = JobId(job);
+        jobs.push_back(std::move(job));
       }
     }
   }

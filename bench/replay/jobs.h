@@ -17,6 +17,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/replay/avi_replay.h"
 #include "bench/replay/mcp_replay.h"
 #include "bench/replay/replay.h"
 #include "bench/replay/results_io.h"
@@ -31,6 +32,7 @@ enum class JobKind {
   kStepper,        // the time-stepper studies (warm/cold starts, work-precision), one job
   kMcp,            // nonlinear MCP × start × MCP backend at the run's tolerance (ReplayMcpOne, mode "cold")
   kWarm,           // warm sequence × backend at the run's tolerance (ReplayWarmSequence, mode "warm")
+  kAvi,            // AVI × box backend through SolveAvi at the run's tolerance (ReplayAviOne, mode "cold")
 };
 const char* ToString(JobKind kind);
 
@@ -62,6 +64,9 @@ double EstimateJobSeconds(const LibraryProblem& problem, const ReplayOptions& op
 // The same guess for one MCP job: 20 Newton steps, each 1e-9·n·(n + nnz(J)) s with nnz(J) taken as n² (dense J) or
 // 10·n (sparse J; not evaluated for an estimate).
 double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptions& options);
+// The same guess for one AVI job: one solve of the reduction (N = n + m + p rows, dense) at 1e-9·N·2N² s, plus as
+// much again for SolveAvi's building of it and its verdict.
+double EstimateAviJobSeconds(const AviLibraryProblem& problem, const ReplayOptions& options);
 // The same guess for one warm job: an untimed and the timed passes of every step, each step a cold solve's guess
 // (at least 1 µs, a call's fixed cost).
 double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions& options);
@@ -73,6 +78,8 @@ struct JobListRequest {
   // The backends of the MCP jobs: the resolved names whose backend has SolverInfo::mcp (McpSolverNames). The
   // others are not run on MCPs.
   std::vector<std::string> mcp_solvers;
+  // The backends of the AVI jobs: the resolved names whose backend solves box-MLCPs (AviSolverNames).
+  std::vector<std::string> avi_solvers;
   // The warm sequences of each box suite (indexed as the suites; null or shorter: none), run on every backend of
   // solvers (warm_track.h).
   const std::vector<std::vector<WarmSequence>>* warm = nullptr;
@@ -81,12 +88,17 @@ struct JobListRequest {
 // Every job of a run, in the order a single run writes its results: per suite the cold jobs (problem, then
 // backend), the generic sparse path (problem), the sweep (SweepProblemIndices, backend, tolerance); then per MCP
 // suite its jobs (problem, start, MCP backend; BenchJob::suite counts on after the box suites: suites.size() + k);
-// then the warm jobs (box suite, sequence, backend); then the stepper job.
+// then per AVI suite its jobs (problem, box backend; BenchJob::suite counts on after the MCP suites:
+// suites.size() + mcp_suites.size() + k); then the warm jobs (box suite, sequence, backend); then the stepper job.
 std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites, const ReplayOptions& options,
                                     const JobListRequest& request);
 std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
                                     const std::vector<McpProblemSet>& mcp_suites,
                                     const ReplayOptions& options, const JobListRequest& request);
+std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
+                                    const std::vector<McpProblemSet>& mcp_suites,
+                                    const std::vector<AviProblemSet>& avi_suites, const ReplayOptions& options,
+                                    const JobListRequest& request);
 
 // The shard (0-based, < shards) of every job: longest estimated job first (ties in the order of a stable hash of
 // the job's id, FNV-1a 64), each to the shard with the least estimated work so far (ties: the lowest shard).
@@ -156,7 +168,8 @@ struct RunManifest {
   std::string command;
   nlohmann::json environment;     // BenchEnvironment of the process that started the folder
   nlohmann::json options;         // the options that change what is measured (BenchRunOptions)
-  // suite, description, problems, checksum; no records. The box suites, then the MCP suites (BenchJob::suite).
+  // suite, description, problems, checksum; no records. The box suites, then the MCP suites, then the AVI suites
+  // (BenchJob::suite).
   std::vector<SuiteResults> suites;
   std::vector<BenchJob> jobs;     // the whole run's job list
   int shard = 0, shards = 1;      // this folder's share (0-based)

@@ -11,6 +11,7 @@
 #include "bench/replay/mcp_replay.h"
 #include "bench/run/warm_sequences.h"
 #include "problems/library/references.h"
+#include "problems/avi_library/avi_suite.h"
 #include "problems/mcp/mcp_suite.h"
 #include "solvers/registry/backend_settings.h"
 #include "solvers/registry/registry.h"
@@ -26,6 +27,7 @@ double SecondsSince(Clock::time_point start) {
 }
 
 bool IsMcpSuiteName(const std::string& name) { return name == "mcp"; }
+bool IsAviSuiteName(const std::string& name) { return name == kAviSuiteName; }
 
 // The defaults filled in and "all" expanded, in the order given.
 std::vector<std::string> ResolveSuiteNames(const std::vector<std::string>& named) {
@@ -98,6 +100,26 @@ McpProblemSet BuildMcpBenchSuite(bool quick, std::string* line) {
   return set;
 }
 
+// The AVI suite (references attached by the suite itself), validated, with one line for the log.
+AviProblemSet BuildAviBenchSuite(bool quick, std::string* line) {
+  const auto build_start = Clock::now();
+  AviProblemSet set = BuildAviSuite(quick);
+  std::map<std::string, int> certificates;
+  for (const AviLibraryProblem& p : set.problems) {
+    const auto it = p.metadata.find("certificate");
+    ++certificates[it == p.metadata.end() ? "none" : it->second];
+  }
+  std::string certified;
+  for (const auto& [certificate, count] : certificates) {
+    certified += (certified.empty() ? "" : ", ") + std::to_string(count) + " " + certificate;
+  }
+  char seconds[64];
+  std::snprintf(seconds, sizeof seconds, "built and certified in %.2f s", SecondsSince(build_start));
+  *line = "suite " + set.name + " (" + std::to_string(set.problems.size()) + " AVIs, " + seconds + "; references: " +
+          certified + ")";
+  return set;
+}
+
 }  // namespace
 
 bool IncludesStepperStudy(const std::vector<std::string>& suite_names, StepperStudyChoice choice) {
@@ -112,7 +134,7 @@ void CheckBenchRequest(const BenchRequest& request) {
     std::error_code ec;
     if (!known && !fs::is_regular_file(name, ec)) {
       throw InvalidInputError("bench: unknown suite '" + name + "' (known: paper, families, hard, siconos, scale, "
-                              "tiny, mcp, all, or a problem-set file)");
+                              "tiny, mcp, avi, all, or a problem-set file)");
     }
     if ((name == "siconos" || name == "hard") && !fs::is_directory(request.siconos_dir, ec)) {
       throw InvalidInputError("bench: suite " + name + " needs the Siconos collection: --siconos-dir '" +
@@ -165,6 +187,8 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
     std::string line;
     if (IsMcpSuiteName(name)) {
       plan.mcp_suites.push_back(BuildMcpBenchSuite(request.quick, &line));
+    } else if (IsAviSuiteName(name)) {
+      plan.avi_suites.push_back(BuildAviBenchSuite(request.quick, &line));
     } else {
       plan.suites.push_back(BuildBoxSuite(name, request, &line));
     }
@@ -181,7 +205,7 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
   if (request.warm) {
     std::size_t box = 0;
     for (const std::string& name : plan.suite_names) {
-      if (IsMcpSuiteName(name)) continue;
+      if (IsMcpSuiteName(name) || IsAviSuiteName(name)) continue;
       const ProblemSet& set = plan.suites[box++];
       const bool is_file =
           std::find(std::begin(kBenchSuiteNames), std::end(kBenchSuiteNames), name) == std::end(kBenchSuiteNames);
@@ -207,7 +231,14 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
       log("no chosen backend solves MCPs (`smcbench list` says: accepts nonlinear MCP): the MCP suite is not run");
     }
   }
-  plan.jobs = ListBenchJobs(plan.suites, plan.mcp_suites, options, jobs);
+  if (!plan.avi_suites.empty()) {
+    jobs.avi_solvers = AviSolverNames(plan.solvers);
+    if (jobs.avi_solvers.empty() && log) {
+      log("no chosen backend solves box-MLCPs (`smcbench list`): the AVI suite, solved through its reduction to a "
+          "box-MLCP, is not run");
+    }
+  }
+  plan.jobs = ListBenchJobs(plan.suites, plan.mcp_suites, plan.avi_suites, options, jobs);
   return plan;
 }
 
@@ -227,6 +258,14 @@ std::vector<SuiteResults> PlanSuites(const BenchPlan& plan) {
     suite.description = set.description;
     suite.problems = static_cast<int>(set.problems.size());
     suite.checksum = McpProblemSetChecksum(set);
+    out.push_back(std::move(suite));
+  }
+  for (const AviProblemSet& set : plan.avi_suites) {
+    SuiteResults suite;
+    suite.suite = set.name;
+    suite.description = set.description;
+    suite.problems = static_cast<int>(set.problems.size());
+    suite.checksum = AviProblemSetChecksum(set);
     out.push_back(std::move(suite));
   }
   return out;

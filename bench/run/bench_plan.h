@@ -13,6 +13,7 @@
 
 #include "bench/replay/jobs.h"
 #include "bench/replay/warm_track.h"
+#include "problems/avi_library/avi_library.h"
 #include "problems/mcp/mcp_library.h"
 #include "problems/suites/catalogue.h"
 
@@ -20,10 +21,10 @@ namespace smcbench {
 
 // The suites a run knows by name ("all": every one but tiny); anything else must be a problem-set file.
 inline constexpr const char* kBenchSuiteNames[] = {"paper", "families", "hard", "siconos", "scale", "tiny", "mcp",
-                                                   "all"};
+                                                   "avi", "all"};
 // What a request without suites runs, and what "all" stands for.
-inline constexpr const char* kDefaultBenchSuites[] = {"paper", "families", "hard", "siconos", "mcp"};
-inline constexpr const char* kAllBenchSuites[] = {"paper", "families", "hard", "siconos", "scale", "mcp"};
+inline constexpr const char* kDefaultBenchSuites[] = {"paper", "families", "hard", "siconos", "mcp", "avi"};
+inline constexpr const char* kAllBenchSuites[] = {"paper", "families", "hard", "siconos", "scale", "mcp", "avi"};
 
 // Whether a run includes the time-stepper studies (warm/cold starts, work-precision on the paper's scenes).
 enum class StepperStudyChoice {
@@ -61,9 +62,10 @@ struct BenchPlan {
   BenchRequest request;
   std::vector<std::string> suite_names;  // the request's, defaults filled in and "all" expanded
   std::vector<std::string> solvers;      // resolved (never empty), in the order of the jobs
-  ReplayOptions options;                 // what each job's ReplayOne / ReplayMcpOne is given
+  ReplayOptions options;                 // what each job's ReplayOne / ReplayMcpOne / ReplayAviOne is given
   std::vector<ProblemSet> suites;        // the box suites, in the order named
   std::vector<McpProblemSet> mcp_suites;  // the MCP suites; BenchJob::suite counts them after suites
+  std::vector<AviProblemSet> avi_suites;  // the AVI suites; BenchJob::suite counts them after mcp_suites
   bool stepper = false;                  // the job list ends with the stepper job
   // The warm sequences of each box suite (indexed as suites; empty without request.warm).
   std::vector<std::vector<WarmSequence>> warm_sequences;
@@ -82,7 +84,7 @@ void CheckBenchRequest(const BenchRequest& request);
 BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(const std::string&)>& log = {});
 
 // The plan's suites as results.json and the manifest list them (name, description, problems, checksum; no
-// records): the box suites, then the MCP suites.
+// records): the box suites, then the MCP suites, then the AVI suites.
 std::vector<SuiteResults> PlanSuites(const BenchPlan& plan);
 
 // The options that change what a run measures, as the manifest records them (shards and resumed runs must agree).

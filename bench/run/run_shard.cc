@@ -8,6 +8,7 @@
 #include <memory>
 #include <utility>
 
+#include "bench/replay/avi_replay.h"
 #include "bench/replay/mcp_replay.h"
 #include "bench/replay/stepper_study.h"
 #include "bench/replay/warm_track.h"
@@ -91,8 +92,13 @@ class ShardRunner {
       BudgetSkip skip;
       skip.solver = key.second;
       skip.skipped = count;
-      skip.mcp = key.first >= plan_.suites.size();
-      if (skip.mcp) {
+      const std::size_t first_avi = plan_.suites.size() + plan_.mcp_suites.size();
+      skip.mcp = key.first >= plan_.suites.size() && key.first < first_avi;
+      if (key.first >= first_avi) {
+        const AviProblemSet& set = plan_.avi_suites[key.first - first_avi];
+        skip.suite = set.name;
+        skip.problems = set.problems.size();
+      } else if (skip.mcp) {
         const McpProblemSet& set = plan_.mcp_suites[key.first - plan_.suites.size()];
         skip.suite = set.name;
         for (const McpLibraryProblem& p : set.problems) skip.problems += p.starts.size();
@@ -127,7 +133,16 @@ class ShardRunner {
     return it->second.get();
   }
 
+  const AviProblemSet& AviSuiteOf(const BenchJob& job) const {
+    return plan_.avi_suites.at(job.suite - plan_.suites.size() - plan_.mcp_suites.size());
+  }
+
   ReplayRecord Replay(const BenchJob& job) {
+    if (job.kind == JobKind::kAvi) {
+      const AviProblemSet& set = AviSuiteOf(job);
+      return ReplayAviOne(set, set.problems.at(job.problem), SolverFor(job.solver), job.solver, plan_.options,
+                          job.tolerance);
+    }
     if (job.kind == JobKind::kMcp) {
       const McpProblemSet& set = plan_.mcp_suites.at(job.suite - plan_.suites.size());
       return ReplayMcpOne(set, set.problems.at(job.problem), job.start, SolverFor(job.solver), job.solver,
@@ -152,6 +167,10 @@ class ShardRunner {
   }
 
   ReplayRecord NotRunRecord(const BenchJob& job) const {
+    if (job.kind == JobKind::kAvi) {
+      const AviProblemSet& set = AviSuiteOf(job);
+      return AviNotRunRecord(set, set.problems.at(job.problem), job.solver, job.tolerance, NotRunMessage(job));
+    }
     if (job.kind == JobKind::kMcp) {
       const McpProblemSet& set = plan_.mcp_suites.at(job.suite - plan_.suites.size());
       return McpNotRunRecord(set, set.problems.at(job.problem), job.start, job.solver, job.tolerance,

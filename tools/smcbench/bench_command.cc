@@ -77,9 +77,10 @@ BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
                                         "claimed, inaccurate or wrongly refused) on a backend not named by "
                                         "--allow-wrong, after writing the results (and report)");
   bench_->add_option("--suite", f.suites,
-                     "paper | families | hard | siconos | scale | tiny | mcp | all | FILE (repeatable; default: "
-                     "paper families hard siconos mcp; mcp: the nonlinear MCPs, problem x start, on the backends "
-                     "that solve MCPs)");
+                     "paper | families | hard | siconos | scale | tiny | mcp | avi | all | FILE (repeatable; "
+                     "default: paper families hard siconos mcp avi; mcp: the nonlinear MCPs, problem x start, on the "
+                     "backends that solve MCPs; avi: affine variational inequalities over polytopes, through their "
+                     "reduction on every box backend)");
   bench_->add_option("--solver", f.solvers, "backend (repeatable; default: every registered backend)");
   bench_->add_option("--set", f.sets, "typed backend option BACKEND.OPTION=VALUE (see `smcbench list`)");
   bench_->add_option("--out", f.out, "output folder (default: a fresh ./smcbench-bench-YYYYMMDD-HHMMSS); a folder "

@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "bench/figures/gnuplot_figure.h"
+#include "problems/avi_library/avi_library.h"
 #include "solvers/core/duration_text.h"
 #include "solvers/registry/registry.h"
 
@@ -147,6 +148,8 @@ const char* const kVerdictInTwoSentences =
     "row of M and q divided by d_i = max_j |M_ij|) is ≤ tol·(1 + ‖z‖∞). Where a certified reference z* proves the "
     "solution unique, also ‖z − z*‖∞ ≤ 10·max(1, μ)·tol·(1 + ‖z*‖∞), with μ = ‖(D⁻¹M)_FF⁻¹‖∞ the conditioning of "
     "z*'s free rows; a claim that no solution exists, on a problem known to have one, is wrongly refused.";
+
+bool IsAviSuite(const SuiteResults& suite) { return suite.suite == kAviSuiteName; }
 
 bool IsMcpSuite(const SuiteResults& suite) {
   return std::any_of(suite.replay.records.begin(), suite.replay.records.end(),
@@ -1113,6 +1116,123 @@ void WriteMcpSection(std::ostream& md, const SuiteResults& suite, const std::str
   }
 }
 
+// ---- The AVI section: the `avi` suite's AVI × box backend records (bench/replay/avi_replay.h). ----
+
+// The family of an AVI id "avi/<family>/...".
+std::string AviFamily(const std::string& id) {
+  const auto first = id.find('/');
+  if (first == std::string::npos) return id;
+  const auto second = id.find('/', first + 1);
+  return id.substr(first + 1, second == std::string::npos ? std::string::npos : second - first - 1);
+}
+
+// Per backend: the verdicts and the median cold time over the AVIs it got right.
+void WriteAviBackends(std::ostream& md, const SuiteResults& suite) {
+  md << "| backend | AVIs | solved | correctly refused | **wrongly claimed** | **inaccurate** | **wrongly refused** | "
+        "failed | median time (correct) |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+  for (const std::string& solver : Solvers(suite.replay.records)) {
+    std::map<Verdict, int> count;
+    std::vector<double> times;
+    int total = 0;
+    for (const auto& r : suite.replay.records) {
+      if (r.solver != solver) continue;
+      ++total;
+      ++count[r.verdict];
+      if (Correct(r) && r.samples > 0) times.push_back(r.time_median);
+    }
+    md << "| " << solver << " | " << total << " | " << count[Verdict::kSolved] << " | "
+       << count[Verdict::kCorrectlyRefused] << " | " << Count(count[Verdict::kWronglyClaimed]) << " | "
+       << Count(count[Verdict::kInaccurate]) << " | " << Count(count[Verdict::kWronglyRefused]) << " | "
+       << count[Verdict::kFailed] << " | " << (times.empty() ? std::string("–") : Seconds(MedianDefined(times)))
+       << " |\n";
+  }
+  md << "\n";
+}
+
+// Per backend and family: correct answers (solved + correctly refused) over the family's AVIs.
+void WriteAviFamilies(std::ostream& md, const SuiteResults& suite) {
+  std::vector<std::string> families;
+  std::map<std::pair<std::string, std::string>, std::pair<int, int>> cells;  // (backend, family) → correct, total
+  for (const auto& r : suite.replay.records) {
+    const std::string family = AviFamily(r.problem);
+    if (std::find(families.begin(), families.end(), family) == families.end()) families.push_back(family);
+    auto& [correct, total] = cells[{r.solver, family}];
+    correct += Correct(r);
+    ++total;
+  }
+  md << "Correct answers per family (solved + correctly refused / AVIs of the family):\n\n| backend | ";
+  for (const auto& family : families) md << family << " | ";
+  md << "\n|---|";
+  for (std::size_t i = 0; i < families.size(); ++i) md << "---:|";
+  md << "\n";
+  for (const std::string& solver : Solvers(suite.replay.records)) {
+    md << "| " << solver << " | ";
+    for (const auto& family : families) {
+      const auto& [correct, total] = cells[{solver, family}];
+      md << correct << "/" << total << " | ";
+    }
+    md << "\n";
+  }
+  md << "\n";
+}
+
+// Every record that is not correct, wrong answers first.
+void WriteAviFailures(std::ostream& md, const SuiteResults& suite) {
+  std::vector<const ReplayRecord*> failures;
+  for (const auto& r : suite.replay.records) {
+    if (!Correct(r)) failures.push_back(&r);
+  }
+  if (failures.empty()) {
+    md << "Every backend is right on every AVI.\n\n";
+    return;
+  }
+  std::stable_sort(failures.begin(), failures.end(), [](const ReplayRecord* a, const ReplayRecord* b) {
+    return IsWrong(a->verdict) > IsWrong(b->verdict);
+  });
+  constexpr std::size_t kListed = 40;
+  md << "Where the backends fail (" << failures.size() << " AVI × backend"
+     << (failures.size() > kListed ? ", the first 40; results.csv has them all" : "")
+     << "; wrong answers first):\n\n| AVI | backend | verdict | status | message | residual (eq.) | forward error | "
+        "allowance |\n|---|---|---|---|---|---|---|---|\n";
+  for (std::size_t i = 0; i < std::min(failures.size(), kListed); ++i) {
+    const ReplayRecord& r = *failures[i];
+    const std::string verdict(ToString(r.verdict));
+    md << "| " << r.problem << " | " << r.solver << " | " << (IsWrong(r.verdict) ? "**" + verdict + "**" : verdict)
+       << " | " << ToString(r.status) << " | " << Cell(r.message) << " | " << G(r.residual_scaled) << " | "
+       << G(r.forward_error) << " | " << G(r.forward_allowance) << " |\n";
+  }
+  md << "\n";
+}
+
+void WriteAviSection(std::ostream& md, const SuiteResults& suite, const std::string& dir, bool plots) {
+  std::set<std::string> problems;
+  std::map<std::string, int> families;
+  for (const auto& r : suite.replay.records) {
+    if (problems.insert(r.problem).second) ++families[AviFamily(r.problem)];
+  }
+  std::string family_counts;
+  for (const auto& [family, count] : families) {
+    family_counts += (family_counts.empty() ? "" : ", ") + std::to_string(count) + " " + family;
+  }
+  const std::string certified = CertificateCounts(suite);
+  md << "## AVI suite `" << suite.suite << "`: " << suite.description << "\n\n"
+     << problems.size() << " affine variational inequalities 0 ∈ Mλ + q + N_P(λ), P = {Hλ ≥ K, Eλ = f} ("
+     << family_counts << "); references (of the reduction): " << (certified.empty() ? "–" : certified)
+     << ". Every backend that solves box-MLCPs runs here, on the exact reduction to a box-MLCP in (λ, μ, ν) "
+        "(SolveAvi, docs/avi.md); times are cold SolveAvi calls (building the reduction, the backend's solve, the "
+        "mapping back). The verdict is JudgeAvi's, recomputed from the answer, never the backend's flag: residual "
+        "(eq.) is the natural residual of the normalized reduction (rows of H, E divided by their largest entry, "
+        "M and q by max|M_ij|), and λ's complementarity and feasibility in units of λ must also be ≤ tol; the "
+        "forward error ‖λ − λ*‖∞ is judged only where λ is unique (M + Mᵀ positive definite, or certified), so "
+        "on the twisting steps (M singular, λ not unique) the residual rule alone decides. AVIs with no solution "
+        "must be refused.\n\n";
+  WriteAviBackends(md, suite);
+  WriteAviFamilies(md, suite);
+  WriteStatusesAndClaims(md, suite);
+  WriteAviFailures(md, suite);
+  if (plots) WritePerformanceProfile(md, suite, dir);
+}
+
 // Scale: time against m with the fitted exponent (the scale suite, when it has at least three sizes).
 void WriteScaleTable(std::ostream& md, const SuiteResults& suite) {
   std::set<int> sizes;
@@ -1267,10 +1387,11 @@ void WriteCachedNote(std::ostream& md, const std::vector<std::string>& cached) {
 void WriteSuite(std::ostream& md, const SuiteResults& suite, const std::string& dir, bool plots) {
   if (suite.replay.records.empty() && suite.replay.sweep.empty()) {
     md << "## Suite `" << suite.suite << "`: " << suite.description << "\n\nNo records: no chosen backend ran on it "
-       << "(an MCP suite runs only on the backends that solve MCPs).\n\n";
+       << "(an MCP suite runs only on the backends that solve MCPs, an AVI suite on those that solve box-MLCPs).\n\n";
     return;
   }
   if (IsMcpSuite(suite)) return WriteMcpSection(md, suite, dir, plots);
+  if (IsAviSuite(suite)) return WriteAviSection(md, suite, dir, plots);
   WriteSuiteSummary(md, suite);
   WriteSolvedNothing(md, suite);
   WriteStatusesAndClaims(md, suite);

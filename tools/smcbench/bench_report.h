@@ -48,6 +48,8 @@ struct BackendSummary {
 
 // True when the suite's records are MCP problem × start (ReplayRecord::start set): the report's MCP section.
 bool IsMcpSuite(const SuiteResults& suite);
+// True for the `avi` suite (kAviSuiteName): AVI × box backend records, the report's AVI section.
+bool IsAviSuite(const SuiteResults& suite);
 
 // Shifted geometric mean of the per-problem median times, shift 1e-6 s, a problem the backend does not get right
 // counted at kFailurePenaltyFactor × the slowest correct time on that problem (time_limit_seconds if nobody got it
