@@ -1084,5 +1084,70 @@ TEST(Shards, McpJobsMergeToTheSingleRunAndRespectTheBudget) {
   fs::remove_all(root);
 }
 
+// `bench --suite avi`: one job per AVI × box backend; the run writes records of suite avi that no backend got
+// wrongly claimed, the summary an avi row per backend and the report its AVI section.
+TEST(Bench, AviSuiteJobsAndRun) {
+  CliRun r = RunSmcbench({"bench", "--suite", "avi", "--quick", "--no-stepper", "--solver", "lemke", "--solver",
+                          "newton", "--list-jobs"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  std::size_t jobs = 0;
+  for (const std::string& line : Lines(r.out)) {
+    if (line.empty() || line[0] == '#') continue;
+    ++jobs;
+    EXPECT_THAT(line, HasSubstr("\tavi\tavi|avi/"));
+  }
+  EXPECT_EQ(jobs % 2, 0u);
+  EXPECT_GE(jobs / 2, 20u);  // every AVI on both backends
+
+  const fs::path dir = fs::temp_directory_path() / ("smcbench-bench-avi-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  r = RunSmcbench({"bench", "--suite", "avi", "--quick", "--no-stepper", "--solver", "lemke", "--solver", "newton",
+                   "--out", dir.string(), "--report", "--no-plots"});
+  ASSERT_EQ(r.code, 0) << r.err;  // 3 would mean a wrong answer
+  EXPECT_THAT(r.out, HasSubstr("| avi | lemke | " + std::to_string(jobs / 2) + " | "));
+  EXPECT_THAT(r.out, HasSubstr("| avi | newton | " + std::to_string(jobs / 2) + " | "));
+  const std::string md = ReadText(dir / "report.md");
+  EXPECT_THAT(md, HasSubstr("## AVI suite `avi`"));
+  EXPECT_THAT(md, HasSubstr("| backend | twisting | planted | degenerate | halfspaces | cone | infeasible |"));
+  const BenchResults back = ReadBenchResults(dir.string());
+  ASSERT_EQ(back.suites.size(), 1u);
+  EXPECT_EQ(back.suites[0].suite, "avi");
+  EXPECT_EQ(back.suites[0].checksum.size(), 16u);
+  EXPECT_EQ(back.suites[0].replay.records.size(), jobs);
+  int refused = 0;
+  for (const ReplayRecord& rec : back.suites[0].replay.records) {
+    EXPECT_EQ(rec.suite, "avi");
+    EXPECT_NE(rec.verdict, Verdict::kWronglyClaimed) << rec.solver << " on " << rec.problem;
+    refused += rec.expected == ExpectedOutcome::kInfeasible && rec.verdict == Verdict::kCorrectlyRefused;
+  }
+  EXPECT_EQ(refused, 6);  // the 3 AVIs with no solution, by both backends
+  fs::remove_all(dir);
+}
+
+// The AVI suite's jobs shard and merge like the others: two shards merged are the single run.
+TEST(Shards, AviJobsMergeToTheSingleRun) {
+  const fs::path root = fs::temp_directory_path() / ("smcbench-avi-shards-" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const auto args = [](std::vector<std::string> extra) {
+    std::vector<std::string> a{"bench", "--suite", "avi", "--quick", "--no-stepper", "--solver", "lemke"};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  ASSERT_EQ(RunSmcbench(args({"--out", (root / "single").string()})).code, 0);
+  std::vector<std::string> merge{"merge", (root / "merged").string()};
+  for (int k = 1; k <= 2; ++k) {
+    merge.push_back((root / ("shard-" + std::to_string(k))).string());
+    const CliRun r = RunSmcbench(args({"--shard", std::to_string(k) + "/2", "--out", merge.back()}));
+    ASSERT_EQ(r.code, 0) << r.err;
+  }
+  const CliRun merged = RunSmcbench(merge);
+  ASSERT_EQ(merged.code, 0) << merged.err;
+  const std::vector<nlohmann::json> expected = TimelessRecords(root / "single");
+  ASSERT_GE(expected.size(), 20u);
+  EXPECT_EQ(expected[0]["suite"], "avi");
+  EXPECT_EQ(TimelessRecords(root / "merged"), expected);
+  fs::remove_all(root);
+}
+
 }  // namespace
 }  // namespace smcbench

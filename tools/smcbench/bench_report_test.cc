@@ -547,5 +547,32 @@ TEST(BenchReportBands, ReportHasPerBandTablesTheWarmTrackAndTheRatioTable) {
   EXPECT_THAT(md, HasSubstr("| m ≤ 4 | cold | 0.5× [0.5 – 0.5] (2) | 3× [3 – 3] (2) |"));
 }
 
+// The AVI section: verdict counts and the median time over correct answers per backend, correct answers per
+// family (the id's second part), a wrong answer listed first among the failures, in bold.
+TEST(ReportAvi, SectionCountsVerdictsPerBackendAndFamily) {
+  SuiteResults s;
+  s.suite = "avi";
+  s.description = "AVIs";
+  s.problems = 3;
+  s.replay.records = {Rec("avi/planted/n2/s1", "lemke", Verdict::kSolved, 1e-6),
+                      Rec("avi/planted/n4/s1", "lemke", Verdict::kSolved, 3e-6),
+                      Rec("avi/infeasible/halfline", "lemke", Verdict::kCorrectlyRefused, 2e-6),
+                      Rec("avi/planted/n2/s1", "bad", Verdict::kFailed, 1e-6),
+                      Rec("avi/planted/n4/s1", "bad", Verdict::kWronglyClaimed, 1e-6),
+                      Rec("avi/infeasible/halfline", "bad", Verdict::kCorrectlyRefused, 5e-6)};
+  for (ReplayRecord& r : s.replay.records) r.suite = "avi";
+  const std::string md = ReportOf(s, "avi");
+  EXPECT_THAT(md, HasSubstr("## AVI suite `avi`: AVIs"));
+  EXPECT_THAT(md, HasSubstr("(1 infeasible, 2 planted)"));
+  EXPECT_THAT(md, HasSubstr("| lemke | 3 | 2 | 1 | 0 | 0 | 0 | 0 | 2 µs |"));
+  EXPECT_THAT(md, HasSubstr("| bad | 3 | 0 | 1 | **1** | 0 | 0 | 1 | 5 µs |"));
+  EXPECT_THAT(md, HasSubstr("| backend | planted | infeasible | \n"));
+  EXPECT_THAT(md, HasSubstr("| bad | 0/2 | 1/1 | \n"));
+  const auto failures = md.find("Where the backends fail (2 AVI × backend");
+  ASSERT_NE(failures, std::string::npos);
+  EXPECT_LT(md.find("| bad | **WRONGLY CLAIMED** |", failures), md.find("| failed |", failures));
+  EXPECT_EQ(md.find("## Suite `avi`"), std::string::npos);  // not the box suite's section
+}
+
 }  // namespace
 }  // namespace smcbench
