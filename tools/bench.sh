@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # The README's main-job command: install dependencies, build Release, then
 #   1. the benchmark suites (paper, families, hard, siconos on every backend; mcp, the nonlinear MCPs, on every backend
-#      that solves MCPs) → results/bench/ (results.json, .csv, report.md with plots; extra arguments go to
-#      `smcbench bench`, e.g. --suite all for the large scale runs),
+#      that solves MCPs; avi, the AVIs over polytopes, on every box backend through their reduction) → results/bench/
+#      (results.json, .csv, report.md with plots; extra arguments go to `smcbench bench`, e.g. --suite all for the
+#      large scale runs),
 #   2. the Siconos collection table → results/siconos-collection.{md,json},
 #   3. the paper's claims re-measured → results/paper/.
 # Exit status 3 (after all three steps) when `smcbench bench` found a wrong answer (wrongly claimed, inaccurate or
