@@ -270,8 +270,9 @@ void AttachReference(Draft* d) {
 
 // Steps spread over a run of num_steps: the first ones (reaching phase), then fractions of the run (sliding).
 std::vector<std::int64_t> CaptureSteps(std::int64_t num_steps, bool quick) {
-  std::vector<std::int64_t> steps = quick ? std::vector<std::int64_t>{1, 3} : std::vector<std::int64_t>{1, 2, 3, 5, 8};
-  const std::vector<std::int64_t> eighths = quick ? std::vector<std::int64_t>{4, 8} : std::vector<std::int64_t>{1, 2, 4, 6, 8};
+  using Steps = std::vector<std::int64_t>;
+  Steps steps = quick ? Steps{1, 3} : Steps{1, 2, 3, 5, 8};
+  const Steps eighths = quick ? Steps{4, 8} : Steps{1, 2, 4, 6, 8};
   for (std::int64_t e : eighths) steps.push_back(std::max<std::int64_t>(1, num_steps * e / 8));
   std::sort(steps.begin(), steps.end());
   steps.erase(std::unique(steps.begin(), steps.end()), steps.end());
