@@ -203,7 +203,7 @@ std::vector<Draft> MakeInfeasible() {
     }
     return A;
   };
-  const auto vector = [](std::initializer_list<double> values) {
+  const auto column = [](std::initializer_list<double> values) {
     Vector v(static_cast<Eigen::Index>(values.size()));
     Eigen::Index i = 0;
     for (double x : values) v[i++] = x;
@@ -212,16 +212,16 @@ std::vector<Draft> MakeInfeasible() {
   std::vector<Draft> out;
   // λ ≥ 0, M = 0, q = −1: 0·λ − 1 = μ ≥ 0 is impossible.
   out.push_back(Finish("avi/infeasible/halfline", "hand-made:no solution on a half-line", matrix(1, 1, {0.0}),
-                       vector({-1.0}), matrix(1, 1, {1.0}), vector({0.0}), DenseMatrix(), Vector(), {"infeasible"},
+                       column({-1.0}), matrix(1, 1, {1.0}), column({0.0}), DenseMatrix(), Vector(), {"infeasible"},
                        ExpectedOutcome::kInfeasible));
   // λ ≥ 0 in R², M skew [[0, 1], [−1, 0]], q = (−1, −1): the second row reads −λ₁ − 1 = μ₂ ≥ 0 with λ₁ ≥ 0.
   out.push_back(Finish("avi/infeasible/skew-orthant", "hand-made:monotone LCP with no solution",
-                       matrix(2, 2, {0.0, 1.0, -1.0, 0.0}), vector({-1.0, -1.0}), DenseMatrix::Identity(2, 2),
+                       matrix(2, 2, {0.0, 1.0, -1.0, 0.0}), column({-1.0, -1.0}), DenseMatrix::Identity(2, 2),
                        Vector::Zero(2), DenseMatrix(), Vector(), {"infeasible"}, ExpectedOutcome::kInfeasible));
   // The ray {λ₁ ≥ 0, λ₁ + λ₂ = 1}, M = 0, q = (−1, 0): (−1, 0) = μ(1, 0) + ν(1, 1) forces ν = 0 and μ = −1 < 0.
   out.push_back(Finish("avi/infeasible/ray-with-equality", "hand-made:no solution on a ray", matrix(2, 2, {0, 0, 0, 0}),
-                       vector({-1.0, 0.0}), matrix(1, 2, {1.0, 0.0}), vector({0.0}), matrix(1, 2, {1.0, 1.0}),
-                       vector({1.0}), {"infeasible"}, ExpectedOutcome::kInfeasible));
+                       column({-1.0, 0.0}), matrix(1, 2, {1.0, 0.0}), column({0.0}), matrix(1, 2, {1.0, 1.0}),
+                       column({1.0}), {"infeasible"}, ExpectedOutcome::kInfeasible));
   return out;
 }
 

@@ -1146,6 +1146,16 @@ TEST(Shards, AviJobsMergeToTheSingleRun) {
   ASSERT_GE(expected.size(), 20u);
   EXPECT_EQ(expected[0]["suite"], "avi");
   EXPECT_EQ(TimelessRecords(root / "merged"), expected);
+
+  // A backend past its budget: its remaining AVIs are recorded as not run, said on stderr.
+  const CliRun budget = RunSmcbench(args({"--backend-budget", "1e-9", "--out", (root / "budget").string()}));
+  ASSERT_EQ(budget.code, 0) << budget.err;
+  const std::vector<nlohmann::json> cut = TimelessRecords(root / "budget");
+  ASSERT_EQ(cut.size(), expected.size());
+  EXPECT_EQ(cut[2]["status"], "time_limit");
+  EXPECT_EQ(cut[2]["verdict"], "failed");
+  EXPECT_THAT(cut[2]["message"].get<std::string>(), HasSubstr("--backend-budget"));
+  EXPECT_THAT(budget.err, HasSubstr("problems of suite avi"));
   fs::remove_all(root);
 }
 
