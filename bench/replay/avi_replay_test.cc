@@ -193,7 +193,7 @@ TEST(AviReplay, RecordsRoundTripThroughJsonAndCsv) {
   fs::remove_all(dir);
 }
 
-TEST(AviJobs, ListedAfterTheMcpSuitesShardedAndAssembled) {
+TEST(AviJobs, ListedAfterTheOtherSuitesShardedAndAssembled) {
   const AviProblemSet set = Set();
   ProblemSet box;
   box.name = "empty-box";
