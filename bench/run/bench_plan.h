@@ -79,8 +79,8 @@ void CheckBenchRequest(const BenchRequest& request);
 
 // Checks the request (CheckBenchRequest), builds and validates its suites, attaches certified references (unless
 // request.certify is false) and lists the jobs. One line per suite (size, time taken, certificates) goes to log
-// when given, and one when no chosen backend solves the MCP suite. InvalidInputError for any bad input, including
-// a problem-set file that cannot be read or holds no problem.
+// when given, and one when no chosen backend solves the MCP (or the AVI) suite. InvalidInputError for any bad
+// input, including a problem-set file that cannot be read or holds no problem.
 BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(const std::string&)>& log = {});
 
 // The plan's suites as results.json and the manifest list them (name, description, problems, checksum; no
