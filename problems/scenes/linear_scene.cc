@@ -618,6 +618,16 @@ bool LinearScene::Supports(Method method) const {
   return spec_->type == "zoh" || method == Method::kImplicit || method == Method::kExplicit;
 }
 
+std::string LinearScene::WhyUnsupported(Method method) const {
+  if (Supports(method)) return "";
+  const std::string name = "method '" + std::string(ToString(method)) + "'";
+  if (spec_->law) {
+    return "has a polytope law (system.law): " + name +
+           " is explicit, whose sign sgn(y_k) is the box's; use an implicit method";
+  }
+  return "is a sign system (E, B, C): " + name + " needs a ZOH plant (F, G, C, alpha); use implicit or explicit";
+}
+
 LinearModel LinearScene::Model(const SceneParameters& overrides, std::optional<double> h) const {
   try {
     return ModelWithoutName(overrides, h);
@@ -731,15 +741,8 @@ LinearModel LinearScene::ModelWithoutName(const SceneParameters& overrides, std:
 
 OneStepData LinearScene::Discretization(const SimulationSettings& settings) const {
   settings.Validate(spec_->info.n);
-  if (spec_->law && !IsImplicit(settings.method)) {
-    throw InvalidInputError("scene '" + spec_->info.name + "' has a polytope law (system.law): method '" +
-                            std::string(ToString(settings.method)) +
-                            "' is explicit, whose sign sgn(y_k) is the box's; use an implicit method");
-  }
   if (!Supports(settings.method)) {
-    throw InvalidInputError("scene '" + spec_->info.name + "' is a sign system (E, B, C): method '" +
-                            std::string(ToString(settings.method)) +
-                            "' needs a ZOH plant (F, G, C, alpha); use implicit or explicit");
+    throw InvalidInputError("scene '" + spec_->info.name + "' " + WhyUnsupported(settings.method));
   }
   return Discretize(Model(settings.parameters, settings.h), settings.method, settings.h, settings.theta);
 }

@@ -46,6 +46,7 @@ class LinearScene final : public Scene {
   const SceneInfo& info() const override;
   const SimulationSettings& defaults() const override;
   bool Supports(Method method) const override;
+  std::string WhyUnsupported(Method method) const override;
   void Run(const SimulationSettings& settings, Solver* solver, Trajectory* out) const override;
   using Scene::Run;
   std::optional<ExactSolution> Exact(const SimulationSettings& settings) const override;

@@ -46,8 +46,7 @@ NonlinearScene NonlinearSceneAdapter::Build(const SimulationSettings& settings) 
 void NonlinearSceneAdapter::Run(const SimulationSettings& settings, Solver* solver, Trajectory* out) const {
   settings.Validate(info_.n);
   if (!Supports(settings.method)) {
-    throw InvalidInputError("scene '" + info_.name + "' runs implicit or explicit, not '" +
-                            std::string(ToString(settings.method)) + "' (ZOH needs a linear plant)");
+    throw InvalidInputError("scene '" + info_.name + "' " + WhyUnsupported(settings.method));
   }
   const NonlinearScene scene = Build(settings);
   NonlinearStepperOptions options;

@@ -37,4 +37,9 @@ void SimulationSettings::Validate(int n) const {
   NumSteps(T, h);  // rejects horizons of 2^40 steps or more
 }
 
+std::string Scene::WhyUnsupported(Method method) const {
+  if (Supports(method)) return "";
+  return "runs implicit or explicit, not '" + std::string(ToString(method)) + "' (ZOH needs a linear plant)";
+}
+
 }  // namespace smcbench

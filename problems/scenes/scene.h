@@ -66,6 +66,8 @@ class Scene {
   virtual const SimulationSettings& defaults() const = 0;
   // Whether Run accepts this method (a sign system cannot be run with ZOH, which needs the open-loop plant).
   virtual bool Supports(Method method) const = 0;
+  // Why Run refuses method, as the sentence an error gives after the scene's name ("" when Supports(method)).
+  virtual std::string WhyUnsupported(Method method) const;
 
   // Runs the scene into *out (storage reused). solver may be null for explicit-sign methods. Throws
   // InvalidInputError for invalid settings (naming the field) or an unsupported method; a one-step problem the

@@ -230,8 +230,7 @@ SceneRunSettings ApplySceneOverrides(const Scene& scene, const SceneOverrides& o
   }
   s.Validate(scene.info().n);
   if (!scene.Supports(s.method)) {
-    throw InvalidInputError("method '" + std::string(ToString(s.method)) +
-                            "' needs a ZOH plant (system type zoh); this scene runs implicit or explicit");
+    throw InvalidInputError("scene '" + scene.info().name + "' " + scene.WhyUnsupported(s.method));
   }
   if (o.gamma && !run.nonlinear) {
     run.notes.push_back(check.Name("gamma") + " has no effect on a linear scene (g(x) = B is constant)");

@@ -242,8 +242,7 @@ SuperTwistingSystem SuperTwistingScene::System(const SceneParameters& overrides)
 void SuperTwistingScene::Run(const SimulationSettings& settings, Solver* solver, Trajectory* out) const {
   settings.Validate(2);
   if (!Supports(settings.method)) {
-    throw InvalidInputError("scene '" + spec_->info.name + "' runs implicit or explicit, not '" +
-                            std::string(ToString(settings.method)) + "'");
+    throw InvalidInputError("scene '" + spec_->info.name + "' " + WhyUnsupported(settings.method));
   }
   const bool implicit = settings.method == Method::kImplicit;
   if (implicit && settings.algorithm == NonlinearAlgorithm::kNewtonMlcp) {

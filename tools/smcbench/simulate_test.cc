@@ -296,6 +296,9 @@ TEST_F(Simulate, BadSettingsAreOneLineErrorsWithExitOne) {
   ExpectOneLineError(RunSmcbench({"simulate", "galias-yu-2007", "--x0", "1,abc"}), {"--x0", "'abc' is not a number"});
   ExpectOneLineError(RunSmcbench({"simulate", "sign", "--method", "rk4"}), {"unknown method 'rk4'"});
   ExpectOneLineError(RunSmcbench({"simulate", "sign", "--method", "zoh"}), {"needs a ZOH plant"});
+  // A ZOH scene with a polytope law refuses the explicit ZOH for its law, not for its plant.
+  ExpectOneLineError(RunSmcbench({"simulate", "twisting", "--method", "zoh-explicit"}),
+                     {"scene 'twisting'", "polytope law", "use an implicit method"});
   ExpectOneLineError(RunSmcbench({"simulate", "sign", "--solver", "simplex"}), {"unknown solver 'simplex'", "lemke"});
   ExpectOneLineError(RunSmcbench({"simulate", "observer", "--param", "tao=1"}), {"no parameter 'tao'", "tau"});
   ExpectOneLineError(RunSmcbench({"simulate", "observer", "--param", "tau"}), {"--param expects NAME=VALUE"});
