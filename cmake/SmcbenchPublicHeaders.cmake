@@ -42,6 +42,8 @@ set(SMCBENCH_PUBLIC_HEADERS
   problems/suites/catalogue.h
   problems/mcp/mcp_library.h
   problems/mcp/mcp_suite.h
+  problems/avi_library/avi_library.h
+  problems/avi_library/avi_suite.h
   # Scenes and the time-steppers.
   problems/scenes/scene.h
   problems/scenes/expression.h
@@ -67,6 +69,7 @@ set(SMCBENCH_PUBLIC_HEADERS
   bench/replay/jobs.h
   bench/replay/replay.h
   bench/replay/mcp_replay.h
+  bench/replay/avi_replay.h
   bench/replay/warm_track.h
   bench/replay/stepper_study.h
   bench/replay/results_io.h
