@@ -51,18 +51,6 @@ class ChecksumText {
 
 }  // namespace
 
-std::vector<std::string> AviSolverNames(const std::vector<std::string>& names) {
-  std::vector<std::string> all = names;
-  if (all.empty()) {
-    for (auto n : SolverNames()) all.emplace_back(n);
-  }
-  std::vector<std::string> out;
-  for (const std::string& n : all) {
-    if (CreateSolver(n)->info().box) out.push_back(n);
-  }
-  return out;
-}
-
 void TimeAviSolves(Solver* solver, const AffineVI& avi, const SolverOptions& options, const ReplayOptions& replay,
                    AviResult* result, ReplayRecord* record) {
   // No reference in the timed call: the verdict against it is computed once, after the timing (ReplayAviOne).
@@ -74,11 +62,7 @@ ReplayRecord ReplayAviOne(const AviProblemSet& set, const AviLibraryProblem& p, 
                           const std::string& solver_name, const ReplayOptions& options, double tolerance) {
   if (!p.problem) throw InvalidInputError("bench: AVI " + p.id + " has no problem");
   ReplayRecord r = Describe(set, p, solver_name, tolerance);
-  SolverOptions o;
-  o.tolerance = tolerance;
-  o.time_limit_seconds = options.time_limit_seconds;
-  o.measure_time = false;  // timed from outside, around many solves
-  o.polish = options.polish;
+  const SolverOptions o = ReplaySolverOptions(options, tolerance);
   AviResult result;
   if (!solver->info().box) {
     result.status = SolveStatus::kNotApplicable;
@@ -103,7 +87,7 @@ ReplayRecord ReplayAviOne(const AviProblemSet& set, const AviLibraryProblem& p, 
 }
 
 ReplayResults ReplayAviProblemSet(const AviProblemSet& set, const ReplayOptions& options) {
-  const std::vector<std::string> names = AviSolverNames(options.solvers);
+  const std::vector<std::string> names = BackendsWith(options.solvers, &SolverInfo::box);
   std::vector<std::unique_ptr<Solver>> solvers;
   for (const std::string& name : names) {
     ReplayOptions one = options;

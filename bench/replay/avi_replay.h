@@ -13,9 +13,6 @@
 
 namespace smcbench {
 
-// The names among names whose backend solves box-MLCPs (SolverInfo::box), in the same order. Empty names: every
-// registered backend. InvalidInputError for an unknown name.
-std::vector<std::string> AviSolverNames(const std::vector<std::string>& names);
 
 // Times cold solves of avi with SampleSolveTimes as TimeSolves does for the box: an untimed warm-up, then samples;
 // the backend's remembered state is forgotten (Solver::ForgetWarmState) before each timed solve when it keeps any.

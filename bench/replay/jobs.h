@@ -75,10 +75,10 @@ struct JobListRequest {
   std::vector<std::string> solvers;  // resolved names (never empty)
   bool generic_sparse_path = false;  // add the newton-sparse-path jobs for a suite named "paper"
   bool stepper = false;              // add the stepper job (last)
-  // The backends of the MCP jobs: the resolved names whose backend has SolverInfo::mcp (McpSolverNames). The
-  // others are not run on MCPs.
+  // The backends of the MCP jobs: the resolved names whose backend has SolverInfo::mcp (BackendsWith). The others
+  // are not run on MCPs.
   std::vector<std::string> mcp_solvers;
-  // The backends of the AVI jobs: the resolved names whose backend solves box-MLCPs (AviSolverNames).
+  // The backends of the AVI jobs: the resolved names whose backend solves box-MLCPs (BackendsWith).
   std::vector<std::string> avi_solvers;
   // The warm sequences of each box suite (indexed as the suites; null or shorter: none), run on every backend of
   // solvers (warm_track.h).

@@ -68,18 +68,6 @@ class Hasher {
 
 }  // namespace
 
-std::vector<std::string> McpSolverNames(const std::vector<std::string>& names) {
-  std::vector<std::string> all = names;
-  if (all.empty()) {
-    for (auto n : SolverNames()) all.emplace_back(n);
-  }
-  std::vector<std::string> out;
-  for (const std::string& n : all) {
-    if (CreateSolver(n)->info().mcp) out.push_back(n);
-  }
-  return out;
-}
-
 void TimeMcpSolves(Solver* solver, const MCP& problem, const SolverOptions& options, const ReplayOptions& replay,
                    SolveResult* result, ReplayRecord* record) {
   // Every solve starts again from options.warm_start: Solve(MCP) copies it into result->z, so no answer leaks
@@ -91,11 +79,7 @@ ReplayRecord ReplayMcpOne(const McpProblemSet& set, const McpLibraryProblem& p, 
                           const std::string& solver_name, const ReplayOptions& options, double tolerance) {
   ReplayRecord r = Describe(set, p, start, solver_name, tolerance);
   if (!p.problem) throw InvalidInputError("bench: MCP " + p.id + " has no problem");
-  SolverOptions o;
-  o.tolerance = tolerance;
-  o.time_limit_seconds = options.time_limit_seconds;
-  o.measure_time = false;  // timed from outside, around many solves
-  o.polish = options.polish;
+  SolverOptions o = ReplaySolverOptions(options, tolerance);
   o.warm_start = p.starts[start];
   SolveResult result;
   if (!solver->info().mcp) {
@@ -124,7 +108,7 @@ ReplayRecord ReplayMcpOne(const McpProblemSet& set, const McpLibraryProblem& p, 
 }
 
 ReplayResults ReplayMcpProblemSet(const McpProblemSet& set, const ReplayOptions& options) {
-  std::vector<std::string> names = McpSolverNames(options.solvers);
+  std::vector<std::string> names = BackendsWith(options.solvers, &SolverInfo::mcp);
   // The settings were checked against the whole selection: each MCP backend gets those that reach it.
   std::vector<std::unique_ptr<Solver>> solvers;
   for (const std::string& name : names) {

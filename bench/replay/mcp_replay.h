@@ -14,9 +14,6 @@
 
 namespace smcbench {
 
-// The names among names whose backend solves MCPs (SolverInfo::mcp), in the same order. Empty names: every
-// registered backend. InvalidInputError for an unknown name.
-std::vector<std::string> McpSolverNames(const std::vector<std::string>& names);
 
 // Times cold solves of problem from options.warm_start (the job's start; never the previous answer) as TimeSolves
 // does for the box: an untimed warm-up solve, then samples honouring min_sample_seconds, repetitions,

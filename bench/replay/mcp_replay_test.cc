@@ -214,7 +214,7 @@ TEST(McpReplay, NewtonSolvesThePlantedProblemFromEveryStartAndRefusesTheOneWitho
 
 TEST(McpReplay, EveryMcpBackendIsRightOrHonestOnThePlantedSet) {
   std::vector<std::string> ours;
-  for (const std::string& name : McpSolverNames({})) {
+  for (const std::string& name : BackendsWith({}, &SolverInfo::mcp)) {
     if (name.rfind("test-", 0) != 0) ours.push_back(name);  // not this file's fakes
   }
   ASSERT_FALSE(ours.empty());
@@ -249,7 +249,7 @@ TEST(McpReplay, WrongAnswersAreWronglyClaimedInaccurateOrWronglyRefused) {
 }
 
 TEST(McpReplay, BackendsWithoutMcpsAreNotRun) {
-  EXPECT_EQ(McpSolverNames({"lemke", "newton", "psor"}), std::vector<std::string>{"newton"});
+  EXPECT_EQ(BackendsWith({"lemke", "newton", "psor"}, &SolverInfo::mcp), std::vector<std::string>{"newton"});
   EXPECT_TRUE(ReplayMcpProblemSet(Set({PlantedCubic()}), Quick({"lemke"})).records.empty());
   // A setting for a box-only backend of the selection is not an error on the MCP set; newton gets its own.
   ReplayOptions with_settings = Quick({"psor", "newton"});

@@ -101,13 +101,30 @@ std::vector<std::unique_ptr<Solver>> CreateReplaySolvers(const ReplayOptions& op
   return solvers;
 }
 
-ReplayRecord ReplayOne(const ProblemSet& set, const LibraryProblem& p, Solver* solver, const std::string& solver_name,
-                       const ReplayOptions& options, const std::string& mode, double tolerance) {
+std::vector<std::string> BackendsWith(const std::vector<std::string>& names, bool SolverInfo::*capability) {
+  std::vector<std::string> all = names;
+  if (all.empty()) {
+    for (auto n : SolverNames()) all.emplace_back(n);
+  }
+  std::vector<std::string> out;
+  for (const std::string& n : all) {
+    if (CreateSolver(n)->info().*capability) out.push_back(n);
+  }
+  return out;
+}
+
+SolverOptions ReplaySolverOptions(const ReplayOptions& options, double tolerance) {
   SolverOptions o;
   o.tolerance = tolerance;
   o.time_limit_seconds = options.time_limit_seconds;
-  o.measure_time = false;  // timed from outside, around many solves
+  o.measure_time = false;
   o.polish = options.polish;
+  return o;
+}
+
+ReplayRecord ReplayOne(const ProblemSet& set, const LibraryProblem& p, Solver* solver, const std::string& solver_name,
+                       const ReplayOptions& options, const std::string& mode, double tolerance) {
+  const SolverOptions o = ReplaySolverOptions(options, tolerance);
   ReplayRecord r = Describe(set, p, solver_name);
   r.mode = mode;
   ReplayOptions timing = options;

@@ -120,6 +120,14 @@ std::optional<int> BackendReturnCode(const SolveResult& result);
 // backends: solvers/registry/backend_settings.h).
 std::vector<std::unique_ptr<Solver>> CreateReplaySolvers(const ReplayOptions& options, std::vector<std::string>* names);
 
+// The names among names (empty: every registered backend) whose SolverInfo has the capability (e.g.
+// &SolverInfo::mcp: the backends of the MCP jobs), in the same order. InvalidInputError for an unknown name.
+std::vector<std::string> BackendsWith(const std::vector<std::string>& names, bool SolverInfo::*capability);
+
+// The options of a timed replay solve at tolerance: the run's time limit and polish, the solver's own clock off
+// (the replay times from outside, around many solves).
+SolverOptions ReplaySolverOptions(const ReplayOptions& options, double tolerance);
+
 // One problem × backend: cold (mode "cold", at options.tolerance) or one step of the tolerance sweep (mode "sweep",
 // at tolerance, at most 3 samples), timed (TimeSolves) and judged: what one job of a run (bench/run/run_shard.h)
 // runs. A backend that fails on the problem is a record, never an exception.

@@ -83,11 +83,7 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
   r.tolerance = tolerance;
   r.certificate = std::string(ToString(head.reference.certificate));
 
-  SolverOptions o;
-  o.tolerance = tolerance;
-  o.time_limit_seconds = options.time_limit_seconds;
-  o.measure_time = false;  // timed from outside, around the whole sequence
-  o.polish = options.polish;
+  const SolverOptions o = ReplaySolverOptions(options, tolerance);  // timed around the whole sequence
   SessionOptions session_options;
   session_options.reuse_active_set = true;  // the session itself leaves it off for external backends
   // One result per step, so step k starts from step k−1's answer without a copy; storage reused pass after pass.

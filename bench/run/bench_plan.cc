@@ -226,13 +226,13 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
   plan.stepper = IncludesStepperStudy(plan.suite_names, request.stepper);
   jobs.stepper = plan.stepper;
   if (!plan.mcp_suites.empty()) {
-    jobs.mcp_solvers = McpSolverNames(plan.solvers);
+    jobs.mcp_solvers = BackendsWith(plan.solvers, &SolverInfo::mcp);
     if (jobs.mcp_solvers.empty() && log) {
       log("no chosen backend solves MCPs (`smcbench list` says: accepts nonlinear MCP): the MCP suite is not run");
     }
   }
   if (!plan.avi_suites.empty()) {
-    jobs.avi_solvers = AviSolverNames(plan.solvers);
+    jobs.avi_solvers = BackendsWith(plan.solvers, &SolverInfo::box);
     if (jobs.avi_solvers.empty() && log) {
       log("no chosen backend solves box-MLCPs (`smcbench list`): the AVI suite, solved through its reduction to a "
           "box-MLCP, is not run");
