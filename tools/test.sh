@@ -3,7 +3,7 @@
 # at the first that fails:
 #   1. release  Release preset (g++ -O3, warnings are errors): build, every test but the `slow` label;
 #   2. perf     tools/perf-check: instructions per solve/step under callgrind against results/baseline (> 5 % fails);
-#   3. asan     asan preset (clang, ASan + UBSan, -O1): build with the fuzz targets, every test but `slow`/`paper`;
+#   3. asan     asan preset (clang, ASan + UBSan, -O1): build with the fuzz targets, every test but `slow`/`paper`/`release-only`;
 #   4. fuzz     tools/fuzz.sh: every reader's libFuzzer target for SMCBENCH_CI_FUZZ_SECONDS (default 20) each.
 # `tools/test.sh STAGE ...` runs only those stages (e.g. `tools/test.sh release`, `tools/test.sh asan fuzz`).
 set -euo pipefail
