@@ -463,8 +463,8 @@ def bench(suites, solvers=None, tol: float = 1e-10, repetitions: int = 7, time_l
     results.csv, one row per record (problem × backend, then the tolerance sweep's rows, mode "sweep", then the warm
     track's rows, mode "warm": one per sequence × backend, seconds per step; warm=False skips them, as --no-warm).
 
-    suites: a suite name ("tiny", "paper", "families", "hard", "siconos", "scale", "mcp", "all"), the path of a .smcps
-    file, a list of those, or a list of Problem (read_problem_set's list, or your own), run as one suite named
+    suites: a suite name ("tiny", "paper", "families", "hard", "siconos", "scale", "mcp", "avi", "all"), the path of
+    a .smcps file, a list of those, or a list of Problem (read_problem_set's list, or your own), run as one suite named
     "python". solvers: a backend name or a list (None: every registered backend). settings: typed backend options
     "BACKEND.OPTION=VALUE". quick, polish, backend_budget (seconds per backend and suite, 0: no limit) and
     siconos_dir (None: bench's default) as the flags of `smcbench bench`; no time-stepper studies. out: a folder to
