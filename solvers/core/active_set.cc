@@ -1,8 +1,10 @@
 #include "solvers/core/active_set.h"
 
+#include <limits>
 #include <string>
 
 #include <Eigen/SparseLU>
+#include <Eigen/SparseQR>
 
 #include "solvers/core/problem.h"
 
@@ -141,5 +143,55 @@ bool SparseFreeBlock::Solve(const Vector& b, Vector* x) {
 }
 
 const SparseMatrix& SparseFreeBlock::block() const { return impl_->block; }
+
+
+struct RobustFreeBlock::Impl {
+  DenseMatrix block;
+  Eigen::PartialPivLU<DenseMatrix> lu;
+  Eigen::CompleteOrthogonalDecomposition<DenseMatrix> cod;
+  bool use_cod = false;
+  SparseFreeBlock sparse;
+  Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>> sparse_qr;
+  bool sparse_problem = false;
+  bool use_sparse_qr = false;
+};
+
+RobustFreeBlock::RobustFreeBlock() : impl_(new Impl) {}
+RobustFreeBlock::~RobustFreeBlock() = default;
+RobustFreeBlock::RobustFreeBlock(RobustFreeBlock&&) noexcept = default;
+RobustFreeBlock& RobustFreeBlock::operator=(RobustFreeBlock&&) noexcept = default;
+
+bool RobustFreeBlock::Factor(const BoxMLCP& problem, const int* free_rows, int nf) {
+  Impl& s = *impl_;
+  s.sparse_problem = problem.is_sparse();
+  if (!s.sparse_problem) {
+    const DenseMatrix& M = problem.dense_matrix();
+    if (s.block.rows() != nf) s.block.resize(nf, nf);
+    active_set::GatherFreeBlock(M.data(), static_cast<int>(M.rows()), free_rows, nf, s.block.data(), nf);
+    s.lu.compute(s.block);
+    s.use_cod = !(s.lu.rcond() > 1e3 * std::numeric_limits<double>::epsilon());
+    if (s.use_cod) s.cod.compute(s.block);
+    return true;
+  }
+  s.use_sparse_qr = !s.sparse.Factor(problem.sparse_matrix(), free_rows, nf);
+  if (!s.use_sparse_qr) return true;
+  s.sparse_qr.compute(s.sparse.block());
+  return s.sparse_qr.info() == Eigen::Success;
+}
+
+void RobustFreeBlock::Solve(const Vector& b, Vector* x) {
+  Impl& s = *impl_;
+  if (s.sparse_problem) {
+    if (s.use_sparse_qr) {
+      *x = s.sparse_qr.solve(b);
+    } else {
+      s.sparse.Solve(b, x);
+    }
+  } else if (s.use_cod) {
+    x->noalias() = s.cod.solve(b);
+  } else {
+    x->noalias() = s.lu.solve(b);
+  }
+}
 
 }  // namespace smcbench

@@ -1,8 +1,9 @@
 // The one kernel that solves an identified active set of a box-MLCP exactly: each row free or at a bound, bound rows
 // placed at their bound, the reduced block M_FF factored (dense LU with partial pivoting, or sparse LU) and solved
 // for z_F = −M_FF⁻¹(q_F + M_FB z_B), z_F checked against its box and the bound rows' w against their signs. The
-// base's polish (polish.h), a session's reused active set (session.h) and lemke's polish build on it, ipopt's polish
-// on its row states; enum keeps its own copies (enumerative_solver.cc says why). Callers keep only their policy.
+// base's polish (polish.h), a session's reused active set (session.h) and lemke's polish build on it, enum on its
+// blocked entry point, ipopt's polish on its row states, its dense block gather and RobustFreeBlock (its factors of
+// a block that may be singular). Callers keep only their policy.
 #pragma once
 
 #include <algorithm>
@@ -15,6 +16,8 @@
 #include "solvers/core/types.h"
 
 namespace smcbench {
+
+class BoxMLCP;
 
 // Where a row of an identified active set sits. kFixed: l = u, the row is at that value whatever its w (a caller
 // that pins such rows says so; ClassifyRow never answers kFixed).
@@ -150,10 +153,12 @@ inline bool BoundRowSignsHold(int n_runtime, const signed char* state, const dou
   return true;
 }
 
-// The blocked entry point, for a search that factors many small free blocks (enum keeps internal copies): the k×k
-// block A factored in place by dense_lu with k ≤ 4 unrolled at compile time and k = 1 its own pivot. False if a
-// pivot is ≤ small (numerically singular) or NaN. Split from the solve so a caller can keep factors per set.
-inline bool FactorBlock(double* a, int ld, int k, int* piv, double small) {
+// The blocked entry point, for a search that factors many small free blocks (enum's fixed-size hot path). These four
+// are `static`: with internal linkage GCC inlines them, and the paths around them, into each caller's fixed-size
+// loops, which an external-linkage inline does not get.
+// The k×k block A factored in place by dense_lu with k ≤ 4 unrolled at compile time and k = 1 its own pivot. False
+// if a pivot is ≤ small (numerically singular) or NaN. Split from the solve so a caller can keep factors per set.
+static inline bool FactorBlock(double* a, int ld, int k, int* piv, double small) {
   if (k == 1) return std::abs(a[0]) > small;
   if (k == 2) return dense_lu::Factor<2>(a, ld, k, piv, small);
   if (k == 3) return dense_lu::Factor<3>(a, ld, k, piv, small);
@@ -162,7 +167,7 @@ inline bool FactorBlock(double* a, int ld, int k, int* piv, double small) {
 }
 
 // Solves A x = b (b becomes x) from FactorBlock's output.
-inline void SolveFactored(const double* a, int ld, int k, const int* piv, double* b) {
+static inline void SolveFactored(const double* a, int ld, int k, const int* piv, double* b) {
   if (k == 1) {
     b[0] /= a[0];
   } else if (k == 2) {
@@ -177,7 +182,7 @@ inline void SolveFactored(const double* a, int ld, int k, const int* piv, double
 }
 
 // FactorBlock then SolveFactored: false, with A and b clobbered, if a pivot is ≤ small or NaN.
-inline bool SolveBlock(double* a, int ld, int k, double* b, int* piv, double small) {
+static inline bool SolveBlock(double* a, int ld, int k, double* b, int* piv, double small) {
   if (!FactorBlock(a, ld, k, piv, small)) return false;
   SolveFactored(a, ld, k, piv, b);
   return true;
@@ -188,7 +193,7 @@ struct BlockPivots {
   double smallest = kInf;
   int sign = 1;
 };
-inline BlockPivots FactoredPivots(const double* a, int ld, int k, const int* piv) {
+static inline BlockPivots FactoredPivots(const double* a, int ld, int k, const int* piv) {
   BlockPivots p;
   for (int j = 0; j < k; ++j) {
     const double d = a[j + static_cast<std::ptrdiff_t>(j) * ld];
@@ -273,6 +278,31 @@ class SparseFreeBlock {
   // x = M_FF⁻¹ b from the last successful Factor; false when SparseLU reports a failure.
   bool Solve(const Vector& b, Vector* x);
   const SparseMatrix& block() const;
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+
+// The free block of a polish that must answer even when M_FF is singular (ipopt's polish of an interior-point
+// iterate, whose active set may be wrong or degenerate): dense M_FF factored by LU with partial pivoting, or, when
+// that LU's reciprocal condition estimate is at or below 1e3·ε (partial pivoting returns garbage, not an error, on
+// a singular block), by the complete orthogonal decomposition, whose solve is the minimum-norm least-squares
+// solution (a singular PSD block's); sparse M_FF by SparseFreeBlock, or SparseQR when SparseLU fails. Storage is
+// kept between calls; the factorizations allocate when the block's size changes.
+class RobustFreeBlock {
+ public:
+  RobustFreeBlock();
+  ~RobustFreeBlock();
+  RobustFreeBlock(RobustFreeBlock&&) noexcept;
+  RobustFreeBlock& operator=(RobustFreeBlock&&) noexcept;
+
+  // Gathers M_FF of problem's M for the nf rows listed (increasing) and factors it. False when no factorization is
+  // usable (sparse: SparseLU and SparseQR both fail).
+  bool Factor(const BoxMLCP& problem, const int* free_rows, int nf);
+  // *x = M_FF⁻¹ b (the least-squares solution after a fallback) from the last successful Factor.
+  void Solve(const Vector& b, Vector* x);
 
  private:
   struct Impl;

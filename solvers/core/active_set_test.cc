@@ -241,6 +241,51 @@ TEST(ActiveSet, SingularReducedBlockIsReportedNotACrash) {
   EXPECT_EQ(block.block().rows(), 2);  // kept for a caller's fallback
 }
 
+// RobustFreeBlock (ipopt's polish): a nonsingular block is solved like the kernel's LU; a singular but consistent
+// PSD block gets the minimum-norm solution (dense: the complete orthogonal decomposition; sparse: SparseQR after
+// SparseLU refuses), which the test computes independently as the projection onto the range.
+TEST(ActiveSet, RobustFreeBlockSolvesNonsingularAndSingularBlocks) {
+  DenseMatrix M(3, 3);
+  M << 4, 1, 0,  //
+      1, 3, 1,   //
+      0, 1, 2;
+  const Vector q = Vector::Zero(3), l = Vector::Constant(3, -5.0), u = Vector::Constant(3, 5.0);
+  const int rows[2] = {0, 2};
+  const Vector b = (Vector(2) << 1.0, -2.0).finished();
+  // M_FF = [[4, 0], [0, 2]]: x = (1/4, −1).
+  for (const bool sparse : {false, true}) {
+    const BoxMLCP problem = sparse ? BoxMLCP(SparseMatrix(M.sparseView()), q, l, u) : BoxMLCP(M, q, l, u);
+    RobustFreeBlock block;
+    ASSERT_TRUE(block.Factor(problem, rows, 2)) << (sparse ? "sparse" : "dense");
+    Vector x;
+    block.Solve(b, &x);
+    ASSERT_EQ(x.size(), 2);
+    EXPECT_NEAR(x[0], 0.25, 1e-15);
+    EXPECT_NEAR(x[1], -1.0, 1e-15);
+  }
+  // M_FF = [[1, 1], [1, 1]] (rank 1) with b = (2, 2) in its range: the solutions are x₀ + x₁ = 2, the
+  // minimum-norm one is (1, 1). Partial-pivoting LU would return garbage or infinities here.
+  DenseMatrix S(3, 3);
+  S << 1, 1, 0,  //
+      1, 1, 0,   //
+      0, 0, 2;
+  const int both[2] = {0, 1};
+  const Vector consistent = (Vector(2) << 2.0, 2.0).finished();
+  for (const bool sparse : {false, true}) {
+    const BoxMLCP problem = sparse ? BoxMLCP(SparseMatrix(S.sparseView()), q, l, u) : BoxMLCP(S, q, l, u);
+    RobustFreeBlock block;
+    ASSERT_TRUE(block.Factor(problem, both, 2)) << (sparse ? "sparse" : "dense");
+    Vector x;
+    block.Solve(consistent, &x);
+    ASSERT_EQ(x.size(), 2);
+    EXPECT_NEAR(x[0] + x[1], 2.0, 1e-12) << (sparse ? "sparse" : "dense");
+    if (!sparse) {  // SparseQR gives a least-squares solution, not necessarily the minimum-norm one
+      EXPECT_NEAR(x[0], 1.0, 1e-12);
+      EXPECT_NEAR(x[1], 1.0, 1e-12);
+    }
+  }
+}
+
 TEST(ActiveSet, BadInputNamesTheField) {
   ActiveSetFactors factors;
   factors.Resize(3);

@@ -1,7 +1,7 @@
 // Exhaustive active-set enumeration for the box-MLCP (see enumerative_solver.h for the method and references).
 #include "solvers/enumerative/enumerative_solver.h"
 
-#include "solvers/core/dense_lu.h"
+#include "solvers/core/active_set.h"
 #include "solvers/core/matrix_class.h"
 
 #include <algorithm>
@@ -198,59 +198,13 @@ int LeastNormSolve(double* a, double* t, int ld, int k, const double* xref, doub
   return r;
 }
 
-// The search's own copies of the active-set kernel's blocked entry point (active_set::FactorBlock, SolveFactored,
-// SolveBlock, FactoredPivots): with internal linkage GCC inlines them, and the paths around them, into the
-// enumeration's fixed-size hot path, which the kernel's external-linkage inlines do not get. Its row states and
-// placement are its own too: they are the enumeration's digits (four states, compared as whole sets).
-// Factors the k×k free block A in place for SolveFactored (dense_lu: partial pivoting, unrolled for k ≤ 4; k = 1
-// is its own pivot). False if a pivot is ≤ small (numerically singular) or NaN. Split from the solve so the fast
-// path can keep factors per active set.
-inline bool FactorBlock(double* a, int ld, int k, int* piv, double small) {
-  if (k == 1) return std::abs(a[0]) > small;
-  if (k == 2) return dense_lu::Factor<2>(a, ld, k, piv, small);
-  if (k == 3) return dense_lu::Factor<3>(a, ld, k, piv, small);
-  if (k == 4) return dense_lu::Factor<4>(a, ld, k, piv, small);
-  return dense_lu::Factor(a, ld, k, piv, small);
-}
-
-// Solves A x = b (b becomes x) from FactorBlock's output.
-inline void SolveFactored(const double* a, int ld, int k, const int* piv, double* b) {
-  if (k == 1) {
-    b[0] /= a[0];
-  } else if (k == 2) {
-    dense_lu::Solve<2>(a, ld, k, piv, b);
-  } else if (k == 3) {
-    dense_lu::Solve<3>(a, ld, k, piv, b);
-  } else if (k == 4) {
-    dense_lu::Solve<4>(a, ld, k, piv, b);
-  } else {
-    dense_lu::Solve(a, ld, k, piv, b);
-  }
-}
-
-// Solves the k×k free block A x = b in place (b becomes x). False, with A and b clobbered, if a pivot is ≤ small
-// (numerically singular) or NaN.
-inline bool SolveBlock(double* a, int ld, int k, double* b, int* piv, double small) {
-  if (!FactorBlock(a, ld, k, piv, small)) return false;
-  SolveFactored(a, ld, k, piv, b);
-  return true;
-}
-
-// The smallest |pivot| of a block factored by FactorBlock and the sign of its determinant (row swaps included).
-struct BlockPivots {
-  double smallest = kInf;
-  int sign = 1;
-};
-inline BlockPivots FactoredPivots(const double* a, int ld, int k, const int* piv) {
-  BlockPivots p;
-  for (int j = 0; j < k; ++j) {
-    const double d = a[j + static_cast<std::ptrdiff_t>(j) * ld];
-    p.smallest = std::min(p.smallest, std::abs(d));
-    if (d < 0.0) p.sign = -p.sign;
-    if (k > 1 && piv[j] != j) p.sign = -p.sign;  // k = 1: FactorBlock records no swap
-  }
-  return p;
-}
+// The enumeration's row states and placement are its own: they are its digits (four states, compared as whole
+// sets). Its free blocks are factored and solved by the active-set kernel's blocked entry point.
+using active_set::BlockPivots;
+using active_set::FactorBlock;
+using active_set::FactoredPivots;
+using active_set::SolveBlock;
+using active_set::SolveFactored;
 
 // Why the box-MLCP is known to have a solution, or nullptr; for the failure path of the search only (allocates):
 // every bound finite (a continuous map on a compact box), M + Mᵀ positive definite with a margin (matrix_class.h's

@@ -53,8 +53,7 @@
 //
 // Details: ipopt_status (Ipopt's ApplicationReturnStatus), ipopt_residual and refined_residual (scaled residual at
 // Ipopt's point and after the refinement, NaN if not computed), refine_accepted (1/0), objective (G at Ipopt's
-// point), early_stop (0 none, 1 merit met at an iterate, 2 refined iterate, 3 the start already solved it,
-// 4 refined warm start), mcp_hessian (0 gap, 1 limited-memory).
+// point), and the codes early_stop and mcp_hessian (ipopt_details.h).
 //
 // An exception from F or J is not a status: it reaches the caller (Ipopt would swallow it; it is kept and rethrown
 // once Ipopt returned).
@@ -78,6 +77,7 @@
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
 
+#include "solvers/ipopt/ipopt_details.h"
 #include "solvers/ipopt/ipopt_names.h"
 #include "solvers/ipopt/ipopt_qp_solver.h"
 
@@ -92,8 +92,6 @@ constexpr double kIpoptInf = 2e19;  // beyond Ipopt's nlp_lower/upper_bound_inf:
 double IpoptBound(double b) { return std::isfinite(b) ? b : (b > 0 ? kIpoptInf : -kIpoptInf); }
 
 enum MultiplierKind : signed char { kLowerMult = 0, kUpperMult = 1, kFixedMult = 2 };
-enum EarlyStop : int { kNoEarlyStop = 0, kMeritAtIterate = 1, kRefinedIterate = 2, kSolvedAtStart = 3,
-                       kRefinedWarmStart = 4 };
 enum StopReason { kNotStopped, kStopMerit, kStopRefined, kStopTime };
 constexpr double kRefineMargin = 1e-2;  // the refinement's goal, relative to the tolerance
 
@@ -694,7 +692,7 @@ void IpoptMcpSession::Impl::Solve(const MCP& p, const SolverOptions& options, co
   early_refined_residual_ = kNaN;
   tried_state_.clear();
   result->iterations = 0;
-  result->SetDetail("mcp_hessian", static_cast<double>(o.mcp_hessian));
+  kIpoptMcpHessianDetail.Set(result, o.mcp_hessian);
 
   // F and J at the start: a failure there is a status before Ipopt runs.
   int bad = -1;
@@ -719,7 +717,7 @@ void IpoptMcpSession::Impl::Solve(const MCP& p, const SolverOptions& options, co
   const double at_start = McpScaledResidual(start_, F_, p.l(), p.u(), d_, p.variable_scale());
   if (at_start <= target_) {
     result->status = SolveStatus::kSolved;
-    result->SetDetail("early_stop", kSolvedAtStart);
+    kIpoptMcpEarlyStopDetail.Set(result, IpoptMcpEarlyStop::kSolvedAtStart);
     return;
   }
   if (o.polish && o.polish_warm_start && o.mcp_newton_steps > 0 && options.warm_start.size() == n_) {
@@ -728,7 +726,7 @@ void IpoptMcpSession::Impl::Solve(const MCP& p, const SolverOptions& options, co
       result->z = ref_best_;
       result->status = SolveStatus::kSolved;
       result->SetDetail("refined_residual", refined);
-      result->SetDetail("early_stop", kRefinedWarmStart);
+      kIpoptMcpEarlyStopDetail.Set(result, IpoptMcpEarlyStop::kRefinedWarmStart);
       return;
     }
     EvaluateJ(start_);  // the program's pattern is J's at the start
@@ -753,9 +751,9 @@ void IpoptMcpSession::Impl::Solve(const MCP& p, const SolverOptions& options, co
     result->z = early_z_;
     refined_residual = early_refined_residual_;
     accepted = true;
-    result->SetDetail("early_stop", kRefinedIterate);
+    kIpoptMcpEarlyStopDetail.Set(result, IpoptMcpEarlyStop::kRefinedIterate);
   } else {
-    if (stop_ == kStopMerit) result->SetDetail("early_stop", kMeritAtIterate);
+    if (stop_ == kStopMerit) kIpoptMcpEarlyStopDetail.Set(result, IpoptMcpEarlyStop::kMeritAtIterate);
     bool have = true;
     if (stop_ == kStopMerit) {
       result->z = early_z_;

@@ -9,6 +9,7 @@
 #include <string>
 #include <vector>
 
+#include "solvers/ipopt/ipopt_details.h"
 #include "solvers/ipopt/ipopt_qp_solver.h"
 #include "tests/support/small_mcps.h"
 
@@ -207,7 +208,7 @@ TEST(IpoptMcp, CubicWithEveryRowKindDenseAndSparseBothHessians) {
                                                 << r.message;
       EXPECT_LE(ScaledResidual(mcp, r.z), kTol);
       EXPECT_LE((r.z - f.z_star()).cwiseAbs().maxCoeff(), 1e-8);
-      EXPECT_EQ(r.GetDetail("mcp_hessian"), static_cast<double>(hessian));
+      EXPECT_EQ(kIpoptMcpHessianDetail.Get(r), hessian);
     }
   }
 }
@@ -491,7 +492,7 @@ TEST(IpoptMcp, SolvedStartNeedsNoIpoptRun) {
   const SolveResult r = solver.Solve(mcp, o);
   ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
   EXPECT_EQ(r.iterations, 0);
-  EXPECT_EQ(r.GetDetail("early_stop"), 3.0);
+  EXPECT_EQ(kIpoptMcpEarlyStopDetail.Get(r), IpoptMcpEarlyStop::kSolvedAtStart);
 }
 
 TEST(IpoptMcp, InvalidMcpOptionsAreRefused) {

@@ -49,10 +49,11 @@
 //   1. Active set from the natural map at z, w = Mz+q, p = z - w: i in L if p_i <= l_i (or l_i = u_i),
 //      i in U if p_i >= u_i, else i in F.
 //   2. z_L = l_L, z_U = u_U, and z_F solves M_FF z_F = -(q + M_{F,L+U} z_{L+U}), computed as a correction
-//      M_FF d = -(Mz+q)_F from the snapped point plus one step of iterative refinement. Dense: partial-pivoting
-//      LU, or the minimum-norm complete orthogonal decomposition when M_FF is numerically singular (PSD
-//      singular M: any solution of the consistent system will do, the nearest stays inside the box best).
-//      Sparse: SparseLU, falling back to SparseQR.
+//      M_FF d = -(Mz+q)_F from the snapped point plus one step of iterative refinement. M_FF is gathered and
+//      factored by the active-set kernel's RobustFreeBlock: dense, partial-pivoting LU, or the minimum-norm
+//      complete orthogonal decomposition when M_FF is numerically singular (PSD singular M: any solution of the
+//      consistent system will do, the nearest stays inside the box best); sparse, SparseLU, falling back to
+//      SparseQR.
 //   3. Verify: the natural residual at the polished point is zero iff l_F <= z_F <= u_F, w_L >= 0, w_U <= 0.
 //      If not, re-identify the active set at the polished point and repeat (polish_rounds times at most).
 //   The polished z is kept only if its natural residual is smaller than that of Ipopt's z; both are reported.
@@ -67,10 +68,9 @@
 // tiny step -> kStalled, converged with G > 0 -> kStalled, converged otherwise -> kInaccurate, invalid option ->
 // kInvalidOptions.
 //
-// Details: formulation (0 none needed, 1 convex QP, 2 gap NLP, 3 QP forced on symmetric non-PSD M),
-// symmetric_psd (1/0: S above), ipopt_status, ipopt_residual and polished_residual (the residual above, NaN if
-// not computed), polish_accepted (1/0), objective (QP objective or gap G at Ipopt's point), early_stop (0 none,
-// 1 merit met at an Ipopt iterate, 2 early polish succeeded, 3 polished warm start).
+// Details: the codes formulation and early_stop (ipopt_details.h), symmetric_psd (1/0: S above), ipopt_status
+// (Ipopt's own return code), ipopt_residual and polished_residual (the residual above, NaN if not computed),
+// polish_accepted (1/0), objective (QP objective or gap G at Ipopt's point).
 //
 // Allocation: Ipopt allocates internally on every solve (accepted for this backend); our own buffers are
 // members reused across solves, resized only when sizes change.
@@ -82,23 +82,19 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <optional>
 #include <queue>
 #include <sstream>
 #include <vector>
 
 #include <Eigen/Cholesky>
-#include <Eigen/LU>
-#include <Eigen/OrderingMethods>
-#include <Eigen/QR>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseLU>
-#include <Eigen/SparseQR>
 
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
 
 #include "solvers/core/active_set.h"
 #include "solvers/core/matrix_class.h"
+#include "solvers/ipopt/ipopt_details.h"
 #include "solvers/ipopt/ipopt_names.h"
 
 namespace smcbench {
@@ -114,8 +110,6 @@ constexpr double kIpoptInf = 2e19;
 
 double IpoptBound(double b) { return std::isfinite(b) ? b : (b > 0 ? kIpoptInf : -kIpoptInf); }
 
-enum Formulation : int { kNone = 0, kConvexQp = 1, kGapNlp = 2, kForcedQp = 3 };
-enum EarlyStop : int { kNoEarlyStop = 0, kMeritAtIterate = 1, kEarlyPolish = 2, kWarmPolish = 3 };
 enum StopReason { kNotStopped, kStopMerit, kStopPolished, kStopTime };
 enum MultiplierKind : signed char { kLowerMult = 0, kUpperMult = 1, kFixedMult = 2 };
 
@@ -165,9 +159,11 @@ class Session {
  private:
   void ResetForSolve(const BoxMLCP& p, const SolverOptions& options, const IpoptOptions& o, const Vector& start);
   bool SolvedAtStart(const SolverOptions& options, const IpoptOptions& o, SolveResult* result);
-  // kConvexQp, kForcedQp or kGapNlp, with its TNLP set up; −1 (result kNotApplicable) for qp on a nonsymmetric M.
-  int ChooseFormulation(const BoxMLCP& p, const IpoptOptions& o, SolveResult* result);
-  Ipopt::ApplicationReturnStatus RunIpopt(const SolverOptions& options, const IpoptOptions& o, int formulation);
+  // kConvexQp, kForcedQp or kGapNlp, with its TNLP set up; nullopt (result kNotApplicable) for qp on a
+  // nonsymmetric M.
+  std::optional<IpoptFormulation> ChooseFormulation(const BoxMLCP& p, const IpoptOptions& o, SolveResult* result);
+  Ipopt::ApplicationReturnStatus RunIpopt(const SolverOptions& options, const IpoptOptions& o,
+                                          IpoptFormulation formulation);
   // Ipopt's point, polished when that helps, into result->z; its residual, and the polish's.
   struct Answer {
     double ipopt_residual = kInf;
@@ -231,7 +227,6 @@ class Session {
   // here with a margin (see the definition). False if none of the candidates holds.
   bool CertifyInfeasible(const BoxMLCP& p) const;
   bool FarkasCertificateHolds(const BoxMLCP& p, const Vector& y) const;
-  bool SolveFreeBlock(int k);
 
   // Ipopt.
   Ipopt::SmartPtr<Ipopt::IpoptApplication> app_;
@@ -271,16 +266,8 @@ class Session {
   // Polish workspace.
   Vector pol_z_, pol_r_, pol_w_, pol_rhs_, pol_delta_, pol_best_;
   std::vector<signed char> state_, prev_state_, tried_state_;
-  std::vector<int> free_idx_, pos_;
-  DenseMatrix block_;
-  Eigen::PartialPivLU<DenseMatrix> lu_;
-  Eigen::CompleteOrthogonalDecomposition<DenseMatrix> cod_;
-  bool use_cod_ = false;
-  SparseMatrix sparse_block_;
-  std::vector<Eigen::Triplet<double, int>> triplets_;
-  Eigen::SparseLU<SparseMatrix, Eigen::COLAMDOrdering<int>> slu_;
-  Eigen::SparseQR<SparseMatrix, Eigen::COLAMDOrdering<int>> sqr_;
-  bool use_sqr_ = false;
+  std::vector<int> free_idx_;
+  RobustFreeBlock free_block_;  // M_FF's factors, with a least-squares fallback for a singular block
 };
 
 // What both formulations share: the Hessian's pattern and values from the session (hess_row_/col_/val_, set up by
@@ -810,47 +797,6 @@ void Session::ActiveSet(const Vector& z, const Vector& w, std::vector<signed cha
   }
 }
 
-// Factorizes M_FF (F = free_idx_, k = |F|) into lu_/cod_ or slu_/sqr_. False if no factorization is usable.
-bool Session::SolveFreeBlock(int k) {
-  if (!problem_->is_sparse()) {
-    // Eigen's LU, not the kernel's dense_lu: its condition estimate picks the minimum-norm COD for a singular PSD
-    // block, which dense_lu cannot offer.
-    const DenseMatrix& M = problem_->dense_matrix();
-    if (block_.rows() != k) block_.resize(k, k);
-    for (int b = 0; b < k; ++b) {
-      for (int a = 0; a < k; ++a) block_(a, b) = M(free_idx_[a], free_idx_[b]);
-    }
-    lu_.compute(block_);
-    // Partial-pivoting LU of a singular block returns garbage, not an error: check its condition estimate.
-    use_cod_ = !(lu_.rcond() > 1e3 * std::numeric_limits<double>::epsilon());
-    if (use_cod_) cod_.compute(block_);
-    return true;
-  }
-  // Its own SparseLU rather than the kernel's SparseFreeBlock (the same gather and LU): this file's instantiation of
-  // Eigen's SparseLU is the one the linker keeps for every user, the polish's included, and the perf gate counts it.
-  const SparseMatrix& M = problem_->sparse_matrix();
-  pos_.assign(n_, -1);
-  for (int a = 0; a < k; ++a) pos_[free_idx_[a]] = a;
-  triplets_.clear();
-  for (int b = 0; b < k; ++b) {
-    for (SparseMatrix::InnerIterator it(M, free_idx_[b]); it; ++it) {
-      const int a = pos_[it.row()];
-      if (a >= 0) triplets_.emplace_back(a, b, it.value());
-    }
-  }
-  sparse_block_.resize(k, k);
-  sparse_block_.setFromTriplets(triplets_.begin(), triplets_.end());
-  sparse_block_.makeCompressed();
-  slu_.analyzePattern(sparse_block_);
-  slu_.factorize(sparse_block_);
-  use_sqr_ = slu_.info() != Eigen::Success;
-  if (use_sqr_) {
-    sqr_.compute(sparse_block_);
-    if (sqr_.info() != Eigen::Success) return false;
-  }
-  return true;
-}
-
 double Session::Polish(const Vector& z_in, Vector* z_out) {
   const Vector& l = problem_->l();
   const Vector& u = problem_->u();
@@ -874,20 +820,14 @@ double Session::Polish(const Vector& z_in, Vector* z_out) {
     problem_->Affine(pol_z_, &pol_r_);
     const int k = static_cast<int>(free_idx_.size());
     if (k > 0) {
-      if (!SolveFreeBlock(k)) break;
+      if (!free_block_.Factor(*problem_, free_idx_.data(), k)) break;
       if (pol_rhs_.size() != k) pol_rhs_.resize(k);
       if (pol_delta_.size() != k) pol_delta_.resize(k);
       bool finite = true;
       // Correction from the snapped point, then one step of iterative refinement with the same factors.
       for (int step = 0; step < 2 && finite; ++step) {
         for (int a = 0; a < k; ++a) pol_rhs_[a] = -pol_r_[free_idx_[a]];
-        if (problem_->is_sparse()) {
-          pol_delta_ = use_sqr_ ? Vector(sqr_.solve(pol_rhs_)) : Vector(slu_.solve(pol_rhs_));
-        } else if (use_cod_) {
-          pol_delta_.noalias() = cod_.solve(pol_rhs_);
-        } else {
-          pol_delta_.noalias() = lu_.solve(pol_rhs_);
-        }
+        free_block_.Solve(pol_rhs_, &pol_delta_);
         finite = pol_delta_.allFinite();
         if (!finite) break;
         for (int a = 0; a < k; ++a) pol_z_[free_idx_[a]] += pol_delta_[a];
@@ -986,7 +926,7 @@ bool Session::SolvedAtStart(const SolverOptions& options, const IpoptOptions& o,
   const double start_residual = RelResidual(start_, &iter_w_);
   if (start_residual <= target_) {
     result->status = SolveStatus::kSolved;
-    result->SetDetail("formulation", kNone);
+    kIpoptFormulationDetail.Set(result, IpoptFormulation::kNone);
     return true;
   }
   if (o.polish && o.polish_warm_start && options.warm_start.size() == n_) {
@@ -994,35 +934,35 @@ bool Session::SolvedAtStart(const SolverOptions& options, const IpoptOptions& o,
     if (polished <= target_) {
       result->z = pol_best_;
       result->status = SolveStatus::kSolved;
-      result->SetDetail("formulation", kNone);
+      kIpoptFormulationDetail.Set(result, IpoptFormulation::kNone);
       result->SetDetail("polished_residual", polished);
       result->SetDetail("polish_accepted", 1.0);
-      result->SetDetail("early_stop", kWarmPolish);
+      kIpoptEarlyStopDetail.Set(result, IpoptEarlyStop::kWarmPolish);
       return true;
     }
   }
   return false;
 }
 
-int Session::ChooseFormulation(const BoxMLCP& p, const IpoptOptions& o, SolveResult* result) {
+std::optional<IpoptFormulation> Session::ChooseFormulation(const BoxMLCP& p, const IpoptOptions& o, SolveResult* result) {
   Classify(p, o);
-  int formulation;
+  IpoptFormulation formulation;
   if (o.formulation == IpoptOptions::kGap) {
-    formulation = kGapNlp;
+    formulation = IpoptFormulation::kGapNlp;
   } else if (o.formulation == IpoptOptions::kQp) {
     if (!symmetric_) {
       result->status = SolveStatus::kNotApplicable;
       result->message =
           "formulation=qp needs a symmetric M, up to a positive row scaling (the QP's KKT system uses (S+S')/2)";
-      return -1;
+      return std::nullopt;
     }
-    formulation = psd_ ? kConvexQp : kForcedQp;
+    formulation = psd_ ? IpoptFormulation::kConvexQp : IpoptFormulation::kForcedQp;
   } else {
-    formulation = (symmetric_ && psd_) ? kConvexQp : kGapNlp;
+    formulation = (symmetric_ && psd_) ? IpoptFormulation::kConvexQp : IpoptFormulation::kGapNlp;
   }
-  result->SetDetail("formulation", formulation);
+  kIpoptFormulationDetail.Set(result, formulation);
   result->SetDetail("symmetric_psd", (symmetric_ && psd_) ? 1.0 : 0.0);
-  if (formulation == kGapNlp) {
+  if (formulation == IpoptFormulation::kGapNlp) {
     SetupGap(p);
   } else {
     SetupQp(p);
@@ -1033,7 +973,7 @@ int Session::ChooseFormulation(const BoxMLCP& p, const IpoptOptions& o, SolveRes
 
 // Ipopt never throws through here: its exceptions become statuses.
 Ipopt::ApplicationReturnStatus Session::RunIpopt(const SolverOptions& options, const IpoptOptions& o,
-                                                 int formulation) {
+                                                 IpoptFormulation formulation) {
   ConfigureOutput(options.verbosity, o.print_level);
   Ipopt::ApplicationReturnStatus status = Ipopt::Internal_Error;
   try {
@@ -1043,8 +983,8 @@ Ipopt::ApplicationReturnStatus Session::RunIpopt(const SolverOptions& options, c
       initialized_ = status == Ipopt::Solve_Succeeded;
     }
     if (initialized_) {
-      const bool options_ok = SetIpoptOptions(options, o, formulation == kConvexQp);
-      status = options_ok ? app_->OptimizeTNLP(formulation == kGapNlp ? gap_holder_ : qp_holder_)
+      const bool options_ok = SetIpoptOptions(options, o, formulation == IpoptFormulation::kConvexQp);
+      status = options_ok ? app_->OptimizeTNLP(formulation == IpoptFormulation::kGapNlp ? gap_holder_ : qp_holder_)
                           : Ipopt::Invalid_Option;
     }
   } catch (const std::exception&) {
@@ -1079,10 +1019,10 @@ Session::Answer Session::TakeIpoptPoint(const IpoptOptions& o, SolveResult* resu
     answer.polished_residual = early_polished_residual_;
     answer.accepted = true;
     result->z = early_z_;
-    result->SetDetail("early_stop", kEarlyPolish);
+    kIpoptEarlyStopDetail.Set(result, IpoptEarlyStop::kEarlyPolish);
   } else if (ipopt_z != nullptr) {
     result->z = *ipopt_z;
-    if (stop_ == kStopMerit) result->SetDetail("early_stop", kMeritAtIterate);
+    if (stop_ == kStopMerit) kIpoptEarlyStopDetail.Set(result, IpoptEarlyStop::kMeritAtIterate);
     if (o.polish && answer.ipopt_residual > target_) {
       answer.polished_residual = Polish(*ipopt_z, &pol_best_);
       if (answer.polished_residual < answer.ipopt_residual) {
@@ -1101,23 +1041,24 @@ Session::Answer Session::TakeIpoptPoint(const IpoptOptions& o, SolveResult* resu
 void Session::Solve(const BoxMLCP& p, const SolverOptions& options, const IpoptOptions& o, SolveResult* result) {
   ResetForSolve(p, options, o, result->z);
   if (SolvedAtStart(options, o, result)) return;
-  const int formulation = ChooseFormulation(p, o, result);
-  if (formulation < 0) return;
-  const Ipopt::ApplicationReturnStatus status = RunIpopt(options, o, formulation);
+  const std::optional<IpoptFormulation> formulation = ChooseFormulation(p, o, result);
+  if (!formulation) return;
+  const Ipopt::ApplicationReturnStatus status = RunIpopt(options, o, *formulation);
   result->SetDetail("ipopt_status", static_cast<double>(status));
   result->iterations = iterations_;
   const Answer answer = TakeIpoptPoint(o, result);
   if (options.verbosity > 0) {
-    std::fprintf(stderr, "ipopt: formulation %d, Ipopt %s (%d) after %d iterations, residual %.3e, polished %.3e%s\n",
-                 formulation, IpoptStatusName(status), static_cast<int>(status), iterations_, answer.ipopt_residual,
-                 answer.polished_residual, answer.accepted ? " (kept)" : "");
+    const std::string formulation_name(ToString(*formulation));
+    std::fprintf(stderr, "ipopt: formulation %s, Ipopt %s (%d) after %d iterations, residual %.3e, polished %.3e%s\n",
+                 formulation_name.c_str(), IpoptStatusName(status), static_cast<int>(status), iterations_,
+                 answer.ipopt_residual, answer.polished_residual, answer.accepted ? " (kept)" : "");
   }
   const double final_residual = answer.accepted ? answer.polished_residual : answer.ipopt_residual;
   if (final_residual <= target_) {
     result->status = SolveStatus::kSolved;
     return;
   }
-  ExplainFailure(p, o, status, formulation == kGapNlp, answer, result);
+  ExplainFailure(p, o, status, *formulation == IpoptFormulation::kGapNlp, answer, result);
 }
 
 void Session::ExplainFailure(const BoxMLCP& p, const IpoptOptions& o, Ipopt::ApplicationReturnStatus status, bool gap,

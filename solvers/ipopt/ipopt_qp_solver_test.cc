@@ -8,10 +8,13 @@
 
 #include <cmath>
 #include <random>
+#include <set>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "solvers/core/verdict.h"
+#include "solvers/ipopt/ipopt_details.h"
 #include "tests/support/small_h_relay.h"
 
 namespace smcbench {
@@ -113,6 +116,34 @@ TEST(IpoptQpSolverTest, InfoAndDefaults) {
   EXPECT_TRUE(solver.options().IsValid(&why)) << why;
 }
 
+// The codes print by name (what JSON and Python show), each value with its own name.
+TEST(IpoptQpSolverTest, CodeDetailsPrintByName) {
+  std::mt19937 rng(7);
+  const DenseMatrix M = Spd(6, &rng);
+  const Vector l = Vector::Zero(6), u = Vector::Constant(6, kInf);
+  const Generated g = MakeSolution(M, l, u, &rng);
+  IpoptQpSolver solver;
+  const SolveResult r = solver.Solve(BoxMLCP(M, g.q, l, u));
+  ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
+  bool found = false;
+  for (int i = 0; i < r.num_details; ++i) {
+    if (std::string_view(r.details[i].name) == "formulation") {
+      EXPECT_EQ(SolveResult::CodeText(r.details[i]), "convex-qp");
+      found = true;
+    }
+  }
+  EXPECT_TRUE(found);
+  std::set<std::string_view> names;
+  for (int v = 0; v < 4; ++v) names.insert(ToString(static_cast<IpoptFormulation>(v)));
+  for (int v = 0; v < 4; ++v) names.insert(ToString(static_cast<IpoptEarlyStop>(v)));
+  EXPECT_EQ(names.size(), 7u);  // "none" is shared by the two codes' value 0
+  std::set<std::string_view> mcp;
+  for (int v = 0; v < 5; ++v) mcp.insert(ToString(static_cast<IpoptMcpEarlyStop>(v)));
+  EXPECT_EQ(mcp.size(), 5u);
+  EXPECT_EQ(ToString(IpoptOptions::kLimitedMemory), "limited-memory");
+  EXPECT_FALSE(kIpoptFormulationDetail.FromNumber(4.0).has_value());
+}
+
 TEST(IpoptQpSolverTest, SpdLcpSolvedToTolAfterPolish) {
   IpoptQpSolver solver;
   for (int seed = 0; seed < 5; ++seed) {
@@ -126,7 +157,7 @@ TEST(IpoptQpSolverTest, SpdLcpSolvedToTolAfterPolish) {
     ASSERT_EQ(r.status, SolveStatus::kSolved) << "seed " << seed << ": " << r.message;
     EXPECT_LE(Residual(p, r.z), kTol);
     EXPECT_LE((r.z - g.z_star).cwiseAbs().maxCoeff(), 1e-8);  // unique: M is positive definite
-    EXPECT_EQ(r.GetDetail("formulation"), 1.0);
+    EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kConvexQp);
     EXPECT_EQ(r.GetDetail("symmetric_psd"), 1.0);
     EXPECT_GT(r.iterations, 0);
     EXPECT_FALSE(std::isnan(r.GetDetail("ipopt_residual")));
@@ -146,7 +177,7 @@ TEST(IpoptQpSolverTest, SpdRelaySolved) {
     ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
     EXPECT_LE(Residual(p, r.z), kTol);
     EXPECT_LE((r.z - g.z_star).cwiseAbs().maxCoeff(), 1e-8);
-    EXPECT_EQ(r.GetDetail("formulation"), 1.0);
+    EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kConvexQp);
   }
 }
 
@@ -189,7 +220,7 @@ TEST(IpoptQpSolverTest, PsdSingularLcpSolved) {
     const SolveResult r = solver.Solve(p);
     ASSERT_EQ(r.status, SolveStatus::kSolved) << "seed " << seed << ": " << r.message;
     EXPECT_LE(Residual(p, r.z), kTol);
-    EXPECT_EQ(r.GetDetail("formulation"), 1.0);
+    EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kConvexQp);
     EXPECT_EQ(r.GetDetail("symmetric_psd"), 1.0);
   }
 }
@@ -208,7 +239,7 @@ TEST(IpoptQpSolverTest, NonsymmetricPMatrixLcpViaGapFormulation) {
     ASSERT_EQ(r.status, SolveStatus::kSolved) << "seed " << seed << ": " << r.message;
     EXPECT_LE(Residual(p, r.z), kTol);
     EXPECT_LE((r.z - g.z_star).cwiseAbs().maxCoeff(), 1e-7);  // P-matrix: unique solution
-    EXPECT_EQ(r.GetDetail("formulation"), 2.0);
+    EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kGapNlp);
     EXPECT_EQ(r.GetDetail("symmetric_psd"), 0.0);
   }
 }
@@ -226,7 +257,7 @@ TEST(IpoptQpSolverTest, NonsymmetricPMatrixRelayViaGapFormulation) {
     ASSERT_EQ(r.status, SolveStatus::kSolved) << "seed " << seed << ": " << r.message;
     EXPECT_LE(Residual(p, r.z), kTol);
     EXPECT_LE((r.z - g.z_star).cwiseAbs().maxCoeff(), 1e-7);
-    EXPECT_EQ(r.GetDetail("formulation"), 2.0);
+    EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kGapNlp);
   }
 }
 
@@ -242,7 +273,7 @@ TEST(IpoptQpSolverTest, GapFormulationForcedOnSpdProblem) {
   const SolveResult r = solver.Solve(p);
   ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
   EXPECT_LE(Residual(p, r.z), kTol);
-  EXPECT_EQ(r.GetDetail("formulation"), 2.0);
+  EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kGapNlp);
 }
 
 // Symmetric PSD but singular, and w1 + w2 = -2 < 0 for every z: no solution. The QP is unbounded below along
@@ -258,7 +289,7 @@ TEST(IpoptQpSolverTest, LcpWithoutSolutionPsdIsNotSolved) {
   EXPECT_NE(r.status, SolveStatus::kSolved);
   EXPECT_TRUE(r.status == SolveStatus::kDiverged || r.status == SolveStatus::kIterationLimit) << r.message;
   EXPECT_FALSE(r.message.empty());
-  EXPECT_EQ(r.GetDetail("formulation"), 1.0);
+  EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kConvexQp);
   // Where the residual is still meaningful it is large.
   if (r.z.cwiseAbs().maxCoeff() < 1e6) {
     EXPECT_GT(Residual(p, r.z), kTol);
@@ -277,7 +308,7 @@ TEST(IpoptQpSolverTest, LcpWithoutSolutionNonPsdIsInfeasible) {
   // Only with a certificate checked by the backend: a claim of no solution is a verdict too, and must be earned.
   EXPECT_NE(r.message.find("Farkas certificate"), std::string::npos) << r.message;
   EXPECT_GT(Residual(p, r.z), kTol);
-  EXPECT_EQ(r.GetDetail("formulation"), 2.0);
+  EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kGapNlp);
 }
 
 Vector MixedLower(int n) {
@@ -322,7 +353,7 @@ TEST(IpoptQpSolverTest, MixedBoundsWithFreeRows) {
       ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
       EXPECT_LE(Residual(p, r.z), kTol);
       EXPECT_LE((r.z - g.z_star).cwiseAbs().maxCoeff(), 1e-8);
-      EXPECT_EQ(r.GetDetail("formulation"), 1.0);
+      EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kConvexQp);
     }
     {
       const DenseMatrix M = NonsymmetricP(n, &rng);
@@ -331,7 +362,7 @@ TEST(IpoptQpSolverTest, MixedBoundsWithFreeRows) {
       const SolveResult r = solver.Solve(p);
       ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
       EXPECT_LE(Residual(p, r.z), kTol);
-      EXPECT_EQ(r.GetDetail("formulation"), 2.0);
+      EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kGapNlp);
     }
   }
 }
@@ -356,7 +387,7 @@ TEST(IpoptQpSolverTest, SparseProblems) {
     const SolveResult r = solver.Solve(p);
     ASSERT_EQ(r.status, SolveStatus::kSolved) << "variant " << variant << ": " << r.message;
     EXPECT_LE(Residual(p, r.z), kTol);
-    EXPECT_EQ(r.GetDetail("formulation"), variant == 0 ? 1.0 : 2.0);
+    EXPECT_EQ(kIpoptFormulationDetail.Get(r), variant == 0 ? IpoptFormulation::kConvexQp : IpoptFormulation::kGapNlp);
   }
 }
 
@@ -380,7 +411,7 @@ TEST(IpoptQpSolverTest, RowScaledSymmetricProblemKeepsTheConvexQp) {
     const SolveResult r = solver.Solve(p);
     ASSERT_EQ(r.status, SolveStatus::kSolved) << (variant == 0 ? "dense: " : "sparse: ") << r.message;
     EXPECT_LE((r.z - g.z_star).cwiseAbs().maxCoeff(), 1e-8);
-    EXPECT_EQ(r.GetDetail("formulation"), 1.0);
+    EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kConvexQp);
     EXPECT_EQ(r.GetDetail("symmetric_psd"), 1.0);
   }
   // A sign pattern no positive row scaling can symmetrize (M_01 > 0 > M_10) stays with the gap program.
@@ -389,7 +420,7 @@ TEST(IpoptQpSolverTest, RowScaledSymmetricProblemKeepsTheConvexQp) {
   const BoxMLCP p = BoxMLCP::LCP(skew, Vector::Constant(2, -1.0));
   const SolveResult r = IpoptQpSolver().Solve(p);
   ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
-  EXPECT_EQ(r.GetDetail("formulation"), 2.0);
+  EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kGapNlp);
 }
 
 // Block diagonal with [1 -1; -1 1] blocks plus a rank-one coupling: PSD and singular, so the polish meets
@@ -415,7 +446,7 @@ TEST(IpoptQpSolverTest, SparsePsdSingular) {
     const SolveResult r = solver.Solve(p);
     ASSERT_EQ(r.status, SolveStatus::kSolved) << "variant " << variant << ": " << r.message;
     EXPECT_LE(Residual(p, r.z), kTol);
-    EXPECT_EQ(r.GetDetail("formulation"), 1.0);
+    EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kConvexQp);
   }
 }
 
@@ -508,7 +539,7 @@ TEST(IpoptQpSolverTest, WarmStartFromSolutionNeedsNoIterations) {
   const SolveResult polished = solver.Solve(p, warm);
   EXPECT_EQ(polished.status, SolveStatus::kSolved) << polished.message;
   EXPECT_EQ(polished.iterations, 0);
-  EXPECT_EQ(polished.GetDetail("early_stop"), 3.0);
+  EXPECT_EQ(kIpoptEarlyStopDetail.Get(polished), IpoptEarlyStop::kWarmPolish);
 }
 
 TEST(IpoptQpSolverTest, LimitsAreStatuses) {
@@ -573,7 +604,7 @@ TEST(IpoptQpSolverTest, ForcedQpOnSymmetricIndefiniteRelay) {
   const SolveResult r = solver.Solve(p);
   ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
   EXPECT_LE(Residual(p, r.z), kTol);
-  EXPECT_EQ(r.GetDetail("formulation"), 3.0);
+  EXPECT_EQ(kIpoptFormulationDetail.Get(r), IpoptFormulation::kForcedQp);
 
   // formulation=qp is refused for nonsymmetric M.
   const BoxMLCP q = BoxMLCP::LCP(NonsymmetricP(4, &rng), Vector::Constant(4, -1.0));

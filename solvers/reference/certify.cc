@@ -677,7 +677,7 @@ void ReferenceSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& optio
   CertifyStats stats;
   const ReferenceSolution reference = Certify(problem, candidates, certify_options, &stats);
   result->iterations = static_cast<int>(std::min<std::int64_t>(stats.active_sets, INT_MAX));
-  result->SetDetail("certificate", static_cast<double>(static_cast<int>(reference.certificate)));
+  kCertificateDetail.Set(result, reference.certificate);
   result->SetDetail("condition", reference.condition);
   if (reference.verified()) {
     result->status = SolveStatus::kSolved;

@@ -59,8 +59,11 @@ ReferenceSolution Certify(const BoxMLCP& problem, const std::vector<Vector>& can
                           const CertifyOptions& options = {}, CertifyStats* stats = nullptr);
 
 // The backend "reference": Certify from the start point and the warm start, dense n ≤ 64. kSolved with z = z* when
-// a solution is verified (iterations = active sets solved, detail "certificate" = the Certificate's value,
-// "condition" = μ); else kNumericalFailure saying what was tried (never kInfeasible: finding nothing is not a proof).
+// a solution is verified (iterations = active sets solved, detail "certificate" = the Certificate, read through
+// kCertificateDetail, "condition" = μ); else kNumericalFailure saying what was tried (never kInfeasible: finding
+// nothing is not a proof).
+inline constexpr CodeDetail<Certificate, 6> kCertificateDetail{"certificate"};
+
 class ReferenceSolver final : public Solver {
  public:
   const SolverInfo& info() const override;

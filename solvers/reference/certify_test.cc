@@ -340,7 +340,7 @@ TEST(ReferenceSolverTest, SolvesTheLcpExactly) {
   ASSERT_EQ(result.status, SolveStatus::kSolved) << result.message;
   EXPECT_EQ(result.z[0], 1.0 / 3.0);
   EXPECT_EQ(result.z[1], 1.0 / 3.0);
-  EXPECT_EQ(result.GetDetail("certificate"), static_cast<double>(static_cast<int>(Certificate::kUnique)));
+  EXPECT_EQ(kCertificateDetail.Get(result), Certificate::kUnique);
   EXPECT_GE(result.iterations, 1);
 }
 
@@ -364,7 +364,7 @@ TEST(ReferenceSolverTest, ReportsWhatItTriedWithoutClaimingInfeasibility) {
   const SolveResult result = solver.Solve(p);
   EXPECT_EQ(result.status, SolveStatus::kNumericalFailure);
   EXPECT_NE(result.message.find("not a proof"), std::string::npos) << result.message;
-  EXPECT_EQ(result.GetDetail("certificate"), static_cast<double>(static_cast<int>(Certificate::kNoneFound)));
+  EXPECT_EQ(kCertificateDetail.Get(result), Certificate::kNoneFound);
 }
 
 }  // namespace
