@@ -23,7 +23,8 @@ namespace {
 
 using nlohmann::json;
 
-constexpr const char* kKnownKeys[] = {"format", "version", "name", "M", "q", "H", "K", "E", "f", "solution"};
+constexpr const char* kKnownKeys[] = {"format", "version", "name", "M", "q", "H", "K", "E", "f", "solution",
+                                     "expected"};
 
 std::string Lower(std::string s) {
   for (char& c : s) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -201,6 +202,17 @@ AviFile ParseAviText(const std::string& text, const std::string& source, const s
   }
   Vector solution;
   if (doc.contains("solution")) solution = reader.ReadVector(doc["solution"], "solution", n, "n = the size of q");
+  std::optional<ExpectedOutcome> expected;
+  if (doc.contains("expected")) {
+    const json& value = doc["expected"];
+    if (value.is_string()) expected = ExpectedOutcomeFromString(value.get<std::string>());
+    if (!expected) {
+      reader.Fail("expected", "expected \"solvable\", \"infeasible\" or \"unknown\", got " + Reader::Describe(value));
+    }
+    if (*expected == ExpectedOutcome::kInfeasible && solution.size() > 0) {
+      reader.Fail("expected", "\"infeasible\" contradicts the \"solution\" the file gives");
+    }
+  }
 
   std::optional<AffineVI> avi;
   try {
@@ -220,7 +232,11 @@ AviFile ParseAviText(const std::string& text, const std::string& source, const s
                                   " scaled (tolerance " + NumberText(kAviFileSolutionTolerance) + ")");
     }
   }
-  return AviFile{std::move(*avi), std::move(solution)};
+  if (expected == ExpectedOutcome::kInfeasible && avi->boundedness() == PolytopeBoundedness::kBounded) {
+    reader.Fail("expected", "\"infeasible\", but P is bounded, so the AVI has a solution (Hartman–Stampacchia)");
+  }
+  const ExpectedOutcome outcome = expected ? *expected : ExpectedAviOutcome(*avi);
+  return AviFile{std::move(*avi), std::move(solution), outcome};
 }
 
 AviFile ReadAviFile(const std::string& path) {
@@ -230,7 +246,7 @@ AviFile ReadAviFile(const std::string& path) {
   return ParseAviText(text, path, DefaultName(path));
 }
 
-std::string AviFileText(const AffineVI& avi, const Vector& solution) {
+std::string AviFileText(const AffineVI& avi, const Vector& solution, std::optional<ExpectedOutcome> expected) {
   if (solution.size() != 0) {
     if (solution.size() != avi.size()) {
       throw InvalidInputError("WriteAviFile: solution has " + std::to_string(solution.size()) +
@@ -263,12 +279,14 @@ std::string AviFileText(const AffineVI& avi, const Vector& solution) {
     out += ",\n  \"solution\": ";
     AppendVector(&out, solution);
   }
+  if (expected) out += ",\n  \"expected\": \"" + std::string(ToString(*expected)) + "\"";
   out += "\n}\n";
   return out;
 }
 
-void WriteAviFile(const AffineVI& avi, const std::string& path, const Vector& solution) {
-  const std::string text = AviFileText(avi, solution);
+void WriteAviFile(const AffineVI& avi, const std::string& path, const Vector& solution,
+                  std::optional<ExpectedOutcome> expected) {
+  const std::string text = AviFileText(avi, solution, expected);
   std::ofstream out(path, std::ios::binary);
   if (!out) throw InvalidInputError("WriteAviFile: cannot write '" + path + "'");
   out << text;

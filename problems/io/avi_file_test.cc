@@ -175,7 +175,7 @@ TEST(AviFile, EveryDefectNamesTheFileAndTheField) {
       {"\"version\": 1", "\"version\": 2", "\"version\": unsupported version number 2"},
       {"\"version\": 1", "\"version\": \"1\"", "\"version\": unsupported version string \"1\""},
       // keys
-      {"\"name\"", "\"nmae\"", "\"nmae\": unknown key (known: format, version, name, M, q, H, K, E, f, solution)"},
+      {"\"name\"", "\"nmae\"", "\"nmae\": unknown key (known: format, version, name, M, q, H, K, E, f, solution, expected)"},
       {"\"q\": [-2, -3],", "", "\"q\": missing"},
       {"\"K\": [-1, -1, -1, -1],", "", "\"K\": missing"},
       {"\"K\"", "\"E\": [[1, 1]], \"K\"", "\"f\": missing: E and f come together (E is given)"},
@@ -198,6 +198,12 @@ TEST(AviFile, EveryDefectNamesTheFileAndTheField) {
       // the AffineVI's own checks, with the file named
       {"[0.05, -1]", "[0, 0]", "H row 3 is zero"},
       {"\"K\": [-1, -1, -1, -1]", "\"K\": [-1, 2, -1, -1]", "is empty"},
+      // the expected outcome
+      {"\"solution\": [1, 1.05]", "\"expected\": \"maybe\"",
+       "\"expected\": expected \"solvable\", \"infeasible\" or \"unknown\", got string \"maybe\""},
+      {"\"solution\": [1, 1.05]", "\"solution\": [1, 1.05], \"expected\": \"infeasible\"",
+       "\"expected\": \"infeasible\" contradicts the \"solution\""},
+      {"\"solution\": [1, 1.05]", "\"expected\": \"infeasible\"", "\"expected\": \"infeasible\", but P is bounded"},
       // not JSON at all
       {"\"version\": 1,", "\"version\": 1,,", "not valid JSON"},
   };
@@ -239,6 +245,19 @@ TEST(AviFile, TheDocsExampleIsThisFileAndSolves) {
   EXPECT_NEAR(r.solution.mu[1], 1.0975, 1e-12);
   EXPECT_NEAR(r.solution.mu[3], 1.95, 1e-12);
   EXPECT_NEAR((r.solution.lambda - file.solution).cwiseAbs().maxCoeff(), 0.0, 1e-12);
+}
+
+TEST(AviFile, TheExpectedOutcomeIsTheFilesOrTheBoundednessRule) {
+  // λ ≥ 0 with M = 0, q = −1 has no solution; P is unbounded, so only the file can say "infeasible".
+  const AffineVI none(DenseMatrix::Zero(1, 1), Vector::Constant(1, -1.0), DenseMatrix::Identity(1, 1),
+                      Vector::Zero(1), "no-solution");
+  const std::string stated = AviFileText(none, {}, ExpectedOutcome::kInfeasible);
+  EXPECT_THAT(stated, HasSubstr("\"expected\": \"infeasible\""));
+  const AviFile back = ParseAviText(stated, "none.avi.json");
+  EXPECT_EQ(back.expected, ExpectedOutcome::kInfeasible);
+  EXPECT_EQ(AviFileText(back.avi, back.solution, back.expected), stated);
+  EXPECT_EQ(ParseAviText(AviFileText(none), "none.avi.json").expected, ExpectedOutcome::kUnknown);  // unbounded P
+  EXPECT_EQ(ReadAviFile(kExample).expected, ExpectedOutcome::kSolvable);                           // bounded P
 }
 
 TEST(AviFile, ExtensionAndDefaultName) {

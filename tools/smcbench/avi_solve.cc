@@ -141,11 +141,12 @@ int RunSolveAvi(const std::string& path, std::optional<ProblemFormat> format,
       if (r.result.solution.lambda.size() == avi.size()) candidates.push_back(r.result.solution);
     }
     certified = CertifyAvi(avi, candidates);
-    for (AviSolveRecord& r : records) {
-      r.result.judgement = JudgeAvi(avi, ExpectedAviOutcome(avi), &*certified, r.result.status, r.result.solution,
-                                    options.tolerance);
-      r.judged_against_reference = true;
-    }
+  }
+  // Judged by the file's expected outcome (SolveAvi assumed ExpectedAviOutcome) and, with --reference, against λ*.
+  for (AviSolveRecord& r : records) {
+    r.result.judgement = JudgeAvi(avi, file.expected, certified ? &*certified : nullptr, r.result.status,
+                                  r.result.solution, options.tolerance);
+    r.judged_against_reference = certified.has_value();
   }
   if (json) {
     nlohmann::json array = nlohmann::json::array();
@@ -166,7 +167,7 @@ int RunSolveAvi(const std::string& path, std::optional<ProblemFormat> format,
   }
   out << avi.name() << " (AVI: n = " << avi.size() << ", m = " << avi.inequality_count()
       << ", p = " << avi.equality_count() << ", P " << ToString(avi.boundedness()) << ", expected "
-      << ToString(ExpectedAviOutcome(avi)) << ")\n";
+      << ToString(file.expected) << ")\n";
   if (certified) {
     char line[200];
     std::snprintf(line, sizeof line, "reference: certificate %s, condition %.3g, |lambda*|inf %.3g",

@@ -12,7 +12,9 @@
 #include <string>
 #include <vector>
 
+#include "problems/avi_library/avi_suite.h"
 #include "problems/io/avi_file.h"
+#include "tools/smcbench/avi_export.h"
 #include "tools/smcbench/cli_test_runner.h"
 
 namespace smcbench {
@@ -178,6 +180,42 @@ TEST(SolveAviCli, AnAviWithNoSolutionIsNeverClaimedSolved) {
   }
   const CliRun text = RunSmcbench({"solve", path, "--solver", "lemke"});
   EXPECT_THAT(text.out, HasSubstr("P unbounded, expected unknown"));
+}
+
+TEST(SolveAviCli, TheAviSuiteWrittenAsFilesReadsBackBitForBitAndSolves) {
+  const ScratchDir dir;
+  const std::string folder = dir.File("avi-suite");
+  CliRun r = RunSmcbench({"library", "--write-suite", "avi", folder, "--quick"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const AviProblemSet suite = BuildAviSuite(/*quick=*/true);
+  EXPECT_THAT(r.out, HasSubstr("wrote suite avi (" + std::to_string(suite.problems.size()) + " AVI files"));
+  std::ifstream index(folder + "/index.csv");
+  std::string line;
+  int rows = -1;  // the header
+  while (std::getline(index, line)) ++rows;
+  EXPECT_EQ(rows, static_cast<int>(suite.problems.size()));
+  bool saw_infeasible = false;
+  for (const AviLibraryProblem& p : suite.problems) {
+    SCOPED_TRACE(p.id);
+    const AviFile file = ReadAviFile(folder + "/" + AviExportFileName(p.id));  // its solution checked on reading
+    EXPECT_EQ(file.avi.name(), p.id);
+    EXPECT_EQ(file.expected, p.expected);
+    EXPECT_TRUE(file.avi.M() == p.problem->M() && file.avi.q() == p.problem->q() && file.avi.H() == p.problem->H() &&
+                file.avi.K() == p.problem->K() && file.avi.E() == p.problem->E() && file.avi.f() == p.problem->f());
+    if (p.reference.verified()) {
+      EXPECT_TRUE(file.solution == p.reference.solution.lambda);
+    }
+    if (p.expected != ExpectedOutcome::kInfeasible || saw_infeasible) continue;
+    // An AVI with no solution, judged from its file: a refusal is correct, never "failed" for want of the
+    // expected outcome.
+    saw_infeasible = true;
+    r = RunSmcbench({"solve", folder + "/" + AviExportFileName(p.id), "--solver", "lemke", "--json"});
+    ASSERT_EQ(r.code, 0) << r.err;
+    const auto row = nlohmann::json::parse(r.out).at(0);
+    EXPECT_NE(row["status"], "solved");
+    EXPECT_EQ(row["verdict"], "correctly refused");
+  }
+  EXPECT_TRUE(saw_infeasible);
 }
 
 }  // namespace
