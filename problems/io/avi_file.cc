@@ -10,6 +10,7 @@
 #include <filesystem>
 #include <fstream>
 #include <optional>
+#include <set>
 #include <utility>
 
 #include "problems/io/read_text.h"
@@ -150,8 +151,16 @@ std::string DefaultName(const std::string& path) {
 AviFile ParseAviText(const std::string& text, const std::string& source, const std::string& default_name) {
   const Reader reader(source);
   json doc;
+  // A key given twice would silently keep the last value: refused, as a hand-edited file's slip.
+  std::set<std::string> top_level_keys;
+  const json::parser_callback_t refuse_repeated_keys = [&](int depth, json::parse_event_t event, json& parsed) {
+    if (event == json::parse_event_t::key && depth == 1 && !top_level_keys.insert(parsed.get<std::string>()).second) {
+      reader.Fail(parsed.get<std::string>(), "given twice");
+    }
+    return true;
+  };
   try {
-    doc = json::parse(text);
+    doc = json::parse(text, refuse_repeated_keys);
   } catch (const json::exception& e) {
     reader.Fail("", std::string("not valid JSON: ") + e.what());
   }

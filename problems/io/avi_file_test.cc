@@ -204,6 +204,7 @@ TEST(AviFile, EveryDefectNamesTheFileAndTheField) {
       {"\"solution\": [1, 1.05]", "\"solution\": [1, 1.05], \"expected\": \"infeasible\"",
        "\"expected\": \"infeasible\" contradicts the \"solution\""},
       {"\"solution\": [1, 1.05]", "\"expected\": \"infeasible\"", "\"expected\": \"infeasible\", but P is bounded"},
+      {"\"K\": [-1, -1, -1, -1]", "\"K\": [-1, -1, -1, -1], \"q\": [1, 2]", "\"q\": given twice"},
       // not JSON at all
       {"\"version\": 1,", "\"version\": 1,,", "not valid JSON"},
   };
