@@ -13,7 +13,7 @@ from __future__ import annotations
 import json
 import os
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Union
+from typing import Any, Callable, Dict, Iterable, Iterator, List, NamedTuple, Optional, Union
 
 import numpy as np
 
@@ -23,7 +23,7 @@ from ._smcbench import AffineVI, InvalidInputError, scenes, scenes_directory
 __all__ = [
     "InvalidInputError", "SolveResult", "Simulation", "Problem", "McpProblem", "solvers", "solve", "solve_mcp",
     "judge_mcp", "bench_mcp", "simulate", "scenes", "scenes_directory", "read_problem_set", "write_problem_set",
-    "load_bench_results", "bench", "AffineVI", "AviResult", "solve_avi", "read_avi", "write_avi",
+    "load_bench_results", "bench", "AffineVI", "AviResult", "AviFile", "solve_avi", "read_avi", "write_avi",
 ]
 
 
@@ -571,32 +571,43 @@ class AviResult:
 
 def solve_avi(avi: AffineVI, solver: str = "lemke", tol: float = 1e-10, time_limit: Optional[float] = None, *,
               start=None, max_iterations: Optional[int] = None, polish: bool = True, reference=None,
-              **backend_options) -> AviResult:
+              expected: Optional[str] = None, **backend_options) -> AviResult:
     """Solve the AVI with a box backend through the exact reduction to a box-MLCP (SolveAvi, docs/avi.md).
 
     solver: a backend that solves box-MLCPs (solvers()); the default lemke pivots exactly and solves every
     monotone AVI (M + Mᵀ positive semidefinite). tol: the tolerance of the AVI rule. time_limit: seconds (None: no
     limit). start: a warm start, λ alone (size n) or (λ, μ, ν) (size n + m + p). max_iterations: None = the
     backend's default. polish: the exact polish of the reduction's answer. reference: a known λ* (size n): it is
-    certified (CertifyAvi) and λ is judged by its forward error where λ* is provably unique. backend_options: the
-    backend's typed options by name, as in solve().
+    certified (CertifyAvi) and λ is judged by its forward error where λ* is provably unique. expected: what a
+    correct backend must answer ("solvable", "infeasible", "unknown"; None: avi.expected), for the verdict.
+    backend_options: the backend's typed options by name, as in solve().
 
     Raises InvalidInputError (a ValueError) for an unknown solver or option, a backend that does not solve
     box-MLCPs, an invalid option value, or a start or reference of the wrong size.
     """
     raw = _smcbench._solve_avi(avi, solver, float(tol), time_limit, start, max_iterations, polish, reference,
-                               backend_options)
+                               expected, backend_options)
     raw["reduced"] = _result(raw["reduced"])
     return AviResult(solved=raw["status"] == "solved", **raw)
 
 
-def read_avi(path):
-    """Read an AVI file (.avi.json, docs/formats.md): returns (avi, solution), solution the file's reference λ*
-    (checked when read) or None. Raises InvalidInputError naming the file and the field of any defect."""
-    return _smcbench._read_avi(os.fspath(path))
+class AviFile(NamedTuple):
+    """What an AVI file holds: avi (an AffineVI), solution (the file's reference λ*, checked when read, or None),
+    expected (the file's expected outcome, else avi.expected). Unpacks as `avi, solution, expected`."""
+
+    avi: AffineVI
+    solution: Optional[np.ndarray]
+    expected: str
 
 
-def write_avi(avi: AffineVI, path, solution=None) -> None:
-    """Write avi (and a reference λ*, size n, if given) as an AVI file that reads back bit for bit
-    (docs/formats.md). Raises InvalidInputError when the file cannot be written or the solution is malformed."""
-    _smcbench._write_avi(avi, os.fspath(path), solution)
+def read_avi(path) -> AviFile:
+    """Read an AVI file (.avi.json, docs/formats.md). Raises InvalidInputError naming the file and the field of
+    any defect. solve_avi(f.avi, expected=f.expected) judges an answer as `smcbench solve FILE` does."""
+    return AviFile(*_smcbench._read_avi(os.fspath(path)))
+
+
+def write_avi(avi: AffineVI, path, solution=None, expected: Optional[str] = None) -> None:
+    """Write avi (with a reference λ*, size n, and an expected outcome "solvable" / "infeasible" / "unknown", if
+    given) as an AVI file that reads back bit for bit (docs/formats.md). Raises InvalidInputError when the file
+    cannot be written, or the solution or expected is malformed."""
+    _smcbench._write_avi(avi, os.fspath(path), solution, expected)

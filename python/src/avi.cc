@@ -59,7 +59,8 @@ std::unique_ptr<Solver> MakeAviSolver(const std::string& name, const py::dict& b
 
 py::dict SolveAviPy(const AffineVI& avi, const std::string& solver_name, double tolerance,
                     std::optional<double> time_limit, const py::object& start, std::optional<int> max_iterations,
-                    bool polish, const py::object& reference, const py::dict& backend_options) {
+                    bool polish, const py::object& reference, const py::object& expected_name,
+                    const py::dict& backend_options) {
   SolverOptions options;
   options.tolerance = tolerance;
   if (time_limit) options.time_limit_seconds = *time_limit;
@@ -75,6 +76,13 @@ py::dict SolveAviPy(const AffineVI& avi, const std::string& solver_name, double 
   }
   std::string why;
   if (!options.IsValid(&why)) throw InvalidInputError(why);
+  ExpectedOutcome expected = ExpectedAviOutcome(avi);
+  if (!expected_name.is_none()) {
+    const std::string text = py::str(expected_name);
+    const std::optional<ExpectedOutcome> parsed = ExpectedOutcomeFromString(text);
+    if (!parsed) throw InvalidInputError("expected: 'solvable', 'infeasible' or 'unknown', got '" + text + "'");
+    expected = *parsed;
+  }
   std::optional<AviReference> certified;
   if (!reference.is_none()) {
     const Vector lambda = ToVector(reference, "reference");
@@ -91,13 +99,15 @@ py::dict SolveAviPy(const AffineVI& avi, const std::string& solver_name, double 
     py::gil_scoped_release release;
     r = SolveAvi(avi, *solver, options, certified ? &*certified : nullptr);
   }
+  // SolveAvi judged by ExpectedAviOutcome; the caller's statement of the outcome decides instead.
+  r.judgement = JudgeAvi(avi, expected, certified ? &*certified : nullptr, r.status, r.solution, tolerance);
   const AviJudgement& j = r.judgement;
   py::dict out;
   out["status"] = std::string(ToString(r.status));
   out["message"] = r.message;
   out["solver"] = std::string(r.solver);
   out["verdict"] = std::string(ToString(j.verdict));
-  out["expected"] = std::string(ToString(ExpectedAviOutcome(avi)));
+  out["expected"] = std::string(ToString(expected));
   out["lambda_"] = ToNumpy(r.solution.lambda);
   out["mu"] = ToNumpy(r.solution.mu);
   out["nu"] = ToNumpy(r.solution.nu);
@@ -117,14 +127,21 @@ py::dict SolveAviPy(const AffineVI& avi, const std::string& solver_name, double 
 py::tuple ReadAviPy(const std::string& path) {
   AviFile file = ReadAviFile(path);
   const py::object solution = file.solution.size() > 0 ? py::object(ToNumpy(file.solution)) : py::object(py::none());
-  return py::make_tuple(std::move(file.avi), solution);
+  return py::make_tuple(std::move(file.avi), solution, std::string(ToString(file.expected)));
 }
 
-void WriteAviPy(const AffineVI& avi, const std::string& path, const py::object& solution) {
+void WriteAviPy(const AffineVI& avi, const std::string& path, const py::object& solution,
+                const py::object& expected_name) {
   Vector lambda;
   if (!solution.is_none()) lambda = ToVector(solution, "solution");
   if (!solution.is_none() && lambda.size() == 0) throw InvalidInputError("solution is empty");
-  WriteAviFile(avi, path, lambda);
+  std::optional<ExpectedOutcome> expected;
+  if (!expected_name.is_none()) {
+    const std::string text = py::str(expected_name);
+    expected = ExpectedOutcomeFromString(text);
+    if (!expected) throw InvalidInputError("expected: 'solvable', 'infeasible' or 'unknown', got '" + text + "'");
+  }
+  WriteAviFile(avi, path, lambda, expected);
 }
 
 }  // namespace
@@ -154,10 +171,10 @@ void BindAvi(py::module_& m) {
                std::to_string(a.inequality_count()) + ", p=" + std::to_string(a.equality_count()) + ")";
       });
   m.def("_solve_avi", &SolveAviPy, "avi"_a, "solver"_a, "tol"_a, "time_limit"_a, "start"_a, "max_iterations"_a,
-        "polish"_a, "reference"_a, "backend_options"_a,
+        "polish"_a, "reference"_a, "expected"_a, "backend_options"_a,
         "Solve one AVI through SolveAvi (see smcbench.solve_avi); returns a dict.");
-  m.def("_read_avi", &ReadAviPy, "path"_a, "Read an .avi.json file: (AffineVI, solution or None).");
-  m.def("_write_avi", &WriteAviPy, "avi"_a, "path"_a, "solution"_a, "Write an .avi.json file.");
+  m.def("_read_avi", &ReadAviPy, "path"_a, "Read an .avi.json file: (AffineVI, solution or None, expected).");
+  m.def("_write_avi", &WriteAviPy, "avi"_a, "path"_a, "solution"_a, "expected"_a, "Write an .avi.json file.");
 }
 
 }  // namespace smcbench::python

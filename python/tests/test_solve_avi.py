@@ -93,30 +93,40 @@ def test_properties_are_the_data():
     assert "feasible_point" in smcbench.AffineVI.__doc__ and "lambda_" in smcbench.AviResult.__doc__
 
 
-def test_no_solution_is_never_claimed():
+def test_no_solution_is_never_claimed(tmp_path):
     # λ ≥ 0, M = 0, q = −1: (x − λ)ᵀ(−1) ≥ 0 for every x ≥ 0 is impossible; P is unbounded, expected unknown.
     avi = smcbench.AffineVI(np.zeros((1, 1)), [-1.0], np.eye(1), [0.0])
     r = smcbench.solve_avi(avi)
     assert not r.solved
-    assert r.verdict in ("failed", "correctly refused")
+    assert r.expected == "unknown" and r.verdict == "failed"  # not known to have no solution: a plain failure
+    # Stated as infeasible (in the call, or in its file), the same refusal is correct.
+    assert smcbench.solve_avi(avi, expected="infeasible").verdict == "correctly refused"
+    path = tmp_path / "none.avi.json"
+    smcbench.write_avi(avi, path, expected="infeasible")
+    f = smcbench.read_avi(path)
+    assert f.expected == "infeasible"
+    assert smcbench.solve_avi(f.avi, expected=f.expected).verdict == "correctly refused"
+    with pytest.raises(ValueError, match="expected: 'solvable', 'infeasible' or 'unknown', got 'maybe'"):
+        smcbench.solve_avi(avi, expected="maybe")
 
 
 def test_file_round_trip_bit_for_bit(tmp_path):
     avi, lam_star, _, _ = planted_avi(7)
     path = tmp_path / "planted.avi.json"
     smcbench.write_avi(avi, path, solution=lam_star)
-    back, solution = smcbench.read_avi(path)
+    back, solution, expected = smcbench.read_avi(path)
+    assert expected == "solvable"
     for name in ("M", "q", "H", "K", "E", "f"):
         a, b = getattr(avi, name), getattr(back, name)
         assert a.tobytes() == b.tobytes(), name  # every bit, signed zeros included
     assert solution.tobytes() == lam_star.tobytes()
     assert back.name == "planted-7"
     smcbench.write_avi(avi, tmp_path / "bare.avi.json")
-    assert smcbench.read_avi(tmp_path / "bare.avi.json")[1] is None
+    assert smcbench.read_avi(tmp_path / "bare.avi.json").solution is None
 
 
 def test_the_docs_example_file(source_dir):
-    avi, solution = smcbench.read_avi(source_dir / "problems" / "io" / "testdata" / "twisting-projection.avi.json")
+    avi, solution, _ = smcbench.read_avi(source_dir / "problems" / "io" / "testdata" / "twisting-projection.avi.json")
     assert avi.name == "twisting-projection" and (avi.n, avi.m, avi.p) == (2, 4, 0)
     np.testing.assert_array_equal(solution, [1.0, 1.05])
     np.testing.assert_allclose(smcbench.solve_avi(avi).lambda_, solution, atol=1e-12)
