@@ -175,7 +175,8 @@ TEST(AviFile, EveryDefectNamesTheFileAndTheField) {
       {"\"version\": 1", "\"version\": 2", "\"version\": unsupported version number 2"},
       {"\"version\": 1", "\"version\": \"1\"", "\"version\": unsupported version string \"1\""},
       // keys
-      {"\"name\"", "\"nmae\"", "\"nmae\": unknown key (known: format, version, name, M, q, H, K, E, f, solution, expected)"},
+      {"\"name\"", "\"nmae\"",
+       "\"nmae\": unknown key (known: format, version, name, M, q, H, K, E, f, solution, expected)"},
       {"\"q\": [-2, -3],", "", "\"q\": missing"},
       {"\"K\": [-1, -1, -1, -1],", "", "\"K\": missing"},
       {"\"K\"", "\"E\": [[1, 1]], \"K\"", "\"f\": missing: E and f come together (E is given)"},

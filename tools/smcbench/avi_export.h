@@ -14,8 +14,8 @@ namespace smcbench {
 std::string AviExportFileName(const std::string& id);
 
 // Writes every AVI of set to dir/AviExportFileName(id), with its expected outcome and its verified reference λ* as
-// "solution" (none when the reference is not verified), and dir/index.csv (file,id,n,m,p,expected,source). Creates dir. Returns the number of
-// files written. InvalidInputError if two ids give one file name or a file cannot be written.
+// "solution" (none when the reference is not verified), and dir/index.csv (file,id,n,m,p,expected,source).
+// Creates dir. Returns the number of files written. InvalidInputError if two ids give one file name or a file cannot be written.
 std::size_t ExportAviSet(const AviProblemSet& set, const std::string& dir);
 
 }  // namespace smcbench
