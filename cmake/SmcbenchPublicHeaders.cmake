@@ -30,6 +30,7 @@ set(SMCBENCH_PUBLIC_HEADERS
   solvers/generators/random_problems.h
   solvers/reference/certify.h
   # Problem files, the problem library (.smcps), the built-in suites by name, the MCP library.
+  problems/io/avi_file.h
   problems/io/data_dirs.h
   problems/io/matrix_market.h
   problems/io/siconos_format.h

@@ -1,5 +1,5 @@
-"""smcbench from Python: solve box-MLCPs and nonlinear MCPs with smcbench's backends, judge and benchmark a suite of
-one's own MCPs, simulate the sliding-mode scenes of Acary & Brogliato (2009), read and write .smcps problem sets,
+"""smcbench from Python: solve box-MLCPs, nonlinear MCPs and affine variational inequalities (AVIs) with smcbench's
+backends, read and write AVI files, judge and benchmark a suite of one's own MCPs, simulate the sliding-mode scenes of Acary & Brogliato (2009), read and write .smcps problem sets,
 load `smcbench bench` results.
 
 numpy in, numpy out. The C++ core is the extension `smcbench._smcbench`; this file turns Python's conventions
@@ -13,17 +13,17 @@ from __future__ import annotations
 import json
 import os
 from dataclasses import dataclass, field
-from typing import Any, Callable, Dict, Iterable, Iterator, List, Optional, Union
+from typing import Any, Callable, Dict, Iterable, Iterator, List, NamedTuple, Optional, Union
 
 import numpy as np
 
 from . import _smcbench
-from ._smcbench import InvalidInputError, scenes, scenes_directory
+from ._smcbench import AffineVI, InvalidInputError, scenes, scenes_directory
 
 __all__ = [
     "InvalidInputError", "SolveResult", "Simulation", "Problem", "McpProblem", "solvers", "solve", "solve_mcp",
     "judge_mcp", "bench_mcp", "simulate", "scenes", "scenes_directory", "read_problem_set", "write_problem_set",
-    "load_bench_results", "bench",
+    "load_bench_results", "bench", "AffineVI", "AviResult", "AviFile", "solve_avi", "read_avi", "write_avi",
 ]
 
 
@@ -518,3 +518,96 @@ def load_bench_results(path, include_sweep: bool = True):
     frame = pd.DataFrame.from_records(rows)
     frame.attrs.update({key: document.get(key) for key in ("format", "command", "environment", "polish")})
     return frame
+
+
+AffineVI.__doc__ = """An affine variational inequality over a polytope (docs/avi.md): find λ in
+P = {λ : H λ ≥ K, E λ = f} with 0 ∈ M λ + q + N_P(λ), i.e. (x − λ)ᵀ(M λ + q) ≥ 0 for every x in P.
+
+AffineVI(M, q, H=None, K=None, E=None, f=None, name=""): M n×n, q of size n, H m×n and K of size m (None or
+empty: no inequality), E p×n and f of size p (both or neither). Numpy arrays in (any float dtype; copied),
+numpy arrays out: the properties M, q, H, K, E (p×n, 0×n without equalities), f, and name, n, m, p,
+feasible_point (the point of P the validation found), boundedness ("bounded", "unbounded", "not decided"),
+expected ("solvable" on a bounded P, else "unknown").
+
+Raises InvalidInputError (a ValueError with the C++ message naming the field) for sizes that disagree, NaN or
+inf, a zero row of H or E, or an empty P."""
+
+
+@dataclass
+class AviResult:
+    """What solve_avi returned.
+
+    status: the status name; solved: status == "solved" (SolveAvi downgrades a backend's "solved" that fails the
+    AVI rule to "inaccurate"). verdict: the AVI verdict of JudgeAvi ("solved", "failed", "correctly refused",
+    "WRONGLY CLAIMED", ...; docs/avi.md, "The verdict"), never the backend's own flag; expected: the outcome the
+    verdict assumed ("solvable" on a bounded P, else "unknown"). lambda_: λ (trailing underscore: `lambda` is a
+    Python keyword); mu (≥ 0, one per row of H) and nu (one per row of E): the multipliers, with
+    M λ + q − Hᵀ mu − Eᵀ nu = 0. residual_rel, residual_scaled: the natural residual of the normalized reduction;
+    primal_infeasibility, complementarity: the rule's parts in units of λ (relative to 1 + ‖λ‖∞).
+    forward_error: ‖λ − λ*‖∞ when a reference was given and λ* is provably unique, else None;
+    reference_certificate: the reference's certificate, or None. reduced: the backend's own SolveResult on the
+    reduced box-MLCP (its status, z = (λ, μ̃, ν̃), details).
+    """
+
+    status: str
+    solved: bool
+    verdict: str
+    expected: str
+    lambda_: np.ndarray
+    mu: np.ndarray
+    nu: np.ndarray
+    iterations: int
+    time_seconds: float
+    residual_rel: float
+    residual_scaled: float
+    primal_infeasibility: float
+    complementarity: float
+    forward_error: Optional[float]
+    reference_certificate: Optional[str]
+    solver: str
+    message: str
+    reduced: SolveResult
+
+
+def solve_avi(avi: AffineVI, solver: str = "lemke", tol: float = 1e-10, time_limit: Optional[float] = None, *,
+              start=None, max_iterations: Optional[int] = None, polish: bool = True, reference=None,
+              expected: Optional[str] = None, **backend_options) -> AviResult:
+    """Solve the AVI with a box backend through the exact reduction to a box-MLCP (SolveAvi, docs/avi.md).
+
+    solver: a backend that solves box-MLCPs (solvers()); the default lemke pivots exactly and solves every
+    monotone AVI (M + Mᵀ positive semidefinite). tol: the tolerance of the AVI rule. time_limit: seconds (None: no
+    limit). start: a warm start, λ alone (size n) or (λ, μ, ν) (size n + m + p). max_iterations: None = the
+    backend's default. polish: the exact polish of the reduction's answer. reference: a known λ* (size n): it is
+    certified (CertifyAvi) and λ is judged by its forward error where λ* is provably unique. expected: what a
+    correct backend must answer ("solvable", "infeasible", "unknown"; None: avi.expected), for the verdict.
+    backend_options: the backend's typed options by name, as in solve().
+
+    Raises InvalidInputError (a ValueError) for an unknown solver or option, a backend that does not solve
+    box-MLCPs, an invalid option value, or a start or reference of the wrong size.
+    """
+    raw = _smcbench._solve_avi(avi, solver, float(tol), time_limit, start, max_iterations, polish, reference,
+                               expected, backend_options)
+    raw["reduced"] = _result(raw["reduced"])
+    return AviResult(solved=raw["status"] == "solved", **raw)
+
+
+class AviFile(NamedTuple):
+    """What an AVI file holds: avi (an AffineVI), solution (the file's reference λ*, checked when read, or None),
+    expected (the file's expected outcome, else avi.expected). Unpacks as `avi, solution, expected`."""
+
+    avi: AffineVI
+    solution: Optional[np.ndarray]
+    expected: str
+
+
+def read_avi(path) -> AviFile:
+    """Read an AVI file (.avi.json, docs/formats.md). Raises InvalidInputError naming the file and the field of
+    any defect. solve_avi(f.avi, expected=f.expected) judges an answer as `smcbench solve FILE` does."""
+    return AviFile(*_smcbench._read_avi(os.fspath(path)))
+
+
+def write_avi(avi: AffineVI, path, solution=None, expected: Optional[str] = None) -> None:
+    """Write avi (with a reference λ*, size n, and an expected outcome "solvable" / "infeasible" / "unknown", if
+    given) as an AVI file that reads back bit for bit (docs/formats.md). Raises InvalidInputError when the file
+    cannot be written, or the solution or expected is malformed."""
+    _smcbench._write_avi(avi, os.fspath(path), solution, expected)

@@ -17,6 +17,7 @@ void BindSimulate(py::module_& m);
 void BindProblemSet(py::module_& m);
 void BindMcpSuite(py::module_& m);
 void BindBench(py::module_& m);
+void BindAvi(py::module_& m);
 
 namespace {
 
@@ -56,4 +57,5 @@ PYBIND11_MODULE(_smcbench, m) {
   smcbench::python::BindProblemSet(m);
   smcbench::python::BindMcpSuite(m);
   smcbench::python::BindBench(m);
+  smcbench::python::BindAvi(m);
 }

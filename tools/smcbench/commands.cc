@@ -21,6 +21,7 @@
 #include "smcbench/version.h"
 #include "solvers/registry/backend_settings.h"
 #include "solvers/registry/registry.h"
+#include "tools/smcbench/avi_solve.h"
 #include "tools/smcbench/bench_command.h"
 #include "tools/smcbench/compare_command.h"
 #include "tools/smcbench/library_command.h"
@@ -51,7 +52,7 @@ struct SolveSettings {
   std::optional<ProblemFormat> format;  // --format; unset: guessed from the file (tools/smcbench/problem_files.h)
 };
 
-// --format lcp|relay|mlcp|smcps|mtx into settings->format (only the Siconos kinds where allowed says so).
+// --format lcp|relay|mlcp|smcps|mtx|avi into settings->format (only the Siconos kinds where allowed says so).
 void AddFormatFlag(CLI::App* app, std::optional<ProblemFormat>* format, const std::vector<std::string>& allowed,
                    const std::string& help) {
   std::string choices;
@@ -182,7 +183,20 @@ void PrintSolved(const LibraryProblem& p, const SolvedProblem& solved, bool refe
 
 int RunSolve(const std::string& path, const std::vector<std::string>& ids, const SolveSettings& s, bool json,
              bool reference, std::ostream& out) {
-  const bool problem_set = ChooseProblemFormat(path, s.format).format == ProblemFormat::kSmcps;
+  const FormatChoice choice = ChooseProblemFormat(path, s.format);
+  if (choice.format == ProblemFormat::kAvi) {  // an AVI is not a box problem: its own path (avi_solve.h)
+    if (!ids.empty()) {
+      throw InvalidInputError("--id selects problems of a .smcps set; '" + path + "' is an AVI file (one problem; " +
+                              choice.reason + ")");
+    }
+    if (s.warm) {
+      throw InvalidInputError("--warm is not supported for AVI files ('" + path + "'): their repeats are cold "
+                              "SolveAvi calls; a warm AVI session is not there yet");
+    }
+    auto solvers = MakeSolvers(s);
+    return RunSolveAvi(path, s.format, solvers, MakeOptions(s), s.repeat, json, reference, out);
+  }
+  const bool problem_set = choice.format == ProblemFormat::kSmcps;
   const std::vector<LibraryProblem> problems = ReadProblemFile(path, s.format, ids);
   auto solvers = MakeSolvers(s);
   const SolverOptions options = MakeOptions(s);
@@ -437,15 +451,15 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
   auto* list = app.add_subcommand("list", "list the backends with their capabilities, references and options");
 
-  auto* solve = app.add_subcommand("solve", "solve a problem file (Siconos LCP/Relay/MLCP, Matrix Market, or the "
-                                             "problems of a .smcps set) with the default backend (auto), or the "
-                                             "ones named by --solver (all: every backend)");
+  auto* solve = app.add_subcommand("solve", "solve a problem file (Siconos LCP/Relay/MLCP, Matrix Market, the "
+                                             "problems of a .smcps set, or an AVI file .avi.json) with the default "
+                                             "backend (auto), or the ones named by --solver (all: every backend)");
   std::string solve_file;
   std::vector<std::string> solve_ids;
   bool solve_json = false, solve_reference = false;
   SolveSettings solve_settings;
   solve->add_option("FILE", solve_file, "problem file (docs/formats.md)")->required();
-  AddFormatFlag(solve, &solve_settings.format, {"lcp", "relay", "mlcp", "smcps", "mtx"}, "the kind of FILE");
+  AddFormatFlag(solve, &solve_settings.format, {"lcp", "relay", "mlcp", "smcps", "mtx", "avi"}, "the kind of FILE");
   solve->add_option("--id", solve_ids, "problems of a .smcps set to solve, by id ('PREFIX*': every id with that "
                                        "prefix; default: all)")
       ->expected(1, -1);

@@ -13,9 +13,11 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "problems/avi_library/avi_suite.h"
 #include "problems/library/references.h"
 #include "problems/library/siconos_export.h"
 #include "problems/suites/catalogue.h"
+#include "tools/smcbench/avi_export.h"
 
 namespace smcbench {
 namespace {
@@ -180,7 +182,8 @@ LibraryCommand::LibraryCommand(CLI::App* app) : flags_(std::make_unique<Flags>()
   command_->add_option("--write-suite", flags_->write_suite,
                        "write the built-in suite NAME (as `bench --suite NAME` builds it, certified references "
                        "attached) to FILE.smcps and print its checksum; `bench --suite FILE.smcps` then runs the "
-                       "same problems with the same checksum in results.json")
+                       "same problems with the same checksum in results.json; NAME avi: FILE is a folder that "
+                       "receives one .avi.json file per AVI (docs/formats.md)")
       ->expected(2)
       ->type_name("NAME FILE");
   command_->add_option("--siconos-dir", flags_->siconos_dir, "with --write-suite: the Siconos collection (default " +
@@ -214,6 +217,12 @@ int LibraryCommand::Run(std::ostream& out, std::ostream& err) const {
   const Flags& f = *flags_;
   if (!f.write_suite.empty()) {
     if (!f.file.empty()) throw InvalidInputError("library: --write-suite NAME FILE takes no other FILE");
+    if (f.write_suite.at(0) == kAviSuiteName) {  // a .smcps set holds box problems: the AVIs become a folder
+      const std::size_t written = ExportAviSet(BuildAviSuite(f.quick), f.write_suite.at(1));
+      out << "wrote suite " << kAviSuiteName << " (" << written << " AVI files .avi.json and index.csv) to "
+          << f.write_suite.at(1) << "/\n";
+      return 0;
+    }
     SuiteRequest request;
     request.siconos_dir = f.siconos_dir;
     request.quick = f.quick;

@@ -37,6 +37,8 @@ std::string Describe(ProblemFormat format) {
       return "a .smcps problem set";
     case ProblemFormat::kMatrixMarket:
       return "a Matrix Market problem";
+    case ProblemFormat::kAvi:
+      return "an AVI file";
   }
   return "an unknown kind";
 }
@@ -59,6 +61,18 @@ bool HasSmcpsMagic(const std::string& path) {
   return in.read(head, sizeof head) && std::memcmp(head, kMagic, sizeof head) == 0;
 }
 
+// A JSON object that says "format": "smcbench-avi" (only the first bytes are looked at, and only when the file
+// starts with '{', so a Siconos file is never parsed as JSON).
+bool DeclaresAviFormat(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::string head(4096, '\0');
+  in.read(head.data(), static_cast<std::streamsize>(head.size()));
+  head.resize(static_cast<std::size_t>(std::max<std::streamsize>(0, in.gcount())));
+  const std::size_t first = head.find_first_not_of(" \t\r\n");
+  if (first == std::string::npos || head[first] != '{') return false;
+  return head.find(std::string("\"") + kAviFileFormat + "\"") != std::string::npos;
+}
+
 bool ReadsAs(const std::string& path, ProblemFormat format) {
   try {
     ReadSiconosFile(path, ToSiconosKind(format));
@@ -71,6 +85,10 @@ bool ReadsAs(const std::string& path, ProblemFormat format) {
 // Every problem of path read as format (a Siconos or Matrix Market file holds one).
 std::vector<LibraryProblem> ReadUnder(const std::string& path, ProblemFormat format) {
   if (format == ProblemFormat::kSmcps) return ReadProblemSetFile(path).problems;
+  if (format == ProblemFormat::kAvi) {
+    throw InvalidInputError("'" + path + "' is an AVI file, not a box problem: only `smcbench solve` reads it "
+                            "(docs/formats.md, \"AVI files\")");
+  }
   BoxMLCP problem = format == ProblemFormat::kMatrixMarket ? ReadMatrixMarketProblem(path)
                                                            : ReadSiconosFile(path, ToSiconosKind(format));
   std::string id = problem.name();
@@ -121,13 +139,15 @@ std::string_view ToString(ProblemFormat format) {
       return "smcps";
     case ProblemFormat::kMatrixMarket:
       return "mtx";
+    case ProblemFormat::kAvi:
+      return "avi";
   }
   return "unknown";
 }
 
 std::optional<ProblemFormat> ParseProblemFormat(std::string_view text) {
   for (ProblemFormat f : {ProblemFormat::kLCP, ProblemFormat::kRelay, ProblemFormat::kMLCP, ProblemFormat::kSmcps,
-                          ProblemFormat::kMatrixMarket}) {
+                          ProblemFormat::kMatrixMarket, ProblemFormat::kAvi}) {
     if (text == ToString(f)) return f;
   }
   return std::nullopt;
@@ -141,6 +161,7 @@ FormatChoice ChooseProblemFormat(const std::string& path, std::optional<ProblemF
   const std::string file = Lower(p.filename().string());
   if (extension == ".smcps") return {ProblemFormat::kSmcps, false, "guessed from the extension '.smcps'"};
   if (extension == ".mtx") return {ProblemFormat::kMatrixMarket, false, "guessed from the extension '.mtx'"};
+  if (HasAviFileExtension(path)) return {ProblemFormat::kAvi, false, "guessed from the extension '.avi.json'"};
   for (ProblemFormat f : kSiconosFormats) {
     if (folder == ToString(f)) return {f, false, "guessed from the folder name '" + folder + "/'"};
   }
@@ -150,6 +171,10 @@ FormatChoice ChooseProblemFormat(const std::string& path, std::optional<ProblemF
     return {ProblemFormat::kRelay, false, "guessed from 'relay' in the file name"};
   }
   if (HasSmcpsMagic(path)) return {ProblemFormat::kSmcps, false, "guessed from the content (the .smcps magic bytes)"};
+  if (DeclaresAviFormat(path)) {
+    return {ProblemFormat::kAvi, false,
+            "guessed from the content (\"format\": \"" + std::string(kAviFileFormat) + "\")"};
+  }
   // Nothing in the name: the content decides when exactly one Siconos reading fits.
   std::vector<ProblemFormat> fitting;
   for (ProblemFormat f : kSiconosFormats) {
@@ -175,6 +200,7 @@ std::vector<LibraryProblem> ReadProblemFile(const std::string& path, std::option
     throw InvalidInputError("--id selects problems of a .smcps set; '" + path + "' is read as " +
                             Describe(choice.format) + " (one problem; " + choice.reason + ")");
   }
+  if (choice.format == ProblemFormat::kAvi) ReadUnder(path, choice.format);  // refused whatever the guess
   std::vector<LibraryProblem> problems;
   try {
     problems = ReadUnder(path, choice.format);
@@ -193,6 +219,22 @@ std::vector<LibraryProblem> ReadProblemFile(const std::string& path, std::option
                             "; " + hint + ")");
   }
   return SelectById(std::move(problems), ids, path);
+}
+
+AviFile ReadAviProblemFile(const std::string& path, std::optional<ProblemFormat> requested) {
+  const FormatChoice choice = ChooseProblemFormat(path, requested);
+  if (choice.format != ProblemFormat::kAvi) {
+    throw InvalidInputError("'" + path + "' is read as " + Describe(choice.format) + " (" + choice.reason +
+                            "), not as an AVI file");
+  }
+  try {
+    return ReadAviFile(path);
+  } catch (const InvalidInputError& e) {
+    std::error_code ec;
+    if (choice.chosen || !fs::is_regular_file(path, ec)) throw;
+    throw InvalidInputError(std::string(e.what()) + " (read as an AVI file, " + choice.reason +
+                            "; choose another kind with --format " + kProblemFormatChoices + ")");
+  }
 }
 
 void WriteProblemFile(const LibraryProblem& problem, const std::string& path) {
