@@ -1,7 +1,7 @@
 // The measurements behind auto's rule (docs/auto.md), as markdown tables: run it to check the thresholds on another
 // machine. Cold solves of seeded problems with a planted solution, median over 7 samples of ≥ 2 ms each.
 //   auto_rule_measure sizes       every candidate and auto on the generated families, m = 3 … 128
-//   auto_rule_measure condition   psor against lemke on SPD M of condition 1e2 … 1e8, m = 16, 64, 256
+//   auto_rule_measure condition   psor against lemke and bpp on SPD M of condition 1e2 … 1e8, m = 16, 64, 256
 //   auto_rule_measure spd-test    cost of auto's SPD test (symmetry, Cholesky, condition estimate) against psor
 //   auto_rule_measure overhead    a one-off solve through auto against the same solve by the backend it chose
 //                                 (fastest of 15 samples each, taken in turn)
@@ -81,18 +81,19 @@ SolverOptions TimedOptions() {
 void Sizes() {
   AutoSolver automatic;
   const AutoCandidate candidates[] = {AutoCandidate::kEnum, AutoCandidate::kPsor, AutoCandidate::kLemke,
-                                      AutoCandidate::kNewton};
+                                      AutoCandidate::kNewton, AutoCandidate::kBpp};
+  constexpr int kCandidates = 5;
   std::printf("Geometric mean over seeds 1, 2, 3 of the median cold-solve time; a failure names its status.\n\n"
-              "| problem | m | enum | psor | lemke | newton | auto | auto chose |\n"
-              "|---|---:|---:|---:|---:|---:|---:|---|\n");
+              "| problem | m | enum | psor | lemke | newton | bpp | auto | auto chose |\n"
+              "|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
   const SolverOptions options = TimedOptions();
   for (MatrixFamily family : {MatrixFamily::kSymmetricPositiveDefinite, MatrixFamily::kNonsymmetricPMatrix}) {
     for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kMixed}) {
       for (int m : {3, 4, 6, 8, 10, 12, 16, 24, 32, 48, 64, 96, 128}) {
         std::printf("| %s-%s | %d |", ToString(family).c_str(), ToString(bounds).c_str(), m);
         std::string chose;
-        for (int column = 0; column < 5; ++column) {
-          Solver& solver = column < 4 ? automatic.candidate(candidates[column]) : automatic;
+        for (int column = 0; column <= kCandidates; ++column) {
+          Solver& solver = column < kCandidates ? automatic.candidate(candidates[column]) : automatic;
           if (column == 0 && m > 16) {
             std::printf(" – |");
             continue;
@@ -115,7 +116,7 @@ void Sizes() {
             } else {
               failure = std::string(ToString(result.status));
             }
-            if (column == 4) {
+            if (column == kCandidates) {
               const std::optional<AutoCandidate> chosen = ChosenCandidateOf(result);
               const std::string name(chosen ? ToString(*chosen) : "?");
               if (chose.find(name) == std::string::npos) chose += (chose.empty() ? "" : ", ") + name;
@@ -133,24 +134,34 @@ void Sizes() {
 
 void Condition() {
   AutoSolver automatic;
+  AutoOptions no_bpp;
+  no_bpp.bpp_max_size = 0;
+  AutoSolver without_bpp(no_bpp);  // the psor-or-lemke rule alone (and what a session gets)
   Solver& psor = automatic.candidate(AutoCandidate::kPsor);
   Solver& lemke = automatic.candidate(AutoCandidate::kLemke);
+  Solver& bpp = automatic.candidate(AutoCandidate::kBpp);
   const SolverOptions options = TimedOptions();
-  std::printf("| m | bounds | condition | rcond estimate | psor | sweeps | lemke | pivots | auto chose |\n"
-              "|---:|---|---:|---:|---:|---:|---:|---:|---|\n");
+  std::printf("| m | bounds | condition | rcond estimate | psor | sweeps | lemke | pivots | bpp | active sets | "
+              "auto chose | without bpp |\n|---:|---|---:|---:|---:|---:|---:|---:|---:|---:|---|---|\n");
+  // "12.3 µs" or "12.3 µs stalled": a time, and the status when it is not solved.
+  const auto timed = [](double ns, const SolveResult& r) {
+    return Ns(ns) + (r.solved() ? "" : " " + std::string(ToString(r.status)));
+  };
   for (int m : {16, 64, 256}) {
     for (bool relay : {false, true}) {
       for (double condition : {1e2, 1e3, 1e4, 1e5, 1e6, 1e7, 1e8}) {
         const BoxMLCP problem = GenerateSpdWithCondition(m, condition, relay ? BoundKind::kRelay : BoundKind::kLCP).problem;
         const Eigen::LLT<DenseMatrix> cholesky(problem.dense_matrix());
-        SolveResult p, l;
+        SolveResult p, l, b;
         const double tp = MedianNs([&] { psor.Solve(problem, options, &p); });
         const double tl = MedianNs([&] { lemke.Solve(problem, options, &l); });
+        const double tb = MedianNs([&] { bpp.Solve(problem, options, &b); });
         const AutoCandidate chosen = automatic.ChoiceFor(problem).chosen();
-        std::printf("| %d | %s | %.0e | %.2e | %s%s | %d | %s%s | %d | %s |\n", m, relay ? "relay" : "LCP", condition,
-                    cholesky.rcond(), Ns(tp).c_str(), p.solved() ? "" : (" " + std::string(ToString(p.status))).c_str(),
-                    p.iterations, Ns(tl).c_str(), l.solved() ? "" : (" " + std::string(ToString(l.status))).c_str(),
-                    l.iterations, std::string(ToString(chosen)).c_str());
+        const AutoCandidate chosen_without_bpp = without_bpp.ChoiceFor(problem).chosen();
+        std::printf("| %d | %s | %.0e | %.2e | %s | %d | %s | %d | %s | %d | %s | %s |\n", m,
+                    relay ? "relay" : "LCP", condition, cholesky.rcond(), timed(tp, p).c_str(), p.iterations,
+                    timed(tl, l).c_str(), l.iterations, timed(tb, b).c_str(), b.iterations,
+                    std::string(ToString(chosen)).c_str(), std::string(ToString(chosen_without_bpp)).c_str());
         std::fflush(stdout);
       }
     }

@@ -9,14 +9,15 @@
 #include "solvers/enumerative/enumerative_solver.h"
 #include "solvers/lemke/lemke_solver.h"
 #include "solvers/newton/semismooth_newton_solver.h"
+#include "solvers/pivoting/bpp_solver.h"
 #include "solvers/psor/psor_solver.h"
 
 namespace smcbench {
 
 namespace {
 
-constexpr std::string_view kCandidateNames[kAutoCandidateCount] = {"enum",       "psor", "lemke", "newton",
-                                                                   "newton-min", "ipopt"};
+constexpr std::string_view kCandidateNames[kAutoCandidateCount] = {"enum",       "psor",  "lemke", "newton",
+                                                                   "newton-min", "ipopt", "bpp"};
 
 // Whether the chain goes on after a candidate returned `status`: not after an answer, a proof (kInfeasible from
 // an exact backend), the caller's spent time budget, or options every candidate would refuse.
@@ -105,6 +106,10 @@ bool AutoOptions::IsValid(std::string* why) const {
            std::to_string(enum_max_choice_rows);
     return false;
   }
+  if (bpp_max_size < 0) {
+    *why = "bpp_max_size must be >= 0 (0: never bpp), got " + std::to_string(bpp_max_size);
+    return false;
+  }
   if (!(psor_min_speedup >= 0.0)) {
     *why = "psor_min_speedup must be >= 0 (0: psor on every SPD M, inf: never), got " +
            std::to_string(psor_min_speedup);
@@ -123,8 +128,9 @@ AutoSolver::AutoSolver(const AutoOptions& options, BackendLookup lookup)
   candidates_[static_cast<int>(AutoCandidate::kPsor)] = std::make_unique<PsorSolver>();
   candidates_[static_cast<int>(AutoCandidate::kLemke)] = std::make_unique<LemkeSolver>();
   candidates_[static_cast<int>(AutoCandidate::kNewton)] = std::make_unique<SemismoothNewtonSolver>();
+  candidates_[static_cast<int>(AutoCandidate::kBpp)] = std::make_unique<BppSolver>();
   for (const AutoCandidate own : {AutoCandidate::kEnum, AutoCandidate::kPsor, AutoCandidate::kLemke,
-                                  AutoCandidate::kNewton}) {
+                                  AutoCandidate::kNewton, AutoCandidate::kBpp}) {
     looked_up_[static_cast<int>(own)] = true;
   }
 }
@@ -171,9 +177,9 @@ const SolverInfo& AutoSolver::info() const {
   static const SolverInfo kInfo{
       "auto",
       "picks per problem the fastest backend that is exact or reliable for its class: enum (dense, few rows with "
-      "a choice), psor (dense SPD, well conditioned), lemke (other dense), newton (sparse, nonlinear MCP); on a "
-      "failure that proves nothing it tries the next (lemke, newton; MCPs: newton-min, ipopt); details chosen, "
-      "fallbacks",
+      "a choice), bpp (dense, up to 256 rows), psor (dense SPD, well conditioned), lemke (other dense), newton "
+      "(sparse, nonlinear MCP); on a failure that proves nothing it tries the next (psor, lemke, newton; MCPs: "
+      "newton-min, ipopt); a session gets the first candidate after bpp; details chosen, fallbacks",
       "docs/auto.md (the rule and the measurements behind it); the chosen backend's own reference",
       /*dense=*/true,
       /*sparse=*/true,
@@ -193,6 +199,8 @@ void AutoSolver::BindOptions(OptionBinder* binder) {
               "dense problems with at most this many rows with a choice of state (l < u, not free) go to enum");
   binder->Add("psor_min_speedup", &options_.psor_min_speedup,
               "dense SPD M goes to psor when lemke's predicted time is at least this many times psor's (0: always)");
+  binder->Add("bpp_max_size", &options_.bpp_max_size,
+              "dense problems past enum's rows with at most this many rows go to bpp first (0: never)");
   binder->Add("fallback", &options_.fallback, "try the next candidate when the chosen one fails without a proof");
 }
 
@@ -211,8 +219,9 @@ AutoChoice AutoSolver::Classify(const BoxMLCP& problem) const {
   if (rows.choice <= options_.enum_max_choice_rows && rows.choice <= enum_options.size_limit &&
       rows.active_sets <= enum_options.max_candidates) {
     add(AutoCandidate::kEnum);
-  } else if (rows.lemke_size > 0) {
-    const double rcond = SpdReciprocalCondition(problem);
+  } else {
+    if (problem.size() <= options_.bpp_max_size) add(AutoCandidate::kBpp);
+    const double rcond = rows.lemke_size > 0 ? SpdReciprocalCondition(problem) : 0.0;
     if (rcond > 0.0 && LemkeOverPsor(problem.size(), rows.lemke_size, rcond) >= options_.psor_min_speedup) {
       add(AutoCandidate::kPsor);
     }
@@ -240,7 +249,10 @@ Solver* AutoSolver::DelegateFor(const BoxMLCP& problem, const SolverOptions&) {
   // Invalid options of auto's own: no delegate, so the caller's solves come here and report them.
   std::string why;
   if (!options_.IsValid(&why)) return nullptr;
-  return &candidate(ChoiceFor(problem).chosen());
+  const AutoChoice& choice = ChoiceFor(problem);
+  int at = choice.first;
+  if (choice.order[at] == AutoCandidate::kBpp && at + 1 < choice.count) ++at;  // no fallback in a session
+  return &candidate(choice.order[at]);
 }
 
 WarmStateReset AutoSolver::ForgetWarmState() {

@@ -7,6 +7,8 @@
 //   dense, at most enum_max_choice_rows rows with a
 //     choice of state (l < u, not free: enum's own
 //     size measure)                                 → enum, then lemke, then newton
+//   any other dense M with at most bpp_max_size
+//     rows                                          → bpp, then as below
 //   dense, symmetric positive definite (a Cholesky
 //     factorization of M succeeds), and psor predicted
 //     faster than lemke from M's condition estimate
@@ -21,8 +23,10 @@
 // candidate would refuse them). Any other status (iteration limit, stall, ray, singular, numerical failure, a
 // refusal such as kNotApplicable) passes the problem on. kInfeasible from a backend that is not exact is never
 // reported as such: it becomes kNumericalFailure. When a later candidate solved the problem, later calls on the
-// same matrix start with it ("what the last call showed"); DelegateFor returns that same backend. That is warm
-// state: ForgetWarmState drops it, so a cold repeat runs the whole chain again.
+// same matrix start with it ("what the last call showed"); DelegateFor returns that same backend, except bpp (a
+// session has no fallback, and bpp ends singular on some degenerate problems lemke solves: a session gets the
+// candidate after it, psor or lemke, as before bpp was a candidate). That is warm state: ForgetWarmState drops it,
+// so a cold repeat runs the whole chain again.
 //
 // Details: "chosen" = the AutoCandidate of the backend whose answer is returned (read it with ChosenCandidateOf),
 // "fallbacks" = how many candidates failed before it; the chosen backend's own details are kept. The result's
@@ -51,8 +55,9 @@ enum class AutoCandidate : int {
   kNewton = 3,
   kNewtonMin = 4,  // MCPs only, when registered
   kIpopt = 5,      // MCPs only
+  kBpp = 6,
 };
-inline constexpr int kAutoCandidateCount = 6;
+inline constexpr int kAutoCandidateCount = 7;
 
 // Registry name of candidate `index` ("enum", "psor", "lemke", "newton", "newton-min", "ipopt"); "" outside
 // [0, kAutoCandidateCount).
@@ -86,6 +91,11 @@ struct AutoOptions {
   // psor's. The prediction (docs/auto.md) uses M's reciprocal condition estimate from its Cholesky factor: PSOR's
   // sweeps grow with the condition number, lemke's pivots do not. 0: psor on every SPD M; inf: never.
   double psor_min_speedup = 1.0;
+  // Dense problems with more rows with a choice than enum takes and at most this many rows go to bpp first (block
+  // principal pivoting on the n rows, where lemke doubles the finite boxes), then to the candidates below. bpp ends
+  // singular on some MLCPs with free rows and some degenerate LCPs, cheaply, and the next candidate answers. The
+  // size is the largest at which bpp was measured faster than psor and lemke (docs/auto.md); 0: never.
+  int bpp_max_size = 256;
   // Pass the problem to the next candidate when the chosen one fails without a proof.
   bool fallback = true;
 

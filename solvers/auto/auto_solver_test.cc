@@ -10,6 +10,7 @@
 
 #include "solvers/generators/random_problems.h"
 #include "solvers/ipopt/ipopt_qp_solver.h"
+#include "solvers/pivoting/bpp_solver.h"
 #include "solvers/psor/psor_solver.h"
 #include "tests/support/small_mcps.h"
 
@@ -47,9 +48,10 @@ AutoCandidate Chosen(const SolveResult& r) {
 }
 
 // Solves a planted problem and checks the answer against z*, the backend auto reports, and that DelegateFor names
-// the backend whose answer came back.
-void ExpectChoice(const GeneratedProblem& gen, AutoCandidate expected) {
-  AutoSolver solver;
+// the backend whose answer came back (for bpp, `session`: a session has no fallback, so it never gets bpp).
+void ExpectChoice(const GeneratedProblem& gen, AutoCandidate expected,
+                  AutoCandidate session = AutoCandidate::kLemke, const AutoOptions& auto_options = {}) {
+  AutoSolver solver(auto_options);
   SolverOptions options;
   options.tolerance = kTol;
   const SolveResult r = solver.Solve(gen.problem, options);
@@ -61,10 +63,11 @@ void ExpectChoice(const GeneratedProblem& gen, AutoCandidate expected) {
   EXPECT_LE(IndependentResidual(gen.problem, r.z), kTol) << where;
   // P-matrix families: z* is the only solution.
   EXPECT_LE((r.z - gen.z_star).cwiseAbs().maxCoeff(), 1e-8 * (1.0 + gen.z_star.cwiseAbs().maxCoeff())) << where;
+  if (expected != AutoCandidate::kBpp) session = expected;
   Solver* delegate = solver.DelegateFor(gen.problem, options);
   ASSERT_NE(delegate, nullptr);
-  EXPECT_EQ(delegate, &solver.candidate(expected)) << where;
-  EXPECT_EQ(delegate->info().name, ToString(expected)) << where;
+  EXPECT_EQ(delegate, &solver.candidate(session)) << where;
+  EXPECT_EQ(delegate->info().name, ToString(session)) << where;
 }
 
 TEST(AutoSolver, InfoAndCandidateNames) {
@@ -75,8 +78,9 @@ TEST(AutoSolver, InfoAndCandidateNames) {
   EXPECT_TRUE(solver.info().mcp);
   EXPECT_FALSE(solver.info().exact);  // its answer may come from psor or newton
   EXPECT_FALSE(solver.info().equilibrate);  // the chosen backend equilibrates
-  for (int i = 0; i <= static_cast<int>(AutoCandidate::kNewton); ++i) {
-    EXPECT_EQ(solver.candidate(static_cast<AutoCandidate>(i)).info().name, AutoCandidateName(i)) << i;
+  for (const AutoCandidate c : {AutoCandidate::kEnum, AutoCandidate::kPsor, AutoCandidate::kLemke,
+                                AutoCandidate::kNewton, AutoCandidate::kBpp}) {
+    EXPECT_EQ(solver.candidate(c).info().name, ToString(c));
   }
   // Without a lookup the MCP-only candidates are absent.
   EXPECT_EQ(solver.FindCandidate(AutoCandidate::kNewtonMin), nullptr);
@@ -87,6 +91,7 @@ TEST(AutoSolver, InfoAndCandidateNames) {
   EXPECT_EQ(AutoCandidateName(4), "newton-min");
   EXPECT_EQ(AutoCandidateName(5), "ipopt");
   EXPECT_EQ(AutoCandidateIndex("ipopt"), 5);
+  EXPECT_EQ(AutoCandidateName(6), "bpp");
   EXPECT_EQ(AutoCandidateName(-1), "");
   EXPECT_EQ(AutoCandidateName(kAutoCandidateCount), "");
 }
@@ -125,19 +130,75 @@ TEST(AutoSolver, SmallDenseRelayGoesToEnum) {
   ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 8), AutoCandidate::kEnum);
 }
 
-// SPD relay at m = 64 (condition ≈ 100): psor is predicted (and measured, docs/auto.md) several times faster than
-// lemke, whose LCP has 2m variables. The same matrix with LCP bounds gives lemke an LCP of size m: no longer
-// predicted slower, so lemke.
+// Without bpp (bpp_max_size 0, or past it): SPD relay at m = 64 (condition ≈ 100) goes to psor, predicted (and
+// measured, docs/auto.md) several times faster than lemke, whose LCP has 2m variables. The same matrix with LCP
+// bounds gives lemke an LCP of size m: no longer predicted slower, so lemke. With bpp, bpp first and a session
+// gets what it got without bpp.
 TEST(AutoSolver, DenseSpdGoesToPsorWhenPredictedFaster) {
-  ExpectChoice(Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 64), AutoCandidate::kPsor);
-  ExpectChoice(Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 64), AutoCandidate::kLemke);
+  AutoOptions no_bpp;
+  no_bpp.bpp_max_size = 0;
+  const GeneratedProblem relay = Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 64);
+  const GeneratedProblem lcp = Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 64);
+  ExpectChoice(relay, AutoCandidate::kPsor, AutoCandidate::kPsor, no_bpp);
+  ExpectChoice(lcp, AutoCandidate::kLemke, AutoCandidate::kLemke, no_bpp);
+  ExpectChoice(relay, AutoCandidate::kBpp, AutoCandidate::kPsor);
+  ExpectChoice(lcp, AutoCandidate::kBpp, AutoCandidate::kLemke);
+  AutoSolver solver;
+  const AutoChoice& chain = solver.ChoiceFor(relay.problem);
+  ASSERT_EQ(chain.count, 4);
+  EXPECT_EQ(chain.order[0], AutoCandidate::kBpp);
+  EXPECT_EQ(chain.order[1], AutoCandidate::kPsor);
+  EXPECT_EQ(chain.order[2], AutoCandidate::kLemke);
+  EXPECT_EQ(chain.order[3], AutoCandidate::kNewton);
 }
 
-TEST(AutoSolver, DenseNonsymmetricPMatrixGoesToLemke) {
-  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 64), AutoCandidate::kLemke);
-  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 64), AutoCandidate::kLemke);
+// Past enum's rows: bpp up to bpp_max_size rows (free rows too), lemke above it.
+TEST(AutoSolver, DenseGoesToBppUpToItsSizeThenLemke) {
+  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 64), AutoCandidate::kBpp);
+  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 64), AutoCandidate::kBpp);
   // Diagonally dominant but nonsymmetric: not SPD, so not psor.
-  ExpectChoice(Generate(MatrixFamily::kDiagonallyDominant, BoundKind::kBox, 12), AutoCandidate::kLemke);
+  ExpectChoice(Generate(MatrixFamily::kDiagonallyDominant, BoundKind::kBox, 12), AutoCandidate::kBpp);
+  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kMixed, 24), AutoCandidate::kBpp);
+  AutoOptions small;
+  small.bpp_max_size = 64;
+  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 65), AutoCandidate::kLemke,
+               AutoCandidate::kLemke, small);
+  AutoOptions never;
+  never.bpp_max_size = 0;
+  AutoSolver solver(never);
+  EXPECT_EQ(solver.ChoiceFor(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 16).problem).chosen(),
+            AutoCandidate::kLemke);
+  EXPECT_EQ(AutoOptions{}.bpp_max_size, 256);
+  std::string why;
+  never.bpp_max_size = -1;
+  EXPECT_FALSE(never.IsValid(&why));
+  EXPECT_NE(why.find("bpp_max_size"), std::string::npos) << why;
+}
+
+// bpp ends singular on a degenerate LCP that lemke solves (Cottle–Pang–Stone's example 4.4.7, Siconos' lcp_CPS_2:
+// zero diagonal): the chain passes it on and lemke answers, with a residual recomputed here.
+TEST(AutoSolver, BppFailureFallsBackToLemke) {
+  DenseMatrix M(3, 3);
+  M << 0, 2, -1,  //
+      -1, 0, 1,   //
+      2, -2, 0;
+  const Vector q = (Vector(3) << -3, 6, -1).finished();
+  const BoxMLCP problem(M, q, Vector::Zero(3), Vector::Constant(3, kInf), "lcp_CPS_2");
+  BppSolver bpp;
+  const SolveResult alone = bpp.Solve(problem);
+  ASSERT_FALSE(alone.solved()) << "bpp solves lcp_CPS_2 now: pick another example of its failure";
+  AutoOptions o;
+  o.enum_max_choice_rows = 0;  // past enum, to reach bpp at n = 3
+  AutoSolver solver(o);
+  ASSERT_EQ(solver.ChoiceFor(problem).chosen(), AutoCandidate::kBpp);
+  SolverOptions options;
+  options.tolerance = kTol;
+  EXPECT_EQ(solver.DelegateFor(problem, options), &solver.candidate(AutoCandidate::kLemke));
+  const SolveResult r = solver.Solve(problem, options);
+  ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
+  EXPECT_EQ(Chosen(r), AutoCandidate::kLemke);
+  EXPECT_EQ(r.GetDetail("fallbacks"), 1.0);
+  EXPECT_LE(IndependentResidual(problem, r.z), kTol);
 }
 
 TEST(AutoSolver, SparseGoesToNewton) {
@@ -303,11 +364,13 @@ TEST(AutoSolverMcp, AFinalFailureListsEveryCandidate) {
 // PSOR's sweeps grow with the condition number (docs/auto.md: 35 sweeps at 1e2, 3441 at 1e8 for this relay
 // problem at m = 64), lemke's pivots do not: an ill-conditioned SPD matrix goes to lemke.
 TEST(AutoSolver, IllConditionedSpdIsNotGivenToPsor) {
-  AutoSolver solver;
+  AutoOptions no_bpp;
+  no_bpp.bpp_max_size = 0;
+  AutoSolver solver(no_bpp);
   EXPECT_EQ(solver.ChoiceFor(GenerateSpdWithCondition(64, 1e2, BoundKind::kRelay).problem).chosen(), AutoCandidate::kPsor);
   const GeneratedProblem ill = GenerateSpdWithCondition(64, 1e8, BoundKind::kRelay);
   EXPECT_EQ(solver.ChoiceFor(ill.problem).chosen(), AutoCandidate::kLemke);
-  ExpectChoice(ill, AutoCandidate::kLemke);
+  ExpectChoice(ill, AutoCandidate::kLemke, AutoCandidate::kLemke, no_bpp);
 }
 
 // The fallback path: psor is chosen (psor_min_speedup 0 gives it an ill-conditioned SPD problem), fails within the
@@ -317,6 +380,7 @@ TEST(AutoSolver, FallsBackWhenTheChoiceFailsWithoutProof) {
   AutoOptions o;
   o.enum_max_choice_rows = 0;
   o.psor_min_speedup = 0.0;  // psor on any SPD matrix
+  o.bpp_max_size = 0;        // psor's fallback is then lemke
   AutoSolver solver(o);
   const GeneratedProblem gen = GenerateSpdWithCondition(12, 1e6, BoundKind::kLCP);
   SolverOptions options;
@@ -383,7 +447,9 @@ PsorOptions StrictPsor() {
 
 // A refusal of the chosen backend (psor: kNotApplicable) passes the problem on too.
 TEST(AutoSolver, FallsBackOnARefusal) {
-  AutoSolver solver;
+  AutoOptions no_bpp;
+  no_bpp.bpp_max_size = 0;
+  AutoSolver solver(no_bpp);
   static_cast<PsorSolver&>(solver.candidate(AutoCandidate::kPsor)).set_options(StrictPsor());
   const GeneratedProblem gen = SmallDiagonalSpdRelay();
   ASSERT_EQ(solver.ChoiceFor(gen.problem).chosen(), AutoCandidate::kPsor);
@@ -399,6 +465,7 @@ TEST(AutoSolver, FallbackCanBeSwitchedOff) {
   AutoSolver solver;
   std::string error;
   ASSERT_TRUE(solver.SetOption("fallback", "false", &error)) << error;
+  ASSERT_TRUE(solver.SetOption("bpp_max_size", "0", &error)) << error;  // psor first
   static_cast<PsorSolver&>(solver.candidate(AutoCandidate::kPsor)).set_options(StrictPsor());
   const SolveResult r = solver.Solve(SmallDiagonalSpdRelay().problem);
   EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << r.message;
@@ -407,8 +474,8 @@ TEST(AutoSolver, FallbackCanBeSwitchedOff) {
 }
 
 // LCP(M = [[-1]], q = [-1]): w = −z − 1 < 0 for every z ≥ 0, so there is no solution. enum (exact) proves it and
-// auto reports it; when enum is not chosen, lemke ends on a ray (no proof) and newton fails, and auto does not
-// claim infeasibility.
+// auto reports it; when enum is not chosen, bpp and lemke fail without a proof (lemke ends on a ray) and newton
+// fails, and auto does not claim infeasibility.
 TEST(AutoSolver, InfeasibleOnlyFromAnExactBackend) {
   const BoxMLCP p = BoxMLCP::LCP(DenseMatrix::Constant(1, 1, -1.0), Vector::Constant(1, -1.0), "no-solution");
   AutoSolver solver;
@@ -425,11 +492,13 @@ TEST(AutoSolver, InfeasibleOnlyFromAnExactBackend) {
   EXPECT_FALSE(r.solved());
   EXPECT_NE(r.status, SolveStatus::kInfeasible) << r.message;
   EXPECT_EQ(Chosen(r), AutoCandidate::kNewton);
-  EXPECT_EQ(r.GetDetail("fallbacks"), 1.0);
-  EXPECT_NE(r.message.find("lemke"), std::string::npos) << r.message;  // says what lemke reported first
+  EXPECT_EQ(r.GetDetail("fallbacks"), 2.0);
+  EXPECT_NE(r.message.find("bpp"), std::string::npos) << r.message;  // says what bpp, then lemke reported
+  EXPECT_NE(r.message.find("lemke"), std::string::npos) << r.message;
 }
 
-// One-off solves through DelegateFor's backend give the answer auto gives (same backend, same algorithm).
+// One-off solves through DelegateFor's backend give the answer auto gives (same backend, same algorithm; for bpp's
+// problems the next candidate, and the same unique solution).
 TEST(AutoSolver, DelegateAnswersLikeAuto) {
   for (const GeneratedProblem& gen :
        {Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 2),
@@ -441,6 +510,11 @@ TEST(AutoSolver, DelegateAnswersLikeAuto) {
     ASSERT_NE(delegate, nullptr);
     const SolveResult direct = delegate->Solve(gen.problem);
     ASSERT_TRUE(direct.solved()) << gen.problem.name();
+    if (Chosen(via_auto) == AutoCandidate::kBpp) {  // a session gets the next candidate: the same unique solution
+      EXPECT_NE(direct.solver, "bpp");
+      EXPECT_LE((via_auto.z - direct.z).cwiseAbs().maxCoeff(), 1e-7 * (1.0 + direct.z.cwiseAbs().maxCoeff()));
+      continue;
+    }
     EXPECT_EQ(direct.solver, ToString(Chosen(via_auto)));
     EXPECT_EQ(via_auto.status, direct.status) << gen.problem.name();
     EXPECT_EQ(via_auto.iterations, direct.iterations) << gen.problem.name();
@@ -451,7 +525,9 @@ TEST(AutoSolver, DelegateAnswersLikeAuto) {
 
 // The decision is per matrix: a new matrix is classified afresh, and options changed through SetOption apply.
 TEST(AutoSolver, ChoiceFollowsTheMatrixAndTheOptions) {
-  AutoSolver solver;
+  AutoOptions no_bpp;
+  no_bpp.bpp_max_size = 0;
+  AutoSolver solver(no_bpp);
   const GeneratedProblem small = Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 4);
   const GeneratedProblem large = Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 64);
   EXPECT_EQ(solver.ChoiceFor(small.problem).chosen(), AutoCandidate::kEnum);
@@ -462,6 +538,9 @@ TEST(AutoSolver, ChoiceFollowsTheMatrixAndTheOptions) {
   EXPECT_NE(solver.ChoiceFor(small.problem).chosen(), AutoCandidate::kEnum);
   ASSERT_TRUE(solver.SetOption("psor_min_speedup", "inf", &error)) << error;
   EXPECT_EQ(solver.ChoiceFor(large.problem).chosen(), AutoCandidate::kLemke);
+  ASSERT_TRUE(solver.SetOption("bpp_max_size", "64", &error)) << error;
+  EXPECT_EQ(solver.ChoiceFor(large.problem).chosen(), AutoCandidate::kBpp);
+  ASSERT_TRUE(solver.SetOption("bpp_max_size", "0", &error)) << error;
   ASSERT_TRUE(solver.SetOption("psor_min_speedup", "0", &error)) << error;
   EXPECT_EQ(solver.ChoiceFor(large.problem).chosen(), AutoCandidate::kPsor);
   // The typed accessors decide the cached choice again just as SetOption does (BackendWithOptions).
