@@ -48,7 +48,7 @@ AutoCandidate Chosen(const SolveResult& r) {
 }
 
 // Solves a planted problem and checks the answer against z*, the backend auto reports, and that DelegateFor names
-// the backend whose answer came back (for bpp, `session`: a session has no fallback, so it never gets bpp).
+// the backend whose answer came back (for bpp, `session`: a session, which keeps its delegate, never gets bpp).
 void ExpectChoice(const GeneratedProblem& gen, AutoCandidate expected,
                   AutoCandidate session = AutoCandidate::kLemke, const AutoOptions& auto_options = {}) {
   AutoSolver solver(auto_options);
@@ -458,6 +458,29 @@ TEST(AutoSolver, FallsBackOnARefusal) {
   EXPECT_EQ(Chosen(r), AutoCandidate::kLemke);
   EXPECT_EQ(r.GetDetail("fallbacks"), 1.0);
   EXPECT_LE((r.z - gen.z_star).cwiseAbs().maxCoeff(), 1e-12);
+}
+
+// A session prepared on auto calls auto's choice directly, and hands a call the choice did not solve to auto's own
+// Solve, whose chain answers: here psor (the delegate) refuses every step and lemke answers each one.
+TEST(AutoSolver, ASessionFallsBackThroughTheChain) {
+  AutoOptions no_bpp;
+  no_bpp.bpp_max_size = 0;
+  AutoSolver solver(no_bpp);
+  static_cast<PsorSolver&>(solver.candidate(AutoCandidate::kPsor)).set_options(StrictPsor());
+  const GeneratedProblem gen = SmallDiagonalSpdRelay();
+  SessionOptions no_reuse;  // every step through the backend, not the reused active set
+  no_reuse.reuse_active_set = false;
+  SolveSession session = solver.Prepare(gen.problem, SolverOptions{}, no_reuse);
+  EXPECT_EQ(&session.backend(), &solver.candidate(AutoCandidate::kPsor));
+  SolveResult r;
+  for (int step = 0; step < 3; ++step) {
+    const Vector q = gen.problem.q() * (1.0 + 0.01 * step);
+    session.Solve(q, &r);
+    ASSERT_TRUE(r.solved()) << "step " << step << ": " << ToString(r.status) << " " << r.message;
+    EXPECT_EQ(Chosen(r), AutoCandidate::kLemke) << "step " << step;
+    // z* scales with q here (q = −M z*, every row strictly inside its box for these q).
+    EXPECT_LE((r.z - gen.z_star * (1.0 + 0.01 * step)).cwiseAbs().maxCoeff(), 1e-12) << "step " << step;
+  }
 }
 
 // With fallback off, the first choice's answer is returned as it is.
