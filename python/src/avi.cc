@@ -47,13 +47,7 @@ std::unique_ptr<Solver> MakeAviSolver(const std::string& name, const py::dict& b
   if (!solver->info().box) {
     throw InvalidInputError("solve_avi: backend '" + name + "' does not solve box-MLCPs, so not the AVI's reduction");
   }
-  for (const auto& [key, value] : backend_options) {
-    const std::string option = py::str(key);
-    std::string error;
-    if (!solver->SetOption(option, OptionValueText(value, option), &error)) {
-      throw InvalidInputError(name + ": " + error);
-    }
-  }
+  SetBackendOptions(*solver, name, backend_options);
   return solver;
 }
 

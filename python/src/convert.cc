@@ -143,4 +143,12 @@ std::string OptionValueText(const py::handle& value, const std::string& name) {
                           std::string(py::str(py::type::handle_of(value).attr("__name__"))));
 }
 
+void SetBackendOptions(Solver& solver, const std::string& name, const py::dict& backend_options) {
+  for (const auto& [key, value] : backend_options) {
+    const std::string option = py::str(key);
+    std::string error;
+    if (!solver.SetOption(option, OptionValueText(value, option), &error)) throw InvalidInputError(name + ": " + error);
+  }
+}
+
 }  // namespace smcbench::python

@@ -9,6 +9,7 @@
 #include <string>
 
 #include "solvers/core/result.h"
+#include "solvers/core/solver.h"
 #include "solvers/core/types.h"
 
 namespace smcbench::python {
@@ -36,5 +37,8 @@ py::dict ResultToDict(const SolveResult& result);
 
 // Backend options from Python keyword values (bool, int, float, str) as the text Solver::SetOption parses.
 std::string OptionValueText(const py::handle& value, const std::string& name);
+// Sets every keyword option on solver through Solver::SetOption (what `--set` uses), so a wrong name or value is
+// the backend's own message: InvalidInputError "<name>: <message>".
+void SetBackendOptions(Solver& solver, const std::string& name, const py::dict& backend_options);
 
 }  // namespace smcbench::python

@@ -21,13 +21,7 @@ namespace {
 // wrong name or value is the backend's own message.
 std::unique_ptr<Solver> MakeSolver(const std::string& name, const py::dict& backend_options) {
   std::unique_ptr<Solver> solver = CreateSolver(name);  // InvalidInputError listing the known names
-  for (const auto& [key, value] : backend_options) {
-    const std::string option = py::str(key);
-    std::string error;
-    if (!solver->SetOption(option, OptionValueText(value, option), &error)) {
-      throw InvalidInputError(name + ": " + error);
-    }
-  }
+  SetBackendOptions(*solver, name, backend_options);
   return solver;
 }
 
