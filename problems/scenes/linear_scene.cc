@@ -111,7 +111,7 @@ struct LinearScene::Spec {
   ScalarMatrix E, B, C;
   std::vector<Scalar> D;         // empty: zero
   std::vector<ForcingEntry> forcing;  // empty: none
-  std::vector<ForcingEntry> relation_offset;  // e(t) of y = C x + D + e(t), m entries; empty: none
+  std::vector<ForcingEntry> relation_offset;  // e(t) of y = C x + D + e(t), m entries (sign and zoh); empty: none
   Scalar alpha;
   std::string exact;             // "" or "sign"
   bool control_input = false;    // sign: u = −s through B is reported
@@ -416,6 +416,34 @@ LawSpec ReadLaw(const Reader& r, const json& node, int m, const SceneParameters&
   return law;
 }
 
+// e(t) of y = C x + D + e(t) from the file's m entries: the constant parts (and the sinusoids' offsets) add to *D
+// (made m zeros when empty), the sinusoids become *offset (left null when every amplitude is 0, so such a file runs
+// as one without the key).
+void BuildRelationOffset(const std::vector<ForcingEntry>& entries, const SceneParameters& values, Vector* D,
+                         Forcing* offset) {
+  const auto m = static_cast<Eigen::Index>(entries.size());
+  if (D->size() == 0) *D = Vector::Zero(m);
+  std::vector<SinTerm> terms(entries.size(), SinTerm{0.0, 0.0, 0.0});
+  bool time_dependent = false;
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const ForcingEntry& e = entries[i];
+    const auto row = static_cast<Eigen::Index>(i);
+    if (!e.is_sin) {
+      (*D)[row] += e.constant.Evaluate(values);
+      continue;
+    }
+    (*D)[row] += e.offset.Evaluate(values);
+    terms[i] = {e.amplitude.Evaluate(values), e.omega.Evaluate(values), e.phase.Evaluate(values)};
+    time_dependent = time_dependent || terms[i].amplitude != 0.0;
+  }
+  if (!time_dependent) return;
+  *offset = [terms = std::move(terms)](double t, Eigen::Ref<Vector> e) {
+    for (std::size_t i = 0; i < terms.size(); ++i) {
+      e[static_cast<Eigen::Index>(i)] = terms[i].amplitude * std::sin(terms[i].omega * t + terms[i].phase);
+    }
+  };
+}
+
 }  // namespace
 
 std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::string& source) {
@@ -468,13 +496,9 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
       spec->forcing = ReadForcing(r, *forcing, "system.forcing", n,
                                   "the state has n = " + std::to_string(n) + " (the size of E)", parameters);
     }
-    if (const json* offset = r.Optional(system, "relation_offset")) {
-      spec->relation_offset = ReadForcing(r, *offset, "system.relation_offset", m,
-                                          "C has m = " + std::to_string(m) + " rows (y = C x + D + e(t))", parameters);
-    }
   } else if (spec->type == "zoh") {
-    r.CheckKeys(system, "system",
-                {"type", "F", "G", "C", "alpha", "equivalent_control", "disturbance", "switching_only", "law"});
+    r.CheckKeys(system, "system", {"type", "F", "G", "C", "alpha", "equivalent_control", "disturbance",
+                                   "switching_only", "law", "relation_offset"});
     spec->E = r.Matrix(r.Require(system, "system", "F"), "system.F", parameters);
     n = spec->E.rows;
     r.CheckShape(spec->E, "system.F", n, n, "F must be square, n x n");
@@ -505,6 +529,10 @@ std::unique_ptr<LinearScene> LinearScene::FromJson(const json& doc, const std::s
     }
   } else {
     r.Fail("system.type", "unknown system type '" + spec->type + "' (known: sign, zoh)");
+  }
+  if (const json* offset = r.Optional(system, "relation_offset")) {
+    spec->relation_offset = ReadForcing(r, *offset, "system.relation_offset", m,
+                                        "C has m = " + std::to_string(m) + " rows (y = C x + D + e(t))", parameters);
   }
   spec->info.n = n;
   spec->info.m = m;
@@ -665,6 +693,7 @@ LinearModel LinearScene::ModelWithoutName(const SceneParameters& overrides, std:
     if (s.equivalent_control_theta) z.equivalent_control = EquivalentControl{s.equivalent_control_theta->Evaluate(values)};
     z.switching_only = s.switching_only;
     z.law = std::move(law);
+    if (!s.relation_offset.empty()) BuildRelationOffset(s.relation_offset, values, &z.D, &z.relation_offset);
     if (s.disturbance.present) {
       const DisturbanceSpec& d = s.disturbance;
       z.disturbance.W = d.matched ? z.G : d.W.Evaluate(values);
@@ -710,31 +739,7 @@ LinearModel LinearScene::ModelWithoutName(const SceneParameters& overrides, std:
       };
     }
   }
-  if (!s.relation_offset.empty()) {
-    // e(t) = constant part (added to D) + sinusoids, as the forcing's entries.
-    const int m = s.info.m;
-    if (sys.D.size() == 0) sys.D = Vector::Zero(m);
-    std::vector<SinTerm> terms(static_cast<std::size_t>(m), SinTerm{0.0, 0.0, 0.0});
-    bool time_dependent = false;
-    for (int i = 0; i < m; ++i) {
-      const ForcingEntry& e = s.relation_offset[static_cast<std::size_t>(i)];
-      if (!e.is_sin) {
-        sys.D[i] += e.constant.Evaluate(values);
-        continue;
-      }
-      sys.D[i] += e.offset.Evaluate(values);
-      terms[static_cast<std::size_t>(i)] = {e.amplitude.Evaluate(values), e.omega.Evaluate(values),
-                                            e.phase.Evaluate(values)};
-      time_dependent = time_dependent || terms[static_cast<std::size_t>(i)].amplitude != 0.0;
-    }
-    if (time_dependent) {
-      sys.relation_offset = [terms = std::move(terms)](double t, Eigen::Ref<Vector> e) {
-        for (std::size_t i = 0; i < terms.size(); ++i) {
-          e[static_cast<Eigen::Index>(i)] = terms[i].amplitude * std::sin(terms[i].omega * t + terms[i].phase);
-        }
-      };
-    }
-  }
+  if (!s.relation_offset.empty()) BuildRelationOffset(s.relation_offset, values, &sys.D, &sys.relation_offset);
   sys.Validate();
   return sys;
 }

@@ -150,6 +150,39 @@ TEST(TwistingScenes, SiconosExplicitTwistingZohStepByStep) {
   EXPECT_GE(agree, 30);
 }
 
+TEST(TwistingScenes, WarmStepsKeepSiconosToleranceAndNeverPivotMore) {
+  // Each AVI step warm from the previous one (AviSession: the reduction's last active set first, then the backend
+  // from the previous (λ, μ); lemke ignores the latter) against every step cold; both within Siconos' tolerance.
+  // The reused set answers only where the reduction's free block can be factored: with G of rank one, M = C S is
+  // rank one, so a λ inside P (no face active) leaves it singular and those steps go to the backend anyway.
+  const SiconosCase cases[] = {
+      {"twisting-double-integrator", "Twisting.ref", Columns::kTimeAndState, 0.3, 1e-12, 1e-13},
+      {"twisting", "itw2.ref", Columns::kStateAndPlantInput, 0.2, 7.5e-11, 1e-13},
+      {"regular-twisting", "reg_itw.ref", Columns::kStateAndPlantInput, 0.2, 5e-9, 1e-13}};
+  auto lemke = CreateSolver("lemke");
+  for (const SiconosCase& c : cases) {
+    const auto scene = LoadScene(c.scene);
+    const DenseMatrix ref = ReadSiconosMatrix(c.reference);
+    SimulationSettings warm = scene->defaults();
+    warm.stepper.solver.tolerance = c.solver_tolerance;
+    SimulationSettings cold = warm;
+    cold.stepper.warm_start = false;
+    cold.stepper.session.reuse_active_set = false;
+    const Trajectory warm_run = scene->Run(warm, lemke.get());
+    const Trajectory cold_run = scene->Run(cold, lemke.get());
+    ASSERT_TRUE(warm_run.ok() && cold_run.ok()) << c.scene;
+    const Eigen::Index rows = std::min<Eigen::Index>(ref.rows(), warm_run.steps_taken + 1);
+    EXPECT_LE(MaxDeviation(warm_run, ref, c, rows), c.tolerance) << c.scene;
+    EXPECT_LE(MaxDeviation(cold_run, ref, c, rows), c.tolerance) << c.scene;
+    const auto per_step = [](const Trajectory& tr) {
+      return static_cast<double>(tr.total_iterations) / static_cast<double>(tr.steps_taken);
+    };
+    std::printf("| %s | lemke | pivots per step: cold %.3g, warm %.3g |\n", c.scene, per_step(cold_run),
+                per_step(warm_run));
+    EXPECT_LE(warm_run.total_iterations, cold_run.total_iterations) << c.scene;
+  }
+}
+
 TEST(TwistingScenes, PolytopeLawStatesTheParallelogramAndFollowsH) {
   const auto scene = LoadScene("twisting");
   const auto* linear = dynamic_cast<const LinearScene*>(scene.get());

@@ -159,9 +159,10 @@ OneStepData DiscretizeZohUnchecked(const ZohSmcSystem& system, double h, SignTre
   d.h = h;
   d.sign = sign;
   d.C = system.C;
-  d.D = Vector::Zero(m);
+  d.D = system.D.size() ? system.D : Vector::Zero(m);
   d.p = Vector::Zero(n);
   d.law = system.law;
+  d.relation_offset = system.relation_offset;  // e(t_{k+1}) in q: see the header
   if (system.switching_only) {
     // u = −α s alone: the controller's prediction is the plant's ZOH step.
     const auto [expFh, PsiG] = ExpAndIntegral(system.F, system.G, h);

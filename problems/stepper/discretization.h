@@ -78,7 +78,7 @@ struct OneStepData {
   Vector p;       // n, the constant part of p_k
   DenseMatrix P;  // n×n, h (I − hθE)⁻¹; empty when there is no time-dependent forcing
   Forcing forcing;            // null when there is none
-  // e(t) of y = C x + D + e(t) (size m; LinearSignSystem::relation_offset), null when there is none: q gets
+  // e(t) of y = C x + D + e(t) (size m; the system's relation_offset), null when there is none: q gets
   // −e(t_{k+1}) and every y_k has e(t_k).
   Forcing relation_offset;
   double forcing_theta = 1.0; // θ used to weight g(t_k), g(t_{k+1})
@@ -132,8 +132,13 @@ OneStepData DiscretizeTheta(const LinearSignSystem& system, double h, double the
 OneStepData DiscretizeExplicitEuler(const LinearSignSystem& system, double h);
 
 // ZOH discretization of x' = Fx + Gu with the ECB-SMC (`ZOH1`, `eq:ZOHGAMMA`):
-//   Γ = ∫₀ʰ e^{Fτ}dτ G(CG)⁻¹,  Φ = e^{Fh} − Γ C F,  R = Φ, S = α Γ, p = 0, D = 0;
+//   Γ = ∫₀ʰ e^{Fτ}dτ G(CG)⁻¹,  Φ = e^{Fh} − Γ C F,  R = Φ, S = α Γ, p = 0, D = the system's D (0 if none);
 //   u_k = −(CG)⁻¹(C F x_k + α s_{k+1}).
+// A relation offset e(t) (ZohSmcSystem::relation_offset) is sampled at t_{k+1} in the step taken at t_k:
+// q = −(C R x_k + D + e(t_{k+1})), i.e. s_{k+1} ∈ Sgn(C x_{k+1} + D + e(t_{k+1})). Why t_{k+1}: x_{k+1} =
+// R x_k − S s_{k+1} is the controller's prediction of the plant at the next sample (exact without a disturbance),
+// so the surface is met where the prediction lands; e(t_k) would leave it h·ė behind. Recorded: y_k = C x_k + D +
+// e(t_k).
 // With system.switching_only (Siconos' Twisting controllers): R = e^{Fh}, S = α ΨG, u_k = −α s_{k+1} (the controller
 // predicts the plant exactly; no equivalent part).
 // With system.equivalent_control (Siconos' LinearSMC / ExplicitLinearSMC, linear_system.h), K = (CG)⁻¹CF,

@@ -211,9 +211,11 @@ class KernelImpl final : public LinearStepper::Kernel {
     const bool report_input = d.has_input() && (record || stream);
     const bool disturbed = d.has_disturbance();
     // A polytope law solves the AVI through its exact reduction (AviSession: built once per run, allocation-free
-    // per step); it takes no per-step warm start.
+    // per step), warm-started as the box path: the reduction's last active set first, the previous answer (λ, μ)
+    // as the backend's start.
     const bool polytope = implicit && avi != nullptr;
     const bool warm = options.warm_start && !polytope;
+    const bool warm_avi = options.warm_start && polytope;
     const double h = d.h;
     const double t0 = options.t0;
     const double theta = d.forcing_theta;
@@ -247,9 +249,10 @@ class KernelImpl final : public LinearStepper::Kernel {
     SolveSession* const session = implicit && !polytope ? &SessionFor(solver, *problem, options.session) : nullptr;
     if (polytope) {
       avi_session_.reset();
-      avi_session_.emplace(*avi, *solver, solver_options_);
+      avi_session_.emplace(*avi, *solver, solver_options_, options.session);
       avi_q_.resize(m);
     }
+    bool previous_avi_solved = false;  // the last AVI step's answer is a usable warm start
     const SolveResult& step_result = polytope ? avi_session_->result() : result_;
 
     Counters counters;
@@ -285,7 +288,9 @@ class KernelImpl final : public LinearStepper::Kernel {
           if (polytope) {
             // A dynamic copy of q: Solve's Ref<const Vector> would copy (allocate) a fixed-size one.
             for (int i = 0; i < m; ++i) avi_q_[i] = q[i];
-            avi_session_->Solve(avi_q_);
+            const bool from_previous = warm_avi && previous_avi_solved;
+            avi_session_->Solve(avi_q_, from_previous ? &avi_session_->solution() : nullptr);
+            previous_avi_solved = step_result.status == SolveStatus::kSolved;
             if (observer) observer->OnStep(k + 1, 0, avi_session_->reduction().problem, step_result);
             if (step_result.z.size() >= m) {
               const double* lambda = step_result.z.data();  // z = (λ, μ̃): λ is s_{k+1}

@@ -9,7 +9,8 @@
 //     TrajectorySink as it goes (StepperOptions::sink: one bounded block), or keeps only the final state.
 //   A polytope law (OneStepData::law): each implicit step is the AVI 0 ∈ M s + q + N_P(s) with the same M and q,
 //     solved through AviSession (the exact reduction to a box-MLCP, built once per run; no per-step allocation
-//     after the first step with an allocation-free backend, no warm start).
+//     after the first step with an allocation-free backend). Warm-started as the box path: the session first tries
+//     the reduction's last active set, and the backend starts from the previous step's (λ, μ) (warm_start on).
 //   SimulateRebuildingEachStep: what a general simulator does: every step re-discretizes (LU of I − hθE or the
 //     matrix exponential), rebuilds M = C S and a fresh BoxMLCP, then solves. Same trajectory up to rounding;
 //     benchmarks compare the two to show what precomputation buys.
@@ -66,7 +67,8 @@ enum class SubnormalPolicy { kZeroState, kFlushToZero, kIeee };
 
 struct StepperOptions {
   // Passed to the backend at every step. The stepper overrides two fields: warm_start (s_k when warm_start below
-  // is on, else empty) and measure_time (false: the clock costs as much as a small solve).
+  // is on, else empty; with a polytope law the previous step's (λ, μ) mapped into the reduction, AviSession) and
+  // measure_time (false: the clock costs as much as a small solve).
   SolverOptions solver;
   // The run's solve session (solvers/core/session.h): by default each step first tries the previous step's active
   // set; reuse_active_set = false sends every step to the backend's own algorithm (to time or study it).

@@ -56,6 +56,8 @@ void ZohSmcSystem::Validate() const {
                                  "equivalent part)");
   }
   law.Validate(kOwner, m());
+  if (D.size() != 0) stepper_detail::CheckSize(kOwner, "D", D, m());
+  ValidateFinite(kOwner, "D", D);
   if (equivalent_control) {
     const double theta = equivalent_control->theta;
     if (!(theta >= 0.0 && theta <= 1.0)) {
@@ -106,7 +108,8 @@ LinearSignSystem ClosedLoop(const ZohSmcSystem& system) {
   }
   out.C = system.C;
   out.law = system.law;
-  out.D = Vector::Zero(system.m());
+  out.D = system.D.size() ? system.D : Vector::Zero(system.m());
+  out.relation_offset = system.relation_offset;
   out.control_input = false;  // u = −(CG)⁻¹(CF x + α s) mixes x_k and x_{k+1} under a θ-method: not reported
   if (!system.disturbance.empty()) {
     const Disturbance& d = system.disturbance;

@@ -97,12 +97,17 @@ struct ZohSmcSystem {
   bool switching_only = false;
   // s ∈ P instead of the box (PolytopeLaw); empty: the box.
   PolytopeLaw law;
+  // The sliding variable y = C x + D + e(t) (m; D empty means 0, e null means 0), a surface shifted by a reference
+  // the controller knows ahead: the ZOH step at t_k takes e(t_{k+1}), the sample its prediction x_{k+1} lands on
+  // (DiscretizeZoh). A constant e belongs in D.
+  Vector D;
+  Forcing relation_offset;
 
   int n() const { return static_cast<int>(F.rows()); }
   int m() const { return static_cast<int>(C.rows()); }
   // Sizes, finiteness, α > 0, CG invertible unless switching_only (InvalidInputError "ZohSmcSystem: CG is singular
   // ..."), θ of the equivalent control in [0, 1], the disturbance's shapes (W n×q, constant and every amplitude q,
-  // finite), the law's.
+  // finite), the law's, D's (m, finite).
   void Validate() const;
 };
 
@@ -110,7 +115,7 @@ struct ZohSmcSystem {
 // x' = (F − G(CG)⁻¹CF) x − α G(CG)⁻¹ Sgn(C x), i.e. E = F − G(CG)⁻¹CF, B = α G(CG)⁻¹, D = 0; with Siconos'
 // equivalent control the switching part enters through G itself: B = α G. A disturbance becomes the forcing
 // g + g(t) = W d(t) (an Euler scheme of the closed loop sees it, unlike the ZOH controller). switching_only:
-// E = F, B = α G. The law is carried over.
+// E = F, B = α G. The law, D and e(t) of the relation are carried over.
 // Lets the same plant be run with Euler (θ-method) or ZOH (S5/S6 of docs/scenes.md compare both).
 LinearSignSystem ClosedLoop(const ZohSmcSystem& system);
 

@@ -46,7 +46,10 @@ std::vector<PlantSubstep> DiscretizeBetweenSamples(const ZohSmcSystem& system, d
 }
 
 SampledPlantSink::SampledPlantSink(const ZohSmcSystem& system, double h, int substeps, TrajectorySink* downstream)
-    : substeps_(DiscretizeBetweenSamples(system, h, substeps)), C_(system.C) {
+    : substeps_(DiscretizeBetweenSamples(system, h, substeps)),
+      C_(system.C),
+      D_(system.D.size() ? system.D : Vector::Zero(system.m())),
+      relation_offset_(system.relation_offset) {
   if (downstream == nullptr) Fail("SampledPlantSink", "downstream sink is null");
   const int n = system.n(), m = system.m();
   stream_.Start(n, m, downstream, /*has_input=*/true);
@@ -56,6 +59,7 @@ SampledPlantSink::SampledPlantSink(const ZohSmcSystem& system, double h, int sub
   held_u_.resize(m);
   point_x_.resize(n);
   point_y_.resize(m);
+  point_e_.resize(m);
 }
 
 void SampledPlantSink::OnRows(const TrajectoryBlock& block) {
@@ -100,7 +104,12 @@ void SampledPlantSink::EmitHeld(const double* next_s) {
     point_x_.noalias() = point.exp_F * held_x_;
     point_x_.noalias() += point.psi_G * held_u_;
     point.disturbance.Add(held_t_, point_x_);
-    point_y_.noalias() = C_ * point_x_;  // D = 0 for a ZOH plant
+    point_y_ = D_;
+    point_y_.noalias() += C_ * point_x_;
+    if (relation_offset_) {  // the surface at the point itself, as y_k has e(t_k)
+      relation_offset_(held_t_ + point.tau, point_e_);
+      point_y_ += point_e_;
+    }
     stream_.Add(next_row_++, held_t_ + point.tau, point_x_, s_next, point_y_, 0, 0.0, SolveStatus::kNotRun, n, m);
     stream_.SetLastInput(held_u_, m);
   }

@@ -30,11 +30,12 @@ struct PlantSubstep {
 std::vector<PlantSubstep> DiscretizeBetweenSamples(const ZohSmcSystem& system, double h, int substeps);
 
 // Passes a run's rows on to `downstream` with the s − 1 states between each row k and row k + 1 inserted after
-// row k: t_k + τ_j, x(t_k + τ_j), s = s_{k+1} (the multiplier of the input held over the interval), y = C x,
-// 0 iterations, residual 0, status kNotRun, u = u_k (the input actually applied). The run's last row (u = NaN: no
-// step applied it) gets no points after it. A row is held back until the next arrives (its points need s_{k+1}):
-// call Finish() once after the run. The run's rows must carry the input (TrajectoryBlock::has_input: every ZOH
-// run does); InvalidInputError otherwise. Sized once at construction: OnRows and Finish do not allocate.
+// row k: t_k + τ_j, x(t_k + τ_j), s = s_{k+1} (the multiplier of the input held over the interval),
+// y = C x + D + e(t_k + τ_j), 0 iterations, residual 0, status kNotRun, u = u_k (the input actually applied).
+// The run's last row (u = NaN: no step applied it) gets no points after it. A row is held back until the next
+// arrives (its points need s_{k+1}): call Finish() once after the run. The run's rows must carry the input
+// (TrajectoryBlock::has_input: every ZOH run does); InvalidInputError otherwise. Sized once at construction: OnRows
+// and Finish do not allocate (e(t) is evaluated into a member buffer).
 // With s = 1 every row passes unchanged (the same numbers, in the same blocks' order).
 class SampledPlantSink final : public TrajectorySink {
  public:
@@ -52,6 +53,8 @@ class SampledPlantSink final : public TrajectorySink {
 
   std::vector<PlantSubstep> substeps_;
   DenseMatrix C_;
+  Vector D_;                 // m (zero when the system has none)
+  Forcing relation_offset_;  // e(t) of y, null when none
   TrajectoryStream stream_;
   std::int64_t next_row_ = 0;
   // The held row.
@@ -62,7 +65,7 @@ class SampledPlantSink final : public TrajectorySink {
   double held_residual_ = 0.0;
   SolveStatus held_status_ = SolveStatus::kNotRun;
   // A point between samples.
-  Vector point_x_, point_y_;
+  Vector point_x_, point_y_, point_e_;
 };
 
 }  // namespace smcbench

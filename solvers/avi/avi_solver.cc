@@ -64,6 +64,20 @@ void ConcludeDirect(const AffineVI& avi, const AviReduction& reduction, const So
   ApplyAviRule(avi, options.tolerance, *solution, result);
 }
 
+// options with its warm start (empty, λ alone, or (λ, μ, ν) as stated) in the reduction's units z = (λ, μ̃, ν̃); any
+// other size is left for the backend to report (kInvalidOptions), as Solver::Solve does.
+SolverOptions ReducedOptions(const AviReduction& reduction, const SolverOptions& options) {
+  const int n = reduction.n, total = n + reduction.m + reduction.p;
+  SolverOptions reduced = options;
+  const Vector& w = options.warm_start;
+  if (w.size() == n && total != n) {
+    reduced.warm_start = JoinReducedSolution(reduction, {w, {}, {}});
+  } else if (w.size() == total) {
+    reduced.warm_start = JoinReducedSolution(reduction, {w.head(n), w.segment(n, reduction.m), w.tail(reduction.p)});
+  }
+  return reduced;
+}
+
 }  // namespace
 
 AviSolution AviMultipliersAt(const AffineVI& avi, const Vector& lambda) {
@@ -139,16 +153,8 @@ AviResult SolveAvi(const AffineVI& avi, Solver& solver, const SolverOptions& opt
     out.judgement = JudgeAvi(avi, ExpectedAviOutcome(avi), reference, out.status, out.solution, options.tolerance);
     return out;
   }
-  const int n = reduction.n, total = n + reduction.m + reduction.p;
-  SolverOptions reduced_options = options;
-  if (options.warm_start.size() == n && total != n) {
-    reduced_options.warm_start = JoinReducedSolution(reduction, {options.warm_start, {}, {}});
-  } else if (options.warm_start.size() == total) {
-    const Vector& w = options.warm_start;
-    reduced_options.warm_start = JoinReducedSolution(
-        reduction, {w.head(n), w.segment(n, reduction.m), w.tail(reduction.p)});
-  }
-  solver.Solve(reduction.problem, reduced_options, &out.reduced);
+  const int total = reduction.n + reduction.m + reduction.p;
+  solver.Solve(reduction.problem, ReducedOptions(reduction, options), &out.reduced);
   if (out.reduced.z.size() == total) out.solution = SplitReducedSolution(reduction, out.reduced.z);
   ApplyAviRule(avi, options.tolerance, out.solution, &out.reduced);
   out.status = out.reduced.status;
@@ -160,18 +166,40 @@ AviResult SolveAvi(const AffineVI& avi, Solver& solver, const SolverOptions& opt
   return out;
 }
 
-AviSession::AviSession(const AffineVI& avi, Solver& solver, const SolverOptions& options)
+AviSession::AviSession(const AffineVI& avi, Solver& solver, const SolverOptions& options,
+                       const SessionOptions& session)
     : reduction_(ReduceToBoxMlcp(avi, AviReductionScaling::kNormalized)),
-      solver_(&solver),
-      options_(options),
-      reduced_q_(reduction_.problem.q()) {
-  const int n = reduction_.n;
-  solution_.lambda.resize(n);
+      options_(ReducedOptions(reduction_, options)),
+      session_(solver.Prepare(reduction_.problem, options_, session)),
+      reduced_q_(reduction_.problem.q()),
+      warm_z_(Vector::Zero(reduction_.n + reduction_.m + reduction_.p)) {
+  solution_.lambda.resize(reduction_.n);
   solution_.mu.resize(reduction_.m);
   solution_.nu.resize(reduction_.p);
 }
 
-SolveStatus AviSession::Solve(const Eigen::Ref<const Vector>& q) {
+void AviSession::MapWarmStart(const AviSolution& warm_start) {
+  const int n = reduction_.n, m = reduction_.m, p = reduction_.p;
+  const auto check = [](const char* field, const Vector& v, int size, bool may_be_empty) {
+    if (v.size() == size || (may_be_empty && v.size() == 0)) return;
+    throw InvalidInputError("AviSession: warm_start." + std::string(field) + " has size " + std::to_string(v.size()) +
+                            " but the AVI has " + std::to_string(size));
+  };
+  check("lambda", warm_start.lambda, n, false);
+  check("mu", warm_start.mu, m, true);
+  check("nu", warm_start.nu, p, true);
+  // JoinReducedSolution's map (μ̃ = μ h/σ, ν̃ = ν e/σ), into the session's buffer.
+  const bool has_mu = warm_start.mu.size() > 0, has_nu = warm_start.nu.size() > 0;
+  for (int j = 0; j < n; ++j) warm_z_[j] = warm_start.lambda[j];
+  for (int i = 0; i < m; ++i) {
+    warm_z_[n + i] = has_mu ? warm_start.mu[i] * reduction_.inequality_scale[i] / reduction_.sigma : 0.0;
+  }
+  for (int j = 0; j < p; ++j) {
+    warm_z_[n + m + j] = has_nu ? warm_start.nu[j] * reduction_.equality_scale[j] / reduction_.sigma : 0.0;
+  }
+}
+
+SolveStatus AviSession::Solve(const Eigen::Ref<const Vector>& q, const AviSolution* warm_start) {
   const int n = reduction_.n, m = reduction_.m, p = reduction_.p;
   if (q.size() != n) {
     throw InvalidInputError("AviSession: q has size " + std::to_string(q.size()) + " but the AVI has n = " +
@@ -183,22 +211,35 @@ SolveStatus AviSession::Solve(const Eigen::Ref<const Vector>& q) {
     }
     reduced_q_[j] = q[j] / reduction_.sigma;  // a division, as ReduceToBoxMlcp: the same bits
   }
-  reduction_.problem.set_q(reduced_q_);
-  solver_->Solve(reduction_.problem, options_, &result_);
+  // Read before the solve overwrites solution_ (the usual warm start is the previous solution()).
+  if (warm_start != nullptr) MapWarmStart(*warm_start);
+  const Vector* warm_z = warm_start != nullptr ? &warm_z_ : nullptr;
+  reduction_.problem.set_q(reduced_q_);  // reduction(): the problem as solved (a StepObserver reads it)
+  session_.Solve(reduced_q_, &result_, warm_z);
+  const bool reused = SessionPathOf(result_) == SessionPath::kReusedActiveSet;
   if (result_.z.size() != n + m + p) return result_.status;
-  const Vector& z = result_.z;
-  solution_.lambda = z.head(n);
-  solution_.mu = reduction_.sigma * z.segment(n, m).cwiseQuotient(reduction_.inequality_scale);
-  solution_.nu = reduction_.sigma * z.tail(p).cwiseQuotient(reduction_.equality_scale);
+  // The box rule holds for a solved z (Solver::Solve, or the session's reuse test); the AVI's own part, without
+  // allocating.
   if (result_.status == SolveStatus::kSolved) {
-    // The box rule holds (Solver::Solve); the AVI's own part, without allocating.
-    const AviFaceResidual face = ComputeAviFaceResidual(reduction_, z);
-    if (!(face.complementarity <= options_.tolerance && face.primal_infeasibility <= options_.tolerance)) {
+    AviFaceResidual face = ComputeAviFaceResidual(reduction_, result_.z);
+    if (reused && !(face.complementarity <= options_.tolerance && face.primal_infeasibility <= options_.tolerance)) {
+      // The last active set passed the box rule but not the AVI's: let the backend solve this q afresh (rare).
+      session_.ForgetWarmState();
+      session_.Solve(reduced_q_, &result_, warm_z);
+      if (result_.z.size() != n + m + p) return result_.status;
+      face = ComputeAviFaceResidual(reduction_, result_.z);
+    }
+    if (result_.status == SolveStatus::kSolved &&
+        !(face.complementarity <= options_.tolerance && face.primal_infeasibility <= options_.tolerance)) {
       result_.status = SolveStatus::kInaccurate;
       result_.message = "the backend reported success but the complementarity in units of λ is " +
                         std::to_string(face.complementarity) + " > " + std::to_string(options_.tolerance);
     }
   }
+  const Vector& z = result_.z;
+  solution_.lambda = z.head(n);
+  solution_.mu = reduction_.sigma * z.segment(n, m).cwiseQuotient(reduction_.inequality_scale);
+  solution_.nu = reduction_.sigma * z.tail(p).cwiseQuotient(reduction_.equality_scale);
   return result_.status;
 }
 

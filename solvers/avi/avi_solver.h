@@ -3,6 +3,7 @@
 // function), and the answer is mapped back and judged by the AVI verdict (avi_verdict.h).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <string_view>
 
@@ -10,6 +11,7 @@
 #include "solvers/avi/avi_reduction.h"
 #include "solvers/avi/avi_verdict.h"
 #include "solvers/core/result.h"
+#include "solvers/core/session.h"
 #include "solvers/core/solver.h"
 
 namespace smcbench {
@@ -55,27 +57,45 @@ AviResult SolveAvi(const AffineVI& avi, Solver& solver, const SolverOptions& opt
                    const AviReference* reference = nullptr);
 
 // Prepare once, solve many (a time-stepper with a polytope law: M, H, K, E, f fixed, q new every step): the
-// normalized reduction is built once, and each Solve(q) replaces its q in place and calls the backend on it, so
-// repeated solves allocate nothing after the first (for a backend with info().allocation_free; pinned by
-// avi_test). The rule for "solved" is SolveAvi's; the verdict against a reference is JudgeAvi's business. Solves
-// through the reduction only (a DirectAviBackend is called by SolveAvi). The solver must outlive the session.
+// normalized reduction is built once and solved through one box session (solvers/core/session.h) whose q is replaced
+// in place, so repeated solves allocate nothing after the first (for a backend with info().allocation_free; pinned
+// by avi_test). As the box path of a time-stepper, a solve may start from the previous answer: the session first
+// tries the reduction's last active set (SessionOptions::reuse_active_set, 0 iterations when it holds), and the
+// backend starts from the warm start given to Solve. The rule for "solved" is SolveAvi's; the verdict against a
+// reference is JudgeAvi's business. Solves through the reduction only (a DirectAviBackend is called by SolveAvi).
+// The solver must outlive the session.
 class AviSession {
  public:
-  AviSession(const AffineVI& avi, Solver& solver, const SolverOptions& options = {});
+  // options.warm_start as SolveAvi's (empty, λ alone, or (λ, μ, ν) as stated): the start of every Solve given none.
+  AviSession(const AffineVI& avi, Solver& solver, const SolverOptions& options = {},
+             const SessionOptions& session = {});
 
   // Solves the AVI with q (size n, finite: InvalidInputError naming the index otherwise, as AffineVI::set_q).
-  SolveStatus Solve(const Eigen::Ref<const Vector>& q);
+  // warm_start: null, or an answer as stated to start the backend from, typically the previous solve's solution()
+  // (λ and its multipliers): mapped into the reduction's z = (λ, μ̃_i = μ_i h_i/σ, ν̃_j = ν_j e_j/σ) (avi_reduction.h)
+  // in a buffer of the session, without allocating; empty μ or ν start at 0, other sizes are InvalidInputError
+  // naming the field. A reused active set whose answer fails the AVI rule is dropped and the backend called.
+  SolveStatus Solve(const Eigen::Ref<const Vector>& q, const AviSolution* warm_start = nullptr);
   // The last answer as stated (λ, μ, ν), valid when the backend returned a z of the reduction's size.
   const AviSolution& solution() const { return solution_; }
-  // The backend's result on the reduction (status, message, z = (λ, μ̃, ν̃), residuals, details).
+  // The backend's result on the reduction (status, message, z = (λ, μ̃, ν̃), residuals, details; detail "path":
+  // SessionPath, whether the reused active set answered).
   const SolveResult& result() const { return result_; }
+  // The reduction, its q the last solve's.
   const AviReduction& reduction() const { return reduction_; }
+  // Solves answered by the reused active set, and in all (SolveSession::reused, calls).
+  std::int64_t reused() const { return session_.reused(); }
+  std::int64_t calls() const { return session_.calls(); }
 
  private:
+  // *warm_start (as stated) into warm_z_ (units of the reduction).
+  void MapWarmStart(const AviSolution& warm_start);
+
   AviReduction reduction_;
-  Solver* solver_;
   SolverOptions options_;
+  SolveSession session_;
   Vector reduced_q_;  // q̃ of the reduction, its tail (−K̃, −f̃) fixed
+  Vector warm_z_;     // the mapped warm start (n + m + p)
   SolveResult result_;
   AviSolution solution_;
 };

@@ -430,7 +430,8 @@ TEST(AviSession, AnswersAsSolveAviWithoutAllocating) {
     SolverOptions options;
     options.measure_time = false;
     AffineVI avi(M, Vec({10.0, -5.0}), H, Vector::Constant(4, -1.0));
-    AviSession session(avi, *solver, options);
+    // The backend's own answer at every step, as SolveAvi's (M is rank one: another path may pick another λ).
+    AviSession session(avi, *solver, options, SessionOptions{/*reuse_active_set=*/false});
     Vector q(2), x(2);
     x << 10.0, -5.0;
     for (int step = 0; step < 200; ++step) {
@@ -461,6 +462,89 @@ TEST(AviSession, AnswersAsSolveAviWithoutAllocating) {
   AviSession session(AffineVI(M, Vec({1, 1}), H, Vector::Constant(4, -1.0)), *lemke);
   EXPECT_THROW(session.Solve(Vec({1, 2, 3})), InvalidInputError);
   EXPECT_THROW(session.Solve(Vec({1, kNaN})), InvalidInputError);
+}
+
+// A warm start given as stated, (λ, μ) of the previous answer, reaches the backend in the reduction's units
+// (μ̃_i = μ_i h_i/σ): started at its own answer, a backend that starts where it is told (semismooth Newton) stops
+// at once. Rows of (H, K) scaled by 2 and 3 and σ = 0.2 make a map that forgot a scale start elsewhere.
+TEST(AviSession, WarmStartIsTheAnswerInTheReductionsUnits) {
+  const DenseMatrix M = Mat({{0.2, 0.05}, {0.05, 0.1}});  // positive definite: λ unique
+  const DenseMatrix H = Mat({{2, 0}, {-0.05, 1}, {-3, 0}, {0.05, -1}});  // |λ₁| ≤ 1, |λ₂ − 0.05λ₁| ≤ 1
+  const Vector K = Vec({-2, -1, -3, -1});
+  const Vector q = Vec({-0.5, 0.05});  // unconstrained minimizer (3, −2): λ₁ = 1 is active, μ > 0 there
+  const AffineVI avi(M, q, H, K);
+  const std::unique_ptr<Solver> newton = CreateSolver("newton");
+  AviSession session(avi, *newton, {}, SessionOptions{/*reuse_active_set=*/false});
+  ASSERT_EQ(session.Solve(q), SolveStatus::kSolved) << session.result().message;
+  ASSERT_GT(session.result().iterations, 0);
+  ASSERT_GT(session.solution().mu.maxCoeff(), 0.1);
+  const AviSolution cold = session.solution();
+  EXPECT_NEAR(cold.lambda[0], 1.0, 1e-12);
+  // Warm from its own previous answer (the stepper's call: the session's solution() itself).
+  ASSERT_EQ(session.Solve(q, &session.solution()), SolveStatus::kSolved) << session.result().message;
+  EXPECT_EQ(session.result().iterations, 0);
+  EXPECT_LE((session.solution().lambda - cold.lambda).cwiseAbs().maxCoeff(), 1e-14);
+  // λ alone: the multipliers start at 0, not at the answer: Newton has to iterate.
+  const AviSolution lambda_only{cold.lambda, {}, {}};
+  ASSERT_EQ(session.Solve(q, &lambda_only), SolveStatus::kSolved);
+  EXPECT_GT(session.result().iterations, 0);
+  // Sizes other than n, m, p name the field.
+  const AviSolution wrong{cold.lambda, Vec({1, 2}), {}};
+  try {
+    session.Solve(q, &wrong);
+    ADD_FAILURE() << "a warm start with 2 multipliers for 4 rows was accepted";
+  } catch (const InvalidInputError& e) {
+    EXPECT_THAT(e.what(), testing::HasSubstr("warm_start.mu has size 2"));
+  }
+}
+
+// The time-stepper's use: each step warm from the previous answer, the reduction's last active set tried first. On
+// the implicit-twisting loop lemke then runs on far fewer steps (the reused set answers with 0 iterations), the plant
+// sees the same input M λ as with cold steps, and the reused set allocates nothing.
+TEST(AviSession, WarmStepsReuseTheActiveSetWithoutAllocating) {
+  constexpr double kTs = 10e-3, kG = 10.0, kBeta = 0.1;
+  DenseMatrix M(2, 2);
+  M << kG * kTs * kTs / 2.0, kBeta * kG * kTs * kTs / 2.0, kG * kTs, kBeta * kG * kTs;
+  const DenseMatrix H = Mat({{1, 0}, {-kTs / 2.0, 1}, {-1, 0}, {kTs / 2.0, -1}});
+  const AffineVI avi(M, Vec({10.0, -5.0}), H, Vector::Constant(4, -1.0));
+  const std::unique_ptr<Solver> lemke = CreateSolver("lemke");
+  SolverOptions options;
+  options.measure_time = false;
+  AviSession cold(avi, *lemke, options, SessionOptions{/*reuse_active_set=*/false});
+  AviSession warm(avi, *lemke, options);
+  Vector x_cold = Vec({10.0, -5.0}), x_warm = x_cold, q(2);
+  long cold_iterations = 0, warm_iterations = 0;
+  for (int step = 0; step < 400; ++step) {
+    q << x_cold[0] + kTs * x_cold[1], x_cold[1];
+    ASSERT_EQ(cold.Solve(q), SolveStatus::kSolved) << "step " << step;
+    cold_iterations += cold.result().iterations;
+    x_cold = M * cold.solution().lambda + q;
+    q << x_warm[0] + kTs * x_warm[1], x_warm[1];
+    ASSERT_EQ(warm.Solve(q, step > 0 ? &warm.solution() : nullptr), SolveStatus::kSolved)
+        << "step " << step << ": " << warm.result().message;
+    warm_iterations += warm.result().iterations;
+    x_warm = M * warm.solution().lambda + q;
+    ASSERT_LE((x_warm - x_cold).cwiseAbs().maxCoeff(), 1e-12 * (1.0 + x_cold.cwiseAbs().maxCoeff())) << step;
+  }
+  std::printf("[ info     ] lemke on 400 twisting steps: %ld pivots cold, %ld warm (%lld of 400 by the reused set)\n",
+              cold_iterations, warm_iterations, static_cast<long long>(warm.reused()));
+  EXPECT_GT(warm.reused(), 200);
+  EXPECT_LT(warm_iterations, cold_iterations / 2);
+  if (!test_support::CanCountMallocs()) return;
+  // The same 100 further steps through both sessions: a step the reused set answers allocates nothing, and warm
+  // steps allocate no more than cold ones (lemke itself allocates on a few of these q, warm or cold).
+  long reused_mallocs = 0, warm_mallocs = 0, cold_mallocs = 0;
+  for (int step = 0; step < 100; ++step) {
+    q << x_warm[0] + kTs * x_warm[1], x_warm[1];
+    cold_mallocs += test_support::CountMallocs([&] { cold.Solve(q); });
+    const long mallocs = test_support::CountMallocs([&] { warm.Solve(q, &warm.solution()); });
+    warm_mallocs += mallocs;
+    if (SessionPathOf(warm.result()) == SessionPath::kReusedActiveSet) reused_mallocs += mallocs;
+    x_warm.noalias() = M * warm.solution().lambda;
+    x_warm += q;
+  }
+  EXPECT_EQ(reused_mallocs, 0);
+  EXPECT_LE(warm_mallocs, cold_mallocs);
 }
 
 }  // namespace
