@@ -130,13 +130,7 @@ py::dict Simulate(const std::string& scene_text, bool is_document, const Simulat
   if (!run.backend.empty()) {
     solver = CreateSolver(run.backend);
     CheckSceneBackend(run, *solver, OverrideSpelling::kPython);
-    for (const auto& [key, value] : backend_options) {
-      const std::string option = py::str(key);
-      std::string error;
-      if (!solver->SetOption(option, OptionValueText(value, option), &error)) {
-        throw InvalidInputError(run.backend + ": " + error);
-      }
-    }
+    SetBackendOptions(*solver, run.backend, backend_options);
   } else if (!backend_options.empty()) {
     throw InvalidInputError("backend_options given, but method '" + std::string(ToString(s.method)) +
                             "' solves no one-step problem");
