@@ -311,5 +311,19 @@ TEST(AviFileRegression, RowsOfEmptyBracketsAreRefusedBeforeTheMatrixIsAllocated)
   EXPECT_LT(largest, 1ul << 20) << "the reader allocated " << largest << " bytes before checking the rows";
 }
 
+
+// Found by tests/fuzz/library_fuzzer.cc in a set of AVIs, which builds each AVI as this reader does: a row whose
+// ratio b/a overflows to +inf (K = 1e305 over a coefficient 1e-6) was compared with the initial +inf and read the
+// basis at index -1 in the phase-1 simplex that checks P is not empty (caught by UBSan in the ASan build).
+TEST(AviFileFuzzRegression, AnOverflowingRatioInThePhaseOneSimplexIsHandled) {
+  const AviFile file = ParseAviText(R"({"format": "smcbench-avi", "version": 1, "M": [[1, 0], [0, 1]],
+      "q": [0, 0], "H": [[1e-6, 1], [1, 0]], "K": [1e305, 0]})",
+                                    "overflow.avi.json");
+  // P = {1e-6 λ₁ + λ₂ ≥ 1e305, λ₁ ≥ 0} is not empty and not bounded: no solution is promised.
+  EXPECT_GE(file.avi.H().row(0).dot(file.avi.feasible_point()), 1e305 * (1 - 1e-9));
+  EXPECT_GE(file.avi.feasible_point()[0], 0.0);
+  EXPECT_EQ(file.expected, ExpectedOutcome::kUnknown);
+}
+
 }  // namespace
 }  // namespace smcbench
