@@ -739,14 +739,15 @@ std::uint64_t DenseHash(const DenseMatrix& A) {
   return h.value();
 }
 
+// Empty ones are equal by their sizes: their data() may be null, which memcmp must not see.
 bool SameDenseBits(const DenseMatrix& a, const DenseMatrix& b) {
   return a.rows() == b.rows() && a.cols() == b.cols() &&
-         std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double)) == 0;
+         (a.size() == 0 || std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double)) == 0);
 }
 
 bool SameVectorBits(const Vector& a, const Vector& b) {
   return a.size() == b.size() &&
-         std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double)) == 0;
+         (a.size() == 0 || std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double)) == 0);
 }
 
 // The matrix table of an AVI set: every distinct M, H and E written once (hash, then bits).
