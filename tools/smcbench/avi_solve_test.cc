@@ -12,6 +12,8 @@
 #include <string>
 #include <vector>
 
+#include "bench/replay/avi_replay.h"
+#include "bench/run/bench_plan.h"
 #include "problems/avi_library/avi_suite.h"
 #include "problems/io/avi_file.h"
 #include "problems/library/problem_set_io.h"
@@ -250,6 +252,15 @@ TEST(SolveAviCli, TheAviSuiteWrittenAsOneSetReadsBackAndIsListed) {
   const CliRun certify = RunSmcbench({"library", file, "--certify", dir.File("out.smcps")});
   EXPECT_NE(certify.code, 0);
   EXPECT_THAT(certify.err, HasSubstr("--certify and --export-relay take a set of box-MLCPs"));
+  // `bench --suite FILE.smcps` plans the AVI suite read from the file: the same problems, by their checksum.
+  BenchRequest request;
+  request.suites = {file};
+  request.solvers = {"lemke"};
+  request.quick = true;
+  const BenchPlan plan = MakeBenchPlan(request);
+  ASSERT_EQ(plan.avi_suites.size(), 1u);
+  EXPECT_TRUE(plan.suites.empty());
+  EXPECT_EQ(AviProblemSetChecksum(plan.avi_suites[0]), AviProblemSetChecksum(suite));
   // Not yet solved as a set: refused with what to do instead.
   const CliRun solve = RunSmcbench({"solve", file, "--solver", "lemke"});
   EXPECT_NE(solve.code, 0);
