@@ -806,7 +806,9 @@ void CheckAviForWriting(const AviLibraryProblem& p, const std::string& set_name)
          std::to_string(static_cast<int>(r.strictly_monotone)));
   }
   const auto certificate = static_cast<std::uint8_t>(r.reduced.certificate);
-  if (!KnownCertificate(certificate)) fail("reference certificate has the invalid value " + std::to_string(certificate));
+  if (!KnownCertificate(certificate)) {
+    fail("reference certificate has the invalid value " + std::to_string(certificate));
+  }
   if (std::isnan(r.reduced.condition) || r.reduced.condition < 0.0) {
     fail("reference condition is " + NumberText(r.reduced.condition) + " (must be >= 0, +inf allowed)");
   }
