@@ -10,6 +10,7 @@
 
 #include "bench/replay/mcp_replay.h"
 #include "bench/run/warm_sequences.h"
+#include "problems/library/problem_set_io.h"
 #include "problems/library/references.h"
 #include "problems/avi_library/avi_suite.h"
 #include "problems/mcp/mcp_suite.h"
@@ -120,6 +121,25 @@ AviProblemSet BuildAviBenchSuite(bool quick, std::string* line) {
   return set;
 }
 
+// A file whose header says it holds a set of AVIs (false for anything else: the box reader then judges it).
+bool IsAviSetFile(const std::string& name) {
+  std::error_code ec;
+  if (!fs::is_regular_file(name, ec)) return false;
+  try {
+    return ReadProblemSetKind(name) == ProblemSetKind::kAvi;
+  } catch (const InvalidInputError&) {
+    return false;
+  }
+}
+
+// A set of AVIs frozen to a file (`smcbench library --write-suite avi FILE.smcps`), with its references as written.
+AviProblemSet ReadAviBenchSuite(const std::string& path, std::string* line) {
+  AviProblemSet set = ReadAviProblemSetFile(path);
+  set.Validate();
+  *line = "suite " + set.name + " (" + std::to_string(set.problems.size()) + " AVIs, read from " + path + ")";
+  return set;
+}
+
 }  // namespace
 
 bool IncludesStepperStudy(const std::vector<std::string>& suite_names, StepperStudyChoice choice) {
@@ -189,6 +209,8 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
       plan.mcp_suites.push_back(BuildMcpBenchSuite(request.quick, &line));
     } else if (IsAviSuiteName(name)) {
       plan.avi_suites.push_back(BuildAviBenchSuite(request.quick, &line));
+    } else if (IsAviSetFile(name)) {
+      plan.avi_suites.push_back(ReadAviBenchSuite(name, &line));
     } else {
       plan.suites.push_back(BuildBoxSuite(name, request, &line));
     }
@@ -205,7 +227,7 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
   if (request.warm) {
     std::size_t box = 0;
     for (const std::string& name : plan.suite_names) {
-      if (IsMcpSuiteName(name) || IsAviSuiteName(name)) continue;
+      if (IsMcpSuiteName(name) || IsAviSuiteName(name) || IsAviSetFile(name)) continue;
       const ProblemSet& set = plan.suites[box++];
       const bool is_file =
           std::find(std::begin(kBenchSuiteNames), std::end(kBenchSuiteNames), name) == std::end(kBenchSuiteNames);

@@ -34,13 +34,32 @@ std::string Lower(std::string s) {
 
 std::string Index(Eigen::Index i) { return "[" + std::to_string(i) + "]"; }
 
+// Control bytes as \xNN (a key of the file in a one-line message).
+std::string Escaped(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    const auto u = static_cast<unsigned char>(c);
+    if (u >= 0x20 && u != 0x7f) {
+      out += c;
+    } else {
+      static const char kHex[] = "0123456789abcdef";
+      out += "\\x";
+      out += kHex[u >> 4];
+      out += kHex[u & 15];
+    }
+  }
+  return out;
+}
+
 // Every message starts with the file and the field, so a user with many files knows where to look.
 class Reader {
  public:
   explicit Reader(std::string source) : source_(std::move(source)) {}
 
+  // field may be a key taken from the file: its control bytes are escaped, since a message must stay one line.
   [[noreturn]] void Fail(const std::string& field, const std::string& what) const {
-    throw InvalidInputError("AVI file '" + source_ + "': " + (field.empty() ? "" : "\"" + field + "\": ") + what);
+    throw InvalidInputError("AVI file '" + source_ + "': " + (field.empty() ? "" : "\"" + Escaped(field) + "\": ") +
+                            what);
   }
 
   double Number(const json& value, const std::string& field) const {
@@ -80,7 +99,8 @@ class Reader {
       Fail(field, "has " + std::to_string(row_count) + " rows, expected " + std::to_string(expected_rows) + " (" +
                       size_meaning + ")");
     }
-    DenseMatrix A(row_count, cols);
+    // Every row's length before the allocation: rows of empty brackets would otherwise claim rows × cols doubles
+    // with a few bytes of text each.
     for (Eigen::Index i = 0; i < row_count; ++i) {
       const std::string row_field = field + Index(i);
       const json& row = Array(rows[static_cast<std::size_t>(i)], row_field);
@@ -88,12 +108,23 @@ class Reader {
         Fail(row_field, "has " + std::to_string(row.size()) + " entries, expected " + std::to_string(cols) +
                             " (n = the size of q): a ragged matrix");
       }
-      for (Eigen::Index j = 0; j < cols; ++j) A(i, j) = Number(row[static_cast<std::size_t>(j)], row_field + Index(j));
+    }
+    DenseMatrix A(row_count, cols);
+    for (Eigen::Index i = 0; i < row_count; ++i) {
+      const json& row = rows[static_cast<std::size_t>(i)];
+      for (Eigen::Index j = 0; j < cols; ++j) {
+        A(i, j) = Number(row[static_cast<std::size_t>(j)], field + Index(i) + Index(j));
+      }
     }
     return A;
   }
 
+  // An array or object is named by its size, never dumped: dump() recurses once per nesting level, and a file of
+  // nested brackets would overflow the stack.
   static std::string Describe(const json& value) {
+    if (value.is_array() || value.is_object()) {
+      return std::string(value.type_name()) + " of " + std::to_string(value.size()) + " entries";
+    }
     std::string text = value.dump();
     if (text.size() > 40) text = text.substr(0, 37) + "...";
     return std::string(value.type_name()) + " " + text;

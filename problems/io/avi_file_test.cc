@@ -1,5 +1,6 @@
 // The AVI file: a bit-for-bit round trip of random AVIs full of awkward doubles, every error path of the reader
-// (each message names the file and the field), and the hand-written example of docs/formats.md read and solved.
+// (each message names the file and the field), the hand-written example of docs/formats.md read and solved, and
+// the regressions of hostile inputs (a key with a control byte, deep nesting, rows that claim a huge matrix).
 #include "problems/io/avi_file.h"
 
 #include <gmock/gmock.h>
@@ -20,6 +21,7 @@
 #include "solvers/avi/avi_solver.h"
 #include "solvers/generators/seeded_random.h"
 #include "solvers/registry/registry.h"
+#include "tests/support/malloc_counter.h"
 
 namespace smcbench {
 namespace {
@@ -274,6 +276,53 @@ TEST(AviFile, ExtensionAndDefaultName) {
   std::ofstream(path) << Edited("\"name\": \"twisting-projection\",", "");
   EXPECT_EQ(ReadAviFile(path).avi.name(), "my-problem");
   fs::remove_all(dir);
+}
+
+
+// ------------------------------------------------------------------------------------------------------------
+// Regressions: the first found by tests/fuzz/avi_fuzzer.cc, the other two while writing it (their inputs are
+// larger than the fuzzer's 4 KB)
+
+TEST(AviFileFuzzRegression, AKeyWithAControlByteGivesAOneLineError) {
+  const std::string message = ErrorOf(R"({"format": "smcbench-avi", "version": 1, "a\nb": 1})");
+  EXPECT_THAT(message, HasSubstr("\"a\\x0ab\": unknown key"));
+  EXPECT_EQ(message.find('\n'), std::string::npos) << message;
+}
+
+TEST(AviFileRegression, DeeplyNestedArraysAreAnErrorNotAStackOverflow) {
+  const std::size_t depth = 1000000;
+  const std::string text = R"({"format": "smcbench-avi", "version": 1, "M": [[1]], "H": [], "K": [], "q": [)" +
+                           std::string(depth, '[') + std::string(depth, ']') + "]}";
+  EXPECT_THAT(ErrorOf(text), HasSubstr("\"q[0]\": expected a number, got array of 1 entries"));
+}
+
+TEST(AviFileRegression, RowsOfEmptyBracketsAreRefusedBeforeTheMatrixIsAllocated) {
+  const int n = 4000;  // M would take 128 MB
+  std::string zeros, empty_rows;
+  for (int i = 0; i < n; ++i) {
+    zeros += i ? ", 0" : "0";
+    empty_rows += i ? ", []" : "[]";
+  }
+  const std::string text = R"({"format": "smcbench-avi", "version": 1, "H": [], "K": [], "q": [)" + zeros +
+                           "], \"M\": [" + empty_rows + "]}";
+  std::string message;
+  const unsigned long largest = test_support::LargestMalloc([&] { message = ErrorOf(text); });
+  EXPECT_THAT(message, HasSubstr("\"M[0]\": has 0 entries, expected 4000"));
+  EXPECT_LT(largest, 1ul << 20) << "the reader allocated " << largest << " bytes before checking the rows";
+}
+
+
+// Found by tests/fuzz/library_fuzzer.cc in a set of AVIs, which builds each AVI as this reader does: a row whose
+// ratio b/a overflows to +inf (K = 1e305 over a coefficient 1e-6) was compared with the initial +inf and read the
+// basis at index -1 in the phase-1 simplex that checks P is not empty (caught by UBSan in the ASan build).
+TEST(AviFileFuzzRegression, AnOverflowingRatioInThePhaseOneSimplexIsHandled) {
+  const AviFile file = ParseAviText(R"({"format": "smcbench-avi", "version": 1, "M": [[1, 0], [0, 1]],
+      "q": [0, 0], "H": [[1e-6, 1], [1, 0]], "K": [1e305, 0]})",
+                                    "overflow.avi.json");
+  // P = {1e-6 λ₁ + λ₂ ≥ 1e305, λ₁ ≥ 0} is not empty and not bounded: no solution is promised.
+  EXPECT_GE(file.avi.H().row(0).dot(file.avi.feasible_point()), 1e305 * (1 - 1e-9));
+  EXPECT_GE(file.avi.feasible_point()[0], 0.0);
+  EXPECT_EQ(file.expected, ExpectedOutcome::kUnknown);
 }
 
 }  // namespace

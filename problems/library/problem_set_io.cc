@@ -20,6 +20,7 @@
 #include <utility>
 #include <vector>
 
+#include "problems/avi_library/avi_library.h"
 #include "solvers/core/number_text.h"
 
 namespace smcbench {
@@ -28,19 +29,24 @@ namespace {
 namespace fs = std::filesystem;
 
 constexpr unsigned char kMagic[8] = {0x89, 'S', 'M', 'C', 'P', 'S', '\r', '\n'};
-constexpr std::size_t kHeaderBytes = 16;        // magic, u32 version, u32 reserved
+constexpr std::size_t kHeaderBytes = 16;        // magic, u32 version, u32 reserved (version 4: set kind)
 constexpr std::size_t kRecordHeaderBytes = 9;   // u8 kind, u64 body length
 constexpr std::uint64_t kEndBodyBytes = 24;     // u64 matrices, u64 problems, u64 checksum
 
-// Kind 5 (the bounds table) exists from version 3 on.
+// Kind 5 (the bounds table) exists from version 3 on, kind 6 from version 4 on and only in a set of AVIs.
 enum RecordKind : std::uint8_t {
   kSetRecord = 1,
   kMatrixRecord = 2,
   kProblemRecord = 3,
   kEndRecord = 4,
-  kBoundsRecord = 5
+  kBoundsRecord = 5,
+  kAviRecord = 6
 };
-enum MatrixStorage : std::uint8_t { kDenseStorage = 0, kSparseStorage = 1 };
+// Storage 2 (version 4) is the only one of a set of AVIs: H and E are not square, and an AffineVI is dense.
+enum MatrixStorage : std::uint8_t { kDenseStorage = 0, kSparseStorage = 1, kDenseRectangularStorage = 2 };
+// An AVI record's flags: bit 0, the AffineVI's name equals the id (not stored); bit 1, λ* is the only solution's λ.
+enum AviFlags : std::uint8_t { kAviNameIsId = 1, kAviLambdaUnique = 2 };
+constexpr std::uint8_t kKnownAviFlags = kAviNameIsId | kAviLambdaUnique;
 // Bit 2: the BoxMLCP's name equals the id and is not stored (captures name their problems by id). Version 3:
 // bit 3, l and u are an entry of the bounds table (u64 index) instead of 2n doubles; bit 4, source, tags and
 // metadata continue the previous problem's (stored: an empty source, no tags, the metadata entries that differ).
@@ -67,6 +73,7 @@ const char* KindName(std::uint8_t kind) {
     case kProblemRecord: return "problem record";
     case kEndRecord: return "end record";
     case kBoundsRecord: return "bounds record";
+    case kAviRecord: return "AVI record";
   }
   return "record";
 }
@@ -319,6 +326,9 @@ struct ProblemSetWriter::Impl {
   std::unordered_map<std::uint64_t, std::vector<std::list<BoundsEntry>::iterator>> bounds_by_hash;
   bool index_bounds = false;
   std::optional<InheritedFields> previous;  // of the last problem written
+  // The header's version and set kind: a set of box-MLCPs keeps version 3 (its bytes as before version 4).
+  std::uint32_t version = kProblemSetFormatVersion;
+  ProblemSetKind kind = ProblemSetKind::kBoxMlcp;
 
   struct CacheEntry {
     std::uint64_t hash;
@@ -355,8 +365,8 @@ struct ProblemSetWriter::Impl {
     if (set_name.size() > kMaxString || description.size() > kMaxString) Fail("set name or description too long");
     char header[kHeaderBytes];
     std::memcpy(header, kMagic, sizeof kMagic);
-    StoreLE(header + 8, kProblemSetFormatVersion, 4);
-    StoreLE(header + 12, 0, 4);
+    StoreLE(header + 8, version, 4);
+    StoreLE(header + 12, static_cast<std::uint32_t>(kind), 4);
     Emit(header, sizeof header, true);
     body.clear();
     Encoder e(&body);
@@ -716,6 +726,200 @@ void WriteProblemSetFile(const ProblemSet& set, const std::string& path) {
 }
 
 // ------------------------------------------------------------------------------------------------------------
+// Sets of AVIs (version 4, set kind 1)
+
+namespace {
+
+std::uint64_t DenseHash(const DenseMatrix& A) {
+  Fnv1a64 h;
+  const Eigen::Index rows = A.rows(), cols = A.cols();
+  h.Update(&rows, sizeof rows);
+  h.Update(&cols, sizeof cols);
+  h.Update(A.data(), static_cast<std::size_t>(A.size()) * sizeof(double));
+  return h.value();
+}
+
+// Empty ones are equal by their sizes: their data() may be null, which memcmp must not see.
+bool SameDenseBits(const DenseMatrix& a, const DenseMatrix& b) {
+  return a.rows() == b.rows() && a.cols() == b.cols() &&
+         (a.size() == 0 || std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double)) == 0);
+}
+
+bool SameVectorBits(const Vector& a, const Vector& b) {
+  return a.size() == b.size() &&
+         (a.size() == 0 || std::memcmp(a.data(), b.data(), static_cast<std::size_t>(a.size()) * sizeof(double)) == 0);
+}
+
+// The matrix table of an AVI set: every distinct M, H and E written once (hash, then bits).
+class DenseTableWriter {
+ public:
+  explicit DenseTableWriter(ProblemSetWriter::Impl* w) : w_(w) {}
+
+  std::uint64_t Index(const DenseMatrix& A) {
+    auto& bucket = table_[DenseHash(A)];
+    for (const auto& [index, other] : bucket) {
+      if (SameDenseBits(*other, A)) return index;
+    }
+    std::string& body = w_->body;
+    body.clear();
+    body.reserve(17 + static_cast<std::size_t>(A.size()) * 8);
+    Encoder e(&body);
+    e.U8(kDenseRectangularStorage);
+    e.U64(static_cast<std::uint64_t>(A.rows()));
+    e.U64(static_cast<std::uint64_t>(A.cols()));
+    e.F64s(A.data(), static_cast<std::size_t>(A.size()));  // column-major, Eigen's default
+    w_->WriteRecord(kMatrixRecord, body);
+    const std::uint64_t index = w_->matrices++;
+    bucket.emplace_back(index, &A);
+    return index;
+  }
+
+ private:
+  ProblemSetWriter::Impl* w_;
+  std::unordered_map<std::uint64_t, std::vector<std::pair<std::uint64_t, const DenseMatrix*>>> table_;
+};
+
+// What AviProblemSet::Validate does not check and the reader refuses.
+void CheckAviForWriting(const AviLibraryProblem& p, const std::string& set_name) {
+  const std::string who = "problem set '" + QuoteForMessage(set_name) + "': AVI '" + QuoteForMessage(p.id) + "'";
+  const auto fail = [&](const std::string& what) { throw InvalidInputError(who + ": " + what); };
+  const AffineVI& avi = *p.problem;
+  const auto n = static_cast<std::uint64_t>(avi.size()), m = static_cast<std::uint64_t>(avi.inequality_count()),
+             equalities = static_cast<std::uint64_t>(avi.equality_count());
+  if (n + m + equalities > static_cast<std::uint64_t>(std::numeric_limits<int>::max())) {
+    fail("n + m + p is above 2^31 - 1");
+  }
+  bool long_string = p.id.size() > kMaxString || p.source.size() > kMaxString || avi.name().size() > kMaxString ||
+                     p.tags.size() > kMaxString || p.metadata.size() > kMaxString;
+  for (const auto& t : p.tags) long_string = long_string || t.size() > kMaxString;
+  for (const auto& [k, v] : p.metadata) long_string = long_string || k.size() > kMaxString || v.size() > kMaxString;
+  if (long_string) fail("a string or list is longer than 2^32 - 1");
+  if (static_cast<std::uint8_t>(p.expected) > 2) {
+    fail("expected outcome has the invalid value " + std::to_string(static_cast<int>(p.expected)));
+  }
+  if (p.expected == ExpectedOutcome::kInfeasible && avi.boundedness() == PolytopeBoundedness::kBounded) {
+    fail("expected infeasible, but P is bounded, so the AVI has a solution (Hartman-Stampacchia)");
+  }
+  const AviReference& r = p.reference;
+  if (static_cast<std::uint8_t>(r.strictly_monotone) > 2) {
+    fail("reference strictly_monotone has the invalid value " +
+         std::to_string(static_cast<int>(r.strictly_monotone)));
+  }
+  const auto certificate = static_cast<std::uint8_t>(r.reduced.certificate);
+  if (!KnownCertificate(certificate)) {
+    fail("reference certificate has the invalid value " + std::to_string(certificate));
+  }
+  if (std::isnan(r.reduced.condition) || r.reduced.condition < 0.0) {
+    fail("reference condition is " + NumberText(r.reduced.condition) + " (must be >= 0, +inf allowed)");
+  }
+  if (r.verified()) {
+    const Vector& z = r.reduced.z;
+    if (static_cast<std::uint64_t>(z.size()) != n + m + equalities || !z.allFinite()) {
+      fail("reference z* has " + std::to_string(z.size()) + " entries (n + m + p = " +
+           std::to_string(n + m + equalities) + " expected) or one that is not finite");
+    }
+    // λ* is stored once, as the head of z* (SplitReducedSolution), so it must be exactly that.
+    if (!SameVectorBits(r.solution.lambda, z.head(static_cast<Eigen::Index>(n)))) {
+      fail("reference lambda is not the first n entries of z* bit for bit");
+    }
+    if (static_cast<std::uint64_t>(r.solution.mu.size()) != m || !r.solution.mu.allFinite() ||
+        static_cast<std::uint64_t>(r.solution.nu.size()) != equalities || !r.solution.nu.allFinite()) {
+      fail("reference mu must have m and nu p finite entries");
+    }
+  } else {
+    if (r.reduced.z.size() != 0 || r.solution.lambda.size() != 0 || r.solution.mu.size() != 0 ||
+        r.solution.nu.size() != 0) {
+      fail("reference certificate '" + std::string(ToString(r.reduced.certificate)) +
+           "' verified no solution but z* or lambda, mu, nu is set");
+    }
+    if (r.lambda_unique) fail("reference lambda_unique without a verified solution");
+  }
+}
+
+}  // namespace
+
+void WriteAviProblemSet(const AviProblemSet& set, std::ostream& out) {
+  set.Validate();
+  for (const AviLibraryProblem& p : set.problems) CheckAviForWriting(p, set.name);
+  ProblemSetWriter::Impl w;
+  w.out = &out;
+  w.name = set.name;
+  w.version = kAviProblemSetFormatVersion;
+  w.kind = ProblemSetKind::kAvi;
+  w.Begin(set.name, set.description);
+  DenseTableWriter table(&w);
+  for (const AviLibraryProblem& p : set.problems) {
+    const AffineVI& avi = *p.problem;
+    const auto n = static_cast<std::size_t>(avi.size()), m = static_cast<std::size_t>(avi.inequality_count()),
+               equalities = static_cast<std::size_t>(avi.equality_count());
+    // The matrices first: a record may refer only to matrices written before it.
+    const std::uint64_t M_index = table.Index(avi.M());
+    const std::uint64_t H_index = m > 0 ? table.Index(avi.H()) : 0;
+    const std::uint64_t E_index = equalities > 0 ? table.Index(avi.E()) : 0;
+    std::string& body = w.body;
+    body.clear();
+    body.reserve(128 + p.id.size() + p.source.size() + (3 * n + 3 * m + 3 * equalities) * 8);
+    Encoder e(&body);
+    e.Str(p.id);
+    e.Str(p.source);
+    const bool name_is_id = avi.name() == p.id;
+    e.U8(static_cast<std::uint8_t>((name_is_id ? kAviNameIsId : 0) |
+                                   (p.reference.lambda_unique ? kAviLambdaUnique : 0)));
+    if (!name_is_id) e.Str(avi.name());
+    e.U64(n);
+    e.U64(M_index);
+    e.F64s(avi.q().data(), n);
+    e.U64(m);
+    if (m > 0) e.U64(H_index);
+    e.F64s(avi.K().data(), m);
+    e.U64(equalities);
+    if (equalities > 0) e.U64(E_index);
+    e.F64s(avi.f().data(), equalities);
+    e.U8(static_cast<std::uint8_t>(p.expected));
+    e.U32(static_cast<std::uint32_t>(p.tags.size()));
+    for (const auto& t : p.tags) e.Str(t);
+    e.U32(static_cast<std::uint32_t>(p.metadata.size()));
+    for (const auto& [k, v] : p.metadata) {
+      e.Str(k);
+      e.Str(v);
+    }
+    const AviReference& r = p.reference;
+    e.U8(static_cast<std::uint8_t>(r.strictly_monotone));
+    e.U8(static_cast<std::uint8_t>(r.reduced.certificate));
+    e.F64(r.reduced.condition);
+    if (r.verified()) {
+      e.F64s(r.reduced.z.data(), n + m + equalities);
+      e.F64s(r.solution.mu.data(), m);
+      e.F64s(r.solution.nu.data(), equalities);
+    }
+    w.WriteRecord(kAviRecord, body);
+    ++w.problems;
+  }
+  w.Finish();
+}
+
+void WriteAviProblemSetFile(const AviProblemSet& set, const std::string& path) {
+  const std::string partial = path + ".partial";
+  try {
+    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
+    if (!out) {
+      throw InvalidInputError("problem set '" + path + "': cannot open '" + partial +
+                              "' for writing: " + std::generic_category().message(errno));
+    }
+    WriteAviProblemSet(set, out);
+    out.close();
+    if (!out) throw InvalidInputError("problem set '" + path + "': closing '" + partial + "' failed");
+    std::error_code ec;
+    fs::rename(partial, path, ec);
+    if (ec) throw InvalidInputError("problem set '" + path + "': renaming '" + partial + "' failed: " + ec.message());
+  } catch (...) {
+    std::error_code ec;
+    fs::remove(partial, ec);
+    throw;
+  }
+}
+
+// ------------------------------------------------------------------------------------------------------------
 // Reading
 
 namespace {
@@ -801,7 +1005,8 @@ TableMatrix DecodeMatrix(Decoder& d) {
   const std::size_t storage_at = d.pos();
   const std::uint8_t storage = d.U8("storage");
   if (storage != kDenseStorage && storage != kSparseStorage) {
-    d.FailAt(storage_at, "storage", "unknown storage " + std::to_string(storage) + " (0 dense, 1 sparse CSC)");
+    d.FailAt(storage_at, "storage", "unknown storage " + std::to_string(storage) +
+                                            " (0 dense, 1 sparse CSC; 2, dense rows x cols, only in a set of AVIs)");
   }
   const std::size_t n_at = d.pos();
   const std::uint64_t n = d.U64("n");
@@ -1075,15 +1280,22 @@ struct Decoded {
   ProblemSetFileInfo info;
 };
 
-Decoded Decode(std::string_view data, const std::string& file) {
-  const auto fail = [&](std::size_t offset, const std::string& what) -> void {
-    throw InvalidInputError("problem set '" + file + "': " + what + " at byte " + std::to_string(offset));
-  };
-  if (data.size() > kMaxProblemSetFileBytes) {
-    fail(0, "file of " + std::to_string(data.size()) + " bytes exceeds the limit of " +
-                std::to_string(kMaxProblemSetFileBytes));
-  }
-  // ---- header
+[[noreturn]] void FailAtByte(const std::string& file, std::size_t offset, const std::string& what) {
+  throw InvalidInputError("problem set '" + file + "': " + what + " at byte " + std::to_string(offset));
+}
+
+const char* KindText(ProblemSetKind kind) {
+  return kind == ProblemSetKind::kAvi ? "a set of AVIs (set kind 1)" : "a set of box-MLCPs (set kind 0)";
+}
+
+struct Header {
+  std::uint32_t version = 0;
+  ProblemSetKind kind = ProblemSetKind::kBoxMlcp;
+};
+
+// The 16-byte header: magic, a readable version, and the reserved field (0 before version 4, the set kind after).
+Header CheckHeader(std::string_view data, const std::string& file) {
+  const auto fail = [&](std::size_t offset, const std::string& what) { FailAtByte(file, offset, what); };
   if (data.empty()) fail(0, "empty file");
   if (data.size() < sizeof kMagic || std::memcmp(data.data(), kMagic, sizeof kMagic) != 0) {
     if (data.size() < sizeof kMagic && std::memcmp(data.data(), kMagic, data.size()) == 0) {
@@ -1096,22 +1308,44 @@ Decoded Decode(std::string_view data, const std::string& file) {
     fail(data.size(), "truncated: " + std::to_string(data.size()) + " byte(s), shorter than the " +
                           std::to_string(kHeaderBytes) + "-byte header");
   }
-  Decoded out;
-  const auto version = static_cast<std::uint32_t>(LoadLE(data.data() + 8, 4));
-  if (version < kOldestReadableProblemSetFormatVersion || version > kProblemSetFormatVersion) {
-    fail(8, "format version " + std::to_string(version) + " is not supported: this build reads versions " +
+  Header h;
+  h.version = static_cast<std::uint32_t>(LoadLE(data.data() + 8, 4));
+  if (h.version < kOldestReadableProblemSetFormatVersion || h.version > kNewestReadableProblemSetFormatVersion) {
+    fail(8, "format version " + std::to_string(h.version) + " is not supported: this build reads versions " +
                 std::to_string(kOldestReadableProblemSetFormatVersion) + " to " +
-                std::to_string(kProblemSetFormatVersion) +
-                (version > kProblemSetFormatVersion ? " (the file was written by a newer smcbench)" : ""));
+                std::to_string(kNewestReadableProblemSetFormatVersion) +
+                (h.version > kNewestReadableProblemSetFormatVersion ? " (the file was written by a newer smcbench)"
+                                                                    : ""));
   }
-  out.info.version = version;
-  out.info.bytes = data.size();
   const std::uint64_t reserved = LoadLE(data.data() + 12, 4);
-  if (reserved != 0) fail(12, "reserved header field is " + Hex(reserved) + ", expected 0");
+  if (h.version < 4) {
+    if (reserved != 0) fail(12, "reserved header field is " + Hex(reserved) + ", expected 0");
+  } else if (reserved > static_cast<std::uint32_t>(ProblemSetKind::kAvi)) {
+    fail(12, "set kind " + std::to_string(reserved) + " is unknown (0 box-MLCPs, 1 AVIs)");
+  } else {
+    h.kind = static_cast<ProblemSetKind>(reserved);
+  }
+  return h;
+}
+
+struct Frame {
+  Header header;
+  std::size_t end_at = 0;  // offset of the end record
+};
+
+// Header, framing (the records walked by their lengths only, up to the end record) and checksum, before any field
+// is interpreted.
+Frame CheckFrame(std::string_view data, const std::string& file) {
+  const auto fail = [&](std::size_t offset, const std::string& what) { FailAtByte(file, offset, what); };
+  if (data.size() > kMaxProblemSetFileBytes) {
+    fail(0, "file of " + std::to_string(data.size()) + " bytes exceeds the limit of " +
+                std::to_string(kMaxProblemSetFileBytes));
+  }
+  Frame frame;
+  frame.header = CheckHeader(data, file);
 
   // ---- framing: walk the records to the end record, checking only their lengths.
   std::size_t pos = kHeaderBytes;
-  std::size_t end_at = 0;
   std::uint64_t records = 0;
   while (true) {
     if (pos == data.size()) {
@@ -1130,7 +1364,7 @@ Decoded Decode(std::string_view data, const std::string& file) {
     }
     ++records;
     if (kind == kEndRecord) {
-      end_at = pos;
+      frame.end_at = pos;
       if (length != kEndBodyBytes) {
         fail(pos, "end record has " + std::to_string(length) + " byte(s), expected " + std::to_string(kEndBodyBytes));
       }
@@ -1149,6 +1383,21 @@ Decoded Decode(std::string_view data, const std::string& file) {
     fail(data.size() - 8, "checksum mismatch (stored " + Hex(stored) + ", computed " + Hex(computed) +
                               "): the file is corrupt");
   }
+  return frame;
+}
+
+Decoded Decode(std::string_view data, const std::string& file) {
+  const auto fail = [&](std::size_t offset, const std::string& what) { FailAtByte(file, offset, what); };
+  const Frame frame = CheckFrame(data, file);
+  const std::uint32_t version = frame.header.version;
+  const std::size_t end_at = frame.end_at;
+  if (frame.header.kind != ProblemSetKind::kBoxMlcp) {
+    fail(12, std::string(KindText(frame.header.kind)) + ", not of box-MLCPs (read it as an AVI set)");
+  }
+  Decoded out;
+  out.info.version = version;
+  out.info.kind = frame.header.kind;
+  out.info.bytes = data.size();
 
   // ---- records
   std::vector<TableMatrix> table;
@@ -1157,7 +1406,7 @@ Decoded Decode(std::string_view data, const std::string& file) {
   std::uint64_t inherited = 0;  // bytes of text the problems take from the one before them (version 3)
   std::unordered_set<std::string> ids;
   bool have_set = false;
-  pos = kHeaderBytes;
+  std::size_t pos = kHeaderBytes;
   while (pos < end_at) {
     const auto kind = static_cast<std::uint8_t>(data[pos]);
     const std::size_t body = pos + kRecordHeaderBytes;
@@ -1210,7 +1459,7 @@ Decoded Decode(std::string_view data, const std::string& file) {
       }
       default:
         fail(pos, "unknown record kind " + std::to_string(kind) +
-                      " (this build knows 1 set, 2 matrix, 3 problem, 4 end, 5 bounds)");
+                      " (this build knows 1 set, 2 matrix, 3 problem, 4 end, 5 bounds; 6 AVI in a set of AVIs)");
     }
     pos = body + length;
   }
@@ -1221,6 +1470,233 @@ Decoded Decode(std::string_view data, const std::string& file) {
     fail(end_at, "end record counts " + std::to_string(matrices) + " matrices and " + std::to_string(problems) +
                      " problems but the file holds " + std::to_string(table.size()) + " and " +
                      std::to_string(out.set.problems.size()));
+  }
+  out.info.matrices = matrices;
+  out.info.problems = problems;
+  return out;
+}
+
+// ---- sets of AVIs
+
+// A matrix record of an AVI set: storage 2, rows × cols, finite values (column-major).
+DenseMatrix DecodeAviMatrix(Decoder& d) {
+  const std::size_t storage_at = d.pos();
+  const std::uint8_t storage = d.U8("storage");
+  if (storage != kDenseRectangularStorage) {
+    d.FailAt(storage_at, "storage",
+             "storage " + std::to_string(storage) + " in a set of AVIs (its matrices are 2, dense rows x cols)");
+  }
+  const std::size_t rows_at = d.pos();
+  const std::uint64_t rows = d.U64("rows");
+  const std::size_t cols_at = d.pos();
+  const std::uint64_t cols = d.U64("cols");
+  if (rows < 1 || rows > kMaxDimension) {
+    d.FailAt(rows_at, "rows", std::to_string(rows) + " is outside [1, " + std::to_string(kMaxDimension) + "]");
+  }
+  if (cols < 1 || cols > kMaxDimension) {
+    d.FailAt(cols_at, "cols", std::to_string(cols) + " is outside [1, " + std::to_string(kMaxDimension) + "]");
+  }
+  // rows·cols values, checked without forming the product (it may overflow).
+  if (rows > d.remaining() / 8 / cols) {
+    d.Fail("values", "a dense " + std::to_string(rows) + "x" + std::to_string(cols) + " matrix needs more than the " +
+                         std::to_string(d.remaining()) + " byte(s) left in the record (corrupt size field)");
+  }
+  DenseMatrix A(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
+  d.F64s(A.data(), static_cast<std::size_t>(rows * cols), [&](std::size_t i, double v, std::size_t at) {
+    if (!std::isfinite(v)) {
+      d.FailAt(at, "(" + std::to_string(i % rows) + "," + std::to_string(i / rows) + ")",
+               std::isnan(v) ? "is NaN" : "is infinite");
+    }
+  });
+  d.ExpectEnd();
+  return A;
+}
+
+// A row count (m or p) of an AVI record: at most 2^31 − 1.
+std::uint64_t DecodeRowCount(Decoder& d, const char* field) {
+  const std::size_t at = d.pos();
+  const std::uint64_t count = d.U64(field);
+  if (count > kMaxDimension) {
+    d.FailAt(at, field, std::to_string(count) + " exceeds " + std::to_string(kMaxDimension));
+  }
+  return count;
+}
+
+// A matrix index of an AVI record, checked against the table and the shape the record gives.
+const DenseMatrix& DecodeAviMatrixIndex(Decoder& d, const std::vector<DenseMatrix>& table, const char* field,
+                                        std::uint64_t rows, std::uint64_t cols) {
+  const std::size_t at = d.pos();
+  const std::uint64_t index = d.U64(field);
+  if (index >= table.size()) {
+    d.FailAt(at, field, "refers to matrix " + std::to_string(index) + " but only " + std::to_string(table.size()) +
+                            " precede this AVI");
+  }
+  const DenseMatrix& A = table[static_cast<std::size_t>(index)];
+  if (static_cast<std::uint64_t>(A.rows()) != rows || static_cast<std::uint64_t>(A.cols()) != cols) {
+    d.FailAt(at, field, "matrix " + std::to_string(index) + " is " + std::to_string(A.rows()) + "x" +
+                            std::to_string(A.cols()) + " but the AVI needs " + std::to_string(rows) + "x" +
+                            std::to_string(cols));
+  }
+  return A;
+}
+
+// count finite doubles into v (the count is checked against the record first).
+void DecodeFiniteVector(Decoder& d, const char* field, std::uint64_t count, Vector* v) {
+  d.Need(count, 8, field);
+  v->resize(static_cast<Eigen::Index>(count));
+  d.F64s(v->data(), static_cast<std::size_t>(count), [&](std::size_t i, double x, std::size_t at) {
+    if (!std::isfinite(x)) d.FailAt(at, Index(field, i), std::isnan(x) ? "is NaN" : "is infinite");
+  });
+}
+
+// *expanded grows by the bytes of M, H and E this AVI owns once read.
+AviLibraryProblem DecodeAvi(Decoder& d, const std::vector<DenseMatrix>& table, std::uint64_t* expanded) {
+  AviLibraryProblem out;
+  out.id = d.Str("id");
+  d.set_where(d.where() + " ('" + QuoteForMessage(out.id) + "')");
+  out.source = d.Str("source");
+  const std::size_t flags_at = d.pos();
+  const std::uint8_t flags = d.U8("flags");
+  if (flags & ~kKnownAviFlags) d.FailAt(flags_at, "flags", "unknown flag bits " + Hex(flags & ~kKnownAviFlags));
+  std::string name = (flags & kAviNameIsId) ? out.id : d.Str("name");
+  const std::size_t n_at = d.pos();
+  const std::uint64_t n = d.U64("n");
+  if (n < 1 || n > kMaxDimension) {
+    d.FailAt(n_at, "n", "n = " + std::to_string(n) + " is outside [1, " + std::to_string(kMaxDimension) + "]");
+  }
+  const DenseMatrix& M = DecodeAviMatrixIndex(d, table, "M index", n, n);
+  Vector q, K, f;
+  DecodeFiniteVector(d, "q", n, &q);
+  const std::uint64_t m = DecodeRowCount(d, "m");
+  const DenseMatrix* H = m > 0 ? &DecodeAviMatrixIndex(d, table, "H index", m, n) : nullptr;
+  DecodeFiniteVector(d, "K", m, &K);
+  const std::uint64_t p = DecodeRowCount(d, "p");
+  const DenseMatrix* E = p > 0 ? &DecodeAviMatrixIndex(d, table, "E index", p, n) : nullptr;
+  DecodeFiniteVector(d, "f", p, &f);
+  if (n + m + p > kMaxDimension) d.Fail("p", "n + m + p exceeds " + std::to_string(kMaxDimension));
+  const std::size_t expected_at = d.pos();
+  const std::uint8_t expected = d.U8("expected");
+  if (expected > 2) {
+    d.FailAt(expected_at, "expected",
+             "value " + std::to_string(expected) + " is not 0 (unknown), 1 (solvable) or 2 (infeasible)");
+  }
+  out.expected = static_cast<ExpectedOutcome>(expected);
+  const std::uint32_t tag_count = d.U32("tag count");
+  d.Need(tag_count, 4, "tags");  // each tag takes at least its 4-byte length
+  out.tags.reserve(tag_count);
+  for (std::uint32_t i = 0; i < tag_count; ++i) out.tags.push_back(d.Str(Index("tag", i)));
+  const std::uint32_t entries = d.U32("metadata count");
+  d.Need(entries, 8, "metadata");
+  for (std::uint32_t i = 0; i < entries; ++i) {
+    const std::size_t at = d.pos();
+    std::string key = d.Str(Index("metadata key", i));
+    std::string value = d.Str(Index("metadata value", i));
+    if (!out.metadata.emplace(std::move(key), std::move(value)).second) {
+      d.FailAt(at, Index("metadata key", i), "key repeated");
+    }
+  }
+  AviReference& r = out.reference;
+  const std::size_t monotone_at = d.pos();
+  const std::uint8_t monotone = d.U8("strictly monotone");
+  if (monotone > 2) {
+    d.FailAt(monotone_at, "strictly monotone",
+             "value " + std::to_string(monotone) + " is not 0 (not decided), 1 (no) or 2 (yes)");
+  }
+  r.strictly_monotone = static_cast<MatrixClassAnswer>(monotone);
+  r.reduced = DecodeReference(d, n + m + p, static_cast<Eigen::Index>(n + m + p));
+  if (r.verified()) {
+    r.solution.lambda = r.reduced.z.head(static_cast<Eigen::Index>(n));
+    DecodeFiniteVector(d, "reference mu", m, &r.solution.mu);
+    DecodeFiniteVector(d, "reference nu", p, &r.solution.nu);
+  } else if (flags & kAviLambdaUnique) {
+    d.FailAt(flags_at, "flags", "bit 1 (lambda* unique) without a verified reference");
+  }
+  r.lambda_unique = (flags & kAviLambdaUnique) != 0;
+  d.ExpectEnd();
+  // In memory every AVI owns its matrices: the table's sharing is bounded as for box sets.
+  *expanded += (n * n + (m + p) * n) * 8;
+  if (*expanded > kMaxExpandedMatrixBytes) {
+    d.FailAt(n_at, "", "the AVIs so far hold " + std::to_string(*expanded) + " bytes of matrix data in memory " +
+                           "(each owns a copy of its shared M, H, E), above the limit of " +
+                           std::to_string(kMaxExpandedMatrixBytes));
+  }
+  try {
+    out.problem = std::make_shared<const AffineVI>(M, std::move(q), H ? *H : DenseMatrix(0, M.cols()), std::move(K),
+                                                   E ? *E : DenseMatrix(0, M.cols()), std::move(f), std::move(name));
+  } catch (const InvalidInputError& e) {
+    d.FailAt(n_at, "", e.what());  // the AffineVI's own checks: a zero row, P empty
+  }
+  if (out.expected == ExpectedOutcome::kInfeasible && r.verified()) {
+    d.FailAt(expected_at, "expected", "is infeasible but the reference is a verified solution");
+  }
+  if (out.expected == ExpectedOutcome::kInfeasible && out.problem->boundedness() == PolytopeBoundedness::kBounded) {
+    d.FailAt(expected_at, "expected", "is infeasible, but P is bounded, so the AVI has a solution");
+  }
+  return out;
+}
+
+struct DecodedAvis {
+  AviProblemSet set;
+  ProblemSetFileInfo info;
+};
+
+DecodedAvis DecodeAvis(std::string_view data, const std::string& file) {
+  const auto fail = [&](std::size_t offset, const std::string& what) { FailAtByte(file, offset, what); };
+  const Frame frame = CheckFrame(data, file);
+  if (frame.header.kind != ProblemSetKind::kAvi) {
+    fail(12, std::string(KindText(frame.header.kind)) + " (format version " + std::to_string(frame.header.version) +
+                 "), not of AVIs");
+  }
+  DecodedAvis out;
+  out.info.version = frame.header.version;
+  out.info.kind = frame.header.kind;
+  out.info.bytes = data.size();
+  std::vector<DenseMatrix> table;
+  std::uint64_t expanded = 0;
+  std::unordered_set<std::string> ids;
+  bool have_set = false;
+  std::size_t pos = kHeaderBytes;
+  while (pos < frame.end_at) {
+    const auto kind = static_cast<std::uint8_t>(data[pos]);
+    const std::size_t body = pos + kRecordHeaderBytes;
+    const auto length = static_cast<std::size_t>(LoadLE(data.data() + pos + 1, 8));
+    if (kind != kSetRecord && !have_set) fail(pos, std::string(KindName(kind)) + " before the set record");
+    switch (kind) {
+      case kSetRecord: {
+        if (have_set) fail(pos, "a second set record");
+        Decoder d(data, body, body + length, file, "set record");
+        out.set.name = d.Str("name");
+        out.set.description = d.Str("description");
+        d.ExpectEnd();
+        have_set = true;
+        break;
+      }
+      case kMatrixRecord: {
+        Decoder d(data, body, body + length, file, "matrix #" + std::to_string(table.size()));
+        table.push_back(DecodeAviMatrix(d));
+        break;
+      }
+      case kAviRecord: {
+        Decoder d(data, body, body + length, file, "AVI #" + std::to_string(out.set.problems.size()));
+        AviLibraryProblem p = DecodeAvi(d, table, &expanded);
+        if (p.id.empty()) fail(body, "AVI #" + std::to_string(out.set.problems.size()) + " has an empty id");
+        if (!ids.insert(p.id).second) fail(body, "duplicate AVI id '" + QuoteForMessage(p.id) + "'");
+        out.set.problems.push_back(std::move(p));
+        break;
+      }
+      default:
+        fail(pos, "record kind " + std::to_string(kind) + " in a set of AVIs (it holds 1 set, 2 matrix, 6 AVI, " +
+                      "4 end)");
+    }
+    pos = body + length;
+  }
+  if (!have_set) fail(frame.end_at, "no set record before the end record");
+  const std::uint64_t matrices = LoadLE(data.data() + frame.end_at + kRecordHeaderBytes, 8);
+  const std::uint64_t problems = LoadLE(data.data() + frame.end_at + kRecordHeaderBytes + 8, 8);
+  if (matrices != table.size() || problems != out.set.problems.size()) {
+    fail(frame.end_at, "end record counts " + std::to_string(matrices) + " matrices and " + std::to_string(problems) +
+                           " AVIs but the file holds " + std::to_string(table.size()) + " and " +
+                           std::to_string(out.set.problems.size()));
   }
   out.info.matrices = matrices;
   out.info.problems = problems;
@@ -1289,6 +1765,29 @@ ProblemSet ReadProblemSetFile(const std::string& path) {
 ProblemSet ReadProblemSetFile(const std::string& path, ProblemSetFileInfo* info) {
   const std::string data = ReadFileBytes(path);
   Decoded d = Decode(data, path);
+  if (info) *info = d.info;
+  return std::move(d.set);
+}
+
+ProblemSetKind ReadProblemSetKind(const std::string& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw InvalidInputError("problem set '" + path + "': is a directory");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) {
+    throw InvalidInputError("problem set '" + path + "': cannot open: " + std::generic_category().message(errno));
+  }
+  char header[kHeaderBytes];
+  in.read(header, sizeof header);
+  return CheckHeader(std::string_view(header, static_cast<std::size_t>(in.gcount())), path).kind;
+}
+
+AviProblemSet ReadAviProblemSetBytes(std::string_view bytes, const std::string& name_for_errors) {
+  return DecodeAvis(bytes, name_for_errors).set;
+}
+
+AviProblemSet ReadAviProblemSetFile(const std::string& path, ProblemSetFileInfo* info) {
+  const std::string data = ReadFileBytes(path);
+  DecodedAvis d = DecodeAvis(data, path);
   if (info) *info = d.info;
   return std::move(d.set);
 }

@@ -18,14 +18,28 @@
 
 namespace smcbench {
 
-// Format version written by this build. Version 2 added each problem's certified reference (certificate,
-// condition, z*); version 1 files are still read, their problems with Certificate::kNone. Version 3 (for
-// captures of long runs) added the bounds table (l and u stored once, like M) and lets a problem continue the
+struct AviProblemSet;  // problems/avi_library/avi_library.h
+
+// What a set holds, stored from version 4 on in the header's reserved field (0 in versions 1 to 3: box-MLCPs).
+// Append-only, explicit values.
+enum class ProblemSetKind : std::uint32_t {
+  kBoxMlcp = 0,  // LibraryProblem (problem_set.h): ReadProblemSet
+  kAvi = 1,      // AviLibraryProblem (problems/avi_library/avi_library.h): ReadAviProblemSet
+};
+
+// Format version of the sets of box-MLCPs this build writes. Version 2 added each problem's certified reference
+// (certificate, condition, z*); version 1 files are still read, their problems with Certificate::kNone. Version 3
+// (for captures of long runs) added the bounds table (l and u stored once, like M) and lets a problem continue the
 // previous one's source, tags and metadata, storing only the entries that differ; a file that uses neither is
 // laid out as version 2, and versions 1 and 2 are still read.
 inline constexpr std::uint32_t kProblemSetFormatVersion = 3;
-// The oldest version this build reads (every version from it to kProblemSetFormatVersion is read).
+// Format version of the sets of AVIs this build writes. Version 4 added the set kind (the header's reserved field)
+// and, in an AVI set, rectangular dense matrices and the AVI record; a set of box-MLCPs is still written as
+// version 3, byte for byte as before (a writer writes the oldest version that can hold its set).
+inline constexpr std::uint32_t kAviProblemSetFormatVersion = 4;
+// The oldest and newest versions this build reads (every version in between is read).
 inline constexpr std::uint32_t kOldestReadableProblemSetFormatVersion = 1;
+inline constexpr std::uint32_t kNewestReadableProblemSetFormatVersion = 4;
 // The customary file extension.
 inline constexpr const char* kProblemSetExtension = ".smcps";
 // Files larger than this (4 GiB) are refused before reading (10⁵ sparse rows with 10 entries each take ~15 MB).
@@ -56,11 +70,29 @@ ProblemSet ReadProblemSetBytes(std::string_view bytes, const std::string& name_f
 // What a file holds besides its problems (for listings; reads and checks the whole file like ReadProblemSet).
 struct ProblemSetFileInfo {
   std::uint32_t version = 0;  // of the file (a version-1 file read by this build reports 1)
+  ProblemSetKind kind = ProblemSetKind::kBoxMlcp;
   std::uint64_t bytes = 0;
   std::uint64_t matrices = 0;  // entries of the matrix table (distinct matrices)
   std::uint64_t problems = 0;
 };
 ProblemSet ReadProblemSetFile(const std::string& path, ProblemSetFileInfo* info);
+
+// The kind of set a file holds, from its 16-byte header alone (magic, version and kind checked; nothing else is
+// read), so that a command can pick the reader. InvalidInputError like the readers' for a bad header.
+ProblemSetKind ReadProblemSetKind(const std::string& path);
+
+// Sets of AVIs (version 4, set kind 1; specification in problems/library/README.md): the same framing, checksum,
+// matrix table (M, H and E, identical matrices stored once, compared bit by bit) and reading discipline as the
+// box sets. WriteAviProblemSet validates the set first (set.Validate(), plus what the reader refuses: a reference
+// whose λ* is not the first n entries of its z*, multipliers of the wrong size, non-finite or out-of-range
+// values, "infeasible" on a bounded P) and throws InvalidInputError naming the problem.
+void WriteAviProblemSet(const AviProblemSet& set, std::ostream& out);
+// Written under "<path>.partial" and renamed at the end, as WriteProblemSetFile.
+void WriteAviProblemSetFile(const AviProblemSet& set, const std::string& path);
+// Every AVI is built as an AffineVI (its own validation: no zero row, P not empty) and owns its matrices. A set of
+// box-MLCPs is refused with a message naming its kind, as ReadProblemSet refuses a set of AVIs.
+AviProblemSet ReadAviProblemSetBytes(std::string_view bytes, const std::string& name_for_errors);
+AviProblemSet ReadAviProblemSetFile(const std::string& path, ProblemSetFileInfo* info = nullptr);
 
 // The checksum of the format (FNV-1a 64) over bytes.
 std::uint64_t ProblemSetChecksum(std::string_view bytes);

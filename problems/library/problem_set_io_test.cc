@@ -1,6 +1,7 @@
 // The .smcps format: bit-exact round trips (±∞ bounds, −0.0, subnormals, dense and sparse, every metadata
 // field), one shared matrix stored once, the streaming writer, one test per kind of damaged or hostile file
-// (hostile sizes must not allocate), the Siconos relay export and the matrix-class tags.
+// (hostile sizes must not allocate), the Siconos relay export and the matrix-class tags; sets of AVIs (version 4)
+// with the same discipline, and the committed files re-written byte for byte.
 #include "problems/library/problem_set_io.h"
 
 #include <gtest/gtest.h>
@@ -10,6 +11,7 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -17,6 +19,7 @@
 
 #include <unistd.h>
 
+#include "problems/avi_library/avi_library.h"
 #include "problems/io/siconos_format.h"
 #include "problems/library/matrix_tags.h"
 #include "problems/library/siconos_export.h"
@@ -192,6 +195,13 @@ void StoreDouble(std::string* s, std::size_t at, double v) {
   Store(s, at, bits, 8);
 }
 
+double BitsOf(const std::string& s, std::size_t at) {
+  const std::uint64_t bits = Load(s, at, 8);
+  double v;
+  std::memcpy(&v, &bits, 8);
+  return v;
+}
+
 std::vector<Record> Records(const std::string& s) {
   std::vector<Record> out;
   std::size_t pos = 16;
@@ -210,7 +220,7 @@ Record Nth(const std::vector<Record>& records, std::uint8_t kind, int n = 0) {
   throw std::logic_error("no such record");
 }
 
-constexpr std::uint8_t kSet = 1, kMatrix = 2, kProblem = 3, kEnd = 4, kBounds = 5;
+constexpr std::uint8_t kSet = 1, kMatrix = 2, kProblem = 3, kEnd = 4, kBounds = 5, kAviRecord = 6;
 
 // A one-problem file with a 2×2 M: problem id "p", empty source and name, so its body offsets are fixed:
 // id 0, source 5, flags 9, name 10, matrix index 14, n 22, q 30, l 46, u 62, tristates 78, expected 81, tag count
@@ -526,8 +536,8 @@ TEST(ProblemSetIoDefects, TruncatedHeader) { ExpectRejected(SmallFile().substr(0
 
 TEST(ProblemSetIoDefects, VersionMismatch) {
   std::string bytes = SmallFile();
-  Store(&bytes, 8, 4, 4);
-  ExpectRejected(bytes, {"format version 4 is not supported", "reads versions 1 to 3", "newer"});
+  Store(&bytes, 8, 5, 4);
+  ExpectRejected(bytes, {"format version 5 is not supported", "reads versions 1 to 4", "newer"});
   Store(&bytes, 8, 0, 4);
   ExpectRejected(bytes, {"format version 0 is not supported", "byte 8"});
 }
@@ -1172,6 +1182,291 @@ TEST(ProblemSetIoVersion3, BoundsRecordDefects) {
   bytes = good;
   Store(&bytes, b.body, std::uint64_t{1} << 30, 8);
   ExpectHostileRejected(bytes, {"bounds #0 l, u", "declares 1073741824 value(s) of 16 byte(s)"});
+}
+
+
+// ------------------------------------------------------------------------------------------------------------
+// Sets of AVIs (version 4, set kind 1)
+
+std::shared_ptr<const AffineVI> SharedAvi(AffineVI avi) { return std::make_shared<const AffineVI>(std::move(avi)); }
+
+DenseMatrix UnitBox2() {  // H of [0, 1]²
+  DenseMatrix H(4, 2);
+  H << 1, 0, -1, 0, 0, 1, 0, -1;
+  return H;
+}
+
+// Three AVIs: an equality block with a certified reference, a second one sharing its M and H (named apart from its
+// id, awkward doubles), and one with no solution (unbounded P, no reference).
+AviProblemSet SmallAviSet() {
+  AviProblemSet set;
+  set.name = "avi-small";
+  set.description = "hand-made AVIs of every shape";
+  DenseMatrix E(1, 2);
+  E << 1, 1;
+  // The projection of c = (0.7, 0.1) onto [0, 1]² ∩ {λ₁ + λ₂ = 1} is (0.8, 0.2).
+  AviLibraryProblem segment;
+  segment.id = "a/segment";
+  segment.source = "hand-made:segment";
+  segment.problem = SharedAvi(AffineVI(DenseMatrix::Identity(2, 2), Vec({-0.7, -0.1}), UnitBox2(),
+                                       Vec({0, -1, 0, -1}), E, Vec({1}), "a/segment"));
+  segment.tags = {"hand-made", "equality"};
+  segment.expected = ExpectedOutcome::kSolvable;
+  segment.reference = CertifyAvi(*segment.problem, {AviSolution{Vec({0.8, 0.2}), {}, {}}});
+  segment.metadata = {{"why", "an equality row"}};
+  set.problems.push_back(segment);
+
+  AviLibraryProblem box;
+  box.id = "a/box";
+  box.source = "hand-made:box";
+  box.problem = SharedAvi(AffineVI(DenseMatrix::Identity(2, 2), Vec({-0.0, kDenorm}), UnitBox2(),
+                                   Vec({0, -1, -0.0, -1}), "named apart"));
+  box.expected = ExpectedOutcome::kSolvable;
+  box.reference = CertifyAvi(*box.problem, {AviSolution{Vec({0, 0}), {}, {}}});
+  set.problems.push_back(box);
+
+  // λ ≥ 0 with M = 0, q = −1: 0 ∈ −1 + N_P(λ) has no solution (N_P(λ) ⊂ (−∞, 0]).
+  AviLibraryProblem none;
+  none.id = "a/none";
+  none.source = "hand-made:no solution";
+  none.problem = SharedAvi(AffineVI(DenseMatrix::Zero(1, 1), Vec({-1}), DenseMatrix::Identity(1, 1), Vec({0}),
+                                    "a/none"));
+  none.expected = ExpectedOutcome::kInfeasible;
+  none.tags = {"infeasible"};
+  set.problems.push_back(none);
+  return set;
+}
+
+std::string SerializeAvis(const AviProblemSet& set) {
+  std::ostringstream out;
+  WriteAviProblemSet(set, out);
+  return out.str();
+}
+
+AviProblemSet ParseAvis(const std::string& bytes) { return ReadAviProblemSetBytes(bytes, kFile); }
+
+void ExpectSameDense(const DenseMatrix& a, const DenseMatrix& b, const std::string& what) {
+  ASSERT_EQ(a.rows(), b.rows()) << what;
+  ASSERT_EQ(a.cols(), b.cols()) << what;
+  if (a.size() == 0) return;  // data() may be null, which memcmp must not see
+  EXPECT_EQ(std::memcmp(a.data(), b.data(), sizeof(double) * static_cast<std::size_t>(a.size())), 0) << what;
+}
+
+void ExpectSameAvi(const AviLibraryProblem& a, const AviLibraryProblem& b) {
+  SCOPED_TRACE(a.id);
+  EXPECT_EQ(a.id, b.id);
+  EXPECT_EQ(a.source, b.source);
+  EXPECT_EQ(a.problem->name(), b.problem->name());
+  ExpectSameDense(a.problem->M(), b.problem->M(), "M");
+  ExpectSameBits(a.problem->q(), b.problem->q(), "q");
+  ExpectSameDense(a.problem->H(), b.problem->H(), "H");
+  ExpectSameBits(a.problem->K(), b.problem->K(), "K");
+  ExpectSameDense(a.problem->E(), b.problem->E(), "E");
+  ExpectSameBits(a.problem->f(), b.problem->f(), "f");
+  EXPECT_EQ(a.tags, b.tags);
+  EXPECT_EQ(a.expected, b.expected);
+  EXPECT_EQ(a.metadata, b.metadata);
+  const AviReference &r = a.reference, &s = b.reference;
+  EXPECT_EQ(r.strictly_monotone, s.strictly_monotone);
+  EXPECT_EQ(r.lambda_unique, s.lambda_unique);
+  EXPECT_EQ(r.reduced.certificate, s.reduced.certificate);
+  EXPECT_TRUE(SameBits(r.reduced.condition, s.reduced.condition)) << r.reduced.condition;
+  ExpectSameBits(r.reduced.z, s.reduced.z, "reference z");
+  ExpectSameBits(r.solution.lambda, s.solution.lambda, "reference lambda");
+  ExpectSameBits(r.solution.mu, s.solution.mu, "reference mu");
+  ExpectSameBits(r.solution.nu, s.solution.nu, "reference nu");
+}
+
+TEST(AviProblemSetIo, RoundTripIsBitExactAndMatricesAreShared) {
+  const AviProblemSet set = SmallAviSet();
+  ASSERT_TRUE(set.problems[0].reference.verified());
+  ASSERT_TRUE(set.problems[1].reference.verified());
+  const std::string bytes = SerializeAvis(set);
+  EXPECT_EQ(Load(bytes, 8, 4), 4u);  // version 4
+  EXPECT_EQ(Load(bytes, 12, 4), 1u);  // set kind 1, AVIs
+  int matrices = 0;
+  for (const Record& r : Records(bytes)) matrices += r.kind == kMatrix;
+  // I₂ and the unit box's H once for the first two AVIs, E, and the last one's M = 0 and H = 1.
+  EXPECT_EQ(matrices, 5);
+  const AviProblemSet back = ParseAvis(bytes);
+  EXPECT_EQ(back.name, set.name);
+  EXPECT_EQ(back.description, set.description);
+  ASSERT_EQ(back.problems.size(), set.problems.size());
+  for (std::size_t i = 0; i < set.problems.size(); ++i) ExpectSameAvi(set.problems[i], back.problems[i]);
+  EXPECT_EQ(SerializeAvis(back), bytes);  // a fixed point
+
+  const fs::path path = fs::temp_directory_path() / ("library-avi-" + std::to_string(::getpid()) + ".smcps");
+  WriteAviProblemSetFile(set, path.string());
+  ProblemSetFileInfo info;
+  EXPECT_EQ(ReadAviProblemSetFile(path.string(), &info).problems.size(), 3u);
+  EXPECT_EQ(info.version, 4u);
+  EXPECT_EQ(info.kind, ProblemSetKind::kAvi);
+  EXPECT_EQ(info.matrices, 5u);
+  EXPECT_EQ(info.problems, 3u);
+  EXPECT_EQ(ReadProblemSetKind(path.string()), ProblemSetKind::kAvi);
+  fs::remove(path);
+  EXPECT_FALSE(fs::exists(path.string() + ".partial"));
+}
+
+TEST(AviProblemSetIo, BoxSetsAreStillWrittenAsVersion3) {
+  const std::string bytes = Serialize(SampleSet());
+  EXPECT_EQ(Load(bytes, 8, 4), 3u);
+  EXPECT_EQ(Load(bytes, 12, 4), 0u);
+}
+
+// Files committed under problems/library/testdata and tests/fuzz/seeds/library that this build writes in their
+// own version (3 for box-MLCPs, 4 for AVIs): read and written again, byte for byte the same. A change to either
+// writer's bytes shows here.
+TEST(AviProblemSetIo, CommittedFilesAreRewrittenByteForByte) {
+  const std::string root = std::string(SMCBENCH_SOURCE_DIR);
+  for (const std::string& name : {root + "/tests/fuzz/seeds/library/zoh-mimo-v3.smcps",
+                                 root + "/problems/library/testdata/avi-small-v4.smcps"}) {
+    SCOPED_TRACE(name);
+    std::ifstream in(name, std::ios::binary);
+    ASSERT_TRUE(in) << "missing";
+    std::ostringstream file;
+    file << in.rdbuf();
+    const std::string bytes = file.str();
+    if (ReadProblemSetKind(name) == ProblemSetKind::kAvi) {
+      const AviProblemSet set = ReadAviProblemSetFile(name);
+      EXPECT_EQ(set.problems.size(), 3u);
+      EXPECT_EQ(SerializeAvis(set), bytes);
+    } else {
+      const ProblemSet set = ReadProblemSetFile(name);
+      EXPECT_FALSE(set.problems.empty());
+      EXPECT_EQ(Serialize(set), bytes);
+    }
+  }
+}
+
+TEST(AviProblemSetIo, EachReaderRefusesTheOtherKind) {
+  ExpectRejected(SerializeAvis(SmallAviSet()), {"a set of AVIs (set kind 1), not of box-MLCPs", "at byte 12"});
+  try {
+    ParseAvis(Serialize(SampleSet()));
+    ADD_FAILURE() << "an AVI reader accepted a set of box-MLCPs";
+  } catch (const InvalidInputError& e) {
+    EXPECT_NE(std::string(e.what()).find("a set of box-MLCPs (set kind 0) (format version 3), not of AVIs"),
+              std::string::npos)
+        << e.what();
+  }
+}
+
+// Expects the AVI reader to refuse bytes with an InvalidInputError naming the file and containing every needle.
+void ExpectAvisRejected(const std::string& bytes, const std::vector<std::string>& needles) {
+  try {
+    ParseAvis(bytes);
+    ADD_FAILURE() << "accepted a damaged set of AVIs";
+  } catch (const InvalidInputError& e) {
+    const std::string message = e.what();
+    EXPECT_NE(message.find(kFile), std::string::npos) << "does not name the file: " << message;
+    for (const std::string& needle : needles) {
+      EXPECT_NE(message.find(needle), std::string::npos) << "'" << needle << "' missing from: " << message;
+    }
+  }
+}
+
+TEST(AviProblemSetIo, EveryTruncationIsRejected) {
+  const std::string bytes = SerializeAvis(SmallAviSet());
+  for (std::size_t size = 0; size < bytes.size(); ++size) {
+    SCOPED_TRACE("truncated to " + std::to_string(size) + " bytes");
+    ExpectAvisRejected(bytes.substr(0, size), {size == 0 ? "empty file" : "truncated"});
+  }
+}
+
+TEST(AviProblemSetIo, EveryFlippedByteIsRejectedAndAPayloadByteByTheChecksum) {
+  const std::string bytes = SerializeAvis(SmallAviSet());
+  for (std::size_t at = 0; at < bytes.size(); ++at) {
+    std::string damaged = bytes;
+    damaged[at] = static_cast<char>(damaged[at] ^ 0x01);
+    EXPECT_THROW(ParseAvis(damaged), InvalidInputError) << "byte " << at;
+  }
+  // A bit of the first AVI's q (its body: id, source, flags, n, M index, then q).
+  const Record avi = Nth(Records(bytes), kAviRecord);
+  const std::size_t q_at = avi.body + 4 + 9 + 4 + 17 + 1 + 8 + 8;
+  ASSERT_TRUE(SameBits(BitsOf(bytes, q_at), -0.7));
+  std::string damaged = bytes;
+  damaged[q_at] = static_cast<char>(damaged[q_at] ^ 0x01);
+  ExpectAvisRejected(damaged, {"checksum mismatch", "the file is corrupt"});
+}
+
+TEST(AviProblemSetIo, DamagedFieldsAreNamedWithTheirOffset) {
+  const std::string good = SerializeAvis(SmallAviSet());
+  const std::vector<Record> records = Records(good);
+  const Record avi = Nth(records, kAviRecord);  // "a/segment": id, source "hand-made:segment", flags, n, ...
+  const std::size_t flags_at = avi.body + 4 + 9 + 4 + 17, n_at = flags_at + 1, m_index_at = n_at + 8,
+                    q_at = m_index_at + 8, m_at = q_at + 16, h_index_at = m_at + 8, k_at = h_index_at + 8,
+                    p_at = k_at + 32, expected_at = p_at + 8 + 8 + 8;
+  const auto patched = [&](std::size_t at, std::uint64_t value, int size) {
+    std::string bytes = good;
+    Store(&bytes, at, value, size);
+    FixProblemSetChecksum(&bytes);
+    return bytes;
+  };
+  ExpectAvisRejected(patched(8, 5, 4), {"format version 5 is not supported", "reads versions 1 to 4"});
+  ExpectAvisRejected(patched(12, 2, 4), {"set kind 2 is unknown", "at byte 12"});
+  ExpectAvisRejected(patched(Nth(records, kMatrix).body, 0, 1), {"matrix #0 storage", "storage 0 in a set of AVIs"});
+  ExpectAvisRejected(patched(flags_at, 0x05, 1), {"AVI #0 ('a/segment') flags at byte " + std::to_string(flags_at),
+                                                  "unknown flag bits 0x0000000000000004"});
+  ExpectAvisRejected(patched(m_index_at, 9, 8), {"M index", "refers to matrix 9 but only"});
+  ExpectAvisRejected(patched(m_index_at, 1, 8), {"M index", "matrix 1 is 4x2 but the AVI needs 2x2"});
+  ExpectAvisRejected(patched(h_index_at, 0, 8), {"H index", "matrix 0 is 2x2 but the AVI needs 4x2"});
+  std::uint64_t nan_bits;
+  const double not_a_number = std::nan("");
+  std::memcpy(&nan_bits, &not_a_number, 8);
+  ExpectAvisRejected(patched(q_at + 8, nan_bits, 8), {"q[1] at byte " + std::to_string(q_at + 8), "is NaN"});
+  ExpectAvisRejected(patched(expected_at, 7, 1), {"expected", "value 7 is not 0 (unknown)"});
+  // P = [0, 1]² ∩ {λ₁ + λ₂ = 1} is bounded: "infeasible" contradicts Hartman–Stampacchia, and the verified reference.
+  ExpectAvisRejected(patched(expected_at, 2, 1), {"expected", "is infeasible but the reference is a verified"});
+  // The third AVI has no verified reference: bit 1 (λ* unique) is refused there.
+  const Record none = Nth(records, kAviRecord, 2);
+  const std::size_t none_flags_at = none.body + 4 + 6 + 4 + 21;
+  ExpectAvisRejected(patched(none_flags_at, 0x03, 1), {"AVI #2 ('a/none') flags", "bit 1 (lambda* unique) without"});
+  // A constraint the AffineVI refuses: K = (0, 5, 0, −1) makes P empty (λ₁ ≥ 0 and −λ₁ ≥ 5).
+  std::uint64_t five_bits;
+  const double five = 5.0;
+  std::memcpy(&five_bits, &five, 8);
+  ExpectAvisRejected(patched(k_at + 8, five_bits, 8), {"AVI #0 ('a/segment')", "is empty"});
+  // A box problem's record kind inside a set of AVIs.
+  ExpectAvisRejected(patched(avi.at, kProblem, 1), {"record kind 3 in a set of AVIs"});
+  // End-record counts.
+  ExpectAvisRejected(patched(Nth(records, kEnd).body + 8, 4, 8), {"end record counts", "4 AVIs", "holds 5 and 3"});
+  // A hostile matrix size: refused before any allocation.
+  std::string hostile = good;
+  Store(&hostile, Nth(records, kMatrix).body + 1, std::uint64_t{1} << 30, 8);
+  FixProblemSetChecksum(&hostile);
+  const std::size_t largest =
+      LargestAllocation([&] { ExpectAvisRejected(hostile, {"matrix #0 values", "corrupt size"}); });
+  EXPECT_LT(largest, std::size_t{1} << 20);
+}
+
+TEST(AviProblemSetIo, TheWriterRefusesWhatTheReaderWould) {
+  const auto message = [](const AviProblemSet& set) {
+    try {
+      SerializeAvis(set);
+    } catch (const InvalidInputError& e) {
+      return std::string(e.what());
+    }
+    return std::string("(written)");
+  };
+  AviProblemSet set = SmallAviSet();
+  set.problems[0].reference.solution.lambda[0] = 0.5;  // no longer the head of z*
+  EXPECT_NE(message(set).find("AVI 'a/segment': reference lambda is not the first n entries of z*"),
+            std::string::npos)
+      << message(set);
+  set = SmallAviSet();
+  set.problems[0].reference.solution.mu.resize(1);
+  EXPECT_NE(message(set).find("reference mu must have m and nu p finite entries"), std::string::npos);
+  set = SmallAviSet();
+  set.problems[2].reference.lambda_unique = true;
+  EXPECT_NE(message(set).find("AVI 'a/none': reference lambda_unique without a verified solution"),
+            std::string::npos);
+  set = SmallAviSet();
+  set.problems[1].reference = {};
+  set.problems[1].expected = ExpectedOutcome::kInfeasible;
+  EXPECT_NE(message(set).find("AVI 'a/box': expected infeasible, but P is bounded"), std::string::npos);
+  set = SmallAviSet();
+  set.problems[2].id = "a/box";
+  EXPECT_NE(message(set).find("id is a duplicate"), std::string::npos);  // AviProblemSet::Validate
 }
 
 }  // namespace

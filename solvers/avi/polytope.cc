@@ -77,7 +77,8 @@ PolytopePoint FindPolytopePoint(const DenseMatrix& H, const Vector& K, const Den
       if (A(r, entering) <= kPivotTolerance) continue;
       const double ratio = b[r] / A(r, entering);
       const auto index = static_cast<std::size_t>(r);
-      if (ratio < best || (ratio == best && basis[index] < basis[static_cast<std::size_t>(leaving)])) {
+      // The first eligible row is taken even when its ratio overflows to +inf, so the tie-break always has a row.
+      if (leaving < 0 || ratio < best || (ratio == best && basis[index] < basis[static_cast<std::size_t>(leaving)])) {
         best = ratio;
         leaving = r;
       }

@@ -8,6 +8,7 @@
 #include <sstream>
 #include <string>
 
+#include "problems/avi_library/avi_library.h"
 #include "problems/library/problem_set_io.h"
 #include "tests/fuzz/fuzz_checks.h"
 
@@ -37,12 +38,47 @@ void ReadAndCheck(const std::string& bytes) {
   });
 }
 
+void ReadAvisAndCheck(const std::string& bytes) {
+  using smcbench::fuzz::Finding;
+  smcbench::AviProblemSet set;
+  const auto read = [&] { set = smcbench::ReadAviProblemSetBytes(bytes, "fuzz.smcps"); };
+  if (!smcbench::fuzz::AcceptOrReject(read)) return;
+  smcbench::fuzz::NoExceptionAllowed("accepted AVI set then ", [&] {
+    set.Validate();
+    for (const smcbench::AviLibraryProblem& p : set.problems) {
+      const smcbench::AffineVI& avi = *p.problem;
+      if (avi.size() < 1 || !avi.M().allFinite() || !avi.q().allFinite() || !avi.H().allFinite() ||
+          !avi.K().allFinite() || !avi.E().allFinite() || !avi.f().allFinite()) {
+        Finding("accepted an empty or non-finite AVI");
+      }
+      if (p.reference.verified() && p.reference.reduced.z.size() != avi.size() + avi.inequality_count() +
+                                                                        avi.equality_count()) {
+        Finding("accepted a reference z* of the wrong size");
+      }
+    }
+    std::ostringstream once;
+    smcbench::WriteAviProblemSet(set, once);
+    const smcbench::AviProblemSet again = smcbench::ReadAviProblemSetBytes(once.str(), "fuzz-rewritten.smcps");
+    if (again.problems.size() != set.problems.size()) Finding("re-read AVI set has another number of problems");
+    for (std::size_t i = 0; i < set.problems.size(); ++i) {
+      if (again.problems[i].id != set.problems[i].id || again.problems[i].size() != set.problems[i].size()) {
+        Finding("re-read AVI set differs from the accepted one");
+      }
+    }
+    std::ostringstream twice;
+    smcbench::WriteAviProblemSet(again, twice);
+    if (twice.str() != once.str()) Finding("write(read(write(AVI set))) differs from write(AVI set)");
+  });
+}
+
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   std::string bytes(reinterpret_cast<const char*>(data), size);
   ReadAndCheck(bytes);
+  ReadAvisAndCheck(bytes);
   smcbench::FixProblemSetChecksum(&bytes);
   ReadAndCheck(bytes);
+  ReadAvisAndCheck(bytes);
   return 0;
 }

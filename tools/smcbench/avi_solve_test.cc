@@ -12,8 +12,11 @@
 #include <string>
 #include <vector>
 
+#include "bench/replay/avi_replay.h"
+#include "bench/run/bench_plan.h"
 #include "problems/avi_library/avi_suite.h"
 #include "problems/io/avi_file.h"
+#include "problems/library/problem_set_io.h"
 #include "tools/smcbench/avi_export.h"
 #include "tools/smcbench/cli_test_runner.h"
 
@@ -216,6 +219,52 @@ TEST(SolveAviCli, TheAviSuiteWrittenAsFilesReadsBackBitForBitAndSolves) {
     EXPECT_EQ(row["verdict"], "correctly refused");
   }
   EXPECT_TRUE(saw_infeasible);
+}
+
+
+TEST(SolveAviCli, TheAviSuiteWrittenAsOneSetReadsBackAndIsListed) {
+  const ScratchDir dir;
+  const std::string file = dir.File("avi.smcps");
+  const CliRun r = RunSmcbench({"library", "--write-suite", "avi", file, "--quick"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const AviProblemSet suite = BuildAviSuite(/*quick=*/true);
+  EXPECT_THAT(r.out, HasSubstr("wrote suite avi (" + std::to_string(suite.problems.size()) +
+                                   " AVIs, format version 4) to " + file));
+  ProblemSetFileInfo info;
+  const AviProblemSet back = ReadAviProblemSetFile(file, &info);
+  EXPECT_EQ(info.kind, ProblemSetKind::kAvi);
+  ASSERT_EQ(back.problems.size(), suite.problems.size());
+  for (std::size_t i = 0; i < suite.problems.size(); ++i) {
+    const AviLibraryProblem &a = suite.problems[i], &b = back.problems[i];
+    SCOPED_TRACE(a.id);
+    EXPECT_EQ(b.id, a.id);
+    EXPECT_EQ(b.expected, a.expected);
+    EXPECT_TRUE(b.problem->M() == a.problem->M() && b.problem->q() == a.problem->q() &&
+                b.problem->H() == a.problem->H() && b.problem->K() == a.problem->K());
+    EXPECT_TRUE(b.reference.solution.lambda == a.reference.solution.lambda);
+  }
+  const CliRun listed = RunSmcbench({"library", file, "--list"});
+  ASSERT_EQ(listed.code, 0) << listed.err;
+  EXPECT_THAT(listed.out, HasSubstr("format version 4 (a set of AVIs)"));
+  EXPECT_THAT(listed.out, HasSubstr("AVIs: " + std::to_string(suite.problems.size()) + "\n"));
+  EXPECT_THAT(listed.out, HasSubstr("\n" + suite.problems[0].id + " | " + std::to_string(suite.problems[0].size()) +
+                                    " | "));
+  const CliRun certify = RunSmcbench({"library", file, "--certify", dir.File("out.smcps")});
+  EXPECT_NE(certify.code, 0);
+  EXPECT_THAT(certify.err, HasSubstr("--certify and --export-relay take a set of box-MLCPs"));
+  // `bench --suite FILE.smcps` plans the AVI suite read from the file: the same problems, by their checksum.
+  BenchRequest request;
+  request.suites = {file};
+  request.solvers = {"lemke"};
+  request.quick = true;
+  const BenchPlan plan = MakeBenchPlan(request);
+  ASSERT_EQ(plan.avi_suites.size(), 1u);
+  EXPECT_TRUE(plan.suites.empty());
+  EXPECT_EQ(AviProblemSetChecksum(plan.avi_suites[0]), AviProblemSetChecksum(suite));
+  // Not yet solved as a set: refused with what to do instead.
+  const CliRun solve = RunSmcbench({"solve", file, "--solver", "lemke"});
+  EXPECT_NE(solve.code, 0);
+  EXPECT_THAT(solve.err, HasSubstr("is a set of AVIs (.smcps format version 4): `smcbench library " + file));
 }
 
 }  // namespace

@@ -2,6 +2,7 @@
 
 #include <CLI/CLI.hpp>
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -70,6 +71,40 @@ std::string ConditionText(const ReferenceSolution& r) {
   char text[32];
   std::snprintf(text, sizeof text, "%.3g", r.condition);
   return text;
+}
+
+// Whether path names a problem-set file by its extension (".smcps", any case).
+bool HasProblemSetExtension(const std::string& path) {
+  const std::string extension = kProblemSetExtension;
+  if (path.size() <= extension.size()) return false;
+  std::string tail = path.substr(path.size() - extension.size());
+  for (char& c : tail) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return tail == extension;
+}
+
+// What `library FILE` prints for a set of AVIs: the counts of the box summary that apply to an AVI (sizes n, m, p,
+// expected outcomes, the references' certificates, sources, labels).
+std::string AviSetSummary(const AviProblemSet& set, const ProblemSetFileInfo& info) {
+  std::ostringstream o;
+  o << "set " << (set.name.empty() ? "(unnamed)" : set.name);
+  if (!set.description.empty()) o << ": " << set.description;
+  o << "\nfile: " << info.bytes << " bytes, format version " << info.version << " (a set of AVIs), " << info.matrices
+    << " distinct matri" << (info.matrices == 1 ? "x" : "ces") << " (M, H, E) for " << info.problems << " AVI"
+    << (info.problems == 1 ? "" : "s") << "\n";
+  std::map<std::string, std::size_t> sizes, expected, certificates, sources, labels;
+  std::size_t lambda_unique = 0;
+  for (const AviLibraryProblem& p : set.problems) {
+    ++sizes["n=" + std::to_string(p.size())];
+    ++expected[std::string(ToString(p.expected))];
+    ++certificates[std::string(ToString(p.reference.reduced.certificate))];
+    ++sources[p.source.substr(0, p.source.find(':'))];
+    for (const std::string& t : p.tags) ++labels[t];
+    lambda_unique += p.reference.lambda_unique;
+  }
+  o << "AVIs: " << set.problems.size() << "\nsizes: " << Counts(sizes) << "\nexpected: " << Counts(expected)
+    << "\nreferences: " << Counts(certificates) << " (lambda* unique: " << lambda_unique << ")\nsources: "
+    << Counts(sources) << "\nlabels: " << Counts(labels) << "\n";
+  return o.str();
 }
 
 }  // namespace
@@ -182,8 +217,9 @@ LibraryCommand::LibraryCommand(CLI::App* app) : flags_(std::make_unique<Flags>()
   command_->add_option("--write-suite", flags_->write_suite,
                        "write the built-in suite NAME (as `bench --suite NAME` builds it, certified references "
                        "attached) to FILE.smcps and print its checksum; `bench --suite FILE.smcps` then runs the "
-                       "same problems with the same checksum in results.json; NAME avi: FILE is a folder that "
-                       "receives one .avi.json file per AVI (docs/formats.md)")
+                       "same problems with the same checksum in results.json; NAME avi: FILE.smcps receives a set "
+                       "of AVIs (format version " + std::to_string(kAviProblemSetFormatVersion) + "), any other "
+                       "FILE is a folder that receives one .avi.json file per AVI (docs/formats.md)")
       ->expected(2)
       ->type_name("NAME FILE");
   command_->add_option("--siconos-dir", flags_->siconos_dir, "with --write-suite: the Siconos collection (default " +
@@ -217,10 +253,18 @@ int LibraryCommand::Run(std::ostream& out, std::ostream& err) const {
   const Flags& f = *flags_;
   if (!f.write_suite.empty()) {
     if (!f.file.empty()) throw InvalidInputError("library: --write-suite NAME FILE takes no other FILE");
-    if (f.write_suite.at(0) == kAviSuiteName) {  // a .smcps set holds box problems: the AVIs become a folder
-      const std::size_t written = ExportAviSet(BuildAviSuite(f.quick), f.write_suite.at(1));
-      out << "wrote suite " << kAviSuiteName << " (" << written << " AVI files .avi.json and index.csv) to "
-          << f.write_suite.at(1) << "/\n";
+    if (f.write_suite.at(0) == kAviSuiteName) {  // one set of AVIs (.smcps), or a folder of AVI files
+      const std::string& target = f.write_suite.at(1);
+      const AviProblemSet set = BuildAviSuite(f.quick);
+      if (HasProblemSetExtension(target)) {
+        WriteAviProblemSetFile(set, target);
+        out << "wrote suite " << kAviSuiteName << " (" << set.problems.size() << " AVIs, format version "
+            << kAviProblemSetFormatVersion << ") to " << target << "\n";
+        return 0;
+      }
+      const std::size_t written = ExportAviSet(set, target);
+      out << "wrote suite " << kAviSuiteName << " (" << written << " AVI files .avi.json and index.csv) to " << target
+          << "/\n";
       return 0;
     }
     SuiteRequest request;
@@ -237,6 +281,24 @@ int LibraryCommand::Run(std::ostream& out, std::ostream& err) const {
     err << "smcbench: library: FILE is required (a problem-set file), or --write-suite NAME FILE (see 'smcbench "
            "library --help')\n";
     return 2;
+  }
+  if (ReadProblemSetKind(f.file) == ProblemSetKind::kAvi) {
+    if (!f.certify_out.empty() || !f.export_dir.empty()) {
+      throw InvalidInputError("library: --certify and --export-relay take a set of box-MLCPs; '" + f.file +
+                              "' is a set of AVIs (its references were certified when it was written)");
+    }
+    ProblemSetFileInfo info;
+    const AviProblemSet set = ReadAviProblemSetFile(f.file, &info);
+    out << AviSetSummary(set, info);
+    if (f.list) {
+      out << "\nid | n | m | p | expected | certificate | mu\n";
+      for (const AviLibraryProblem& p : set.problems) {
+        out << p.id << " | " << p.size() << " | " << p.problem->inequality_count() << " | "
+            << p.problem->equality_count() << " | " << ToString(p.expected) << " | "
+            << ToString(p.reference.reduced.certificate) << " | " << ConditionText(p.reference.reduced) << "\n";
+      }
+    }
+    return 0;
   }
   ProblemSetFileInfo info;
   ProblemSet set = ReadProblemSetFile(f.file, &info);

@@ -82,6 +82,15 @@ bool ReadsAs(const std::string& path, ProblemFormat format) {
   }
 }
 
+// Whether path's header says it holds a set of AVIs (false on any error: the box reader then reports it).
+bool IsAviProblemSet(const std::string& path) {
+  try {
+    return ReadProblemSetKind(path) == ProblemSetKind::kAvi;
+  } catch (const InvalidInputError&) {
+    return false;
+  }
+}
+
 // Every problem of path read as format (a Siconos or Matrix Market file holds one).
 std::vector<LibraryProblem> ReadUnder(const std::string& path, ProblemFormat format) {
   if (format == ProblemFormat::kSmcps) return ReadProblemSetFile(path).problems;
@@ -201,6 +210,13 @@ std::vector<LibraryProblem> ReadProblemFile(const std::string& path, std::option
                             Describe(choice.format) + " (one problem; " + choice.reason + ")");
   }
   if (choice.format == ProblemFormat::kAvi) ReadUnder(path, choice.format);  // refused whatever the guess
+  if (choice.format == ProblemFormat::kSmcps && IsAviProblemSet(path)) {  // not a kind --format could change
+    throw InvalidInputError("'" + path + "' is a set of AVIs (.smcps format version " +
+                            std::to_string(kAviProblemSetFormatVersion) + "): `smcbench library " + path +
+                            "` lists it; `smcbench solve` reads AVIs one .avi.json file at a time for now "
+                            "(`smcbench library --write-suite avi DIR` writes the avi suite that way; "
+                            "docs/formats.md, \"AVI files\")");
+  }
   std::vector<LibraryProblem> problems;
   try {
     problems = ReadUnder(path, choice.format);
