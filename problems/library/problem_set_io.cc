@@ -704,7 +704,12 @@ void WriteProblemSet(const ProblemSet& set, std::ostream& out) {
   w.Finish();
 }
 
-void WriteProblemSetFile(const ProblemSet& set, const std::string& path) {
+namespace {
+
+// Writes a set to path through write(set, stream): under a temporary name in the same folder, renamed at the end,
+// so a failed write never leaves a half-written file under path (the partial file is removed).
+template <typename Set, typename Write>
+void WriteSetFileAtomically(const Set& set, const std::string& path, Write write) {
   const std::string partial = path + ".partial";
   try {
     std::ofstream out(partial, std::ios::binary | std::ios::trunc);
@@ -712,7 +717,7 @@ void WriteProblemSetFile(const ProblemSet& set, const std::string& path) {
       throw InvalidInputError("problem set '" + path + "': cannot open '" + partial +
                               "' for writing: " + std::generic_category().message(errno));
     }
-    WriteProblemSet(set, out);
+    write(set, out);
     out.close();
     if (!out) throw InvalidInputError("problem set '" + path + "': closing '" + partial + "' failed");
     std::error_code ec;
@@ -723,6 +728,12 @@ void WriteProblemSetFile(const ProblemSet& set, const std::string& path) {
     fs::remove(partial, ec);
     throw;
   }
+}
+
+}  // namespace
+
+void WriteProblemSetFile(const ProblemSet& set, const std::string& path) {
+  WriteSetFileAtomically(set, path, [](const ProblemSet& s, std::ostream& out) { WriteProblemSet(s, out); });
 }
 
 // ------------------------------------------------------------------------------------------------------------
@@ -899,24 +910,7 @@ void WriteAviProblemSet(const AviProblemSet& set, std::ostream& out) {
 }
 
 void WriteAviProblemSetFile(const AviProblemSet& set, const std::string& path) {
-  const std::string partial = path + ".partial";
-  try {
-    std::ofstream out(partial, std::ios::binary | std::ios::trunc);
-    if (!out) {
-      throw InvalidInputError("problem set '" + path + "': cannot open '" + partial +
-                              "' for writing: " + std::generic_category().message(errno));
-    }
-    WriteAviProblemSet(set, out);
-    out.close();
-    if (!out) throw InvalidInputError("problem set '" + path + "': closing '" + partial + "' failed");
-    std::error_code ec;
-    fs::rename(partial, path, ec);
-    if (ec) throw InvalidInputError("problem set '" + path + "': renaming '" + partial + "' failed: " + ec.message());
-  } catch (...) {
-    std::error_code ec;
-    fs::remove(partial, ec);
-    throw;
-  }
+  WriteSetFileAtomically(set, path, [](const AviProblemSet& s, std::ostream& out) { WriteAviProblemSet(s, out); });
 }
 
 // ------------------------------------------------------------------------------------------------------------
