@@ -250,11 +250,7 @@ Solver* AutoSolver::DelegateFor(const BoxMLCP& problem, const SolverOptions&) {
   std::string why;
   if (!options_.IsValid(&why)) return nullptr;
   const AutoChoice& choice = ChoiceFor(problem);
-  int at = choice.first;
-  // A session keeps its delegate for the whole run: one that fails on this matrix would fail on every step before
-  // the chain answers. bpp is the candidate that ends singular on problems the next one solves, so not bpp.
-  if (choice.order[at] == AutoCandidate::kBpp && at + 1 < choice.count) ++at;
-  return &candidate(choice.order[at]);
+  return &candidate(choice.order[choice.first]);
 }
 
 WarmStateReset AutoSolver::ForgetWarmState() {

@@ -23,11 +23,10 @@
 // candidate would refuse them). Any other status (iteration limit, stall, ray, singular, numerical failure, a
 // refusal such as kNotApplicable) passes the problem on. kInfeasible from a backend that is not exact is never
 // reported as such: it becomes kNumericalFailure. When a later candidate solved the problem, later calls on the
-// same matrix start with it ("what the last call showed"); DelegateFor returns that same backend, except bpp: a
-// session keeps its delegate for the whole run and hands a call it did not solve to auto's chain, so a delegate that
-// fails on the matrix would pay its failure on every step, and bpp ends singular on some degenerate problems lemke
-// solves; a session gets the candidate after it, psor or lemke, as before bpp was a candidate. That is warm state:
-// ForgetWarmState drops it, so a cold repeat runs the whole chain again.
+// same matrix start with it ("what the last call showed"); DelegateFor returns that same backend. A session hands a
+// call its delegate did not solve to auto's chain and then asks DelegateFor again, so a candidate that fails on a
+// matrix (bpp ends singular on some degenerate problems lemke solves) fails once per session, not on every step.
+// That is warm state: ForgetWarmState drops it, so a cold repeat runs the whole chain again.
 //
 // Details: "chosen" = the AutoCandidate of the backend whose answer is returned (read it with ChosenCandidateOf),
 // "fallbacks" = how many candidates failed before it; the chosen backend's own details are kept. The result's

@@ -52,6 +52,14 @@ void SolveSession::ResolveDelegate(Solver* prepared) {
   backend_name_ = backend_->info().name;
 }
 
+void SolveSession::ReviseDelegate() {
+  Solver* delegate = meta_->DelegateFor(problem_, options_);
+  if (delegate == nullptr || delegate == backend_) return;
+  backend_ = delegate;
+  backend_name_ = backend_->info().name;
+  CheckBackendOptions();
+}
+
 void SolveSession::set_options(const SolverOptions& options) {
   options_ = options;
   ResolveDelegate(meta_ != nullptr ? meta_ : backend_);
@@ -65,7 +73,11 @@ WarmStateReset SolveSession::ForgetWarmState() {
     reset = WarmStateReset::kForgotten;
   }
   reset = LeastCold(reset, backend_->ForgetWarmState());
-  if (meta_ != nullptr) reset = LeastCold(reset, meta_->ForgetWarmState());
+  if (meta_ != nullptr) {
+    reset = LeastCold(reset, meta_->ForgetWarmState());
+    // The meta-backend forgot what a fallback taught it: its delegate is the rule's first choice again.
+    ReviseDelegate();
+  }
   return reset;
 }
 
@@ -173,7 +185,12 @@ bool SolveSession::TryReusedActiveSet(SolveResult* result) {
 }
 
 void SolveSession::ConcludeBackendCall(SolveResult* result) {
-  if (meta_ != nullptr && !result->solved()) meta_->Solve(problem_, options_, result);
+  if (meta_ != nullptr && !result->solved()) {
+    meta_->Solve(problem_, options_, result);
+    // The meta-backend's chain may have learned a better first choice for this matrix (auto: the candidate that
+    // answered): later calls go to it, so a delegate that fails on this matrix fails once, not on every call.
+    ReviseDelegate();
+  }
   kSessionPathDetail.Set(result, SessionPath::kBackend);
   if (reuse_ && result->solved()) RememberActiveSet(*result);
 }

@@ -93,7 +93,7 @@ class SolveSession {
   const SessionOptions& session_options() const { return session_; }
   // The backend that solves: the one given to Prepare, or its delegate (Solver::DelegateFor, e.g. auto's choice;
   // a call the delegate does not solve goes to the backend given to Prepare, whose rule — auto's fallbacks —
-  // decides).
+  // decides, and the delegate is asked for again after that call and after ForgetWarmState).
   Solver& backend() const { return *backend_; }
   // Calls answered by the reused active set, and in all.
   std::int64_t reused() const { return reused_; }
@@ -117,6 +117,9 @@ class SolveSession {
   void CheckBackendOptions();
   // backend_ = the delegate of the backend given to Prepare for these options (DelegateFor), or that backend.
   void ResolveDelegate(Solver* prepared);
+  // After the meta-backend solved or forgot (meta_ set): backend_ = its delegate now, which a fallback or a
+  // ForgetWarmState may have changed. No allocation once every candidate exists.
+  void ReviseDelegate();
 
   Solver* backend_;
   // The backend given to Prepare when backend_ is its delegate (auto's choice), else null: a call the delegate does
