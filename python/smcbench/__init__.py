@@ -23,7 +23,8 @@ from ._smcbench import AffineVI, InvalidInputError, scenes, scenes_directory
 __all__ = [
     "InvalidInputError", "SolveResult", "Simulation", "Problem", "McpProblem", "solvers", "solve", "solve_mcp",
     "judge_mcp", "bench_mcp", "simulate", "scenes", "scenes_directory", "read_problem_set", "write_problem_set",
-    "load_bench_results", "bench", "AffineVI", "AviResult", "AviFile", "solve_avi", "read_avi", "write_avi",
+    "load_bench_results", "bench", "AffineVI", "AviResult", "AviFile", "AviProblem", "solve_avi", "read_avi",
+    "write_avi",
 ]
 
 
@@ -412,18 +413,27 @@ class Problem:
         return solve(self.M, self.q, self.l, self.u, solver=solver, **kwargs)
 
 
-def read_problem_set(path) -> List[Problem]:
-    """The problems of a .smcps file (problems/library/README.md), in file order. The set's name, description and
-    format version are on the returned list as attributes .name, .description, .version."""
-    raw = _smcbench._read_problem_set(os.fspath(path))
-    problems = _ProblemList(_problem_from_dict(d) for d in raw["problems"])
+def read_problem_set(path) -> List[Union[Problem, "AviProblem"]]:
+    """The problems of a .smcps file (problems/library/README.md), in file order: a list of Problem for a set of
+    box-MLCPs, a list of AviProblem for a set of AVIs (format version 4; `smcbench library --write-suite avi
+    FILE.smcps` writes one). One file holds one kind, so the list does too; its attribute .kind says which ("box"
+    or "avi"), and .name, .description, .version are the set's name, description and format version."""
+    path = os.fspath(path)
+    if _smcbench._problem_set_kind(path) == "avi":
+        raw = _smcbench._read_avi_problem_set(path)
+        problems = _ProblemList(AviProblem(**d) for d in raw["problems"])
+        problems.kind = "avi"
+    else:
+        raw = _smcbench._read_problem_set(path)
+        problems = _ProblemList(_problem_from_dict(d) for d in raw["problems"])
     problems.name, problems.description, problems.version = raw["name"], raw["description"], raw["version"]
     return problems
 
 
 class _ProblemList(list):
-    """A list of Problem with the set's name, description and version."""
+    """A list of Problem (kind "box") or of AviProblem (kind "avi") with the set's name, description and version."""
 
+    kind: str = "box"
     name: str = ""
     description: str = ""
     version: int = 0
@@ -438,11 +448,31 @@ def _problem_from_dict(d: dict) -> Problem:
 
 
 def write_problem_set(path, problems: Iterable, name: str = "python", description: str = "") -> None:
-    """Write problems (Problem objects, or dicts with at least id, M, q, l, u) as a .smcps file. Bounds may be
-    None (l = 0, u = +inf) or scalars as in solve(). Raises InvalidInputError for an invalid problem or a duplicate
-    id; the file is written under a temporary name and renamed, so a failed write leaves no partial file."""
+    """Write problems as a .smcps file: box-MLCPs (Problem objects, or dicts with at least id, M, q, l, u; bounds
+    may be None, l = 0, u = +inf, or scalars as in solve()), or AVIs (AviProblem objects, or AffineVI objects, whose
+    name is then the id), written as a set of AVIs (format version 4). A file holds one kind: mixing them is an
+    error. Raises InvalidInputError for an invalid problem or a duplicate or empty id; the file is written under a
+    temporary name and renamed, so a failed write leaves no partial file.
+
+    AVIs keep the reference they carry (read_problem_set's, as read); `smcbench library FILE --certify OUT` certifies
+    the AVIs that have none."""
+    items = list(problems)
+    avis = [isinstance(p, (AviProblem, AffineVI)) for p in items]
+    if any(avis):
+        if not all(avis):
+            raise InvalidInputError("write_problem_set: a .smcps set holds box problems or AVIs, not both: "
+                                    f"problems[{avis.index(False)}] is not an AviProblem or AffineVI")
+        dicts = []
+        for p in items:
+            entry = AviProblem(id=p.name, avi=p) if isinstance(p, AffineVI) else p
+            d = dict(entry.__dict__)
+            if not d["reference"]:
+                del d["reference"]
+            dicts.append(d)
+        _smcbench._write_avi_problem_set(os.fspath(path), dicts, name, description)
+        return
     dicts = []
-    for p in problems:
+    for p in items:
         d = dict(p.__dict__) if isinstance(p, Problem) else dict(p)
         m = _size_of(d.get("q"))
         d["l"] = _bound(d.get("l"), 0.0, max(m, 0), "l")
@@ -464,8 +494,8 @@ def bench(suites, solvers=None, tol: float = 1e-10, repetitions: int = 7, time_l
     track's rows, mode "warm": one per sequence × backend, seconds per step; warm=False skips them, as --no-warm).
 
     suites: a suite name ("tiny", "paper", "families", "hard", "siconos", "scale", "mcp", "avi", "all"), the path of
-    a .smcps file, a list of those, or a list of Problem (read_problem_set's list, or your own), run as one suite named
-    "python". solvers: a backend name or a list (None: every registered backend). settings: typed backend options
+    a .smcps file, a list of those, or a list of Problem or of AviProblem (read_problem_set's list, or your own),
+    run as one suite named "python". solvers: a backend name or a list (None: every registered backend). settings: typed backend options
     "BACKEND.OPTION=VALUE". quick, polish, backend_budget (seconds per backend and suite, 0: no limit) and
     siconos_dir (None: bench's default) as the flags of `smcbench bench`; no time-stepper studies. out: a folder to
     keep results.json and results.csv in (None: a temporary one). Bad input (an unknown suite or backend, a
@@ -474,13 +504,14 @@ def bench(suites, solvers=None, tol: float = 1e-10, repetitions: int = 7, time_l
 
     import pandas as pd  # imported here: the rest of the module does not need pandas
 
-    items = [suites] if isinstance(suites, (str, os.PathLike, Problem)) else list(suites)
-    problems = [item for item in items if isinstance(item, Problem)]
+    items = [suites] if isinstance(suites, (str, os.PathLike, Problem, AviProblem)) else list(suites)
+    problems = [item for item in items if isinstance(item, (Problem, AviProblem))]
     names = [solvers] if isinstance(solvers, str) else list(solvers or [])
     with tempfile.TemporaryDirectory(prefix="smcbench-bench-") as scratch:
         if problems:
             if len(problems) != len(items):
-                raise InvalidInputError("bench: suites: give suite names and files, or a list of Problem, not both")
+                raise InvalidInputError("bench: suites: give suite names and files, or a list of Problem (or of "
+                                        "AviProblem), not both")
             path = os.path.join(scratch, "python.smcps")
             write_problem_set(path, problems, name="python", description="problems given to smcbench.bench")
             paths = [path]
@@ -589,6 +620,32 @@ def solve_avi(avi: AffineVI, solver: str = "lemke", tol: float = 1e-10, time_lim
                                expected, backend_options)
     raw["reduced"] = _result(raw["reduced"])
     return AviResult(solved=raw["status"] == "solved", **raw)
+
+
+@dataclass
+class AviProblem:
+    """One AVI of a .smcps set of AVIs: the AffineVI with the library's metadata. id (unique in the set), source,
+    tags, expected ("solvable", "infeasible", "unknown"; None: avi.expected, what write_problem_set stores),
+    metadata (str → str), and reference: the certified reference as stored ({} when none): certificate,
+    condition, z (z* of the normalized reduction, what the file stores), lambda_ (λ*, the head of z), mu, nu (μ*,
+    ν*: M λ* + q − Hᵀ mu − Eᵀ nu = 0), lambda_unique (whether the forward error of λ is judged) and
+    strictly_monotone. Written back unchanged, it reads back bit for bit."""
+
+    id: str
+    avi: AffineVI
+    source: str = "python"
+    tags: List[str] = field(default_factory=list)
+    expected: Optional[str] = None
+    metadata: Dict[str, str] = field(default_factory=dict)
+    reference: Dict[str, Any] = field(default_factory=dict)
+
+    def solve(self, solver: str = "lemke", **kwargs) -> "AviResult":
+        """solve_avi on this AVI, judged by its expected outcome and, where its reference verified a λ* (certificate
+        "unique" or "verified"), against that λ* (certified again by solve_avi)."""
+        kwargs.setdefault("expected", self.expected)
+        if self.reference.get("lambda_") is not None:
+            kwargs.setdefault("reference", self.reference["lambda_"])
+        return solve_avi(self.avi, solver, **kwargs)
 
 
 class AviFile(NamedTuple):

@@ -126,57 +126,121 @@ nlohmann::json AviRecordToJson(const AviSolveRecord& record) {
   return out;
 }
 
+namespace {
+
+// Every backend on one AVI, then judged by expected and, with reference, against a certified λ*: stored (a set's
+// verified reference, used as it is) or certified here by CertifyAvi from known (a file's "solution") and the
+// answers.
+struct SolvedAvi {
+  std::vector<AviSolveRecord> records;
+  std::optional<AviReference> certified;
+};
+
+SolvedAvi SolveAndJudgeAvi(const AffineVI& avi, ExpectedOutcome expected, const AviReference* stored,
+                           const Vector& known, std::vector<std::unique_ptr<Solver>>& solvers,
+                           const SolverOptions& options, int repeat, bool reference) {
+  SolvedAvi solved;
+  for (auto& solver : solvers) solved.records.push_back(TimedAviSolve(avi, *solver, options, repeat));
+  if (reference) {
+    if (stored != nullptr && stored->verified()) {
+      solved.certified = *stored;
+    } else {
+      std::vector<AviSolution> candidates;
+      if (known.size() > 0) candidates.push_back(AviMultipliersAt(avi, known));
+      for (const AviSolveRecord& r : solved.records) {
+        if (r.result.solution.lambda.size() == avi.size()) candidates.push_back(r.result.solution);
+      }
+      solved.certified = CertifyAvi(avi, candidates);
+    }
+  }
+  // SolveAvi assumed ExpectedAviOutcome: the file's or the set's expected outcome decides instead.
+  for (AviSolveRecord& r : solved.records) {
+    r.result.judgement = JudgeAvi(avi, expected, solved.certified ? &*solved.certified : nullptr, r.result.status,
+                                  r.result.solution, options.tolerance);
+    r.judged_against_reference = solved.certified.has_value();
+  }
+  return solved;
+}
+
+nlohmann::json AviReferenceToJson(const AviReference& certified) {
+  nlohmann::json ref;
+  ref["certificate"] = std::string(ToString(certified.reduced.certificate));
+  ref["condition"] = Number(certified.reduced.condition);
+  ref["lambda_unique"] = certified.lambda_unique;
+  ref["lambda"] = VectorJson(certified.solution.lambda);
+  ref["mu"] = VectorJson(certified.solution.mu);
+  ref["nu"] = VectorJson(certified.solution.nu);
+  return ref;
+}
+
+// "ID (AVI: n = 2, m = 4, p = 0, P bounded, expected solvable)", the reference line, one record per backend.
+void PrintSolvedAvi(const std::string& title, const AffineVI& avi, ExpectedOutcome expected, const SolvedAvi& solved,
+                    std::ostream& out) {
+  out << title << " (AVI: n = " << avi.size() << ", m = " << avi.inequality_count()
+      << ", p = " << avi.equality_count() << ", P " << ToString(avi.boundedness()) << ", expected "
+      << ToString(expected) << ")\n";
+  if (solved.certified) {
+    const AviReference& certified = *solved.certified;
+    char line[200];
+    std::snprintf(line, sizeof line, "reference: certificate %s, condition %.3g, |lambda*|inf %.3g",
+                  std::string(ToString(certified.reduced.certificate)).c_str(), certified.reduced.condition,
+                  certified.solution.lambda.size() ? certified.solution.lambda.cwiseAbs().maxCoeff() : 0.0);
+    out << line << (certified.lambda_unique ? "" : " (forward error not defined: lambda* not proven unique)")
+        << "\n";
+  }
+  for (const AviSolveRecord& r : solved.records) out << "  " << FormatAviRecord(r) << "\n";
+}
+
+}  // namespace
+
 int RunSolveAvi(const std::string& path, std::optional<ProblemFormat> format,
                 std::vector<std::unique_ptr<Solver>>& solvers, const SolverOptions& options, int repeat, bool json,
                 bool reference, std::ostream& out) {
   const AviFile file = ReadAviProblemFile(path, format);
-  const AffineVI& avi = file.avi;
-  std::vector<AviSolveRecord> records;
-  for (auto& solver : solvers) records.push_back(TimedAviSolve(avi, *solver, options, repeat));
-  std::optional<AviReference> certified;
-  if (reference) {
-    std::vector<AviSolution> candidates;
-    if (file.solution.size() > 0) candidates.push_back(AviMultipliersAt(avi, file.solution));
-    for (const AviSolveRecord& r : records) {
-      if (r.result.solution.lambda.size() == avi.size()) candidates.push_back(r.result.solution);
-    }
-    certified = CertifyAvi(avi, candidates);
-  }
-  // Judged by the file's expected outcome (SolveAvi assumed ExpectedAviOutcome) and, with --reference, against λ*.
-  for (AviSolveRecord& r : records) {
-    r.result.judgement = JudgeAvi(avi, file.expected, certified ? &*certified : nullptr, r.result.status,
-                                  r.result.solution, options.tolerance);
-    r.judged_against_reference = certified.has_value();
-  }
-  if (json) {
-    nlohmann::json array = nlohmann::json::array();
-    for (const AviSolveRecord& r : records) array.push_back(AviRecordToJson(r));
-    if (!certified) {
-      out << array.dump(2) << "\n";
-      return 0;
-    }
-    nlohmann::json ref;
-    ref["certificate"] = std::string(ToString(certified->reduced.certificate));
-    ref["condition"] = Number(certified->reduced.condition);
-    ref["lambda_unique"] = certified->lambda_unique;
-    ref["lambda"] = VectorJson(certified->solution.lambda);
-    ref["mu"] = VectorJson(certified->solution.mu);
-    ref["nu"] = VectorJson(certified->solution.nu);
-    out << nlohmann::json{{"reference", std::move(ref)}, {"results", std::move(array)}}.dump(2) << "\n";
+  const SolvedAvi solved = SolveAndJudgeAvi(file.avi, file.expected, nullptr, file.solution, solvers, options,
+                                            repeat, reference);
+  if (!json) {
+    PrintSolvedAvi(file.avi.name(), file.avi, file.expected, solved, out);
     return 0;
   }
-  out << avi.name() << " (AVI: n = " << avi.size() << ", m = " << avi.inequality_count()
-      << ", p = " << avi.equality_count() << ", P " << ToString(avi.boundedness()) << ", expected "
-      << ToString(file.expected) << ")\n";
-  if (certified) {
-    char line[200];
-    std::snprintf(line, sizeof line, "reference: certificate %s, condition %.3g, |lambda*|inf %.3g",
-                  std::string(ToString(certified->reduced.certificate)).c_str(), certified->reduced.condition,
-                  certified->solution.lambda.size() ? certified->solution.lambda.cwiseAbs().maxCoeff() : 0.0);
-    out << line << (certified->lambda_unique ? "" : " (forward error not defined: lambda* not proven unique)")
-        << "\n";
+  nlohmann::json array = nlohmann::json::array();
+  for (const AviSolveRecord& r : solved.records) array.push_back(AviRecordToJson(r));
+  if (!solved.certified) {
+    out << array.dump(2) << "\n";
+    return 0;
   }
-  for (const AviSolveRecord& r : records) out << "  " << FormatAviRecord(r) << "\n";
+  out << nlohmann::json{{"reference", AviReferenceToJson(*solved.certified)}, {"results", std::move(array)}}.dump(2)
+      << "\n";
+  return 0;
+}
+
+int RunSolveAviSet(const std::string& path, const std::vector<std::string>& ids,
+                   std::vector<std::unique_ptr<Solver>>& solvers, const SolverOptions& options, int repeat, bool json,
+                   bool reference, std::ostream& out) {
+  const std::vector<AviLibraryProblem> problems = ReadAviProblemSetById(path, ids);
+  nlohmann::json all = nlohmann::json::array();
+  for (const AviLibraryProblem& p : problems) {
+    const AffineVI& avi = *p.problem;
+    SolvedAvi solved = SolveAndJudgeAvi(avi, p.expected, &p.reference, Vector(), solvers, options, repeat, reference);
+    if (!json) {
+      PrintSolvedAvi(p.id, avi, p.expected, solved, out);
+      continue;
+    }
+    nlohmann::json array = nlohmann::json::array();
+    for (AviSolveRecord& r : solved.records) {
+      r.problem = p.id;
+      array.push_back(AviRecordToJson(r));
+    }
+    nlohmann::json entry{{"problem", p.id},
+                         {"n", avi.size()},
+                         {"m", avi.inequality_count()},
+                         {"p", avi.equality_count()},
+                         {"expected", std::string(ToString(p.expected))},
+                         {"results", std::move(array)}};
+    if (solved.certified) entry["reference"] = AviReferenceToJson(*solved.certified);
+    all.push_back(std::move(entry));
+  }
+  if (json) out << all.dump(2) << "\n";
   return 0;
 }
 

@@ -1,5 +1,6 @@
-// `smcbench solve FILE.avi.json`: every chosen backend on one AVI through SolveAvi (solvers/avi/avi_solver.h),
-// judged by the AVI verdict (JudgeAvi), rendered as text and JSON in the style of the box solve (solve_report.h).
+// `smcbench solve FILE.avi.json` and `solve FILE.smcps` on a set of AVIs: every chosen backend on each AVI through
+// SolveAvi (solvers/avi/avi_solver.h), judged by the AVI verdict (JudgeAvi), rendered as text and JSON in the style
+// of the box solve (solve_report.h).
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -47,5 +48,14 @@ nlohmann::json AviRecordToJson(const AviSolveRecord& record);
 int RunSolveAvi(const std::string& path, std::optional<ProblemFormat> format,
                 std::vector<std::unique_ptr<Solver>>& solvers, const SolverOptions& options, int repeat, bool json,
                 bool reference, std::ostream& out);
+
+// `solve FILE.smcps [--id ID ...]` on a set of AVIs (ReadAviProblemSetById: all of them, or those ids, 'PREFIX*' by
+// prefix): each AVI as RunSolveAvi solves a file, judged by the set's expected outcome; with reference, against the
+// set's own verified reference where it has one (else certified here from the answers). Text: one block per AVI,
+// titled by its id; json: an array with one object per AVI {problem, n, m, p, expected, results, reference (with
+// reference)}.
+int RunSolveAviSet(const std::string& path, const std::vector<std::string>& ids,
+                   std::vector<std::unique_ptr<Solver>>& solvers, const SolverOptions& options, int repeat, bool json,
+                   bool reference, std::ostream& out);
 
 }  // namespace smcbench

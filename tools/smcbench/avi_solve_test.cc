@@ -1,5 +1,6 @@
-// `smcbench solve FILE.avi.json`, run in-process: the answer checked against the KKT conditions recomputed here from
-// the file's data, the verdict and the certified reference, the ways the kind is recognised, and the refusals.
+// `smcbench solve FILE.avi.json` and `solve SET.smcps` on a set of AVIs, run in-process: the answer checked against
+// the KKT conditions recomputed here from the file's data, the verdict and the certified reference (the set's own
+// where it has one), the ways the kind is recognised, the selection by id, and the refusals.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 #include <unistd.h>
@@ -7,6 +8,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
@@ -17,6 +19,7 @@
 #include "problems/avi_library/avi_suite.h"
 #include "problems/io/avi_file.h"
 #include "problems/library/problem_set_io.h"
+#include "solvers/avi/avi_verdict.h"
 #include "tools/smcbench/avi_export.h"
 #include "tools/smcbench/cli_test_runner.h"
 
@@ -249,9 +252,10 @@ TEST(SolveAviCli, TheAviSuiteWrittenAsOneSetReadsBackAndIsListed) {
   EXPECT_THAT(listed.out, HasSubstr("AVIs: " + std::to_string(suite.problems.size()) + "\n"));
   EXPECT_THAT(listed.out, HasSubstr("\n" + suite.problems[0].id + " | " + std::to_string(suite.problems[0].size()) +
                                     " | "));
-  const CliRun certify = RunSmcbench({"library", file, "--certify", dir.File("out.smcps")});
-  EXPECT_NE(certify.code, 0);
-  EXPECT_THAT(certify.err, HasSubstr("--certify and --export-relay take a set of box-MLCPs"));
+  const CliRun relay = RunSmcbench({"library", file, "--export-relay", dir.File("relay")});
+  EXPECT_EQ(relay.code, 1);
+  EXPECT_THAT(relay.err, HasSubstr("--export-relay takes a set of box-MLCPs"));
+  EXPECT_FALSE(fs::exists(dir.File("relay")));
   // `bench --suite FILE.smcps` plans the AVI suite read from the file: the same problems, by their checksum.
   BenchRequest request;
   request.suites = {file};
@@ -261,10 +265,159 @@ TEST(SolveAviCli, TheAviSuiteWrittenAsOneSetReadsBackAndIsListed) {
   ASSERT_EQ(plan.avi_suites.size(), 1u);
   EXPECT_TRUE(plan.suites.empty());
   EXPECT_EQ(AviProblemSetChecksum(plan.avi_suites[0]), AviProblemSetChecksum(suite));
-  // Not yet solved as a set: refused with what to do instead.
-  const CliRun solve = RunSmcbench({"solve", file, "--solver", "lemke"});
-  EXPECT_NE(solve.code, 0);
-  EXPECT_THAT(solve.err, HasSubstr("is a set of AVIs (.smcps format version 4): `smcbench library " + file));
+  // `solve FILE.smcps --id` solves the AVI of the set as its .avi.json file is solved: same answer, bit for bit.
+  const AviLibraryProblem& first = suite.problems[0];
+  const CliRun from_set = RunSmcbench({"solve", file, "--id", first.id, "--solver", "lemke", "--json"});
+  ASSERT_EQ(from_set.code, 0) << from_set.err;
+  const std::string single = dir.File("first.avi.json");
+  WriteAviFile(*first.problem, single, Vector(), first.expected);
+  const CliRun from_file = RunSmcbench({"solve", single, "--solver", "lemke", "--json"});
+  ASSERT_EQ(from_file.code, 0) << from_file.err;
+  const nlohmann::json set_row = nlohmann::json::parse(from_set.out).at(0)["results"].at(0);
+  const nlohmann::json file_row = nlohmann::json::parse(from_file.out).at(0);
+  EXPECT_EQ(set_row["problem"], first.id);
+  for (const char* key : {"status", "verdict", "lambda", "mu", "nu", "residual_rel", "complementarity"}) {
+    EXPECT_EQ(set_row[key], file_row[key]) << key;
+  }
+  // A box command refuses it, saying what reads it.
+  const CliRun convert = RunSmcbench({"convert", file, dir.File("out.mtx"), "--id", first.id});
+  EXPECT_EQ(convert.code, 1);
+  EXPECT_THAT(convert.err, HasSubstr("is a set of AVIs (.smcps format version 4), not of box problems: "
+                                     "`smcbench solve`"));
+}
+
+// A set of AVIs by hand: λ of (0.8, 0.2) on a segment (p = 1) with a stored reference, the corner (1, 1) of the
+// unit box without one, and an AVI with no solution. Returns the path it was written to.
+std::string WriteHandMadeAviSet(const ScratchDir& dir, AviReference* stored) {
+  DenseMatrix box(4, 2);
+  box << 1, 0, -1, 0, 0, 1, 0, -1;  // 0 <= λ <= 1
+  const Vector box_k = (Vector(4) << 0, -1, 0, -1).finished();
+  AviProblemSet set;
+  set.name = "hand-made";
+  AviLibraryProblem segment;
+  segment.id = "hand/segment";
+  segment.source = "hand-made:segment";
+  // The projection of c = (0.7, 0.1) onto [0, 1]² ∩ {λ₁ + λ₂ = 1} is (0.8, 0.2).
+  segment.problem =
+      std::make_shared<const AffineVI>(DenseMatrix::Identity(2, 2), (Vector(2) << -0.7, -0.1).finished(), box, box_k,
+                                       DenseMatrix::Ones(1, 2), Vector::Ones(1), "hand/segment");
+  segment.expected = ExpectedOutcome::kSolvable;
+  segment.reference = CertifyAvi(*segment.problem, {AviSolution{(Vector(2) << 0.8, 0.2).finished(), {}, {}}});
+  // A condition no certification of this AVI gives (it is 1 or so): the mark that the set's own reference is used.
+  segment.reference.reduced.condition = 123.0;
+  *stored = segment.reference;
+  set.problems.push_back(segment);
+  AviLibraryProblem corner;
+  corner.id = "hand/corner";
+  corner.source = "hand-made:corner";
+  // The projection of (2, 3) onto the unit box.
+  corner.problem = std::make_shared<const AffineVI>(DenseMatrix::Identity(2, 2), (Vector(2) << -2, -3).finished(),
+                                                    box, box_k, "hand/corner");
+  corner.expected = ExpectedOutcome::kSolvable;
+  set.problems.push_back(corner);
+  AviLibraryProblem none;
+  none.id = "other/none";
+  none.source = "hand-made:no solution";
+  // λ >= 0, M = 0, q = -1: 0 ∈ -1 + N_P(λ) has no solution.
+  none.problem = std::make_shared<const AffineVI>(DenseMatrix::Zero(1, 1), Vector::Constant(1, -1.0),
+                                                  DenseMatrix::Identity(1, 1), Vector::Zero(1), "other/none");
+  none.expected = ExpectedOutcome::kInfeasible;
+  set.problems.push_back(none);
+  const std::string path = dir.File("hand.smcps");
+  WriteAviProblemSetFile(set, path);
+  return path;
+}
+
+TEST(SolveAviCli, ASetOfAvisIsSolvedByIdAndItsAnswersMeetTheKktConditions) {
+  const ScratchDir dir;
+  AviReference stored;
+  const std::string file = WriteHandMadeAviSet(dir, &stored);
+  const AviProblemSet set = ReadAviProblemSetFile(file);
+  CliRun r = RunSmcbench({"solve", file, "--id", "hand/*", "--solver", "lemke", "enum", "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json j = nlohmann::json::parse(r.out);
+  ASSERT_EQ(j.size(), 2u);
+  const Vector expected_lambda[2] = {(Vector(2) << 0.8, 0.2).finished(), (Vector(2) << 1, 1).finished()};
+  for (std::size_t k = 0; k < 2; ++k) {
+    const AffineVI& avi = *set.problems[k].problem;
+    EXPECT_EQ(j[k]["problem"], set.problems[k].id);
+    EXPECT_EQ(j[k]["n"], 2);
+    EXPECT_EQ(j[k]["m"], 4);
+    EXPECT_EQ(j[k]["p"], avi.equality_count());
+    EXPECT_EQ(j[k]["expected"], "solvable");
+    EXPECT_FALSE(j[k].contains("reference"));
+    ASSERT_EQ(j[k]["results"].size(), 2u);
+    for (const auto& row : j[k]["results"]) {
+      SCOPED_TRACE(row.dump());
+      EXPECT_EQ(row["problem"], set.problems[k].id);
+      EXPECT_EQ(row["verdict"], "solved");
+      const Vector lambda = FromJson(row["lambda"]), mu = FromJson(row["mu"]), nu = FromJson(row["nu"]);
+      ASSERT_EQ(lambda.size(), 2);
+      ASSERT_EQ(mu.size(), 4);
+      ASSERT_EQ(nu.size(), avi.equality_count());
+      // KKT recomputed from the set's data: Mλ + q − Hᵀμ − Eᵀν = 0, μ ≥ 0, Hλ ≥ K, μᵢ(Hλ − K)ᵢ = 0, Eλ = f.
+      EXPECT_LE((avi.M() * lambda + avi.q() - avi.H().transpose() * mu - avi.E().transpose() * nu)
+                    .cwiseAbs()
+                    .maxCoeff(),
+                1e-12);
+      const Vector slack = avi.H() * lambda - avi.K();
+      EXPECT_GE(mu.minCoeff(), 0.0);
+      EXPECT_GE(slack.minCoeff(), -1e-12);
+      EXPECT_LE(mu.cwiseProduct(slack).cwiseAbs().maxCoeff(), 1e-12);
+      if (avi.equality_count() > 0) {
+        EXPECT_LE((avi.E() * lambda - avi.f()).cwiseAbs().maxCoeff(), 1e-12);
+      }
+      EXPECT_LE((lambda - expected_lambda[k]).cwiseAbs().maxCoeff(), 1e-12);
+    }
+  }
+
+  // --reference: the set's own reference where it has one (its marked condition), certified here where not.
+  r = RunSmcbench({"solve", file, "--id", "hand/segment", "hand/corner", "--solver", "lemke", "--json",
+                   "--reference", "--repeat", "2"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const nlohmann::json ref = nlohmann::json::parse(r.out);
+  ASSERT_EQ(ref.size(), 2u);
+  EXPECT_EQ(ref[0]["reference"]["condition"], 123.0);
+  EXPECT_EQ(ref[0]["reference"]["certificate"], std::string(ToString(stored.reduced.certificate)));
+  EXPECT_TRUE(FromJson(ref[0]["reference"]["lambda"]) == stored.solution.lambda);
+  EXPECT_THAT(std::string(ref[1]["reference"]["certificate"]), ::testing::AnyOf("unique", "isolated"));
+  EXPECT_TRUE(ref[1]["reference"]["lambda_unique"].get<bool>());  // M = I: strictly monotone
+  EXPECT_TRUE(FromJson(ref[1]["reference"]["lambda"]) == expected_lambda[1]);
+  for (const auto& entry : ref) {
+    const auto& row = entry["results"].at(0);
+    EXPECT_EQ(row["repeats"], 2);
+    EXPECT_EQ(row["verdict"], "solved");
+    ASSERT_TRUE(row["forward_error"].is_number()) << row.dump();
+    EXPECT_LE(row["forward_error"].get<double>(), row["forward_allowance"].get<double>());
+  }
+
+  // The set's expected outcome judges: a refusal of the AVI with no solution is correct.
+  r = RunSmcbench({"solve", file, "--id", "other/none", "--solver", "lemke", "--json"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  const auto none = nlohmann::json::parse(r.out).at(0);
+  EXPECT_EQ(none["expected"], "infeasible");
+  EXPECT_NE(none["results"].at(0)["status"], "solved");
+  EXPECT_EQ(none["results"].at(0)["verdict"], "correctly refused");
+
+  // Text: the file's layout, one block per AVI titled by its id.
+  r = RunSmcbench({"solve", file, "--solver", "lemke", "--reference"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("hand/segment (AVI: n = 2, m = 4, p = 1, P bounded, expected solvable)\n"
+                               "reference: certificate "));
+  EXPECT_THAT(r.out, HasSubstr("condition 123,"));
+  EXPECT_THAT(r.out, HasSubstr("hand/corner (AVI: n = 2, m = 4, p = 0, P bounded, expected solvable)\n"));
+  EXPECT_THAT(r.out, HasSubstr("other/none (AVI: n = 1, m = 1, p = 0, P unbounded, expected infeasible)\n"));
+  EXPECT_EQ(std::count(r.out.begin(), r.out.end(), '\n'), 3 * 6);  // title, reference, record, λ, μ, ν
+
+  // An unknown id lists what exists; --warm is refused as for an AVI file.
+  r = RunSmcbench({"solve", file, "--id", "hand/nope"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--id hand/nope: no such problem in '" + file +
+                               "' (3 problems, e.g. hand/segment, hand/corner, other/none; `smcbench library " + file +
+                               "` lists them"));
+  r = RunSmcbench({"solve", file, "--warm"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("--warm is not supported for a set of AVIs"));
 }
 
 }  // namespace

@@ -197,6 +197,14 @@ int RunSolve(const std::string& path, const std::vector<std::string>& ids, const
     return RunSolveAvi(path, s.format, solvers, MakeOptions(s), s.repeat, json, reference, out);
   }
   const bool problem_set = choice.format == ProblemFormat::kSmcps;
+  if (problem_set && IsAviProblemSetFile(path)) {  // a set of AVIs: each AVI as an AVI file is solved
+    if (s.warm) {
+      throw InvalidInputError("--warm is not supported for a set of AVIs ('" + path + "'): their repeats are cold "
+                              "SolveAvi calls; a warm AVI session is not there yet");
+    }
+    auto solvers = MakeSolvers(s);
+    return RunSolveAviSet(path, ids, solvers, MakeOptions(s), s.repeat, json, reference, out);
+  }
   const std::vector<LibraryProblem> problems = ReadProblemFile(path, s.format, ids);
   auto solvers = MakeSolvers(s);
   const SolverOptions options = MakeOptions(s);
@@ -452,8 +460,9 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
   auto* list = app.add_subcommand("list", "list the backends with their capabilities, references and options");
 
   auto* solve = app.add_subcommand("solve", "solve a problem file (Siconos LCP/Relay/MLCP, Matrix Market, the "
-                                             "problems of a .smcps set, or an AVI file .avi.json) with the default "
-                                             "backend (auto), or the ones named by --solver (all: every backend)");
+                                             "problems of a .smcps set of box-MLCPs or of AVIs, or an AVI file "
+                                             ".avi.json) with the default backend (auto), or the ones named by "
+                                             "--solver (all: every backend)");
   std::string solve_file;
   std::vector<std::string> solve_ids;
   bool solve_json = false, solve_reference = false;

@@ -14,6 +14,7 @@
 #include <sstream>
 #include <stdexcept>
 
+#include "problems/avi_library/avi_references.h"
 #include "problems/avi_library/avi_suite.h"
 #include "problems/library/references.h"
 #include "problems/library/siconos_export.h"
@@ -105,6 +106,13 @@ std::string AviSetSummary(const AviProblemSet& set, const ProblemSetFileInfo& in
     << "\nreferences: " << Counts(certificates) << " (lambda* unique: " << lambda_unique << ")\nsources: "
     << Counts(sources) << "\nlabels: " << Counts(labels) << "\n";
   return o.str();
+}
+
+// "unique 3, none 1": the certificates of the references of a set of AVIs.
+std::string AviCertificateCounts(const AviProblemSet& set) {
+  std::map<std::string, std::size_t> counts;
+  for (const AviLibraryProblem& p : set.problems) ++counts[std::string(ToString(p.reference.reduced.certificate))];
+  return Counts(counts);
 }
 
 }  // namespace
@@ -233,7 +241,10 @@ LibraryCommand::LibraryCommand(CLI::App* app) : flags_(std::make_unique<Flags>()
                        "candidates: the known solution and the answers of lemke, enum and newton) for every "
                        "problem that has none and at most --certify-max-size rows, and write the set with them "
                        "to OUT.smcps (format version " + std::to_string(kProblemSetFormatVersion) +
-                       "; OUT may be FILE itself); existing references are kept")
+                       "; OUT may be FILE itself); existing references are kept; on a set of AVIs the reduction "
+                       "to a box-MLCP is certified (CertifyAvi), its n + m + p rows counted against "
+                       "--certify-max-size, and OUT is written in format version " +
+                       std::to_string(kAviProblemSetFormatVersion))
       ->type_name("OUT");
   command_->add_option("--certify-max-size", flags_->certify_max_size,
                        "larger problems keep certificate 'none' (default " +
@@ -242,10 +253,63 @@ LibraryCommand::LibraryCommand(CLI::App* app) : flags_(std::make_unique<Flags>()
       ->check(CLI::Range(1, 256));
   command_->add_option("--export-relay", flags_->export_dir,
                        "write every problem with finite bounds to DIR/<id>.dat in Siconos relay format, plus "
-                       "DIR/index.csv; problems with infinite bounds are listed and make the exit status 1");
+                       "DIR/index.csv; problems with infinite bounds are listed and make the exit status 1 (a set "
+                       "of box-MLCPs only)");
 }
 
 LibraryCommand::~LibraryCommand() = default;
+
+// `library FILE` on a set of AVIs: its summary, --certify (AttachAviReferences; the limit counts the reduction's
+// rows n + m + p, what the certifier solves) and --list. --export-relay is refused: relay files hold box problems.
+int LibraryCommand::RunAviSet(std::ostream& out) const {
+  const Flags& f = *flags_;
+  if (!f.export_dir.empty()) {
+    throw InvalidInputError("library: --export-relay takes a set of box-MLCPs (Siconos relay files hold a box "
+                            "problem); '" + f.file + "' is a set of AVIs");
+  }
+  ProblemSetFileInfo info;
+  AviProblemSet set = ReadAviProblemSetFile(f.file, &info);
+  out << AviSetSummary(set, info);
+  if (!f.certify_out.empty()) {
+    ReferenceOptions options;
+    options.max_size = f.certify_max_size;
+    std::size_t todo = 0, kept = 0, too_large = 0;
+    for (const AviLibraryProblem& p : set.problems) {
+      if (p.reference.reduced.certificate != Certificate::kNone) {
+        ++kept;
+      } else if (AviReductionRows(*p.problem) > options.max_size) {
+        ++too_large;
+      } else {
+        ++todo;
+      }
+    }
+    const auto start = std::chrono::steady_clock::now();
+    try {
+      AttachAviReferences(&set, options);
+    } catch (const std::logic_error& e) {
+      // A solution verified on an AVI the file says is infeasible: the file's data is wrong, not smcbench.
+      throw InvalidInputError("--certify: " + std::string(e.what()) + "; nothing was written");
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    WriteAviProblemSetFile(set, f.certify_out);
+    char time_text[32];
+    std::snprintf(time_text, sizeof time_text, "%.2f", seconds);
+    out << "\ncertified " << todo << " AVI(s) in " << time_text << " s (kept " << kept
+        << " existing reference(s); " << too_large << " with more than " << options.max_size
+        << " rows n + m + p left without)\n"
+        << "references: " << AviCertificateCounts(set) << "\n"
+        << "wrote " << f.certify_out << " (format version " << kAviProblemSetFormatVersion << ")\n";
+  }
+  if (f.list) {
+    out << "\nid | n | m | p | expected | certificate | mu\n";
+    for (const AviLibraryProblem& p : set.problems) {
+      out << p.id << " | " << p.size() << " | " << p.problem->inequality_count() << " | "
+          << p.problem->equality_count() << " | " << ToString(p.expected) << " | "
+          << ToString(p.reference.reduced.certificate) << " | " << ConditionText(p.reference.reduced) << "\n";
+    }
+  }
+  return 0;
+}
 
 bool LibraryCommand::parsed() const { return command_->parsed(); }
 
@@ -282,24 +346,7 @@ int LibraryCommand::Run(std::ostream& out, std::ostream& err) const {
            "library --help')\n";
     return 2;
   }
-  if (ReadProblemSetKind(f.file) == ProblemSetKind::kAvi) {
-    if (!f.certify_out.empty() || !f.export_dir.empty()) {
-      throw InvalidInputError("library: --certify and --export-relay take a set of box-MLCPs; '" + f.file +
-                              "' is a set of AVIs (its references were certified when it was written)");
-    }
-    ProblemSetFileInfo info;
-    const AviProblemSet set = ReadAviProblemSetFile(f.file, &info);
-    out << AviSetSummary(set, info);
-    if (f.list) {
-      out << "\nid | n | m | p | expected | certificate | mu\n";
-      for (const AviLibraryProblem& p : set.problems) {
-        out << p.id << " | " << p.size() << " | " << p.problem->inequality_count() << " | "
-            << p.problem->equality_count() << " | " << ToString(p.expected) << " | "
-            << ToString(p.reference.reduced.certificate) << " | " << ConditionText(p.reference.reduced) << "\n";
-      }
-    }
-    return 0;
-  }
+  if (ReadProblemSetKind(f.file) == ProblemSetKind::kAvi) return RunAviSet(out);
   ProblemSetFileInfo info;
   ProblemSet set = ReadProblemSetFile(f.file, &info);
   out << ProblemSetSummary(set, &info);

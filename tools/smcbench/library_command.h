@@ -1,7 +1,8 @@
 // `smcbench library FILE`: what a problem-set file (problems/library, ".smcps") holds — name, counts, sizes, bound
 // kinds, matrix-class tags, expected outcomes, certified references — optionally one line per problem;
-// `--certify OUT` to attach certified reference solutions (problems/library/references.h) and write the set, and
-// `--export-relay DIR` to write every problem in Siconos relay format for Siconos' own tools.
+// `--certify OUT` to attach certified reference solutions (problems/library/references.h; on a set of AVIs
+// problems/avi_library/avi_references.h) and write the set, and `--export-relay DIR` to write every problem of a set
+// of box-MLCPs in Siconos relay format for Siconos' own tools.
 #pragma once
 
 #include <iosfwd>
@@ -38,6 +39,8 @@ class LibraryCommand {
   struct Flags;
 
  private:
+  int RunAviSet(std::ostream& out) const;  // Run on a set of AVIs
+
   CLI::App* command_;
   std::unique_ptr<Flags> flags_;
 };

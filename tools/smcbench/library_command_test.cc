@@ -1,6 +1,6 @@
 // End-to-end tests of `smcbench library`, run in-process: the summary of a problem-set file, --list, the Siconos
-// relay export (bit-exact files, colliding names, an index, infinite bounds refused with exit status 1), and
-// one-line errors for damaged or missing files.
+// relay export (bit-exact files, colliding names, an index, infinite bounds refused with exit status 1), --certify
+// on sets of box-MLCPs and of AVIs, and one-line errors for damaged or missing files.
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -11,12 +11,15 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <memory>
 #include <string>
 #include <vector>
 
+#include "problems/avi_library/avi_library.h"
 #include "problems/io/siconos_format.h"
 #include "problems/library/problem_set_io.h"
 #include "problems/suites/catalogue.h"
+#include "solvers/avi/avi_verdict.h"
 #include "tools/smcbench/cli_test_runner.h"
 
 namespace smcbench {
@@ -246,6 +249,111 @@ TEST_F(LibraryCommandTest, DamagedOrMissingFilesAreOneLineErrors) {
   EXPECT_EQ(RunSmcbench({"library"}).code, 2);  // FILE is required
 }
 
+// A 2-D AVI on the unit box 0 <= λ <= 1 (with M = I: the projection of -q onto it), with equalities E, f if given.
+std::shared_ptr<const AffineVI> UnitBoxAvi(const std::string& id, double q0, double q1, DenseMatrix E = {},
+                                           Vector f = {}) {
+  DenseMatrix H(4, 2);
+  H << 1, 0, -1, 0, 0, 1, 0, -1;
+  const Vector K = (Vector(4) << 0, -1, 0, -1).finished();
+  if (E.size() == 0) E = DenseMatrix(0, 2);
+  return std::make_shared<const AffineVI>(DenseMatrix::Identity(2, 2), (Vector(2) << q0, q1).finished(), H, K, E,
+                                          f, id);
+}
+
+AviLibraryProblem AviEntry(const std::string& id, std::shared_ptr<const AffineVI> avi, ExpectedOutcome expected) {
+  AviLibraryProblem p;
+  p.id = id;
+  p.source = "hand-made:test";
+  p.problem = std::move(avi);
+  p.expected = expected;
+  return p;
+}
+
+// `library FILE.smcps --certify OUT` on a set of AVIs: references for the AVIs that have none, within the limit on
+// the reduction's rows n + m + p; existing ones kept; written as a set of AVIs that reads back.
+TEST_F(LibraryCommandTest, CertifyAttachesReferencesToASetOfAvis) {
+  AviProblemSet set;
+  set.name = "avis";
+  // n + m + p = 7 rows: above the limit 6 below. The projection of (0.7, 0.1) onto the box ∩ {λ₁ + λ₂ = 1}.
+  set.problems.push_back(AviEntry("avi/segment", UnitBoxAvi("avi/segment", -0.7, -0.1, DenseMatrix::Ones(1, 2),
+                                                            Vector::Ones(1)),
+                                  ExpectedOutcome::kSolvable));
+  // 6 rows: the projection of (2, 3) onto the box is the corner (1, 1).
+  set.problems.push_back(AviEntry("avi/corner", UnitBoxAvi("avi/corner", -2, -3), ExpectedOutcome::kSolvable));
+  set.problems[1].metadata = {{"certificate", "none"}, {"lambda_unique", "no"}, {"why", "a corner"}};
+  // Already certified: kept as it is (its condition marked).
+  set.problems.push_back(AviEntry("avi/kept", UnitBoxAvi("avi/kept", -0.5, -0.25), ExpectedOutcome::kSolvable));
+  set.problems[2].reference =
+      CertifyAvi(*set.problems[2].problem, {AviSolution{(Vector(2) << 0.5, 0.25).finished(), {}, {}}});
+  ASSERT_TRUE(set.problems[2].reference.verified());
+  set.problems[2].reference.reduced.condition = 77.0;
+  // λ >= 0, M = 0, q = -1: no solution, nothing to verify.
+  set.problems.push_back(AviEntry("avi/none",
+                                  std::make_shared<const AffineVI>(DenseMatrix::Zero(1, 1), Vector::Constant(1, -1.0),
+                                                                   DenseMatrix::Identity(1, 1), Vector::Zero(1),
+                                                                   "avi/none"),
+                                  ExpectedOutcome::kInfeasible));
+  const std::string file = Path("avis.smcps"), certified = Path("avis-certified.smcps");
+  WriteAviProblemSetFile(set, file);
+  CliRun r = RunSmcbench({"library", file, "--certify", certified, "--certify-max-size", "6", "--list"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("certified 2 AVI(s) in "));
+  EXPECT_THAT(r.out, HasSubstr("(kept 1 existing reference(s); 1 with more than 6 rows n + m + p left without)\n"));
+  EXPECT_THAT(r.out, HasSubstr("wrote " + certified + " (format version " +
+                               std::to_string(kAviProblemSetFormatVersion) + ")\n"));
+  EXPECT_THAT(r.out, HasSubstr("\navi/segment | 2 | 4 | 1 | solvable | none | -\n"));  // --list shows the new set
+  EXPECT_THAT(r.out, HasSubstr("\navi/none | 1 | 1 | 0 | infeasible | none found | -\n"));
+
+  ProblemSetFileInfo info;
+  AviProblemSet back = ReadAviProblemSetFile(certified, &info);
+  EXPECT_EQ(info.version, kAviProblemSetFormatVersion);
+  ASSERT_EQ(back.problems.size(), 4u);
+  EXPECT_EQ(back.problems[0].reference.reduced.certificate, Certificate::kNone);
+  const AviReference& corner = back.problems[1].reference;
+  ASSERT_TRUE(corner.verified());
+  EXPECT_TRUE(corner.lambda_unique);  // M = I: strictly monotone
+  EXPECT_EQ(corner.solution.lambda, (Vector(2) << 1, 1).finished());
+  // μ recomputed here: Mλ + q = Hᵀμ at λ = (1, 1) with the upper rows active gives μ = (0, 1, 0, 2).
+  EXPECT_LE((corner.solution.mu - (Vector(4) << 0, 1, 0, 2).finished()).cwiseAbs().maxCoeff(), 1e-15);
+  EXPECT_EQ(back.problems[1].metadata.at("certificate"), std::string(ToString(corner.reduced.certificate)));
+  EXPECT_EQ(back.problems[1].metadata.at("lambda_unique"), "yes");
+  EXPECT_EQ(back.problems[1].metadata.at("why"), "a corner");
+  EXPECT_EQ(back.problems[2].reference.reduced.condition, 77.0);
+  EXPECT_TRUE(back.problems[2].reference.solution.lambda == set.problems[2].reference.solution.lambda);
+  EXPECT_EQ(back.problems[3].reference.reduced.certificate, Certificate::kNoneFound);
+
+  // Certifying the certified file in place with the default limit adds the segment.
+  r = RunSmcbench({"library", certified, "--certify", certified});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("certified 1 AVI(s) in "));
+  EXPECT_THAT(r.out, HasSubstr("(kept 3 existing reference(s); 0 with more than 64 rows n + m + p left without)\n"));
+  back = ReadAviProblemSetFile(certified);
+  const AviReference& segment = back.problems[0].reference;
+  ASSERT_TRUE(segment.verified());
+  EXPECT_LE((segment.solution.lambda - (Vector(2) << 0.8, 0.2).finished()).cwiseAbs().maxCoeff(), 1e-15);
+}
+
+// An AVI the set says has no solution, but which has one (λ = 1 on λ >= 0 with M = 1, q = -1): the set is wrong;
+// one line, exit 1, nothing written.
+TEST_F(LibraryCommandTest, CertifyRefusesAnAviExpectedInfeasibleThatHasASolution) {
+  AviProblemSet set;
+  set.name = "wrong";
+  set.problems.push_back(AviEntry("avi/wrong",
+                                  std::make_shared<const AffineVI>(DenseMatrix::Ones(1, 1), Vector::Constant(1, -1.0),
+                                                                   DenseMatrix::Identity(1, 1), Vector::Zero(1),
+                                                                   "avi/wrong"),
+                                  ExpectedOutcome::kInfeasible));
+  const std::string file = Path("wrong.smcps"), out = Path("never.smcps");
+  WriteAviProblemSetFile(set, file);
+  const CliRun r = RunSmcbench({"library", file, "--certify", out});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("smcbench: --certify: AVI 'avi/wrong' is expected infeasible, but CertifyAvi "
+                               "verified a solution"));
+  EXPECT_THAT(r.err, HasSubstr("nothing was written"));
+  EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << r.err;
+  EXPECT_FALSE(fs::exists(out));
+  EXPECT_FALSE(fs::exists(out + ".partial"));
+}
 
 // `library --write-suite NAME FILE`: the built-in suite frozen to a file, bit for bit the problems BuildSuite makes,
 // with their certified references; an unknown suite name is a one-line error.

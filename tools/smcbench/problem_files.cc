@@ -82,15 +82,6 @@ bool ReadsAs(const std::string& path, ProblemFormat format) {
   }
 }
 
-// Whether path's header says it holds a set of AVIs (false on any error: the box reader then reports it).
-bool IsAviProblemSet(const std::string& path) {
-  try {
-    return ReadProblemSetKind(path) == ProblemSetKind::kAvi;
-  } catch (const InvalidInputError&) {
-    return false;
-  }
-}
-
 // Every problem of path read as format (a Siconos or Matrix Market file holds one).
 std::vector<LibraryProblem> ReadUnder(const std::string& path, ProblemFormat format) {
   if (format == ProblemFormat::kSmcps) return ReadProblemSetFile(path).problems;
@@ -106,16 +97,18 @@ std::vector<LibraryProblem> ReadUnder(const std::string& path, ProblemFormat for
   return one;
 }
 
-// The problems of a set named by ids, in that order ('PREFIX*': every id with the prefix).
-std::vector<LibraryProblem> SelectById(std::vector<LibraryProblem> problems, const std::vector<std::string>& ids,
-                                       const std::string& path) {
+// The problems of a set named by ids, in that order ('PREFIX*': every id with the prefix); Problem is a
+// LibraryProblem or an AviLibraryProblem (both have an id).
+template <typename Problem>
+std::vector<Problem> SelectById(std::vector<Problem> problems, const std::vector<std::string>& ids,
+                                const std::string& path) {
   if (ids.empty()) return problems;
-  std::vector<LibraryProblem> selected;
+  std::vector<Problem> selected;
   for (const std::string& id : ids) {
     const bool prefix = !id.empty() && id.back() == '*';
     const std::string stem = prefix ? id.substr(0, id.size() - 1) : id;
     bool found = false;
-    for (const LibraryProblem& p : problems) {
+    for (const Problem& p : problems) {
       if (prefix ? p.id.compare(0, stem.size(), stem) == 0 : p.id == id) {
         selected.push_back(p);
         found = true;
@@ -210,12 +203,11 @@ std::vector<LibraryProblem> ReadProblemFile(const std::string& path, std::option
                             Describe(choice.format) + " (one problem; " + choice.reason + ")");
   }
   if (choice.format == ProblemFormat::kAvi) ReadUnder(path, choice.format);  // refused whatever the guess
-  if (choice.format == ProblemFormat::kSmcps && IsAviProblemSet(path)) {  // not a kind --format could change
+  if (choice.format == ProblemFormat::kSmcps && IsAviProblemSetFile(path)) {  // not a kind --format could change
     throw InvalidInputError("'" + path + "' is a set of AVIs (.smcps format version " +
-                            std::to_string(kAviProblemSetFormatVersion) + "): `smcbench library " + path +
-                            "` lists it; `smcbench solve` reads AVIs one .avi.json file at a time for now "
-                            "(`smcbench library --write-suite avi DIR` writes the avi suite that way; "
-                            "docs/formats.md, \"AVI files\")");
+                            std::to_string(kAviProblemSetFormatVersion) + "), not of box problems: `smcbench solve`, "
+                            "`smcbench library` and `smcbench bench --suite` read it (docs/formats.md, \"Sets of "
+                            "AVIs\")");
   }
   std::vector<LibraryProblem> problems;
   try {
@@ -235,6 +227,18 @@ std::vector<LibraryProblem> ReadProblemFile(const std::string& path, std::option
                             "; " + hint + ")");
   }
   return SelectById(std::move(problems), ids, path);
+}
+
+bool IsAviProblemSetFile(const std::string& path) {
+  try {
+    return ReadProblemSetKind(path) == ProblemSetKind::kAvi;
+  } catch (const InvalidInputError&) {
+    return false;
+  }
+}
+
+std::vector<AviLibraryProblem> ReadAviProblemSetById(const std::string& path, const std::vector<std::string>& ids) {
+  return SelectById(ReadAviProblemSetFile(path).problems, ids, path);
 }
 
 AviFile ReadAviProblemFile(const std::string& path, std::optional<ProblemFormat> requested) {

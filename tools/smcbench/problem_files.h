@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "problems/avi_library/avi_library.h"
 #include "problems/io/avi_file.h"
 #include "problems/library/problem_set.h"
 
@@ -34,11 +35,19 @@ FormatChoice ChooseProblemFormat(const std::string& path, std::optional<ProblemF
 // The problems in path read under ChooseProblemFormat(path, requested): one for every kind but .smcps, whose
 // problems are all returned (ids empty) or those named by ids, in that order; an id ending in '*' selects every id
 // with that prefix. A Siconos or Matrix Market problem gets the id "<file stem>" and the source "file:<path>".
-// An AVI file is refused (InvalidInputError: it is not a box problem; `solve` reads it with ReadAviProblemFile).
+// An AVI file or a set of AVIs is refused (InvalidInputError: not box problems; `solve` reads them with
+// ReadAviProblemFile and ReadAviProblemSetById).
 // Throws InvalidInputError; under a guessed kind the message ends with what was assumed, why, and the --format to
 // choose (naming the kind the file does read as, when one does).
 std::vector<LibraryProblem> ReadProblemFile(const std::string& path, std::optional<ProblemFormat> requested,
                                             const std::vector<std::string>& ids = {});
+
+// Whether path's header says it holds a set of AVIs (false on any error, so that the box reader reports it).
+bool IsAviProblemSetFile(const std::string& path);
+
+// The AVIs of a set of AVIs (.smcps format version 4): all of them (ids empty) or those named by ids, in that
+// order, selected as ReadProblemFile selects box problems ('PREFIX*' by prefix; an unknown id lists what exists).
+std::vector<AviLibraryProblem> ReadAviProblemSetById(const std::string& path, const std::vector<std::string>& ids);
 
 // The AVI in path, which ChooseProblemFormat(path, requested) must take for an AVI file (InvalidInputError
 // otherwise, naming the kind it was taken for). Under a guessed kind a reader's error ends with why it was guessed.
