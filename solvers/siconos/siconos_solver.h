@@ -12,6 +12,8 @@
 //                    enum (mlcp_enum), lemke (mlcp_lcp_lemke: Schur complement on the equality block, then
 //                    Lemke), fb (mlcp_FB), direct-enum / direct-fb (mlcp_direct_*: try the last few active sets
 //                    first, fall back to enum / FB).
+// And one method that is no backend of its own: avi_caoferris_stage3 on the LCP that siconos-avi-caoferris
+// (siconos_avi_solver.h) builds at a vertex of an AVI's polytope.
 // Anything a family cannot express is kNotApplicable with the reason.
 //
 // Trust. Siconos reports success on wrong answers in known cases (its dense LCP driver "solves" every 1×1 LCP as
