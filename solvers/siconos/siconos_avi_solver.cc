@@ -2,6 +2,7 @@
 // are ours; stage 3 runs in Siconos through a SiconosSolver of method kAviCaoFerrisStage3.
 #include "solvers/siconos/siconos_avi_solver.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -9,7 +10,6 @@
 #include <utility>
 
 #include "solvers/avi/polytope.h"
-#include "solvers/siconos/external_backends.h"
 
 namespace smcbench {
 
