@@ -1,19 +1,30 @@
 // siconos-avi-caoferris: Siconos' Cao–Ferris stage 3 at our vertex, through SolveAvi (the AVI itself) and
 // Solver::Solve (a box as the polytope l <= z <= u). Truths are independent of Siconos: the projection onto
 // implicit twisting's parallelogram worked out by hand (docs/avi.md), planted AVIs with a known unique λ*,
-// degenerate vertices whose answer is known, and lemke on the same AVIs through the reduction.
+// degenerate vertices whose answer is known, and lemke on the same AVIs through the reduction. Also why the adapter
+// exists: Siconos' own avi_caoferris exits (code 1) in this build, which a worker process turns into a status.
 #include "solvers/siconos/siconos_avi_solver.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <memory>
 #include <string>
 
+// Siconos Numerics C API, for its own avi_caoferris (the call the adapter cannot make).
+#include "AVI_Solvers.h"
+#include "AVI_cst.h"
+#include "AffineVariationalInequalities.h"
+#include "NumericsMatrix.h"
+#include "SiconosSets.h"
+#include "SolverOptions.h"
 #include "solvers/avi/avi_solver.h"
 #include "solvers/avi/planted_avi_test_util.h"
 #include "solvers/registry/registry.h"
+#include "solvers/siconos/child_process.h"
 #include "tests/support/eigen_literals.h"
 
 // Siconos 4.4 leaks a few bytes per call in some solvers; the in-process calls here are Siconos' (as in
@@ -172,6 +183,45 @@ TEST(SiconosAviCaoFerris, NoSolutionIsARayNotInfeasible) {
   EXPECT_NE(r.status, SolveStatus::kInfeasible);
   EXPECT_EQ(r.status, SolveStatus::kRayTermination) << r.message;
   EXPECT_THAT(r.message, ::testing::HasSubstr("not a proof"));
+}
+
+// Why the adapter finds the vertex itself: Siconos' own avi_caoferris, on docs/avi.md's twisting projection, ends the
+// process that calls it (Debian's 4.4 has no lp_solve: siconos_find_vertex prints a message and calls exit). Run in a
+// worker process, as the adapters run Siconos, that exit is a status for the caller and never the caller's end.
+void CallSiconosOwnAviCaoFerris(int fd, void* /*context*/) {
+  double M[4] = {1, 0, 0, 1};
+  double q[2] = {-2, -3};
+  double H[8] = {-1, 1, 0.05, -0.05, 0, 0, -1, 1};  // Siconos' Hλ ≤ K, column-major: our rows negated
+  double K[4] = {1, 1, 1, 1};
+  polyhedron poly{};
+  poly.id = SICONOS_SET_POLYHEDRON;
+  poly.size_ineq = 4;
+  poly.H = NM_create_from_data(NM_DENSE, 4, 2, H);
+  poly.K = K;
+  AffineVariationalInequalities avi{};
+  avi.size = 2;
+  avi.M = NM_create_from_data(NM_DENSE, 2, 2, M);
+  avi.q = q;
+  avi.poly.split = &poly;
+  ::SolverOptions* options = solver_options_create(SICONOS_AVI_CAOFERRIS);
+  double z[2] = {0, 0}, w[2] = {0, 0};
+  const int info = avi_caoferris(&avi, z, w, options);
+  ChildProcess::WriteAll(fd, &info, sizeof info);  // reached only if Siconos returned
+}
+
+TEST(SiconosAviCaoFerris, SiconosOwnAviCaoFerrisExitsAndAWorkerMakesThatAStatus) {
+  ChildProcess worker;
+  std::string error;
+  ASSERT_TRUE(worker.Start(&CallSiconosOwnAviCaoFerris, nullptr, /*keep_output=*/false, &error)) << error;
+  int info = -1;
+  const ChildProcess::Io io = worker.Read(&info, sizeof info, ChildProcess::Clock::now() + std::chrono::seconds(60));
+  ASSERT_EQ(io, ChildProcess::Io::kClosed) << "Siconos' avi_caoferris returned " << info;
+  int signal = -1;
+  const std::string how = worker.Reap(&signal);
+  EXPECT_EQ(signal, 0) << how;
+  EXPECT_THAT(how, ::testing::HasSubstr("exited with code"));
+  EXPECT_THAT(how, ::testing::Not(::testing::HasSubstr("code 0")));
+  std::printf("[ info     ] Siconos' own avi_caoferris in a worker: %s\n", how.c_str());
 }
 
 }  // namespace
