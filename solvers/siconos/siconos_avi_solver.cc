@@ -88,27 +88,43 @@ void SiconosAviSolver::SolveAtVertex(const DenseMatrix& M, const Vector& q, cons
       b_I[k - n] = b[r];
     }
   }
-  const Eigen::PartialPivLU<DenseMatrix> lu(B);
-  const double rcond = lu.rcond();
-  if (!(rcond > static_cast<double>(n) * std::numeric_limits<double>::epsilon())) {
-    result->status = SolveStatus::kSingular;
-    result->message = "the vertex's " + std::to_string(n) + " rows are numerically dependent (reciprocal condition " +
-                      std::to_string(rcond) + "), so Cao-Ferris' change of variables cannot be built";
-    return;
+  // A box's vertex rows are ±e_i in order (B diagonal): every product below is then a scaling, O(n²) instead of
+  // O(n³), with no sum whose rounding could turn an exact 0 into a pivot.
+  bool diagonal = true;
+  for (Eigen::Index j = 0; j < n && diagonal; ++j) {
+    for (Eigen::Index i = 0; i < n && diagonal; ++i) diagonal = i == j ? B(i, j) != 0.0 : B(i, j) == 0.0;
   }
-  const DenseMatrix B_inverse = lu.inverse();
-  const Vector vertex = lu.solve(b_A);  // B⁻¹ b_A
-  // Stage 3 pivots on any entry > 0, without a tolerance: an entry that is rounding of an exact 0 (the row −Eλ ≥ −f
-  // against its pair's column) would be taken as a pivot and blow the answer up to 1e17. So entries of G_IB⁻¹ and
-  // B⁻ᵀMB⁻¹ within their own rounding bound (products of absolute values times 4(n + 1)ε) are set to 0 exactly.
-  const double noise = 4.0 * static_cast<double>(n + 1) * std::numeric_limits<double>::epsilon();
-  const DenseMatrix B_inverse_abs = B_inverse.cwiseAbs();
-  const auto clean = [noise](const DenseMatrix& value, const DenseMatrix& magnitude) {
-    return DenseMatrix((value.array().abs() <= noise * magnitude.array()).select(0.0, value.array()));
-  };
-  const DenseMatrix C = clean(G_I * B_inverse, G_I.cwiseAbs() * B_inverse_abs);  // G_I B⁻¹
-  const DenseMatrix T = clean(B_inverse.transpose() * M * B_inverse,
-                              B_inverse_abs.transpose() * M.cwiseAbs() * B_inverse_abs);  // B⁻ᵀMB⁻¹
+  DenseMatrix B_inverse, C, T;  // B⁻¹, G_I B⁻¹, B⁻ᵀMB⁻¹
+  Vector vertex;                // B⁻¹ b_A
+  if (diagonal) {
+    const Vector d = B.diagonal().cwiseInverse();
+    B_inverse = d.asDiagonal();
+    vertex = d.cwiseProduct(b_A);
+    C = G_I * d.asDiagonal();
+    T = d.asDiagonal() * M * d.asDiagonal();
+  } else {
+    const Eigen::PartialPivLU<DenseMatrix> lu(B);
+    const double rcond = lu.rcond();
+    if (!(rcond > static_cast<double>(n) * std::numeric_limits<double>::epsilon())) {
+      result->status = SolveStatus::kSingular;
+      result->message = "the vertex's " + std::to_string(n) + " rows are numerically dependent (reciprocal " +
+                        "condition " + std::to_string(rcond) + "), so Cao-Ferris' change of variables cannot be built";
+      return;
+    }
+    B_inverse = lu.inverse();
+    vertex = lu.solve(b_A);
+    // Stage 3 pivots on any entry > 0, without a tolerance: an entry that is rounding of an exact 0 (the row
+    // −Eλ ≥ −f against its pair's column) would be taken as a pivot and blow the answer up to 1e17. So entries of
+    // G_IB⁻¹ and B⁻ᵀMB⁻¹ within their own rounding bound (products of absolute values times 4(n + 1)ε) are set
+    // to 0 exactly.
+    const double noise = 4.0 * static_cast<double>(n + 1) * std::numeric_limits<double>::epsilon();
+    const DenseMatrix B_inverse_abs = B_inverse.cwiseAbs();
+    const auto clean = [noise](const DenseMatrix& value, const DenseMatrix& magnitude) {
+      return DenseMatrix((value.array().abs() <= noise * magnitude.array()).select(0.0, value.array()));
+    };
+    C = clean(G_I * B_inverse, G_I.cwiseAbs() * B_inverse_abs);
+    T = clean(B_inverse.transpose() * M * B_inverse, B_inverse_abs.transpose() * M.cwiseAbs() * B_inverse_abs);
+  }
   // w = (u_A, s_I) = M̄ (u_I, s_A) + q̄ (siconos_avi_solver.h).
   DenseMatrix M_bar = DenseMatrix::Zero(rows, rows);
   M_bar.topLeftCorner(n, inactive) = -C.transpose();
