@@ -93,7 +93,7 @@ TEST(SiconosProbe, InProcessAnswerEqualsTheProbesBitForBitOnTheSiconosCollection
     }
   }
   EXPECT_GE(compared, 250) << not_back << " probes did not come back";
-  EXPECT_EQ(backends_compared.size(), 12u);
+  EXPECT_EQ(backends_compared.size(), 13u);
 }
 
 }  // namespace

@@ -4,9 +4,11 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <map>
 #include <set>
+#include <string>
 
 #include "problems/avi_library/avi_suite.h"
 #include "problems/scenes/registry.h"
@@ -216,6 +218,53 @@ TEST(AviProblemSet, ValidateNamesTheProblem) {
   set = QuickSuite();
   set.problems[2].problem.reset();
   EXPECT_THROW(set.Validate(), InvalidInputError);
+}
+
+}  // namespace
+}  // namespace smcbench
+
+namespace smcbench {
+namespace {
+
+// siconos-avi-caoferris (Cao–Ferris at our vertex, Siconos' stage 3; built with Siconos only) against lemke
+// through the reduction on the whole quick suite: where both solve and λ is certified unique, the same λ; where λ
+// is not unique, the same Mλ for a symmetric M (monotone AVIs: every solution has it); every AVI it does not solve
+// is one without a vertex (kNotApplicable naming it) or without a solution.
+TEST(AviSuite, SiconosCaoFerrisAgreesWithLemke) {
+  const auto names = SolverNames();
+  if (std::find(names.begin(), names.end(), "siconos-avi-caoferris") == names.end()) {
+    GTEST_SKIP() << "built without Siconos";
+  }
+  auto cao_ferris = CreateSolver("siconos-avi-caoferris");
+  auto lemke = CreateSolver("lemke");
+  SolverOptions options;
+  options.tolerance = 1e-10;
+  options.time_limit_seconds = 10.0;
+  int agreed = 0;
+  for (const AviLibraryProblem& p : QuickSuite().problems) {
+    const AviResult mine = SolveAvi(*p.problem, *cao_ferris, options, &p.reference);
+    const AviResult theirs = SolveAvi(*p.problem, *lemke, options, &p.reference);
+    const std::string where = p.id + ": " + std::string(ToString(mine.status)) + " " + mine.message;
+    if (!mine.solved()) {
+      EXPECT_TRUE(mine.status == SolveStatus::kNotApplicable || p.expected == ExpectedOutcome::kInfeasible) << where;
+      if (mine.status == SolveStatus::kNotApplicable) {
+        EXPECT_THAT(mine.message, HasSubstr("no vertex")) << where;
+      }
+      continue;
+    }
+    ASSERT_TRUE(theirs.solved()) << where;
+    const Vector& a = mine.solution.lambda;
+    const Vector& b = theirs.solution.lambda;
+    const double scale = 1.0 + b.cwiseAbs().maxCoeff();
+    if (p.reference.lambda_unique) {
+      EXPECT_LE((a - b).cwiseAbs().maxCoeff(), 1e-8 * scale) << where;
+    } else if (p.problem->M().isApprox(p.problem->M().transpose())) {
+      const Vector Ma = p.problem->M() * a, Mb = p.problem->M() * b;
+      EXPECT_LE((Ma - Mb).cwiseAbs().maxCoeff(), 1e-8 * (1.0 + Mb.cwiseAbs().maxCoeff())) << where;
+    }
+    ++agreed;
+  }
+  EXPECT_GE(agreed, 20);
 }
 
 }  // namespace

@@ -1,10 +1,12 @@
 // The AVI type's validation (each error names its field), the phase-1 simplex's point of P (checked here against
-// the constraints) and the boundedness test on polytopes whose answer is known by hand.
+// the constraints), the boundedness test on polytopes whose answer is known by hand, and the vertex finder.
 #include "solvers/avi/affine_vi.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
@@ -134,6 +136,82 @@ TEST(AffineVIValidation, BoundednessNotDecidedAboveTheLimit) {
   const AffineVI avi(DenseMatrix::Identity(n, n), Vector::Zero(n), H, Vector::Constant(2 * n, -1.0));
   EXPECT_EQ(avi.boundedness(), PolytopeBoundedness::kNotDecided);
   EXPECT_LE(Violation(avi, avi.feasible_point()), 1e-9);
+}
+
+}  // namespace
+}  // namespace smcbench
+
+namespace smcbench {
+namespace {
+
+// What a vertex is, checked from the data: n rows of [H; E] whose matrix has full rank, each active at the point,
+// every row of E among them, and the point in P.
+void ExpectVertex(const AffineVI& avi, const PolytopeVertex& v) {
+  const int n = avi.size(), m = avi.inequality_count();
+  ASSERT_TRUE(v.found) << avi.name() << ": " << v.why;
+  ASSERT_EQ(static_cast<int>(v.rows.size()), n) << avi.name();
+  DenseMatrix rows(n, n);
+  for (int k = 0; k < n; ++k) {
+    const int r = v.rows[static_cast<std::size_t>(k)];
+    rows.row(k) = r < m ? avi.H().row(r) : avi.E().row(r - m);
+    const double residual = r < m ? avi.H().row(r).dot(v.point) - avi.K()[r]
+                                  : avi.E().row(r - m).dot(v.point) - avi.f()[r - m];
+    EXPECT_LE(std::abs(residual), 1e-12 * (1.0 + v.point.cwiseAbs().maxCoeff())) << avi.name() << " row " << r;
+  }
+  EXPECT_EQ(Eigen::FullPivLU<DenseMatrix>(rows).rank(), n) << avi.name();
+  for (int j = 0; j < avi.equality_count(); ++j) {
+    EXPECT_NE(std::find(v.rows.begin(), v.rows.end(), m + j), v.rows.end()) << avi.name() << " equality " << j;
+  }
+  EXPECT_GE((avi.H() * v.point - avi.K()).minCoeff(), -1e-12) << avi.name();
+}
+
+TEST(FindPolytopeVertex, PlantedPolytopesWithAndWithoutEqualities) {
+  for (int n : {1, 2, 4, 7}) {
+    for (int p : {0, 1, 2}) {
+      if (p >= n) continue;
+      const PlantedAvi planted = MakePlantedAvi(n, 4, std::min(1, n - p), p, 5);
+      ExpectVertex(planted.avi, FindPolytopeVertex(planted.avi.H(), planted.avi.K(), planted.avi.E(),
+                                                   planted.avi.f(), &planted.avi.feasible_point()));
+      // From the phase-1 simplex's own point as well.
+      ExpectVertex(planted.avi, FindPolytopeVertex(planted.avi.H(), planted.avi.K(), planted.avi.E(), planted.avi.f()));
+    }
+  }
+}
+
+// Implicit twisting's parallelogram from its centre: no row active at the start, two steps to a corner.
+TEST(FindPolytopeVertex, ParallelogramFromItsCentre) {
+  DenseMatrix H(4, 2);
+  H << 1, 0, -1, 0, -0.05, 1, 0.05, -1;
+  const AffineVI avi(DenseMatrix::Identity(2, 2), Vec({0, 0}), H, Vector::Constant(4, -1.0), "parallelogram");
+  const Vector centre = Vec({0, 0});
+  const PolytopeVertex v = FindPolytopeVertex(avi.H(), avi.K(), avi.E(), avi.f(), &centre);
+  ExpectVertex(avi, v);
+  EXPECT_NEAR(std::abs(v.point[0]), 1.0, 1e-15);  // a corner: |λ₁| = 1, |λ₂ − 0.05λ₁| = 1
+  EXPECT_NEAR(std::abs(v.point[1] - 0.05 * v.point[0]), 1.0, 1e-15);
+}
+
+// A degenerate vertex (three rows through the origin in the plane) as the start: two of its rows are chosen.
+TEST(FindPolytopeVertex, DegenerateVertexKeepsTwoIndependentRows) {
+  const AffineVI avi(DenseMatrix::Identity(2, 2), Vec({1, 1}), Mat({{1, 0}, {0, 1}, {1, -1}, {-1, 0}, {0, -1}}),
+                     Vec({0, 0, 0, -1, -1}), "degenerate-triangle");
+  const Vector origin = Vec({0, 0});
+  const PolytopeVertex v = FindPolytopeVertex(avi.H(), avi.K(), avi.E(), avi.f(), &origin);
+  ExpectVertex(avi, v);
+  EXPECT_EQ(v.point, origin);
+}
+
+// No vertex: a strip (λ₂ free), a half-space, and a polytope whose equality leaves a free direction.
+TEST(FindPolytopeVertex, PolytopesContainingALineHaveNone) {
+  const AffineVI strip(DenseMatrix::Identity(2, 2), Vec({0, 0}), Mat({{1, 0}, {-1, 0}}), Vec({-1, -1}), "strip");
+  const AffineVI half_space(DenseMatrix::Identity(3, 3), Vec({0, 0, 0}), Mat({{1, 1, 1}}), Vec({0}), "half-space");
+  const AffineVI plane(DenseMatrix::Identity(3, 3), Vec({0, 0, 0}), Mat({{1, 0, 0}}), Vec({0}), Mat({{0, 1, 0}}),
+                       Vec({2}), "slab-in-a-plane");
+  for (const AffineVI* avi : {&strip, &half_space, &plane}) {
+    const PolytopeVertex v = FindPolytopeVertex(avi->H(), avi->K(), avi->E(), avi->f());
+    EXPECT_FALSE(v.found) << avi->name();
+    EXPECT_TRUE(v.contains_line) << avi->name();
+    EXPECT_THAT(v.why, HasSubstr("no vertex")) << avi->name();
+  }
 }
 
 }  // namespace

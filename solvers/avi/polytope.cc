@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <string>
 #include <vector>
 
 namespace smcbench {
@@ -141,6 +142,128 @@ PolytopeBoundedness ClassifyPolytopeBoundedness(const DenseMatrix& H, const Dens
     }
   }
   return PolytopeBoundedness::kBounded;
+}
+
+namespace {
+
+// A row (divided by its largest coefficient, so its 2-norm is in [1, √n]) whose product with the unit direction is
+// below this changes too little along it to bound the step: it neither blocks nor counts as independent.
+constexpr double kDirectionTolerance = 1e-9;
+
+// Orthonormal basis of the null space of the rows of W (k×n, k < n, independent by construction): the last n − k
+// columns of Q in Wᵀ = QR.
+DenseMatrix NullSpace(const DenseMatrix& W, Eigen::Index n) {
+  if (W.rows() == 0) return DenseMatrix::Identity(n, n);
+  const Eigen::HouseholderQR<DenseMatrix> qr(W.transpose());
+  const DenseMatrix Q = qr.householderQ() * DenseMatrix::Identity(n, n);
+  return Q.rightCols(n - W.rows());
+}
+
+}  // namespace
+
+PolytopeVertex FindPolytopeVertex(const DenseMatrix& H, const Vector& K, const DenseMatrix& E, const Vector& f,
+                                  const Vector* start, double tolerance) {
+  const Eigen::Index m = H.rows(), p = E.rows();
+  const Eigen::Index n = std::max(H.cols(), E.cols());
+  PolytopeVertex out;
+  // [H; E] with each row divided by its largest coefficient, so slacks and tolerances are in units of λ.
+  DenseMatrix rows(m + p, n);
+  Vector rhs(m + p);
+  for (Eigen::Index r = 0; r < m + p; ++r) {
+    const bool inequality = r < m;
+    const double scale = inequality ? RowScale(H, r) : RowScale(E, r - m);
+    rows.row(r) = (inequality ? H.row(r) : E.row(r - m)) / scale;
+    rhs[r] = (inequality ? K[r] : f[r - m]) / scale;
+  }
+  Vector x;
+  if (start != nullptr) {
+    x = *start;
+  } else {
+    const PolytopePoint point = FindPolytopePoint(H, K, E, f, tolerance);
+    if (!point.found) {
+      out.why = "the phase-1 simplex found no point of P";
+      return out;
+    }
+    x = point.point;
+  }
+  const double rhs_norm = m + p ? rhs.cwiseAbs().maxCoeff() : 0.0;
+  const auto threshold = [&](const Vector& at) {
+    return tolerance * (1.0 + (n ? at.cwiseAbs().maxCoeff() : 0.0) + rhs_norm);
+  };
+  // The working set: active rows, kept linearly independent (a row joins only if it has a component outside the
+  // span of those before it). Equalities first, since every point of P has them active.
+  DenseMatrix working(0, n);
+  const auto try_add = [&](Eigen::Index r) {
+    if (working.rows() == n) return;
+    const DenseMatrix Z = NullSpace(working, n);
+    if ((Z.transpose() * rows.row(r).transpose()).norm() <= kDirectionTolerance * rows.row(r).norm()) return;
+    working.conservativeResize(working.rows() + 1, Eigen::NoChange);
+    working.row(working.rows() - 1) = rows.row(r);
+    out.rows.push_back(static_cast<int>(r));
+  };
+  for (Eigen::Index j = 0; j < p; ++j) try_add(m + j);
+  const double active = threshold(x);
+  for (Eigen::Index i = 0; i < m; ++i) {
+    if (rows.row(i).dot(x) - rhs[i] <= active) try_add(i);
+  }
+  const auto in_working = [&](Eigen::Index r) {
+    return std::find(out.rows.begin(), out.rows.end(), static_cast<int>(r)) != out.rows.end();
+  };
+  while (working.rows() < n) {
+    Vector d = NullSpace(working, n).col(0);
+    // Some row must change along d, else d (and −d) keeps every row's slack: a line through x lies in P.
+    double most_negative = 0.0, most_positive = 0.0;
+    for (Eigen::Index i = 0; i < m; ++i) {
+      const double a = rows.row(i).dot(d) / rows.row(i).norm();
+      most_negative = std::min(most_negative, a);
+      most_positive = std::max(most_positive, a);
+    }
+    if (most_negative >= -kDirectionTolerance && most_positive <= kDirectionTolerance) {
+      out.contains_line = true;
+      out.why = "P contains a line (the rows of H and E have rank " + std::to_string(working.rows()) + " < n = " +
+                std::to_string(n) + "), so it has no vertex";
+      return out;
+    }
+    if (most_negative >= -kDirectionTolerance) d = -d;  // walk the way some row decreases
+    // Ratio test: the first row to become active; among near-ties the one d crosses most steeply, which keeps the
+    // vertex's rows well conditioned.
+    Eigen::Index blocking = -1;
+    double step = kInf, steepness = 0.0;
+    for (Eigen::Index i = 0; i < m; ++i) {
+      if (in_working(i)) continue;
+      const double a = rows.row(i).dot(d);
+      if (a >= -kDirectionTolerance * rows.row(i).norm()) continue;
+      const double t = std::max(rows.row(i).dot(x) - rhs[i], 0.0) / -a;
+      const bool tie = std::abs(t - step) <= 1e-12 * (1.0 + step);
+      if (blocking < 0 || (t < step && !tie) || (tie && -a > steepness)) {
+        blocking = i;
+        step = std::min(t, step);
+        steepness = -a;
+      }
+    }
+    if (blocking < 0) {  // cannot happen: some row decreases along d
+      out.why = "no row bounds the walk to a vertex";
+      return out;
+    }
+    x += step * d;
+    working.conservativeResize(working.rows() + 1, Eigen::NoChange);
+    working.row(working.rows() - 1) = rows.row(blocking);
+    out.rows.push_back(static_cast<int>(blocking));
+  }
+  // The vertex itself: the n working rows as equalities, so rounding along the walk does not stay in it.
+  Vector b(n);
+  for (Eigen::Index k = 0; k < n; ++k) b[k] = rhs[out.rows[static_cast<std::size_t>(k)]];
+  const Vector vertex = working.partialPivLu().solve(b);
+  double infeasibility = 0.0;
+  for (Eigen::Index i = 0; i < m; ++i) infeasibility = std::max(infeasibility, rhs[i] - rows.row(i).dot(vertex));
+  for (Eigen::Index j = 0; j < p; ++j) {
+    infeasibility = std::max(infeasibility, std::abs(rows.row(m + j).dot(vertex) - rhs[m + j]));
+  }
+  out.infeasibility = infeasibility;
+  out.point = vertex;
+  out.found = std::isfinite(infeasibility) && infeasibility <= threshold(vertex);
+  if (!out.found) out.why = "the vertex found is outside P by " + std::to_string(infeasibility) + " (rounding)";
+  return out;
 }
 
 }  // namespace smcbench

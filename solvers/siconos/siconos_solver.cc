@@ -25,10 +25,13 @@
 #include "RelayProblem.h"
 #include "Relay_Solvers.h"
 #include "SolverOptions.h"
+#include "AVI_cst.h"
+#include "avi_caoferris.h"
 #include "lcp_cst.h"
 #include "mlcp_cst.h"
 #include "relay_cst.h"
 #include "solvers/siconos/external_backends.h"
+#include "solvers/siconos/siconos_avi_solver.h"
 #include "solvers/siconos/siconos_mcp_solver.h"
 #include "solvers/siconos/swapped_stdio.h"
 
@@ -37,7 +40,8 @@ namespace smcbench {
 // SiconosSolver::Outcome use them).
 namespace siconos_detail {
 
-enum class Family { kRelay, kLcp, kMlcp };
+// kAviStage3: an LCP whose first rows are covered (avi_caoferris_stage3), given in the LCP form.
+enum class Family { kRelay, kLcp, kMlcp, kAviStage3 };
 // What an info ≠ 0 means depends on the algorithm behind the method (for direct-* methods: their fallback).
 enum class Algorithm { kLemke, kPgs, kEnum, kAvi, kNewton };
 
@@ -127,6 +131,12 @@ const Spec& SpecOf(SiconosMethod method) {
         "process) and falls back to mlcp_FB",
         "Siconos Numerics 4.4 mlcp_direct_FB; De Luca, Facchinei & Kanzow 1996", true, false, false, false,
         false, 0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
+      {SiconosMethod::kAviCaoFerrisStage3, SICONOS_AVI_CAOFERRIS, Family::kAviStage3, Algorithm::kLemke, false,
+       {"siconos-avi-caoferris",
+        "Siconos avi_caoferris_stage3: Lemke's method with the covering vector on the vertex's rows, on the "
+        "LCP-like problem of Cao & Ferris built at a vertex of P",
+        "Siconos Numerics 4.4 avi_caoferris_stage3; Cao & Ferris 1996, Math. Oper. Res. 21(1)", true, false, false,
+        true, false, 0, /*equilibrate=*/false, /*delegates=*/false, /*external=*/true}},
   };
   return kSpecs[static_cast<int>(method)];
 }
@@ -147,10 +157,12 @@ struct Request {
   std::int32_t verbose = 0;
   std::int32_t keep_cache = 1;  // direct-* may keep their active sets from earlier solves
   std::int32_t has_bounds = 0;  // relay: lower and upper bounds follow q
+  std::int32_t covering_rows = 0;  // AVI stage 3: the vertex's rows, first (SiconosSolver::set_covering_rows)
+  std::int32_t unused = 0;         // keeps the struct free of padding
   double tolerance = 1e-10;
 };
 // Hashed and compared bytewise (ProbedProblems): no padding bytes, whose values would be arbitrary.
-static_assert(sizeof(Request) == 8 * sizeof(std::int32_t) + sizeof(double), "Request has padding");
+static_assert(sizeof(Request) == 10 * sizeof(std::int32_t) + sizeof(double), "Request has padding");
 
 struct Response {
   std::int32_t magic = kMagic;
@@ -254,6 +266,8 @@ class SiconosSession {
   MixedLinearComplementarityProblem mlcp_{};
   std::vector<double> q_, lb_, ub_, w_, last_M_;
   std::vector<double> A_, B_, C_, D_, a_, b_;  // the MLCP's ABCD storage (mlcp_lcp_lemke reads it)
+  std::vector<double> stage3_u_, stage3_s_, stage3_d_;  // AVI stage 3: its u and s out, its covering vector in
+  std::vector<unsigned> stage3_rows_;                   // AVI stage 3: A = {1, ..., covering rows}
 };
 
 void SiconosSession::Release() {
@@ -417,6 +431,30 @@ Response SiconosSession::Solve(const Request& r, const double* M, const double* 
     case Family::kMlcp:  // mlcp_driver makes no final check of its own
       out.algorithm_info = out.info = mlcp_driver(&mlcp_, x, w_.data(), options_);
       break;
+    case Family::kAviStage3: {
+      // The LCP's rows are (u_A, s_I) and its unknowns (u_I, s_A): stage 3 returns u and s per constraint, in the
+      // order of the rows, and the LCP's z is (u of the inactive rows, s of the covered ones). Its covering vector
+      // is passed negated (stage 3 copies it into the tableau's column as is).
+      const int covered = r.covering_rows;
+      LinearComplementarityProblem problem{};
+      problem.size = N;
+      problem.M = matrix_;
+      problem.q = q_.data();
+      stage3_u_.assign(N, 0.0);
+      stage3_s_.assign(N, 0.0);
+      stage3_d_.assign(N, 0.0);
+      stage3_rows_.resize(static_cast<std::size_t>(covered));
+      for (int i = 0; i < covered; ++i) {
+        stage3_d_[static_cast<std::size_t>(i)] = -1.0;
+        stage3_rows_[static_cast<std::size_t>(i)] = static_cast<unsigned>(i + 1);
+      }
+      out.algorithm_info = out.info =
+          avi_caoferris_stage3(&problem, stage3_u_.data(), stage3_s_.data(), stage3_d_.data(),
+                               static_cast<unsigned>(covered), stage3_rows_.data(), options_);
+      for (int i = covered; i < N; ++i) x[i - covered] = stage3_u_[static_cast<std::size_t>(i)];
+      for (int i = 0; i < covered; ++i) x[N - covered + i] = stage3_s_[static_cast<std::size_t>(i)];
+      break;
+    }
   }
   out.iterations = options_->iparam[SICONOS_IPARAM_ITER_DONE];
   out.budget = options_->iparam[SICONOS_IPARAM_MAX_ITER];
@@ -491,6 +529,7 @@ void ServeSiconos(int fd, void* context) {
     }
     if (r.magic != kMagic) return;
     if (r.size <= 0 || r.size > kMaxWireSize || r.method < 0 || r.method >= kNumSiconosMethods) return;
+    if (r.covering_rows < 0 || r.covering_rows > r.size) return;
     const std::size_t N = static_cast<std::size_t>(r.size);
     payload.resize(N * N + (r.has_bounds ? 4 : 2) * N);
     if (!ChildProcess::ReadAll(fd, payload.data(), sizeof(double) * payload.size())) return;
@@ -727,6 +766,13 @@ void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
     result->status = SolveStatus::kSolved;
     return;
   }
+  if (spec.family == Family::kAviStage3 &&
+      (covering_rows_ < 1 || covering_rows_ > problem.size() || rows.lower != problem.size())) {
+    result->status = SolveStatus::kNotApplicable;
+    result->message = "Siconos' avi_caoferris_stage3 takes the LCP that siconos-avi-caoferris builds at a vertex "
+                      "(its covered rows set, every row z >= 0)";
+    return;
+  }
   if (Refused(method_, spec, rows, options_, result)) return;
   Outcome& outcome = *last_;
   outcome = Outcome{};
@@ -763,6 +809,7 @@ void SiconosSolver::PrepareRequest(const BoxMLCP& problem, const SolverOptions& 
   r.max_iterations = options.max_iterations;
   r.verbose = options.verbosity >= 2 ? 1 : 0;
   r.has_bounds = spec.family == Family::kRelay ? 1 : 0;
+  r.covering_rows = spec.family == Family::kAviStage3 ? covering_rows_ : 0;
   r.tolerance = SiconosTolerance(problem, form_, options.tolerance);
 }
 
@@ -936,6 +983,8 @@ std::unique_ptr<Solver> MakeSiconos() {
   return std::make_unique<SiconosSolver>(kMethod);
 }
 
+std::unique_ptr<Solver> MakeSiconosAvi() { return std::make_unique<SiconosAviSolver>(); }
+
 }  // namespace
 
 void AppendExternalBackends(std::vector<ExternalBackend>* backends) {
@@ -953,6 +1002,8 @@ void AppendExternalBackends(std::vector<ExternalBackend>* backends) {
       {SpecOf(M::kMlcpFb).info.name, &MakeSiconos<M::kMlcpFb>},
       {SpecOf(M::kMlcpDirectEnum).info.name, &MakeSiconos<M::kMlcpDirectEnum>},
       {SpecOf(M::kMlcpDirectFb).info.name, &MakeSiconos<M::kMlcpDirectFb>},
+      // Cao–Ferris on P (a box as {l <= z <= u}); also a DirectAviBackend, so SolveAvi hands it the AVI itself.
+      {SpecOf(M::kAviCaoFerrisStage3).info.name, &MakeSiconosAvi},
   };
   backends->insert(backends->end(), std::begin(list), std::end(list));
   AppendSiconosMcpBackends(backends);

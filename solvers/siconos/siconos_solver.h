@@ -12,6 +12,8 @@
 //                    enum (mlcp_enum), lemke (mlcp_lcp_lemke: Schur complement on the equality block, then
 //                    Lemke), fb (mlcp_FB), direct-enum / direct-fb (mlcp_direct_*: try the last few active sets
 //                    first, fall back to enum / FB).
+// And one method that is no backend of its own: avi_caoferris_stage3 on the LCP that siconos-avi-caoferris
+// (siconos_avi_solver.h) builds at a vertex of an AVI's polytope.
 // Anything a family cannot express is kNotApplicable with the reason.
 //
 // Trust. Siconos reports success on wrong answers in known cases (its dense LCP driver "solves" every 1×1 LCP as
@@ -75,8 +77,12 @@ enum class SiconosMethod : int {
   kMlcpFb = 9,
   kMlcpDirectEnum = 10,
   kMlcpDirectFb = 11,
+  // avi_caoferris_stage3, the pivoting of Cao–Ferris' AVI method on the LCP-like problem built at a vertex of P.
+  // Not a registered backend: siconos-avi-caoferris (siconos_avi_solver.h) builds that problem and calls it
+  // through an instance of this class, for the isolation and the probe policy.
+  kAviCaoFerrisStage3 = 12,
 };
-inline constexpr int kNumSiconosMethods = 12;
+inline constexpr int kNumSiconosMethods = 13;
 
 
 struct SiconosOptions {
@@ -128,6 +134,11 @@ class SiconosSolver final : public BackendWithOptions<SiconosOptions> {
   // next solve. The other methods keep nothing learned between solves.
   WarmStateReset ForgetWarmState() override;
 
+  // kAviCaoFerrisStage3 only: the first `rows` rows of the LCP given to Solve are the vertex's (their u basic, the
+  // rows Lemke's covering vector covers: stage 3's size_x and A = {1, ..., rows}); any other LCP row is an inactive
+  // constraint of the AVI. Without it (0) that method refuses every problem.
+  void set_covering_rows(int rows) { covering_rows_ = rows; }
+
  protected:
   void DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) override;
   void BindOptions(OptionBinder* binder) override;
@@ -149,6 +160,7 @@ class SiconosSolver final : public BackendWithOptions<SiconosOptions> {
   void ForgetInWorker();
 
   SiconosMethod method_;
+  int covering_rows_ = 0;  // kAviCaoFerrisStage3: set_covering_rows
   StandardForm form_;
   Vector x_;  // unknowns of the rewritten problem: start point in, Siconos' answer out
   std::unique_ptr<Outcome> last_;  // the request made from form_ (always the two of one problem) and its answer
