@@ -60,8 +60,12 @@ bool PolishDense(const BoxMLCP& equilibrated, const double* z, double* out, cons
 // backend's time and memory).
 inline constexpr int kMaxPolishDenseSize = 512;
 
-// Sparse problems: the same on the free block through the kernel's SparseFreeBlock (allocates; sparse problems are
-// not a time-stepper's hot path). One pass: false when the result leaves the box.
+// Free blocks of sparse problems up to this many rows are factored densely (gathered, then the dense kernel).
+inline constexpr int kMaxDenseSparsePolishBlock = 64;
+
+// Sparse problems: the same on the free block, through the dense kernel up to kMaxDenseSparsePolishBlock free rows,
+// else the kernel's SparseFreeBlock (allocates; sparse problems are not a time-stepper's hot path). One pass: false
+// when the result leaves the box.
 bool PolishSparse(const BoxMLCP& equilibrated, const Vector& z, Vector* out);
 
 }  // namespace smcbench
