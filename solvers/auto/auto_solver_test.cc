@@ -172,15 +172,20 @@ TEST(AutoSolver, DenseGoesToBppUpToItsSizeThenLemke) {
   EXPECT_NE(why.find("bpp_max_size"), std::string::npos) << why;
 }
 
-// bpp ends singular on a degenerate LCP that lemke solves (Cottle–Pang–Stone's example 4.4.7, Siconos' lcp_CPS_2:
-// zero diagonal): the chain passes it on and lemke answers, with a residual recomputed here.
-TEST(AutoSolver, BppFailureFallsBackToLemke) {
+// Siconos' lcp_CPS_2: an LCP that bpp ends singular on and lemke solves.
+BoxMLCP LcpCps2() {
   DenseMatrix M(3, 3);
   M << 0, 2, -1,  //
       -1, 0, 1,   //
       2, -2, 0;
   const Vector q = (Vector(3) << -3, 6, -1).finished();
-  const BoxMLCP problem(M, q, Vector::Zero(3), Vector::Constant(3, kInf), "lcp_CPS_2");
+  return BoxMLCP(M, q, Vector::Zero(3), Vector::Constant(3, kInf), "lcp_CPS_2");
+}
+
+// bpp ends singular on a degenerate LCP that lemke solves (Cottle–Pang–Stone's example 4.4.7, Siconos' lcp_CPS_2:
+// zero diagonal): the chain passes it on and lemke answers, with a residual recomputed here.
+TEST(AutoSolver, BppFailureFallsBackToLemke) {
+  const BoxMLCP problem = LcpCps2();
   BppSolver bpp;
   const SolveResult alone = bpp.Solve(problem);
   ASSERT_FALSE(alone.solved()) << "bpp solves lcp_CPS_2 now: pick another example of its failure";
@@ -206,12 +211,7 @@ TEST(AutoSolver, BppFailureFallsBackToLemke) {
 // session asks auto for its delegate again, so later steps go to lemke directly, with no fallback. Forgetting the
 // warm state (a cold repeat) makes bpp the delegate again.
 TEST(AutoSolver, ASessionPaysItsDelegatesFailureOnce) {
-  DenseMatrix M(3, 3);
-  M << 0, 2, -1,  //
-      -1, 0, 1,   //
-      2, -2, 0;
-  const Vector q = (Vector(3) << -3, 6, -1).finished();
-  const BoxMLCP problem(M, q, Vector::Zero(3), Vector::Constant(3, kInf), "lcp_CPS_2");
+  const BoxMLCP problem = LcpCps2();
   AutoOptions o;
   o.enum_max_choice_rows = 0;
   AutoSolver solver(o);
@@ -222,12 +222,12 @@ TEST(AutoSolver, ASessionPaysItsDelegatesFailureOnce) {
   SolveSession session = solver.Prepare(problem, options, no_reuse);
   ASSERT_EQ(&session.backend(), &solver.candidate(AutoCandidate::kBpp));
   SolveResult r;
-  session.Solve(q, &r);
+  session.Solve(problem.q(), &r);
   ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
   EXPECT_EQ(Chosen(r), AutoCandidate::kLemke);
   EXPECT_EQ(r.GetDetail("fallbacks"), 1.0);
   EXPECT_EQ(&session.backend(), &solver.candidate(AutoCandidate::kLemke));
-  session.Solve(q, &r);
+  session.Solve(problem.q(), &r);
   ASSERT_TRUE(r.solved()) << ToString(r.status) << " " << r.message;
   EXPECT_EQ(r.solver, "lemke");  // the delegate's own answer: no chain, no fallback
   EXPECT_TRUE(std::isnan(r.GetDetail("fallbacks")));
