@@ -61,6 +61,10 @@ bool BppOptions::IsValid(std::string* why) const {
     if (why) *why = "bpp: pivot_tolerance must lie in [0, 1) (units of the row-equilibrated M, max |M_ij| = 1)";
     return false;
   }
+  if (max_single_pivots < -1) {
+    if (why) *why = "bpp: max_single_pivots must be >= 0, or -1 for no limit";
+    return false;
+  }
   return true;
 }
 
@@ -92,6 +96,8 @@ void BppSolver::BindOptions(OptionBinder* binder) {
               "pivots");
   binder->Add("pivot_tolerance", &options_.pivot_tolerance,
               "free-block LU pivots at or below this are singular (row-equilibrated M), in [0, 1)");
+  binder->Add("max_single_pivots", &options_.max_single_pivots,
+              "end as iteration_limit after this many least-index single pivots (-1: no limit; auto sets one)");
 }
 
 bool BppSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }
@@ -275,6 +281,14 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
       }
       ++block_pivots;
     } else {
+      if (options_.max_single_pivots >= 0 && single_pivots >= options_.max_single_pivots) {
+        SetMessage(result,
+                   "bpp: handed over after %d single pivots (max_single_pivots), %d active sets, best infeasible "
+                   "count %d",
+                   single_pivots, iterations, best_count);
+        finish(SolveStatus::kIterationLimit);
+        return;
+      }
       const int i = infeasible_[0];  // least index: rows were collected in increasing order
       s.state[i] = Flipped(s.state[i], z[i], l[i]);
       ++single_pivots;

@@ -55,6 +55,12 @@ struct BppOptions {
   // A pivot of the free block's LU must exceed this (the block is a part of the row-equilibrated M, max |M_ij| = 1);
   // smaller pivots make the block singular.
   double pivot_tolerance = 1e-14;
+  // Work safeguard: the solve ends as kIterationLimit ("handed over") once this many least-index single pivots
+  // were taken, instead of running Murty's scheme to its end (finite on P-matrix LCPs, but it may take thousands
+  // of sets on strongly nonsymmetric M where lemke needs tens of pivots). −1: no limit beyond the iteration budget.
+  // auto gives its own bpp instance a limit proportional to n (docs/auto.md), so a bpp that leaves its block phase
+  // hands the problem to the next candidate before it costs more than that candidate would.
+  int max_single_pivots = -1;
 
   // True if every field is usable; otherwise *why names the field and the accepted range.
   bool IsValid(std::string* why) const;

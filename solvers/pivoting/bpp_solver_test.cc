@@ -223,6 +223,29 @@ TEST(BppSolver, CyclingBlockExchangeNeedsMurtysFallback) {
   EXPECT_NEAR(r.z[2], 0.5, 1e-14);
 }
 
+TEST(BppSolver, MaxSinglePivotsHandsOverAsIterationLimit) {
+  // The cycling example above needs single pivots: with none allowed bpp stops at the first one, naming the option.
+  const BoxMLCP problem = BoxMLCP::LCP(Dense(3, {2.0, -1.0, 1.0, -3.0, 2.0, -3.0, -2.0, 4.0, 1.0}),
+                                       Vec({4.0, -3.0, 1.0}), "block-exchange-cycles");
+  SolverOptions options;
+  options.polish = false;
+  BppOptions capped;
+  capped.max_single_pivots = 0;
+  BppSolver solver(capped);
+  const SolveResult r = solver.Solve(problem, options);
+  EXPECT_EQ(r.status, SolveStatus::kIterationLimit) << r.message;
+  EXPECT_NE(r.message.find("max_single_pivots"), std::string::npos) << r.message;
+  EXPECT_EQ(r.GetDetail("single_pivots"), 0.0);
+  // A limit above what the problem needs changes nothing.
+  std::string error;
+  ASSERT_TRUE(solver.SetOption("max_single_pivots", "100", &error)) << error;
+  const SolveResult solved = solver.Solve(problem, options);
+  ASSERT_TRUE(solved.solved()) << solved.message;
+  EXPECT_NEAR(solved.z[1], 0.5, 1e-14);
+  EXPECT_FALSE(solver.SetOption("max_single_pivots", "-2", &error));
+  EXPECT_NE(error.find("max_single_pivots"), std::string::npos) << error;
+}
+
 // A warm start at the solution gives its active set: one set solved, whatever the family or bounds.
 TEST(BppSolver, WarmStartFromTheSolutionSolvesInOneIteration) {
   BppSolver solver;
