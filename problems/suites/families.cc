@@ -139,6 +139,12 @@ LibraryProblem RandomFamilyProblem(MatrixFamily family, BoundKind bounds, int m,
     case MatrixFamily::kDiagonallyDominant:  // strictly row dominant, positive diagonal: a P-matrix
       tags = {Tristate::kNo, ClassifyMatrix(generated.problem).positive_definite, Tristate::kYes};
       break;
+    case MatrixFamily::kSkewPMatrix:  // S + K, K skew with unit entries: symmetric part S is PD, hence a P-matrix
+      tags = {Tristate::kNo, Tristate::kYes, Tristate::kYes};
+      break;
+    case MatrixFamily::kScaledPMatrix:  // W D⁻¹ with W row dominant: an H-matrix with positive diagonal, a P-matrix
+      tags = {Tristate::kNo, ClassifyMatrix(generated.problem).positive_definite, Tristate::kYes};
+      break;
   }
   if (m == 1) tags.symmetric = Tristate::kYes;
   LibraryProblem p = MakeProblem(Id(kFamiliesSuite, family_name, SizeSeed(m, seed)), "generated:" + ToString(family),
@@ -788,6 +794,16 @@ ProblemSet FamiliesSuite(const FamiliesOptions& options) {
     for (int m : {8, 64}) {
       if (!fits(m)) continue;
       for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kMixed}) {
+        seeds([&](std::uint64_t seed) { out.push_back(RandomFamilyProblem(family, bounds, m, seed)); });
+      }
+    }
+  }
+  // The classes auto's rule is measured on beyond these (docs/auto.md): strongly nonsymmetric, and P without a
+  // positive definite symmetric part.
+  for (MatrixFamily family : {MatrixFamily::kSkewPMatrix, MatrixFamily::kScaledPMatrix}) {
+    for (int m : {8, 64}) {
+      if (!fits(m)) continue;
+      for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay}) {
         seeds([&](std::uint64_t seed) { out.push_back(RandomFamilyProblem(family, bounds, m, seed)); });
       }
     }

@@ -17,10 +17,12 @@ namespace smcbench {
 // Ids are "<suite>/<family>/<parameters>"; every function below uses the suite "families" unless told otherwise.
 inline constexpr std::string_view kFamiliesSuite = "families";
 
-// --- Wrappers of solvers/generators (GenerateProblem): SPD, nonsymmetric P-matrix, diagonally dominant. -------
-// Id "families/<spd|pmatrix|diagdom>-<bounds>/m<m>/s<seed>" (plus "-deg<fraction>" when degenerate rows are asked
-// for), tags: family, bounds, "degenerate" if any. All three are P-matrices: expected solvable, z* is the unique
-// solution. PD of the symmetric part: yes for spd and pmatrix (by construction), computed for diagdom.
+// --- Wrappers of solvers/generators (GenerateProblem): SPD, nonsymmetric P-matrix (mildly and strongly
+// nonsymmetric), diagonally dominant, column-scaled diagonally dominant. ------------------------------------------
+// Id "families/<spd|pmatrix|pmatrix-skew|diagdom|pmatrix-scaled>-<bounds>/m<m>/s<seed>" (plus "-deg<fraction>" when
+// degenerate rows are asked for), tags: family, bounds, "degenerate" if any. All are P-matrices: expected
+// solvable, z* is the unique solution. PD of the symmetric part: yes for spd, pmatrix and pmatrix-skew (by
+// construction), computed for diagdom and pmatrix-scaled.
 LibraryProblem RandomFamilyProblem(MatrixFamily family, BoundKind bounds, int m, std::uint64_t seed,
                                    double degenerate_fraction = 0.0);
 
@@ -97,8 +99,9 @@ struct FamiliesOptions {
   bool IsValid(std::string* why) const;
 };
 
-// The "families" suite at small sizes (m ≤ 64 by default, ~160 problems): SPD, P-matrix and diagonally dominant
-// (m = 8, 64; LCP, relay, mixed bounds), PSD singular, non-P with several solutions, non-P infeasible
+// The "families" suite at small sizes (m ≤ 64 by default, ~180 problems): SPD, P-matrix and diagonally dominant
+// (m = 8, 64; LCP, relay, mixed bounds), strongly nonsymmetric and column-scaled P-matrices (m = 8, 64; LCP, relay),
+// PSD singular, non-P with several solutions, non-P infeasible
 // (m = 8, 32), the h-sweep of five paper scenes (h = 1e-1 … 1e-8), the small-h family (the m ≥ 2 paper scenes and
 // five P-matrices of condition 1e1 … 1e6, m = 2 … 8, each at h = 1e-2 … 1e-10: 40 problems), Murty n = 4 … 16,
 // coupled sliding-mode subsystems (m = 16, 64). Throws InvalidInputError on invalid options.

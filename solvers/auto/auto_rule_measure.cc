@@ -5,11 +5,15 @@
 //   auto_rule_measure spd-test    cost of auto's SPD test (symmetry, Cholesky, condition estimate) against psor
 //   auto_rule_measure overhead    a one-off solve through auto against the same solve by the backend it chose
 //                                 (fastest of 15 samples each, taken in turn)
+//   auto_rule_measure classes [MAX_M]
+//                                 every matrix class the generators know × bounds × size (m = 4 … 256, or up to
+//                                 MAX_M): each candidate, newton-min and auto, auto over the fastest, what auto chose
 #include <Eigen/Cholesky>
 #include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -18,6 +22,7 @@
 #include "solvers/auto/auto_solver.h"
 #include "solvers/core/duration_text.h"
 #include "solvers/generators/random_problems.h"
+#include "solvers/newton/newton_min_solver.h"
 
 namespace smcbench {
 namespace {
@@ -230,6 +235,117 @@ void Overhead() {
   }
 }
 
+// One problem class of the `classes` table: a generator family with its bounds, degenerate rows and storage.
+struct ProblemClass {
+  MatrixFamily family;
+  BoundKind bounds;
+  double degenerate_fraction = 0.0;
+  bool sparse = false;
+};
+
+std::string ClassName(const ProblemClass& c) {
+  return ToString(c.family) + "-" + ToString(c.bounds) + (c.degenerate_fraction > 0.0 ? "-deg" : "") +
+         (c.sparse ? "-sparse" : "");
+}
+
+// Every class × size: cold time of each candidate (geometric mean over seeds 1–3 of the median; "> 0.2 s" past the
+// measurement's time limit; a failure names its status), the fastest that solved every seed, auto and auto over
+// it. The rows the docs quote are the worst ratios and the classes the issue named.
+void Classes(int max_m) {
+  AutoSolver automatic;
+  NewtonMinSolver newton_min;
+  struct Column {
+    const char* name;
+    Solver* solver;
+    int max_m;  // larger problems are not run (enum: 2^m sets)
+  };
+  const Column columns[] = {{"enum", &automatic.candidate(AutoCandidate::kEnum), 12},
+                            {"psor", &automatic.candidate(AutoCandidate::kPsor), 1 << 20},
+                            {"lemke", &automatic.candidate(AutoCandidate::kLemke), 1 << 20},
+                            {"newton", &automatic.candidate(AutoCandidate::kNewton), 1 << 20},
+                            {"newton-min", &newton_min, 1 << 20},
+                            {"bpp", &automatic.candidate(AutoCandidate::kBpp), 1 << 20},
+                            {"auto", &automatic, 1 << 20}};
+  constexpr int kColumns = 7, kAuto = 6;
+  std::vector<ProblemClass> classes;
+  for (MatrixFamily family : {MatrixFamily::kSymmetricPositiveDefinite, MatrixFamily::kNonsymmetricPMatrix,
+                              MatrixFamily::kSkewPMatrix, MatrixFamily::kDiagonallyDominant,
+                              MatrixFamily::kScaledPMatrix}) {
+    for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kMixed}) {
+      classes.push_back({family, bounds});
+    }
+  }
+  classes.push_back({MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kBox, 0.5});
+  classes.push_back({MatrixFamily::kSkewPMatrix, BoundKind::kLCP, 0.5});
+  classes.push_back({MatrixFamily::kDiagonallyDominant, BoundKind::kRelay, 0.0, true});
+  classes.push_back({MatrixFamily::kSkewPMatrix, BoundKind::kRelay, 0.0, true});
+  SolverOptions options = TimedOptions();
+  options.time_limit_seconds = 0.2;
+  std::printf("Cold solves, geometric mean over seeds 1, 2, 3 of the median time; a failure names its status.\n\n"
+              "| class | m |");
+  for (const Column& column : columns) std::printf(" %s |", column.name);
+  std::printf(" fastest | auto / fastest | auto chose |\n|---|---:|");
+  for (int k = 0; k < kColumns; ++k) std::printf("---:|");
+  std::printf("---|---:|---|\n");
+  for (const ProblemClass& c : classes) {
+    for (int m : {4, 8, 16, 32, 64, 128, 256}) {
+      if (m > max_m) continue;
+      std::vector<BoxMLCP> problems;
+      for (std::uint64_t seed : {1u, 2u, 3u}) {
+        GeneratorOptions g;
+        g.family = c.family;
+        g.bounds = c.bounds;
+        g.size = m;
+        g.seed = seed;
+        g.degenerate_fraction = c.degenerate_fraction;
+        g.sparse = c.sparse;
+        problems.push_back(GenerateProblem(g).problem);
+      }
+      std::printf("| %s | %d |", ClassName(c).c_str(), m);
+      double times[kColumns];
+      std::string chose;
+      for (int k = 0; k < kColumns; ++k) {
+        times[k] = kInf;
+        if (m > columns[k].max_m) {
+          std::printf(" – |");
+          continue;
+        }
+        double log_sum = 0.0;
+        int solved = 0;
+        std::string failure;
+        for (const BoxMLCP& problem : problems) {
+          SolveResult result;
+          const auto start = Clock::now();
+          columns[k].solver->Solve(problem, options, &result);
+          const double once = std::chrono::duration<double>(Clock::now() - start).count();
+          // A solve that took over 20 ms once is timed once more, not 7 × 2 ms.
+          const double ns = once > 0.02 ? (columns[k].solver->Solve(problem, options, &result), once * 1e9)
+                                        : MedianNs([&] { columns[k].solver->Solve(problem, options, &result); });
+          if (result.solved()) {
+            log_sum += std::log(ns);
+            ++solved;
+          } else if (failure.empty()) {
+            failure = result.status == SolveStatus::kTimeLimit ? "> 0.2 s" : std::string(ToString(result.status));
+          }
+          if (k == kAuto) {
+            const std::optional<AutoCandidate> chosen = ChosenCandidateOf(result);
+            const std::string name(chosen ? ToString(*chosen) : "?");
+            if (chose.find(name) == std::string::npos) chose += (chose.empty() ? "" : ", ") + name;
+          }
+        }
+        if (solved == static_cast<int>(problems.size())) times[k] = std::exp(log_sum / solved);
+        std::printf(" %s |", failure.empty() ? Ns(times[k]).c_str() : failure.c_str());
+      }
+      int fastest = 0;
+      for (int k = 1; k < kAuto; ++k) {
+        if (times[k] < times[fastest]) fastest = k;
+      }
+      std::printf(" %s | %.2f | %s |\n", columns[fastest].name, times[kAuto] / times[fastest], chose.c_str());
+      std::fflush(stdout);
+    }
+  }
+}
+
 }  // namespace
 }  // namespace smcbench
 
@@ -243,8 +359,10 @@ int main(int argc, char** argv) {
     smcbench::SpdTest();
   } else if (mode == "overhead") {
     smcbench::Overhead();
+  } else if (mode == "classes") {
+    smcbench::Classes(argc > 2 ? std::atoi(argv[2]) : 256);
   } else {
-    std::fprintf(stderr, "usage: %s sizes|condition|spd-test|overhead (docs/auto.md)\n", argv[0]);
+    std::fprintf(stderr, "usage: %s sizes|condition|spd-test|overhead|classes [MAX_M] (docs/auto.md)\n", argv[0]);
     return 2;
   }
   return 0;

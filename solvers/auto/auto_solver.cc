@@ -255,6 +255,7 @@ Solver* AutoSolver::DelegateFor(const BoxMLCP& problem, const SolverOptions&) {
 
 WarmStateReset AutoSolver::ForgetWarmState() {
   WarmStateReset reset = WarmStateReset::kNothingRemembered;
+  skip_matrix_id_ = 0;
   if (choice_.first != 0) {
     choice_.first = 0;
     reset = WarmStateReset::kForgotten;
@@ -272,12 +273,30 @@ const SolverOptions& AutoSolver::UntimedOptions(const SolverOptions& options) {
   return delegate_options_;
 }
 
+void AutoSolver::NoteDelegateFailure(const BoxMLCP& problem, const Solver& delegate, const SolveResult& result) {
+  skip_matrix_id_ = 0;
+  if (DelegateFor(problem, {}) != &delegate || !options_.fallback) return;
+  const AutoChoice& choice = ChoiceFor(problem);
+  if (choice.first + 1 >= choice.count || !PassOn(result.status, delegate.info().exact)) return;
+  skip_matrix_id_ = problem.matrix_id();
+  skip_trail_ = std::string(delegate.info().name) + " " + std::string(ToString(result.status)) +
+                (result.message.empty() ? "" : " (" + result.message + ")");
+}
+
 void AutoSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
   const AutoChoice& choice = ChoiceFor(problem);
   const SolverOptions& given = UntimedOptions(options);
   const int last = options_.fallback ? choice.count - 1 : choice.first;
   int at = choice.first;
   std::string trail;  // the failed candidates, for the message (written only on the fallback path)
+  if (skip_matrix_id_ != 0) {
+    // The session ran the first candidate already (NoteDelegateFailure): go on after it.
+    if (skip_matrix_id_ == problem.matrix_id() && at < last) {
+      ++at;
+      trail = std::move(skip_trail_);
+    }
+    skip_matrix_id_ = 0;
+  }
   for (;;) {
     Solver& backend = candidate(choice.order[at]);
     backend.Solve(problem, given, result);

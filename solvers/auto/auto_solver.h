@@ -25,7 +25,8 @@
 // reported as such: it becomes kNumericalFailure. When a later candidate solved the problem, later calls on the
 // same matrix start with it ("what the last call showed"); DelegateFor returns that same backend. A session hands a
 // call its delegate did not solve to auto's chain and then asks DelegateFor again, so a candidate that fails on a
-// matrix (bpp ends singular on some degenerate problems lemke solves) fails once per session, not on every step.
+// matrix (bpp ends singular on some degenerate problems lemke solves) fails once per session, not on every step;
+// that hand-over starts the chain after the delegate (NoteDelegateFailure), which is not run twice.
 // That is warm state: ForgetWarmState drops it, so a cold repeat runs the whole chain again.
 //
 // Details: "chosen" = the AutoCandidate of the backend whose answer is returned (read it with ChosenCandidateOf),
@@ -128,6 +129,9 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
   // The backend auto would hand this problem to first (owned by this AutoSolver), without solving; nullptr while
   // auto's own options are invalid (Solve then reports them).
   Solver* DelegateFor(const BoxMLCP& problem, const SolverOptions& options) override;
+  // The session's call of that delegate failed: the next Solve of this matrix goes on with the candidate after it
+  // (its message names the delegate's failure; fallbacks counts it), instead of running the delegate again.
+  void NoteDelegateFailure(const BoxMLCP& problem, const Solver& delegate, const SolveResult& result) override;
   // Forgets the candidate a fallback made the first choice for the current matrix (the chain starts at the rule's
   // choice again; the classification itself depends on M alone and stays), and whatever each created candidate
   // keeps (their ForgetWarmState).
@@ -172,6 +176,10 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
   std::uint64_t choice_generation_ = 0;
   std::uint64_t choice_enum_generation_ = 0;
   AutoChoice choice_;
+  // NoteDelegateFailure's one-shot skip: the next Solve of matrix skip_matrix_id_ starts at choice_.first + 1, its
+  // trail beginning with skip_trail_ (0: no skip pending).
+  std::uint64_t skip_matrix_id_ = 0;
+  std::string skip_trail_;
   // UntimedOptions' copy, kept to avoid allocating per solve.
   SolverOptions delegate_options_;
 };

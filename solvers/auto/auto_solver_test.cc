@@ -235,6 +235,40 @@ TEST(AutoSolver, ASessionPaysItsDelegatesFailureOnce) {
   EXPECT_EQ(&session.backend(), &solver.candidate(AutoCandidate::kBpp));
 }
 
+// The session's hand-over after its delegate failed starts the chain after that delegate (NoteDelegateFailure):
+// here bpp would solve the problem, so an answer from the next candidate shows bpp was not run again. The skip is
+// one-shot, for the matrix it was noted on, and only for the delegate auto would call.
+TEST(AutoSolver, ANotedDelegateFailureIsNotRunAgain) {
+  const GeneratedProblem gen = Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 20);
+  AutoSolver solver;
+  SolverOptions options;
+  options.tolerance = kTol;
+  ASSERT_EQ(solver.DelegateFor(gen.problem, options), &solver.candidate(AutoCandidate::kBpp));
+  SolveResult failed;
+  failed.status = SolveStatus::kIterationLimit;
+  failed.message = "max_single_pivots reached";
+  // Another backend's failure is not the delegate's: nothing is skipped.
+  solver.NoteDelegateFailure(gen.problem, solver.candidate(AutoCandidate::kLemke), failed);
+  SolveResult r;
+  solver.Solve(gen.problem, options, &r);
+  ASSERT_TRUE(r.solved()) << r.message;
+  EXPECT_EQ(Chosen(r), AutoCandidate::kBpp);
+
+  solver.NoteDelegateFailure(gen.problem, solver.candidate(AutoCandidate::kBpp), failed);
+  solver.Solve(gen.problem, options, &r);
+  ASSERT_TRUE(r.solved()) << r.message;
+  EXPECT_NE(Chosen(r), AutoCandidate::kBpp);
+  EXPECT_EQ(r.GetDetail("fallbacks"), 1.0);
+  EXPECT_EQ(solver.DelegateFor(gen.problem, options), &solver.candidate(Chosen(r)));  // it answered: first now
+  EXPECT_EQ(solver.ForgetWarmState(), WarmStateReset::kForgotten);
+
+  // A proof (infeasible from an exact backend) or a time limit ends the chain: nothing to skip to.
+  failed.status = SolveStatus::kTimeLimit;
+  solver.NoteDelegateFailure(gen.problem, solver.candidate(AutoCandidate::kBpp), failed);
+  solver.Solve(gen.problem, options, &r);
+  EXPECT_EQ(Chosen(r), AutoCandidate::kBpp);
+}
+
 TEST(AutoSolver, SparseGoesToNewton) {
   ExpectChoice(Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 200, true),
                AutoCandidate::kNewton);

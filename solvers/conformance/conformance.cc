@@ -14,8 +14,23 @@
 #include "solvers/core/verdict.h"
 #include "solvers/enumerative/enumerative_solver.h"
 
+// A sanitizer build times its allocator, not the solve (conformance.h, CheckColdRepeat: the time test is off there).
+#if defined(__SANITIZE_ADDRESS__)
+#define SMCBENCH_CONFORMANCE_SANITIZED 1
+#elif defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#define SMCBENCH_CONFORMANCE_SANITIZED 1
+#endif
+#endif
+
 namespace smcbench {
 namespace {
+
+#ifdef SMCBENCH_CONFORMANCE_SANITIZED
+constexpr bool kSanitizedBuild = true;
+#else
+constexpr bool kSanitizedBuild = false;
+#endif
 
 // Collects failures of one check in the form the report keeps.
 class Findings {
@@ -517,6 +532,7 @@ void CheckColdRepeatOn(const SolverFactory& create, const ColdRepeatOptions& opt
   const std::unique_ptr<Solver> in_process = InProcess(create);
   CompareColdRepeats(in_process.get(), problem, o, options.repeats, problem.name() + " (in process)", findings,
                      report, &repeat_times);
+  if (kSanitizedBuild) return;
   std::vector<double> fresh_times;
   for (int i = 0; i < options.fresh_instances; ++i) {
     const std::unique_ptr<Solver> fresh = InProcess(create);

@@ -99,6 +99,12 @@ class Solver {
   // nothing per step. nullptr (every real backend): this backend solves the problem itself.
   virtual Solver* DelegateFor(const BoxMLCP& /*problem*/, const SolverOptions& /*options*/) { return nullptr; }
 
+  // A caller that solved through DelegateFor's backend tells the meta-backend that it failed on `problem` with
+  // `result`, before handing the problem to this one's Solve: that Solve then goes on after the delegate instead of
+  // running it again. Default: nothing to skip.
+  virtual void NoteDelegateFailure(const BoxMLCP& /*problem*/, const Solver& /*delegate*/,
+                                   const SolveResult& /*result*/) {}
+
   // The next solve starts as if it were the first: no cache, no remembered active set, no candidate chosen by an
   // earlier answer. What depends on the problem's M alone and is prepared once (the equilibrated copy, enum's block
   // factors, auto's classification, an external library's initialisation for the last problem) may stay: that is

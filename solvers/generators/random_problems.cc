@@ -208,6 +208,30 @@ WorkMatrix DiagonallyDominant(int n, bool banded, Random& rng) {
   return M;
 }
 
+// K = G − Gᵀ with G strictly upper triangular, U(−1, 1) entries (within the band if banded), not normalized.
+WorkMatrix UnitEntrySkew(int n, bool banded, Random& rng) {
+  WorkMatrix K(n, banded);
+  for (int i = 0; i < n; ++i) {
+    for (int j = i + 1; j <= K.last(i); ++j) {
+      const double g = rng.Uniform(-1.0, 1.0);
+      K.at(i, j) = g;
+      K.at(j, i) = -g;
+    }
+  }
+  return K;
+}
+
+// Column j of M divided by d_j = c_j·10^k_j, c_j ∈ U(1, 10), k_j ∈ {−2, 0, 2} with equal odds: d spans five
+// decades, [0.01, 1000] (arithmetic only, so the bits do not depend on the math library).
+void ScaleColumnsByDecades(WorkMatrix* M, int n, Random& rng) {
+  constexpr double kDecade[3] = {0.01, 1.0, 100.0};
+  std::vector<double> scale(static_cast<std::size_t>(n));
+  for (double& s : scale) s = 1.0 / (rng.Uniform(1.0, 10.0) * kDecade[rng.Index(3)]);
+  for (int i = 0; i < n; ++i) {
+    for (int j = M->first(i); j <= M->last(i); ++j) M->at(i, j) *= scale[static_cast<std::size_t>(j)];
+  }
+}
+
 struct RowBounds {
   double l;
   double u;
@@ -281,6 +305,10 @@ std::string ToString(MatrixFamily family) {
       return "pmatrix";
     case MatrixFamily::kDiagonallyDominant:
       return "diagdom";
+    case MatrixFamily::kSkewPMatrix:
+      return "pmatrix-skew";
+    case MatrixFamily::kScaledPMatrix:
+      return "pmatrix-scaled";
   }
   return "invalid(" + std::to_string(static_cast<int>(family)) + ")";
 }
@@ -319,6 +347,14 @@ GeneratedProblem GenerateProblem(const GeneratorOptions& options) {
     }
     case MatrixFamily::kDiagonallyDominant:
       M = DiagonallyDominant(n, banded, rng);
+      break;
+    case MatrixFamily::kSkewPMatrix:  // xᵀ(S + K)x = xᵀSx > 0, as for kNonsymmetricPMatrix, with a larger K
+      M = SymmetricPositiveDefinite(n, banded, rng);
+      M.AddScaled(UnitEntrySkew(n, banded, rng), 1.0);
+      break;
+    case MatrixFamily::kScaledPMatrix:  // (W D⁻¹) D = W strictly row dominant, positive diagonal: an H-, so P-matrix
+      M = DiagonallyDominant(n, banded, rng);
+      ScaleColumnsByDecades(&M, n, rng);
       break;
   }
 

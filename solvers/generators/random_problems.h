@@ -22,6 +22,15 @@ enum class MatrixFamily {
   // Off-diagonal U(−1, 1)/(entries per row), M_ii = (1 + θ_i)·Σ_j≠i |M_ij| + 0.05 with θ_i ∈ [0.05, 0.5]:
   // strictly row diagonally dominant with positive diagonal (nonsymmetric), hence a P-matrix.
   kDiagonallyDominant,
+  // M = S + K with S as in kSymmetricPositiveDefinite and K = G − Gᵀ, G strictly upper triangular with U(−1, 1)
+  // entries, not normalized: ‖K‖₂ grows like √n while ‖S‖₂ ≈ 1, so M is strongly nonsymmetric (what a controller
+  // with strong cross-coupling gives). Still positive definite (xᵀMx = xᵀSx), hence a P-matrix.
+  kSkewPMatrix,
+  // M = W D⁻¹ with W as in kDiagonallyDominant and D = diag(d_j), d_j ∈ [0.01, 1000] (U(1, 10) times 0.01, 1 or
+  // 100 with equal odds), columns in units that differ by decades: M D = W is strictly row diagonally dominant with
+  // a positive diagonal, so M is an H-matrix with positive diagonal, hence a P-matrix; its symmetric part is
+  // indefinite (a P-matrix that is not positive definite: the methods whose proofs need M + Mᵀ ≻ 0 have none here).
+  kScaledPMatrix,
 };
 
 enum class BoundKind {

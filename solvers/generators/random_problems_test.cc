@@ -16,7 +16,8 @@ namespace smcbench {
 namespace {
 
 constexpr MatrixFamily kFamilies[] = {MatrixFamily::kSymmetricPositiveDefinite, MatrixFamily::kNonsymmetricPMatrix,
-                                      MatrixFamily::kDiagonallyDominant};
+                                      MatrixFamily::kDiagonallyDominant, MatrixFamily::kSkewPMatrix,
+                                      MatrixFamily::kScaledPMatrix};
 constexpr BoundKind kBounds[] = {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kBox, BoundKind::kMixed};
 
 GeneratorOptions Options(MatrixFamily family, BoundKind bounds, int size, std::uint64_t seed, bool sparse = false,
@@ -108,7 +109,7 @@ TEST(RandomProblems, ZStarSolvesEveryFamilyBoundKindSizeAndSeed) {
       }
     }
   }
-  EXPECT_EQ(checked, 3 * 4 * 4 * 3 * 2 * 2);
+  EXPECT_EQ(checked, 5 * 4 * 4 * 3 * 2 * 2);
 }
 
 TEST(RandomProblems, StrictComplementarityWithoutDegenerateRows) {
@@ -237,8 +238,36 @@ TEST(RandomProblems, FamilyProperties) {
       if (n > 2) {
         EXPECT_FALSE(dd.IsSymmetric(1e-3));
       }
+
+      // Strongly nonsymmetric P-matrix: the same positive definite symmetric part as the SPD family, a skew part
+      // with unit-scale entries that dominates it (‖K‖₂ ≥ 2‖S‖₂ at n = 50).
+      const DenseMatrix K =
+          GenerateProblem(Options(MatrixFamily::kSkewPMatrix, BoundKind::kLCP, n, 7, sparse)).problem.ToDense();
+      const DenseMatrix k_sym = (K + K.transpose()) / 2, k_skew = (K - K.transpose()) / 2;
+      EXPECT_GT(Eigen::SelfAdjointEigenSolver<DenseMatrix>(k_sym).eigenvalues().minCoeff(), 0.0);
+      if (n == 50) {
+        const DenseMatrix gram = k_skew.transpose() * k_skew;
+        const double skew_norm = std::sqrt(Eigen::SelfAdjointEigenSolver<DenseMatrix>(gram).eigenvalues().maxCoeff());
+        const double sym_norm = Eigen::SelfAdjointEigenSolver<DenseMatrix>(k_sym).eigenvalues().maxCoeff();
+        EXPECT_GT(skew_norm, 2.0 * sym_norm);
+      }
+
+      // Column-scaled diagonally dominant: an H-matrix with positive diagonal (some positive diagonal D makes M D
+      // strictly row dominant), i.e. its comparison matrix (|M_ii| on the diagonal, −|M_ij| off it) is a
+      // nonsingular M-matrix: its inverse is nonnegative.
+      const DenseMatrix S =
+          GenerateProblem(Options(MatrixFamily::kScaledPMatrix, BoundKind::kLCP, n, 7, sparse)).problem.ToDense();
+      DenseMatrix comparison = -S.cwiseAbs();
+      comparison.diagonal() = S.diagonal().cwiseAbs();
+      for (int i = 0; i < n; ++i) EXPECT_GT(S(i, i), 0.0);
+      const DenseMatrix inverse = comparison.inverse();
+      EXPECT_GE(inverse.minCoeff(), -1e-12 * inverse.maxCoeff()) << "the comparison matrix of an H-matrix is a nonsingular M-matrix";
     }
   }
+  // The column scaling makes the symmetric part indefinite: a P-matrix that is not positive definite.
+  const DenseMatrix S =
+      GenerateProblem(Options(MatrixFamily::kScaledPMatrix, BoundKind::kLCP, 50, 7, false)).problem.ToDense();
+  EXPECT_LT(Eigen::SelfAdjointEigenSolver<DenseMatrix>((S + S.transpose()) / 2).eigenvalues().minCoeff(), 0.0);
 }
 
 TEST(RandomProblems, SparseModeIsBanded) {
