@@ -13,6 +13,7 @@
 
 #include "problems/scenes/linear_scene.h"
 #include "problems/scenes/registry.h"
+#include "problems/stepper/linear_stepper.h"
 #include "solvers/avi/affine_vi.h"
 #include "solvers/registry/registry.h"
 
@@ -64,14 +65,25 @@ double MaxDeviation(const Trajectory& tr, const DenseMatrix& ref, const SiconosC
   return worst;
 }
 
+// The scene's defaults with the case's β (Siconos' SMCTest runs the Twisting controller with β = 0.1) and tolerance.
+SimulationSettings SettingsFor(const Scene& scene, const SiconosCase& c) {
+  SimulationSettings settings = scene.defaults();
+  if (const auto beta = settings.parameters.find("beta"); beta != settings.parameters.end()) beta->second = c.beta;
+  settings.stepper.solver.tolerance = c.solver_tolerance;
+  return settings;
+}
+
+// The default tolerance of every backend: Siconos' regression files are met with it (the step verdict,
+// problems/stepper/step_verdict.h, continues every run from the exact step on the answer's active set).
+const double kDefaultTolerance = SolverOptions{}.tolerance;
+
 // Runs the scene with every box backend; the exact ones (lemke, enum) must solve every step, and every backend that
 // solves every step must reproduce Siconos' data to its tolerance (a run that claims success and differs is wrong).
 // Prints one table row per backend (docs/smc.md, "Implicit twisting").
 void CompareWithEveryBackend(const SiconosCase& c) {
   const auto scene = LoadScene(c.scene);
   const DenseMatrix ref = ReadSiconosMatrix(c.reference);
-  SimulationSettings settings = scene->defaults();
-  settings.stepper.solver.tolerance = c.solver_tolerance;
+  SimulationSettings settings = SettingsFor(*scene, c);
   const Eigen::Index rows = std::min<Eigen::Index>(ref.rows(), NumSteps(settings.T, settings.h) + 1);
   int exact_passed = 0;
   for (std::string_view name : SolverNames()) {
@@ -97,13 +109,19 @@ void CompareWithEveryBackend(const SiconosCase& c) {
 
 TEST(TwistingScenes, SiconosTutorialDoubleIntegrator) {
   // examples/control/Relay/Twisting.cpp: compareRefFile(t, x1, x2) ≤ 1e-12.
-  CompareWithEveryBackend({"twisting-double-integrator", "Twisting.ref", Columns::kTimeAndState, 0.3, 1e-12, 1e-13});
+  CompareWithEveryBackend(
+      {"twisting-double-integrator", "Twisting.ref", Columns::kTimeAndState, 0.3, 1e-12, kDefaultTolerance});
 }
 
 TEST(TwistingScenes, SiconosTwistingZoh) {
-  // TwistingTest::test_Twisting_ZOH: ‖(t, x, λ₁ + βλ₂) − ref‖∞ < 7.5e-11. At the default tolerance 1e-10 the AVI's
-  // residual lets the state park ~4e-11 off the surfaces; 1e-13 is what pivoting then gives anyway.
-  CompareWithEveryBackend({"twisting", "itw2.ref", Columns::kStateAndPlantInput, 0.2, 7.5e-11, 1e-13});
+  // TwistingTest::test_Twisting_ZOH: ‖(t, x, λ₁ + βλ₂) − ref‖∞ < 7.5e-11, at the default tolerance.
+  CompareWithEveryBackend({"twisting", "itw2.ref", Columns::kStateAndPlantInput, 0.2, 7.5e-11, kDefaultTolerance});
+}
+
+TEST(TwistingScenes, SiconosSmcTestTwistingZoh) {
+  // SMCTest::test_itw_ZOH: the same Twisting controller and plant with β = 0.1, ‖(t, x) − ref‖∞ < 1.5e-8 (its
+  // leftCols(3)); λ₁ + βλ₂ is held to the same here.
+  CompareWithEveryBackend({"twisting", "itw.ref", Columns::kStateAndPlantInput, 0.1, 1.5e-8, kDefaultTolerance});
 }
 
 TEST(TwistingScenes, SiconosRegularTwistingZoh) {
@@ -112,7 +130,48 @@ TEST(TwistingScenes, SiconosRegularTwistingZoh) {
   // exponential; the ~4e-15 relative difference per step grows with the unstable plant (eigenvalue −1 + √20) and
   // by 2/h where the box's rank-one M puts x₁ on its surface (test_RegularTwisting_ZOH's 7.5e-11 is met to step 21).
   // Stated as the polytope (Siconos' own statement); as a box-MLCP, enum stops on its singular blocks.
-  CompareWithEveryBackend({"regular-twisting", "reg_itw.ref", Columns::kStateAndPlantInput, 0.2, 5e-9, 1e-13});
+  CompareWithEveryBackend(
+      {"regular-twisting", "reg_itw.ref", Columns::kStateAndPlantInput, 0.2, 5e-9, kDefaultTolerance});
+}
+
+TEST(TwistingScenes, EveryRowOfSiconosFilesReplayedOneStep) {
+  // From each row's x_k (the file's), one step of ours (lemke and enum, the default tolerance) must land on the
+  // next row's x_{k+1}, and give its λ₁ + βλ₂ (the ZOH files: row k holds the λ_k computed from x_k; the tutorial's
+  // row k + 1 holds the λ of the step into it), within test_Twisting_ZOH's 7.5e-11. What differs here is the step
+  // alone: the whole runs' growth of the exponentials' ~4e-15 (the unstable plant) is taken out.
+  const SiconosCase cases[] = {
+      {"twisting-double-integrator", "Twisting.ref", Columns::kTimeAndState, 0.3, 7.5e-11, kDefaultTolerance},
+      {"twisting", "itw2.ref", Columns::kStateAndPlantInput, 0.2, 7.5e-11, kDefaultTolerance},
+      {"twisting", "itw.ref", Columns::kStateAndPlantInput, 0.1, 7.5e-11, kDefaultTolerance},
+      {"regular-twisting", "reg_itw.ref", Columns::kStateAndPlantInput, 0.2, 7.5e-11, kDefaultTolerance}};
+  for (const char* backend : {"lemke", "enum"}) {
+    auto solver = CreateSolver(backend);
+    for (const SiconosCase& c : cases) {
+      const auto scene = LoadScene(c.scene);
+      const SimulationSettings settings = SettingsFor(*scene, c);
+      LinearStepper stepper(dynamic_cast<const LinearScene&>(*scene).Discretization(settings));
+      const DenseMatrix ref = ReadSiconosMatrix(c.reference);
+      const bool tutorial = c.columns == Columns::kTimeAndState;
+      double worst_x = 0.0, worst_input = 0.0;
+      Eigen::Index worst_row = -1;
+      for (Eigen::Index k = 0; k + 1 < ref.rows(); ++k) {
+        const Vector x = ref.row(k).segment(1, 2).transpose();
+        const Trajectory tr = stepper.Run(x, 1, solver.get(), settings.stepper);
+        ASSERT_TRUE(tr.ok()) << c.reference << " row " << k << " with " << backend << ": " << tr.first_failure_message;
+        const double dx = (tr.x.col(1) - ref.row(k + 1).segment(1, 2).transpose()).cwiseAbs().maxCoeff();
+        const Eigen::Index input_row = tutorial ? k + 1 : k;
+        const double di = std::abs(tr.u(0, 0) + c.beta * tr.u(1, 0) - ref(input_row, 3) - c.beta * ref(input_row, 4));
+        if (std::max(dx, di) > std::max(worst_x, worst_input)) worst_row = k;
+        worst_x = std::max(worst_x, dx);
+        worst_input = std::max(worst_input, di);
+      }
+      std::printf("| %s | %s | replayed %ld rows: x %.3g, lambda1 + beta lambda2 %.3g (worst row %ld) |\n",
+                  c.reference, backend, static_cast<long>(ref.rows() - 1), worst_x, worst_input,
+                  static_cast<long>(worst_row));
+      EXPECT_LE(worst_x, c.tolerance) << c.reference << " with " << backend << ", row " << worst_row;
+      EXPECT_LE(worst_input, c.tolerance) << c.reference << " with " << backend << ", row " << worst_row;
+    }
+  }
 }
 
 TEST(TwistingScenes, SiconosExplicitTwistingZohStepByStep) {
@@ -156,15 +215,14 @@ TEST(TwistingScenes, WarmStepsKeepSiconosToleranceAndNeverPivotMore) {
   // The reused set answers only where the reduction's free block can be factored: with G of rank one, M = C S is
   // rank one, so a λ inside P (no face active) leaves it singular and those steps go to the backend anyway.
   const SiconosCase cases[] = {
-      {"twisting-double-integrator", "Twisting.ref", Columns::kTimeAndState, 0.3, 1e-12, 1e-13},
-      {"twisting", "itw2.ref", Columns::kStateAndPlantInput, 0.2, 7.5e-11, 1e-13},
-      {"regular-twisting", "reg_itw.ref", Columns::kStateAndPlantInput, 0.2, 5e-9, 1e-13}};
+      {"twisting-double-integrator", "Twisting.ref", Columns::kTimeAndState, 0.3, 1e-12, kDefaultTolerance},
+      {"twisting", "itw2.ref", Columns::kStateAndPlantInput, 0.2, 7.5e-11, kDefaultTolerance},
+      {"regular-twisting", "reg_itw.ref", Columns::kStateAndPlantInput, 0.2, 5e-9, kDefaultTolerance}};
   auto lemke = CreateSolver("lemke");
   for (const SiconosCase& c : cases) {
     const auto scene = LoadScene(c.scene);
     const DenseMatrix ref = ReadSiconosMatrix(c.reference);
-    SimulationSettings warm = scene->defaults();
-    warm.stepper.solver.tolerance = c.solver_tolerance;
+    SimulationSettings warm = SettingsFor(*scene, c);
     SimulationSettings cold = warm;
     cold.stepper.warm_start = false;
     cold.stepper.session.reuse_active_set = false;

@@ -10,6 +10,7 @@
 
 #include "problems/stepper/discretization_detail.h"
 #include "problems/stepper/float_mode.h"
+#include "problems/stepper/step_verdict.h"
 #include "problems/stepper/validation.h"
 #include "solvers/avi/avi_solver.h"
 #include "solvers/core/number_text.h"
@@ -69,6 +70,8 @@ struct Counters {
   double max_residual = 0.0;
   std::int64_t total_iterations = 0;
   int max_iterations = 0;
+  double max_step_x_error = 0.0;
+  std::int64_t refined_steps = 0;
 
   void Add(int iterations, double residual) {
     total_iterations += iterations;
@@ -80,6 +83,13 @@ struct Counters {
     out->max_residual = max_residual;
     out->total_iterations = total_iterations;
     out->max_iterations = max_iterations;
+    out->max_step_x_error = max_step_x_error;
+    out->refined_steps = refined_steps;
+  }
+  // The step verdict's bookkeeping of an exact step (step_verdict.h): the answer's error in x_{k+1} against it.
+  void AddStepCheck(const StepCheck& check, double allowance) {
+    max_step_x_error = std::max(max_step_x_error, check.x_error);
+    if (check.x_error > allowance) ++refined_steps;
   }
 };
 
@@ -108,6 +118,14 @@ bool HandleFailure(std::int64_t k, SolveStatus status, double residual, bool sta
     return true;
   }
   return false;
+}
+
+// The message of a step the backend called solved but that has no exact step on its active set.
+std::string NoExactStepMessage(const std::string& backend_message) {
+  std::string text =
+      "step verdict: the backend's answer has no exact step on its active set (it is not a solution to rounding)";
+  if (!backend_message.empty()) text += "; backend: " + backend_message;
+  return text;
 }
 
 // SubnormalPolicy::kZeroState: a state component below this magnitude after an implicit step is set to 0 (0: the
@@ -167,6 +185,10 @@ class KernelImpl final : public LinearStepper::Kernel {
       Us_.setZero(m, m);
     }
     x_.resize(n), xn_.resize(n), b_.resize(n), g_prev_.resize(n), g_next_.resize(n), gbar_.resize(n);
+    if (d.sign == SignTreatment::kImplicit) {
+      refiner_.Reset(d.OneStepMatrix(), d.S, d.has_polytope_law() ? d.law.H : DenseMatrix(0, m),
+                     d.has_polytope_law() ? d.law.K : Vector());
+    }
     s_.resize(m), q_.resize(m), y_.resize(m), u_.resize(m), e_.resize(m);
   }
 
@@ -224,6 +246,9 @@ class KernelImpl final : public LinearStepper::Kernel {
     const bool zero_residue = implicit && options.zero_rounding_residue;
     const double residue_factor = ResidueFactor(n, m, forced, d);
     const double zero_below = ZeroStateBelow(options, implicit);
+    const bool refine = implicit && options.refine_steps;
+    const double tolerance = options.solver.tolerance;
+    const Eigen::Index law_rows = polytope ? d.law.H.rows() : 0;
     StepObserver* const observer = options.observer;
     stream_.Start(n, m, options.sink, d.has_input());
 
@@ -270,6 +295,8 @@ class KernelImpl final : public LinearStepper::Kernel {
       SolveStatus status = SolveStatus::kNotRun;
       int iterations = 0;
       double residual = 0.0;
+      StepCheck step_check;
+      bool no_exact_step = false;
       if (implicit) {
         q = -c0;
         q.noalias() -= CR * x;
@@ -305,6 +332,16 @@ class KernelImpl final : public LinearStepper::Kernel {
           status = step_result.status;
           iterations = step_result.iterations;
           residual = step_result.residual_rel;
+          if (refine && status == SolveStatus::kSolved) {
+            // The step verdict: continue from the exact step on the answer's active set, or report the step.
+            const AviSolution* answer = polytope ? &avi_session_->solution() : nullptr;
+            const double* mu = answer != nullptr && answer->mu.size() == law_rows ? answer->mu.data() : nullptr;
+            step_check = refiner_.Refine(q.data(), mu, s.data());
+            if (!step_check.exact) {
+              status = SolveStatus::kInaccurate;
+              no_exact_step = true;
+            }
+          }
         }
         counters.Add(iterations, residual);
       } else {
@@ -347,13 +384,18 @@ class KernelImpl final : public LinearStepper::Kernel {
         y.noalias() += C * x;
         if (offset) y += e;
       }
+      if (step_check.exact) {
+        counters.AddStepCheck(step_check, StepAllowance(tolerance, refiner_.input_scale(), x.cwiseAbs().maxCoeff()));
+      }
       ++k;
       if (record) Record(k, t_next, x, s, y, iterations, residual, status, out);
       if (stream) stream_.Add(k, t_next, x, s, y, iterations, residual, status, n, m);
       const bool finite = x.allFinite();
       if (!finite || (implicit && status != SolveStatus::kSolved)) {
         const bool has_nan = !finite && x.hasNaN();
-        if (HandleFailure(k, status, residual, finite, has_nan, implicit ? &step_result.message : nullptr,
+        if (no_exact_step) no_exact_message_ = NoExactStepMessage(step_result.message);
+        if (HandleFailure(k, status, residual, finite, has_nan,
+                          no_exact_step ? &no_exact_message_ : (implicit ? &step_result.message : nullptr),
                           options.on_failure, &stream_, out)) {
           break;
         }
@@ -400,6 +442,8 @@ class KernelImpl final : public LinearStepper::Kernel {
   VecM s_, q_, y_, u_, e_;  // e_: e(t) of the relation
   SolverOptions solver_options_;
   SolveResult result_;
+  StepRefiner refiner_;                    // the step verdict (implicit steps)
+  std::string no_exact_message_;           // a failed step verdict's message
   std::optional<AviSession> avi_session_;  // a polytope law's run
   Vector avi_q_;                           // q handed to it (size m)
   TrajectoryStream stream_;
@@ -498,6 +542,8 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
   record(0, options.t0, 0, 0.0, SolveStatus::kNotRun);
   const double zero_below = ZeroStateBelow(options, implicit);
 
+  StepRefiner refiner;  // the step verdict, as the prefactored kernels (rebuilt each step with the data)
+  std::string no_exact_message;
   Counters counters;
   std::int64_t k = 0;
   while (k < num_steps) {
@@ -515,8 +561,11 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
     SolveStatus status = SolveStatus::kNotRun;
     int iterations = 0;
     double residual = 0.0;
+    StepCheck step_check;
+    bool no_exact_step = false;
     if (implicit) {
-      Vector q = -(d.C * (d.R * x) + d.C * p + d.D + e);  // `eq:TDS3`, e(t_{k+1}) of the relation
+      Vector q = -(d.C * (d.R * x) + d.C * p + d.D + e);
+      const Vector q_step = q;  // q is moved into the problem below  // `eq:TDS3`, e(t_{k+1}) of the relation
       if (!q.allFinite()) {
         status = SolveStatus::kNumericalFailure;
         residual = kInf;
@@ -532,6 +581,11 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
         iterations = r.iterations;
         residual = r.reduced.residual_rel;
         result.message = r.message;
+        if (options.refine_steps && status == SolveStatus::kSolved) {
+          refiner.Reset(d.OneStepMatrix(), d.S, d.law.H, d.law.K);
+          const double* mu = r.solution.mu.size() == d.law.H.rows() ? r.solution.mu.data() : nullptr;
+          step_check = refiner.Refine(q_step.data(), mu, s.data());
+        }
       } else {
         const BoxMLCP problem = BoxMLCP::Relay(d.C * d.S, std::move(q));
         if (options.warm_start) solver_options.warm_start = s;
@@ -541,6 +595,14 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
         status = result.status;
         iterations = result.iterations;
         residual = result.residual_rel;
+        if (options.refine_steps && status == SolveStatus::kSolved) {
+          refiner.Reset(d.OneStepMatrix(), d.S, DenseMatrix(0, m), Vector());
+          step_check = refiner.Refine(q_step.data(), nullptr, s.data());
+        }
+      }
+      if (options.refine_steps && status == SolveStatus::kSolved && !step_check.exact) {
+        status = SolveStatus::kInaccurate;
+        no_exact_step = true;
       }
       counters.Add(iterations, residual);
     } else {
@@ -571,11 +633,17 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
       }
     }
     y = d.C * x + d.D + e;
+    if (step_check.exact) {
+      counters.AddStepCheck(step_check, StepAllowance(options.solver.tolerance, refiner.input_scale(),
+                                                      x.cwiseAbs().maxCoeff()));
+    }
     ++k;
     record(k, t_next, iterations, residual, status);
     const bool finite = x.allFinite();
     if (!finite || (implicit && status != SolveStatus::kSolved)) {
-      if (HandleFailure(k, status, residual, finite, !finite && x.hasNaN(), implicit ? &result.message : nullptr,
+      if (no_exact_step) no_exact_message = NoExactStepMessage(result.message);
+      if (HandleFailure(k, status, residual, finite, !finite && x.hasNaN(),
+                        no_exact_step ? &no_exact_message : (implicit ? &result.message : nullptr),
                         options.on_failure, &stream, out)) {
         break;
       }

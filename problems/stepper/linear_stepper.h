@@ -95,6 +95,12 @@ struct StepperOptions {
   // Implicit steps only: s_{k+1} = Π(·) is continuous in x_k, so a zeroed residue moves the next s by residue/h;
   // the explicit sgn(y_k) jumps at 0 and is left to plain arithmetic. false: the plain update.
   bool zero_rounding_residue = true;
+  // The step verdict in units of the next state (step_verdict.h, docs/verdict.md "The step verdict"): every implicit
+  // step the backend calls solved is solved again exactly on its active set (long double); the run continues from
+  // that exact step, Trajectory::refined_steps counts the answers off by more than tol·(‖S‖∞ + ‖x_{k+1}‖∞) in x, and
+  // a step with no exact solution on its active set is kInaccurate. false: the backend's answer as given, judged by
+  // its residual alone (to study a backend's own accuracy).
+  bool refine_steps = true;
 
   // True if usable; otherwise *why names the field.
   bool IsValid(std::string* why) const;

@@ -76,6 +76,8 @@ void Trajectory::Reset(int n_states, int m_surfaces, double step, double start_t
   max_residual = 0.0;
   total_iterations = 0;
   max_iterations = 0;
+  max_step_x_error = 0.0;
+  refined_steps = 0;
   failed_steps = 0;
   first_failed_step = -1;
   first_failure_status = SolveStatus::kNotRun;

@@ -48,6 +48,11 @@ struct Trajectory {
   double max_residual = 0.0;         // max relative natural residual over all solved one-step problems
   std::int64_t total_iterations = 0;
   int max_iterations = 0;
+  // The step verdict (step_verdict.h), linear steppers with StepperOptions::refine_steps: the largest forward error
+  // in x_{k+1} of a backend's answer against the exact step on its active set, and how many answers were off by more
+  // than tol·(‖S‖∞ + ‖x_{k+1}‖∞) (the run continued from the exact step instead).
+  double max_step_x_error = 0.0;
+  std::int64_t refined_steps = 0;
   std::int64_t failed_steps = 0;     // steps whose one-step problem was not kSolved (or whose state overflowed)
   std::int64_t first_failed_step = -1;  // k of the first failed step (the step producing x_k), -1 if none
   SolveStatus first_failure_status = SolveStatus::kNotRun;
