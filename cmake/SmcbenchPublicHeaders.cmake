@@ -17,6 +17,9 @@ set(SMCBENCH_PUBLIC_HEADERS
   solvers/core/session.h
   solvers/core/backend_options.h
   solvers/core/matrix_class.h
+  # MCPs without a hand-written Jacobian: central differences, a derivative check, automatic differentiation.
+  solvers/core/mcp_derivatives.h
+  solvers/core/autodiff_mcp.h
   # Affine variational inequalities over polytopes, solved by any box backend through an exact reduction.
   solvers/avi/polytope.h
   solvers/avi/affine_vi.h

@@ -153,7 +153,6 @@ Banner ReadBanner(Lines& lines) {
     lines.Fail("symmetry '" + words[4] + "' is not supported ('general' or 'symmetric')");
   }
   banner.symmetric = words[4] == "symmetric";
-  if (banner.symmetric && !banner.coordinate) lines.Fail("'array symmetric' is not supported: write 'array general'");
   return banner;
 }
 
@@ -204,26 +203,35 @@ MatrixMarketMatrix ParseMatrixMarketMatrix(std::string_view text, const std::str
   const auto n = static_cast<Eigen::Index>(rows);
   MatrixMarketMatrix result;
   if (!banner.coordinate) {
+    // 'array general': every entry, column by column. 'array symmetric' (SciPy's mmwrite of a symmetric dense M):
+    // the lower triangle, column by column (column j from row j down), mirrored above the diagonal.
+    const std::int64_t count = banner.symmetric ? rows * (rows + 1) / 2 : rows * cols;
     // Bytes bound the entries: each takes at least two characters, so a huge declared size fails before allocating.
-    if (rows * cols > static_cast<std::int64_t>(text.size() / 2 + 1)) {
-      lines.Fail("declares " + std::to_string(rows * cols) + " entries, more than the file can hold");
+    if (count > static_cast<std::int64_t>(text.size() / 2 + 1)) {
+      lines.Fail("declares " + std::to_string(count) + " entries, more than the file can hold");
     }
     result.is_dense = true;
     result.dense.resize(n, n);
     std::int64_t k = 0;
-    while (k < rows * cols && lines.NextData(&tokens)) {
+    Eigen::Index i = 0, j = 0;  // the entry k is (i, j)
+    while (k < count && lines.NextData(&tokens)) {
       for (std::string_view token : tokens) {
-        if (k == rows * cols) lines.Fail("more entries than the " + std::to_string(rows * cols) + " declared");
-        const Eigen::Index i = static_cast<Eigen::Index>(k % rows), j = static_cast<Eigen::Index>(k / rows);
+        if (k == count) lines.Fail("more entries than the " + std::to_string(count) + " declared");
         const std::string field = "M(" + std::to_string(i + 1) + "," + std::to_string(j + 1) + ")";
         const double value = ParseNumber(lines, token, field);
         if (!std::isfinite(value)) lines.Fail(field + " is " + NumberText(value) + " (M must be finite)");
         result.dense(i, j) = value;
+        if (banner.symmetric) result.dense(j, i) = value;
         ++k;
+        if (++i == n) {
+          ++j;
+          i = banner.symmetric ? j : 0;
+        }
       }
     }
-    if (k < rows * cols) {
-      lines.Fail("only " + std::to_string(k) + " of the " + std::to_string(rows * cols) + " entries declared");
+    if (k < count) {
+      lines.Fail("only " + std::to_string(k) + " of the " + std::to_string(count) + " entries declared" +
+                 (banner.symmetric ? " (an 'array symmetric' file holds the lower triangle, n(n+1)/2 entries)" : ""));
     }
     CheckEnd(lines, "the last entry");
     return result;

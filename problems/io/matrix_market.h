@@ -19,7 +19,8 @@ struct MatrixMarketFiles {
 MatrixMarketFiles MatrixMarketFileNames(const std::string& matrix_path);
 
 // Reads the problem named by its matrix file. M: "coordinate" (stored sparse; "general" or "symmetric", the latter
-// with the lower triangle only, mirrored) or "array general" (stored dense, column-major), field "real" or
+// with the lower triangle only, mirrored) or "array" (stored dense, column-major; "array symmetric", as SciPy's
+// mmwrite writes a symmetric dense M: the lower triangle column by column, mirrored), field "real" or
 // "integer". q is required; a missing l file means l = 0 and a missing u file means u = +inf (an LCP needs only M
 // and q). Every defect is an InvalidInputError "Matrix Market '<file>': line L: <what>": a missing or unknown
 // banner, complex/pattern/skew/Hermitian data, a non-square M, indices out of range or repeated, entries above the

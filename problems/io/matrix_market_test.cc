@@ -153,6 +153,27 @@ TEST_F(MatrixMarketTest, HandWrittenSymmetricFileIsMirrored) {
   EXPECT_EQ(read.u()[1], kInf);
 }
 
+// SciPy 1.10's scipy.io.mmwrite of the symmetric dense M below writes 'array real symmetric': the lower triangle,
+// column by column (the text is its output, byte for byte). Read, it is the full matrix.
+TEST_F(MatrixMarketTest, ArraySymmetricAsSciPyWritesItIsTheFullMatrix) {
+  Write("s.mtx",
+        "%%MatrixMarket matrix array real symmetric\n%\n3 3\n4.0000000000000000e+00\n-1.0000000000000000e+00\n"
+        "5.0000000000000000e-01\n3.0000000000000000e+00\n2.0000000000000000e+00\n5.0000000000000000e+00\n");
+  Write("s_q.mtx", "%%MatrixMarket matrix array real general\n3 1\n1\n2\n3\n");
+  const BoxMLCP read = ReadMatrixMarketProblem(Path("s.mtx"));
+  DenseMatrix expected(3, 3);
+  expected << 4.0, -1.0, 0.5, -1.0, 3.0, 2.0, 0.5, 2.0, 5.0;
+  EXPECT_FALSE(read.is_sparse());
+  EXPECT_EQ(read.ToDense(), expected);
+  // A short or long lower triangle names the count it expected.
+  Write("t.mtx", "%%MatrixMarket matrix array real symmetric\n3 3\n1\n2\n3\n4\n5\n");
+  Write("t_q.mtx", "%%MatrixMarket matrix array real general\n3 1\n1\n2\n3\n");
+  ExpectRejected("t.mtx", {"t.mtx", "only 5 of the 6 entries", "lower triangle"});
+  Write("t.mtx", "%%MatrixMarket matrix array real symmetric\n2 2\n1\n2\n3\n4\n");
+  Write("t_q.mtx", "%%MatrixMarket matrix array real general\n2 1\n1\n2\n");
+  ExpectRejected("t.mtx", {"t.mtx", "line 6", "trailing data '4' after the last entry"});
+}
+
 TEST_F(MatrixMarketTest, BadFilesAreClearErrorsNamingTheFile) {
   const std::string vector_q = "%%MatrixMarket matrix array real general\n2 1\n1\n2\n";
   Write("a.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 1\n1 1 1\n");

@@ -60,10 +60,10 @@ void SuperTwistingSystem::Validate() const {
 
 SuperTwistingStepSolution SolveSuperTwistingStep(double w, double a, double b) {
   const double magnitude = std::abs(w);
-  if (magnitude <= b) return {0.0, w / b};
+  if (magnitude <= b) return {0.0, w / b, true};
   const double excess = magnitude - b;
   const double r = 2.0 * excess / (a + std::sqrt(a * a + 4.0 * excess));
-  return {Sign(w) * r * r, Sign(w)};
+  return {Sign(w) * r * r, Sign(w), false};
 }
 
 SuperTwistingStepMcp::SuperTwistingStepMcp(double a, double b)
@@ -139,17 +139,19 @@ void RunSuperTwisting(const SuperTwistingSystem& system, SignTreatment sign, dou
     const double t_k = so.t0 + static_cast<double>(k) * h;
     const double t_next = so.t0 + static_cast<double>(k + 1) * h;
     const double sigma = x[0], v = x[1];
-    double selection = 0.0, control = 0.0, v_next = 0.0, residual = 0.0;
+    double selection = 0.0, control = 0.0, v_next = 0.0, sigma_next = 0.0, residual = 0.0;
     int iterations = 0;
     SolveStatus status = SolveStatus::kSolved;
     if (!implicit) {
       selection = Sign(sigma);
       control = -k1 * std::sqrt(std::abs(sigma)) * selection + v;
       v_next = v - h * k2 * selection;
+      sigma_next = sigma + h * control + system.disturbance.Integral(t_k, t_next);
       status = SolveStatus::kNotRun;
     } else {
       const double w = sigma + h * v;
       double predicted = 0.0;
+      bool sliding = false;
       if (use_mcp) {
         mcp->SetStep(w);
         if (!so.warm_start) solver_options.warm_start.setZero();
@@ -165,14 +167,17 @@ void RunSuperTwisting(const SuperTwistingSystem& system, SignTreatment sign, dou
         const SuperTwistingStepSolution step = SolveSuperTwistingStep(w, a, b);
         predicted = step.sigma;
         selection = step.selection;
+        sliding = step.sliding;
         // The generalized equation's own residual at the closed form (rounding only), relative to 1 + |w|.
         const double root = Sign(predicted) * std::sqrt(std::abs(predicted));
         residual = std::abs(predicted + a * root + b * selection - w) / (1.0 + std::abs(w));
       }
-      v_next = v - h * k2 * selection;
+      // v_k − h k₂ s with s = w/b = (σ_k + h v_k)/(h² k₂) is −σ_k/h: in the sliding set, that form (exactly 0 once
+      // σ_k is) rather than the subtraction, whose rounding residue would only shrink geometrically.
+      v_next = sliding ? 0.0 - sigma / h : v - h * k2 * selection;
       control = (predicted - sigma) / h;
+      sigma_next = predicted + system.disturbance.Integral(t_k, t_next);
     }
-    const double sigma_next = sigma + h * control + system.disturbance.Integral(t_k, t_next);
     x[0] = sigma_next;
     x[1] = v_next;
     s[0] = selection;

@@ -8,7 +8,11 @@
 //     v_{k+1} = v_k − h k₂ s, s ∈ Sgn(σ̂). With w = σ_k + h v_k this is one scalar generalized equation
 //         0 ∈ σ̂ + h k₁ |σ̂|^{1/2} sgn σ̂ + h² k₂ Sgn(σ̂) − w,
 //     solved by its closed form (SolveSuperTwistingStep) or as an MCP (SuperTwistingStepMcp). The controller applies
-//     u_k = (σ̂ − σ_k)/h = −k₁|σ̂|^{1/2} sgn σ̂ + v_{k+1}; the plant then gives σ_{k+1} = σ_k + h u_k + ∫ d.
+//     u_k = (σ̂ − σ_k)/h = −k₁|σ̂|^{1/2} sgn σ̂ + v_{k+1}; the plant then gives σ_{k+1} = σ_k + h u_k + ∫ d = σ̂ + ∫ d
+//     (computed so: σ_k + h u_k would leave the rounding of the division and product).
+//     A sliding step of the closed form (|w| ≤ h² k₂: σ̂ = 0, s = w/(h² k₂)) has v_{k+1} = v_k − h k₂ s = −σ_k/h by
+//     the same algebra; the stepper computes it so, since v_k − h k₂ (w/b) leaves a rounding tail of ~1e-16 |v_k|
+//     that a run of sliding steps shrinks into subnormals instead of 0 (docs/smc.md, "Higher-order sliding modes").
 //   Explicit Euler: u_k = −k₁|σ_k|^{1/2} sgn σ_k + v_k, v_{k+1} = v_k − h k₂ sgn σ_k (sgn 0 = 0).
 // The plant is integrated exactly over a step (σ' = u + d with u held: σ_{k+1} = σ_k + h u_k + ∫_{t_k}^{t_{k+1}} d).
 #pragma once
@@ -62,6 +66,7 @@ enum class SuperTwistingSolution { kClosedForm, kMcp };
 struct SuperTwistingStepSolution {
   double sigma = 0.0;      // σ̂
   double selection = 0.0;  // s ∈ Sgn(σ̂)
+  bool sliding = false;    // |w| ≤ b: σ̂ = 0 with s = w/b (not an r² that underflowed to 0, where s = ±1)
 };
 SuperTwistingStepSolution SolveSuperTwistingStep(double w, double a, double b);
 

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -110,6 +111,75 @@ TEST(SuperTwistingRun, ImplicitUndisturbedReachesTheOriginExactlyAndStays) {
       ASSERT_EQ(tr.x(0, k), 0.0) << "h = " << h << ", k = " << k;
       ASSERT_EQ(tr.x(1, k), 0.0) << "h = " << h << ", k = " << k;
       ASSERT_EQ(tr.u(0, k - 1), 0.0) << "h = " << h << ", k = " << k;
+    }
+  }
+}
+
+// The issue's run (h = 0.05, k₁ = 0.8, k₂ = 4, x₀ = (3, 0)): sliding starts at a step with σ_k ≠ 0, and the
+// state then goes through the docs' mechanism: σ_{k+1} = σ̂ = 0 and v_{k+1} = −σ_k/h, the next step has w = −σ_k
+// and, sliding again, v_{k+2} = −σ_{k+1}/h = 0. Before the stepper computed v_{k+1} = −σ_k/h in the sliding branch,
+// v_k − h k₂ (w/b) left 3.5e-18 there, shrinking by ~1e-16 per step to 3.95e-323 and never to 0.
+TEST(SuperTwistingRun, ImplicitUndisturbedSlidingStepsGiveExactZeros) {
+  SuperTwistingSystem system;
+  system.k1 = 0.8;
+  system.k2 = 4.0;
+  const double h = 0.05, b = h * h * system.k2;
+  SuperTwistingOptions options;
+  Trajectory tr;
+  RunSuperTwisting(system, SignTreatment::kImplicit, h, (Vector(2) << 3.0, 0.0).finished(), 400, nullptr, options,
+                   &tr);
+  ASSERT_TRUE(tr.ok());
+  std::int64_t origin = -1;  // the first row with σ = v = 0
+  for (std::int64_t k = 0; k <= tr.steps_taken && origin < 0; ++k) {
+    if (tr.x(0, k) == 0.0 && tr.x(1, k) == 0.0) origin = k;
+  }
+  ASSERT_GT(origin, 1) << "the run never reached (0, 0) exactly";
+  EXPECT_LT(tr.time(origin), 10.0);
+  // The two steps before: the sliding step from σ ≠ 0 gives σ = 0 and v = −σ/h; the next one gives v = 0.
+  const std::int64_t k = origin - 2;
+  EXPECT_NE(tr.x(0, k), 0.0);
+  EXPECT_LE(std::abs(tr.x(0, k) + h * tr.x(1, k)), b);
+  EXPECT_EQ(tr.x(0, k + 1), 0.0);
+  EXPECT_EQ(tr.x(1, k + 1), -tr.x(0, k) / h);
+  for (std::int64_t j = origin; j <= tr.steps_taken; ++j) {
+    ASSERT_EQ(tr.x(0, j), 0.0) << "k = " << j;
+    ASSERT_EQ(tr.x(1, j), 0.0) << "k = " << j;
+    ASSERT_EQ(tr.u(0, j - 1), 0.0) << "k = " << j;
+  }
+  EXPECT_EQ(tr.x_final[0], 0.0);
+  EXPECT_EQ(tr.x_final[1], 0.0);
+}
+
+// docs/smc.md's statement of how close the MCP route comes to the closed form, at the default tolerance (1e-10) of
+// newton and auto, on the scenes' gains (h = 0.01, x₀ = (1, 0), T = 4) and on the issue's run above: the largest
+// |x_closed − x_mcp| over every step. The printed numbers are the docs'.
+TEST(SuperTwistingRun, McpRouteAgreementWithTheClosedFormAtTheDefaultTolerance) {
+  SuperTwistingSystem issue_gains;
+  issue_gains.k1 = 0.8;
+  issue_gains.k2 = 4.0;
+  struct Case {
+    const char* what;
+    SuperTwistingSystem system;
+    double h;
+    Vector x0;
+    std::int64_t steps;
+  };
+  const std::vector<Case> cases = {{"scene gains, d = 0", Gains(false), 0.01, (Vector(2) << 1.0, 0.0).finished(), 400},
+                                   {"scene gains, disturbed", Gains(true), 0.01, (Vector(2) << 1.0, 0.0).finished(), 400},
+                                   {"h 0.05 k1 0.8 k2 4 x0 (3, 0)", issue_gains, 0.05, (Vector(2) << 3.0, 0.0).finished(),
+                                    400}};
+  for (const char* name : {"newton", "auto"}) {
+    auto solver = CreateSolver(name);
+    for (const Case& c : cases) {
+      SuperTwistingOptions closed_options, mcp_options;
+      mcp_options.solution = SuperTwistingSolution::kMcp;
+      Trajectory closed, via_mcp;
+      RunSuperTwisting(c.system, SignTreatment::kImplicit, c.h, c.x0, c.steps, nullptr, closed_options, &closed);
+      RunSuperTwisting(c.system, SignTreatment::kImplicit, c.h, c.x0, c.steps, solver.get(), mcp_options, &via_mcp);
+      ASSERT_TRUE(via_mcp.ok()) << name << ", " << c.what << ": " << via_mcp.first_failure_message;
+      const double gap = (closed.x - via_mcp.x).cwiseAbs().maxCoeff();
+      std::printf("MCP route vs closed form, %s, %s: max |dx| = %.2e\n", name, c.what, gap);
+      EXPECT_LE(gap, 2e-7) << name << ", " << c.what;
     }
   }
 }

@@ -125,10 +125,15 @@ def _default_mcp_solver() -> str:
 
 
 def _mcp_arrays(F, J, l, u, where: str):
-    """The checked callables and bound vectors of an MCP (scalar bounds broadcast to the other bound's size)."""
+    """The checked callables and bound vectors of an MCP (scalar bounds broadcast to the other bound's size).
+    J may be None (differences of F, _DifferenceJacobian)."""
     for name, value in (("F", F), ("J", J)):
+        if value is None and name == "J":
+            continue
         if not callable(value):
-            raise InvalidInputError(f"{where}: {name} must be callable (z -> array), got {type(value).__name__}")
+            raise InvalidInputError(f"{where}: {name} must be callable (z -> array) or None (differences of F), "
+                                    f"got {type(value).__name__}" if name == "J" else
+                                    f"{where}: {name} must be callable (z -> array), got {type(value).__name__}")
     l_vec = np.asarray(l, dtype=np.float64)
     u_vec = np.asarray(u, dtype=np.float64)
     for name, value in (("l", l_vec), ("u", u_vec)):
@@ -140,8 +145,92 @@ def _mcp_arrays(F, J, l, u, where: str):
     return _bound(l_vec, 0.0, n, "l"), _bound(u_vec, 0.0, n, "u")
 
 
-def _jacobian_for_core(J: Callable, where: str) -> Callable:
-    """J as the C++ core takes it: a scipy.sparse value becomes its CSC tuple, a dense one passes unchanged."""
+_DERIVATIVE_METHODS = ("auto", "complex-step", "central")
+
+
+class _DifferenceJacobian:
+    """The Jacobian of F without a hand-written J, a dense (n, n) array per call.
+
+    "central": central differences, column j from F(z ± h_j e_j) with h_j = ε^(1/3)·max(1, |z_j|); where a point
+    would leave [l_j, u_j], one-sided inward with h_j = ε^(1/2)·max(1, |z_j|) (F is then only called in the box),
+    as CentralDifferenceJacobian in C++ (solvers/core/mcp_derivatives.h). 2n calls of F per Jacobian.
+    "complex-step": J[:, j] = Im F(z + i·h e_j) / h, h = 1e-20: exact to rounding, for an F written with
+    complex-safe operations (numpy arithmetic, np.exp, np.sin, ...; not abs, max, comparisons). n calls of F.
+    "auto": at the first call, complex step if F returns complex values for a complex z and its Jacobian there
+    agrees with central differences (relative 1e-5), else central; the choice is kept (method_used)."""
+
+    def __init__(self, F: Callable, l_vec: np.ndarray, u_vec: np.ndarray, method: str, where: str):
+        if method not in _DERIVATIVE_METHODS:
+            raise InvalidInputError(f"{where}: derivatives must be one of {', '.join(_DERIVATIVE_METHODS)}, "
+                                    f"got {method!r}")
+        self.F, self.l, self.u, self.where = F, l_vec, u_vec, where
+        self.method_used = None if method == "auto" else method
+
+    def _value(self, z: np.ndarray) -> np.ndarray:
+        return np.asarray(self.F(z)).reshape(-1)
+
+    def central(self, z: np.ndarray) -> np.ndarray:
+        eps = np.finfo(np.float64).eps
+        z = np.asarray(z, dtype=np.float64)
+        n = z.shape[0]
+        columns = []
+        for j in range(n):
+            scale = max(1.0, abs(z[j]))
+            h, h1 = np.cbrt(eps) * scale, np.sqrt(eps) * scale
+            plus, minus = z[j] + h, z[j] - h
+            if minus < self.l[j] and z[j] + h1 <= self.u[j]:
+                plus, minus = z[j] + h1, z[j]
+            elif plus > self.u[j] and z[j] - h1 >= self.l[j]:
+                plus, minus = z[j], z[j] - h1
+            zp, zm = z.copy(), z.copy()
+            zp[j], zm[j] = plus, minus
+            columns.append((self._value(zp).astype(np.float64) - self._value(zm).astype(np.float64)) /
+                           (zp[j] - zm[j]))
+        return np.column_stack(columns) if columns else np.zeros((0, 0))
+
+    def complex_step(self, z: np.ndarray) -> np.ndarray:
+        z = np.asarray(z, dtype=np.float64)
+        n = z.shape[0]
+        h = 1e-20
+        columns = []
+        for j in range(n):
+            zc = z.astype(np.complex128)
+            zc[j] += 1j * h
+            value = self._value(zc)
+            if not np.iscomplexobj(value):
+                raise TypeError("F returned real values for a complex z")
+            columns.append(value.imag / h)
+        return np.column_stack(columns) if columns else np.zeros((0, 0))
+
+    def _choose(self, z: np.ndarray) -> None:
+        """auto: complex step when F takes complex input and agrees with central differences at z."""
+        import warnings
+
+        central = self.central(z)
+        try:
+            with warnings.catch_warnings():
+                warnings.simplefilter("error")  # numpy's ComplexWarning: F dropped the imaginary part
+                by_complex = self.complex_step(z)
+        except Exception:  # F does not take complex input: any error means central differences
+            self.method_used = "central"
+            return
+        agree = np.all(np.abs(by_complex - central) <= 1e-5 * np.maximum(1.0, np.abs(central)))
+        self.method_used = "complex-step" if agree else "central"
+
+    def __call__(self, z: np.ndarray) -> np.ndarray:
+        if self.method_used is None:
+            self._choose(z)
+        return self.complex_step(z) if self.method_used == "complex-step" else self.central(z)
+
+
+def _jacobian_for_core(J: Optional[Callable], where: str, F: Optional[Callable] = None, l_vec=None, u_vec=None,
+                       derivatives: str = "auto") -> Callable:
+    """J as the C++ core takes it: a scipy.sparse value becomes its CSC tuple, a dense one passes unchanged; J None
+    is the differences of F (_DifferenceJacobian)."""
+    if J is None:
+        return _DifferenceJacobian(F, l_vec, u_vec, derivatives, where)
+    if derivatives != "auto":
+        raise InvalidInputError(f"{where}: derivatives={derivatives!r} applies when J is None (J was given)")
 
     def jacobian(z: np.ndarray):
         value = J(z)
@@ -154,8 +243,9 @@ def _optional_vector(value) -> Optional[np.ndarray]:
     return None if value is None else np.asarray(value, dtype=np.float64)
 
 
-def solve_mcp(F: Callable, J: Callable, l, u, z0=None, solver: Optional[str] = None, tol: float = 1e-10,
+def solve_mcp(F: Callable, J: Optional[Callable], l, u, z0=None, solver: Optional[str] = None, tol: float = 1e-10,
               time_limit: Optional[float] = None, *, max_iterations: Optional[int] = None, variable_scale=None,
+              derivatives: str = "auto", derivative_test: bool = False, derivative_test_tol: float = 1e-4,
               **backend_options) -> SolveResult:
     """Solve the nonlinear MCP: z in [l, u] with −F(z) in the normal cone of [l, u] at z, i.e. per row
     F_i(z) ≥ 0 at z_i = l_i, F_i(z) ≤ 0 at z_i = u_i, F_i(z) = 0 strictly inside.
@@ -171,12 +261,27 @@ def solve_mcp(F: Callable, J: Callable, l, u, z0=None, solver: Optional[str] = N
     InvalidInputError naming the field.
     The Jacobian's kind (dense or sparse) is taken from J's value at the start point: a sparse J is handed to
     the backends' sparse paths.
+    J=None: no hand-written Jacobian; derivatives says how it is computed from F: "auto" (the default: complex step
+    when F accepts a complex z and agrees with central differences at the first point, else central differences),
+    "complex-step" or "central" (per-component steps, inside the box). details["jacobian"] names the method used.
+    derivative_test=True (Ipopt's derivative_test): before the solve, J at the start point is compared with central
+    differences; an entry off by more than derivative_test_tol·max(1, |difference|) makes the result's message start
+    with "derivative check: J[i, j] = ... but central differences give ..." and raises a RuntimeWarning;
+    details["derivative_check_error"] is the largest relative difference.
     """
     l_vec, u_vec = _mcp_arrays(F, J, l, u, "solve_mcp")
     name = _default_mcp_solver() if solver is None else solver
-    return _result(_smcbench._solve_mcp(F, _jacobian_for_core(J, "solve_mcp"), l_vec, u_vec, z0,
-                                        _optional_vector(variable_scale), name, float(tol), time_limit,
-                                        max_iterations, backend_options))
+    jacobian = _jacobian_for_core(J, "solve_mcp", F, l_vec, u_vec, derivatives)
+    result = _result(_smcbench._solve_mcp(F, jacobian, l_vec, u_vec, z0, _optional_vector(variable_scale), name,
+                                          float(tol), time_limit, max_iterations, backend_options,
+                                          bool(derivative_test), float(derivative_test_tol)))
+    if isinstance(jacobian, _DifferenceJacobian) and jacobian.method_used is not None:
+        result.details["jacobian"] = jacobian.method_used
+    if derivative_test and result.details.get("derivative_check_error", 0.0) > derivative_test_tol:
+        import warnings
+
+        warnings.warn(f"solve_mcp: {result.message.split('; ')[0]}", RuntimeWarning, stacklevel=2)
+    return result
 
 
 def _references(references, solution, where: str) -> List[dict]:
@@ -211,7 +316,7 @@ def judge_mcp(F: Callable, J: Callable, l, u, z, status: str = "solved", tol: fl
     wrong (a wrong answer: wrongly claimed, inaccurate or wrongly refused), residual_abs, residual_rel,
     residual_scaled, forward_error, forward_error_rel, forward_allowance (NaN where no reference defines them)."""
     l_vec, u_vec = _mcp_arrays(F, J, l, u, "judge_mcp")
-    problem = {"F": F, "J": _jacobian_for_core(J, "judge_mcp"), "l": l_vec, "u": u_vec,
+    problem = {"F": F, "J": _jacobian_for_core(J, "judge_mcp", F, l_vec, u_vec), "l": l_vec, "u": u_vec,
                "variable_scale": _optional_vector(variable_scale),
                "references": _references(references, None, "judge_mcp"),
                "references_complete": bool(references_complete), "expected": str(expected)}
@@ -222,15 +327,17 @@ def judge_mcp(F: Callable, J: Callable, l, u, z, status: str = "solved", tol: fl
 class McpProblem:
     """A nonlinear MCP of a user's suite for bench_mcp: z in [l, u] with −F(z) in the normal cone at z.
 
-    id: unique in the suite. F, J, l, u as in solve_mcp. starts: the starting points (each one is a job; None: the
-    projection of 0 onto the box, labelled "cold"); start_labels: their names (None: "start1", "start2", ...).
+    id: unique in the suite. F, J, l, u as in solve_mcp (J None: differences of F, derivatives="auto"; their
+    calls are then part of the timed solves). starts: the starting points (each one is a job; None: the
+    projection of 0 onto the box, labelled "cold"; an entry None: that projection too); start_labels: their names
+    (None: "start1", "start2", ...).
     solution: the problem's unique solution, if known (judged by forward error, certificate "unique"); references:
     more known solutions as in judge_mcp; references_complete: the references (and solution) are every solution.
     expected: "solvable" (default), "infeasible" or "unknown". variable_scale: the variables' units (solve_mcp)."""
 
     id: str
     F: Callable
-    J: Callable
+    J: Optional[Callable]
     l: Any
     u: Any
     starts: Optional[List[Any]] = None
@@ -254,7 +361,8 @@ class McpProblem:
             if l_vec.shape != u_vec.shape:  # the core's message names l and u
                 return [np.zeros(0)], ["cold"]
             return [np.clip(0.0, l_vec, u_vec)], ["cold"]
-        starts = [np.asarray(s, dtype=np.float64) for s in self.starts]
+        cold = np.clip(0.0, l_vec, u_vec) if l_vec.shape == u_vec.shape else np.zeros(0)
+        starts = [cold if s is None else np.asarray(s, dtype=np.float64) for s in self.starts]
         labels = list(self.start_labels) if self.start_labels is not None else [f"start{k + 1}" for k in
                                                                                  range(len(starts))]
         return starts, labels
@@ -264,7 +372,8 @@ class McpProblem:
         where = f"bench_mcp: problems[{index}] ('{self.id}')"
         l_vec, u_vec = _mcp_arrays(self.F, self.J, self.l, self.u, where)
         starts, labels = self._starts(l_vec, u_vec)
-        return {"id": str(self.id), "F": self.F, "J": _jacobian_for_core(self.J, where), "l": l_vec, "u": u_vec,
+        return {"id": str(self.id), "F": self.F, "J": _jacobian_for_core(self.J, where, self.F, l_vec, u_vec),
+                "l": l_vec, "u": u_vec,
                 "variable_scale": _optional_vector(self.variable_scale), "starts": starts,
                 "start_labels": [str(label) for label in labels],
                 "references": _references(self.references, self.solution, where),

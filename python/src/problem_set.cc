@@ -6,6 +6,7 @@
 
 #include <map>
 #include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -82,21 +83,30 @@ py::dict ReadSet(const std::string& path) {
 
 // One dict (keys as ProblemToDict; id, M, q, l, u required, the rest optional) as a LibraryProblem.
 LibraryProblem ProblemFromDict(const py::dict& d, std::size_t index) {
-  const std::string where = "problems[" + std::to_string(index) + "]";
+  std::string where = "problems[" + std::to_string(index) + "]";
   for (const char* key : {"id", "M", "q", "l", "u"}) {
     if (!d.contains(key)) throw InvalidInputError(where + ": missing '" + key + "'");
   }
   const py::object M = d["M"];
   const std::string id = d["id"].cast<std::string>();
+  where += " ('" + id + "')";  // every later message names the problem by index and id
   const std::string source = d.contains("source") && !d["source"].is_none() ? d["source"].cast<std::string>() : "python";
   Vector q = ToVector(d["q"], where + ".q"), l = ToVector(d["l"], where + ".l"), u = ToVector(d["u"], where + ".u");
-  LibraryProblem p =
-      IsCscTuple(M) ? MakeLibraryProblem(id, source,
-                                         BoxMLCP(ToSparseMatrix(M.cast<py::tuple>(), where + ".M"), std::move(q),
-                                                 std::move(l), std::move(u), id))
-                    : MakeLibraryProblem(id, source,
-                                         BoxMLCP(ToDenseMatrix(M, where + ".M"), std::move(q), std::move(l),
-                                                 std::move(u), id));
+  std::optional<LibraryProblem> built;
+  try {
+    built = IsCscTuple(M) ? MakeLibraryProblem(id, source,
+                                               BoxMLCP(ToSparseMatrix(M.cast<py::tuple>(), where + ".M"), std::move(q),
+                                                       std::move(l), std::move(u), id))
+                          : MakeLibraryProblem(id, source,
+                                               BoxMLCP(ToDenseMatrix(M, where + ".M"), std::move(q), std::move(l),
+                                                       std::move(u), id));
+  } catch (const InvalidInputError& e) {
+    // The problem's own checks ("BoxMLCP: l[1] = 2 > u[1] = 1") do not know which problem of the set they are.
+    const std::string what = e.what();
+    if (what.rfind(where, 0) == 0) throw;
+    throw InvalidInputError(where + ": " + what);
+  }
+  LibraryProblem p = std::move(*built);
   const auto has = [&](const char* key) { return d.contains(key) && !d[key].is_none(); };
   if (has("tags")) p.tags = d["tags"].cast<std::vector<std::string>>();
   if (has("seed")) p.seed = d["seed"].cast<std::uint64_t>();

@@ -4,6 +4,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <string>
@@ -11,6 +12,7 @@
 
 #include "convert.h"
 #include "python_mcp.h"
+#include "solvers/core/mcp_derivatives.h"
 #include "solvers/core/problem.h"
 #include "solvers/registry/registry.h"
 
@@ -69,7 +71,7 @@ py::dict SolveBox(const py::object& M, const py::object& q, const py::object& l,
 py::dict SolveMcp(const py::function& F, const py::function& J, const py::object& l, const py::object& u,
                   const py::object& z0, const py::object& variable_scale, const std::string& solver_name,
                   double tolerance, std::optional<double> time_limit, std::optional<int> max_iterations,
-                  const py::dict& backend_options) {
+                  const py::dict& backend_options, bool derivative_test, double derivative_test_tol) {
   PythonMCP problem(ToVector(l, "l"), ToVector(u, "u"), F, J, "solve_mcp");
   if (!variable_scale.is_none()) problem.set_variable_scale(ToVector(variable_scale, "variable_scale"));
   const SolverOptions options = MakeOptions(tolerance, time_limit, max_iterations, true, z0, problem.size());
@@ -81,12 +83,24 @@ py::dict SolveMcp(const py::function& F, const py::function& J, const py::object
     throw InvalidInputError("solve_mcp: backend '" + solver_name + "' does not solve nonlinear MCPs (those that do: " +
                             McpBackendList() + ")");
   }
+  // The derivative test at the start point, before the solve (an exception from F or J is raised as itself).
+  std::optional<JacobianCheck> check;
+  if (derivative_test) {
+    if (!(derivative_test_tol > 0.0) || !std::isfinite(derivative_test_tol)) {
+      throw InvalidInputError("solve_mcp: derivative_test_tol must be finite and > 0");
+    }
+    check = CheckMcpJacobian(problem, start, {derivative_test_tol});
+  }
   SolveResult result;
   {
     py::gil_scoped_release release;
     solver->Solve(problem, options, &result);
   }
   problem.RethrowCallbackError();
+  if (check) {
+    result.SetDetail("derivative_check_error", check->max_error);
+    if (!check->ok) result.message = check->message + (result.message.empty() ? "" : "; " + result.message);
+  }
   return ResultToDict(result);
 }
 
@@ -98,8 +112,8 @@ void BindSolve(py::module_& m) {
         "max_iterations"_a, "polish"_a, "backend_options"_a,
         "Solve one box-MLCP (arrays prepared by smcbench.solve); returns a dict.");
   m.def("_solve_mcp", &SolveMcp, "F"_a, "J"_a, "l"_a, "u"_a, "z0"_a, "variable_scale"_a,
-        "solver"_a, "tol"_a, "time_limit"_a, "max_iterations"_a, "backend_options"_a,
-        "Solve one nonlinear MCP with Python callables (see smcbench.solve_mcp); returns a dict.");
+        "solver"_a, "tol"_a, "time_limit"_a, "max_iterations"_a, "backend_options"_a, "derivative_test"_a,
+        "derivative_test_tol"_a, "Solve one nonlinear MCP with Python callables (see smcbench.solve_mcp); returns a dict.");
 }
 
 }  // namespace smcbench::python

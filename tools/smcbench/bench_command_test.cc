@@ -805,6 +805,17 @@ TEST(Shards, ResultsCsvNumbersRoundTrip) {
   fs::remove_all(dir);
 }
 
+// merge's OUT naming a file: refused before a shard is read (exit 1, OUT named), nothing written.
+TEST(Shards, MergeRefusesAFileAsOutBeforeReadingTheShards) {
+  const fs::path file = fs::temp_directory_path() / ("smcbench-merge-out-" + std::to_string(::getpid()) + ".txt");
+  std::ofstream(file) << "x\n";
+  const CliRun r = RunSmcbench({"merge", file.string(), "/nonexistent/shard"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("OUT: '" + file.string() + "' is a file; a folder is expected here"));
+  EXPECT_EQ(ReadText(file), "x\n");
+  fs::remove(file);
+}
+
 // Frozen inputs: a suite written by `library --write-suite` runs with the built-in suite's checksum; shards of
 // different problems, or of another build, are not merged (one line, exit status 2).
 TEST(Shards, FrozenSuitesKeepTheirChecksumAndMergeRefusesOtherSuitesOrBuilds) {

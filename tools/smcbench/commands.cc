@@ -27,6 +27,7 @@
 #include "tools/smcbench/library_command.h"
 #include "tools/smcbench/merge_command.h"
 #include "tools/smcbench/number_flags.h"
+#include "tools/smcbench/output_paths.h"
 #include "tools/smcbench/paper.h"
 #include "tools/smcbench/problem_files.h"
 #include "tools/smcbench/simulate.h"
@@ -248,6 +249,8 @@ std::string Cell(const SolveRecord& r) {
 int RunCollection(const std::string& dir, const SolveSettings& s, const std::string& markdown_path,
                   const std::string& json_path, const std::string& command_line, std::ostream& out,
                   std::ostream& err) {
+  if (!markdown_path.empty()) CheckOutputFile("--markdown", markdown_path);
+  if (!json_path.empty()) CheckOutputFile("--json", json_path);
   const auto files = SiconosCollectionFiles(dir);
   auto solvers = MakeSolvers(s);
   const SolverOptions options = MakeOptions(s);
@@ -401,6 +404,7 @@ int RunBenchTable(const std::string& path, std::ostream& out) {
 // else Siconos relay).
 int RunConvert(const std::string& input, std::optional<ProblemFormat> format, const std::string& id,
                const std::string& output, std::ostream& out) {
+  CheckOutputFile("OUTPUT", output);
   std::vector<LibraryProblem> problems = ReadProblemFile(input, format, id.empty() ? std::vector<std::string>{}
                                                                                    : std::vector<std::string>{id});
   if (problems.size() != 1) {

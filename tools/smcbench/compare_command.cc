@@ -13,6 +13,7 @@
 #include "solvers/core/number_text.h"
 #include "solvers/core/problem.h"
 #include "bench/figures/gnuplot_figure.h"
+#include "tools/smcbench/output_paths.h"
 
 namespace smcbench {
 
@@ -95,6 +96,7 @@ void WriteRatioFigure(const RunComparison& c, const CompareOptions& options, con
 
 int CompareCommand::Run(std::ostream& out, std::ostream& err) const {
   const Flags& f = *flags_;
+  if (!f.out.empty()) CheckOutputFolder("--out", f.out);
   RunComparison comparison;
   try {
     const BenchResults a = ReadBenchResults(f.a);

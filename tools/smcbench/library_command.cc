@@ -20,6 +20,7 @@
 #include "problems/library/siconos_export.h"
 #include "problems/suites/catalogue.h"
 #include "tools/smcbench/avi_export.h"
+#include "tools/smcbench/output_paths.h"
 
 namespace smcbench {
 namespace {
@@ -315,10 +316,18 @@ bool LibraryCommand::parsed() const { return command_->parsed(); }
 
 int LibraryCommand::Run(std::ostream& out, std::ostream& err) const {
   const Flags& f = *flags_;
+  // Every output path before any work (building and certifying a suite takes seconds).
+  if (!f.certify_out.empty()) CheckOutputFile("--certify", f.certify_out);
+  if (!f.export_dir.empty()) CheckOutputFolder("--export-relay", f.export_dir);
   if (!f.write_suite.empty()) {
     if (!f.file.empty()) throw InvalidInputError("library: --write-suite NAME FILE takes no other FILE");
+    const std::string& target = f.write_suite.at(1);
+    if (f.write_suite.at(0) == kAviSuiteName && !HasProblemSetExtension(target)) {
+      CheckOutputFolder("--write-suite", target);
+    } else {
+      CheckOutputFile("--write-suite", target);
+    }
     if (f.write_suite.at(0) == kAviSuiteName) {  // one set of AVIs (.smcps), or a folder of AVI files
-      const std::string& target = f.write_suite.at(1);
       const AviProblemSet set = BuildAviSuite(f.quick);
       if (HasProblemSetExtension(target)) {
         WriteAviProblemSetFile(set, target);

@@ -147,6 +147,29 @@ TEST_F(LibraryCommandTest, RecordedRunExportsEveryStep) {
 // inside [−1, 1], so w = 0 and the solution is unique (M is SPD). Row scales 2: D⁻¹M = [[1, −½], [−½, 1]], whose
 // inverse (4/3)[[1, ½], [½, 1]] has ∞-norm 2 = μ. A 5×5 problem above --certify-max-size 4, and an LCP with
 // w = −z − 1 < 0 for every z ≥ 0 (no solution).
+// Output paths are checked before any work: building and certifying a suite takes seconds, so a file where a folder
+// is needed (or the other way round) fails at once, naming the flag, and nothing is written.
+TEST_F(LibraryCommandTest, OutputPathsAreRefusedBeforeAnyWork) {
+  const std::string file = Path("a-file.txt");
+  std::ofstream(file) << "not a folder\n";
+  const auto expect_refused = [&](std::initializer_list<std::string> args, std::initializer_list<const char*> parts) {
+    const CliRun r = RunSmcbench(args);
+    EXPECT_EQ(r.code, 1) << r.out << r.err;
+    EXPECT_EQ(r.out, "");  // no summary, no "certified ..." line: it stopped before reading or building anything
+    for (const char* part : parts) EXPECT_THAT(r.err, HasSubstr(part));
+  };
+  // avi to a folder: a file is refused before the suite is built (and certified).
+  expect_refused({"library", "--write-suite", "avi", file}, {"--write-suite", "a-file.txt", "is a file"});
+  expect_refused({"library", "--write-suite", "tiny", Path("missing/tiny.smcps")},
+                 {"--write-suite", "its folder", "does not exist"});
+  expect_refused({"library", "--write-suite", "tiny", dir_.string()}, {"--write-suite", "is a folder"});
+  expect_refused({"library", file, "--certify", dir_.string()}, {"--certify", "is a folder"});
+  expect_refused({"library", file, "--export-relay", file}, {"--export-relay", "is a file"});
+  std::vector<std::string> left;
+  for (const auto& entry : fs::directory_iterator(dir_)) left.push_back(entry.path().filename().string());
+  EXPECT_EQ(left, std::vector<std::string>{"a-file.txt"});
+}
+
 TEST_F(LibraryCommandTest, CertifyAttachesReferencesAndWritesTheSet) {
   ProblemSet set;
   set.name = "certify";

@@ -9,6 +9,7 @@
 #include "bench/replay/results_io.h"
 #include "solvers/core/problem.h"
 #include "tools/smcbench/bench_report.h"
+#include "tools/smcbench/output_paths.h"
 
 namespace smcbench {
 
@@ -53,6 +54,7 @@ std::string ListLine(const std::string& what, const std::vector<std::string>& id
 
 int MergeCommand::Run(std::ostream& out, std::ostream& err) const {
   const Flags& f = *flags_;
+  CheckOutputFolder("OUT", f.out);  // before reading the shards
   std::error_code ec;
   if (!f.overwrite && fs::exists(fs::path(f.out) / "results.json", ec)) {
     err << "smcbench: merge: '" << f.out << "' already holds results.json (choose another OUT, or --overwrite)\n";

@@ -12,6 +12,7 @@
 
 #include "bench/figures/gnuplot_figure.h"
 #include "solvers/registry/registry.h"
+#include "tools/smcbench/output_paths.h"
 #include "tools/smcbench/paper/study.h"
 
 namespace smcbench {
@@ -54,6 +55,7 @@ PaperReport RunPaperStudies(const PaperOptions& options, std::ostream& log) {
     throw InvalidInputError("paper: the figures need gnuplot (Debian package gnuplot-nox); install it or pass "
                             "--no-plots");
   }
+  CheckOutputFolder("--out", options.out_dir);  // a file, or a folder it may not write in: before any study
   std::error_code ec;
   fs::create_directories(options.out_dir, ec);
   if (!fs::is_directory(options.out_dir)) {

@@ -151,6 +151,14 @@ TEST(PaperCli, BadOptionsAreOneLineErrors) {
   const CliRun r = RunSmcbench({"paper", "--solver", "nope", "--no-plots", "--out", "/tmp/unused-paper"});
   EXPECT_EQ(r.code, 1);
   EXPECT_THAT(r.err, HasSubstr("unknown solver 'nope'"));
+  // --out naming a file: refused before the first study, with the flag named.
+  const fs::path file = fs::temp_directory_path() / ("smcbench-paper-out-" + std::to_string(::getpid()) + ".txt");
+  std::ofstream(file) << "x\n";
+  const CliRun to_file = RunSmcbench({"paper", "--no-plots", "--out", file.string()});
+  EXPECT_EQ(to_file.code, 1);
+  EXPECT_THAT(to_file.err, HasSubstr("--out: '" + file.string() + "' is a file; a folder is expected here"));
+  EXPECT_EQ(to_file.out, "");
+  fs::remove(file);
 }
 
 }  // namespace

@@ -26,6 +26,7 @@
 #include "solvers/core/number_text.h"
 #include "solvers/registry/backend_settings.h"
 #include "solvers/registry/registry.h"
+#include "tools/smcbench/output_paths.h"
 
 namespace smcbench {
 namespace {
@@ -440,13 +441,16 @@ void ReportMetrics(const SimulateOutputs& o, double reach_tol, const Trajectory&
       changes += sm.sign_changes_after;
     }
     out << "  surfaces reached at step " << result.reaching_step << " (t = " << NumberText(tr.time(result.reaching_step))
-        << "): max |y| after " << NumberText(max_y) << ", sign changes of s after " << changes << "\n";
+        << "; |y| <= " << NumberText(reach_tol) << " at every later step): max |y| after " << NumberText(max_y)
+        << ", sign changes of s after " << changes << "\n";
   } else {
     out << "  not every surface is reached (|y| <= " << NumberText(reach_tol) << " to the end)\n";
   }
   const ChatteringMetrics& c = o.chattering->Result();
   if (c.from_step >= 0) {
-    out << "  from the reaching time t = " << NumberText(tr.time(c.from_step)) << ": sigma band "
+    // The classical reaching time, which a chattering run also has: it can come before the step above.
+    out << "  from the first arrival t = " << NumberText(tr.time(c.from_step))
+        << " (every surface touched or crossed once): sigma band "
         << NumberText(c.sigma_band);
     if (c.has_input) {
       out << ", input total variation " << NumberText(c.u_total_variation) << ", max jump "
@@ -492,8 +496,9 @@ void Report(const Flags& f, const SimulatePlan& plan, const std::string& solver_
   }
   if (reference) {
     if (reference->errors) {
-      out << "  against the certified reference run (" << FormatSeconds(reference->wall_seconds)
-          << "): max |s - s_ref| " << NumberText(reference->errors->s_error_max) << ", max |y - y_ref| "
+      out << "  against the certified reference run (the same scene, h, method and x0 stepped with the backend "
+             "'reference', each step's problem solved and verified in extended precision; "
+          << FormatSeconds(reference->wall_seconds) << "): max |s - s_ref| " << NumberText(reference->errors->s_error_max) << ", max |y - y_ref| "
           << NumberText(reference->errors->y_error_max) << " over " << reference->errors->steps_compared
           << " steps\n";
     } else {
@@ -501,9 +506,14 @@ void Report(const Flags& f, const SimulatePlan& plan, const std::string& solver_
     }
   }
   if (tr.first_failed_step >= 0) {
-    err << "warning: step " << tr.first_failed_step << ": " << ToString(tr.first_failure_status) << " (residual "
+    err << (tr.stopped_early ? "error: step " : "warning: step ") << tr.first_failed_step << ": " << ToString(tr.first_failure_status) << " (residual "
         << NumberText(tr.first_failure_residual) << ")" << (tr.first_failure_message.empty() ? "" : ": ")
-        << tr.first_failure_message << (tr.stopped_early ? "; the run stopped there" : "") << "\n";
+        << tr.first_failure_message
+        << (tr.stopped_early ? "; the run stopped there (" + std::to_string(tr.steps_taken) + " of " +
+                                   std::to_string(tr.num_steps) + " steps; exit status " +
+                                   std::to_string(kStoppedEarlyExitStatus) + ")"
+                             : "")
+        << "\n";
   }
 }
 
@@ -513,7 +523,11 @@ void Report(const Flags& f, const SimulatePlan& plan, const std::string& solver_
 // write the outputs, report.
 int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
   const Flags& f = *flags_;
-  // Fail before simulating, not after.
+  // Fail before simulating, not after: every output path, then gnuplot.
+  if (!f.out.empty()) CheckOutputFile("--out", f.out);
+  if (!f.summary.empty()) CheckOutputFile("--summary", f.summary);
+  if (!f.plot.empty()) CheckOutputFile("--plot", f.plot);
+  if (!f.record.empty()) CheckOutputFile("--record", f.record);
   if (!f.plot.empty() && !GnuplotAvailable()) {
     throw InvalidInputError("--plot needs gnuplot (Debian package gnuplot-nox), which is not on PATH");
   }
@@ -529,7 +543,8 @@ int SimulateCommand::Run(std::ostream& out, std::ostream& err) const {
   const std::optional<ReferenceComparison> reference =
       WriteSummaryAndPlot(f, plan, backend.name, tr, wall, &outputs);
   Report(f, plan, backend.name, tr, wall, outputs, reference, out, err);
-  return 0;
+  // The outputs hold the steps taken; the status says the run did not reach T.
+  return tr.stopped_early ? kStoppedEarlyExitStatus : 0;
 }
 
 // ------------------------------------------------------------------------------------------------------------

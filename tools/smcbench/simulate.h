@@ -13,6 +13,10 @@ class App;
 
 namespace smcbench {
 
+// simulate's exit status when the run stopped on a failed step (--on-failure stop): its outputs are written for
+// the steps taken, and the status tells a script the run did not reach T (1 is bad input, 2 a usage error).
+inline constexpr int kStoppedEarlyExitStatus = 3;
+
 // The `simulate` subcommand: registers its options on construction; Run executes it if it was parsed.
 class SimulateCommand {
  public:

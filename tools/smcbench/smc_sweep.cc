@@ -13,6 +13,7 @@
 #include "problems/scenes/registry.h"
 #include "solvers/core/number_text.h"
 #include "solvers/registry/registry.h"
+#include "tools/smcbench/output_paths.h"
 
 namespace smcbench {
 namespace {
@@ -95,6 +96,7 @@ std::string Markdown(const SmcSweepResult& r, const SmcSweepOptions& options, bo
 
 SmcSweepResult RunSmcSweep(const SmcSweepOptions& input) {
   SmcSweepOptions options = input;
+  if (!options.out_dir.empty()) CheckOutputFolder("--out", options.out_dir);  // before any run
   if (options.steps.empty()) options.steps = kDefaultSweepSteps;
   for (double h : options.steps) {
     if (!(h > 0.0) || !std::isfinite(h)) Fail("--h: every step must be a finite number > 0, got " + NumberText(h));
