@@ -178,6 +178,10 @@ bool NewtonOptions::IsValid(std::string* why) const {
     return fail("nonmonotone_memory must be in [1, ", kMaxNonmonotoneMemory, "], got ", nonmonotone_memory);
   if (mcp_nonmonotone_memory < 1 || mcp_nonmonotone_memory > kMaxNonmonotoneMemory)
     return fail("mcp_nonmonotone_memory must be in [1, ", kMaxNonmonotoneMemory, "], got ", mcp_nonmonotone_memory);
+  if (mcp_stagnation_window < 1 || mcp_stagnation_window > kMaxStagnationWindow)
+    return fail("mcp_stagnation_window must be in [1, ", kMaxStagnationWindow, "], got ", mcp_stagnation_window);
+  if (!(mcp_proximal_lambda > 0.0) || !std::isfinite(mcp_proximal_lambda))
+    return fail("mcp_proximal_lambda must be a positive finite number, got ", mcp_proximal_lambda);
   if (crash_steps < 0 || crash_steps > 1000) return fail("crash_steps must be in [0, 1000], got ", crash_steps);
   if (!(descent_rho > 0.0) || !std::isfinite(descent_rho))
     return fail("descent_rho must be a positive finite number, got ", descent_rho);
@@ -261,6 +265,8 @@ struct SemismoothNewtonSolver::Workspace {
   int psi_memory_count = 0, psi_memory_next = 0;
   int memory = 1;      // the GLL memory of this solve (nonmonotone_memory, or mcp_nonmonotone_memory for an MCP)
   int crash_left = 0;  // crash steps still allowed (Loop's first run on an MCP only)
+  int stagnation_window = 10;    // stagnation_window, or mcp_stagnation_window for an MCP
+  double proximal_lambda = 1.0;  // proximal_lambda, or mcp_proximal_lambda for an MCP
   std::array<double, kMaxStagnationWindow + 1> psi_window{};
 
   // ---- Counters ----
@@ -806,7 +812,7 @@ struct SemismoothNewtonSolver::Workspace {
     ResetMemory(psi);
     double psi_best = psi;
     int since_best = 0;
-    const int window = o.stagnation_window;
+    const int window = stagnation_window;
     for (int k = 0;; ++k) {
       // The stagnation test compares reference merits (max of the GLL memory) so that a non-monotone
       // line search is not mistaken for stagnation; with memory 1 this is Psi itself.
@@ -1032,7 +1038,7 @@ struct SemismoothNewtonSolver::Workspace {
       if (lambda_round < 0.0) {
         if (!UpdateJacobian()) break;
         const double norm = JacobianInfNorm();
-        lambda_round = o.proximal_lambda * std::max(1.0, std::isfinite(norm) ? norm : 1.0);
+        lambda_round = proximal_lambda * std::max(1.0, std::isfinite(norm) ? norm : 1.0);
       }
       zbar = z;
       const double r0 = NaturalResidualNorm(z, F, *l, *u);
@@ -1160,6 +1166,8 @@ void SemismoothNewtonSolver::BindOptions(OptionBinder* b) {
   b->Add("nonmonotone_memory", &o.nonmonotone_memory, "GLL memory (1 = monotone Armijo, max 32)");
   b->Add("mcp_nonmonotone_memory", &o.mcp_nonmonotone_memory, "GLL memory for nonlinear MCPs (1 = monotone)");
   b->Add("crash_steps", &o.crash_steps, "MCP, dense: min-map Newton steps first, each kept if it halves Psi");
+  b->Add("mcp_stagnation_window", &o.mcp_stagnation_window, "stagnation_window for nonlinear MCPs");
+  b->Add("mcp_proximal_lambda", &o.mcp_proximal_lambda, "proximal_lambda for nonlinear MCPs");
   b->Add("row_scale_refresh", &o.row_scale_refresh, "MCP: rescale F's rows where the start's row scales are stale");
   b->Add("descent_rho", &o.descent_rho, "DFK descent test grad'd <= -rho ||d||^p: rho");
   b->Add("descent_power", &o.descent_power, "DFK descent test: p (> 2)");
@@ -1219,7 +1227,10 @@ void SemismoothNewtonSolver::RunAndConclude(const SolverOptions& options, SolveR
   ws.iterations = ws.backtracks = ws.gradient_steps = ws.factorizations = ws.max_system = 0;
   ws.proximal_rounds = ws.regularized_steps = 0;
   ws.crash_steps = ws.nonmonotone_steps = ws.row_rescalings = 0;
-  ws.memory = ws.mcp != nullptr ? options_.mcp_nonmonotone_memory : options_.nonmonotone_memory;
+  const bool mcp = ws.mcp != nullptr;
+  ws.memory = mcp ? options_.mcp_nonmonotone_memory : options_.nonmonotone_memory;
+  ws.stagnation_window = mcp ? options_.mcp_stagnation_window : options_.stagnation_window;
+  ws.proximal_lambda = mcp ? options_.mcp_proximal_lambda : options_.proximal_lambda;
   ws.safeguard_failed = false;
   ws.failure_detail = "";
   ws.jacobian_current = false;
