@@ -253,13 +253,15 @@ def solve_mcp(F: Callable, J: Optional[Callable], l, u, z0=None, solver: Optiona
     F(z) -> array of shape (n,); J(z) -> the Jacobian dF/dz, a dense (n, n) array or a scipy.sparse matrix.
     Both are called with a float64 array z of shape (n,) while the backend runs (it releases the GIL and takes it
     back for each call). l, u: bound vectors (scalars are used on every row; ±np.inf allowed); z0: the start
-    point (default: the projection of 0 onto the box). solver: any backend with mcp=True in solvers(); None (the
+    point (default: the projection of 0 onto the box); a z0 outside [l, u] is projected onto the box and the
+    result's details start_projected / start_projection_distance say how far (every backend). solver: any backend
+    with mcp=True in solvers(); None (the
     default) is "auto" when the registry says auto solves MCPs, else "newton". variable_scale: the units c_i > 0
     of the variables (default 1), so that residual_scaled, the scale-free MCP residual, does not change with them.
     An exception raised by F or J stops the solve and is raised from solve_mcp; a result of the wrong shape, a
     non-callable F or J, bad bounds or sizes, an unknown backend or one that does not solve MCPs raise
     InvalidInputError naming the field.
-    The Jacobian's kind (dense or sparse) is taken from J's value at the start point: a sparse J is handed to
+    The Jacobian's kind (dense or sparse) is taken from J's value at the (projected) start: a sparse J is handed to
     the backends' sparse paths.
     J=None: no hand-written Jacobian; derivatives says how it is computed from F: "auto" (the default: complex step
     when F accepts a complex z and agrees with central differences at the first point, else central differences),

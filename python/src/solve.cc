@@ -77,6 +77,9 @@ py::dict SolveMcp(const py::function& F, const py::function& J, const py::object
   const SolverOptions options = MakeOptions(tolerance, time_limit, max_iterations, true, z0, problem.size());
   Vector start = options.warm_start;
   if (start.size() == 0) ProjectZeroOntoBox(problem.l(), problem.u(), &start);
+  // The Jacobian's kind is probed where the solve starts: the start projected onto the box, as Solve does
+  // (docs/problem.md, "Starts outside the box"); J need not be defined outside the box.
+  if (start.size() == problem.size()) start = start.cwiseMax(problem.l()).cwiseMin(problem.u());
   problem.ProbeJacobianKind(start);
   std::unique_ptr<Solver> solver = MakeSolver(solver_name, backend_options);
   if (!solver->info().mcp) {

@@ -135,3 +135,17 @@ def test_backend_that_solves_no_mcp_is_refused_with_the_mcp_backends_named():
         smcbench.solve_mcp(cardano_F, cardano_J, CARDANO_L, CARDANO_U, solver="lemke")
     for name in mcp_backends():
         assert name in str(error.value)
+
+
+@pytest.mark.parametrize("solver", MCP_BACKENDS)
+def test_a_start_outside_the_box_is_projected_and_reported(solver):
+    # F is NaN below z = -1 (log), so no backend could start from z0 = (-3, 20) itself; the box is [0, 10]^2 and the
+    # unique solution (e^0.5 - 1, 0): F2 = z2 + 1 > 0 on the box puts z2 at its lower bound.
+    registered(solver)
+    F = lambda z: np.array([np.log(1 + z[0]) - 0.5, z[1] + 1])
+    J = lambda z: np.diag([1 / (1 + z[0]), 1.0])
+    result = smcbench.solve_mcp(F, J, [0, 0], [10, 10], z0=[-3.0, 20.0], solver=solver)
+    assert result.solved, f"{solver}: {result.status} {result.message}"
+    np.testing.assert_allclose(result.z, [np.exp(0.5) - 1, 0.0], rtol=0, atol=1e-8)
+    assert result.details["start_projected"] == 2
+    assert result.details["start_projection_distance"] == 10.0

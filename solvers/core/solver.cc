@@ -1,5 +1,7 @@
 #include "solvers/core/solver.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <memory>
@@ -33,6 +35,22 @@ bool Solver::RejectOptions(int n, const SolverOptions& options, SolveResult* res
   return false;
 }
 
+namespace {
+// BeginSolve's rare branch, out of line: the start lay outside [l, u] and result->z holds its projection. Says how
+// far it was moved (details start_projected and start_projection_distance, docs/problem.md).
+[[gnu::noinline]] void NoteProjectedStart(const Vector& start, SolveResult* result) {
+  int moved = 0;
+  double distance = 0.0;
+  for (Eigen::Index i = 0; i < start.size(); ++i) {
+    const double d = std::abs(start[i] - result->z[i]);
+    if (d > 0.0) ++moved;
+    distance = std::max(distance, d);
+  }
+  result->SetDetail("start_projected", moved);
+  result->SetDetail("start_projection_distance", distance);
+}
+}  // namespace
+
 // Inlined into the Solve()s: a call boundary costs as much as the work for the paper's m = 1, 2 problems. Every
 // check of SolverOptions::IsValid and ValidateBackendOptions runs on every call (kCheckOptions; a session made
 // them in Prepare); only the messages are built out of line (RejectOptions), and the warm start's
@@ -50,14 +68,22 @@ template <int N, bool kCheckOptions>
   double* z = result->z.data();
   bool ok = !kCheckOptions || options.ScalarsValid();
   if (warm_size == n) {
-    // Plain loop: Eigen's dynamic-size assignment is an out-of-line call costing more than n ≤ 4 copies.
+    // Plain loop: Eigen's dynamic-size assignment is an out-of-line call costing more than n ≤ 4 copies. The start
+    // is projected onto [l, u] here, for every backend (docs/problem.md, "Starts outside the box").
     const double* ws = options.warm_start.data();
+    const double* lo = l.data();
+    const double* hi = u.data();
     double probe = 0.0;  // x − x is 0 exactly for finite x, NaN for NaN and ±∞
+    bool moved = false;
     for (int i = 0; i < n; ++i) {
-      z[i] = ws[i];
-      probe += ws[i] - ws[i];
+      const double v = ws[i];
+      const double p = std::min(std::max(v, lo[i]), hi[i]);
+      z[i] = p;
+      moved |= p != v;
+      probe += v - v;
     }
     ok = ok && probe == 0.0;
+    if (moved && ok) NoteProjectedStart(options.warm_start, result);
   } else if (warm_size == 0) {
     for (int i = 0; i < n; ++i) z[i] = std::min(std::max(0.0, l[i]), u[i]);
   } else {

@@ -176,6 +176,13 @@ bool NewtonOptions::IsValid(std::string* why) const {
     return fail("max_backtracks must be in [1, 200], got ", max_backtracks);
   if (nonmonotone_memory < 1 || nonmonotone_memory > kMaxNonmonotoneMemory)
     return fail("nonmonotone_memory must be in [1, ", kMaxNonmonotoneMemory, "], got ", nonmonotone_memory);
+  if (mcp_nonmonotone_memory < 1 || mcp_nonmonotone_memory > kMaxNonmonotoneMemory)
+    return fail("mcp_nonmonotone_memory must be in [1, ", kMaxNonmonotoneMemory, "], got ", mcp_nonmonotone_memory);
+  if (mcp_stagnation_window < 1 || mcp_stagnation_window > kMaxStagnationWindow)
+    return fail("mcp_stagnation_window must be in [1, ", kMaxStagnationWindow, "], got ", mcp_stagnation_window);
+  if (!(mcp_proximal_lambda > 0.0) || !std::isfinite(mcp_proximal_lambda))
+    return fail("mcp_proximal_lambda must be a positive finite number, got ", mcp_proximal_lambda);
+  if (crash_steps < 0 || crash_steps > 1000) return fail("crash_steps must be in [0, 1000], got ", crash_steps);
   if (!(descent_rho > 0.0) || !std::isfinite(descent_rho))
     return fail("descent_rho must be a positive finite number, got ", descent_rho);
   if (!(descent_power > 2.0) || !std::isfinite(descent_power))
@@ -256,10 +263,16 @@ struct SemismoothNewtonSolver::Workspace {
   // ---- Line-search memory ----
   std::array<double, NewtonOptions::kMaxNonmonotoneMemory> psi_memory{};
   int psi_memory_count = 0, psi_memory_next = 0;
+  int memory = 1;      // the GLL memory of this solve (nonmonotone_memory, or mcp_nonmonotone_memory for an MCP)
+  int crash_left = 0;  // crash steps still allowed (Loop's first run on an MCP only)
+  int stagnation_window = 10;    // stagnation_window, or mcp_stagnation_window for an MCP
+  double proximal_lambda = 1.0;  // proximal_lambda, or mcp_proximal_lambda for an MCP
   std::array<double, kMaxStagnationWindow + 1> psi_window{};
 
   // ---- Counters ----
   int iterations = 0, backtracks = 0, gradient_steps = 0, factorizations = 0, max_system = 0;
+  int crash_steps = 0, nonmonotone_steps = 0, row_rescalings = 0;
+  static constexpr int kMaxRowRescalings = 8;
   int proximal_rounds = 0;
   int regularized_steps = 0;
   bool safeguard_failed = false;  // proximal rounds ran and did not recover (for the message)
@@ -461,6 +474,29 @@ struct SemismoothNewtonSolver::Workspace {
     jacobian_current = false;
     return EvalF(zt, &Ft) && JacobianAt(zt) && StopMeasure(zt, Ft) <= tolerance;
   }
+  // True when the row scales of ∇G at z (mcp_row_scales, just computed by StopMeasure) are far from 1: G's rows are
+  // scaled by ∇F's at a point where ∇F differs from the current one by more than a factor 100 in some row. At most
+  // kMaxRowRescalings times per solve (a refresh that cycles would otherwise reset the memory forever).
+  bool RowScalesStale() const {
+    if (mcp == nullptr || !opt->row_scale_refresh || row_rescalings >= kMaxRowRescalings) return false;
+    for (int i = 0; i < n; ++i) {
+      const double s = mcp_row_scales[i];
+      if (s > 0.0 && s < kInf && (s < 1e-2 || s > 1e2)) return true;
+    }
+    return false;
+  }
+  // G ← G / s row by row with s = mcp_row_scales (D ← D∘s), then F, ∇G and the FB row scaling at z again.
+  bool RefreshRowScales() {
+    ++row_rescalings;
+    for (int i = 0; i < n; ++i) {
+      const double s = mcp_row_scales[i];
+      if (s > 0.0 && s < kInf) mcp_inv_d[i] /= s;
+    }
+    if (!ResetF() || !UpdateJacobian()) return false;
+    ComputeRowScaling(opt->row_scaling);
+    return true;
+  }
+
   // The stopping measure need not decrease with the merit function, so the best iterate is the one where it is
   // smallest.
   void TrackBest(double measure) {
@@ -660,6 +696,65 @@ struct SemismoothNewtonSolver::Workspace {
     return umf.info() == Eigen::Success && d.allFinite();
   }
 
+  // ---------------------------------------------------------------- crash phase (MCP, dense)
+  // One min-map Newton step from z (Jd = ∇G(z), λ = 0): rows whose natural map z_i − G_i lies at or beyond a bound
+  // go to that bound, the others R solve their linearization G_R + ∇G_R Δ = 0, i.e.
+  //     ∇G_RR Δ_R = −G_R − ∇G_RA Δ_A,
+  // and the step is projected onto the box. Accepted (zt, Ft, *psi_new hold the point) when Psi there is at most
+  // half of psi; false otherwise (a singular system, NaN F, too little decrease), z untouched.
+  bool CrashStep(double psi, double* psi_new) {
+    const DenseMatrix& J = *Jd;
+    int nr = 0;
+    bool any_active = false;
+    for (int i = 0; i < n; ++i) {
+      const double t = z[i] - F[i];
+      if (t <= (*l)[i]) {
+        w[i] = (*l)[i] - z[i];
+        any_active = true;
+      } else if (t >= (*u)[i]) {
+        w[i] = (*u)[i] - z[i];
+        any_active = true;
+      } else {
+        w[i] = 0.0;
+        ridx[nr++] = i;
+      }
+    }
+    d = w;
+    last_system = nr;
+    if (nr > 0) {
+      if (any_active) ApplyJ(w, &Md);
+      for (int k = 0; k < nr; ++k) {
+        const int i = ridx[k];
+        rhs[k] = -F[i] - (any_active ? Md[i] : 0.0);
+      }
+      if (A.rows() != n) A.resize(n, n);
+      for (int jj = 0; jj < nr; ++jj) {
+        const double* col = J.col(ridx[jj]).data();
+        double* a = A.col(jj).data();
+        for (int ii = 0; ii < nr; ++ii) a[ii] = col[ridx[ii]];
+      }
+      ++factorizations;
+      max_system = std::max(max_system, nr);
+      int transpositions = 0;
+      if (Eigen::internal::partial_lu_impl<double, Eigen::ColMajor, int>::blocked_lu(
+              nr, nr, A.data(), A.outerStride(), perm.data(), transpositions) >= 0) {
+        return false;
+      }
+      Eigen::Map<DenseMatrix, 0, Eigen::OuterStride<>> a(A.data(), nr, nr, Eigen::OuterStride<>(A.outerStride()));
+      auto x = rhs.head(nr);
+      for (int k = 0; k < nr; ++k) {
+        if (perm[k] != k) std::swap(rhs[k], rhs[perm[k]]);
+      }
+      a.triangularView<Eigen::UnitLower>().solveInPlace(x);
+      a.triangularView<Eigen::Upper>().solveInPlace(x);
+      for (int k = 0; k < nr; ++k) d[ridx[k]] = x[k];
+    }
+    for (int i = 0; i < n; ++i) zt[i] = std::min(std::max(z[i] + d[i], (*l)[i]), (*u)[i]);
+    if (!zt.allFinite() || !EvalF(zt, &Ft)) return false;
+    *psi_new = Merit(zt, Ft);
+    return *psi_new <= 0.5 * psi;
+  }
+
   // ---------------------------------------------------------------- line search
   // Backtracking from t = 1 along d until Psi(z + t d) ≤ psi_ref + σ t gd. On success zt/Ft hold the accepted
   // point and *psi_out its merit. *all_nan reports that every trial had a non-finite F (MCP).
@@ -697,7 +792,7 @@ struct SemismoothNewtonSolver::Workspace {
     PushMemory(psi);
   }
   void PushMemory(double psi) {
-    const int m = opt->nonmonotone_memory;
+    const int m = memory;
     psi_memory[psi_memory_next] = psi;
     psi_memory_next = (psi_memory_next + 1) % m;
     psi_memory_count = std::min(psi_memory_count + 1, m);
@@ -717,7 +812,7 @@ struct SemismoothNewtonSolver::Workspace {
     ResetMemory(psi);
     double psi_best = psi;
     int since_best = 0;
-    const int window = o.stagnation_window;
+    const int window = stagnation_window;
     for (int k = 0;; ++k) {
       // The stagnation test compares reference merits (max of the GLL memory) so that a non-monotone
       // line search is not mistaken for stagnation; with memory 1 this is Psi itself.
@@ -732,6 +827,20 @@ struct SemismoothNewtonSolver::Workspace {
           return Exit::kNumericalFailure;
         }
         converged = test > 0;
+        if (!converged && lambda == 0.0 && RowScalesStale()) {
+          // The merit function is measured in the row scales of ∇F at the start; where they no longer describe
+          // ∇F (an economy's price leaving its floor: ∂F/∂p falls by orders of magnitude), Psi decreases while the
+          // verdict's residual grows. Rescale G to ∇F's rows here and restart the line-search memory.
+          if (!RefreshRowScales()) {
+            failure_detail = "F is NaN/Inf or the Jacobian malformed after a row-scale refresh";
+            return Exit::kNumericalFailure;
+          }
+          psi = Merit(z, F);
+          ResetMemory(psi);
+          psi_best = psi;
+          since_best = 0;
+          psi_window.fill(kInf);
+        }
       } else {
         const double r_original = lambda == 0.0 ? r : NaturalResidualNorm(z, F, *l, *u);
         TrackBest(Relative(r_original, z));
@@ -760,6 +869,26 @@ struct SemismoothNewtonSolver::Workspace {
       if (!UpdateJacobian()) {
         failure_detail = "the MCP Jacobian has the wrong size";
         return Exit::kNumericalFailure;
+      }
+      if (crash_left > 0) {
+        double psi_crash = psi;
+        if (CrashStep(psi, &psi_crash)) {
+          --crash_left;
+          ++crash_steps;
+          if (verbosity >= 2) {
+            std::fprintf(stderr, "newton %4d crash  psi %.3e -> %.3e res %.3e system %d\n", iterations, psi,
+                         psi_crash, measure, last_system);
+          }
+          z.swap(zt);
+          F.swap(Ft);
+          jacobian_current = false;
+          psi = psi_crash;
+          ResetMemory(psi);
+          psi_best = std::min(psi_best, psi);
+          since_best = 0;
+          continue;
+        }
+        crash_left = 0;  // the first step that does not halve Psi ends the crash phase
       }
       ComputeDerivatives();
       if (!g.allFinite()) {
@@ -842,6 +971,7 @@ struct SemismoothNewtonSolver::Workspace {
         failure_detail = "the step length collapsed to rounding level";
         return Exit::kStalled;
       }
+      if (psi_new > psi) ++nonmonotone_steps;
       z.swap(zt);
       F.swap(Ft);
       F_is_incremental = lcp != nullptr;
@@ -853,7 +983,7 @@ struct SemismoothNewtonSolver::Workspace {
       if (psi < psi_best) {
         psi_best = psi;
         since_best = 0;
-      } else if (++since_best >= o.nonmonotone_memory && o.nonmonotone_memory > 1) {
+      } else if (++since_best >= memory && memory > 1) {
         ResetMemory(psi);
         since_best = 0;
       }
@@ -892,7 +1022,9 @@ struct SemismoothNewtonSolver::Workspace {
     }
     ComputeRowScaling(o.row_scaling);
     polish_left = 3;
+    crash_left = mcp != nullptr && dense_la ? o.crash_steps : 0;
     Exit exit = Loop(0.0, budget, o.proximal_safeguard);
+    crash_left = 0;
     // Why the unperturbed method failed; reported if the safeguard does not recover.
     const Exit first_exit = exit;
     const char* first_detail = failure_detail;
@@ -906,7 +1038,7 @@ struct SemismoothNewtonSolver::Workspace {
       if (lambda_round < 0.0) {
         if (!UpdateJacobian()) break;
         const double norm = JacobianInfNorm();
-        lambda_round = o.proximal_lambda * std::max(1.0, std::isfinite(norm) ? norm : 1.0);
+        lambda_round = proximal_lambda * std::max(1.0, std::isfinite(norm) ? norm : 1.0);
       }
       zbar = z;
       const double r0 = NaturalResidualNorm(z, F, *l, *u);
@@ -990,6 +1122,11 @@ struct SemismoothNewtonSolver::Workspace {
     result->SetDetail("regularized_steps", regularized_steps);
     result->SetDetail("factorizations", factorizations);
     result->SetDetail("max_system_size", max_system);
+    if (mcp != nullptr) {
+      result->SetDetail("crash_steps", crash_steps);
+      result->SetDetail("nonmonotone_steps", nonmonotone_steps);
+      result->SetDetail("row_rescalings", row_rescalings);
+    }
     if (verbosity >= 1) {
       std::fprintf(stderr, "newton: %s after %d iterations (%d gradient steps, %d backtracks, %d proximal rounds)\n",
                    exit == Exit::kConverged ? "solved" : "not solved", iterations, gradient_steps, backtracks,
@@ -1027,6 +1164,11 @@ void SemismoothNewtonSolver::BindOptions(OptionBinder* b) {
   b->Add("backtrack_factor", &o.backtrack_factor, "step-length reduction factor in (0, 1)");
   b->Add("max_backtracks", &o.max_backtracks, "trial steps per line search");
   b->Add("nonmonotone_memory", &o.nonmonotone_memory, "GLL memory (1 = monotone Armijo, max 32)");
+  b->Add("mcp_nonmonotone_memory", &o.mcp_nonmonotone_memory, "GLL memory for nonlinear MCPs (1 = monotone)");
+  b->Add("crash_steps", &o.crash_steps, "MCP, dense: min-map Newton steps first, each kept if it halves Psi");
+  b->Add("mcp_stagnation_window", &o.mcp_stagnation_window, "stagnation_window for nonlinear MCPs");
+  b->Add("mcp_proximal_lambda", &o.mcp_proximal_lambda, "proximal_lambda for nonlinear MCPs");
+  b->Add("row_scale_refresh", &o.row_scale_refresh, "MCP: rescale F's rows where the start's row scales are stale");
   b->Add("descent_rho", &o.descent_rho, "DFK descent test grad'd <= -rho ||d||^p: rho");
   b->Add("descent_power", &o.descent_power, "DFK descent test: p (> 2)");
   b->Add("gradient_fallback", &o.gradient_fallback, "use -grad Psi when the Newton direction fails");
@@ -1084,6 +1226,11 @@ void SemismoothNewtonSolver::RunAndConclude(const SolverOptions& options, SolveR
   ws.budget = IterationBudget(options, kDefaultMaxIterations);
   ws.iterations = ws.backtracks = ws.gradient_steps = ws.factorizations = ws.max_system = 0;
   ws.proximal_rounds = ws.regularized_steps = 0;
+  ws.crash_steps = ws.nonmonotone_steps = ws.row_rescalings = 0;
+  const bool mcp = ws.mcp != nullptr;
+  ws.memory = mcp ? options_.mcp_nonmonotone_memory : options_.nonmonotone_memory;
+  ws.stagnation_window = mcp ? options_.mcp_stagnation_window : options_.stagnation_window;
+  ws.proximal_lambda = mcp ? options_.mcp_proximal_lambda : options_.proximal_lambda;
   ws.safeguard_failed = false;
   ws.failure_detail = "";
   ws.jacobian_current = false;

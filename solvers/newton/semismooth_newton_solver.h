@@ -31,6 +31,24 @@ struct NewtonOptions {
   // Grippo–Lampariello–Lucidi memory: Psi_ref = max of the last M merit values. 1 = monotone Armijo (default:
   // on strongly nonsymmetric random problems M = 3..10 needed more iterations and at M = 10 cycled at n ≥ 256).
   int nonmonotone_memory = 1;
+  // The same memory for nonlinear MCPs (docs/auto.md, "Nonlinear MCPs"): there the monotone search follows the
+  // narrow valleys of Psi that an economy's price floors make, one short step at a time.
+  int mcp_nonmonotone_memory = 5;
+  // Nonlinear MCP, dense linear algebra: a crash phase of up to this many min-map Newton steps first (the natural
+  // map's active set, the free rows' Newton system, the step projected onto the box), each kept only when it at
+  // least halves Psi; the first one that does not ends the phase. A linear MCP whose start shows the solution's
+  // active set is solved by one such step. 0 = none.
+  int crash_steps = 5;
+  // Nonlinear MCP: G = D⁻¹F is scaled by the row scales D of ∇F at the start. When the row scales of ∇G at an
+  // iterate leave [1/100, 100] (∇F changed by orders of magnitude, as at an economy's price floor), D is refreshed
+  // there and the line-search memory restarted (at most 8 times per solve): otherwise Psi can fall while the
+  // verdict's residual grows (Mathiesen's economy from Π(0)).
+  bool row_scale_refresh = true;
+  // stagnation_window and proximal_lambda for nonlinear MCPs: on Kojima–Shindo's and Josephy's NCPs from MCPLIB's
+  // starts 6 and 3, a shorter window and a smaller first λ leave the merit function's basins sooner (71 and 83
+  // iterations become 25 and 26; docs/auto.md, "Nonlinear MCPs").
+  int mcp_stagnation_window = 5;
+  double mcp_proximal_lambda = 0.3;
   // DFK 1996 sufficient-descent test for the Newton direction: ∇Psiᵀd ≤ −ρ‖d‖^p; if it fails, the
   // regularized step and then −∇Psi are tried.
   double descent_rho = 1e-8;
@@ -75,7 +93,8 @@ struct NewtonOptions {
 // (options.max_iterations ≤ 0). A failure returns the iterate with the smallest stopping measure seen (the relative
 // natural residual of a box-MLCP, the scale-free residual of an MCP, which is solved in its stated units).
 // Details: "backtracks", "gradient_steps", "proximal_rounds", "regularized_steps",
-// "factorizations", "max_system_size".
+// "factorizations", "max_system_size", "crash_steps" (accepted min-map steps of the crash phase),
+// "nonmonotone_steps" (accepted steps that raised Psi, allowed by the non-monotone memory).
 class SemismoothNewtonSolver final : public BackendWithOptions<NewtonOptions> {
  public:
   SemismoothNewtonSolver();

@@ -205,6 +205,12 @@ TEST(NewtonSolver, InfoAndOptions) {
   EXPECT_EQ(solver.options().nonmonotone_memory, 5);
   EXPECT_FALSE(solver.SetOption("nonmonotone_memory", "0", &error));
   EXPECT_FALSE(solver.SetOption("no_such_option", "1", &error));
+  EXPECT_TRUE(solver.SetOption("mcp_stagnation_window", "7", &error)) << error;
+  EXPECT_EQ(solver.options().mcp_stagnation_window, 7);
+  EXPECT_FALSE(solver.SetOption("mcp_stagnation_window", "0", &error));
+  EXPECT_NE(error.find("mcp_stagnation_window"), std::string::npos) << error;
+  EXPECT_FALSE(solver.SetOption("mcp_proximal_lambda", "-1", &error));
+  EXPECT_NE(error.find("mcp_proximal_lambda"), std::string::npos) << error;
   NewtonOptions bad;
   bad.armijo_sigma = 0.7;
   std::string why;

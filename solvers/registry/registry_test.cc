@@ -104,5 +104,76 @@ TEST(RegistryMcp, AutoFromTheRegistryChainsTheRegisteredMcpBackends) {
   EXPECT_EQ(automatic->candidate(AutoCandidate::kIpopt).info().name, "ipopt");
 }
 
+// One rule for starts outside [l, u] (docs/problem.md, "Starts outside the box"): the Solver base projects the start
+// before any backend runs and says so in the result. F below is NaN outside the box (log(1 + z1) for z1 < −1), so a
+// backend that started from the given point could not even evaluate F there. F1 = log(1 + z1) − 1/2 has its root
+// e^{1/2} − 1 inside [0, 10]; F2 = z2 + 1 ≥ 1 > 0 on the box puts z2 at its lower bound 0: the unique
+// solution (e^{1/2} − 1, 0). The start (−3, 20) lies below the box in z1 (by 3) and above it in z2 (by 10).
+FunctionMCP LogMcpOnABox() {
+  return FunctionMCP(
+      Vector::Zero(2), Vector::Constant(2, 10.0),
+      [](const Vector& z, Vector* F) {
+        (*F)[0] = std::log(1 + z[0]) - 0.5;
+        (*F)[1] = z[1] + 1;
+      },
+      [](const Vector& z, DenseMatrix* J) { *J << 1 / (1 + z[0]), 0, 0, 1; }, "log-box");
+}
+
+TEST(SolverBaseStartOutsideTheBox, EveryMcpBackendStartsFromTheProjectionAndSaysSo) {
+  const FunctionMCP problem = LogMcpOnABox();
+  Vector expected(2);
+  expected << std::exp(0.5) - 1, 0.0;
+  SolverOptions o;
+  o.warm_start = Vector(2);
+  o.warm_start << -3.0, 20.0;
+  int checked = 0;
+  for (std::string_view name : SolverNames()) {
+    const std::unique_ptr<Solver> solver = CreateSolver(name);
+    if (!solver->info().mcp) continue;
+    ++checked;
+    const SolveResult r = solver->Solve(problem, o);
+    ASSERT_TRUE(r.solved()) << name << ": " << r.message;
+    EXPECT_LE((r.z - expected).cwiseAbs().maxCoeff(), 1e-8) << name;
+    EXPECT_TRUE((r.z.array() >= problem.l().array()).all() && (r.z.array() <= problem.u().array()).all())
+        << name << ": z = " << r.z.transpose();
+    EXPECT_EQ(r.GetDetail("start_projected"), 2.0) << name;
+    EXPECT_EQ(r.GetDetail("start_projection_distance"), 10.0) << name;
+  }
+  EXPECT_GE(checked, 3);  // newton, ipopt, auto at least
+  // A start inside the box leaves no trace.
+  o.warm_start << 0.5, 1.0;
+  const SolveResult inside = CreateSolver("newton")->Solve(problem, o);
+  ASSERT_TRUE(inside.solved()) << inside.message;
+  EXPECT_TRUE(std::isnan(inside.GetDetail("start_projected")));
+}
+
+// The same rule for every box backend, warm start outside [l, u]: a relay (box [−1, 1]²) with an SPD M (every box
+// backend applies) and the planted solution z* = (0.5, −1): row 1 free (w1 = 0), row 2 at its lower bound (w2 > 0).
+TEST(SolverBaseStartOutsideTheBox, EveryBoxBackendStartsFromTheProjectionAndSaysSo) {
+  DenseMatrix M(2, 2);
+  M << 4, 1, 1, 3;
+  Vector z_star(2), w_star(2);
+  z_star << 0.5, -1.0;
+  w_star << 0.0, 2.0;
+  const Vector q = w_star - M * z_star;
+  const BoxMLCP problem(M, q, Vector::Constant(2, -1.0), Vector::Ones(2), "relay-2");
+  SolverOptions o;
+  o.warm_start = Vector(2);
+  o.warm_start << 3.0, -1.5;  // above the box by 2 in z1, below it by 0.5 in z2
+  int checked = 0;
+  for (std::string_view name : SolverNames()) {
+    const std::unique_ptr<Solver> solver = CreateSolver(name);
+    if (!solver->info().box) continue;
+    ++checked;
+    const SolveResult r = solver->Solve(problem, o);
+    if (r.status == SolveStatus::kNotApplicable || r.status == SolveStatus::kSizeLimit) continue;
+    ASSERT_TRUE(r.solved()) << name << ": " << r.message;
+    EXPECT_LE((r.z - z_star).cwiseAbs().maxCoeff(), 1e-8) << name;
+    EXPECT_EQ(r.GetDetail("start_projected"), 2.0) << name;
+    EXPECT_EQ(r.GetDetail("start_projection_distance"), 2.0) << name;
+  }
+  EXPECT_GE(checked, 5);
+}
+
 }  // namespace
 }  // namespace smcbench

@@ -223,7 +223,19 @@ void SiconosMcpSolver::DoSolveMCP(const MCP& problem, const SolverOptions& optio
     msg << form.jacobian_error();
   } else {
     Vector Fz;
-    const double r = ScaledResidual(problem, result->z, &Fz);
+    double r = ScaledResidual(problem, result->z, &Fz);
+    // Siconos' iterates need not lie in the box (its FB iterates approach it from outside): the answer is returned
+    // projected onto [l, u] when the projection does not break the tolerance or is no worse (docs/problem.md,
+    // "Starts outside the box").
+    const Vector projected = result->z.cwiseMax(problem.l()).cwiseMin(problem.u());
+    if (projected != result->z) {
+      Vector Fp;
+      const double rp = ScaledResidual(problem, projected, &Fp);
+      if (rp <= std::max(r, options.tolerance)) {
+        result->z = projected;
+        r = rp;
+      }
+    }
     if (r <= options.tolerance) {
       result->status = SolveStatus::kSolved;
       return;
