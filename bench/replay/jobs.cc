@@ -166,7 +166,8 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
     job.problem_id = suites[s].problems[p].id;
     job.solver = solver;
     job.tolerance = tolerance;
-    job.cost = EstimateJobSeconds(suites[s].problems[p], options, kind, CostOf(request, solver), request.budgets);
+    job.cost = EstimateJobSeconds(suites[s].problems[p], options, kind, {}, request.budgets);
+    job.estimate = EstimateJobSeconds(suites[s].problems[p], options, kind, CostOf(request, solver), request.budgets);
     job.id = JobId(job);
     jobs.push_back(std::move(job));
   };
@@ -201,7 +202,8 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
           job.start_label = start < problem.start_labels.size() ? problem.start_labels[start] : "";
           job.solver = solver;
           job.tolerance = options.tolerance;
-          job.cost = EstimateMcpJobSeconds(problem, options, CostOf(request, solver), request.budgets);
+          job.cost = EstimateMcpJobSeconds(problem, options, {}, request.budgets);
+          job.estimate = EstimateMcpJobSeconds(problem, options, CostOf(request, solver), request.budgets);
           job.id = JobId(job);
           jobs.push_back(std::move(job));
         }
@@ -221,7 +223,8 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
         job.problem_id = set.problems[p].id;
         job.solver = solver;
         job.tolerance = options.tolerance;
-        job.cost = EstimateAviJobSeconds(set.problems[p], options, CostOf(request, solver), request.budgets);
+        job.cost = EstimateAviJobSeconds(set.problems[p], options, {}, request.budgets);
+        job.estimate = EstimateAviJobSeconds(set.problems[p], options, CostOf(request, solver), request.budgets);
         job.id = JobId(job);
         jobs.push_back(std::move(job));
       }
@@ -241,7 +244,8 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
           job.problem_id = sequences[q].id;
           job.solver = solver;
           job.tolerance = options.tolerance;
-          job.cost = EstimateWarmJobSeconds(sequences[q], options, CostOf(request, solver), request.budgets);
+          job.cost = EstimateWarmJobSeconds(sequences[q], options, {}, request.budgets);
+          job.estimate = EstimateWarmJobSeconds(sequences[q], options, CostOf(request, solver), request.budgets);
           job.id = JobId(job);
           jobs.push_back(std::move(job));
         }
@@ -255,6 +259,7 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
     // Measured: 112 s for the full studies (6 refinements) on a 2-core Xeon (`bench --suite paper`, its line "time-
     // stepper studies took"); 5 refinements under a job budget take half.
     job.cost = options.repetitions <= 3 ? 3.0 : request.budgets.job_seconds > 0.0 ? 60.0 : 120.0;
+    job.estimate = job.cost;
     job.id = JobId(job);
     jobs.push_back(std::move(job));
   }
@@ -454,6 +459,7 @@ RunManifest RunManifestFromJson(const json& j, const std::string& where) {
       job.solver = b.at("solver").get<std::string>();
       job.tolerance = b.at("tolerance").get<double>();
       job.cost = b.at("cost").get<double>();
+      job.estimate = job.cost;
       if (job.kind == JobKind::kMcp) {
         job.start = b.at("start").at("index").get<std::size_t>();
         job.start_label = b.at("start").at("label").get<std::string>();

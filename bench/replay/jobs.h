@@ -45,8 +45,12 @@ struct BenchJob {
   std::string suite_name, problem_id, solver;
   std::string start_label;  // kMcp: McpLibraryProblem::start_labels[start]
   double tolerance = 0.0;
-  // Estimated seconds, for balancing shards (EstimateJobSeconds).
+  // Estimated seconds for balancing shards (EstimateJobSeconds with BackendCost's defaults): the same on every
+  // machine, so every shard of a run computes the same shards.
   double cost = 0.0;
+  // Estimated seconds on this machine (EstimateJobSeconds with JobListRequest::costs, measured by a probe): what
+  // `--list-jobs` prints and the progress line's ETA scales. Not in the manifest (read back: cost).
+  double estimate = 0.0;
   // "suite|problem|solver|mode|tolerance" (tolerance in shortest round-trip form): the job's identity across
   // processes, machines and resumed runs; "suite|problem@start|solver|cold|tolerance" for an MCP job (start: its
   // label); "suite|sequence|solver|warm|tolerance" for a warm job; "stepper" for the stepper job.
@@ -75,8 +79,9 @@ struct JobBudgets {
 // job budget), the job at cost.job_seconds plus a warm-up solve plus its samples beyond a tiny solve's (each
 // sample at least min_sample_seconds, together at most max_seconds_per_pair, or half the job budget); a solve that
 // reaches the limit is not repeated. The stepper job is a fixed 120 s as measured (60 s with a job budget, which
-// shortens it; quick: 3 s). Balances shards, is what
-// `--list-jobs` adds up and what the progress line's ETA scales; never changes what runs.
+// shortens it; quick: 3 s). With BackendCost's defaults it balances shards (BenchJob::cost); with a backend's
+// measured costs it is what `--list-jobs` adds up and what the progress line's ETA scales (BenchJob::estimate);
+// never changes what runs.
 double EstimateJobSeconds(const LibraryProblem& problem, const ReplayOptions& options, JobKind kind,
                           const BackendCost& cost = {}, const JobBudgets& budgets = {});
 // The same for one MCP job: 20 Newton steps, each cost.seconds_per_unit·n·(n + nnz(J)) with nnz(J) taken as n²

@@ -171,6 +171,42 @@ TEST(WarmTrack, JobEstimatesFollowTheCostModelAndTheBudgets) {
   EXPECT_NEAR(EstimateWarmJobSeconds(sequence, o, cost, {0.0, 0.05}), 0.01 + 0.0216 + 0.025 + 0.0216, 1e-12);
 }
 
+// A machine's measured costs change the estimates (--list-jobs, the ETA) but not BenchJob::cost, so every process
+// of a sharded run computes the same shards whatever its probe measured.
+TEST(WarmTrack, MeasuredCostsChangeTheEstimatesNotTheShards) {
+  const WarmSequence sequence = IdentityRelaySequence();  // 6 steps of m = 3
+  ProblemSet set;
+  set.name = "handmade";
+  set.problems = {sequence.steps[0], sequence.steps[1]};
+  const std::vector<std::vector<WarmSequence>> warm = {{sequence}};
+  ReplayOptions options;
+  options.tolerance_sweep_problems = 0;
+  JobListRequest request;
+  request.solvers = {"lemke", "psor"};
+  request.warm = &warm;
+  const std::vector<BenchJob> guessed = ListBenchJobs({set}, options, request);
+  BackendCost slow;  // lemke measured 100 times slower per unit of work than the guess, plus 0.5 s per job
+  slow.job_seconds = 0.5;
+  slow.seconds_per_unit = 1e-7;
+  request.costs["lemke"] = slow;
+  const std::vector<BenchJob> measured = ListBenchJobs({set}, options, request);
+  ASSERT_EQ(measured.size(), 6u);  // 2 problems × 2 backends cold, 1 sequence × 2 backends warm
+  for (std::size_t i = 0; i < measured.size(); ++i) {
+    SCOPED_TRACE(measured[i].id);
+    EXPECT_EQ(measured[i].cost, guessed[i].cost);
+    EXPECT_EQ(guessed[i].estimate, guessed[i].cost);  // no measured cost: the guess
+    const BenchJob& job = measured[i];
+    if (job.solver != "lemke") {
+      EXPECT_EQ(job.estimate, job.cost);
+    } else if (job.kind == JobKind::kWarm) {
+      EXPECT_DOUBLE_EQ(job.estimate, EstimateWarmJobSeconds(sequence, options, slow));
+    } else {
+      EXPECT_DOUBLE_EQ(job.estimate, EstimateJobSeconds(set.problems[job.problem], options, JobKind::kCold, slow));
+    }
+  }
+  EXPECT_EQ(AssignShards(measured, 3), AssignShards(guessed, 3));
+}
+
 TEST(WarmTrack, TrajectoryMovesOnlyQAndASequenceWithAnotherMIsRefused) {
   const std::vector<WarmSequence> sequences = TrajectoryWarmSequences("families", /*quick=*/true);
   const WarmSequence& sequence = sequences.back();  // P-matrix LCP, m = 64

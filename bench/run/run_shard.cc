@@ -326,12 +326,12 @@ ShardSummary RunShard(const BenchPlan& plan, ShardSelection shard, const std::se
   ShardRunner runner(plan, progress);
   ShardSummary summary;
   double estimated_total = 0.0, estimated_done = 0.0;
-  for (const BenchJob* job : todo) estimated_total += job->cost;
+  for (const BenchJob* job : todo) estimated_total += job->estimate;
   for (const BenchJob* job : todo) {
     const JobLine line = runner.Run(*job);
     if (sink) sink(line);
     ++summary.jobs_run;
-    estimated_done += job->cost;
+    estimated_done += job->estimate;
     if (progress) progress->JobFinished(summary.jobs_run, todo.size(), JobLabel(*job), estimated_done, estimated_total);
   }
   summary.skipped = runner.Skipped();

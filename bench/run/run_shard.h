@@ -19,7 +19,7 @@ class BenchProgress {
  public:
   virtual ~BenchProgress() = default;
   // After each job: finished of total jobs of this call, what the job was ("suite problem[@start] backend"), and
-  // the estimated seconds (BenchJob::cost) of the jobs finished and of all jobs of this call (for an ETA).
+  // the estimated seconds (BenchJob::estimate) of the jobs finished and of all jobs of this call (for an ETA).
   virtual void JobFinished(std::size_t /*finished*/, std::size_t /*total*/, const std::string& /*what*/,
                            double /*estimated_done*/, double /*estimated_total*/) {}
   // A phase inside one long job (the time-stepper studies' scenes): what runs now.

@@ -151,7 +151,13 @@ TEST(RunShard, JobAndSequenceBudgetsCutTheJobsAndSaySo) {
   newton.repetitions = 1;
   newton.job_budget_seconds = 1e-9;
   newton.calibrate = false;
-  const BenchPlan budgeted = MakeBenchPlan(newton);
+  BenchPlan budgeted = MakeBenchPlan(newton);
+  // One problem no solve ends within a nanosecond (the tiny suite's are solved before newton first reads its clock):
+  // the m = 64 P-matrix LCP that starts the families trajectory.
+  budgeted.suites[0].problems = {TrajectoryWarmSequences("families", /*quick=*/true).back().steps.front()};
+  JobListRequest one;
+  one.solvers = budgeted.solvers;
+  budgeted.jobs = ListBenchJobs(budgeted.suites, budgeted.options, one);
   int cold = 0;
   for (const auto& [index, line] : RunLines(budgeted, {}, {})) {
     if (budgeted.jobs[index].kind != JobKind::kCold) continue;
@@ -161,7 +167,7 @@ TEST(RunShard, JobAndSequenceBudgetsCutTheJobsAndSaySo) {
     EXPECT_EQ(line.record.status, SolveStatus::kNotRun) << line.id;
     EXPECT_THAT(line.record.message, HasSubstr("job budget of 1e-09 s spent (--job-budget; the time limit is 10 s)"));
   }
-  EXPECT_EQ(cold, 5);
+  EXPECT_EQ(cold, 1);
 }
 
 TEST(RunShard, ABackendPastItsBudgetIsNotRunOnTheRestOfTheSuite) {

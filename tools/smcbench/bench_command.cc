@@ -226,7 +226,7 @@ class Progress : public BenchProgress {
   bool terminal_;
   double every_;
   Clock::time_point start_, last_line_;
-  double estimated_done_ = 0.0, estimated_total_ = 0.0;  // BenchJob::cost of the jobs run, of all (the ETA)
+  double estimated_done_ = 0.0, estimated_total_ = 0.0;  // BenchJob::estimate of the jobs run, of all (the ETA)
 };
 
 // The --allow-wrong value naming every adapter to another library (siconos-*, bullet-*, dart-*: SolverInfo::external),
@@ -390,10 +390,10 @@ void PrintJobs(const std::vector<BenchJob>& jobs, const std::vector<int>& shard,
   for (const BenchJob& job : jobs) {
     if (only_shard >= 0 && shard[job.index] != only_shard) continue;
     char cost[32];
-    std::snprintf(cost, sizeof cost, "%.3g", job.cost);
+    std::snprintf(cost, sizeof cost, "%.3g", job.estimate);
     out << job.index + 1 << '\t' << shard[job.index] + 1 << '/' << shards << '\t' << cost << '\t'
         << ToString(job.kind) << '\t' << job.id << '\n';
-    total += job.cost;
+    total += job.estimate;
     ++listed;
   }
   char line[240];

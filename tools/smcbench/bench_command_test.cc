@@ -719,7 +719,19 @@ TEST(Shards, ThreeShardsMergedEqualTheSingleRunAndAKilledShardResumes) {
       in_shards.insert(line.substr(line.rfind('\t') + 1));
       ++listed_in_shards;
     }
-    EXPECT_EQ(RunSmcbench(ShardArgs({"--list-jobs", "--shard", shard})).out, part.out) << "deterministic";
+    // The shards are the same in every process; the estimated seconds are this machine's measured costs, so they
+    // are left out of the comparison.
+    const auto jobs_of = [](const std::string& listing) {
+      std::vector<std::string> jobs;
+      for (const std::string& line : Lines(listing)) {
+        if (line.empty() || line[0] == '#') continue;
+        const auto shard_end = line.find('\t', line.find('\t') + 1);
+        jobs.push_back(line.substr(0, shard_end) + line.substr(line.find('\t', shard_end + 1)));
+      }
+      return jobs;
+    };
+    EXPECT_EQ(jobs_of(RunSmcbench(ShardArgs({"--list-jobs", "--shard", shard})).out), jobs_of(part.out))
+        << "deterministic";
   }
   EXPECT_EQ(listed_in_shards, 39u);
   EXPECT_EQ(in_shards.size(), 39u) << "every job in exactly one shard";
