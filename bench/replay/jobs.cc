@@ -38,6 +38,11 @@ JobKind JobKindFromText(const std::string& text, const std::string& where) {
   throw InvalidInputError(where + ": unknown job kind '" + text + "'");
 }
 
+BackendCost CostOf(const JobListRequest& request, const std::string& solver) {
+  const auto it = request.costs.find(solver);
+  return it == request.costs.end() ? BackendCost{} : it->second;
+}
+
 std::string JobId(const BenchJob& job) {
   if (job.kind == JobKind::kStepper) return "stepper";
   if (job.kind == JobKind::kMcp) {
@@ -69,43 +74,70 @@ std::string StableHashHex(const std::string& text) {
   return hex;
 }
 
-double EstimateJobSeconds(const LibraryProblem& problem, const ReplayOptions& options, JobKind kind) {
+namespace {
+
+// Seconds of a job whose one solve takes solve seconds: the warm-up (capped by the per-solve limit), then samples
+// of at least min_sample_seconds each until repetitions or the sampling cap; a solve that reaches the limit is
+// timed once. What a tiny solve's job costs is in job_seconds already, so only the excess over it is added.
+double ColdJobSeconds(double solve, const ReplayOptions& options, int repetitions, const BackendCost& cost,
+                      const JobBudgets& budgets) {
+  const bool budgeted = budgets.job_seconds > 0.0;
+  const double limit = budgeted ? std::min(options.time_limit_seconds, budgets.job_seconds)
+                                : options.time_limit_seconds;
+  const double cap = budgeted ? std::min(options.max_seconds_per_pair, 0.5 * budgets.job_seconds)
+                              : options.max_seconds_per_pair;
+  const auto job = [&](double t) {
+    if (t >= limit) return limit;
+    // Sampling stops once past the cap: at most the cap plus the sample running then.
+    const double sample = std::max(options.min_sample_seconds, t);
+    return t + std::min(repetitions * sample, cap + sample);
+  };
+  return cost.job_seconds + std::max(0.0, job(solve) - job(0.0));
+}
+
+double Units(const LibraryProblem& problem) {
   const double m = problem.size();
   const double nnz = problem.problem.is_sparse() ? static_cast<double>(problem.problem.sparse_matrix().nonZeros())
                                                  : m * m;
-  const double solve = 1e-9 * m * (m + nnz);
+  return m * (m + nnz);
+}
+
+}  // namespace
+
+double EstimateJobSeconds(const LibraryProblem& problem, const ReplayOptions& options, JobKind kind,
+                          const BackendCost& cost, const JobBudgets& budgets) {
   const int repetitions = kind == JobKind::kSweep ? std::min(options.repetitions, 3) : options.repetitions;
-  const double sampling = std::min(options.max_seconds_per_pair,
-                                   repetitions * std::max(options.min_sample_seconds, solve));
-  return std::min(options.time_limit_seconds, solve) + sampling;
+  return ColdJobSeconds(cost.seconds_per_unit * Units(problem), options, repetitions, cost, budgets);
 }
 
-double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptions& options) {
+double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptions& options,
+                             const BackendCost& cost, const JobBudgets& budgets) {
   const double n = problem.size();
-  const double solve = 20.0 * 1e-9 * n * (n + (problem.sparse() ? 10.0 * n : n * n));
-  const double sampling =
-      std::min(options.max_seconds_per_pair, options.repetitions * std::max(options.min_sample_seconds, solve));
-  return std::min(options.time_limit_seconds, solve) + sampling;
+  const double solve = 20.0 * cost.seconds_per_unit * n * (n + (problem.sparse() ? 10.0 * n : n * n));
+  return ColdJobSeconds(solve, options, options.repetitions, cost, budgets);
 }
 
-double EstimateAviJobSeconds(const AviLibraryProblem& problem, const ReplayOptions& options) {
+double EstimateAviJobSeconds(const AviLibraryProblem& problem, const ReplayOptions& options,
+                             const BackendCost& cost, const JobBudgets& budgets) {
   if (!problem.problem) return 0.0;
   const AffineVI& avi = *problem.problem;
   const double rows = avi.size() + avi.inequality_count() + avi.equality_count();
-  const double solve = 2.0 * 1e-9 * rows * 2.0 * rows * rows;
-  const double sampling =
-      std::min(options.max_seconds_per_pair, options.repetitions * std::max(options.min_sample_seconds, solve));
-  return std::min(options.time_limit_seconds, solve) + sampling;
+  const double solve = 2.0 * cost.seconds_per_unit * rows * 2.0 * rows * rows;
+  return ColdJobSeconds(solve, options, options.repetitions, cost, budgets);
 }
 
-double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions& options) {
+double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions& options, const BackendCost& cost,
+                              const JobBudgets& budgets) {
   if (sequence.steps.empty()) return 0.0;
-  const LibraryProblem& head = sequence.steps.front();
-  const double m = head.size();
-  const double nnz = head.sparse() ? static_cast<double>(head.problem.sparse_matrix().nonZeros()) : m * m;
   // A step: the cold guess, but at least the ≈ 1 µs fixed cost of a call.
-  const double pass = static_cast<double>(sequence.steps.size()) * std::max(1e-9 * m * (m + nnz), 1e-6);
-  return pass + std::min(options.max_seconds_per_pair, options.repetitions * pass);
+  const double step = std::max(cost.seconds_per_unit * Units(sequence.steps.front()), 1e-6);
+  const double pass = static_cast<double>(sequence.steps.size()) * step;
+  const double budget = budgets.sequence_seconds;
+  if (budget > 0.0 && pass > budget) return cost.job_seconds + budget + step;  // cut after the step that spent it
+  if (budget > 0.0 && pass > 0.5 * budget) return cost.job_seconds + pass;     // the untimed pass is the sample
+  const double cap = budget > 0.0 ? std::min(options.max_seconds_per_pair, 0.5 * budget)
+                                  : options.max_seconds_per_pair;
+  return cost.job_seconds + pass + std::min(options.repetitions * pass, cap + pass);
 }
 
 std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites, const ReplayOptions& options,
@@ -134,7 +166,8 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
     job.problem_id = suites[s].problems[p].id;
     job.solver = solver;
     job.tolerance = tolerance;
-    job.cost = EstimateJobSeconds(suites[s].problems[p], options, kind);
+    job.cost = EstimateJobSeconds(suites[s].problems[p], options, kind, {}, request.budgets);
+    job.estimate = EstimateJobSeconds(suites[s].problems[p], options, kind, CostOf(request, solver), request.budgets);
     job.id = JobId(job);
     jobs.push_back(std::move(job));
   };
@@ -169,7 +202,8 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
           job.start_label = start < problem.start_labels.size() ? problem.start_labels[start] : "";
           job.solver = solver;
           job.tolerance = options.tolerance;
-          job.cost = EstimateMcpJobSeconds(problem, options);
+          job.cost = EstimateMcpJobSeconds(problem, options, {}, request.budgets);
+          job.estimate = EstimateMcpJobSeconds(problem, options, CostOf(request, solver), request.budgets);
           job.id = JobId(job);
           jobs.push_back(std::move(job));
         }
@@ -189,7 +223,8 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
         job.problem_id = set.problems[p].id;
         job.solver = solver;
         job.tolerance = options.tolerance;
-        job.cost = EstimateAviJobSeconds(set.problems[p], options);
+        job.cost = EstimateAviJobSeconds(set.problems[p], options, {}, request.budgets);
+        job.estimate = EstimateAviJobSeconds(set.problems[p], options, CostOf(request, solver), request.budgets);
         job.id = JobId(job);
         jobs.push_back(std::move(job));
       }
@@ -209,7 +244,8 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
           job.problem_id = sequences[q].id;
           job.solver = solver;
           job.tolerance = options.tolerance;
-          job.cost = EstimateWarmJobSeconds(sequences[q], options);
+          job.cost = EstimateWarmJobSeconds(sequences[q], options, {}, request.budgets);
+          job.estimate = EstimateWarmJobSeconds(sequences[q], options, CostOf(request, solver), request.budgets);
           job.id = JobId(job);
           jobs.push_back(std::move(job));
         }
@@ -220,7 +256,10 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
     BenchJob job;
     job.index = jobs.size();
     job.kind = JobKind::kStepper;
-    job.cost = options.repetitions <= 3 ? 3.0 : 30.0;
+    // Measured: 112 s for the full studies (6 refinements) on a 2-core Xeon (`bench --suite paper`, its line "time-
+    // stepper studies took"); 5 refinements under a job budget take half.
+    job.cost = options.repetitions <= 3 ? 3.0 : request.budgets.job_seconds > 0.0 ? 60.0 : 120.0;
+    job.estimate = job.cost;
     job.id = JobId(job);
     jobs.push_back(std::move(job));
   }
@@ -420,6 +459,7 @@ RunManifest RunManifestFromJson(const json& j, const std::string& where) {
       job.solver = b.at("solver").get<std::string>();
       job.tolerance = b.at("tolerance").get<double>();
       job.cost = b.at("cost").get<double>();
+      job.estimate = job.cost;
       if (job.kind == JobKind::kMcp) {
         job.start = b.at("start").at("index").get<std::size_t>();
         job.start_label = b.at("start").at("label").get<std::string>();

@@ -45,8 +45,12 @@ struct BenchJob {
   std::string suite_name, problem_id, solver;
   std::string start_label;  // kMcp: McpLibraryProblem::start_labels[start]
   double tolerance = 0.0;
-  // Estimated seconds, for balancing shards (EstimateJobSeconds).
+  // Estimated seconds for balancing shards (EstimateJobSeconds with BackendCost's defaults): the same on every
+  // machine, so every shard of a run computes the same shards.
   double cost = 0.0;
+  // Estimated seconds on this machine (EstimateJobSeconds with JobListRequest::costs, measured by a probe): what
+  // `--list-jobs` prints and the progress line's ETA scales. Not in the manifest (read back: cost).
+  double estimate = 0.0;
   // "suite|problem|solver|mode|tolerance" (tolerance in shortest round-trip form): the job's identity across
   // processes, machines and resumed runs; "suite|problem@start|solver|cold|tolerance" for an MCP job (start: its
   // label); "suite|sequence|solver|warm|tolerance" for a warm job; "stepper" for the stepper job.
@@ -56,20 +60,43 @@ struct BenchJob {
 // The name the generic sparse path's records carry as their backend.
 inline constexpr const char* kGenericSparsePath = "newton-sparse-path";
 
-// Estimated seconds of one job: one solve is guessed at 1e-9·m·(m + nnz(M)) s (a dense pivoting method's m³ on a
-// dense M; m·nnz on a sparse one), the job at a warm-up solve (capped by the time limit) plus its samples (each at
-// least min_sample_seconds, together at most max_seconds_per_pair). Backends are not told apart. The stepper job
-// is a fixed 30 s (quick: 3 s). Only balances shards: never changes what runs.
-double EstimateJobSeconds(const LibraryProblem& problem, const ReplayOptions& options, JobKind kind);
-// The same guess for one MCP job: 20 Newton steps, each 1e-9·n·(n + nnz(J)) s with nnz(J) taken as n² (dense J) or
-// 10·n (sparse J; not evaluated for an estimate).
-double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptions& options);
-// The same guess for one AVI job: one solve of the reduction (N = n + m + p rows, dense) at 1e-9·N·2N² s, plus as
-// much again for SolveAvi's building of it and its verdict.
-double EstimateAviJobSeconds(const AviLibraryProblem& problem, const ReplayOptions& options);
-// The same guess for one warm job: an untimed and the timed passes of every step, each step a cold solve's guess
-// (at least 1 µs, a call's fixed cost).
-double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions& options);
+// What one backend's jobs cost, for the estimates: a job's fixed seconds (its warm-up and minimum samples of a
+// tiny solve, an external adapter's probe in its worker, judging, the record) and the seconds of one solve per
+// unit of work m·(m + nnz(M)) (a dense pivoting method's m³ on a dense M; m·nnz on a sparse one). The defaults are
+// a guess; bench/run/bench_plan.h's CalibrateBackendCosts measures them with a probe.
+struct BackendCost {
+  double job_seconds = 2e-3;
+  double seconds_per_unit = 1e-9;
+};
+
+// The seconds the budgets allow (bench/run/bench_plan.h: BenchRequest; 0: no limit), for the estimates.
+struct JobBudgets {
+  double job_seconds = 0.0;       // one cold, sweep, MCP or AVI job: its solves under min(time limit, this)
+  double sequence_seconds = 0.0;  // one warm sequence × backend
+};
+
+// Estimated seconds of one job: one solve at cost.seconds_per_unit·m·(m + nnz(M)) under the time limit (and the
+// job budget), the job at cost.job_seconds plus a warm-up solve plus its samples beyond a tiny solve's (each
+// sample at least min_sample_seconds, together at most max_seconds_per_pair, or half the job budget); a solve that
+// reaches the limit is not repeated. The stepper job is a fixed 120 s as measured (60 s with a job budget, which
+// shortens it; quick: 3 s). With BackendCost's defaults it balances shards (BenchJob::cost); with a backend's
+// measured costs it is what `--list-jobs` adds up and what the progress line's ETA scales (BenchJob::estimate);
+// never changes what runs.
+double EstimateJobSeconds(const LibraryProblem& problem, const ReplayOptions& options, JobKind kind,
+                          const BackendCost& cost = {}, const JobBudgets& budgets = {});
+// The same for one MCP job: 20 Newton steps, each cost.seconds_per_unit·n·(n + nnz(J)) with nnz(J) taken as n²
+// (dense J) or 10·n (sparse J; not evaluated for an estimate).
+double EstimateMcpJobSeconds(const McpLibraryProblem& problem, const ReplayOptions& options,
+                             const BackendCost& cost = {}, const JobBudgets& budgets = {});
+// The same for one AVI job: one solve of the reduction (N = n + m + p rows, dense) at 2N³ units, plus as much again
+// for SolveAvi's building of it and its verdict.
+double EstimateAviJobSeconds(const AviLibraryProblem& problem, const ReplayOptions& options,
+                             const BackendCost& cost = {}, const JobBudgets& budgets = {});
+// The same for one warm job: an untimed and the timed passes of every step, each step a cold solve's guess (at
+// least 1 µs, a call's fixed cost), plus cost.job_seconds once; with a sequence budget, a pass longer than it is
+// cut there, one longer than half of it is the only pass, and the timed passes stop after half of it.
+double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions& options,
+                              const BackendCost& cost = {}, const JobBudgets& budgets = {});
 
 struct JobListRequest {
   std::vector<std::string> solvers;  // resolved names (never empty)
@@ -83,6 +110,9 @@ struct JobListRequest {
   // The warm sequences of each box suite (indexed as the suites; null or shorter: none), run on every backend of
   // solvers (warm_track.h).
   const std::vector<std::vector<WarmSequence>>* warm = nullptr;
+  // Each backend's costs for the estimates (a backend not named: BackendCost's defaults), and the budgets.
+  std::map<std::string, BackendCost> costs;
+  JobBudgets budgets;
 };
 
 // Every job of a run, in the order a single run writes its results: per suite the cold jobs (problem, then

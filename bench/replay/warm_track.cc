@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <limits>
 
 #include "bench/replay/sample_times.h"
@@ -65,7 +66,8 @@ void CheckWarmSequence(const WarmSequence& sequence) {
 }
 
 WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, const std::string& solver_name,
-                              const ReplayOptions& options, double tolerance, std::vector<Vector>* answers) {
+                              const ReplayOptions& options, double tolerance, std::vector<Vector>* answers,
+                              double budget_seconds) {
   CheckWarmSequence(sequence);
   const LibraryProblem& head = sequence.steps.front();
   const std::size_t steps = sequence.steps.size();
@@ -91,31 +93,43 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
   // A step that ran into the time limit ends the pass: the steps after it are not run (a time-stepper stops there
   // too), so a backend that cannot solve the sequence costs one time limit, not one per step.
   std::size_t steps_run = 0;
-  const auto pass = [&] {
+  const bool budgeted = budget_seconds > 0.0;
+  // budget: seconds after which the pass stops (the untimed pass only; 0: none).
+  const auto pass = [&](double budget) {
+    const auto pass_start = Clock::now();
     SolveSession session = solver->Prepare(head.problem, o, session_options);
     steps_run = 0;
     for (std::size_t k = 0; k < steps; ++k) {
       session.Solve(sequence.steps[k].problem.q(), &results[k], k == 0 ? nullptr : &results[k - 1].z);
       ++steps_run;
       if (results[k].status == SolveStatus::kTimeLimit) break;
+      if (budget > 0.0 && std::chrono::duration<double>(Clock::now() - pass_start).count() > budget) break;
     }
   };
   // Untimed: sizes every result's storage, and is a siconos-* backend's probe of the problem.
   const auto first_start = Clock::now();
-  pass();
+  pass(budget_seconds);
   const double first = std::chrono::duration<double>(Clock::now() - first_start).count();
-  std::vector<double> samples;
   const bool timed_out = results[steps_run - 1].status == SolveStatus::kTimeLimit;
-  if (timed_out) samples.push_back(first / static_cast<double>(steps_run));  // the limit, not a measurement
+  const bool cut = steps_run < steps && !timed_out;  // the budget ended the pass, not the backend
+  std::vector<double> samples;
+  // After a time limit the limit is the sample, not a measurement; a pass that took more than half the budget is
+  // its own only sample (another would overrun the budget).
+  if (timed_out || (budgeted && !cut && first > 0.5 * budget_seconds)) {
+    samples.push_back(first / static_cast<double>(steps_run));
+  }
+  const double max_timed = budgeted ? std::min(options.max_seconds_per_pair, 0.5 * budget_seconds)
+                                    : options.max_seconds_per_pair;
   const auto start = Clock::now();
-  const int wanted = timed_out ? 1 : std::max(1, options.repetitions);
+  const int wanted = cut ? 0 : !samples.empty() ? 1 : std::max(1, options.repetitions);
   while (static_cast<int>(samples.size()) < wanted) {
     const auto s0 = Clock::now();
-    pass();
+    pass(0.0);
     samples.push_back(std::chrono::duration<double>(Clock::now() - s0).count() / static_cast<double>(steps));
-    if (std::chrono::duration<double>(Clock::now() - start).count() > options.max_seconds_per_pair) break;
+    if (std::chrono::duration<double>(Clock::now() - start).count() > max_timed) break;
   }
-  r.samples = static_cast<int>(samples.size());
+  if (cut) samples.push_back(first / static_cast<double>(steps_run));  // not a sample: what the steps run took
+  r.samples = cut ? 0 : static_cast<int>(samples.size());
   r.solves_per_sample = static_cast<std::int64_t>(steps);
   r.time_median = replay_internal::Median(samples);
   r.time_min = *std::min_element(samples.begin(), samples.end());
@@ -135,7 +149,8 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
   bool first_failure = true;
   for (std::size_t k = 0; k < steps; ++k) {
     const LibraryProblem& step = sequence.steps[k];
-    if (k >= steps_run) {  // after a time limit: not run, no answer
+    if (k >= steps_run) {  // after a time limit or the budget: not run, no answer
+      if (cut) break;
       if (first_failure) {
         first_failure = false;
         r.verdict = Verdict::kFailed;
@@ -174,7 +189,19 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
       (reused ? c.reused_steps : c.fallbacks) += 1;
     }
   }
-  if (first_failure) r.backend_code = BackendReturnCode(results.back());
+  if (cut) {
+    // No verdict: the steps run were judged (their counts and worst residuals are kept), the rest never ran.
+    char message[200];
+    std::snprintf(message, sizeof message, "cut after %zu of %zu steps: sequence budget of %g s spent (%.3g s)",
+                  steps_run, steps, budget_seconds, first);
+    r.mode = kCutMode;
+    r.status = SolveStatus::kNotRun;
+    r.verdict = Verdict::kFailed;  // kept out of every count by its mode
+    r.message = message + (r.message.empty() ? std::string() : "; first failed step " + r.message);
+    r.backend_code.reset();
+  } else if (first_failure) {
+    r.backend_code = BackendReturnCode(results.back());
+  }
   if (answers) {
     answers->clear();
     for (std::size_t k = 0; k < steps_run; ++k) answers->push_back(results[k].z);

@@ -59,12 +59,22 @@ struct WarmRecord {
   WarmCounts counts;
 };
 
+// The mode of a record whose job was cut by a time budget (a warm sequence past its --sequence-budget, a cold job
+// past its --job-budget or a backend past its --backend-budget): no verdict of the backend, neither a success nor a
+// failure; its message says how far it got ("cut after N of M steps: ..."). The report lists such records apart.
+inline constexpr const char* kCutMode = "cut";
+
 // Runs sequence on solver: an untimed pass, then timed passes of the whole sequence (each with a fresh session,
 // its set-up timed with it: a stepper prepares once per run) until options.repetitions or
 // options.max_seconds_per_pair; the last pass's answers are judged at tolerance (and copied to *answers, one per
 // step run, when given). A step that runs into the time limit ends a pass (the rest are not run: failed) and the
 // untimed pass is then the only sample. A backend that fails is a record.
+// budget_seconds > 0 bounds the job: the untimed pass stops after the step that used the budget up, and if steps
+// remain the record is cut (mode kCutMode, status not_run, the judged counts those of the steps run, the message
+// "cut after N of M steps: sequence budget of B s spent (T s)"); an untimed pass that fits but took more than
+// half the budget is the only sample (as after a time limit), and the timed passes stop after half the budget.
 WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, const std::string& solver_name,
-                              const ReplayOptions& options, double tolerance, std::vector<Vector>* answers = nullptr);
+                              const ReplayOptions& options, double tolerance, std::vector<Vector>* answers = nullptr,
+                              double budget_seconds = 0.0);
 
 }  // namespace smcbench

@@ -122,6 +122,91 @@ TEST(WarmTrack, AStepOverTheTimeLimitEndsThePassAndIsNotRepeated) {
   EXPECT_EQ(w.counts.steps, 8);
 }
 
+// A sequence budget shorter than one step: the untimed pass stops after step 0 and the record is cut (no verdict,
+// no sample), its message saying how far it got; a budget it fits in leaves the record as without one.
+TEST(WarmTrack, ASequencePastItsBudgetIsCutAfterTheStepThatSpentIt) {
+  const WarmSequence sequence = IdentityRelaySequence();  // 6 steps
+  const std::unique_ptr<Solver> lemke = CreateSolver("lemke");
+  std::vector<Vector> answers;
+  const WarmRecord cut = ReplayWarmSequence(sequence, lemke.get(), "lemke", FewRepeats(), 1e-10, &answers, 1e-12);
+  EXPECT_EQ(cut.record.mode, kCutMode);
+  EXPECT_EQ(cut.record.status, SolveStatus::kNotRun);
+  EXPECT_EQ(cut.record.samples, 0);
+  EXPECT_EQ(cut.record.message.rfind("cut after 1 of 6 steps: sequence budget of 1e-12 s spent (", 0), 0u)
+      << cut.record.message;
+  ASSERT_EQ(answers.size(), 1u);  // step 0 ran, and was solved: z = clamp(-q) = -0.5
+  EXPECT_EQ(answers[0], Vector::Constant(3, -0.5));
+  EXPECT_EQ(cut.counts.steps, 6);
+  EXPECT_EQ(cut.counts.steps_solved, 1);
+
+  const WarmRecord whole = ReplayWarmSequence(sequence, lemke.get(), "lemke", FewRepeats(), 1e-10, &answers, 100.0);
+  EXPECT_EQ(whole.record.mode, "warm");
+  EXPECT_EQ(whole.record.verdict, Verdict::kSolved) << whole.record.message;
+  EXPECT_EQ(whole.counts.steps_solved, 6);
+  EXPECT_GE(whole.record.samples, 1);
+  EXPECT_EQ(answers.size(), 6u);
+}
+
+// The estimates' cost model on its inputs (jobs.h), by hand: a 3 × 3 dense problem is 3·(3 + 9) = 36 units.
+TEST(WarmTrack, JobEstimatesFollowTheCostModelAndTheBudgets) {
+  const WarmSequence sequence = IdentityRelaySequence();  // 6 steps of m = 3
+  ReplayOptions o;  // 7 repetitions, samples of at least 0.2 ms, at most 2 s of sampling, 10 s per solve
+  BackendCost cost;
+  cost.job_seconds = 0.01;
+  cost.seconds_per_unit = 1e-4;  // one solve: 3.6 ms
+  const LibraryProblem& p = sequence.steps[0];
+  // 0.01 + (3.6 ms warm-up + 7 × 3.6 ms) − (a tiny solve's 7 × 0.2 ms), the last already in job_seconds.
+  EXPECT_NEAR(EstimateJobSeconds(p, o, JobKind::kCold, cost), 0.01 + 0.0288 - 0.0014, 1e-12);
+  EXPECT_NEAR(EstimateJobSeconds(p, o, JobKind::kSweep, cost), 0.01 + 0.0144 - 0.0006, 1e-12);  // 3 samples
+  // A job budget of 1 ms, below one solve: the solve stops at 1 ms and is not repeated; a tiny job samples 0.7 ms.
+  const JobBudgets budgets{1e-3, 0.0};
+  EXPECT_NEAR(EstimateJobSeconds(p, o, JobKind::kCold, cost, budgets), 0.01 + 0.001 - 0.0007, 1e-12);
+  // Warm: a pass is 6 × 3.6 ms = 21.6 ms; unbudgeted, the untimed pass and 7 timed ones.
+  EXPECT_NEAR(EstimateWarmJobSeconds(sequence, o, cost), 0.01 + 8 * 0.0216, 1e-12);
+  // A sequence budget below the pass: cut after the step that spent it.
+  EXPECT_NEAR(EstimateWarmJobSeconds(sequence, o, cost, {0.0, 0.01}), 0.01 + 0.01 + 0.0036, 1e-12);
+  // A pass over half the budget is its own only sample.
+  EXPECT_NEAR(EstimateWarmJobSeconds(sequence, o, cost, {0.0, 0.04}), 0.01 + 0.0216, 1e-12);
+  // Under half: the timed passes stop after half the budget (plus the pass running then).
+  EXPECT_NEAR(EstimateWarmJobSeconds(sequence, o, cost, {0.0, 0.05}), 0.01 + 0.0216 + 0.025 + 0.0216, 1e-12);
+}
+
+// A machine's measured costs change the estimates (--list-jobs, the ETA) but not BenchJob::cost, so every process
+// of a sharded run computes the same shards whatever its probe measured.
+TEST(WarmTrack, MeasuredCostsChangeTheEstimatesNotTheShards) {
+  const WarmSequence sequence = IdentityRelaySequence();  // 6 steps of m = 3
+  ProblemSet set;
+  set.name = "handmade";
+  set.problems = {sequence.steps[0], sequence.steps[1]};
+  const std::vector<std::vector<WarmSequence>> warm = {{sequence}};
+  ReplayOptions options;
+  options.tolerance_sweep_problems = 0;
+  JobListRequest request;
+  request.solvers = {"lemke", "psor"};
+  request.warm = &warm;
+  const std::vector<BenchJob> guessed = ListBenchJobs({set}, options, request);
+  BackendCost slow;  // lemke measured 100 times slower per unit of work than the guess, plus 0.5 s per job
+  slow.job_seconds = 0.5;
+  slow.seconds_per_unit = 1e-7;
+  request.costs["lemke"] = slow;
+  const std::vector<BenchJob> measured = ListBenchJobs({set}, options, request);
+  ASSERT_EQ(measured.size(), 6u);  // 2 problems × 2 backends cold, 1 sequence × 2 backends warm
+  for (std::size_t i = 0; i < measured.size(); ++i) {
+    SCOPED_TRACE(measured[i].id);
+    EXPECT_EQ(measured[i].cost, guessed[i].cost);
+    EXPECT_EQ(guessed[i].estimate, guessed[i].cost);  // no measured cost: the guess
+    const BenchJob& job = measured[i];
+    if (job.solver != "lemke") {
+      EXPECT_EQ(job.estimate, job.cost);
+    } else if (job.kind == JobKind::kWarm) {
+      EXPECT_DOUBLE_EQ(job.estimate, EstimateWarmJobSeconds(sequence, options, slow));
+    } else {
+      EXPECT_DOUBLE_EQ(job.estimate, EstimateJobSeconds(set.problems[job.problem], options, JobKind::kCold, slow));
+    }
+  }
+  EXPECT_EQ(AssignShards(measured, 3), AssignShards(guessed, 3));
+}
+
 TEST(WarmTrack, TrajectoryMovesOnlyQAndASequenceWithAnotherMIsRefused) {
   const std::vector<WarmSequence> sequences = TrajectoryWarmSequences("families", /*quick=*/true);
   const WarmSequence& sequence = sequences.back();  // P-matrix LCP, m = 64

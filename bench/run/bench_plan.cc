@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/replay/mcp_replay.h"
+#include "bench/replay/replay.h"
 #include "bench/run/warm_sequences.h"
 #include "problems/library/problem_set_io.h"
 #include "problems/library/references.h"
@@ -140,7 +141,52 @@ AviProblemSet ReadAviBenchSuite(const std::string& path, std::string* line) {
   return set;
 }
 
+// A dense m × m SPD LCP with a known interior-and-bound mix: M = I + (1/m)·11ᵀ, q alternating −1 and 1.
+LibraryProblem ProbeProblem(int m) {
+  DenseMatrix M = DenseMatrix::Identity(m, m) + DenseMatrix::Constant(m, m, 1.0 / m);
+  Vector q(m);
+  for (int i = 0; i < m; ++i) q[i] = i % 2 ? 1.0 : -1.0;
+  LibraryProblem p = MakeLibraryProblem("probe/m" + std::to_string(m), "probe", BoxMLCP::LCP(M, q));
+  p.expected = ExpectedOutcome::kSolvable;
+  return p;
+}
+
 }  // namespace
+
+std::map<std::string, BackendCost> CalibrateBackendCosts(const ReplayOptions& options,
+                                                         const std::vector<std::string>& solvers) {
+  ProblemSet set;
+  set.name = "probe";
+  set.problems = {ProbeProblem(2), ProbeProblem(32)};
+  const double units = 32.0 * (32.0 + 32.0 * 32.0);
+  std::map<std::string, BackendCost> costs;
+  for (const std::string& name : solvers) {
+    try {
+      ReplayOptions o = options;
+      std::vector<std::string> names{name};
+      o.settings = SettingsReaching(name, options.settings);
+      const std::unique_ptr<Solver> solver = std::move(CreateReplaySolvers(o, &names).front());
+      if (!solver->info().box) continue;
+      // Twice: the first job of a backend also pays what a run pays once (an external adapter's worker started,
+      // workspaces sized); the second is what every further job pays.
+      ReplayOne(set, set.problems[0], solver.get(), name, o, "cold", o.tolerance);
+      const auto tiny_start = Clock::now();
+      const ReplayRecord tiny = ReplayOne(set, set.problems[0], solver.get(), name, o, "cold", o.tolerance);
+      BackendCost cost;
+      cost.job_seconds = SecondsSince(tiny_start);
+      o.repetitions = 1;
+      const ReplayRecord mid = ReplayOne(set, set.problems[1], solver.get(), name, o, "cold", o.tolerance);
+      if (mid.samples > 0 && tiny.samples > 0) {
+        cost.seconds_per_unit = std::max(mid.time_median - tiny.time_median, 1e-12 * units) / units;
+      }
+      costs[name] = cost;
+    } catch (const std::exception&) {
+      // keeps the defaults: the run itself reports what is wrong with this backend
+    }
+  }
+  if (costs.count("newton")) costs[kGenericSparsePath] = costs.at("newton");
+  return costs;
+}
 
 bool IncludesStepperStudy(const std::vector<std::string>& suite_names, StepperStudyChoice choice) {
   if (choice != StepperStudyChoice::kIfSceneSuite) return choice == StepperStudyChoice::kAlways;
@@ -181,6 +227,12 @@ void CheckBenchRequest(const BenchRequest& request) {
   if (request.repetitions < 1) refuse("repetitions", request.repetitions, "a whole number >= 1");
   if (!(request.backend_budget_seconds >= 0.0) || !std::isfinite(request.backend_budget_seconds)) {
     refuse("backend budget", request.backend_budget_seconds, "a finite number of seconds >= 0");
+  }
+  if (!(request.job_budget_seconds >= 0.0) || !std::isfinite(request.job_budget_seconds)) {
+    refuse("job budget", request.job_budget_seconds, "a finite number of seconds >= 0");
+  }
+  if (!(request.sequence_budget_seconds >= 0.0) || !std::isfinite(request.sequence_budget_seconds)) {
+    refuse("sequence budget", request.sequence_budget_seconds, "a finite number of seconds >= 0");
   }
 }
 
@@ -260,6 +312,18 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
           "box-MLCP, is not run");
     }
   }
+  jobs.budgets.job_seconds = request.job_budget_seconds;
+  jobs.budgets.sequence_seconds = request.sequence_budget_seconds;
+  if (request.calibrate) {
+    const auto calibrate_start = Clock::now();
+    jobs.costs = CalibrateBackendCosts(options, plan.solvers);
+    if (log) {
+      char line[160];
+      std::snprintf(line, sizeof line, "job costs of %zu backends measured in %.2f s (the estimates and the ETA)",
+                    jobs.costs.size() - jobs.costs.count(kGenericSparsePath), SecondsSince(calibrate_start));
+      log(line);
+    }
+  }
   plan.jobs = ListBenchJobs(plan.suites, plan.mcp_suites, plan.avi_suites, options, jobs);
   return plan;
 }
@@ -306,7 +370,9 @@ nlohmann::json PlanOptionsJson(const BenchPlan& plan) {
           {"quick", plan.request.quick},
           {"stepper", plan.stepper},
           {"warm", plan.request.warm},
-          {"backend_budget", plan.request.backend_budget_seconds}};
+          {"backend_budget", plan.request.backend_budget_seconds},
+          {"job_budget", plan.request.job_budget_seconds},
+          {"sequence_budget", plan.request.sequence_budget_seconds}};
 }
 
 BenchResults PlanResults(const BenchPlan& plan, const std::map<std::size_t, JobLine>& done) {

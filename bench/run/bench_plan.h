@@ -37,6 +37,11 @@ enum class StepperStudyChoice {
 // only when "paper" is among them (the studies run the paper's scenes; a user's problem-set file has none).
 bool IncludesStepperStudy(const std::vector<std::string>& suite_names, StepperStudyChoice choice);
 
+// The budgets of a default run, chosen so that the main job (tools/bench.sh) fits in 10 min on a 2-core machine
+// (docs/benchmarks.md); `bench --full` sets all three to 0, the full campaign.
+inline constexpr double kDefaultJobBudgetSeconds = 1.0;
+inline constexpr double kDefaultSequenceBudgetSeconds = 2.0;
+
 struct BenchRequest {
   std::vector<std::string> suites;    // kBenchSuiteNames or problem-set files; empty: kDefaultBenchSuites
   std::vector<std::string> solvers;   // registry names; empty: every registered backend
@@ -45,14 +50,24 @@ struct BenchRequest {
   double tolerance = 1e-10;           // on the relative and the row-equilibrated natural residual
   double time_limit_seconds = 10.0;   // per solve
   int repetitions = 7;                // timing samples per job (quick: at most 3)
-  // Seconds one backend may spend on one suite before its remaining jobs there are not run (0: no limit).
+  // Seconds one backend may spend on one suite before its remaining jobs there are cut (0: no limit).
   double backend_budget_seconds = 60.0;
+  // Seconds one cold job (cold, sweep, MCP, AVI; 0: no limit) may take: each of its solves runs under
+  // min(time limit, this), a solve stopped by it cuts the job (a record of mode "cut", no verdict), and its timed
+  // samples stop after half of it. Only matters when below the time limit.
+  double job_budget_seconds = kDefaultJobBudgetSeconds;
+  // Seconds one warm sequence × backend may take (ReplayWarmSequence's budget; 0: no limit): its untimed pass is
+  // cut after the step that spent it (a record of mode "cut": "cut after N of M steps").
+  double sequence_budget_seconds = kDefaultSequenceBudgetSeconds;
   bool quick = false;                 // smaller suites, fewer samples, a shorter sweep and stepper study (CI)
   bool polish = true;                 // SolverOptions::polish of every solve (false: time the raw algorithms)
   StepperStudyChoice stepper = StepperStudyChoice::kIfSceneSuite;
   // The warm track (bench/replay/warm_track.h): sequences of the suites that have them (paper, families, a
   // problem-set file; bench/run/warm_sequences.h) replayed in order on every box backend. `bench --no-warm`: off.
   bool warm = true;
+  // Measure each backend's job costs with a probe before listing the jobs (CalibrateBackendCosts), so that the
+  // estimates (--list-jobs, the progress line's ETA, the shards' balance) are seconds of this machine. Off: guesses.
+  bool calibrate = true;
   // Attach certified references to the suites' problems. Off only to list the jobs (their cost does not depend
   // on them): verdicts without references cannot judge forward errors.
   bool certify = true;
@@ -82,6 +97,13 @@ void CheckBenchRequest(const BenchRequest& request);
 // when given, and one when no chosen backend solves the MCP (or the AVI) suite. InvalidInputError for any bad
 // input, including a problem-set file that cannot be read or holds no problem.
 BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(const std::string&)>& log = {});
+
+// Each backend's job costs (bench/replay/jobs.h: BackendCost) measured on this machine: one cold job (as a run
+// times it, options' repetitions) of a 2 × 2 LCP gives job_seconds, one of a dense 32 × 32 SPD LCP the seconds per
+// unit of work (the first job of each, which pays a backend's one-time start, is not counted). The generic sparse
+// path gets newton's. A backend whose probe fails keeps the defaults.
+std::map<std::string, BackendCost> CalibrateBackendCosts(const ReplayOptions& options,
+                                                         const std::vector<std::string>& solvers);
 
 // The plan's suites as results.json and the manifest list them (name, description, problems, checksum; no
 // records): the box suites, then the MCP suites, then the AVI suites.

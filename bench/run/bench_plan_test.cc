@@ -160,6 +160,12 @@ TEST(BenchPlan, EveryBadInputIsRefusedNamingTheField) {
   r.backend_budget_seconds = -1.0;
   EXPECT_THAT(MessageOf(r), HasSubstr("backend budget must be a finite number of seconds >= 0, got -1"));
   r = TinyRequest();
+  r.job_budget_seconds = std::numeric_limits<double>::infinity();
+  EXPECT_THAT(MessageOf(r), HasSubstr("job budget must be a finite number of seconds >= 0, got inf"));
+  r = TinyRequest();
+  r.sequence_budget_seconds = -2.0;
+  EXPECT_THAT(MessageOf(r), HasSubstr("sequence budget must be a finite number of seconds >= 0, got -2"));
+  r = TinyRequest();
   r.tolerance = 0.0;
   EXPECT_THAT(MessageOf(r), HasSubstr("tolerance must be a positive finite number, got 0"));
 }

@@ -46,7 +46,8 @@ ProblemSet SparseCopy(const ProblemSet& set) {
 // sharing an instance across problems does not change an answer), the budget counted per suite and backend.
 class ShardRunner {
  public:
-  ShardRunner(const BenchPlan& plan, BenchProgress* progress) : plan_(plan), progress_(progress) {}
+  ShardRunner(const BenchPlan& plan, BenchProgress* progress)
+      : plan_(plan), progress_(progress), options_(BudgetedOptions(plan)) {}
 
   JobLine Run(const BenchJob& job) {
     const int before = activity_.Count();
@@ -66,7 +67,8 @@ class ShardRunner {
       } else {
         const auto start = Clock::now();
         const WarmSequence& sequence = plan_.warm_sequences.at(job.suite).at(job.problem);
-        line.warm = ReplayWarmSequence(sequence, SolverFor(job.solver), job.solver, plan_.options, job.tolerance);
+        line.warm = ReplayWarmSequence(sequence, SolverFor(job.solver), job.solver, plan_.options, job.tolerance,
+                                       nullptr, plan_.request.sequence_budget_seconds);
         spent_[{job.suite, job.solver}] += SecondsSince(start);
       }
     } else if (OverBudget(job)) {
@@ -79,6 +81,7 @@ class ShardRunner {
       line.has_record = true;
       line.record = Replay(job);
       spent_[{job.suite, job.solver}] += SecondsSince(start);
+      if (JobBudgetLimitsSolves() && line.record.status == SolveStatus::kTimeLimit) CutByJobBudget(&line.record);
     }
     line.concurrent_jobs = std::max(before, activity_.Count());
     if (line.has_record) line.record.host = line.host, line.record.concurrent_jobs = line.concurrent_jobs;
@@ -111,7 +114,34 @@ class ShardRunner {
     return out;
   }
 
+  // The run's options with the job budget applied: each solve under min(time limit, budget), sampling stopped
+  // after half the budget.
+  static ReplayOptions BudgetedOptions(const BenchPlan& plan) {
+    ReplayOptions o = plan.options;
+    const double budget = plan.request.job_budget_seconds;
+    if (budget > 0.0) {
+      o.time_limit_seconds = std::min(o.time_limit_seconds, budget);
+      o.max_seconds_per_pair = std::min(o.max_seconds_per_pair, 0.5 * budget);
+    }
+    return o;
+  }
+
  private:
+  bool JobBudgetLimitsSolves() const {
+    const double budget = plan_.request.job_budget_seconds;
+    return budget > 0.0 && budget < plan_.options.time_limit_seconds;
+  }
+
+  // A record whose solve the job budget stopped: no verdict (it might have been solved within the time limit).
+  void CutByJobBudget(ReplayRecord* r) const {
+    char message[240];
+    std::snprintf(message, sizeof message, "cut after 0 of 1 solves: job budget of %g s spent (--job-budget; the "
+                  "time limit is %g s)", plan_.request.job_budget_seconds, plan_.options.time_limit_seconds);
+    r->mode = kCutMode;
+    r->status = SolveStatus::kNotRun;
+    r->message = message;
+  }
+
   bool OverBudget(const BenchJob& job) const {
     const auto it = spent_.find({job.suite, job.solver});
     const double budget = plan_.request.backend_budget_seconds;
@@ -140,23 +170,23 @@ class ShardRunner {
   ReplayRecord Replay(const BenchJob& job) {
     if (job.kind == JobKind::kAvi) {
       const AviProblemSet& set = AviSuiteOf(job);
-      return ReplayAviOne(set, set.problems.at(job.problem), SolverFor(job.solver), job.solver, plan_.options,
+      return ReplayAviOne(set, set.problems.at(job.problem), SolverFor(job.solver), job.solver, options_,
                           job.tolerance);
     }
     if (job.kind == JobKind::kMcp) {
       const McpProblemSet& set = plan_.mcp_suites.at(job.suite - plan_.suites.size());
       return ReplayMcpOne(set, set.problems.at(job.problem), job.start, SolverFor(job.solver), job.solver,
-                          plan_.options, job.tolerance);
+                          options_, job.tolerance);
     }
     const ProblemSet& set = plan_.suites.at(job.suite);
     if (job.kind != JobKind::kGenericSparse) {
-      return ReplayOne(set, set.problems.at(job.problem), SolverFor(job.solver), job.solver, plan_.options,
+      return ReplayOne(set, set.problems.at(job.problem), SolverFor(job.solver), job.solver, options_,
                        job.kind == JobKind::kSweep ? "sweep" : "cold", job.tolerance);
     }
     auto it = sparse_.find(job.suite);
     if (it == sparse_.end()) it = sparse_.emplace(job.suite, SparseCopy(set)).first;
     return ReplayOne(it->second, it->second.problems.at(job.problem), SolverFor(job.solver), job.solver,
-                     plan_.options, "cold", job.tolerance);
+                     options_, "cold", job.tolerance);
   }
 
   std::string NotRunMessage(const BenchJob& job) const {
@@ -166,7 +196,15 @@ class ShardRunner {
     return message;
   }
 
+  // A job of a backend past its budget: no verdict, mode "cut".
   ReplayRecord NotRunRecord(const BenchJob& job) const {
+    ReplayRecord r = UnjudgedRecord(job);
+    r.mode = kCutMode;
+    r.status = SolveStatus::kNotRun;
+    return r;
+  }
+
+  ReplayRecord UnjudgedRecord(const BenchJob& job) const {
     if (job.kind == JobKind::kAvi) {
       const AviProblemSet& set = AviSuiteOf(job);
       return AviNotRunRecord(set, set.problems.at(job.problem), job.solver, job.tolerance, NotRunMessage(job));
@@ -221,6 +259,11 @@ class ShardRunner {
         if (n.rfind("siconos-", 0) != 0) so.solvers.emplace_back(n);
       }
     }
+    if (plan_.request.job_budget_seconds > 0.0) {
+      // Budgeted (not --full): the work-precision sweep stops one halving of h earlier, which halves the study (each
+      // halving doubles the steps of every run); the diagrams keep five points per backend.
+      so.refinements = std::min(so.refinements, kBudgetedStepperRefinements);
+    }
     if (plan_.request.quick) {
       so.warm_scenes = {"sign", "galias-yu-2007"};
       so.precision_scenes = {"galias-yu-2007"};
@@ -253,6 +296,7 @@ class ShardRunner {
 
   const BenchPlan& plan_;
   BenchProgress* progress_;
+  const ReplayOptions options_;  // plan_.options with the job budget applied (BudgetedOptions)
   HostActivity activity_;
   std::map<std::string, std::unique_ptr<Solver>> solvers_;
   std::map<std::size_t, ProblemSet> sparse_;
@@ -281,11 +325,14 @@ ShardSummary RunShard(const BenchPlan& plan, ShardSelection shard, const std::se
   }
   ShardRunner runner(plan, progress);
   ShardSummary summary;
+  double estimated_total = 0.0, estimated_done = 0.0;
+  for (const BenchJob* job : todo) estimated_total += job->estimate;
   for (const BenchJob* job : todo) {
     const JobLine line = runner.Run(*job);
     if (sink) sink(line);
     ++summary.jobs_run;
-    if (progress) progress->JobFinished(summary.jobs_run, todo.size(), JobLabel(*job));
+    estimated_done += job->estimate;
+    if (progress) progress->JobFinished(summary.jobs_run, todo.size(), JobLabel(*job), estimated_done, estimated_total);
   }
   summary.skipped = runner.Skipped();
   return summary;

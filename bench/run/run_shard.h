@@ -18,13 +18,19 @@ namespace smcbench {
 class BenchProgress {
  public:
   virtual ~BenchProgress() = default;
-  // After each job: finished of total jobs of this call, and what the job was ("suite problem[@start] backend").
-  virtual void JobFinished(std::size_t /*finished*/, std::size_t /*total*/, const std::string& /*what*/) {}
+  // After each job: finished of total jobs of this call, what the job was ("suite problem[@start] backend"), and
+  // the estimated seconds (BenchJob::estimate) of the jobs finished and of all jobs of this call (for an ETA).
+  virtual void JobFinished(std::size_t /*finished*/, std::size_t /*total*/, const std::string& /*what*/,
+                           double /*estimated_done*/, double /*estimated_total*/) {}
   // A phase inside one long job (the time-stepper studies' scenes): what runs now.
   virtual void Phase(const std::string& /*what*/) {}
   // One line for the user (what the stepper study took).
   virtual void Message(const std::string& /*line*/) {}
 };
+
+// The work-precision refinements of the time-stepper studies in a run with a job budget (StepperStudyOptions has 6:
+// h down to h/32; 5 stop at h/16 and take half the time).
+inline constexpr int kBudgetedStepperRefinements = 5;
 
 // Which share of a plan's jobs a process runs: shard index (0-based) of count (AssignShards, bench/replay/jobs.h).
 struct ShardSelection {
@@ -50,8 +56,11 @@ using JobLineSink = std::function<void(const JobLine& line)>;
 
 // Runs every job of plan in shard that is not in done (job indices), in the job list's order, and gives each
 // finished job's line to sink. A backend whose jobs on a suite took plan.request.backend_budget_seconds (when > 0,
-// counted in this call) gets its remaining cold jobs there as not-run records (status time limit, verdict failed,
-// a message) and its sweep jobs skipped (a line without record). InvalidInputError for a shard outside the count.
+// counted in this call) gets its remaining cold and warm jobs there as cut records (mode "cut", status not_run, a
+// message naming the budget: no verdict) and its sweep jobs skipped (a line without record). With
+// plan.request.job_budget_seconds below the time limit, a cold, sweep, MCP or AVI job's solves run under it and a
+// solve it stopped cuts the job the same way; warm jobs get plan.request.sequence_budget_seconds
+// (ReplayWarmSequence). InvalidInputError for a shard outside the count.
 ShardSummary RunShard(const BenchPlan& plan, ShardSelection shard, const std::set<std::size_t>& done,
                       const JobLineSink& sink, BenchProgress* progress = nullptr);
 

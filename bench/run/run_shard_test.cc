@@ -115,9 +115,59 @@ TEST(RunShard, WarmJobsReplayTheirSequencesOrAreNotRunPastTheBudget) {
   for (const auto& [index, line] : RunLines(plan, {}, {})) {
     if (plan.jobs[index].kind != JobKind::kWarm) continue;
     ASSERT_TRUE(line.has_warm) << line.id;
-    EXPECT_EQ(line.warm.record.status, SolveStatus::kTimeLimit) << line.id;
+    EXPECT_EQ(line.warm.record.status, SolveStatus::kNotRun) << line.id;
+    EXPECT_EQ(line.warm.record.mode, kCutMode) << line.id;
     EXPECT_THAT(line.warm.record.message, HasSubstr("spent its budget of 1e-12 s on suite tiny"));
   }
+}
+
+// The per-job budgets: a warm sequence past the sequence budget is cut after its first step; a solve stopped by a
+// job budget below the time limit cuts its job (newton checks its clock before any iteration). Cut records have
+// mode "cut" and no verdict.
+TEST(RunShard, JobAndSequenceBudgetsCutTheJobsAndSaySo) {
+  BenchPlan plan = TinyPlan();
+  WarmSequence sequence = TrajectoryWarmSequences("tiny", /*quick=*/true).front();  // P-matrix relay, m = 8
+  CertifyWarmSequence(&sequence);
+  plan.warm_sequences = {{sequence}};
+  JobListRequest request;
+  request.solvers = plan.solvers;
+  request.warm = &plan.warm_sequences;
+  plan.jobs = ListBenchJobs(plan.suites, plan.options, request);
+  plan.request.sequence_budget_seconds = 1e-12;
+  int warm = 0;
+  for (const auto& [index, line] : RunLines(plan, {}, {})) {
+    if (plan.jobs[index].kind != JobKind::kWarm) continue;
+    ++warm;
+    EXPECT_EQ(line.warm.record.mode, kCutMode) << line.id;
+    EXPECT_EQ(line.warm.record.status, SolveStatus::kNotRun) << line.id;
+    EXPECT_THAT(line.warm.record.message, HasSubstr("cut after 1 of 8 steps: sequence budget of 1e-12 s spent"));
+  }
+  EXPECT_EQ(warm, 3);
+
+  BenchRequest newton;
+  newton.suites = {"tiny"};
+  newton.solvers = {"newton"};
+  newton.quick = true;
+  newton.repetitions = 1;
+  newton.job_budget_seconds = 1e-9;
+  newton.calibrate = false;
+  BenchPlan budgeted = MakeBenchPlan(newton);
+  // One problem no solve ends within a nanosecond (the tiny suite's are solved before newton first reads its clock):
+  // the m = 64 P-matrix LCP that starts the families trajectory.
+  budgeted.suites[0].problems = {TrajectoryWarmSequences("families", /*quick=*/true).back().steps.front()};
+  JobListRequest one;
+  one.solvers = budgeted.solvers;
+  budgeted.jobs = ListBenchJobs(budgeted.suites, budgeted.options, one);
+  int cold = 0;
+  for (const auto& [index, line] : RunLines(budgeted, {}, {})) {
+    if (budgeted.jobs[index].kind != JobKind::kCold) continue;
+    ++cold;
+    ASSERT_TRUE(line.has_record) << line.id;
+    EXPECT_EQ(line.record.mode, kCutMode) << line.id;
+    EXPECT_EQ(line.record.status, SolveStatus::kNotRun) << line.id;
+    EXPECT_THAT(line.record.message, HasSubstr("job budget of 1e-09 s spent (--job-budget; the time limit is 10 s)"));
+  }
+  EXPECT_EQ(cold, 1);
 }
 
 TEST(RunShard, ABackendPastItsBudgetIsNotRunOnTheRestOfTheSuite) {
@@ -137,8 +187,8 @@ TEST(RunShard, ABackendPastItsBudgetIsNotRunOnTheRestOfTheSuite) {
     ASSERT_TRUE(line.has_record) << job.id;
     if (line.record.message.rfind("not run: ", 0) == 0) {
       ++not_run[job.solver];
-      EXPECT_EQ(line.record.status, SolveStatus::kTimeLimit) << job.id;
-      EXPECT_EQ(line.record.verdict, Verdict::kFailed) << job.id;
+      EXPECT_EQ(line.record.status, SolveStatus::kNotRun) << job.id;
+      EXPECT_EQ(line.record.mode, kCutMode) << job.id;  // no verdict: the report counts it nowhere
       EXPECT_EQ(line.record.samples, 0) << job.id;
       EXPECT_THAT(line.record.message, HasSubstr(job.solver + " spent its budget of 1e-12 s on suite tiny"));
     } else {

@@ -5,6 +5,7 @@
 #include <CLI/CLI.hpp>
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <ctime>
 #include <iostream>
@@ -15,6 +16,7 @@
 
 #include "bench/replay/jobs.h"
 #include "bench/replay/results_io.h"
+#include "bench/replay/warm_track.h"
 #include "bench/run/bench_plan.h"
 #include "bench/run/run_shard.h"
 #include "problems/io/data_dirs.h"
@@ -50,6 +52,21 @@ bool GlobMatch(std::string_view pattern, std::string_view text) {
   return p == pattern.size();
 }
 
+std::string FormatEta(double elapsed_seconds, double estimated_done, double estimated_total) {
+  if (!(estimated_done > 0.0) || !(elapsed_seconds >= 0.0)) return "ETA ?";
+  const double left = std::max(0.0, elapsed_seconds * (estimated_total - estimated_done) / estimated_done);
+  const long s = std::lround(left);
+  char text[48];
+  if (s < 60) {
+    std::snprintf(text, sizeof text, "ETA %lds", s);
+  } else if (s < 3600) {
+    std::snprintf(text, sizeof text, "ETA %ldm%02lds", s / 60, s % 60);
+  } else {
+    std::snprintf(text, sizeof text, "ETA %ldh%02ldm", s / 3600, (s % 3600) / 60);
+  }
+  return text;
+}
+
 // ------------------------------------------------------------------------------------------------------------
 
 struct BenchCommand::Flags {
@@ -61,6 +78,8 @@ struct BenchCommand::Flags {
   double tol = 1e-10, time_limit = 10.0;
   // Seconds one backend may spend on one suite before its remaining problems there are skipped (0: no limit).
   double backend_budget = 60.0;
+  double job_budget = kDefaultJobBudgetSeconds, sequence_budget = kDefaultSequenceBudgetSeconds;
+  bool full = false;  // no budget at all: the full campaign
   double progress_every = 5.0;  // seconds between progress lines when stderr is not a terminal (0: none)
   // --shard K/N (empty: the whole run), --resume DIR (empty: a fresh run), --list-jobs.
   std::string shard, resume;
@@ -100,6 +119,19 @@ BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
                      "seconds one backend may spend on one suite (default 60, 0: no limit); past it the backend's "
                      "remaining problems of that suite are skipped and recorded as time limit, with a message")
       ->check(NonNegativeNumber());
+  bench_->add_option("--job-budget", f.job_budget,
+                     "seconds one cold job (problem x backend, a sweep rung, an MCP or AVI job) may take (default 1, "
+                     "0: no limit): its solves run under min(--time-limit, S) and its timed samples stop after S/2; a "
+                     "solve stopped by it cuts the job, recorded with mode cut (no verdict: neither solved nor failed)")
+      ->check(NonNegativeNumber());
+  bench_->add_option("--sequence-budget", f.sequence_budget,
+                     "seconds one warm sequence x backend may take (default 2, 0: no limit): its untimed pass stops "
+                     "after the step that spent it and the record says 'cut after N of M steps' (mode cut, no "
+                     "verdict); a pass over S/2 is timed once")
+      ->check(NonNegativeNumber());
+  bench_->add_flag("--full", f.full, "the full campaign: no budget (--job-budget 0 --sequence-budget 0 "
+                                     "--backend-budget 0): every job runs to its time limit, every sequence to its "
+                                     "end; tools/bench.sh --full");
   bench_->add_option("--progress-every", f.progress_every, "seconds between progress lines on stderr when it is "
                                                            "not a terminal (default 5, 0: none)")
       ->check(NonNegativeNumber());
@@ -154,20 +186,21 @@ class Progress : public BenchProgress {
   void Update(std::size_t done, std::size_t total, const std::string& what) {
     if (total == 0) return;
     const double elapsed = std::chrono::duration<double>(Clock::now() - start_).count();
+    const std::string eta = FormatEta(elapsed, estimated_done_, estimated_total_);
     if (!terminal_) {
       if (!(every_ > 0.0) || std::chrono::duration<double>(Clock::now() - last_line_).count() < every_) return;
       last_line_ = Clock::now();
-      char line[240];
-      std::snprintf(line, sizeof line, "bench: %zu/%zu (%zu%%) after %.0f s: %.160s", done, total,
-                    100 * done / total, elapsed, what.c_str());
+      char line[260];
+      std::snprintf(line, sizeof line, "bench: %zu/%zu (%zu%%) after %.0f s, %s: %.160s", done, total,
+                    100 * done / total, elapsed, eta.c_str(), what.c_str());
       err_ << line << "\n" << std::flush;
       return;
     }
     if (elapsed < 2.0 && done < total) return;  // short runs stay quiet
     const int width = 30, filled = static_cast<int>(width * done / total);
-    char line[160];
-    std::snprintf(line, sizeof line, "\r[%s%s] %3zu%% %.0fs %-60.60s", std::string(filled, '#').c_str(),
-                  std::string(width - filled, '.').c_str(), 100 * done / total, elapsed, what.c_str());
+    char line[180];
+    std::snprintf(line, sizeof line, "\r[%s%s] %3zu%% %.0fs %-12s %-50.50s", std::string(filled, '#').c_str(),
+                  std::string(width - filled, '.').c_str(), 100 * done / total, elapsed, eta.c_str(), what.c_str());
     err_ << line << std::flush;
   }
   // A phase with no count (the time-stepper studies): the bar shows it half way, a line says what runs.
@@ -178,7 +211,10 @@ class Progress : public BenchProgress {
   void Finish() {
     if (terminal_) err_ << "\r" << std::string(110, ' ') << "\r" << std::flush;
   }
-  void JobFinished(std::size_t finished, std::size_t total, const std::string& what) override {
+  void JobFinished(std::size_t finished, std::size_t total, const std::string& what, double estimated_done,
+                   double estimated_total) override {
+    estimated_done_ = estimated_done;
+    estimated_total_ = estimated_total;
     Update(finished, total, what);
   }
   void Phase(const std::string& what) override { Note(what); }
@@ -190,6 +226,7 @@ class Progress : public BenchProgress {
   bool terminal_;
   double every_;
   Clock::time_point start_, last_line_;
+  double estimated_done_ = 0.0, estimated_total_ = 0.0;  // BenchJob::estimate of the jobs run, of all (the ETA)
 };
 
 // The --allow-wrong value naming every adapter to another library (siconos-*, bullet-*, dart-*: SolverInfo::external),
@@ -268,7 +305,9 @@ BenchRequest MakeRequest(const BenchCommand::Flags& f) {
   request.tolerance = f.tol;
   request.time_limit_seconds = f.time_limit;
   request.repetitions = f.repetitions;
-  request.backend_budget_seconds = f.backend_budget;
+  request.backend_budget_seconds = f.full ? 0.0 : f.backend_budget;
+  request.job_budget_seconds = f.full ? 0.0 : f.job_budget;
+  request.sequence_budget_seconds = f.full ? 0.0 : f.sequence_budget;
   request.quick = f.quick;
   request.polish = !f.no_polish;
   request.stepper = f.stepper      ? StepperStudyChoice::kAlways
@@ -295,7 +334,15 @@ std::string DefaultOutputFolder() {
 void PrintSummaryTable(const BenchResults& results, double time_limit, std::ostream& out) {
   out << "| suite | backend | problems | solved | refused | failed | wrongly claimed | inaccurate | wrongly refused "
          "| SGM time |\n|---|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
-  for (const SuiteResults& suite : results.suites) {
+  std::size_t cut = 0;
+  for (const SuiteResults& full : results.suites) {
+    // Records cut by a budget have no verdict: they count in no column (the report lists them).
+    SuiteResults suite = full;
+    const auto is_cut = [](const ReplayRecord& r) { return r.mode == kCutMode; };
+    auto& records = suite.replay.records;
+    cut += static_cast<std::size_t>(std::count_if(records.begin(), records.end(), is_cut));
+    records.erase(std::remove_if(records.begin(), records.end(), is_cut), records.end());
+    for (const WarmRecord& w : suite.warm) cut += is_cut(w.record);
     const std::vector<BackendSummary> summary = SummarizeSuite(suite, time_limit);
     for (const BackendSummary& b : summary) {
       out << "| " << suite.suite << " | " << b.solver << " | " << b.problems << " | " << b.solved << " | "
@@ -306,6 +353,10 @@ void PrintSummaryTable(const BenchResults& results, double time_limit, std::ostr
                                         : FormatDuration(1e9 * b.shifted_geomean))
           << " |\n";
     }
+  }
+  if (cut > 0) {
+    out << cut << " job" << (cut == 1 ? "" : "s") << " cut by a time budget (mode cut: no verdict, in no column "
+        << "above; --full runs everything)\n";
   }
 }
 
@@ -339,14 +390,15 @@ void PrintJobs(const std::vector<BenchJob>& jobs, const std::vector<int>& shard,
   for (const BenchJob& job : jobs) {
     if (only_shard >= 0 && shard[job.index] != only_shard) continue;
     char cost[32];
-    std::snprintf(cost, sizeof cost, "%.3g", job.cost);
+    std::snprintf(cost, sizeof cost, "%.3g", job.estimate);
     out << job.index + 1 << '\t' << shard[job.index] + 1 << '/' << shards << '\t' << cost << '\t'
         << ToString(job.kind) << '\t' << job.id << '\n';
-    total += job.cost;
+    total += job.estimate;
     ++listed;
   }
-  char line[160];
-  std::snprintf(line, sizeof line, "# %zu of %zu jobs, estimated %.3g s\n", listed, jobs.size(), total);
+  char line[240];
+  std::snprintf(line, sizeof line, "# %zu of %zu jobs, estimated %.3g s (each backend's job costs measured on this "
+                "machine by a probe; building and certifying the suites not included)\n", listed, jobs.size(), total);
   out << line;
 }
 }  // namespace
@@ -413,7 +465,7 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
   for (const BudgetSkip& skip : summary.skipped) {
     err << "bench: " << skip.solver << " skipped " << skip.skipped << " of " << skip.problems
         << (skip.mcp ? " problem x start of suite " : " problems of suite ") << skip.suite
-        << " after spending its budget of " << f.backend_budget << " s (--backend-budget)\n";
+        << " after spending its budget of " << f.backend_budget << " s (--backend-budget; recorded as cut)\n";
   }
 
   const BenchResults results = AssembleResults(manifest, done);

@@ -23,6 +23,11 @@ namespace smcbench {
 // `bench --allow-wrong 'siconos-*'` names backends.
 bool GlobMatch(std::string_view pattern, std::string_view text);
 
+// The progress line's time left: elapsed seconds scaled by the estimated seconds still to run over those run so far
+// (each job's BenchJob::cost, so a slow job ahead counts for what it costs), as "ETA 1m05s" ("ETA 42s", "ETA
+// 1h02m"); "ETA ?" before any estimated work is done. Exposed for its test.
+std::string FormatEta(double elapsed_seconds, double estimated_done, double estimated_total);
+
 // `bench`'s exit status when some result is wrong (Verdict IsWrong) on a backend not excused by --allow-wrong.
 inline constexpr int kExitWrongAnswers = 3;
 

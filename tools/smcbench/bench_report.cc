@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "bench/figures/gnuplot_figure.h"
+#include "bench/replay/warm_track.h"
 #include "problems/avi_library/avi_library.h"
 #include "solvers/core/duration_text.h"
 #include "solvers/registry/registry.h"
@@ -1376,6 +1377,29 @@ SuiteResults WithoutCachedRecords(const SuiteResults& suite, std::vector<std::st
   return cold;
 }
 
+// The suite without its records cut by a time budget (mode "cut": bench/replay/warm_track.h), which have no verdict
+// and so belong in no table; *cut receives them.
+SuiteResults WithoutCutRecords(const SuiteResults& suite, std::vector<ReplayRecord>* cut) {
+  SuiteResults kept = suite;
+  const auto is_cut = [](const ReplayRecord& r) { return r.mode == kCutMode; };
+  for (const auto& r : suite.replay.records) if (is_cut(r)) cut->push_back(r);
+  for (const auto& w : suite.warm) if (is_cut(w.record)) cut->push_back(w.record);
+  auto& records = kept.replay.records;
+  records.erase(std::remove_if(records.begin(), records.end(), is_cut), records.end());
+  kept.warm.erase(std::remove_if(kept.warm.begin(), kept.warm.end(), [&](const WarmRecord& w) {
+    return is_cut(w.record); }), kept.warm.end());
+  return kept;
+}
+
+void WriteCutNote(std::ostream& md, const std::vector<ReplayRecord>& cut) {
+  if (cut.empty()) return;
+  md << "<details><summary>Cut by a time budget: " << cut.size() << " job(s), neither solved nor failed and in no "
+     << "table above (`bench --full` runs them to the end)</summary>\n\n| backend | problem or sequence | how far "
+     << "|\n|---|---|---|\n";
+  for (const ReplayRecord& r : cut) md << "| " << r.solver << " | " << Instance(r) << " | " << r.message << " |\n";
+  md << "\n</details>\n\n";
+}
+
 void WriteCachedNote(std::ostream& md, const std::vector<std::string>& cached) {
   if (cached.empty()) return;
   md << "Left out of the tables and profiles above: " << cached.size()
@@ -1497,8 +1521,10 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
   WriteHeader(md, dir, results, env);
   for (const SuiteResults& suite : results.suites) {
     std::vector<std::string> cached;
-    WriteSuite(md, WithoutCachedRecords(suite, &cached), dir, plots);
+    std::vector<ReplayRecord> cut;
+    WriteSuite(md, WithoutCachedRecords(WithoutCutRecords(suite, &cut), &cached), dir, plots);
     WriteCachedNote(md, cached);
+    WriteCutNote(md, cut);
   }
   if (results.has_stepper) {
     WriteWarmStart(md, results.stepper);
