@@ -12,6 +12,7 @@
 #include <numeric>
 #include <set>
 
+#include "bench/replay/floor.h"
 #include "solvers/core/number_text.h"
 
 namespace smcbench {
@@ -32,7 +33,7 @@ std::uint64_t Fnv1a64(const std::string& text) {
 
 JobKind JobKindFromText(const std::string& text, const std::string& where) {
   for (JobKind k : {JobKind::kCold, JobKind::kGenericSparse, JobKind::kSweep, JobKind::kStepper, JobKind::kMcp,
-                    JobKind::kWarm, JobKind::kAvi}) {
+                    JobKind::kWarm, JobKind::kAvi, JobKind::kFloor}) {
     if (text == ToString(k)) return k;
   }
   throw InvalidInputError(where + ": unknown job kind '" + text + "'");
@@ -45,11 +46,14 @@ BackendCost CostOf(const JobListRequest& request, const std::string& solver) {
 
 std::string JobId(const BenchJob& job) {
   if (job.kind == JobKind::kStepper) return "stepper";
-  if (job.kind == JobKind::kMcp) {
-    return job.suite_name + "|" + job.problem_id + "@" + job.start_label + "|" + job.solver + "|cold|" +
+  const char* mode = job.kind == JobKind::kSweep   ? "sweep"
+                     : job.kind == JobKind::kWarm  ? "warm"
+                     : job.kind == JobKind::kFloor ? kFloorSolver
+                                                   : "cold";
+  if (job.kind == JobKind::kMcp || (job.kind == JobKind::kFloor && !job.start_label.empty())) {
+    return job.suite_name + "|" + job.problem_id + "@" + job.start_label + "|" + job.solver + "|" + mode + "|" +
            NumberText(job.tolerance);
   }
-  const char* mode = job.kind == JobKind::kSweep ? "sweep" : job.kind == JobKind::kWarm ? "warm" : "cold";
   return job.suite_name + "|" + job.problem_id + "|" + job.solver + "|" + mode + "|" + NumberText(job.tolerance);
 }
 
@@ -64,6 +68,7 @@ const char* ToString(JobKind kind) {
     case JobKind::kMcp: return "mcp";
     case JobKind::kWarm: return "warm";
     case JobKind::kAvi: return "avi";
+    case JobKind::kFloor: return "floor";
   }
   return "?";
 }
@@ -176,6 +181,9 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
     for (std::size_t p = 0; p < n; ++p) {
       for (const std::string& solver : request.solvers) add(JobKind::kCold, s, p, solver, options.tolerance);
     }
+    if (request.floor && !request.solvers.empty()) {
+      for (std::size_t p = 0; p < n; ++p) add(JobKind::kFloor, s, p, kFloorSolver, options.tolerance);
+    }
     if (request.generic_sparse_path && suites[s].name == "paper") {
       for (std::size_t p = 0; p < n; ++p) add(JobKind::kGenericSparse, s, p, kGenericSparsePath, options.tolerance);
     }
@@ -185,15 +193,21 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
       }
     }
   }
+  // The backends of the MCP (AVI) jobs, then the floor when it is asked for and some backend runs there.
+  const auto with_floor = [&](std::vector<std::string> names) {
+    if (request.floor && !names.empty()) names.push_back(kFloorSolver);
+    return names;
+  };
+  const std::vector<std::string> mcp_jobs = with_floor(request.mcp_solvers), avi_jobs = with_floor(request.avi_solvers);
   for (std::size_t k = 0; k < mcp_suites.size(); ++k) {
     const McpProblemSet& set = mcp_suites[k];
     for (std::size_t p = 0; p < set.problems.size(); ++p) {
       const McpLibraryProblem& problem = set.problems[p];
       for (std::size_t start = 0; start < problem.starts.size(); ++start) {
-        for (const std::string& solver : request.mcp_solvers) {
+        for (const std::string& solver : mcp_jobs) {
           BenchJob job;
           job.index = jobs.size();
-          job.kind = JobKind::kMcp;
+          job.kind = solver == kFloorSolver ? JobKind::kFloor : JobKind::kMcp;
           job.suite = suites.size() + k;
           job.problem = p;
           job.start = start;
@@ -213,10 +227,10 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
   for (std::size_t k = 0; k < avi_suites.size(); ++k) {
     const AviProblemSet& set = avi_suites[k];
     for (std::size_t p = 0; p < set.problems.size(); ++p) {
-      for (const std::string& solver : request.avi_solvers) {
+      for (const std::string& solver : avi_jobs) {
         BenchJob job;
         job.index = jobs.size();
-        job.kind = JobKind::kAvi;
+        job.kind = solver == kFloorSolver ? JobKind::kFloor : JobKind::kAvi;
         job.suite = suites.size() + mcp_suites.size() + k;
         job.problem = p;
         job.suite_name = set.name;
@@ -425,7 +439,7 @@ json RunManifestToJson(const RunManifest& m) {
     j["jobs"].push_back({{"id", b.id}, {"kind", ToString(b.kind)}, {"suite", b.suite}, {"problem", b.problem},
                          {"suite_name", b.suite_name}, {"problem_id", b.problem_id}, {"solver", b.solver},
                          {"tolerance", b.tolerance}, {"cost", b.cost}, {"shard", m.job_shard.at(i) + 1}});
-    if (b.kind == JobKind::kMcp) j["jobs"].back()["start"] = {{"index", b.start}, {"label", b.start_label}};
+    if (b.kind == JobKind::kMcp || !b.start_label.empty()) j["jobs"].back()["start"] = {{"index", b.start}, {"label", b.start_label}};
   }
   return j;
 }
@@ -460,7 +474,7 @@ RunManifest RunManifestFromJson(const json& j, const std::string& where) {
       job.tolerance = b.at("tolerance").get<double>();
       job.cost = b.at("cost").get<double>();
       job.estimate = job.cost;
-      if (job.kind == JobKind::kMcp) {
+      if (job.kind == JobKind::kMcp || b.contains("start")) {  // an MCP job, or an MCP problem's floor job
         job.start = b.at("start").at("index").get<std::size_t>();
         job.start_label = b.at("start").at("label").get<std::string>();
       }
@@ -559,7 +573,10 @@ BenchResults AssembleResults(const RunManifest& m, const std::map<std::size_t, J
     }
     if (!line.has_record) continue;
     ReplayResults& replay = out.suites[job.suite].replay;
-    (job.kind == JobKind::kSweep ? replay.sweep : replay.records).push_back(line.record);
+    (job.kind == JobKind::kSweep   ? replay.sweep
+     : job.kind == JobKind::kFloor ? replay.floor
+                                   : replay.records)
+        .push_back(line.record);
   }
   return out;
 }

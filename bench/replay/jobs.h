@@ -33,6 +33,7 @@ enum class JobKind {
   kMcp,            // nonlinear MCP × start × MCP backend at the run's tolerance (ReplayMcpOne, mode "cold")
   kWarm,           // warm sequence × backend at the run's tolerance (ReplayWarmSequence, mode "warm")
   kAvi,            // AVI × box backend through SolveAvi at the run's tolerance (ReplayAviOne, mode "cold")
+  kFloor,          // one factorization of the problem's matrix, timed as a cold solve (bench/replay/floor.h)
 };
 const char* ToString(JobKind kind);
 
@@ -113,10 +114,13 @@ struct JobListRequest {
   // Each backend's costs for the estimates (a backend not named: BackendCost's defaults), and the budgets.
   std::map<std::string, BackendCost> costs;
   JobBudgets budgets;
+  // Add one floor job (solver kFloorSolver, bench/replay/floor.h) per box problem, per MCP problem × start and per
+  // AVI problem that has jobs, after that problem's (or suite's) backend jobs.
+  bool floor = false;
 };
 
 // Every job of a run, in the order a single run writes its results: per suite the cold jobs (problem, then
-// backend), the generic sparse path (problem), the sweep (SweepProblemIndices, backend, tolerance); then per MCP
+// backend), the floor jobs (problem; with request.floor), the generic sparse path (problem), the sweep (SweepProblemIndices, backend, tolerance); then per MCP
 // suite its jobs (problem, start, MCP backend; BenchJob::suite counts on after the box suites: suites.size() + k);
 // then per AVI suite its jobs (problem, box backend; BenchJob::suite counts on after the MCP suites:
 // suites.size() + mcp_suites.size() + k); then the warm jobs (box suite, sequence, backend); then the stepper job.

@@ -99,6 +99,10 @@ struct ReplayRecord {
 struct ReplayResults {
   std::vector<ReplayRecord> records;        // mode "cold": one per problem × backend
   std::vector<ReplayRecord> sweep;          // mode "sweep": every backend at each of kSweepTolerances
+  // Mode "floor": one per problem (MCP: problem × start), the time of one factorization of its matrix measured with
+  // the cold protocol (bench/replay/floor.h). Never a backend: kept apart from records so no count or ranking sees
+  // it; empty in results written before the floor (the report then says it was not measured).
+  std::vector<ReplayRecord> floor;
 };
 
 // The tolerances of the tolerance sweep (ReplayOptions::tolerance_sweep_problems), loosest first: the report's

@@ -318,6 +318,10 @@ json ToJson(const BenchResults& results, const json& environment) {
     for (const auto& r : s.replay.records) suite["records"].push_back(RecordJson(r));
     suite["sweep"] = json::array();
     for (const auto& r : s.replay.sweep) suite["sweep"].push_back(RecordJson(r));
+    if (!s.replay.floor.empty()) {  // since the floor (bench/replay/floor.h); absent: not measured
+      suite["floor"] = json::array();
+      for (const auto& r : s.replay.floor) suite["floor"].push_back(RecordJson(r));
+    }
     if (!s.warm.empty()) {
       suite["warm"] = json::array();
       for (const auto& r : s.warm) suite["warm"].push_back(WarmRecordToJson(r));
@@ -344,6 +348,9 @@ BenchResults BenchResultsFromJson(const json& j) {
       suite.checksum = s.value("checksum", std::string());
       for (const json& r : s.at("records")) suite.replay.records.push_back(RecordFromJson(r));
       for (const json& r : s.at("sweep")) suite.replay.sweep.push_back(RecordFromJson(r));
+      if (s.contains("floor")) {  // written since the floor
+        for (const json& r : s.at("floor")) suite.replay.floor.push_back(RecordFromJson(r));
+      }
       if (s.contains("warm")) {  // written since the warm track
         for (const json& r : s.at("warm")) suite.warm.push_back(WarmRecordFromJson(r));
       }

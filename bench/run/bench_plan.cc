@@ -299,6 +299,7 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
   }
   plan.stepper = IncludesStepperStudy(plan.suite_names, request.stepper);
   jobs.stepper = plan.stepper;
+  jobs.floor = true;  // the report's floor: one factorization per problem (bench/replay/floor.h)
   if (!plan.mcp_suites.empty()) {
     jobs.mcp_solvers = BackendsWith(plan.solvers, &SolverInfo::mcp);
     if (jobs.mcp_solvers.empty() && log) {

@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "bench/replay/avi_replay.h"
+#include "bench/replay/floor.h"
 #include "bench/replay/mcp_replay.h"
 #include "bench/replay/stepper_study.h"
 #include "bench/replay/warm_track.h"
@@ -143,6 +144,7 @@ class ShardRunner {
   }
 
   bool OverBudget(const BenchJob& job) const {
+    if (job.kind == JobKind::kFloor) return false;  // a factorization: never a backend's budget
     const auto it = spent_.find({job.suite, job.solver});
     const double budget = plan_.request.backend_budget_seconds;
     return budget > 0.0 && it != spent_.end() && it->second >= budget;
@@ -168,6 +170,7 @@ class ShardRunner {
   }
 
   ReplayRecord Replay(const BenchJob& job) {
+    if (job.kind == JobKind::kFloor) return ReplayFloorJob(job);
     if (job.kind == JobKind::kAvi) {
       const AviProblemSet& set = AviSuiteOf(job);
       return ReplayAviOne(set, set.problems.at(job.problem), SolverFor(job.solver), job.solver, options_,
@@ -187,6 +190,20 @@ class ShardRunner {
     if (it == sparse_.end()) it = sparse_.emplace(job.suite, SparseCopy(set)).first;
     return ReplayOne(it->second, it->second.problems.at(job.problem), SolverFor(job.solver), job.solver,
                      options_, "cold", job.tolerance);
+  }
+
+  // The floor of the job's problem (bench/replay/floor.h), for a box, MCP or AVI suite.
+  ReplayRecord ReplayFloorJob(const BenchJob& job) const {
+    if (job.suite < plan_.suites.size()) {
+      const ProblemSet& set = plan_.suites[job.suite];
+      return ReplayFloor(set, set.problems.at(job.problem), plan_.options);
+    }
+    if (job.suite < plan_.suites.size() + plan_.mcp_suites.size()) {
+      const McpProblemSet& set = plan_.mcp_suites.at(job.suite - plan_.suites.size());
+      return ReplayMcpFloor(set, set.problems.at(job.problem), job.start, plan_.options);
+    }
+    const AviProblemSet& set = AviSuiteOf(job);
+    return ReplayAviFloor(set, set.problems.at(job.problem), plan_.options);
   }
 
   std::string NotRunMessage(const BenchJob& job) const {
@@ -306,7 +323,7 @@ class ShardRunner {
 
 std::string JobLabel(const BenchJob& job) {
   if (job.kind == JobKind::kStepper) return "time-stepper studies";
-  const std::string start = job.kind == JobKind::kMcp ? "@" + job.start_label : "";
+  const std::string start = job.start_label.empty() ? "" : "@" + job.start_label;
   return job.suite_name + " " + job.problem_id + start + " " + job.solver;
 }
 

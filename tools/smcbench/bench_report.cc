@@ -19,6 +19,8 @@
 #include "problems/avi_library/avi_library.h"
 #include "solvers/core/duration_text.h"
 #include "solvers/registry/registry.h"
+#include "tools/smcbench/report_classes.h"
+#include "bench/replay/floor.h"
 
 namespace smcbench {
 namespace {
@@ -216,28 +218,7 @@ namespace {
 
 // The most common ending of a backend's records that are not correct (FailureReason).
 FailureReason MostCommonFailure(const std::vector<const ReplayRecord*>& not_correct) {
-  FailureReason reason;
-  std::vector<SolveStatus> order;
-  std::map<SolveStatus, int> by_status;
-  for (const ReplayRecord* r : not_correct) {
-    if (by_status[r->status]++ == 0) order.push_back(r->status);
-  }
-  for (SolveStatus s : order) {
-    if (by_status[s] > reason.count) reason.status = s, reason.count = by_status[s];
-  }
-  std::vector<std::string> messages;
-  std::map<std::string, int> by_message;
-  std::vector<double> times;
-  for (const ReplayRecord* r : not_correct) {
-    if (r->status != reason.status) continue;
-    if (by_message[r->message]++ == 0) messages.push_back(r->message);
-    times.push_back(r->time_median);
-  }
-  for (const std::string& m : messages) {
-    if (by_message[m] > reason.message_count) reason.message = m, reason.message_count = by_message[m];
-  }
-  reason.median_time = MedianDefined(times);
-  return reason;
+  return MostCommonFailureOf(not_correct);
 }
 
 }  // namespace
@@ -439,6 +420,9 @@ SuiteResults SizeBandSlice(const SuiteResults& suite, SizeBand band) {
     slice.replay.records.push_back(r);
     problems.insert(Instance(r));
   }
+  for (const ReplayRecord& r : suite.replay.floor) {
+    if (SizeBandOf(r.size) == band) slice.replay.floor.push_back(r);
+  }
   slice.problems = static_cast<int>(problems.size());
   return slice;
 }
@@ -551,6 +535,15 @@ void WriteHeader(std::ostream& md, const std::string& dir, const BenchResults& r
      << ", " << env.value("compiler", std::string("?"))
      << " " << env.value("build_type", std::string("")) << ", " << env.value("cpu", std::string("?")) << " ("
      << env.value("cores", 0) << " cores), " << env.value("date", std::string("")) << ".\n\n"
+     << SharedHostWarning(results)
+     << "The summary comes first; every table after it is defined in [the appendix](#appendix-the-verdict-and-the-"
+        "timing) (the verdict, the wrong answers, the SGM time), and [each backend's failures](#failures-per-"
+        "backend) are listed before it.\n\n";
+}
+
+// The appendix: the verdict and how times are measured (what the header said before the summary came first).
+void WriteVerdictAppendix(std::ostream& md, const BenchResults& results) {
+  md << "## Appendix: the verdict and the timing\n\n"
      << "**The verdict.** " << kVerdictInTwoSentences
      << " (docs/verdict.md says why each part is there.) Success = solved, or — on a problem known to have no "
         "solution — any non-solved status ('correctly refused'). The **wrong** answers, which must be 0: **wrongly "
@@ -569,8 +562,79 @@ void WriteHeader(std::ostream& md, const std::string& dir, const BenchResults& r
                           "active set, the reduced system solved directly), so an answer with the right active set "
                           "is exact whatever the tolerance; `smcbench bench --no-polish` times the raw algorithms."
                         : "**No polish** (`--no-polish`): the raw algorithms' answers.")
-     << "\n\n"
-     << SharedHostWarning(results);
+     << " The **floor** of a problem is one factorization of its matrix (bench/replay/floor.h: Cholesky when its "
+        "tags say SPD, else LU with partial pivoting; sparse ones for a sparse M; an MCP's Jacobian at the start, an "
+        "AVI's reduced system), timed in the same run with the same protocol as a cold solve; it is never a "
+        "backend and counts in no ranking.\n\n";
+}
+
+std::string FailureText(const FailureReason& f, int problems);
+
+// The summary: per problem class the fastest correct backend, the most reliable one and the gap to the floor
+// (SummarizeClasses), then per backend its failures and their most common cause (FailuresPerBackend).
+void WriteSummary(std::ostream& md, const BenchResults& results) {
+  const std::vector<ClassSummary> classes = SummarizeClasses(results);
+  if (classes.empty()) return;
+  bool floor = false;
+  for (const SuiteResults& s : results.suites) floor = floor || !s.replay.floor.empty();
+  md << "## Summary\n\nPer problem class (matrix class and bounds from the problems' tags × size band; every "
+        "suite's cold records pooled): the **fastest correct** backend (no wrong answer in the class, smallest SGM "
+        "time, a failure counted at the penalty), the **most reliable** (most correct answers, then fewest wrong), "
+        "and the fastest's median time over the **floor** (one factorization of the problem's matrix, n problems)"
+     << (floor ? "" : " — floor not measured in this run") << ".\n\n"
+     << "| class | size band | problems | fastest correct | its correct | its SGM time | fastest / floor | most "
+        "reliable | its correct | its wrong |\n|---|---|---|---|---|---|---|---|---|---|\n";
+  for (const ClassSummary& c : classes) {
+    md << "| " << ClassName(c.problem_class) << " | " << ToString(c.problem_class.band) << " | " << c.problems
+       << " | ";
+    if (c.fastest.empty()) {
+      md << "none (every backend gave a wrong answer) | | | |";
+    } else {
+      md << "**" << c.fastest << "** | " << c.fastest_correct << "/" << c.problems << " | "
+         << Seconds(c.fastest_sgm) << " | "
+         << (c.floor_instances ? G(c.fastest_over_floor) + "× (" + std::to_string(c.floor_instances) + ")"
+                               : std::string(floor ? "–" : "not measured"))
+         << " |";
+    }
+    md << " " << c.most_reliable << " | " << c.reliable_correct << "/" << c.problems << " | "
+       << Count(c.reliable_wrong) << " |\n";
+  }
+  md << "\nFailures per backend over the whole run (failed or wrong; the list of each is in [Failures per "
+        "backend](#failures-per-backend)):\n\n| backend | records | not correct | **wrong** | most common cause "
+        "|\n|---|---|---|---|---|\n";
+  for (const BackendFailures& b : FailuresPerBackend(results)) {
+    if (b.not_correct == 0) continue;
+    md << "| " << b.solver << " | " << b.records << " | " << b.not_correct << " | " << Count(b.wrong) << " | "
+       << FailureText(b.cause, b.not_correct) << " |\n";
+  }
+  std::vector<std::string> clean;
+  for (const BackendFailures& b : FailuresPerBackend(results)) {
+    if (b.not_correct == 0) clean.push_back(b.solver);
+  }
+  if (!clean.empty()) {
+    md << "\nNo failure: ";
+    for (std::size_t i = 0; i < clean.size(); ++i) md << (i ? ", " : "") << clean[i];
+    md << ".";
+  }
+  md << "\n\n";
+}
+
+// Per backend, every cold record that is not correct: problem (suite/instance), class, status, verdict, message.
+void WriteFailureList(std::ostream& md, const BenchResults& results) {
+  const std::vector<BackendFailures> all = FailuresPerBackend(results);
+  md << "## Failures per backend\n\nEvery cold record that is not correct (failed, or a wrong answer in bold), per "
+        "backend, in the order of the results.\n\n";
+  for (const BackendFailures& b : all) {
+    if (b.not_correct == 0) continue;
+    md << "### " << b.solver << ": " << b.not_correct << " of " << b.records << "\n\n| problem | class | status | "
+          "verdict | message |\n|---|---|---|---|---|\n";
+    for (const BackendFailures::Entry& e : b.entries) {
+      const bool wrong = e.verdict != Verdict::kFailed;
+      md << "| " << Cell(e.instance, 120) << " | " << e.problem_class << " | `" << ToString(e.status) << "` | "
+         << (wrong ? "**" : "") << ToString(e.verdict) << (wrong ? "**" : "") << " | " << Cell(e.message) << " |\n";
+    }
+    md << "\n";
+  }
 }
 
 // "3 unique, 2 non-unique": what the certified references prove, counted per problem (every backend's record
@@ -605,13 +669,52 @@ const char* const kPenaltyConvention =
     "10 s when no backend got it right: a failure never costs less than the slowest success (qpbenchmark's "
     "convention, with 10× the slowest correct time in place of the time limit).";
 
-// Per backend: verdict counts, success, SGM time and worst errors (SummarizeSuite). Backends that solved nothing
-// are listed apart (WriteSolvedNothing): their SGM would be the penalty alone.
+// A backend's time over the floor as a cell: the median of sorted ratios and their count, "–" when none.
+std::string FloorRatioCell(const std::vector<double>& sorted) {
+  if (sorted.empty()) return "–";
+  return G(MedianOfSorted(sorted)) + "× (" + std::to_string(sorted.size()) + ")";
+}
+
+// What the floor is, under a suite's first table: the factorizations timed and their times, or that the run
+// measured none (results written before the floor, or a run without box, MCP or AVI jobs).
+void WriteFloorLine(std::ostream& md, const SuiteResults& suite) {
+  if (suite.replay.floor.empty()) {
+    md << "Floor not measured in this run (no floor records in results.json): no time is given against one "
+          "factorization of M.\n\n";
+    return;
+  }
+  std::map<std::string, int> methods;  // "dense Cholesky" → problems
+  std::vector<double> times;
+  for (const ReplayRecord& r : suite.replay.floor) {
+    std::string method = r.message.substr(r.message.find(": ") == std::string::npos ? 0 : r.message.find(": ") + 2);
+    method = method.substr(0, method.find(" of a "));
+    ++methods[method];
+    if (r.samples > 0) times.push_back(r.time_median);
+  }
+  std::sort(times.begin(), times.end());
+  std::string list;
+  for (const auto& [method, count] : methods) list += (list.empty() ? "" : ", ") + method + " on " + std::to_string(count);
+  md << "**Floor** (column *time / floor*): one factorization of each problem's matrix (" << list
+     << "; an MCP's Jacobian at its start, an AVI's reduced box-MLCP), timed in this run with the cold protocol "
+        "(same repetitions, the median): what a direct method pays at least once. *time / floor* is a backend's "
+        "median, over the problems it got right, of its time over that problem's floor (n problems). Floor times: "
+        "median "
+     << (times.empty() ? "–" : Seconds(MedianOfSorted(times))) << " ["
+     << (times.empty() ? "–" : Seconds(times.front())) << " – " << (times.empty() ? "–" : Seconds(times.back()))
+     << "] over " << suite.replay.floor.size() << " problems.\n\n";
+}
+
+// Per backend: verdict counts, success, SGM time and worst errors (SummarizeSuite), and its time over the floor
+// when the run measured one. Backends that solved nothing are listed apart (WriteSolvedNothing): their SGM would be
+// the penalty alone.
 void WriteBackendTableOnly(std::ostream& md, const SuiteResults& suite) {
   const std::vector<BackendSummary> summary = SummarizeSuite(suite);
+  const std::map<std::string, double> floor = FloorTimes(suite);
   md << "| backend | solved | correctly refused | failed | **wrongly claimed** | **inaccurate** | **wrongly "
         "refused** | success | SGM time | worst residual (solved) | worst residual (eq.) | worst forward error "
-        "(solved) |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+        "(solved) |"
+     << (floor.empty() ? "" : " time / floor |") << "\n|---|---|---|---|---|---|---|---|---|---|---|---|"
+     << (floor.empty() ? "" : "---|") << "\n";
   for (const BackendSummary& b : summary) {
     if (SolvedNothing(b, summary)) continue;
     md << "| " << b.solver << " | " << b.solved << " | " << b.correctly_refused << " | " << b.failed << " | "
@@ -621,7 +724,9 @@ void WriteBackendTableOnly(std::ostream& md, const SuiteResults& suite) {
     // Nothing solved: blank; solved, but no problem with a unique reference: "–".
     if (b.solved > 0) md << G(b.worst_forward_error);
     if (b.forward_error_defined) md << " (" << b.forward_error_defined << " with z*)";
-    md << " |\n";
+    md << " |";
+    if (!floor.empty()) md << " " << FloorRatioCell(FloorRatios(suite.replay.records, floor, b.solver)) << " |";
+    md << "\n";
   }
   md << "\n";
 }
@@ -630,6 +735,7 @@ void WriteBackendTable(std::ostream& md, const SuiteResults& suite) {
   WriteBackendTableOnly(md, suite);
   md << kPenaltyConvention << " Worst residuals and forward error are over the solved answers (blank: none "
      << "solved; –: no solved problem has a unique certified reference).\n\n";
+  WriteFloorLine(md, suite);
 }
 
 // "size_limit on 50 of 50: "refused m > 12" (50×), median 24 µs": the reason a backend solved nothing.
@@ -700,21 +806,34 @@ void WriteStatusesAndClaims(std::ostream& md, const SuiteResults& suite) {
 void WriteBandWinners(std::ostream& md, const SuiteResults& suite) {
   const std::vector<BandWinner> winners = FastestCorrectPerBand(suite);
   if (winners.empty()) return;
+  const std::map<std::string, double> floor = FloorTimes(suite);
   md << "**Fastest correct backend per size band**: among the backends with no wrong answer in the band, those "
         "with the most correct answers, and of them the smallest SGM time over the band (penalty as above, from the "
-        "band's problems alone):\n\n| size band | problems | fastest correct | correct | SGM time | fastest on | "
-        "runner-up | its correct | its SGM time | runner-up / fastest |\n|---|---|---|---|---|---|---|---|---|---|\n";
+        "band's problems alone)"
+     << (floor.empty() ? "" : "; *fastest / floor*: its median time over the floor on the band's problems it got right")
+     << ":\n\n| size band | problems | fastest correct | correct | SGM time | fastest on | "
+        "runner-up | its correct | its SGM time | runner-up / fastest |"
+     << (floor.empty() ? "" : " fastest / floor |") << "\n|---|---|---|---|---|---|---|---|---|---|"
+     << (floor.empty() ? "" : "---|") << "\n";
   for (const BandWinner& w : winners) {
     md << "| " << ToString(w.band) << " | " << w.problems << " | ";
     if (w.solver.empty()) {
-      md << "none (every backend gave a wrong answer) | | | | | | | |\n";
+      md << "none (every backend gave a wrong answer) | | | | | | | |" << (floor.empty() ? "" : " |") << "\n";
       continue;
     }
     md << "**" << w.solver << "** | " << w.correct << "/" << w.problems << " | " << Seconds(w.shifted_geomean)
        << " | " << w.fastest_on << " | " << w.runner_up << " | "
        << (w.runner_up.empty() ? "" : std::to_string(w.runner_up_correct) + "/" + std::to_string(w.problems))
        << " | " << (w.runner_up.empty() ? "" : Seconds(w.runner_up_geomean)) << " | "
-       << (w.runner_up.empty() ? "" : G(w.runner_up_geomean / w.shifted_geomean) + "×") << " |\n";
+       << (w.runner_up.empty() ? "" : G(w.runner_up_geomean / w.shifted_geomean) + "×") << " |";
+    if (!floor.empty()) {
+      std::vector<ReplayRecord> band;
+      for (const ReplayRecord& r : suite.replay.records) {
+        if (SizeBandOf(r.size) == w.band) band.push_back(r);
+      }
+      md << " " << FloorRatioCell(FloorRatios(band, floor, w.solver)) << " |";
+    }
+    md << "\n";
   }
   md << "\n";
 }
@@ -1129,8 +1248,11 @@ std::string AviFamily(const std::string& id) {
 
 // Per backend: the verdicts and the median cold time over the AVIs it got right.
 void WriteAviBackends(std::ostream& md, const SuiteResults& suite) {
+  const std::map<std::string, double> floor = FloorTimes(suite);
   md << "| backend | AVIs | solved | correctly refused | **wrongly claimed** | **inaccurate** | **wrongly refused** | "
-        "failed | median time (correct) |\n|---|---:|---:|---:|---:|---:|---:|---:|---:|\n";
+        "failed | median time (correct) |"
+     << (floor.empty() ? "" : " time / floor |") << "\n|---|---:|---:|---:|---:|---:|---:|---:|---:|"
+     << (floor.empty() ? "" : "---:|") << "\n";
   for (const std::string& solver : Solvers(suite.replay.records)) {
     std::map<Verdict, int> count;
     std::vector<double> times;
@@ -1145,9 +1267,12 @@ void WriteAviBackends(std::ostream& md, const SuiteResults& suite) {
        << count[Verdict::kCorrectlyRefused] << " | " << Count(count[Verdict::kWronglyClaimed]) << " | "
        << Count(count[Verdict::kInaccurate]) << " | " << Count(count[Verdict::kWronglyRefused]) << " | "
        << count[Verdict::kFailed] << " | " << (times.empty() ? std::string("–") : Seconds(MedianDefined(times)))
-       << " |\n";
+       << " |";
+    if (!floor.empty()) md << " " << FloorRatioCell(FloorRatios(suite.replay.records, floor, solver)) << " |";
+    md << "\n";
   }
   md << "\n";
+  WriteFloorLine(md, suite);
 }
 
 // Per backend and family: correct answers (solved + correctly refused) over the family's AVIs.
@@ -1234,6 +1359,13 @@ void WriteAviSection(std::ostream& md, const SuiteResults& suite, const std::str
   if (plots) WritePerformanceProfile(md, suite, dir);
 }
 
+// The growth exponent of the floor's times in m (GrowthExponent of the floor records as one backend's).
+double FloorGrowthExponent(const SuiteResults& suite) {
+  SuiteResults floor;
+  floor.replay.records = suite.replay.floor;
+  return GrowthExponent(floor, kFloorSolver);
+}
+
 // Scale: time against m with the fitted exponent (the scale suite, when it has at least three sizes).
 void WriteScaleTable(std::ostream& md, const SuiteResults& suite) {
   std::set<int> sizes;
@@ -1254,6 +1386,18 @@ void WriteScaleTable(std::ostream& md, const SuiteResults& suite) {
         }
       }
       md << cell << " | ";
+    }
+    md << "\n";
+  }
+  if (!suite.replay.floor.empty()) {  // not a backend: the time of one factorization, for comparison
+    md << "| *floor: one factorization* | " << G(FloorGrowthExponent(suite)) << " | ";
+    for (int m : sizes) {
+      std::vector<double> t;
+      for (const auto& r : suite.replay.floor) {
+        if (r.size == m && r.samples > 0) t.push_back(r.time_median);
+      }
+      std::sort(t.begin(), t.end());
+      md << (t.empty() ? std::string("–") : Seconds(MedianOfSorted(t))) << " | ";
     }
     md << "\n";
   }
@@ -1286,6 +1430,40 @@ void WritePerBand(std::ostream& md, const SuiteResults& suite, const std::string
   }
 }
 
+// "1.8× [0.5 – 3] (12)": median [min – max] (n) of sorted ratios; empty when there are none.
+std::string RatioSpread(const std::vector<double>& r) {
+  if (r.empty()) return "";
+  return G(r[r.size() / 2]) + "× [" + G(r.front()) + " – " + G(r.back()) + "] (" + std::to_string(r.size()) + ")";
+}
+
+// The cold peer table again per class × band (OursAgainstPeersPerClass), with our best over the floor.
+void WritePeerRatiosPerClass(std::ostream& md, const SuiteResults& suite, const std::set<std::string>& families) {
+  const std::vector<PeerClassRow> rows = OursAgainstPeersPerClass(suite);
+  if (rows.empty()) return;
+  const bool floor = !suite.replay.floor.empty();
+  md << "**The same per class** (matrix class and bounds from the problems' tags × size band, cold): library's best "
+        "/ ours as above"
+     << (floor ? "; *ours / floor*: our fastest correct time over one factorization of M, median [min – max] (n)"
+               : "; floor not measured in this run")
+     << ".\n\n| class | size band |";
+  for (const std::string& f : families) md << " " << f << " |";
+  if (floor) md << " ours / floor |";
+  md << "\n|---|---|";
+  for (std::size_t i = 0; i < families.size() + (floor ? 1 : 0); ++i) md << "---|";
+  md << "\n";
+  for (const PeerClassRow& row : rows) {
+    if (row.by_peer.empty()) continue;  // no library solved a problem of the class that we solved too
+    md << "| " << ClassName(row.problem_class) << " | " << ToString(row.problem_class.band) << " |";
+    for (const std::string& f : families) {
+      const auto it = row.by_peer.find(f);
+      md << " " << (it == row.by_peer.end() ? std::string() : RatioSpread(it->second)) << " |";
+    }
+    if (floor) md << " " << RatioSpread(row.ours_over_floor) << " |";
+    md << "\n";
+  }
+  md << "\n";
+}
+
 // Ours against the best of each external library per band, cold and warm (OursAgainstPeersPerBand).
 void WritePeerRatios(std::ostream& md, const SuiteResults& suite) {
   const std::vector<PeerRatioRow> rows = OursAgainstPeersPerBand(suite);
@@ -1316,6 +1494,7 @@ void WritePeerRatios(std::ostream& md, const SuiteResults& suite) {
     md << "\n";
   }
   md << "\n";
+  WritePeerRatiosPerClass(md, suite, families);
 }
 
 // The warm track of a suite: per backend over its sequences (time per step), the winners per band, the profile, per
@@ -1519,6 +1698,7 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
   }
   std::ostringstream md;
   WriteHeader(md, dir, results, env);
+  WriteSummary(md, results);
   for (const SuiteResults& suite : results.suites) {
     std::vector<std::string> cached;
     std::vector<ReplayRecord> cut;
@@ -1530,6 +1710,8 @@ std::string WriteBenchReport(const std::string& dir, bool plots) {
     WriteWarmStart(md, results.stepper);
     WriteWorkPrecision(md, results.stepper, dir, plots);
   }
+  WriteFailureList(md, results);
+  WriteVerdictAppendix(md, results);
   const std::string text = md.str();
   std::ofstream out(fs::path(dir) / "report.md");
   out << text;

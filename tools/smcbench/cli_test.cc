@@ -136,6 +136,36 @@ TEST(Cli, ConvertSaysWhatItWrote) {
   std::filesystem::remove(out);
 }
 
+// convert A B C --out SET.smcps gathers the three files' problems into one set that reads back with their data; a
+// clash of ids names both files, and an --out that is not a .smcps is refused before anything is read.
+TEST(Cli, ConvertGathersFilesIntoOneSet) {
+  const std::string out = testing::TempDir() + "/gathered.smcps";
+  const std::vector<std::string> files = {kPeer + "/relay/relay_2x2.dat", kPeer + "/relay/relay_4x4.dat",
+                                          kPeer + "/relay/step_1x1.dat"};
+  CliRun r = RunSmcbench({"convert", files[0], files[1], files[2], "--out", out});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.out, HasSubstr("convert: wrote 3 problems from 3 file(s) to " + out));
+  const ProblemSet set = ReadProblemSetFile(out);
+  EXPECT_EQ(set.name, "gathered");
+  ASSERT_EQ(set.problems.size(), 3u);
+  for (std::size_t i = 0; i < files.size(); ++i) {
+    const BoxMLCP original = ReadSiconosFile(files[i]);
+    EXPECT_EQ(set.problems[i].size(), original.size()) << files[i];
+    EXPECT_EQ(set.problems[i].problem.q(), original.q()) << files[i];
+    EXPECT_EQ(set.problems[i].problem.dense_matrix(), original.dense_matrix()) << files[i];
+  }
+  r = RunSmcbench({"convert", files[0], files[0], "--out", out});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("is also in '" + files[0] + "'"));
+  r = RunSmcbench({"convert", files[0], files[1], "--out", testing::TempDir() + "/gathered.mtx"});
+  EXPECT_EQ(r.code, 1);
+  EXPECT_THAT(r.err, HasSubstr("must name a problem set file ending in .smcps"));
+  r = RunSmcbench({"convert", files[0], files[1], files[2]});
+  EXPECT_NE(r.code, 0);
+  EXPECT_THAT(r.err, HasSubstr("give INPUT OUTPUT, or INPUT... --out SET.smcps"));
+  std::filesystem::remove(out);
+}
+
 // --version is an option of the program like --help: listed by --help, printed on stdout with the revision the
 // build recorded, exit 0 (also from an out-of-tree program's main calling RunCli).
 TEST(Cli, VersionIsListedByHelpAndPrintsTheBuildsRevision) {

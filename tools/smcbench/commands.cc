@@ -15,6 +15,7 @@
 
 #include "problems/io/data_dirs.h"
 #include "problems/io/siconos_format.h"
+#include "problems/library/problem_set_io.h"
 #include "solvers/core/edit_distance.h"
 #include "solvers/auto/auto_solver.h"
 #include "solvers/reference/certify.h"
@@ -417,6 +418,36 @@ int RunConvert(const std::string& input, std::optional<ProblemFormat> format, co
   return 0;
 }
 
+// `convert A B C … --out SET.smcps`: every problem of every input, in the order given, into one set named after
+// SET's stem. InvalidInputError naming the file for one that cannot be read, and naming both files when two problems
+// share an id (a set's ids are unique: rename one with `convert IN OUT --id`, or give the files distinct names).
+int RunGather(const std::vector<std::string>& inputs, std::optional<ProblemFormat> format, const std::string& output,
+              std::ostream& out) {
+  if (fs::path(output).extension() != kProblemSetExtension) {
+    throw InvalidInputError("convert --out: '" + output + "' must name a problem set file ending in " +
+                            kProblemSetExtension);
+  }
+  if (inputs.empty()) throw InvalidInputError("convert --out: give at least one INPUT file");
+  ProblemSet set;
+  set.name = fs::path(output).stem().string();
+  set.description = "gathered by smcbench convert from " + std::to_string(inputs.size()) + " file(s)";
+  std::map<std::string, std::string> file_of;  // id → the file it came from
+  for (const std::string& input : inputs) {
+    for (LibraryProblem& p : ReadProblemFile(input, format, {})) {
+      const auto [it, inserted] = file_of.emplace(p.id, input);
+      if (!inserted) {
+        throw InvalidInputError("convert --out: problem id '" + p.id + "' of '" + input + "' is also in '" +
+                                it->second + "': a set's ids must be unique");
+      }
+      set.problems.push_back(std::move(p));
+    }
+  }
+  WriteProblemSetFile(set, output);
+  out << "convert: wrote " << set.problems.size() << " problems from " << inputs.size() << " file(s) to " << output
+      << "\n";
+  return 0;
+}
+
 // "unknown flag '--solvr' (did you mean '--solver'?)" for the first word of argv that looks like a long flag and is
 // not one of command's flags (its own or its parents'); empty when there is none (then CLI11's message is kept).
 // Only words after the command's name are looked at, so a flag of another command is not suggested.
@@ -502,11 +533,14 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
 
   auto* convert = app.add_subcommand("convert", "write one problem in the kind OUTPUT's extension names: NAME.mtx "
                                                  "(Matrix Market: NAME.mtx + NAME_q/_l/_u.mtx), NAME.smcps, else "
-                                                 "Siconos relay");
-  std::string convert_in, convert_out, convert_id;
+                                                 "Siconos relay; or, with --out SET.smcps, gather every problem of "
+                                                 "the files INPUT... into one problem set");
+  std::string convert_out, convert_id, convert_set;
+  std::vector<std::string> convert_args;
   std::optional<ProblemFormat> convert_format;
-  convert->add_option("INPUT", convert_in, "problem file (docs/formats.md)")->required();
-  convert->add_option("OUTPUT", convert_out, "file to write")->required();
+  convert->add_option("FILES", convert_args, "INPUT OUTPUT, or with --out the INPUT files (docs/formats.md)")
+      ->required();
+  convert->add_option("--out", convert_set, "gather the problems of every INPUT into this problem set (.smcps)");
   AddFormatFlag(convert, &convert_format, {"lcp", "relay", "mlcp", "smcps", "mtx"}, "the kind of INPUT");
   convert->add_option("--id", convert_id, "the problem of a .smcps INPUT to write (needed if it holds several)");
 
@@ -570,7 +604,14 @@ int RunCli(int argc, const char* const* argv, std::ostream& out, std::ostream& e
     if (collection->parsed()) {
       return RunCollection(collection_dir, collection_settings, markdown_path, json_path, command_line, out, err);
     }
-    if (convert->parsed()) return RunConvert(convert_in, convert_format, convert_id, convert_out, out);
+    if (convert->parsed()) {
+      if (!convert_set.empty()) return RunGather(convert_args, convert_format, convert_set, out);
+      if (convert_args.size() != 2) {
+        throw InvalidInputError("convert: give INPUT OUTPUT, or INPUT... --out SET.smcps to gather files into one set "
+                                "(got " + std::to_string(convert_args.size()) + " file names)");
+      }
+      return RunConvert(convert_args[0], convert_format, convert_id, convert_args[1], out);
+    }
     if (bench_table->parsed()) return RunBenchTable(bench_json, out);
     if (simulate.parsed()) return simulate.Run(out, err);
     if (scenes.parsed()) return scenes.Run(out, err);
