@@ -564,8 +564,8 @@ void SimulateRebuildingEachStep(const LinearModel& model, Method method, double 
     StepCheck step_check;
     bool no_exact_step = false;
     if (implicit) {
-      Vector q = -(d.C * (d.R * x) + d.C * p + d.D + e);
-      const Vector q_step = q;  // q is moved into the problem below  // `eq:TDS3`, e(t_{k+1}) of the relation
+      Vector q = -(d.C * (d.R * x) + d.C * p + d.D + e);  // `eq:TDS3`, e(t_{k+1}) of the relation
+      const Vector q_step = q;  // for the step verdict: q is moved into the problem below
       if (!q.allFinite()) {
         status = SolveStatus::kNumericalFailure;
         residual = kInf;

@@ -134,7 +134,9 @@ long double StepRefiner::XError(const double* s) const {
   long double x_error = 0.0L;
   for (int i = 0; i < n_; ++i) {
     long double dx = 0.0L;
-    for (int j = 0; j < m_; ++j) dx += S_[static_cast<std::size_t>(i * m_ + j)] * (star_[static_cast<std::size_t>(j)] - s[j]);
+    for (int j = 0; j < m_; ++j) {
+      dx += S_[static_cast<std::size_t>(i * m_ + j)] * (star_[static_cast<std::size_t>(j)] - s[j]);
+    }
     x_error = std::max(x_error, std::abs(dx));
   }
   return x_error;
@@ -152,7 +154,9 @@ bool StepRefiner::SolveOnActiveSet(const double* q, const double* s) {
   long double amax = 0.0L;
   for (int i = 0; i < m_; ++i) {
     for (int j = 0; j < m_; ++j) at(i, j) = M_[static_cast<std::size_t>(i * m_ + j)];
-    for (int c = 0; c < a; ++c) at(i, m_ + c) = -H_[static_cast<std::size_t>(active_rows_[static_cast<std::size_t>(c)] * m_ + i)];
+    for (int c = 0; c < a; ++c) {
+      at(i, m_ + c) = -H_[static_cast<std::size_t>(active_rows_[static_cast<std::size_t>(c)] * m_ + i)];
+    }
     rhs_[static_cast<std::size_t>(i)] = -w_[static_cast<std::size_t>(i)];
   }
   for (int c = 0; c < a; ++c) {
@@ -166,7 +170,9 @@ bool StepRefiner::SolveOnActiveSet(const double* q, const double* s) {
     rhs_[static_cast<std::size_t>(m_ + c)] = b;
   }
   long double data_scale = 1.0L;  // 1 + ‖q̃‖∞ + ‖K̃_A‖∞ + ‖M̃‖‖s‖: what the consistency test is relative to
-  for (int i = 0; i < m_; ++i) data_scale += std::abs(static_cast<long double>(q[i])) / sigma_ + std::abs(static_cast<long double>(s[i]));
+  for (int i = 0; i < m_; ++i) {
+    data_scale += std::abs(static_cast<long double>(q[i])) / sigma_ + std::abs(static_cast<long double>(s[i]));
+  }
   for (int i = 0; i < N; ++i) {
     colp_[static_cast<std::size_t>(i)] = i;
     for (int j = 0; j < N; ++j) amax = std::max(amax, std::abs(at(i, j)));

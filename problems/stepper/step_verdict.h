@@ -9,9 +9,9 @@
 //      (complete pivoting; a rank-deficient system, e.g. M = C S of rank one, keeps the pivoted unknowns and must
 //      be consistent), s* = s + δ;
 //   3. s* must be a solution: H s* ≥ K and μ_A ≥ 0 to rounding (8ε); if it is not, every active set of at most m
-//      rows is tried (small P) and the exact step nearest the answer in x kept. Then ‖S δ‖∞ is the backend's forward error in
-//      x_{k+1} against that exact step, judged against tol·(‖S‖∞ + ‖x_{k+1}‖∞): ‖S‖∞ is what one unit of s moves
-//      x by (the step's input scale h‖B‖), which does not vanish as x → 0.
+//      rows is tried (small P) and the exact step nearest the answer in x kept. Then ‖S δ‖∞ is the backend's
+//      forward error in x_{k+1} against that exact step, judged against tol·(‖S‖∞ + ‖x_{k+1}‖∞): ‖S‖∞ is what one
+//      unit of s moves x by (the step's input scale h‖B‖), which does not vanish as x → 0.
 // The stepper always continues from s* (so a run is exact to rounding whatever the tolerance handed to the
 // backend), counts the steps whose answer was off by more than the allowance (Trajectory::refined_steps), and
 // reports a step as inaccurate when no exact step is found on the answer's active set (never silently accepted).

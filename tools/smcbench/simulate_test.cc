@@ -154,7 +154,7 @@ TEST_F(Simulate, LemmaYahooIssueExampleIsExactlyZeroWithEveryBackend) {
 
 // Accuracy in the units users read: s_error_max and y_error_max against a run stepped with certified
 // solves. enum solves each one-step problem exactly, so it matches the reference to rounding; PSOR without the
-// polish at tolerance 1e-4 stops early and its s and y are measurably off.
+// polish at tolerance 1e-4 stops early, but the step verdict refines each of its answers, so it does too.
 TEST_F(Simulate, SummaryReportsTheErrorInSAndYAgainstACertifiedReferenceRun) {
   for (const char* scene : {"sign", "multi-surface"}) {
     SCOPED_TRACE(scene);
@@ -177,9 +177,10 @@ TEST_F(Simulate, SummaryReportsTheErrorInSAndYAgainstACertifiedReferenceRun) {
     ASSERT_EQ(r.code, 0) << r.err;
     const auto l = ReadJson(loose);
     ASSERT_TRUE(l["s_error_max"].is_number()) << l["reference_skipped"];
-    EXPECT_GT(l["s_error_max"].get<double>(), 0.0);
-    EXPECT_GT(l["y_error_max"].get<double>(), 0.0);
-    EXPECT_LE(l["s_error_max"].get<double>(), 1.0);  // still the same trajectory, roughly
+    // The step verdict (docs/verdict.md) continues every step from the exact step on PSOR's active set, so even
+    // this loose run is the certified one to rounding.
+    EXPECT_LE(l["s_error_max"].get<double>(), 1e-12);
+    EXPECT_LE(l["y_error_max"].get<double>(), 1e-12);
   }
   // No one-step problem, no reference: the keys are null and say why.
   const std::string ex = Path("explicit.json");
