@@ -56,11 +56,15 @@ TEST(BenchPlan, ListsColdJobsProblemByProblemThenTheIterativeBackendsSweep) {
     EXPECT_EQ(job.tolerance, 1e-10);
     EXPECT_EQ(job.problem_id, plan.suites[0].problems[k / 2].id);
   }
-  // Then the tolerance ladder, for every backend (exact ones too: the ladder is a success rate per tolerance), and
-  // nothing else.
-  ASSERT_GT(plan.jobs.size(), 10u);
+  // Then the floor, one job per problem (one factorization of its M, bench/replay/floor.h), then the tolerance
+  // ladder, for every backend (exact ones too: the ladder is a success rate per tolerance), and nothing else.
+  ASSERT_GT(plan.jobs.size(), 15u);
+  for (std::size_t k = 10; k < 15; ++k) {
+    EXPECT_EQ(plan.jobs[k].kind, JobKind::kFloor) << plan.jobs[k].id;
+    EXPECT_EQ(plan.jobs[k].problem, k - 10);
+  }
   std::set<std::string> ids, swept;
-  for (std::size_t k = 10; k < plan.jobs.size(); ++k) {
+  for (std::size_t k = 15; k < plan.jobs.size(); ++k) {
     EXPECT_EQ(plan.jobs[k].kind, JobKind::kSweep) << plan.jobs[k].id;
     swept.insert(plan.jobs[k].solver);
   }

@@ -76,6 +76,11 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
   j["total_iterations"] = tr.total_iterations;
   j["max_iterations"] = tr.max_iterations;
   j["failed_steps"] = tr.failed_steps;
+  // The step verdict (StepperOptions::refine_steps, docs/verdict.md): the backend's own largest forward error in
+  // x_{k+1} against the exact step, and how many answers were off by more than the allowance (the run went on from
+  // the exact step, so s_error_max below measures the trajectory, these the backend).
+  j["step_x_error_max"] = tr.max_step_x_error;
+  j["refined_steps"] = tr.refined_steps;
   if (tr.first_failed_step >= 0) {
     j["first_failure"] = {{"step", tr.first_failed_step},
                           {"status", std::string(ToString(tr.first_failure_status))},

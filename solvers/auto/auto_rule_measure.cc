@@ -360,7 +360,13 @@ int main(int argc, char** argv) {
   } else if (mode == "overhead") {
     smcbench::Overhead();
   } else if (mode == "classes") {
-    smcbench::Classes(argc > 2 ? std::atoi(argv[2]) : 256);
+    const int max_m = argc > 2 ? std::atoi(argv[2]) : 256;
+    if (max_m < 4) {
+      std::fprintf(stderr, "%s classes: MAX_M must be an integer >= 4 (the smallest size measured), got '%s'\n",
+                   argv[0], argv[2]);
+      return 2;
+    }
+    smcbench::Classes(max_m);
   } else {
     std::fprintf(stderr, "usage: %s sizes|condition|spd-test|overhead|classes [MAX_M] (docs/auto.md)\n", argv[0]);
     return 2;

@@ -106,6 +106,10 @@ bool AutoOptions::IsValid(std::string* why) const {
            std::to_string(enum_max_choice_rows);
     return false;
   }
+  if (!(enum_max_active_sets >= 0.0)) {
+    *why = "enum_max_active_sets must be >= 0 (0: never enum), got " + std::to_string(enum_max_active_sets);
+    return false;
+  }
   if (bpp_max_size < 0) {
     *why = "bpp_max_size must be >= 0 (0: never bpp), got " + std::to_string(bpp_max_size);
     return false;
@@ -197,6 +201,8 @@ const SolverInfo& AutoSolver::info() const {
 void AutoSolver::BindOptions(OptionBinder* binder) {
   binder->Add("enum_max_choice_rows", &options_.enum_max_choice_rows,
               "dense problems with at most this many rows with a choice of state (l < u, not free) go to enum");
+  binder->Add("enum_max_active_sets", &options_.enum_max_active_sets,
+              "... and at most this many active sets (2 per one-sided row, 3 per finite box)");
   binder->Add("psor_min_speedup", &options_.psor_min_speedup,
               "dense SPD M goes to psor when lemke's predicted time is at least this many times psor's (0: always)");
   binder->Add("bpp_max_size", &options_.bpp_max_size,
@@ -217,7 +223,7 @@ AutoChoice AutoSolver::Classify(const BoxMLCP& problem) const {
   const RowCounts rows = CountRows(problem);
   const auto& enum_options = static_cast<const EnumerativeSolver&>(candidate(AutoCandidate::kEnum)).options();
   if (rows.choice <= options_.enum_max_choice_rows && rows.choice <= enum_options.size_limit &&
-      rows.active_sets <= enum_options.max_candidates) {
+      rows.active_sets <= options_.enum_max_active_sets && rows.active_sets <= enum_options.max_candidates) {
     add(AutoCandidate::kEnum);
   } else {
     if (problem.size() <= options_.bpp_max_size) add(AutoCandidate::kBpp);

@@ -6,7 +6,7 @@
 //   sparse M                                        → newton (UMFPACK), then lemke on a dense copy (n ≤ 4096)
 //   dense, at most enum_max_choice_rows rows with a
 //     choice of state (l < u, not free: enum's own
-//     size measure)                                 → enum, then lemke, then newton
+//     size measure) and enum_max_active_sets sets   → enum, then lemke, then newton
 //   any other dense M with at most bpp_max_size
 //     rows                                          → bpp, then as below
 //   dense, symmetric positive definite (a Cholesky
@@ -88,6 +88,10 @@ struct AutoOptions {
   // Dense problems with at most this many rows with a choice of state go to enum (exact; its search grows as
   // 2^k or 3^k in this number k, the guided first phase makes it fastest at small k). At most enum's size_limit.
   int enum_max_choice_rows = 8;
+  // ... and at most this many active sets (2 per one-sided row, 3 per finite box: 3⁶ = 6 box rows, 9 one-sided):
+  // past it, enum's worst case shows on strongly nonsymmetric M (a relay of 8 rows: 45.8 µs where bpp takes 1.2 µs)
+  // while bpp is within 1.12x of enum on every class at 8 rows (docs/auto.md, "Every class").
+  double enum_max_active_sets = 729;
   // Dense symmetric positive definite M goes to psor when lemke's predicted time is at least this many times
   // psor's. The prediction (docs/auto.md) uses M's reciprocal condition estimate from its Cholesky factor: PSOR's
   // sweeps grow with the condition number, lemke's pivots do not. 0: psor on every SPD M; inf: never.

@@ -125,7 +125,19 @@ TEST(AutoSolver, SmallDenseRelayGoesToEnum) {
   ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 2), AutoCandidate::kEnum);
   ExpectChoice(Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 1), AutoCandidate::kEnum);
   ExpectChoice(Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 4), AutoCandidate::kEnum);
-  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 8), AutoCandidate::kEnum);
+  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 6), AutoCandidate::kEnum);
+  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 8), AutoCandidate::kEnum);
+}
+
+// Eight box rows are 3⁸ = 6561 active sets, past enum_max_active_sets (729): bpp, which on the strongly
+// nonsymmetric relay answers in ~1 µs where enum searches for ~46 µs (auto_rule_measure classes). Raising the
+// option brings enum back.
+TEST(AutoSolver, ManyActiveSetsGoToBpp) {
+  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 8), AutoCandidate::kBpp);
+  ExpectChoice(Generate(MatrixFamily::kSkewPMatrix, BoundKind::kRelay, 8), AutoCandidate::kBpp);
+  AutoOptions more;
+  more.enum_max_active_sets = 6561;
+  ExpectChoice(Generate(MatrixFamily::kSkewPMatrix, BoundKind::kRelay, 8), AutoCandidate::kEnum, more);
 }
 
 // Without bpp (bpp_max_size 0, or past it): SPD relay at m = 64 (condition ≈ 100) goes to psor, predicted (and
@@ -651,6 +663,8 @@ TEST(AutoSolver, RejectsBadOptionsNamingTheField) {
   EXPECT_NE(error.find("enum_max_choice_rows"), std::string::npos) << error;
   EXPECT_FALSE(solver.SetOption("psor_min_speedup", "-1", &error));
   EXPECT_NE(error.find("psor_min_speedup"), std::string::npos) << error;
+  EXPECT_FALSE(solver.SetOption("enum_max_active_sets", "-1", &error));
+  EXPECT_NE(error.find("enum_max_active_sets"), std::string::npos) << error;
   EXPECT_FALSE(solver.SetOption("omega", "1.5", &error));  // psor's, not auto's
   AutoOptions bad;
   bad.psor_min_speedup = std::nan("");

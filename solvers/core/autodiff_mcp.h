@@ -9,6 +9,7 @@
 // derivative vectors are dynamic unless N, the size, is given at compile time): for users' problems, not hot paths.
 #pragma once
 
+#include <Eigen/Core>  // before AutoDiff, which uses Eigen::internal without including it
 #include <unsupported/Eigen/AutoDiff>
 
 #include <string>
