@@ -561,6 +561,7 @@ ColdRepeatReport CheckColdRepeat(const SolverFactory& create, const ColdRepeatOp
   if (!create) throw InvalidInputError("CheckColdRepeat: the factory is empty");
   Make(create);  // a null backend is a usage error, not a failed check
   ColdRepeatReport report;
+  report.time_test_on = !kSanitizedBuild;
   ConformanceReport failures;  // Findings' sink, moved into the report at the end
   Findings findings("cold-repeat", &failures);
   struct Shape {

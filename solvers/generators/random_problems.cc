@@ -169,8 +169,8 @@ WorkMatrix SymmetricPositiveDefinite(int n, bool banded, Random& rng) {
   return S;
 }
 
-// K = G − Gᵀ (G strictly upper triangular, U(−1, 1), within the band if banded), scaled to ‖K‖₂ ≈ kSkewNorm.
-WorkMatrix SkewSymmetric(int n, bool banded, Random& rng) {
+// K = G − Gᵀ with G strictly upper triangular, U(−1, 1) entries (within the band if banded), not normalized.
+WorkMatrix UnitEntrySkew(int n, bool banded, Random& rng) {
   WorkMatrix K(n, banded);
   for (int i = 0; i < n; ++i) {
     for (int j = i + 1; j <= K.last(i); ++j) {
@@ -179,6 +179,12 @@ WorkMatrix SkewSymmetric(int n, bool banded, Random& rng) {
       K.at(j, i) = -g;
     }
   }
+  return K;
+}
+
+// UnitEntrySkew scaled to ‖K‖₂ ≈ kSkewNorm.
+WorkMatrix SkewSymmetric(int n, bool banded, Random& rng) {
+  WorkMatrix K = UnitEntrySkew(n, banded, rng);
   std::vector<double> t(static_cast<std::size_t>(n));
   // ‖K‖₂² = λ_max(KᵀK) and KᵀK = −K².
   const double sigma2 = LargestEigenvalue(n, [&](const std::vector<double>& x, std::vector<double>* y) {
@@ -206,19 +212,6 @@ WorkMatrix DiagonallyDominant(int n, bool banded, Random& rng) {
     M.at(i, i) = (1.0 + rng.Uniform(0.05, 0.5)) * off + 0.05;
   }
   return M;
-}
-
-// K = G − Gᵀ with G strictly upper triangular, U(−1, 1) entries (within the band if banded), not normalized.
-WorkMatrix UnitEntrySkew(int n, bool banded, Random& rng) {
-  WorkMatrix K(n, banded);
-  for (int i = 0; i < n; ++i) {
-    for (int j = i + 1; j <= K.last(i); ++j) {
-      const double g = rng.Uniform(-1.0, 1.0);
-      K.at(i, j) = g;
-      K.at(j, i) = -g;
-    }
-  }
-  return K;
 }
 
 // Column j of M divided by d_j = c_j·10^k_j, c_j ∈ U(1, 10), k_j ∈ {−2, 0, 2} with equal odds: d spans five
