@@ -32,6 +32,7 @@ set(SMCBENCH_PUBLIC_HEADERS
   solvers/conformance/conformance.h
   solvers/generators/random_problems.h
   solvers/reference/certify.h
+  solvers/reference/enclosure.h
   # Problem files, the problem library (.smcps), the built-in suites by name, the MCP library.
   problems/io/avi_file.h
   problems/io/data_dirs.h

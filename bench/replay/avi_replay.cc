@@ -21,6 +21,8 @@ ReplayRecord Describe(const AviProblemSet& set, const AviLibraryProblem& p, cons
   for (const auto& t : p.tags) r.tags += (r.tags.empty() ? "" : ",") + t;
   r.expected = p.expected;
   r.certificate = std::string(ToString(p.reference.reduced.certificate));
+  r.reference_radius = p.reference.reduced.proved_radius;
+  r.reference_proved_unique = p.reference.reduced.proved_unique;
   r.tolerance = tolerance;
   r.mode = "cold";
   return r;

@@ -315,13 +315,15 @@ TEST(McpReplay, RecordsRoundTripThroughJsonAndCsvWithTheirStart) {
               b.forward_error == b.forward_error ? b.forward_error : 0.0);
     EXPECT_EQ(ReplayRecordToJson(a), ReplayRecordToJson(b));
   }
-  // CSV: "start" is the last column but backend_code (added after it).
+  // CSV: "start" is the last column but backend_code and reference_radius (added after it).
   std::ifstream csv(dir / "results.csv");
   std::string header, row;
   std::getline(csv, header);
   std::getline(csv, row);
-  const std::string ends = "," + suite.replay.records[0].start + ",";  // the record has no backend_code
-  EXPECT_EQ(header.substr(header.size() - std::string(",start,backend_code").size()), ",start,backend_code");
+  // The record has no backend_code, and an MCP's reference has no proved radius.
+  const std::string ends = "," + suite.replay.records[0].start + ",,nan,0";
+  const std::string last_columns = ",start,backend_code,reference_radius,reference_proved_unique";
+  EXPECT_EQ(header.substr(header.size() - last_columns.size()), last_columns);
   EXPECT_EQ(row.substr(row.size() - ends.size()), ends);
   // A record written before MCPs (no "start") reads as a box record.
   nlohmann::json old = ReplayRecordToJson(suite.replay.records[0]);

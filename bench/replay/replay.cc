@@ -44,6 +44,8 @@ void Fill(const LibraryProblem& p, const SolveResult& result, double tolerance, 
   r->forward_error_rel = j.forward_error_rel;
   r->forward_allowance = j.forward_allowance;
   r->certificate = std::string(ToString(p.reference.certificate));
+  r->reference_radius = p.reference.proved_radius;
+  r->reference_proved_unique = p.reference.proved_unique;
   r->tolerance = tolerance;
   r->verdict = j.verdict;
   r->backend_code = BackendReturnCode(result);

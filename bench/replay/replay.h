@@ -67,6 +67,8 @@ struct ReplayRecord {
   double forward_error_rel = kNaN;
   double forward_allowance = kNaN;
   std::string certificate = "none";  // ToString of the problem's reference certificate
+  double reference_radius = kNaN;     // its ReferenceSolution::proved_radius (NaN: not proved by an enclosure)
+  bool reference_proved_unique = false;  // its ReferenceSolution::proved_unique
   double tolerance = 0.0;
   // Per-solve wall time over the samples (seconds): median, min, max, and the median absolute deviation.
   double time_median = 0.0;

@@ -85,6 +85,8 @@ json RecordJson(const ReplayRecord& r) {
           {"forward_error_rel", Finite(r.forward_error_rel)},
           {"forward_allowance", Finite(r.forward_allowance)},
           {"certificate", r.certificate},
+          {"reference_radius", Finite(r.reference_radius)},
+          {"reference_proved_unique", r.reference_proved_unique},
           {"tolerance", r.tolerance},
           {"time_median", r.time_median},
           {"time_min", r.time_min},
@@ -138,6 +140,8 @@ ReplayRecord RecordFromJson(const json& j) {
   r.forward_error_rel = OptionalNumber(j, "forward_error_rel");
   r.forward_allowance = OptionalNumber(j, "forward_allowance");
   r.certificate = j.value("certificate", std::string("none"));
+  r.reference_radius = OptionalNumber(j, "reference_radius");
+  r.reference_proved_unique = j.value("reference_proved_unique", false);
   r.tolerance = j.at("tolerance").get<double>();
   r.time_median = j.at("time_median").get<double>();
   r.time_min = j.at("time_min").get<double>();
@@ -380,13 +384,13 @@ void WriteBenchResults(const BenchResults& results, const std::string& dir, cons
     if (!out) throw InvalidInputError("bench: cannot write " + (fs::path(dir) / "results.json").string());
   }
   // Numbers in shortest round-trip form (NumberText: reads back to the same double; "inf", "nan" when not finite).
-  // The columns added later (residual_scaled onwards, then timed_in_worker, host, start, backend_code) come last,
-  // so scripts that index the older ones keep working.
+  // The columns added later (residual_scaled onwards, then timed_in_worker, host, start, backend_code,
+  // reference_radius, reference_proved_unique) come last, so scripts that index the older ones keep working.
   std::ofstream csv(fs::path(dir) / "results.csv");
   csv << "suite,problem,solver,mode,size,sparse,expected,status,verdict,iterations,residual_abs,residual_rel,"
          "tolerance,time_median,time_min,time_max,time_mad,samples,solves_per_sample,residual_scaled,"
          "forward_error,forward_error_rel,forward_allowance,certificate,timed_in_worker,host,concurrent_jobs,start,"
-         "backend_code\n";
+         "backend_code,reference_radius,reference_proved_unique\n";
   for (const SuiteResults& s : results.suites) {
     std::vector<ReplayRecord> warm;  // the warm records' replay part (their counts are in results.json)
     for (const WarmRecord& w : s.warm) warm.push_back(w.record);
@@ -403,7 +407,7 @@ void WriteBenchResults(const BenchResults& results, const std::string& dir, cons
             << NumberText(r.forward_allowance) << ',' << CsvField(r.certificate) << ','
             << (r.timed_in_worker ? 1 : 0) << ',' << CsvField(r.host) << ',' << r.concurrent_jobs << ','
             << CsvField(r.start) << ',' << (r.backend_code ? std::to_string(*r.backend_code) : std::string())
-            << '\n';
+            << ',' << NumberText(r.reference_radius) << ',' << (r.reference_proved_unique ? 1 : 0) << '\n';
       }
     }
   }

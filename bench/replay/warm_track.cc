@@ -84,6 +84,8 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
   r.mode = "warm";
   r.tolerance = tolerance;
   r.certificate = std::string(ToString(head.reference.certificate));
+  r.reference_radius = head.reference.proved_radius;
+  r.reference_proved_unique = head.reference.proved_unique;
 
   const SolverOptions o = ReplaySolverOptions(options, tolerance);  // timed around the whole sequence
   SessionOptions session_options;

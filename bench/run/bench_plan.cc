@@ -66,11 +66,16 @@ ProblemSet BuildBoxSuite(const std::string& name, const BenchRequest& request, s
   AttachReferences(&set);
   const double references_seconds = SecondsSince(references_start);
   std::map<Certificate, int> certificates;
-  for (const LibraryProblem& p : set.problems) ++certificates[p.reference.certificate];
+  int proved = 0;
+  for (const LibraryProblem& p : set.problems) {
+    ++certificates[p.reference.certificate];
+    proved += std::isnan(p.reference.proved_radius) ? 0 : 1;
+  }
   std::string certified;
   for (const auto& [certificate, count] : certificates) {
     certified += (certified.empty() ? "" : ", ") + std::to_string(count) + " " + std::string(ToString(certificate));
   }
+  certified += "; " + std::to_string(proved) + " proved by an interval enclosure";
   char seconds[96];
   std::snprintf(seconds, sizeof seconds, "built in %.2f s; certified references in %.2f s",
                 std::chrono::duration<double>(references_start - build_start).count(), references_seconds);

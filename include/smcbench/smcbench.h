@@ -22,6 +22,7 @@
 #include "solvers/conformance/conformance.h"
 // The certified reference solutions of the benchmark.
 #include "solvers/reference/certify.h"
+#include "solvers/reference/enclosure.h"
 // Problem sources: Siconos files, seeded generators with known solutions, the problem library (.smcps).
 #include "solvers/generators/random_problems.h"
 #include "problems/io/siconos_format.h"

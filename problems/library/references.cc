@@ -1,6 +1,7 @@
 #include "problems/library/references.h"
 
 #include <algorithm>
+#include <cmath>
 #include <memory>
 #include <optional>
 #include <stdexcept>
@@ -9,6 +10,7 @@
 #include <vector>
 
 #include "solvers/reference/certify.h"
+#include "solvers/reference/enclosure.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {
@@ -73,9 +75,21 @@ ReferenceSolution ComputeReference(const LibraryProblem& problem, const Referenc
   return ReferenceMaker(options).Compute(problem);
 }
 
+ReferenceSolution ProvedReference(const LibraryProblem& p) {
+  ReferenceSolution out = p.reference;
+  if (!std::isnan(out.proved_radius) || !out.verified()) return out;
+  // A reference read from a file, which does not store the proof: proved again from its z*.
+  const SolutionEnclosure enclosure = EncloseSolution(p.problem, out.z);
+  if (!enclosure.proved) return out;
+  out.proved_radius = enclosure.radius;
+  out.proved_unique = !p.problem.is_sparse() && ProveSymmetricPartPositiveDefinite(p.problem.dense_matrix());
+  return out;
+}
+
 void AttachReferences(ProblemSet* set, const ReferenceOptions& options) {
   std::optional<ReferenceMaker> maker;  // created at the first problem that needs it (backends are not free)
   for (LibraryProblem& p : set->problems) {
+    p.reference = ProvedReference(p);
     if (p.reference.certificate != Certificate::kNone || p.size() > options.max_size) continue;
     if (!maker) maker.emplace(options);
     p.reference = maker->Compute(p);

@@ -29,8 +29,14 @@ inline constexpr std::string_view kNonUniqueLabel = "non-unique";
 // whose expected outcome is infeasible (the problem's construction is wrong).
 ReferenceSolution ComputeReference(const LibraryProblem& problem, const ReferenceOptions& options = {});
 
-// Fills LibraryProblem::reference for every problem whose certificate is kNone (and size ≤ max_size). Same
-// exceptions as ComputeReference.
+// The problem's reference with its proof (ReferenceSolution::proved_radius, proved_unique): as it is when it has
+// one or is not verified; else (read from a file, which does not store the proof) proved here from its z*
+// (solvers/reference/enclosure.h).
+ReferenceSolution ProvedReference(const LibraryProblem& problem);
+
+// Fills LibraryProblem::reference for every problem whose certificate is kNone (and size ≤ max_size), and the
+// proved radius (ReferenceSolution::proved_radius, solvers/reference/enclosure.h) of references already verified
+// (read from a file, which does not store it). Same exceptions as ComputeReference.
 void AttachReferences(ProblemSet* set, const ReferenceOptions& options = {});
 
 }  // namespace smcbench

@@ -503,7 +503,8 @@ class Problem:
     """One problem of a .smcps set: the box-MLCP (M dense ndarray or scipy.sparse.csc_matrix; q, l, u) with the
     library's metadata: id (unique in the set), source, tags, seed, expected ("unknown", "solvable",
     "infeasible"), solution (a known z, or None), metadata (str → str), matrix (symmetric / positive_definite /
-    p_matrix: "yes", "no", "unknown") and reference (certificate, z, condition of the certified reference)."""
+    p_matrix: "yes", "no", "unknown") and reference (certificate, z, condition of the certified reference;
+    proved_radius and proved_unique, its interval proof, computed on reading and never written)."""
 
     id: str
     M: Any
@@ -639,7 +640,8 @@ def load_bench_results(path, include_sweep: bool = True):
     """A pandas DataFrame of a `smcbench bench` results.json (format smcbench-bench/1): one row per problem ×
     backend record, with the columns of results.csv (suite, problem, solver, mode, size, sparse, expected, status,
     verdict, iterations, residual_abs/rel/scaled, tolerance, time_median/min/max/mad, samples, solves_per_sample,
-    forward_error, forward_error_rel, forward_allowance, certificate, tags, message). include_sweep adds the
+    forward_error, forward_error_rel, forward_allowance, certificate, reference_radius, reference_proved_unique,
+    tags, message). include_sweep adds the
     tolerance-sweep records (mode "sweep"). The run's command, environment and format are in df.attrs.
     path: the results.json file or the folder holding it."""
     import pandas as pd  # imported here: the rest of the module does not need pandas

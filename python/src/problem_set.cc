@@ -13,6 +13,7 @@
 
 #include "convert.h"
 #include "problems/avi_library/avi_library.h"
+#include "problems/library/references.h"
 #include "problems/library/problem_set_io.h"
 
 namespace smcbench::python {
@@ -60,6 +61,10 @@ py::dict ProblemToDict(const LibraryProblem& p) {
   reference["certificate"] = std::string(ToString(p.reference.certificate));
   reference["z"] = p.reference.z.size() ? py::object(ToNumpy(p.reference.z)) : py::object(py::none());
   reference["condition"] = p.reference.condition;
+  // Proved by an interval enclosure (radius NaN: not proved); computed, never read back from a dict.
+  const ReferenceSolution proved = ProvedReference(p);
+  reference["proved_radius"] = proved.proved_radius;
+  reference["proved_unique"] = proved.proved_unique;
   out["reference"] = reference;
   return out;
 }

@@ -43,6 +43,12 @@ struct ReferenceSolution {
   Certificate certificate = Certificate::kNone;
   Vector z;                // z* rounded to double (empty unless the certificate verified one)
   double condition = 0.0;  // μ above
+  // Proved in interval arithmetic (solvers/reference/enclosure.h): an exact solution lies within this distance
+  // (∞-norm) of z. NaN when not proved (not verified, n > 64, degenerate rows, a free block too ill-conditioned) or
+  // not attempted; not stored in .smcps files (AttachReferences recomputes it).
+  double proved_radius = kNaN;
+  // With a proved radius: M + Mᵀ proved positive definite as well (enclosure.h), so that solution is the only one.
+  bool proved_unique = false;
   bool verified() const {
     return certificate == Certificate::kUnique || certificate == Certificate::kDegenerate ||
            certificate == Certificate::kNonUnique || certificate == Certificate::kIsolated;

@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "solvers/core/number_text.h"
+#include "solvers/reference/enclosure.h"
 
 namespace smcbench {
 namespace {
@@ -643,7 +644,15 @@ ReferenceSolution Certify(const BoxMLCP& problem, const std::vector<Vector>& can
                           CertifyStats* stats) {
   if (stats) *stats = {};
   if (problem.size() == 0 || problem.size() > options.max_size) return {};
-  return Certifier(problem, options).Run(candidates, stats);
+  ReferenceSolution reference = Certifier(problem, options).Run(candidates, stats);
+  if (reference.verified()) {
+    const SolutionEnclosure enclosure = EncloseSolution(problem, reference.z);
+    if (enclosure.proved) {
+      reference.proved_radius = enclosure.radius;
+      reference.proved_unique = !problem.is_sparse() && ProveSymmetricPartPositiveDefinite(problem.dense_matrix());
+    }
+  }
+  return reference;
 }
 
 const SolverInfo& ReferenceSolver::info() const {

@@ -54,6 +54,8 @@ struct CertifyStats {
 // solution, backends' answers); any may be wrong, and those of the wrong size or with non-finite entries are
 // ignored. reference.z is z* rounded to double; reference.condition is μ at z*'s active set (the larger over both
 // choices for degenerate rows; +∞ when z* was verified only through a singular block; 0 when no row is free).
+// reference.proved_radius: EncloseSolution's radius at z* when it proves a solution there, and proved_unique when
+// ProveSymmetricPartPositiveDefinite proves it the only one (enclosure.h; dense M).
 // Never throws for a valid problem.
 ReferenceSolution Certify(const BoxMLCP& problem, const std::vector<Vector>& candidates,
                           const CertifyOptions& options = {}, CertifyStats* stats = nullptr);

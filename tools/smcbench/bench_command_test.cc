@@ -88,7 +88,7 @@ TEST(Bench, TinySuiteEndToEndWithReport) {
   const std::string csv = ReadText(dir / "results.csv");
   EXPECT_EQ(csv.rfind("suite,problem,solver,mode,size", 0), 0u);
   EXPECT_THAT(csv, HasSubstr(",residual_scaled,forward_error,forward_error_rel,forward_allowance,certificate,"
-                             "timed_in_worker,host,concurrent_jobs,start,backend_code\n"));
+                             "timed_in_worker,host,concurrent_jobs,start,backend_code,reference_radius,reference_proved_unique\n"));
   const std::string md = ReadText(dir / "report.md");
   EXPECT_THAT(md, HasSubstr("## Suite `tiny`"));
   // solved, correctly refused, failed, wrongly claimed, inaccurate, wrongly refused, success.

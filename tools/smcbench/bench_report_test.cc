@@ -307,6 +307,27 @@ TEST(ReportAudit, BackendReturnCodeReadsSiconosInfoAndThePeersFlag) {
   EXPECT_EQ(BackendReturnCode(ours), std::nullopt);
 }
 
+// The suite heading counts, per problem, the verified references an interval enclosure proved and gives the
+// largest radius; reference_radius goes through results.json.
+TEST(ReportReferences, HeadingCountsTheProvedReferencesAndTheirLargestRadius) {
+  SuiteResults s = SizeLimitedSuite();
+  for (ReplayRecord& r : s.replay.records) {
+    r.certificate = r.problem == "p3" ? "degenerate" : "unique";  // p3: verified, its degenerate row not proved
+    r.reference_radius = r.problem == "p1" ? 2.5e-16 : r.problem == "p2" ? 1e-17 : kNaN;
+    r.reference_proved_unique = r.problem == "p2";
+  }
+  const std::string md = ReportOf(s, "proved");
+  EXPECT_THAT(md, HasSubstr("certified references: 1 degenerate, 2 unique (forward errors are judged on the unique "
+                            "and degenerate ones); 2 of the 3 verified proved by an interval enclosure (1 the "
+                            "only solution: M + Mᵀ proved positive definite), an exact solution within 2.5e-16 of z*."));
+  EXPECT_EQ(ReplayRecordFromJson(ReplayRecordToJson(s.replay.records[0])).reference_radius, 2.5e-16);
+  EXPECT_TRUE(ReplayRecordFromJson(ReplayRecordToJson(s.replay.records[3])).reference_proved_unique);  // p2
+  EXPECT_TRUE(std::isnan(ReplayRecordFromJson(ReplayRecordToJson(s.replay.records[6])).reference_radius));
+  nlohmann::json old = ReplayRecordToJson(s.replay.records[0]);
+  old.erase("reference_radius");  // results written before the field
+  EXPECT_TRUE(std::isnan(ReplayRecordFromJson(old).reference_radius));
+}
+
 // The return code survives results.json and results.csv (empty when there is none).
 TEST(ReportAudit, ReturnCodeRoundTripsThroughTheResultFiles) {
   ReplayRecord with = Rec("p1", "siconos-x", Verdict::kSolved, 1e-6);
@@ -326,9 +347,9 @@ TEST(ReportAudit, ReturnCodeRoundTripsThroughTheResultFiles) {
   results.suites = {suite};
   WriteBenchResults(results, dir.string(), nlohmann::json::object());
   const std::string csv = ReadText(dir / "results.csv");
-  EXPECT_THAT(csv, HasSubstr(",start,backend_code\n"));
-  EXPECT_THAT(csv, HasSubstr(",,3\n"));  // empty start, code 3
-  EXPECT_THAT(csv, HasSubstr(",,\n"));   // empty start, no code
+  EXPECT_THAT(csv, HasSubstr(",start,backend_code,reference_radius,reference_proved_unique\n"));
+  EXPECT_THAT(csv, HasSubstr(",,3,nan,0\n"));  // empty start, code 3, no proved reference
+  EXPECT_THAT(csv, HasSubstr(",,,nan,0\n"));   // empty start, no code
   EXPECT_EQ(ReadBenchResults(dir.string()).suites[0].replay.records[0].backend_code, std::optional<int>(3));
   fs::remove_all(dir);
 }

@@ -178,7 +178,13 @@ void PrintSolved(const LibraryProblem& p, const SolvedProblem& solved, bool refe
     std::snprintf(line, sizeof line, "reference: certificate %s, condition %.3g, |z*|inf %.3g",
                   std::string(ToString(certified.certificate)).c_str(), certified.condition,
                   certified.z.size() ? certified.z.cwiseAbs().maxCoeff() : 0.0);
-    out << line << (certified.unique() ? "" : " (forward error not defined: z* not proven unique)") << "\n";
+    out << line << (certified.unique() ? "" : " (forward error not defined: z* not proven unique)");
+    if (!std::isnan(certified.proved_radius)) {
+      std::snprintf(line, sizeof line, "; proved: an exact solution within %.2g of z* (interval enclosure)%s",
+                    certified.proved_radius, certified.proved_unique ? ", the only one (M + M^T > 0)" : "");
+      out << line;
+    }
+    out << "\n";
   }
   for (const SolveRecord& r : solved.records) out << "  " << FormatRecordLine(r) << "\n";
 }

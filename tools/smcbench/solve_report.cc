@@ -199,6 +199,8 @@ nlohmann::json ReferenceToJson(const ReferenceSolution& reference) {
   nlohmann::json j;
   j["certificate"] = std::string(ToString(reference.certificate));
   j["condition"] = Number(reference.condition);
+  j["proved_radius"] = Number(reference.proved_radius);  // null: not proved by an interval enclosure
+  j["proved_unique"] = reference.proved_unique;
   nlohmann::json z = nlohmann::json::array();
   for (Eigen::Index i = 0; i < reference.z.size(); ++i) z.push_back(Number(reference.z[i]));
   j["z"] = std::move(z);
