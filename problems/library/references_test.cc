@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <cmath>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -164,6 +165,32 @@ TEST(AttachReferences, FillsOnlyMissingReferences) {
   EXPECT_EQ(set.problems[2].reference.certificate, Certificate::kNoneFound);
   EXPECT_EQ(set.problems[2].reference.z.size(), 0);
   set.Validate();
+}
+
+// A reference read from a file has no proof (the format does not store it): AttachReferences proves it again from
+// its z*, without recomputing the certificate; a wrong z* stays unproved.
+TEST(AttachReferences, ProvesVerifiedReferencesThatCameWithoutTheirProof) {
+  ProblemSet set;
+  LibraryProblem stored = HandSolvedLcp();
+  stored.reference.certificate = Certificate::kUnique;
+  stored.reference.z = Vector::Ones(2);  // the exact solution (see HandSolvedLcp)
+  stored.reference.condition = 2.0;
+  set.problems.push_back(stored);
+  LibraryProblem wrong = HandSolvedLcp();
+  wrong.id = "hand/wrong";
+  wrong.reference = stored.reference;
+  wrong.reference.z[0] = 0.0;  // at the lower bound with w = −2: not a solution
+  set.problems.push_back(wrong);
+  ASSERT_TRUE(std::isnan(set.problems[0].reference.proved_radius));
+  AttachReferences(&set);
+  EXPECT_EQ(set.problems[0].reference.certificate, Certificate::kUnique);
+  EXPECT_GE(set.problems[0].reference.proved_radius, 0.0);
+  EXPECT_LE(set.problems[0].reference.proved_radius, 1e-28);  // z* exact: the quad sum's a-priori bound only
+  EXPECT_TRUE(set.problems[0].reference.proved_unique);        // M = [[2, 1], [1, 2]] is SPD
+  EXPECT_TRUE(std::isnan(set.problems[1].reference.proved_radius));
+  EXPECT_FALSE(set.problems[1].reference.proved_unique);
+  // The same through ProvedReference, which the Python reader uses.
+  EXPECT_EQ(ProvedReference(stored).proved_radius, set.problems[0].reference.proved_radius);
 }
 
 double SecondsOf(const std::function<void()>& fn) {
