@@ -10,7 +10,6 @@
 #include <vector>
 
 #include "solvers/reference/certify.h"
-#include "solvers/reference/enclosure.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {
@@ -77,12 +76,8 @@ ReferenceSolution ComputeReference(const LibraryProblem& problem, const Referenc
 
 ReferenceSolution ProvedReference(const LibraryProblem& p) {
   ReferenceSolution out = p.reference;
-  if (!std::isnan(out.proved_radius) || !out.verified()) return out;
   // A reference read from a file, which does not store the proof: proved again from its z*.
-  const SolutionEnclosure enclosure = EncloseSolution(p.problem, out.z);
-  if (!enclosure.proved) return out;
-  out.proved_radius = enclosure.radius;
-  out.proved_unique = !p.problem.is_sparse() && ProveSymmetricPartPositiveDefinite(p.problem.dense_matrix());
+  if (std::isnan(out.proved_radius)) AddProof(p.problem, &out);
   return out;
 }
 

@@ -645,14 +645,16 @@ ReferenceSolution Certify(const BoxMLCP& problem, const std::vector<Vector>& can
   if (stats) *stats = {};
   if (problem.size() == 0 || problem.size() > options.max_size) return {};
   ReferenceSolution reference = Certifier(problem, options).Run(candidates, stats);
-  if (reference.verified()) {
-    const SolutionEnclosure enclosure = EncloseSolution(problem, reference.z);
-    if (enclosure.proved) {
-      reference.proved_radius = enclosure.radius;
-      reference.proved_unique = !problem.is_sparse() && ProveSymmetricPartPositiveDefinite(problem.dense_matrix());
-    }
-  }
+  AddProof(problem, &reference);
   return reference;
+}
+
+void AddProof(const BoxMLCP& problem, ReferenceSolution* reference) {
+  if (!reference->verified()) return;
+  const SolutionEnclosure enclosure = EncloseSolution(problem, reference->z);
+  if (!enclosure.proved) return;
+  reference->proved_radius = enclosure.radius;
+  reference->proved_unique = !problem.is_sparse() && ProveSymmetricPartPositiveDefinite(problem.dense_matrix());
 }
 
 const SolverInfo& ReferenceSolver::info() const {

@@ -60,6 +60,11 @@ struct CertifyStats {
 ReferenceSolution Certify(const BoxMLCP& problem, const std::vector<Vector>& candidates,
                           const CertifyOptions& options = {}, CertifyStats* stats = nullptr);
 
+// Fills reference->proved_radius and proved_unique when the reference is verified and EncloseSolution proves a
+// solution at its z (and ProveSymmetricPartPositiveDefinite, for a dense M, that it is the only one); leaves them
+// (NaN, false) otherwise. Certify calls it; so does ProvedReference for references read from files.
+void AddProof(const BoxMLCP& problem, ReferenceSolution* reference);
+
 // The backend "reference": Certify from the start point and the warm start, dense n ≤ 64. kSolved with z = z* when
 // a solution is verified (iterations = active sets solved, detail "certificate" = the Certificate, read through
 // kCertificateDetail, "condition" = μ); else kNumericalFailure saying what was tried (never kInfeasible: finding
