@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cstdio>
 #include <filesystem>
+#include <map>
 #include <fstream>
 #include <numeric>
 #include <set>
@@ -55,6 +56,23 @@ std::string JobId(const BenchJob& job) {
            NumberText(job.tolerance);
   }
   return job.suite_name + "|" + job.problem_id + "|" + job.solver + "|" + mode + "|" + NumberText(job.tolerance);
+}
+
+// The backend budget in the estimates, as a single run applies it (run_shard.cc, OverBudget): in job order, a
+// backend's jobs on a suite run until their estimates add up to the budget, the rest are not run. The floor and the
+// stepper are nobody's budget. Only the estimates change (the shards' costs stay machine-independent).
+void ApplyBackendBudget(double budget_seconds, std::vector<BenchJob>* jobs) {
+  if (!(budget_seconds > 0.0)) return;
+  std::map<std::pair<std::size_t, std::string>, double> spent;
+  for (BenchJob& job : *jobs) {
+    if (job.kind == JobKind::kFloor || job.kind == JobKind::kStepper) continue;
+    double& so_far = spent[{job.suite, job.solver}];
+    if (so_far >= budget_seconds) {
+      job.estimate = kNotRunJobSeconds;
+    } else {
+      so_far += job.estimate;
+    }
+  }
 }
 
 }  // namespace
@@ -277,6 +295,7 @@ std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
     job.id = JobId(job);
     jobs.push_back(std::move(job));
   }
+  ApplyBackendBudget(request.budgets.backend_seconds, &jobs);
   return jobs;
 }
 
@@ -357,6 +376,7 @@ int HostActivity::Count() const {
 
 json JobLineToJson(const JobLine& line) {
   json j = {{"job", line.job}, {"id", line.id}, {"host", line.host}, {"concurrent_jobs", line.concurrent_jobs}};
+  if (std::isfinite(line.seconds)) j["seconds"] = line.seconds;
   if (line.skipped) j["skipped"] = true;
   if (line.has_record) j["record"] = ReplayRecordToJson(line.record);
   if (line.has_stepper) j["stepper"] = StepperStudyToJson(line.stepper);
@@ -399,6 +419,7 @@ std::vector<JobLine> ReadJobLines(const std::string& path, bool truncate_partial
       line.id = j.at("id").get<std::string>();
       line.host = j.value("host", std::string());
       line.concurrent_jobs = j.value("concurrent_jobs", 0);
+      line.seconds = j.value("seconds", kNaN);
       line.skipped = j.value("skipped", false);
       if (j.contains("record")) line.has_record = true, line.record = ReplayRecordFromJson(j.at("record"));
       if (j.contains("stepper")) line.has_stepper = true, line.stepper = StepperStudyFromJson(j.at("stepper"));

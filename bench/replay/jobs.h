@@ -74,7 +74,13 @@ struct BackendCost {
 struct JobBudgets {
   double job_seconds = 0.0;       // one cold, sweep, MCP or AVI job: its solves under min(time limit, this)
   double sequence_seconds = 0.0;  // one warm sequence × backend
+  // One backend on one suite: past it the backend's remaining jobs there are not run (bench/run/run_shard.h), so
+  // ListBenchJobs estimates them at kNotRunJobSeconds.
+  double backend_seconds = 0.0;
 };
+
+// The estimate of a job its backend's budget stops before it runs: a record written, nothing solved.
+inline constexpr double kNotRunJobSeconds = 1e-4;
 
 // Estimated seconds of one job: one solve at cost.seconds_per_unit·m·(m + nnz(M)) under the time limit (and the
 // job budget), the job at cost.job_seconds plus a warm-up solve plus its samples beyond a tiny solve's (each
@@ -167,6 +173,9 @@ struct JobLine {
   std::string id;
   std::string host;
   int concurrent_jobs = 0;
+  // Wall seconds the job took here (judging and the record included): what --list-jobs' estimate is checked
+  // against, per backend and kind (docs/benchmarks.md, "Time budgets"). NaN in lines written before it existed.
+  double seconds = kNaN;
   bool skipped = false;  // a sweep job of a backend past its --backend-budget: no record
   bool has_record = false;
   ReplayRecord record;

@@ -207,6 +207,44 @@ TEST(WarmTrack, MeasuredCostsChangeTheEstimatesNotTheShards) {
   EXPECT_EQ(AssignShards(measured, 3), AssignShards(guessed, 3));
 }
 
+// The backend budget in the estimates, as a run applies it: a backend's jobs on a suite, in order, until their
+// estimates reach the budget; the later ones are estimated at kNotRunJobSeconds (a record, nothing solved). The
+// warm sequence counts against its box suite; the other backend is untouched; the shards' costs never change.
+TEST(WarmTrack, TheBackendBudgetCutsTheEstimatesWhereTheRunCutsTheJobs) {
+  const WarmSequence sequence = IdentityRelaySequence();
+  ProblemSet set;
+  set.name = "handmade";
+  set.problems = {sequence.steps[0], sequence.steps[1], sequence.steps[2]};
+  const std::vector<std::vector<WarmSequence>> warm = {{sequence}};
+  ReplayOptions options;
+  options.tolerance_sweep_problems = 0;
+  JobListRequest request;
+  request.solvers = {"lemke", "psor"};
+  request.warm = &warm;
+  BackendCost slow;  // lemke: 0.5 s per job
+  slow.job_seconds = 0.5;
+  request.costs["lemke"] = slow;
+  const std::vector<BenchJob> unbudgeted = ListBenchJobs({set}, options, request);
+  request.budgets.backend_seconds = 0.9;  // lemke's second cold job reaches it
+  const std::vector<BenchJob> budgeted = ListBenchJobs({set}, options, request);
+  ASSERT_EQ(budgeted.size(), 8u);  // 3 problems × 2 backends cold, 1 sequence × 2 backends warm
+  int lemke_run = 0, lemke_cut = 0;
+  for (std::size_t i = 0; i < budgeted.size(); ++i) {
+    SCOPED_TRACE(budgeted[i].id);
+    EXPECT_EQ(budgeted[i].cost, unbudgeted[i].cost);
+    if (budgeted[i].solver != "lemke") {
+      EXPECT_EQ(budgeted[i].estimate, unbudgeted[i].estimate);
+    } else if (budgeted[i].estimate == kNotRunJobSeconds) {
+      ++lemke_cut;
+    } else {
+      EXPECT_EQ(budgeted[i].estimate, unbudgeted[i].estimate);
+      ++lemke_run;
+    }
+  }
+  EXPECT_EQ(lemke_run, 2);  // 0.5 + 0.5 ≥ 0.9: the third cold job and the warm sequence are not run
+  EXPECT_EQ(lemke_cut, 2);
+}
+
 TEST(WarmTrack, TrajectoryMovesOnlyQAndASequenceWithAnotherMIsRefused) {
   const std::vector<WarmSequence> sequences = TrajectoryWarmSequences("families", /*quick=*/true);
   const WarmSequence& sequence = sequences.back();  // P-matrix LCP, m = 64
@@ -307,6 +345,7 @@ TEST(WarmTrack, WarmRecordsRoundTripThroughResultsAndJobLines) {
   line.id = jobs[1].id;
   line.has_warm = true;
   line.warm = w;
+  line.seconds = 0.25;
   RunManifest manifest;
   SuiteResults listed;
   listed.suite = "handmade";
@@ -326,6 +365,7 @@ TEST(WarmTrack, WarmRecordsRoundTripThroughResultsAndJobLines) {
   }();
   ASSERT_TRUE(read.has_warm);
   EXPECT_EQ(read.warm.counts.active_set_changes, 3);
+  EXPECT_EQ(read.seconds, 0.25);  // the job's wall time, what --list-jobs' estimate is checked against
   const BenchResults assembled = AssembleResults(manifest, {{1, read}});
   ASSERT_EQ(assembled.suites[0].warm.size(), 1u);
   EXPECT_EQ(assembled.suites[0].warm[0].record.problem, sequence.id);

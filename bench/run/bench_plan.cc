@@ -320,6 +320,7 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
   }
   jobs.budgets.job_seconds = request.job_budget_seconds;
   jobs.budgets.sequence_seconds = request.sequence_budget_seconds;
+  jobs.budgets.backend_seconds = request.backend_budget_seconds;
   if (request.calibrate) {
     const auto calibrate_start = Clock::now();
     jobs.costs = CalibrateBackendCosts(options, plan.solvers);

@@ -51,42 +51,9 @@ class ShardRunner {
       : plan_(plan), progress_(progress), options_(BudgetedOptions(plan)) {}
 
   JobLine Run(const BenchJob& job) {
-    const int before = activity_.Count();
-    JobLine line;
-    line.job = job.index;
-    line.id = job.id;
-    line.host = activity_.host();
-    if (job.kind == JobKind::kStepper) {
-      line.has_stepper = true;
-      line.stepper = RunStepper();
-    } else if (job.kind == JobKind::kWarm) {
-      line.has_warm = true;
-      if (OverBudget(job)) {
-        // Not counted in skipped_, whose counts are the suite's problems (a sequence is not one of them).
-        line.warm.record = NotRunRecord(job);
-        line.warm.source = plan_.warm_sequences.at(job.suite).at(job.problem).source;
-      } else {
-        const auto start = Clock::now();
-        const WarmSequence& sequence = plan_.warm_sequences.at(job.suite).at(job.problem);
-        line.warm = ReplayWarmSequence(sequence, SolverFor(job.solver), job.solver, plan_.options, job.tolerance,
-                                       nullptr, plan_.request.sequence_budget_seconds);
-        spent_[{job.suite, job.solver}] += SecondsSince(start);
-      }
-    } else if (OverBudget(job)) {
-      line.skipped = job.kind == JobKind::kSweep;
-      line.has_record = !line.skipped;
-      if (line.has_record) line.record = NotRunRecord(job);
-      if (line.has_record) ++skipped_[{job.suite, job.solver}];  // problems; skipped sweep rungs are not problems
-    } else {
-      const auto start = Clock::now();
-      line.has_record = true;
-      line.record = Replay(job);
-      spent_[{job.suite, job.solver}] += SecondsSince(start);
-      if (JobBudgetLimitsSolves() && line.record.status == SolveStatus::kTimeLimit) CutByJobBudget(&line.record);
-    }
-    line.concurrent_jobs = std::max(before, activity_.Count());
-    if (line.has_record) line.record.host = line.host, line.record.concurrent_jobs = line.concurrent_jobs;
-    if (line.has_warm) line.warm.record.host = line.host, line.warm.record.concurrent_jobs = line.concurrent_jobs;
+    const auto job_start = Clock::now();
+    JobLine line = RunJob(job);
+    line.seconds = SecondsSince(job_start);
     return line;
   }
 
@@ -128,6 +95,47 @@ class ShardRunner {
   }
 
  private:
+  // One job: its record (or the warm sequence's, the stepper studies), the backend's budget spent.
+  JobLine RunJob(const BenchJob& job) {
+    const int before = activity_.Count();
+    JobLine line;
+    line.job = job.index;
+    line.id = job.id;
+    line.host = activity_.host();
+    if (job.kind == JobKind::kStepper) {
+      line.has_stepper = true;
+      line.stepper = RunStepper();
+    } else if (job.kind == JobKind::kWarm) {
+      line.has_warm = true;
+      if (OverBudget(job)) {
+        // Not counted in skipped_, whose counts are the suite's problems (a sequence is not one of them).
+        line.warm.record = NotRunRecord(job);
+        line.warm.source = plan_.warm_sequences.at(job.suite).at(job.problem).source;
+      } else {
+        const auto start = Clock::now();
+        const WarmSequence& sequence = plan_.warm_sequences.at(job.suite).at(job.problem);
+        line.warm = ReplayWarmSequence(sequence, SolverFor(job.solver), job.solver, plan_.options, job.tolerance,
+                                       nullptr, plan_.request.sequence_budget_seconds);
+        spent_[{job.suite, job.solver}] += SecondsSince(start);
+      }
+    } else if (OverBudget(job)) {
+      line.skipped = job.kind == JobKind::kSweep;
+      line.has_record = !line.skipped;
+      if (line.has_record) line.record = NotRunRecord(job);
+      if (line.has_record) ++skipped_[{job.suite, job.solver}];  // problems; skipped sweep rungs are not problems
+    } else {
+      const auto start = Clock::now();
+      line.has_record = true;
+      line.record = Replay(job);
+      spent_[{job.suite, job.solver}] += SecondsSince(start);
+      if (JobBudgetLimitsSolves() && line.record.status == SolveStatus::kTimeLimit) CutByJobBudget(&line.record);
+    }
+    line.concurrent_jobs = std::max(before, activity_.Count());
+    if (line.has_record) line.record.host = line.host, line.record.concurrent_jobs = line.concurrent_jobs;
+    if (line.has_warm) line.warm.record.host = line.host, line.warm.record.concurrent_jobs = line.concurrent_jobs;
+    return line;
+  }
+
   bool JobBudgetLimitsSolves() const {
     const double budget = plan_.request.job_budget_seconds;
     return budget > 0.0 && budget < plan_.options.time_limit_seconds;
