@@ -30,7 +30,7 @@ bench_status=0
   --siconos-dir tests/data/siconos "$@" ||
   bench_status=$?
 if [ "$bench_status" -ne 0 ] && [ "$bench_status" -ne 3 ]; then exit "$bench_status"; fi
-"$smcbench" collection tests/data/siconos --time-limit 10 --markdown results/siconos-collection.md \
+"$smcbench" collection tests/data/siconos --time-limit 3 --markdown results/siconos-collection.md \
   --json results/siconos-collection.json >/dev/null
 "$smcbench" paper --out results/paper
 echo "report: results/bench/report.md, results/siconos-collection.md, results/paper/README.md"

@@ -75,7 +75,9 @@ void AttachReferences(McpLibraryProblem* p, const std::vector<Vector>& known_sol
   if (small) candidates.insert(candidates.end(), p->starts.begin(), p->starts.end());
   for (std::string_view name : SolverNames()) {
     std::unique_ptr<Solver> solver = CreateSolver(name);
-    if (!solver->info().mcp) continue;
+    // auto's answer is the answer of a backend asked here anyway, from the same start (its chain: newton,
+    // newton-min, ipopt); asking it too only repeats their solves (a sixth of the suite's build time).
+    if (!solver->info().mcp || solver->info().delegates) continue;
     // A large sparse problem takes candidates from the backends that work on its sparse Jacobian in our process
     // (an external code's dense method factors a dense 10⁴ × 10⁴ Jacobian per iteration, and cannot be
     // interrupted).
