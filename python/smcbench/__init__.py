@@ -1,6 +1,8 @@
 """smcbench from Python: solve box-MLCPs, nonlinear MCPs and affine variational inequalities (AVIs) with smcbench's
-backends, read and write AVI files, judge and benchmark a suite of one's own MCPs, simulate the sliding-mode scenes of Acary & Brogliato (2009), read and write .smcps problem sets,
-load `smcbench bench` results.
+backends, read and write AVI files, judge an answer against a certified reference, benchmark a suite of one's own
+problems or MCPs, simulate the sliding-mode scenes of Acary & Brogliato (2009), read and write .smcps problem sets,
+load `smcbench bench` results, report on them and compare two runs as `smcbench report` and `smcbench compare` do.
+`python -m smcbench ARGS` runs the command-line program shipped in the package (__main__.py).
 
 numpy in, numpy out. The C++ core is the extension `smcbench._smcbench`; this file turns Python's conventions
 (None bounds, scalars, scipy.sparse, keyword options) into its arguments and its dicts into result objects.

@@ -1,7 +1,7 @@
 """`python -m smcbench ARGS` and the console command `smcbench ARGS` (pip's entry point, pyproject.toml): the C++
-command-line program shipped inside this package (smcbench/bin/smcbench: a copy in a wheel, a link to
-tools/smcbench in a build tree), run with ARGS in this process's place, so both take every command and flag of the
-program and return its exit status. See docs/python.md."""
+command-line program shipped inside this package (smcbench/bin/smcbench, see program()), run with ARGS in this
+process's place, so both take every command and flag of the program and return its exit status. See
+docs/python.md."""
 
 import os
 import sys
@@ -9,8 +9,8 @@ from typing import List, Optional
 
 
 def program() -> str:
-    """The path of the packaged command-line program (it may be missing: a package installed by cmake --install
-    has the program in <prefix>/bin instead)."""
+    """The path of the packaged command-line program: a copy (wheel), or a link to tools/smcbench (build tree) or
+    to <prefix>/bin/smcbench (cmake --install)."""
     return os.path.join(os.path.dirname(os.path.abspath(__file__)), "bin", "smcbench")
 
 
@@ -33,7 +33,7 @@ def main(argv: Optional[List[str]] = None) -> None:
     path = program()
     if not os.access(path, os.X_OK):
         sys.exit(f"smcbench: the command-line program is not in this package ({path}): build it (cmake --build "
-                 "build/release --target smcbench_python_cli) or reinstall the package with pip")
+                 "build/release --target smcbench_python_cli), or install the package with pip or cmake --install")
     args = sys.argv[1:] if argv is None else list(argv)
     sys.stdout.flush()
     os.execve(path, [path] + args, _environment())
