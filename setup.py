@@ -1,6 +1,8 @@
 # The build step of `pip install .` (pyproject.toml): CMake configures and builds the extension smcbench._smcbench
-# (python/CMakeLists.txt) and setuptools packages it with python/smcbench/*.py and the data folders
-# (share/smcbench/{scenes,siconos}, found by the module relative to itself: problems/io/data_dirs.h).
+# and the command-line program (python/CMakeLists.txt, target smcbench_python_cli) and setuptools packages them
+# with python/smcbench/*.py and the data folders (share/smcbench/{scenes,siconos}, found by the module relative to
+# itself: problems/io/data_dirs.h). The program lands in smcbench/bin/smcbench; the console command `smcbench` and
+# `python -m smcbench` run it (python/smcbench/__main__.py).
 #
 # Environment:
 #   SMCBENCH_BUILD_DIR   the CMake build tree (default build/pip in this checkout, kept, so a reinstall rebuilds
@@ -58,7 +60,8 @@ class CMakeBuild(build_ext):
             configure += shlex.split(os.environ.get("SMCBENCH_CMAKE_ARGS", ""))
             subprocess.run(configure, check=True)
         jobs = os.environ.get("CMAKE_BUILD_PARALLEL_LEVEL") or str(os.cpu_count() or 1)
-        subprocess.run(["cmake", "--build", build_dir, "--target", "_smcbench", "--parallel", jobs], check=True)
+        subprocess.run(["cmake", "--build", build_dir, "--target", "_smcbench", "smcbench_python_cli", "--parallel",
+                        jobs], check=True)
 
         # The module CMake built for this interpreter (its file name carries the ABI: .cpython-311-x86_64-...so).
         built = os.path.join(build_dir, "python", "smcbench", "_smcbench" + sysconfig.get_config_var("EXT_SUFFIX"))
@@ -69,6 +72,18 @@ class CMakeBuild(build_ext):
         target = self.get_ext_fullpath(ext.name)
         os.makedirs(os.path.dirname(target), exist_ok=True)
         shutil.copyfile(built, target)
+        self.copy_program(build_dir, os.path.dirname(target))
+
+    def copy_program(self, build_dir, package_dir):
+        """The command-line program into the package (smcbench/bin/smcbench, executable): the file the build tree's
+        link python/smcbench/bin/smcbench points to."""
+        program = os.path.join(build_dir, "python", "smcbench", "bin", "smcbench")
+        if not os.path.isfile(program):
+            raise RuntimeError(f"setup.py: {program} was not built (target smcbench_python_cli)")
+        target = os.path.join(package_dir, "bin", "smcbench")
+        os.makedirs(os.path.dirname(target), exist_ok=True)
+        shutil.copyfile(os.path.realpath(program), target)
+        os.chmod(target, 0o755)
 
 
 os.chdir(SOURCE_DIR)  # data_files and package_dir are relative to this folder

@@ -1,6 +1,8 @@
 """smcbench from Python: solve box-MLCPs, nonlinear MCPs and affine variational inequalities (AVIs) with smcbench's
-backends, read and write AVI files, judge and benchmark a suite of one's own MCPs, simulate the sliding-mode scenes of Acary & Brogliato (2009), read and write .smcps problem sets,
-load `smcbench bench` results.
+backends, read and write AVI files, judge an answer against a certified reference, benchmark a suite of one's own
+problems or MCPs, simulate the sliding-mode scenes of Acary & Brogliato (2009), read and write .smcps problem sets,
+load `smcbench bench` results, report on them and compare two runs as `smcbench report` and `smcbench compare` do.
+`python -m smcbench ARGS` runs the command-line program shipped in the package (__main__.py).
 
 numpy in, numpy out. The C++ core is the extension `smcbench._smcbench`; this file turns Python's conventions
 (None bounds, scalars, scipy.sparse, keyword options) into its arguments and its dicts into result objects.
@@ -10,8 +12,11 @@ See docs/python.md.
 
 from __future__ import annotations
 
+import contextlib
 import json
 import os
+import shutil
+import tempfile
 from dataclasses import dataclass, field
 from typing import Any, Callable, Dict, Iterable, Iterator, List, NamedTuple, Optional, Union
 
@@ -24,7 +29,7 @@ __all__ = [
     "InvalidInputError", "SolveResult", "Simulation", "Problem", "McpProblem", "solvers", "solve", "solve_mcp",
     "judge_mcp", "bench_mcp", "simulate", "scenes", "scenes_directory", "read_problem_set", "write_problem_set",
     "load_bench_results", "bench", "AffineVI", "AviResult", "AviFile", "AviProblem", "solve_avi", "read_avi",
-    "write_avi",
+    "write_avi", "judge", "report", "compare", "Comparison",
 ]
 
 
@@ -37,6 +42,9 @@ class SolveResult:
     (docs/verdict.md). time_seconds: wall time of the C++ Solve call. details: backend-specific numbers, and codes
     by name (lemke's "free_row_mode": "schur"; auto's "chosen": "enum"; an external adapter's "in_process": "worker").
     solver: the backend that was asked; chosen: for "auto", the backend whose answer this is (else None).
+    verdict, forward_error, reference: with solve(..., reference=...), the bench's verdict on the answer, ‖z − z*‖∞
+    against the certified reference (NaN when z* is not certified the only solution) and that reference (judge()'s
+    "reference" dict); None otherwise.
     """
 
     status: str
@@ -52,6 +60,9 @@ class SolveResult:
     solver: str
     chosen: Optional[str]
     message: str
+    verdict: Optional[str] = None
+    forward_error: Optional[float] = None
+    reference: Optional[Dict[str, Any]] = None
 
 
 def _result(raw: dict) -> SolveResult:
@@ -96,7 +107,8 @@ def _size_of(q: Any) -> int:
 
 
 def solve(M, q, l=None, u=None, solver: str = "auto", tol: float = 1e-10, time_limit: Optional[float] = None, *,
-          z0=None, max_iterations: Optional[int] = None, polish: bool = True, **backend_options) -> SolveResult:
+          z0=None, max_iterations: Optional[int] = None, polish: bool = True, reference=None,
+          **backend_options) -> SolveResult:
     """Solve the box-MLCP  M z + q = w − v,  l ≤ z ≤ u,  w, v ≥ 0,  (z − l)ᵀw = 0,  (u − z)ᵀv = 0.
 
     M: a dense array (any float dtype or contiguity; copied) or a scipy.sparse matrix (as CSC; backends that
@@ -107,15 +119,46 @@ def solve(M, q, l=None, u=None, solver: str = "auto", tol: float = 1e-10, time_l
     tolerance of "solved". time_limit: seconds (None: no limit). z0: warm start. max_iterations: None = the
     backend's default. polish: the exact polish of the answer (on by default, as in the CLI).
     backend_options: the backend's typed options by name (solvers()[i]["options"]; `--set` in the CLI), e.g.
-    solve(M, q, solver="psor", omega=1.2).
+    solve(M, q, solver="psor", omega=1.2). reference: None (the default) leaves the answer unjudged; True judges
+    it as judge() does against the library's certified reference; an array z* is certified and judged against:
+    the result's verdict, forward_error and reference are then set.
 
     Raises InvalidInputError (a ValueError) for NaN/inf in M or q, NaN bounds, l > u, size mismatches, an
     unknown solver or option, or an invalid option value.
     """
+    matrix, q_vec, l_vec, u_vec = _box_arrays(M, q, l, u)
+    result = _result(_smcbench._solve(matrix, q_vec, l_vec, u_vec, solver, float(tol), time_limit, z0,
+                                      max_iterations, polish, backend_options))
+    if reference is not None and reference is not False:
+        judged = _smcbench._judge(matrix, q_vec, l_vec, u_vec, result.z, result.status, float(tol),
+                                  None if reference is True else reference, "unknown")
+        result.verdict, result.forward_error = judged["verdict"], judged["forward_error"]
+        result.reference = judged["reference"]
+    return result
+
+
+def _box_arrays(M, q, l, u):
+    """M, q, l, u as the C++ core takes a box-MLCP: sparse M as its CSC tuple, bounds as vectors (_bound)."""
     m = _size_of(q)
     matrix = _csc_tuple(M, "M") if _is_sparse(M) else M
-    return _result(_smcbench._solve(matrix, q, _bound(l, 0.0, max(m, 0), "l"), _bound(u, np.inf, max(m, 0), "u"),
-                                    solver, float(tol), time_limit, z0, max_iterations, polish, backend_options))
+    return matrix, q, _bound(l, 0.0, max(m, 0), "l"), _bound(u, np.inf, max(m, 0), "u")
+
+
+def judge(M, q, l, u, z, status: str = "solved", tol: float = 1e-10, reference=None,
+          expected: str = "unknown") -> dict:
+    """The verdict `smcbench bench` gives the answer z with status (a SolveResult.status name) to the box-MLCP
+    (M, q, l, u as in solve(): None bounds are l = 0, u = +inf; scalars are used on every row): the library's Judge
+    (docs/verdict.md). Residuals are recomputed from z; "solved" needs them ≤ tol and, where the reference is
+    certified the only solution, ‖z − z*‖∞ within the allowance 10·max(1, μ)·tol·(1 + ‖z*‖∞).
+
+    reference: a known solution z*, certified here in extended precision (Certify); None: the library's certified
+    reference, from z itself and the answers of lemke, enum and newton (problems of up to 64 rows; larger ones get
+    none). expected: "unknown", "solvable" or "infeasible" (a refusal of a solvable problem is WRONGLY REFUSED).
+    Returns the dict of judge_mcp (verdict, wrong, residual_abs/rel/scaled, forward_error, forward_error_rel,
+    forward_allowance; NaN where no unique reference defines them) and "reference": the reference used
+    (certificate, z, condition, proved_radius, proved_unique). Bad input raises InvalidInputError naming the field."""
+    matrix, q_vec, l_vec, u_vec = _box_arrays(M, q, l, u)
+    return _smcbench._judge(matrix, q_vec, l_vec, u_vec, z, str(status), float(tol), reference, str(expected))
 
 
 def _default_mcp_solver() -> str:
@@ -386,15 +429,17 @@ class McpProblem:
 _BENCH_MCP_COLUMNS = ["problem", "start", "solver", "size", "expected", "status", "verdict", "wrong", "iterations",
                       "residual_abs", "residual_rel", "residual_scaled", "tolerance", "forward_error",
                       "forward_error_rel", "forward_allowance", "time_median", "time_min", "time_max", "samples",
-                      "solves_per_sample", "message"]
+                      "solves_per_sample", "certificate", "tags", "message"]
 
 
 def bench_mcp(problems: Iterable[McpProblem], solvers: Optional[List[str]] = None, tol: float = 1e-10,
-              repetitions: int = 5, time_limit: float = 10.0):
+              repetitions: int = 5, time_limit: float = 10.0, *, out=None):
     """Benchmark a suite of McpProblem on MCP backends as `smcbench bench` does: a pandas DataFrame with one row per
     problem × start × backend (columns: problem, start, solver, size, expected, status, verdict, wrong, iterations,
     residual_abs/rel/scaled, tolerance, forward_error, forward_error_rel, forward_allowance, time_median/min/max,
-    samples, solves_per_sample, message), in suite, start, backend order.
+    samples, solves_per_sample, certificate, tags, message), in suite, start, backend order. The records are written
+    as `smcbench bench --out` writes them (results.json, results.csv; suite "python") to the folder out (None: a
+    temporary one), so report(out) or report(df) makes their report.
 
     solvers: a backend name or a list of them (None: every registered backend with mcp=True). Each problem × start × backend is solved
     once untimed, then `repetitions` timed samples (a sample repeats the solve until it lasts 0.2 ms; at most 2 s per
@@ -411,8 +456,9 @@ def bench_mcp(problems: Iterable[McpProblem], solvers: Optional[List[str]] = Non
             raise InvalidInputError(f"bench_mcp: problems[{index}] is a {type(p).__name__}, expected McpProblem")
         suite.append(p._core(index))
     names = [solvers] if isinstance(solvers, str) else list(solvers or [])
-    rows = _smcbench._bench_mcp(suite, names, float(tol), int(repetitions), float(time_limit))
-    return pd.DataFrame.from_records(rows, columns=_BENCH_MCP_COLUMNS)
+    with _results_output(out) as folder:
+        rows = _smcbench._bench_mcp(suite, names, float(tol), int(repetitions), float(time_limit), "python", folder)
+        return _with_results(pd.DataFrame.from_records(rows, columns=_BENCH_MCP_COLUMNS), folder, out)
 
 
 @dataclass
@@ -612,8 +658,6 @@ def bench(suites, solvers=None, tol: float = 1e-10, repetitions: int = 7, time_l
     siconos_dir (None: bench's default) as the flags of `smcbench bench`; no time-stepper studies. out: a folder to
     keep results.json and results.csv in (None: a temporary one). Bad input (an unknown suite or backend, a
     rejected setting, tol <= 0, repetitions < 1, ...) raises InvalidInputError naming it, before anything runs."""
-    import tempfile
-
     import pandas as pd  # imported here: the rest of the module does not need pandas
 
     items = [suites] if isinstance(suites, (str, os.PathLike, Problem, AviProblem)) else list(suites)
@@ -633,7 +677,52 @@ def bench(suites, solvers=None, tol: float = 1e-10, repetitions: int = 7, time_l
         _smcbench._bench(paths, names, list(settings or []), float(tol), int(repetitions), float(time_limit),
                          float(backend_budget), bool(quick), bool(polish), bool(warm),
                          "" if siconos_dir is None else os.fspath(siconos_dir), folder)
-        return pd.read_csv(os.path.join(folder, "results.csv"))
+        return _with_results(_with_text_columns(pd.read_csv(os.path.join(folder, "results.csv")), folder), folder,
+                             out)
+
+
+def _with_text_columns(frame, folder: str):
+    """results.csv's frame with the record fields results.csv leaves out, tags and message, from results.json (the
+    same records in the same order, _record_rows), as the last columns; "" where a record has none."""
+    with open(os.path.join(folder, "results.json"), encoding="utf-8") as f:
+        rows = _record_rows(json.load(f), sweep=True, warm=True)
+    if len(rows) != len(frame):
+        raise RuntimeError(f"bench: results.json holds {len(rows)} records but results.csv {len(frame)} rows")
+    for column in ("tags", "message"):
+        frame[column] = [str(r.get(column, "")) for r in rows]
+    return frame
+
+
+@contextlib.contextmanager
+def _results_output(out):
+    """The folder a run writes its results to: out, or a temporary one removed afterwards."""
+    if out is not None:
+        yield os.fspath(out)
+        return
+    with tempfile.TemporaryDirectory(prefix="smcbench-results-") as scratch:
+        yield os.path.join(scratch, "results")
+
+
+def _with_results(frame, folder: str, out):
+    """frame with what report() and compare() need to find the run again: attrs "results_json" (the text of
+    results.json, kept when the folder was temporary) and "results_dir" (out, or None)."""
+    with open(os.path.join(folder, "results.json"), encoding="utf-8") as f:
+        frame.attrs["results_json"] = f.read()
+    frame.attrs["results_dir"] = None if out is None else os.fspath(out)
+    return frame
+
+
+def _record_rows(document: dict, sweep: bool, warm: bool) -> List[dict]:
+    """The records of a results.json document in results.csv's order: per suite the cold records, then (sweep) the
+    tolerance sweep's, then (warm) the warm track's."""
+    rows = []
+    for suite in document.get("suites", []):
+        rows.extend(suite.get("records", []))
+        if sweep:
+            rows.extend(suite.get("sweep", []))
+        if warm:
+            rows.extend(suite.get("warm", []))
+    return rows
 
 
 def load_bench_results(path, include_sweep: bool = True):
@@ -650,18 +739,111 @@ def load_bench_results(path, include_sweep: bool = True):
     if os.path.isdir(path):
         path = os.path.join(path, "results.json")
     with open(path, encoding="utf-8") as f:
-        document = json.load(f)
+        text = f.read()
+    document = json.loads(text)
     if not str(document.get("format", "")).startswith("smcbench-bench/"):
         raise InvalidInputError(f"'{path}': not a smcbench bench results file (format {document.get('format')!r}, "
                                 "expected smcbench-bench/1)")
-    rows = []
-    for suite in document.get("suites", []):
-        rows.extend(suite.get("records", []))
-        if include_sweep:
-            rows.extend(suite.get("sweep", []))
-    frame = pd.DataFrame.from_records(rows)
+    frame = pd.DataFrame.from_records(_record_rows(document, include_sweep, warm=False))
     frame.attrs.update({key: document.get(key) for key in ("format", "command", "environment", "polish")})
+    frame.attrs.update({"results_json": text, "results_dir": os.path.dirname(path) or "."})
     return frame
+
+
+class _ResultsFolder(NamedTuple):
+    """Where results.json of a run is (folder) and how the report and compare.md name it (name: the folder as the
+    user gave it, or where bench() kept it; "(results in memory)" for a DataFrame whose folder was temporary)."""
+
+    folder: str
+    name: str
+
+
+def _results_folder(results, what: str, scratch: str) -> _ResultsFolder:
+    """The folder holding results.json of `results`: a `smcbench bench --out` folder, its results.json, or a
+    DataFrame of bench(), bench_mcp() or load_bench_results() (its attrs "results_json", written to a folder in
+    scratch). InvalidInputError naming `what` otherwise."""
+    if isinstance(results, (str, os.PathLike)):
+        path = os.fspath(results)
+        folder = os.path.dirname(path) or "." if os.path.isfile(path) else path
+        if not os.path.isfile(os.path.join(folder, "results.json")):
+            raise InvalidInputError(f"{what}: '{path}' is not a results folder (no results.json in it): give a "
+                                    "`smcbench bench --out` folder, its results.json, or what bench() returned")
+        return _ResultsFolder(folder, folder)
+    attrs = getattr(results, "attrs", None)
+    text = attrs.get("results_json") if isinstance(attrs, dict) else None
+    if not text:
+        raise InvalidInputError(f"{what}: expected a results folder, its results.json, or the DataFrame of bench(), "
+                                f"bench_mcp() or load_bench_results(); got {type(results).__name__}")
+    folder = tempfile.mkdtemp(prefix=what + "-", dir=scratch)
+    with open(os.path.join(folder, "results.json"), "w", encoding="utf-8") as f:
+        f.write(text)
+    return _ResultsFolder(folder, attrs.get("results_dir") or "(results in memory)")
+
+
+def report(results, out=None, *, plots: bool = False) -> str:
+    """The report `smcbench report DIR` writes (report.md: verdict counts, timing, tolerance ladder, ... per suite),
+    made by the same C++ code (WriteBenchReport) and returned as markdown text.
+
+    results: a `smcbench bench --out` folder, its results.json, or the DataFrame bench(), bench_mcp() or
+    load_bench_results() returned. out: a folder to write report.md (and, with plots, its PNG figures) to; None
+    writes nothing (the results folder is never touched unless it is out). plots: draw the figures (needs gnuplot,
+    as the command without --no-plots). InvalidInputError for anything else, or for plots without gnuplot."""
+    with tempfile.TemporaryDirectory(prefix="smcbench-report-") as scratch:
+        source = _results_folder(results, "report", scratch)
+        work = os.path.join(scratch, "report")  # made here, so that the results folder is left as it is
+        os.mkdir(work)
+        shutil.copyfile(os.path.join(source.folder, "results.json"), os.path.join(work, "results.json"))
+        # The report names the folder it was made in: the results' own, as `smcbench report DIR` would.
+        markdown = _smcbench._report(work, bool(plots)).replace(work, source.name)
+        if out is not None:
+            os.makedirs(os.fspath(out), exist_ok=True)
+            with open(os.path.join(os.fspath(out), "report.md"), "w", encoding="utf-8") as f:
+                f.write(markdown)
+            for name in os.listdir(work):
+                if name not in ("results.json", "report.md"):
+                    shutil.copyfile(os.path.join(work, name), os.path.join(os.fspath(out), name))
+        return markdown
+
+
+@dataclass
+class Comparison:
+    """What `smcbench compare A B` found (bench/compare/compare_runs.h). summary: the table the command prints;
+    markdown: its compare.md (without the figure); regressed: what its exit status 1 means (a verdict regression or
+    a group flagged slower); regressions, slower_groups: their counts; matched_records: records both runs hold;
+    verdict_changes: dicts (kind "regression" / "improvement" / "changed", suite, problem, start, solver, mode,
+    tolerance, verdict_a/b, status_a/b, message_b); groups: per suite × backend × size band the time ratio B/A
+    (sgm_a, sgm_b, ratio, low, high: the bootstrap interval, flag "SLOWER" / "faster" / ""); only_in_a, only_in_b:
+    records one run lacks ("suite|problem|backend|mode")."""
+
+    summary: str
+    markdown: str
+    regressed: bool
+    regressions: int
+    slower_groups: int
+    matched_records: int
+    verdict_changes: List[dict]
+    groups: List[dict]
+    only_in_a: List[str]
+    only_in_b: List[str]
+
+
+def compare(a, b, out=None, *, threshold: float = 0.05, resamples: int = 2000, confidence: float = 0.95) -> Comparison:
+    """Compare two bench runs of the same suites as `smcbench compare A B` does (CompareRuns: verdict changes first,
+    then the time ratio B/A per suite, backend and size band with a bootstrap interval, flagged beyond threshold).
+
+    a, b: results folders, their results.json, or DataFrames of bench() / bench_mcp() / load_bench_results().
+    out: a folder to write compare.md to (the command's --out without the figure; None: nothing written).
+    threshold, resamples, confidence: the command's flags. Runs of other suites, or options out of range, raise
+    InvalidInputError (the command's exit status 2)."""
+    with tempfile.TemporaryDirectory(prefix="smcbench-compare-") as scratch:
+        runs = [_results_folder(x, "compare", scratch) for x in (a, b)]
+        raw = _smcbench._compare(runs[0].folder, runs[1].folder, runs[0].name, runs[1].name, float(threshold),
+                                 int(resamples), float(confidence))
+    if out is not None:
+        os.makedirs(os.fspath(out), exist_ok=True)
+        with open(os.path.join(os.fspath(out), "compare.md"), "w", encoding="utf-8") as f:
+            f.write(raw["markdown"])
+    return Comparison(**raw)
 
 
 AffineVI.__doc__ = """An affine variational inequality over a polytope (docs/avi.md): find λ in

@@ -151,4 +151,34 @@ void SetBackendOptions(Solver& solver, const std::string& name, const py::dict& 
   }
 }
 
+BoxMLCP ToBoxMLCP(const py::object& M, const py::object& q, const py::object& l, const py::object& u) {
+  if (IsCscTuple(M)) {
+    return BoxMLCP(ToSparseMatrix(M.cast<py::tuple>(), "M"), ToVector(q, "q"), ToVector(l, "l"), ToVector(u, "u"));
+  }
+  return BoxMLCP(ToDenseMatrix(M, "M"), ToVector(q, "q"), ToVector(l, "l"), ToVector(u, "u"));
+}
+
+py::dict JudgementToDict(const Judgement& j) {
+  py::dict out;
+  out["verdict"] = std::string(ToString(j.verdict));
+  out["wrong"] = IsWrong(j.verdict);
+  out["residual_abs"] = j.residual.abs;
+  out["residual_rel"] = j.residual.rel;
+  out["residual_scaled"] = j.residual.scaled;
+  out["forward_error"] = j.forward_error;
+  out["forward_error_rel"] = j.forward_error_rel;
+  out["forward_allowance"] = j.forward_allowance;
+  return out;
+}
+
+py::dict ReferenceToDict(const ReferenceSolution& reference) {
+  py::dict out;
+  out["certificate"] = std::string(ToString(reference.certificate));
+  out["z"] = reference.z.size() ? py::object(ToNumpy(reference.z)) : py::object(py::none());
+  out["condition"] = reference.condition;
+  out["proved_radius"] = reference.proved_radius;  // NaN: not proved by an interval enclosure
+  out["proved_unique"] = reference.proved_unique;
+  return out;
+}
+
 }  // namespace smcbench::python

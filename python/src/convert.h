@@ -11,6 +11,7 @@
 #include "solvers/core/result.h"
 #include "solvers/core/solver.h"
 #include "solvers/core/types.h"
+#include "solvers/core/verdict.h"
 
 namespace smcbench::python {
 
@@ -32,6 +33,15 @@ py::array_t<double> ToNumpyRows(const DenseMatrix& m);
 // Transposed: column k of m becomes row k (a trajectory's columns are steps; Python reads rows = steps).
 py::array_t<double> ToNumpyTransposed(const DenseMatrix& m);
 
+// The box-MLCP of smcbench.solve's arguments as __init__.py prepares them: M dense or the CSC tuple, q, l, u.
+// Validated by BoxMLCP (InvalidInputError naming M, q, l or u: NaN, sizes, l > u).
+BoxMLCP ToBoxMLCP(const py::object& M, const py::object& q, const py::object& l, const py::object& u);
+// A verdict's numbers as the dict judge() and judge_mcp() return: verdict, wrong, residual_abs/rel/scaled,
+// forward_error, forward_error_rel, forward_allowance (NaN where no reference defines them).
+py::dict JudgementToDict(const Judgement& judgement);
+// A certified reference as Python sees it: certificate, z (None unless verified), condition, proved_radius,
+// proved_unique.
+py::dict ReferenceToDict(const ReferenceSolution& reference);
 // A SolveResult as the plain dict __init__.py turns into smcbench.SolveResult.
 py::dict ResultToDict(const SolveResult& result);
 

@@ -1,12 +1,11 @@
 // smcbench.judge_mcp and smcbench.bench_mcp: a Python user's MCPs (callables, bounds, starts, references) judged by
-// the one MCP verdict (JudgeMCP, solvers/core/verdict.h) and timed on every MCP backend as `smcbench bench` times
-// the box: an untimed warm-up solve, then samples of repeated solves, median over the samples. The timing loop runs
-// here in C++ without the GIL; F and J take it back per call, so the times include the user's Python F and J.
+// the one MCP verdict (JudgeMCP, solvers/core/verdict.h) and timed on every MCP backend by the engine of
+// `smcbench bench` (ReplayMcpOne, bench/replay/mcp_replay.h: an untimed warm-up solve, then samples of repeated
+// solves, median over the samples). The engine runs without the GIL; F and J take it back per call, so the times
+// include the user's Python F and J.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
-#include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -15,6 +14,8 @@
 #include <utility>
 #include <vector>
 
+#include "bench/replay/mcp_replay.h"
+#include "bench/replay/results_io.h"
 #include "convert.h"
 #include "problems/mcp/mcp_library.h"
 #include "python_mcp.h"
@@ -23,61 +24,6 @@
 
 namespace smcbench::python {
 namespace {
-
-using Clock = std::chrono::steady_clock;
-
-// A problem × start × backend's timing, with the defaults of `smcbench bench` (ReplayOptions) where they apply.
-struct McpBenchOptions {
-  double tolerance = 1e-10;
-  double time_limit_seconds = 10.0;   // per solve; a solve that reaches it is timed once
-  int repetitions = 5;                // timing samples per problem × start × backend
-  double min_sample_seconds = 2e-4;   // a sample repeats the solve until it lasts this long (clock resolution)
-  double max_seconds_per_pair = 2.0;  // stop sampling after this long (at least one sample)
-};
-
-struct McpTiming {
-  double median = 0.0, min = 0.0, max = 0.0;
-  int samples = 0;
-  std::int64_t solves_per_sample = 0;
-};
-
-double Median(std::vector<double> v) {
-  std::sort(v.begin(), v.end());
-  const std::size_t n = v.size();
-  return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
-}
-
-// Repeated cold solves from the same start into *result (the last one is judged). Called without the GIL. An
-// exception from F or J ends it after the warm-up solve (PythonMCP::RethrowCallbackError).
-McpTiming TimeMcpSolves(Solver* solver, PythonMCP& problem, const SolverOptions& options,
-                        const McpBenchOptions& bench, SolveResult* result) {
-  const auto t0 = Clock::now();
-  solver->Solve(problem, options, result);  // warm-up: sizes the workspaces, tells how long one solve takes
-  const double first = std::chrono::duration<double>(Clock::now() - t0).count();
-  problem.RethrowCallbackError();
-  McpTiming timing;
-  std::vector<double> samples;
-  std::int64_t count = 1;
-  if (first > 0.0) count = static_cast<std::int64_t>(std::ceil(bench.min_sample_seconds / first));
-  count = std::clamp<std::int64_t>(count, 1, 1 << 20);
-  if (result->status == SolveStatus::kTimeLimit) {  // its time is the limit, not a measurement
-    samples.push_back(first);
-    count = 1;
-  }
-  const auto pair_start = Clock::now();
-  while (static_cast<int>(samples.size()) < bench.repetitions) {
-    const auto s0 = Clock::now();
-    for (std::int64_t i = 0; i < count; ++i) solver->Solve(problem, options, result);
-    samples.push_back(std::chrono::duration<double>(Clock::now() - s0).count() / static_cast<double>(count));
-    if (std::chrono::duration<double>(Clock::now() - pair_start).count() > bench.max_seconds_per_pair) break;
-  }
-  timing.samples = static_cast<int>(samples.size());
-  timing.solves_per_sample = count;
-  timing.median = Median(samples);
-  timing.min = *std::min_element(samples.begin(), samples.end());
-  timing.max = *std::max_element(samples.begin(), samples.end());
-  return timing;
-}
 
 // The F and J of a problem dict as a PythonMCP (F, J, l, u, variable_scale as __init__.py prepares them), its
 // Jacobian's kind probed at `start` (empty: the projection of 0 onto the box); `what` names it in every message.
@@ -93,19 +39,6 @@ std::shared_ptr<PythonMCP> MakePythonMcp(const py::dict& d, Vector start, const 
   if (start.size() != problem->size() || !start.allFinite()) ProjectZeroOntoBox(problem->l(), problem->u(), &start);
   problem->ProbeJacobianKind(start);
   return problem;
-}
-
-py::dict JudgementToDict(const Judgement& j) {
-  py::dict out;
-  out["verdict"] = std::string(ToString(j.verdict));
-  out["wrong"] = IsWrong(j.verdict);
-  out["residual_abs"] = j.residual.abs;
-  out["residual_rel"] = j.residual.rel;
-  out["residual_scaled"] = j.residual.scaled;
-  out["forward_error"] = j.forward_error;
-  out["forward_error_rel"] = j.forward_error_rel;
-  out["forward_allowance"] = j.forward_allowance;
-  return out;
 }
 
 py::dict JudgeMcp(const py::dict& problem_dict, const py::object& z, const std::string& status, double tolerance) {
@@ -186,59 +119,79 @@ std::vector<std::unique_ptr<Solver>> McpSolvers(std::vector<std::string>* names)
   return solvers;
 }
 
-// One row per problem × start × backend, as dicts of the DataFrame's columns.
+// One record's row of the DataFrame (bench_mcp's columns: results.csv's, with `wrong`).
+py::dict RecordToRow(const ReplayRecord& r) {
+  py::dict row;
+  row["problem"] = r.problem;
+  row["start"] = r.start;
+  row["solver"] = r.solver;
+  row["size"] = r.size;
+  row["expected"] = std::string(ToString(r.expected));
+  row["status"] = std::string(ToString(r.status));
+  row["verdict"] = std::string(ToString(r.verdict));
+  row["wrong"] = IsWrong(r.verdict);
+  row["iterations"] = r.iterations;
+  row["residual_abs"] = r.residual_abs;
+  row["residual_rel"] = r.residual_rel;
+  row["residual_scaled"] = r.residual_scaled;
+  row["tolerance"] = r.tolerance;
+  row["forward_error"] = r.forward_error;
+  row["forward_error_rel"] = r.forward_error_rel;
+  row["forward_allowance"] = r.forward_allowance;
+  row["time_median"] = r.time_median;
+  row["time_min"] = r.time_min;
+  row["time_max"] = r.time_max;
+  row["samples"] = r.samples;
+  row["solves_per_sample"] = r.solves_per_sample;
+  row["certificate"] = r.certificate;
+  row["tags"] = r.tags;
+  row["message"] = r.message;
+  return row;
+}
+
+// One row per problem × start × backend, as dicts of the DataFrame's columns: each job timed and judged by the
+// engine of `smcbench bench` (ReplayMcpOne: the same samples, the same JudgeMCP), without the GIL. With out_dir,
+// the records are also written as `bench --out` writes them (results.json, results.csv: suite `suite_name`), so
+// `smcbench report` and smcbench.report read them.
 py::list BenchMcp(const py::list& problems, std::vector<std::string> solver_names, double tolerance,
-                  int repetitions, double time_limit) {
-  McpBenchOptions bench;
-  bench.tolerance = tolerance;
-  bench.repetitions = repetitions;
-  bench.time_limit_seconds = time_limit;
+                  int repetitions, double time_limit, const std::string& suite_name, const std::string& out_dir) {
   if (!(tolerance > 0.0) || !std::isfinite(tolerance)) throw InvalidInputError("bench_mcp: tol must be finite and > 0");
   if (repetitions < 1) throw InvalidInputError("bench_mcp: repetitions must be >= 1");
   if (!(time_limit > 0.0)) throw InvalidInputError("bench_mcp: time_limit must be > 0 seconds");
+  ReplayOptions replay;
+  replay.tolerance = tolerance;
+  replay.repetitions = repetitions;
+  replay.time_limit_seconds = time_limit;
   // Built and destroyed with the GIL held (they own Python objects); only the solves run without it.
   std::vector<std::shared_ptr<PythonMCP>> callbacks;
-  const std::vector<McpLibraryProblem> suite = ToSuite(problems, &callbacks);
+  McpProblemSet set{suite_name, "MCPs given to smcbench.bench_mcp", ToSuite(problems, &callbacks)};
   std::vector<std::unique_ptr<Solver>> solvers = McpSolvers(&solver_names);
+  SuiteResults suite;
+  suite.suite = set.name;
+  suite.description = set.description;
+  suite.problems = static_cast<int>(set.problems.size());
+  suite.checksum = McpProblemSetChecksum(set);  // calls F at every start (the GIL is held)
   py::list rows;
-  SolveResult result;
-  for (std::size_t index = 0; index < suite.size(); ++index) {
-    const McpLibraryProblem& p = suite[index];
-    PythonMCP& problem = *callbacks[index];
+  for (std::size_t index = 0; index < set.problems.size(); ++index) {
+    const McpLibraryProblem& p = set.problems[index];
     for (std::size_t k = 0; k < p.starts.size(); ++k) {
       for (std::size_t s = 0; s < solvers.size(); ++s) {
-        SolverOptions options;
-        options.tolerance = bench.tolerance;
-        options.time_limit_seconds = bench.time_limit_seconds;
-        options.measure_time = false;  // timed from outside, around many solves
-        options.warm_start = p.starts[k];
-        McpTiming timing;
-        Judgement j;
+        ReplayRecord record;
         {
           py::gil_scoped_release release;
-          timing = TimeMcpSolves(solvers[s].get(), problem, options, bench, &result);
-          j = JudgeMCP(problem, p.expected, p.references, p.references_complete, result.status, result.z,
-                       bench.tolerance);
+          record = ReplayMcpOne(set, p, k, solvers[s].get(), solver_names[s], replay, tolerance);
         }
-        problem.RethrowCallbackError();
-        py::dict row = JudgementToDict(j);
-        row["problem"] = p.id;
-        row["start"] = p.start_labels[k];
-        row["solver"] = solver_names[s];
-        row["size"] = p.size();
-        row["expected"] = std::string(ToString(p.expected));
-        row["status"] = std::string(ToString(result.status));
-        row["iterations"] = result.iterations;
-        row["tolerance"] = bench.tolerance;
-        row["time_median"] = timing.median;
-        row["time_min"] = timing.min;
-        row["time_max"] = timing.max;
-        row["samples"] = timing.samples;
-        row["solves_per_sample"] = timing.solves_per_sample;
-        row["message"] = result.message;
-        rows.append(row);
+        callbacks[index]->RethrowCallbackError();
+        rows.append(RecordToRow(record));
+        suite.replay.records.push_back(std::move(record));
       }
     }
+  }
+  if (!out_dir.empty()) {
+    BenchResults results;
+    results.command = "smcbench.bench_mcp (Python)";
+    results.suites.push_back(std::move(suite));
+    WriteBenchResults(results, out_dir);
   }
   return rows;
 }
@@ -249,7 +202,8 @@ void BindMcpSuite(py::module_& m) {
   using namespace pybind11::literals;
   m.def("_judge_mcp", &JudgeMcp, "problem"_a, "z"_a, "status"_a, "tol"_a,
         "Judge one answer to a Python MCP with JudgeMCP (see smcbench.judge_mcp); returns a dict.");
-  m.def("_bench_mcp", &BenchMcp, "problems"_a, "solvers"_a, "tol"_a, "repetitions"_a, "time_limit"_a,
+  m.def("_bench_mcp", &BenchMcp, "problems"_a, "solvers"_a, "tol"_a, "repetitions"_a, "time_limit"_a, "suite"_a,
+        "out_dir"_a,
         "Time and judge every problem x start x MCP backend (see smcbench.bench_mcp); returns a list of dicts.");
 }
 

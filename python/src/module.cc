@@ -1,10 +1,12 @@
 // The extension module smcbench._smcbench: the library's errors as Python exceptions, the backend list, and the
-// bindings of solve.cc, simulate.cc, problem_set.cc and mcp_suite.cc. Python users import the package smcbench
-// (__init__.py), which wraps these functions in the documented API (docs/python.md).
+// bindings of solve.cc, simulate.cc, problem_set.cc, mcp_suite.cc, bench.cc, avi.cc, judge.cc and results.cc.
+// Python users import the package smcbench (__init__.py), which wraps these functions in the documented API
+// (docs/python.md).
 #include <pybind11/pybind11.h>
 
 #include <string>
 
+#include "problems/io/data_dirs.h"
 #include "solvers/core/problem.h"
 #include "solvers/registry/registry.h"
 
@@ -18,6 +20,8 @@ void BindProblemSet(py::module_& m);
 void BindMcpSuite(py::module_& m);
 void BindBench(py::module_& m);
 void BindAvi(py::module_& m);
+void BindJudge(py::module_& m);
+void BindResults(py::module_& m);
 
 namespace {
 
@@ -43,6 +47,15 @@ py::list Solvers() {
   return out;
 }
 
+// A data folder as every program finds it (problems/io/data_dirs.h): "scenes" or "siconos". __main__.py passes
+// them to the packaged command-line program, whose own lookup does not reach the environment's share/ from there.
+std::string DataDirectoryOf(const std::string& name) {
+  for (DataFolder folder : {DataFolder::kScenes, DataFolder::kSiconosCollection}) {
+    if (name == DataFolderName(folder)) return DataDirectory(folder);
+  }
+  throw InvalidInputError("unknown data folder '" + name + "' (known: scenes, siconos)");
+}
+
 }  // namespace
 }  // namespace smcbench::python
 
@@ -52,10 +65,14 @@ PYBIND11_MODULE(_smcbench, m) {
   // subclass so callers can tell it from other ValueErrors.
   py::register_exception<smcbench::InvalidInputError>(m, "InvalidInputError", PyExc_ValueError);
   m.def("solvers", &smcbench::python::Solvers, "The registered backends with their capabilities (list of dicts).");
+  m.def("_data_directory", &smcbench::python::DataDirectoryOf,
+        "The data folder 'scenes' or 'siconos' (DataDirectory).");
   smcbench::python::BindSolve(m);
   smcbench::python::BindSimulate(m);
   smcbench::python::BindProblemSet(m);
   smcbench::python::BindMcpSuite(m);
   smcbench::python::BindBench(m);
   smcbench::python::BindAvi(m);
+  smcbench::python::BindJudge(m);
+  smcbench::python::BindResults(m);
 }

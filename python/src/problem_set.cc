@@ -57,15 +57,8 @@ py::dict ProblemToDict(const LibraryProblem& p) {
   matrix["positive_definite"] = std::string(ToString(p.matrix.positive_definite));
   matrix["p_matrix"] = std::string(ToString(p.matrix.p_matrix));
   out["matrix"] = matrix;
-  py::dict reference;
-  reference["certificate"] = std::string(ToString(p.reference.certificate));
-  reference["z"] = p.reference.z.size() ? py::object(ToNumpy(p.reference.z)) : py::object(py::none());
-  reference["condition"] = p.reference.condition;
   // Proved by an interval enclosure (radius NaN: not proved); computed, never read back from a dict.
-  const ReferenceSolution proved = ProvedReference(p);
-  reference["proved_radius"] = proved.proved_radius;
-  reference["proved_unique"] = proved.proved_unique;
-  out["reference"] = reference;
+  out["reference"] = ReferenceToDict(ProvedReference(p));
   return out;
 }
 

@@ -52,18 +52,13 @@ py::dict SolveBox(const py::object& M, const py::object& q, const py::object& l,
                   const py::object& z0, std::optional<int> max_iterations, bool polish,
                   const py::dict& backend_options) {
   // The problem is validated here (InvalidInputError → ValueError): NaN, sizes, l > u.
-  std::optional<BoxMLCP> problem;
-  if (IsCscTuple(M)) {
-    problem.emplace(ToSparseMatrix(M.cast<py::tuple>(), "M"), ToVector(q, "q"), ToVector(l, "l"), ToVector(u, "u"));
-  } else {
-    problem.emplace(ToDenseMatrix(M, "M"), ToVector(q, "q"), ToVector(l, "l"), ToVector(u, "u"));
-  }
-  const SolverOptions options = MakeOptions(tolerance, time_limit, max_iterations, polish, z0, problem->size());
+  const BoxMLCP problem = ToBoxMLCP(M, q, l, u);
+  const SolverOptions options = MakeOptions(tolerance, time_limit, max_iterations, polish, z0, problem.size());
   std::unique_ptr<Solver> solver = MakeSolver(solver_name, backend_options);
   SolveResult result;
   {
     py::gil_scoped_release release;
-    solver->Solve(*problem, options, &result);
+    solver->Solve(problem, options, &result);
   }
   return ResultToDict(result);
 }

@@ -33,7 +33,7 @@ def test_tiny_suite_has_the_columns_and_verdicts_of_the_commands_results_csv(tmp
     expected = pd.read_csv(tmp_path / "cli" / "results.csv")
 
     df = smcbench.bench("tiny", solvers=BACKENDS, repetitions=1, quick=True, out=tmp_path / "py")
-    assert list(df.columns) == list(expected.columns)
+    assert list(df.columns) == list(expected.columns) + ["tags", "message"]
     assert (tmp_path / "py" / "results.json").is_file()
     assert len(df) == len(expected)
     assert (df["mode"] == "sweep").any(), "psor's tolerance sweep"
@@ -109,3 +109,18 @@ def test_docs_example_prints_what_its_comments_say():
     with contextlib.redirect_stdout(out):
         exec(compile(code, "docs/python.md", "exec"), {})
     assert out.getvalue().splitlines() == expected
+
+
+def test_the_dataframe_has_every_column_of_results_csv_then_tags_and_message(tmp_path):
+    df = smcbench.bench("tiny", solvers=["lemke"], repetitions=1, quick=True, out=tmp_path)
+    header = (tmp_path / "results.csv").read_text(encoding="utf-8").splitlines()[0].split(",")
+    assert list(df.columns) == header + ["tags", "message"], "results.csv has no tags or message: from results.json"
+    assert {"certificate", "reference_radius", "start"} <= set(df.columns)
+    # The same values as results.json: the refusal of the infeasible LCP says why, and the tags are kept.
+    loaded = smcbench.load_bench_results(tmp_path)
+    joined = df.merge(loaded, on=KEY, suffixes=("_csv", "_json"), validate="one_to_one")
+    for column in ("message", "tags"):
+        assert (joined[f"{column}_csv"].fillna("") == joined[f"{column}_json"].fillna("")).all(), column
+    refusal = df[(df.problem == "tiny/infeasible-lcp") & (df["mode"] == "cold")]
+    assert refusal.message.iloc[0] and isinstance(refusal.message.iloc[0], str)
+    assert df.attrs["results_dir"] == str(tmp_path) and df.attrs["results_json"].startswith("{")

@@ -238,3 +238,19 @@ def test_bench_mcp_errors_name_the_problem_and_the_field():
         smcbench.bench_mcp([problem()], repetitions=0)
     with pytest.raises(smcbench.InvalidInputError, match=r"problems\[0\] is a dict, expected McpProblem"):
         smcbench.bench_mcp([{"id": "p"}])
+
+
+def test_bench_mcp_writes_a_results_folder_the_report_reads(tmp_path):
+    frame = smcbench.bench_mcp(two_problem_suite(), solvers=["newton"], repetitions=1, out=tmp_path / "run")
+    assert (tmp_path / "run" / "results.json").is_file() and (tmp_path / "run" / "results.csv").is_file()
+    loaded = smcbench.load_bench_results(tmp_path / "run")
+    assert list(loaded.suite.unique()) == ["python"] and set(loaded["mode"]) == {"cold"}
+    key = ["problem", "start", "solver", "verdict", "status", "certificate", "tags"]
+    pd.testing.assert_frame_equal(loaded[key].fillna(""), frame[key].fillna(""), check_dtype=False)
+    # The known solutions are unique references: every record has its forward error, far inside the allowance.
+    assert set(frame["certificate"]) == {"unique"}
+    assert frame["forward_error"].notna().all() and (frame["forward_error"] <= frame["forward_allowance"]).all()
+    assert list(frame["tags"][:2]) == ["classic", "classic"]
+    text = smcbench.report(tmp_path / "run")
+    assert "python" in text and "newton" in text
+    assert smcbench.report(frame) == text, "the DataFrame knows its results"

@@ -2,7 +2,8 @@
 environment seeing Debian's packages, `pip install --no-build-isolation --no-deps --no-index <checkout>` (offline),
 then, from an unrelated folder with no PYTHONPATH, `import smcbench` must come from the environment, solve an LCP
 whose answer is computed here independently, and simulate a registered scene read from the environment's own
-share/smcbench/scenes.
+share/smcbench/scenes; the console command `smcbench` and `python -m smcbench` must run the packaged command-line
+program, which finds the environment's data folders too.
 
 Run by ctest as python_pip_install (SMCBENCH_BUILD_DIR: package the module the build tree built) and
 python_pip_install_standalone (label slow: setup.py configures and builds its own tree). Not collected by
@@ -52,7 +53,7 @@ def test_pip_install_into_a_venv_then_import_and_solve_elsewhere(tmp_path):
     files = run([str(python), "-m", "pip", "show", "--files", "smcbench"], env=env, cwd=tmp_path)
     listed = {line.strip() for line in files.splitlines()}
     suffix = sysconfig.get_config_var("EXT_SUFFIX")
-    expected = {"smcbench/_smcbench" + suffix}
+    expected = {"smcbench/_smcbench" + suffix, "smcbench/bin/smcbench"}
     expected |= {"smcbench/" + p.name for p in (SOURCE_DIR / "python" / "smcbench").glob("*.py")}
     assert expected <= listed, f"missing from the installed files: {sorted(expected - listed)}"
     data = venv / "share" / "smcbench"
@@ -74,3 +75,17 @@ def test_pip_install_into_a_venv_then_import_and_solve_elsewhere(tmp_path):
     np.testing.assert_allclose(probe["w"], [0.0, 0.0], rtol=0, atol=1e-12)
     # S1 x' in -sgn(x) from 0.505 with h = 0.01: x loses h per step and is exactly 0 from step 51 on (docs/python.md).
     assert probe["reaching_step"] == 51
+
+    # The command-line program: the console command and python -m run it with their arguments, from elsewhere.
+    command = venv / "bin" / "smcbench"
+    for program in ([str(command)], [str(python), "-m", "smcbench"]):
+        help_text = run(program + ["--help"], env=env, cwd=elsewhere)
+        assert "simulate" in help_text and "bench" in help_text and "report" in help_text, help_text
+    # A registered scene by name: the program finds the environment's share/smcbench/scenes.
+    summary = elsewhere / "summary.json"
+    run([str(command), "simulate", "sign", "--h", "0.01", "--x0", "0.505", "--summary", str(summary)], env=env,
+        cwd=elsewhere)
+    assert json.loads(summary.read_text(encoding="utf-8"))["reaching_step"] == 51
+    failed = subprocess.run([str(python), "-m", "smcbench", "solve", "--solver", "nope"], env=env, cwd=elsewhere,
+                            capture_output=True, text=True)
+    assert failed.returncode != 0, "the program's exit status comes back through python -m"
