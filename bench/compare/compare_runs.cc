@@ -183,29 +183,27 @@ std::string DriftText(const RunComparison& c) {
                                  ? "all " + std::to_string(c.groups.size()) + " groups"
                                  : std::to_string(d.agreeing_groups) + " of " + std::to_string(c.groups.size()) +
                                        " groups";
+  const std::string divided = d.divided ? " Ratios divided by " + Ratio(d.factor) + " before flagging."
+                                          : " Not divided out (--keep-drift): flagged on the raw ratios.";
   switch (d.source) {
     case DriftSource::kFloor:
-      return groups + " " + Times(d.factor) + " with " + floor + ": machine drift. Ratios divided by " +
-             Ratio(d.factor) + " before flagging.";
+      return groups + " " + Times(d.factor) + " with " + floor + ": machine drift." + divided;
     case DriftSource::kGroups:
-      return groups + " " + Times(d.factor) + " (" + floor +
-             (d.has_floor ? ", which disagrees" : "") + "): machine drift? (or a change common to every backend) " +
-             "Ratios divided by " + Ratio(d.factor) + " before flagging.";
+      return groups + " " + Times(d.factor) + " (" + floor + (d.has_floor ? ", which disagrees" : "") +
+             "): machine drift? (or a change common to every backend)" + divided;
     case DriftSource::kNone:
       break;
   }
   const bool groups_moved = !c.groups.empty() && !WithinBand(d.median_group_ratio, c.flag_limit);
-  if (d.has_floor && WithinBand(d.floor.low, c.flag_limit) && WithinBand(d.floor.high, c.flag_limit)) {
-    return groups_moved ? "median group " + Times(d.median_group_ratio) + ", but " + floor +
-                              " stayed within the flag limit: no machine drift, ratios not normalized."
-                        : "";
-  }
   if (d.has_floor && !WithinBand(d.floor.ratio, c.flag_limit)) {
     return floor + ", but most groups do not move with it: ratios not normalized.";
   }
   if (groups_moved) {
-    return "median group " + Times(d.median_group_ratio) + " (" + floor +
-           "), but most groups do not agree on a common factor: ratios not normalized.";
+    return "median group " + Times(d.median_group_ratio) + " (" + floor + "), but " +
+           (static_cast<int>(c.groups.size()) < kMinGroupsForDrift
+                ? "fewer than " + std::to_string(kMinGroupsForDrift) + " groups to call it drift"
+                : "most groups do not agree on a common factor") +
+           ": ratios not normalized.";
   }
   return "";
 }
@@ -254,13 +252,12 @@ Drift EstimateDrift(const std::vector<RatioGroup>& groups, const std::vector<Pai
     if (2 * agreeing <= static_cast<int>(groups.size())) return false;
     out.source = source;
     out.factor = factor;
+    out.divided = options.divide_drift;
     out.agreeing_groups = agreeing;
     return true;
   };
   if (out.has_floor && try_factor(out.floor.ratio, DriftSource::kFloor)) return out;
-  const bool floor_stayed =
-      out.has_floor && WithinBand(out.floor.low, flag_limit) && WithinBand(out.floor.high, flag_limit);
-  if (!floor_stayed && static_cast<int>(groups.size()) >= kMinGroupsForDrift) {
+  if (static_cast<int>(groups.size()) >= kMinGroupsForDrift) {
     try_factor(out.median_group_ratio, DriftSource::kGroups);
   }
   return out;
@@ -441,7 +438,7 @@ RunComparison CompareRuns(const BenchResults& a, const BenchResults& b, const Co
   out.flag_limit = std::max({1.0 + options.threshold, out.noise.a, out.noise.b});
   out.drift = EstimateDrift(out.groups, FloorPairs(a, b), out.flag_limit, options);
   for (RatioGroup& g : out.groups) {
-    g.time.flag = FlagOf(g.time.low / out.drift.factor, g.time.high / out.drift.factor, out.flag_limit);
+    g.time.flag = FlagOf(g.time.low / out.drift.divisor(), g.time.high / out.drift.divisor(), out.flag_limit);
   }
   return out;
 }
@@ -497,7 +494,8 @@ void NoiseSection(const RunComparison& c, const CompareOptions& options, std::os
      << " A factor is taken as drift when it lies beyond the flag limit and more than half of the groups agree with "
         "it (their interval divided by it reaches [1/limit, limit]): the floor records' ratio first (one "
         "factorization of M per problem, code neither run changes), else the median group ratio (from "
-     << kMinGroupsForDrift << " groups on, and not when the floor stayed within the limit).\n\n";
+     << kMinGroupsForDrift << " groups on). A change common to every backend cannot be told from a drift: "
+        "`--keep-drift` flags on the raw ratios.\n\n";
 }
 
 }  // namespace
@@ -532,7 +530,7 @@ std::string CompareMarkdown(const RunComparison& c, const CompareOptions& option
      << "): problems resampled with replacement, each median drawn log-normally with its standard error "
         "1.2533·1.4826·MAD/√samples (the records keep median, MAD and sample count, not the samples). ÷ drift: the "
         "ratio divided by the drift factor "
-     << Ratio(c.drift.factor) << ". Flagged SLOWER when the whole interval ÷ drift lies above the flag limit "
+     << Ratio(c.drift.divisor()) << ". Flagged SLOWER when the whole interval ÷ drift lies above the flag limit "
      << Ratio(c.flag_limit) << ", faster when below " << Ratio(1.0 / c.flag_limit)
      << ". Iterations: the median over the group's problems.\n\n";
   if (!figure_stem.empty()) {
@@ -545,7 +543,7 @@ std::string CompareMarkdown(const RunComparison& c, const CompareOptions& option
   for (const RatioGroup& g : c.groups) {
     md << "| " << g.suite << " | " << g.solver << " | " << ShortName(g.band) << " | " << g.problems << " | "
        << Seconds(g.sgm_a) << " | " << Seconds(g.sgm_b) << " | " << Ratio(g.time.ratio) << " | [" << Ratio(g.time.low)
-       << ", " << Ratio(g.time.high) << "] | " << Ratio(g.time.ratio / c.drift.factor) << " | "
+       << ", " << Ratio(g.time.high) << "] | " << Ratio(g.time.ratio / c.drift.divisor()) << " | "
        << Iterations(g.iterations_a) << " | " << Iterations(g.iterations_b) << " | " << ToString(g.time.flag)
        << " |\n";
   }
@@ -597,7 +595,7 @@ std::string CompareSummaryText(const RunComparison& c, const CompareOptions& opt
     char line[320];
     std::snprintf(line, sizeof line, "  %-*s %-9s %5d %8s  %-19s %8s  %-15s %s\n", static_cast<int>(width),
                   (g.suite + "/" + g.solver).c_str(), std::string(ShortName(g.band)).c_str(), g.problems,
-                  Ratio(g.time.ratio).c_str(), interval.c_str(), Ratio(g.time.ratio / c.drift.factor).c_str(),
+                  Ratio(g.time.ratio).c_str(), interval.c_str(), Ratio(g.time.ratio / c.drift.divisor()).c_str(),
                   iterations.c_str(), std::string(ToString(g.time.flag)).c_str());
     text << line;
   }

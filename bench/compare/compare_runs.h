@@ -22,8 +22,10 @@
 // limit's band) on a factor beyond the band, that factor is reported as drift and every ratio divided by it before
 // flagging. The factor is the floor records' ratio (one factorization of M per problem, bench/replay/floor.h: code
 // neither run changed, so it moves with the machine only) when the groups agree with it, else the median group ratio
-// (from kMinGroupsForDrift groups on) — unless the floor stayed within the band: the machine then did not move, and a
-// common change of the backends is flagged as such.
+// (from kMinGroupsForDrift groups on). The floor of the small problems is a factorization of a few nanoseconds and
+// drifts on its own (seen ×1.02 to ×1.67 between runs whose backends all moved ×1.2), so it confirms a drift but
+// does not veto one: a change common to every backend cannot be told from a drift, and is reported as one unless
+// CompareOptions::divide_drift is false.
 #pragma once
 
 #include <cstdint>
@@ -49,6 +51,9 @@ struct CompareOptions {
   // dominate it. Smaller than the report's 1 µs: the m ≤ 4 problems solve in a fraction of a microsecond
   // (docs/benchmarks.md), where a 1 µs shift would hide most of a 2× slowdown.
   double shift_seconds = 1e-7;
+  // Divide a uniform drift (EstimateDrift) out of the ratios before flagging. False (`compare --keep-drift`): report
+  // it, flag on the raw ratios: on a dedicated machine, where every backend slower by one factor is a real slowdown.
+  bool divide_drift = true;
   // Empty, or InvalidInputError-style text naming the field that is out of range.
   std::string Invalid() const;
 };
@@ -121,12 +126,14 @@ inline constexpr int kMinGroupsForDrift = 3;
 
 struct Drift {
   DriftSource source = DriftSource::kNone;
-  double factor = 1.0;          // every ratio is divided by it before flagging (1 when source is none)
+  double factor = 1.0;          // the common ratio found (1 when source is none)
+  bool divided = false;         // the ratios were divided by factor before flagging (CompareOptions::divide_drift)
   int agreeing_groups = 0;      // groups whose interval ÷ factor reaches the band [1/limit, limit]
   double median_group_ratio = 1.0;
   bool has_floor = false;       // floor records timed in both runs
   int floor_problems = 0;
   TimeRatio floor;              // their ratio B/A and interval (no flag)
+  double divisor() const { return divided ? factor : 1.0; }
 };
 // The drift of groups (their raw ratios and intervals) given the floor records' pairs and the flag limit.
 Drift EstimateDrift(const std::vector<RatioGroup>& groups, const std::vector<PairedTiming>& floor_pairs,

@@ -318,12 +318,24 @@ TEST(CompareRuns, ADriftIsDividedOutSoTheOneRealSlowdownIsStillFlagged) {
   EXPECT_THAT(Flagged(c), ::testing::ElementsAre("enum m5-64 SLOWER", "enum m65-1024 SLOWER"));
 }
 
-TEST(CompareRuns, EveryBackendSlowerWhileTheFloorStayedIsNoDrift) {
+TEST(CompareRuns, EveryBackendSlowerByOneFactorIsADriftUnlessKept) {
+  // Every backend ×1.5, the floor unchanged: compare cannot tell it from a drift (the floor's disagreement is named);
+  // with divide_drift false (`--keep-drift`) it is reported and every group flagged on its raw ratio.
   RandomRunSpec slower{10, {{"lemke", 1.5}, {"psor", 1.5}, {"enum", 1.5}}, 1.0, true};
-  const RunComparison c = CompareRuns(RandomRun({9, {}, 1.0, true}), RandomRun(slower), CompareOptions{});
-  EXPECT_EQ(c.drift.source, DriftSource::kNone);
+  CompareOptions options;
+  const RunComparison c = CompareRuns(RandomRun({9, {}, 1.0, true}), RandomRun(slower), options);
+  EXPECT_EQ(c.drift.source, DriftSource::kGroups);
+  EXPECT_TRUE(c.drift.divided);
   EXPECT_NEAR(c.drift.floor.ratio, 1.0, 0.03);
-  EXPECT_EQ(c.slower_groups(), 6);
+  EXPECT_EQ(c.slower_groups(), 0);
+  EXPECT_THAT(CompareSummaryText(c, options), HasSubstr("which disagrees): machine drift?"));
+  options.divide_drift = false;
+  const RunComparison kept = CompareRuns(RandomRun({9, {}, 1.0, true}), RandomRun(slower), options);
+  EXPECT_EQ(kept.drift.source, DriftSource::kGroups);
+  EXPECT_FALSE(kept.drift.divided);
+  EXPECT_DOUBLE_EQ(kept.drift.divisor(), 1.0);
+  EXPECT_EQ(kept.slower_groups(), 6);
+  EXPECT_THAT(CompareSummaryText(kept, options), HasSubstr("Not divided out (--keep-drift)"));
 }
 
 TEST(CompareRuns, IterationCountsAreTheGroupsMedians) {

@@ -26,6 +26,7 @@ struct CompareCommand::Flags {
   std::string a, b, out;
   CompareOptions options;
   bool no_plots = false;
+  bool keep_drift = false;
 };
 
 CompareCommand::CompareCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
@@ -51,6 +52,9 @@ CompareCommand::CompareCommand(CLI::App* app) : flags_(std::make_unique<Flags>()
       ->capture_default_str();
   command_->add_option("--out", f.out, "also write DIR/compare.md and the figure compare-ratios.{png,svg,dat,gp}");
   command_->add_flag("--no-plots", f.no_plots, "with --out: no figure (no gnuplot needed)");
+  command_->add_flag("--keep-drift", f.keep_drift,
+                     "report a uniform drift of every group but do not divide it out: flag on the raw ratios (a "
+                     "dedicated machine, where every backend slower by one factor is a real slowdown)");
 }
 
 CompareCommand::~CompareCommand() = default;
@@ -69,7 +73,7 @@ void WriteRatioFigure(const RunComparison& c, const CompareOptions& options, con
   const int rows = static_cast<int>(c.groups.size());
   for (int i = 0; i < rows; ++i) {
     const RatioGroup& g = c.groups[static_cast<std::size_t>(i)];
-    const double drift = c.drift.factor;
+    const double drift = c.drift.divisor();
     data << rows - i << ' ' << NumberText(g.time.ratio / drift) << ' ' << NumberText(g.time.low / drift) << ' '
          << NumberText(g.time.high / drift) << " \"" << g.solver << ' ' << g.suite << ' ' << ShortName(g.band) << '"'
          << ' ' << static_cast<int>(g.time.flag) + 1 << '\n';
@@ -77,14 +81,14 @@ void WriteRatioFigure(const RunComparison& c, const CompareOptions& options, con
   const double upper = c.flag_limit, lower = 1.0 / upper;
   double x_min = lower, x_max = upper;
   for (const RatioGroup& g : c.groups) {
-    x_min = std::min(x_min, g.time.low / c.drift.factor);
-    x_max = std::max(x_max, g.time.high / c.drift.factor);
+    x_min = std::min(x_min, g.time.low / c.drift.divisor());
+    x_max = std::max(x_max, g.time.high / c.drift.divisor());
   }
   const std::string file = GnuplotQuote(std::string(kFigureStem) + ".dat");
   const std::string bars = " with xerrorbars pt 7 ps 1 lw 2 lc rgb ";
   body << "set logscale x\nset grid xtics\nunset key\nset xrange [" << NumberText(x_min / 1.15) << ":"
        << NumberText(x_max * 1.15) << "]\nset xtics (0.1, 0.2, 0.5, 1, 1.5, 2, 3, 5, 10, 20, 50, 100, 1000)\nset xlabel 'time ratio B/A ÷ drift "
-       << NumberText(c.drift.factor) << ", " << static_cast<int>(std::lround(options.confidence * 100.0))
+       << NumberText(c.drift.divisor()) << ", " << static_cast<int>(std::lround(options.confidence * 100.0))
        << " % bootstrap interval (orange: flagged slower, blue: flagged faster)'\nset yrange [0.5:" << rows + 0.5
        << "]\nset ytics scale 0 font ',9'\nset title 'smcbench compare: B/A per backend, suite and size band'\n"
        << "set arrow from 1, graph 0 to 1, graph 1 nohead lc rgb 'black'\n"
@@ -108,7 +112,9 @@ int CompareCommand::Run(std::ostream& out, std::ostream& err) const {
     nlohmann::json environment_a, environment_b;
     const BenchResults a = ReadBenchResults(f.a, &environment_a);
     const BenchResults b = ReadBenchResults(f.b, &environment_b);
-    comparison = CompareRuns(a, b, f.options);
+    CompareOptions options = f.options;
+    options.divide_drift = !f.keep_drift;
+    comparison = CompareRuns(a, b, options);
     comparison.identity = IdentityRows(MakeRunIdentity(a, environment_a, ReadRunOptions(f.a)),
                                        MakeRunIdentity(b, environment_b, ReadRunOptions(f.b)));
   } catch (const InvalidInputError& e) {
