@@ -557,6 +557,61 @@ std::string CompareMarkdown(const RunComparison& c, const CompareOptions& option
   return md.str();
 }
 
+nlohmann::json CompareJson(const RunComparison& c, const CompareOptions& options, const std::string& label_a,
+                           const std::string& label_b) {
+  using json = nlohmann::json;
+  const auto flag = [](TimeFlag f) {
+    return f == TimeFlag::kSlower ? "slower" : f == TimeFlag::kFaster ? "faster" : "none";
+  };
+  json j = {{"format", "smcbench-compare/1"}, {"a", label_a}, {"b", label_b}, {"regressed", c.regressed()},
+            {"matched_records", c.matched_records}, {"regressions", c.regressions()},
+            {"slower_groups", c.slower_groups()}, {"only_in_a", c.only_in_a.size()},
+            {"only_in_b", c.only_in_b.size()}};
+  j["differences"] = DifferencesLine(c.identity);
+  j["machines_differ"] = MachinesDiffer(c.identity);
+  j["runs"] = json::array();
+  for (const IdentityRow& row : c.identity) {
+    j["runs"].push_back({{"part", ToString(row.part)}, {"name", row.name}, {"a", row.a}, {"b", row.b},
+                         {"differs", row.differs()}});
+  }
+  j["method"] = {
+      {"ratio", "shifted geometric mean of the per-problem median times, B over A"},
+      {"interval",
+       "paired bootstrap: problems resampled, each median drawn log-normally with 1.2533*1.4826*MAD/sqrt(samples)"},
+      {"noise_floor", "per run exp(1.96*sqrt(2)*s), s the median over its cold solved records of 1.4826*MAD/median"},
+      {"flag", "interval divided by the drift entirely beyond the flag limit max(1 + threshold, noise floors)"},
+      {"threshold", options.threshold}, {"confidence", options.confidence}, {"resamples", options.resamples},
+      {"seed", options.seed}, {"shift_seconds", options.shift_seconds}, {"divide_drift", options.divide_drift}};
+  const NoiseFloor& n = c.noise;
+  j["noise_floor"] = {{"a", n.a}, {"b", n.b}, {"spread_a", n.spread_a}, {"spread_b", n.spread_b},
+                      {"records_a", n.records_a}, {"records_b", n.records_b}};
+  j["flag_limit"] = c.flag_limit;
+  const Drift& d = c.drift;
+  j["drift"] = {{"source", ToString(d.source)}, {"factor", d.factor}, {"divided", d.divided},
+                {"agreeing_groups", d.agreeing_groups}, {"median_group_ratio", d.median_group_ratio},
+                {"text", DriftText(c)}};
+  j["drift"]["floor"] = d.has_floor ? json{{"ratio", d.floor.ratio}, {"low", d.floor.low}, {"high", d.floor.high},
+                                           {"problems", d.floor_problems}}
+                                    : json(nullptr);
+  j["verdict_changes"] = json::array();
+  for (const VerdictChange& v : c.verdict_changes) {
+    j["verdict_changes"].push_back(
+        {{"kind", ToString(v.kind)}, {"suite", v.suite}, {"problem", v.problem}, {"start", v.start},
+         {"backend", v.solver}, {"mode", v.mode}, {"tolerance", v.tolerance}, {"verdict_a", ToString(v.verdict_a)},
+         {"status_a", ToString(v.status_a)}, {"verdict_b", ToString(v.verdict_b)},
+         {"status_b", ToString(v.status_b)}, {"message_b", v.message_b}});
+  }
+  j["groups"] = json::array();
+  for (const RatioGroup& g : c.groups) {
+    j["groups"].push_back({{"suite", g.suite}, {"backend", g.solver}, {"band", ShortName(g.band)},
+                           {"problems", g.problems}, {"sgm_a", g.sgm_a}, {"sgm_b", g.sgm_b},
+                           {"ratio", g.time.ratio}, {"low", g.time.low}, {"high", g.time.high},
+                           {"ratio_over_drift", g.time.ratio / d.divisor()}, {"iterations_a", g.iterations_a},
+                           {"iterations_b", g.iterations_b}, {"flag", flag(g.time.flag)}});
+  }
+  return j;
+}
+
 std::string CompareSummaryText(const RunComparison& c, const CompareOptions& options, std::size_t max_changes,
                                std::size_t max_groups) {
   std::ostringstream text;

@@ -308,6 +308,18 @@ TEST(CompareRuns, AUniformDriftIsReportedAsDriftAndFlagsNothing) {
   EXPECT_EQ(f.drift.source, DriftSource::kFloor);
   EXPECT_NEAR(f.drift.factor, 1.15, 0.03);
   EXPECT_THAT(CompareMarkdown(f, options, "a", "b", ""), HasSubstr(": machine drift. Ratios divided by"));
+  const nlohmann::json j = CompareJson(f, options, "a", "b");
+  EXPECT_EQ(j["format"], "smcbench-compare/1");
+  EXPECT_EQ(j["regressed"], false);
+  EXPECT_EQ(j["drift"]["source"], "floor");
+  EXPECT_EQ(j["drift"]["divided"], true);
+  EXPECT_NEAR(j["drift"]["floor"]["ratio"].get<double>(), 1.15, 0.03);
+  EXPECT_DOUBLE_EQ(j["flag_limit"].get<double>(), f.flag_limit);
+  EXPECT_DOUBLE_EQ(j["noise_floor"]["a"].get<double>(), f.noise.a);
+  ASSERT_EQ(j["groups"].size(), 6u);
+  EXPECT_EQ(j["groups"][0]["flag"], "none");
+  EXPECT_NEAR(j["groups"][0]["ratio_over_drift"].get<double>(), 1.0, 0.05);
+  EXPECT_THAT(j["method"]["noise_floor"].get<std::string>(), HasSubstr("1.4826*MAD/median"));
 }
 
 TEST(CompareRuns, ADriftIsDividedOutSoTheOneRealSlowdownIsStillFlagged) {

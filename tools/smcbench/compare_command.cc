@@ -50,7 +50,8 @@ CompareCommand::CompareCommand(CLI::App* app) : flags_(std::make_unique<Flags>()
   command_->add_option("--confidence", f.options.confidence, "of the interval")
       ->check(CLI::Range(0.5, 0.999))
       ->capture_default_str();
-  command_->add_option("--out", f.out, "also write DIR/compare.md and the figure compare-ratios.{png,svg,dat,gp}");
+  command_->add_option("--out", f.out,
+                       "also write DIR/compare.md, DIR/compare.json and the figure compare-ratios.{png,svg,dat,gp}");
   command_->add_flag("--no-plots", f.no_plots, "with --out: no figure (no gnuplot needed)");
   command_->add_flag("--keep-drift", f.keep_drift,
                      "report a uniform drift of every group but do not divide it out: flag on the raw ratios (a "
@@ -87,7 +88,8 @@ void WriteRatioFigure(const RunComparison& c, const CompareOptions& options, con
   const std::string file = GnuplotQuote(std::string(kFigureStem) + ".dat");
   const std::string bars = " with xerrorbars pt 7 ps 1 lw 2 lc rgb ";
   body << "set logscale x\nset grid xtics\nunset key\nset xrange [" << NumberText(x_min / 1.15) << ":"
-       << NumberText(x_max * 1.15) << "]\nset xtics (0.1, 0.2, 0.5, 1, 1.5, 2, 3, 5, 10, 20, 50, 100, 1000)\nset xlabel 'time ratio B/A ÷ drift "
+       << NumberText(x_max * 1.15)
+       << "]\nset xtics (0.1, 0.2, 0.5, 1, 1.5, 2, 3, 5, 10, 20, 50, 100, 1000)\nset xlabel 'time ratio B/A ÷ drift "
        << NumberText(c.drift.divisor()) << ", " << static_cast<int>(std::lround(options.confidence * 100.0))
        << " % bootstrap interval (orange: flagged slower, blue: flagged faster)'\nset yrange [0.5:" << rows + 0.5
        << "]\nset ytics scale 0 font ',9'\nset title 'smcbench compare: B/A per backend, suite and size band'\n"
@@ -108,12 +110,12 @@ int CompareCommand::Run(std::ostream& out, std::ostream& err) const {
   const Flags& f = *flags_;
   if (!f.out.empty()) CheckOutputFolder("--out", f.out);
   RunComparison comparison;
+  CompareOptions options = f.options;
+  options.divide_drift = !f.keep_drift;
   try {
     nlohmann::json environment_a, environment_b;
     const BenchResults a = ReadBenchResults(f.a, &environment_a);
     const BenchResults b = ReadBenchResults(f.b, &environment_b);
-    CompareOptions options = f.options;
-    options.divide_drift = !f.keep_drift;
     comparison = CompareRuns(a, b, options);
     comparison.identity = IdentityRows(MakeRunIdentity(a, environment_a, ReadRunOptions(f.a)),
                                        MakeRunIdentity(b, environment_b, ReadRunOptions(f.b)));
@@ -121,27 +123,29 @@ int CompareCommand::Run(std::ostream& out, std::ostream& err) const {
     err << "smcbench: " << e.what() << "\n";
     return kExitCompareRefused;
   }
-  out << CompareSummaryText(comparison, f.options);
+  out << CompareSummaryText(comparison, options);
   if (!f.out.empty()) {
     std::error_code ec;
     fs::create_directories(f.out, ec);
     std::string stem;
     if (!f.no_plots && !comparison.groups.empty()) {
       try {
-        WriteRatioFigure(comparison, f.options, f.out);
+        WriteRatioFigure(comparison, options, f.out);
         stem = kFigureStem;
       } catch (const InvalidInputError& e) {  // the verdict of the comparison stands without its figure
         err << "smcbench: compare: no figure: " << e.what() << "\n";
       }
     }
-    const fs::path md = fs::path(f.out) / "compare.md";
-    std::ofstream file(md);
-    file << CompareMarkdown(comparison, f.options, f.a, f.b, stem);
-    if (!file) {
-      err << "smcbench: compare: cannot write '" << md.string() << "'\n";
+    const fs::path md = fs::path(f.out) / "compare.md", json = fs::path(f.out) / "compare.json";
+    std::ofstream md_file(md), json_file(json);
+    md_file << CompareMarkdown(comparison, options, f.a, f.b, stem);
+    json_file << CompareJson(comparison, options, f.a, f.b).dump(1) << "\n";
+    if (!md_file || !json_file) {
+      err << "smcbench: compare: cannot write '" << (md_file ? json : md).string() << "'\n";
       return kExitCompareRefused;
     }
-    out << "compare: wrote " << md.string() << (stem.empty() ? "" : " and " + stem + ".png") << "\n";
+    out << "compare: wrote " << md.string() << ", compare.json" << (stem.empty() ? "" : " and " + stem + ".png")
+        << "\n";
   }
   return comparison.regressed() ? kExitCompareRegressed : 0;
 }

@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "bench/compare/compare_runs.h"
@@ -93,6 +94,11 @@ TEST_F(CompareCommandTest, UnderRelaxedPsorIsFlaggedAndLemkeIsNot) {
   EXPECT_THAT(md.str(), HasSubstr("| setting | repetitions | 3 | 3 |"));
   EXPECT_THAT(md.str(), HasSubstr("Noise floor (A/A calibration"));
   EXPECT_THAT(md.str(), HasSubstr("| iterations A | iterations B |"));
+  std::ifstream json_file(out / "compare.json");
+  const nlohmann::json j = nlohmann::json::parse(json_file);
+  EXPECT_EQ(j["regressed"], true);
+  EXPECT_EQ(j["differences"], "settings [] vs [\"psor.omega=0.05\"]");
+  EXPECT_GE(j["slower_groups"].get<int>(), 2);
   if (GnuplotAvailable()) {
     EXPECT_TRUE(fs::is_regular_file(out / "compare-ratios.png"));
     EXPECT_THAT(md.str(), HasSubstr("(compare-ratios.png)"));
