@@ -79,6 +79,7 @@ set(SMCBENCH_PUBLIC_HEADERS
   bench/replay/stepper_study.h
   bench/replay/results_io.h
   bench/replay/size_band.h
+  bench/compare/run_identity.h
   bench/compare/compare_runs.h
   # The command line as a function, for a program that registers its own backend first (docs/custom-backend.md).
   tools/smcbench/commands.h)

@@ -1,6 +1,8 @@
-// Two `smcbench bench` runs of the same suites compared (two builds, commits, machines or option sets): the
-// verdicts that changed, and per suite × backend × size band the time ratio B/A with a confidence interval, flagged
-// when the whole interval lies beyond a threshold. The engine of `smcbench compare` (tools/smcbench/compare_command.h).
+// Two `smcbench bench` runs of the same suites compared (two builds, commits, machines or option sets): what differed
+// between the runs (settings, build, machine: bench/compare/run_identity.h), the verdicts that changed, and per
+// suite × backend × size band the time ratio B/A with a confidence interval and the median iteration counts,
+// flagged when the whole interval, after removing a uniform machine drift, lies beyond the noise floor. The engine
+// of `smcbench compare` (tools/smcbench/compare_command.h).
 //
 // The interval (TimeRatioInterval): the records keep per problem the median, MAD and sample count of the timing
 // samples, not the samples, so a rank test (Mann–Whitney, Wilcoxon) on the samples is impossible. The ratio is that
@@ -9,6 +11,21 @@
 // problems), and each resampled median drawn from its own sampling distribution, log-normal with the standard error
 // of a median 1.2533·1.4826·MAD/√samples (the repetitions' spread, which also gives a band of one problem an
 // interval). Percentile interval, fixed seed: the same inputs give the same interval on every machine.
+//
+// The noise floor (NoiseFloors): an A/A calibration of each run from its own repeated samples. With s the median
+// over the run's cold solved records of 1.4826·MAD/median (the relative spread of one sample), two repeated samples
+// of a typical problem of the run differ by a ratio within exp(±1.96·√2·s) 95 % of the time. A group is flagged only
+// when its interval lies beyond the flag limit, the larger of that floor (of either run) and 1 + threshold.
+//
+// Machine drift (EstimateDrift): two runs of the same build on a shared machine move every group by about the same
+// factor. When more than half of the groups agree (their interval, divided by a common factor, reaches the flag
+// limit's band) on a factor beyond the band, that factor is reported as drift and every ratio divided by it before
+// flagging. The factor is the floor records' ratio (one factorization of M per problem, bench/replay/floor.h: code
+// neither run changed, so it moves with the machine only) when the groups agree with it, else the median group ratio
+// (from kMinGroupsForDrift groups on). The floor of the small problems is a factorization of a few nanoseconds and
+// drifts on its own (seen ×1.02 to ×1.67 between runs whose backends all moved ×1.2), so it confirms a drift but
+// does not veto one: a change common to every backend cannot be told from a drift, and is reported as one unless
+// CompareOptions::divide_drift is false.
 #pragma once
 
 #include <cstdint>
@@ -16,14 +33,16 @@
 #include <string_view>
 #include <vector>
 
+#include "bench/compare/run_identity.h"
 #include "bench/replay/size_band.h"
 #include "bench/replay/results_io.h"
 
 namespace smcbench {
 
 struct CompareOptions {
-  // A group is flagged slower when its interval lies entirely above 1 + threshold, faster when entirely below
-  // 1 / (1 + threshold) (the same distance from 1 on a log scale).
+  // The minimum relative change: a group is flagged slower when its interval (after the drift) lies entirely above
+  // the flag limit max(1 + threshold, noise floor), faster when entirely below its inverse (the same distance from 1
+  // on a log scale).
   double threshold = 0.05;
   int resamples = 2000;       // bootstrap resamples per group (≥ 100)
   double confidence = 0.95;   // of the percentile interval, in (0, 1)
@@ -32,6 +51,9 @@ struct CompareOptions {
   // dominate it. Smaller than the report's 1 µs: the m ≤ 4 problems solve in a fraction of a microsecond
   // (docs/benchmarks.md), where a 1 µs shift would hide most of a 2× slowdown.
   double shift_seconds = 1e-7;
+  // Divide a uniform drift (EstimateDrift) out of the ratios before flagging. False (`compare --keep-drift`): report
+  // it, flag on the raw ratios: on a dedicated machine, where every backend slower by one factor is a real slowdown.
+  bool divide_drift = true;
   // Empty, or InvalidInputError-style text naming the field that is out of range.
   std::string Invalid() const;
 };
@@ -59,6 +81,7 @@ struct PairedTiming {
   int samples_a = 1;
   double median_b = 0.0, mad_b = 0.0;
   int samples_b = 1;
+  int iterations_a = 0, iterations_b = 0;
 };
 
 enum class TimeFlag : int { kNone = 0, kSlower = 1, kFaster = 2 };  // append-only
@@ -78,8 +101,43 @@ struct RatioGroup {
   SizeBand band = SizeBand::kTiny;
   int problems = 0;     // solved in both runs (the ones timed)
   double sgm_a = 0.0, sgm_b = 0.0;  // seconds
+  double iterations_a = 0.0, iterations_b = 0.0;  // median over the problems
+  // The raw ratio and interval; its flag is the comparison's: against the flag limit, after dividing by the drift.
   TimeRatio time;
 };
+
+// The A/A calibration of each run (file comment): exp(1.96·√2·s), 1 when no record has two samples or spread.
+struct NoiseFloor {
+  double a = 1.0, b = 1.0;
+  double spread_a = 0.0, spread_b = 0.0;  // s: median relative spread of one sample (1.4826·MAD/median)
+  int records_a = 0, records_b = 0;       // cold solved records with at least two samples
+};
+NoiseFloor NoiseFloors(const BenchResults& a, const BenchResults& b);
+
+// Where the drift factor comes from. Append-only values.
+enum class DriftSource : int {
+  kNone = 0,    // no uniform move beyond the band: ratios are not normalized
+  kFloor = 1,   // the floor records' ratio
+  kGroups = 2,  // the median group ratio (no floor records, or the groups disagree with theirs)
+};
+std::string_view ToString(DriftSource source);  // "none", "floor", "groups"
+
+inline constexpr int kMinGroupsForDrift = 3;
+
+struct Drift {
+  DriftSource source = DriftSource::kNone;
+  double factor = 1.0;          // the common ratio found (1 when source is none)
+  bool divided = false;         // the ratios were divided by factor before flagging (CompareOptions::divide_drift)
+  int agreeing_groups = 0;      // groups whose interval ÷ factor reaches the band [1/limit, limit]
+  double median_group_ratio = 1.0;
+  bool has_floor = false;       // floor records timed in both runs
+  int floor_problems = 0;
+  TimeRatio floor;              // their ratio B/A and interval (no flag)
+  double divisor() const { return divided ? factor : 1.0; }
+};
+// The drift of groups (their raw ratios and intervals) given the floor records' pairs and the flag limit.
+Drift EstimateDrift(const std::vector<RatioGroup>& groups, const std::vector<PairedTiming>& floor_pairs,
+                    double flag_limit, const CompareOptions& options);
 
 struct RunComparison {
   // Regressions first, then improvements, then other changes; each in the runs' record order.
@@ -89,6 +147,11 @@ struct RunComparison {
   int matched_records = 0;
   // "suite|problem|backend|mode" of records only one run holds (other backend lists, or a partial merge).
   std::vector<std::string> only_in_a, only_in_b;
+  NoiseFloor noise;
+  double flag_limit = 1.0;  // max(1 + threshold, noise.a, noise.b)
+  Drift drift;
+  // The runs' settings, build and machine side by side (IdentityRows); empty unless the caller fills it in.
+  std::vector<IdentityRow> identity;
 
   int regressions() const;
   int slower_groups() const;
@@ -104,10 +167,18 @@ std::string SuitesMismatch(const BenchResults& a, const BenchResults& b);
 // InvalidInputError when the suites differ ("compare: <difference>") or options are invalid (naming the field).
 RunComparison CompareRuns(const BenchResults& a, const BenchResults& b, const CompareOptions& options);
 
-// compare.md: how the runs were compared, verdict changes first, then the ratio table (one row per group) and
-// what a flag means. figure_stem: the ratio figure's file stem to link (empty: none).
+// compare.md: the runs side by side (their differences named, a warning when the machines differ), how they were
+// compared (noise floor, drift), verdict changes, then the ratio table (one row per group: times, raw and
+// normalized ratio, interval, median iterations, flag). figure_stem: the ratio figure's file stem to link (empty:
+// none).
 std::string CompareMarkdown(const RunComparison& comparison, const CompareOptions& options, const std::string& label_a,
                             const std::string& label_b, const std::string& figure_stem);
+
+// compare.json: the same as data (format "smcbench-compare/1"): the runs side by side and their differences, the
+// method and its parameters, the noise floor, the flag limit, the drift, the verdict changes and the groups (raw and
+// ÷ drift ratio, interval, median iterations, flag "slower" / "faster" / "none"), and whether B regressed.
+nlohmann::json CompareJson(const RunComparison& comparison, const CompareOptions& options, const std::string& label_a,
+                           const std::string& label_b);
 
 // The short table for a terminal: counts, the verdict changes (at most max_changes), and the groups (all when at most
 // max_groups, else only the flagged ones).

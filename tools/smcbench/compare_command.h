@@ -1,7 +1,9 @@
 // `smcbench compare A B`: two results folders of `smcbench bench` (two builds, commits, machines or option sets) —
-// verdict changes first, then the time ratio B/A per suite × backend × size band with a bootstrap interval
+// what differs between them (settings, build, machine), verdict changes, then the time ratio B/A per suite × backend
+// × size band with a bootstrap interval, median iterations, the noise floor and the machine drift
 // (bench/compare/compare_runs.h); a short table on stdout and, with --out, compare.md and a figure of the ratios.
-// Exit status for CI: 0 no regression, 1 a verdict regression or a group flagged slower, 2 could not compare.
+// Exit status for CI: 0 no regression, 1 a verdict regression or a group flagged slower (beyond the noise floor,
+// after the drift), 2 could not compare. A drift alone, or different machines, is reported, not a regression.
 #pragma once
 
 #include <iosfwd>

@@ -11,6 +11,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
 #include "bench/compare/compare_runs.h"
@@ -82,11 +83,22 @@ TEST_F(CompareCommandTest, UnderRelaxedPsorIsFlaggedAndLemkeIsNot) {
   EXPECT_EQ(run.code, kExitCompareRegressed) << run.out << run.err;
   EXPECT_THAT(run.out, Not(testing::ContainsRegex("families/lemke [^\n]*SLOWER")));
   EXPECT_THAT(run.out, testing::ContainsRegex("families/psor +m5-64 [^\n]*SLOWER"));
+  EXPECT_THAT(run.out, HasSubstr("differs: settings [] vs [\"psor.omega=0.05\"]"));
+  EXPECT_THAT(run.out, Not(HasSubstr("different machines")));
   std::ifstream md_file(out / "compare.md");
   std::stringstream md;
   md << md_file.rdbuf();
   EXPECT_THAT(md.str(), HasSubstr("| families | psor | m5-64 |"));
   EXPECT_THAT(md.str(), HasSubstr("paired bootstrap (2000 resamples"));
+  EXPECT_THAT(md.str(), HasSubstr("| setting | settings **≠** | [] | [\"psor.omega=0.05\"] |"));
+  EXPECT_THAT(md.str(), HasSubstr("| setting | repetitions | 3 | 3 |"));
+  EXPECT_THAT(md.str(), HasSubstr("Noise floor (A/A calibration"));
+  EXPECT_THAT(md.str(), HasSubstr("| iterations A | iterations B |"));
+  std::ifstream json_file(out / "compare.json");
+  const nlohmann::json j = nlohmann::json::parse(json_file);
+  EXPECT_EQ(j["regressed"], true);
+  EXPECT_EQ(j["differences"], "settings [] vs [\"psor.omega=0.05\"]");
+  EXPECT_GE(j["slower_groups"].get<int>(), 2);
   if (GnuplotAvailable()) {
     EXPECT_TRUE(fs::is_regular_file(out / "compare-ratios.png"));
     EXPECT_THAT(md.str(), HasSubstr("(compare-ratios.png)"));
@@ -98,6 +110,7 @@ TEST_F(CompareCommandTest, ARunAgainstItselfHasRatioOneAndExitsZero) {
   EXPECT_EQ(run.code, 0) << run.out << run.err;
   EXPECT_THAT(run.out, HasSubstr("0 verdict change(s)"));
   EXPECT_THAT(run.out, HasSubstr("0 flagged slower"));
+  EXPECT_THAT(run.out, HasSubstr("same settings, build and machine"));
 }
 
 TEST_F(CompareCommandTest, OtherSuitesOrNoResultsCannotBeCompared) {
