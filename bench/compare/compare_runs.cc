@@ -658,4 +658,14 @@ std::string CompareSummaryText(const RunComparison& c, const CompareOptions& opt
   return text.str();
 }
 
+RunComparison CompareRunFolders(const std::string& a, const std::string& b, const CompareOptions& options) {
+  nlohmann::json environment_a, environment_b;
+  const BenchResults results_a = ReadBenchResults(a, &environment_a);
+  const BenchResults results_b = ReadBenchResults(b, &environment_b);
+  RunComparison comparison = CompareRuns(results_a, results_b, options);
+  comparison.identity = IdentityRows(MakeRunIdentity(results_a, environment_a, ReadRunOptions(a)),
+                                     MakeRunIdentity(results_b, environment_b, ReadRunOptions(b)));
+  return comparison;
+}
+
 }  // namespace smcbench

@@ -167,6 +167,11 @@ std::string SuitesMismatch(const BenchResults& a, const BenchResults& b);
 // InvalidInputError when the suites differ ("compare: <difference>") or options are invalid (naming the field).
 RunComparison CompareRuns(const BenchResults& a, const BenchResults& b, const CompareOptions& options);
 
+// The results folders a and b (as `smcbench bench --out` wrote them) compared, with their settings, build and
+// machine side by side (identity): what `smcbench compare A B` and Python's smcbench.compare both report.
+// InvalidInputError for an unreadable folder, as CompareRuns for runs that cannot be compared.
+RunComparison CompareRunFolders(const std::string& a, const std::string& b, const CompareOptions& options);
+
 // compare.md: the runs side by side (their differences named, a warning when the machines differ), how they were
 // compared (noise floor, drift), verdict changes, then the ratio table (one row per group: times, raw and
 // normalized ratio, interval, median iterations, flag). figure_stem: the ratio figure's file stem to link (empty:

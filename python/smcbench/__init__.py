@@ -813,10 +813,13 @@ class Comparison:
     verdict_changes: dicts (kind "regression" / "improvement" / "changed", suite, problem, start, solver, mode,
     tolerance, verdict_a/b, status_a/b, message_b); groups: per suite × backend × size band the time ratio B/A
     (sgm_a, sgm_b, ratio, low, high: the bootstrap interval, flag "SLOWER" / "faster" / ""); only_in_a, only_in_b:
-    records one run lacks ("suite|problem|backend|mode")."""
+    records one run lacks ("suite|problem|backend|mode"). data: compare.json as a dict (format "smcbench-compare/1":
+    the runs' settings, build and machine side by side with their differences, the noise floor, the machine drift,
+    the groups with raw and drift-divided ratios and median iterations; docs/cli.md, "compare")."""
 
     summary: str
     markdown: str
+    data: dict
     regressed: bool
     regressions: int
     slower_groups: int
@@ -827,22 +830,27 @@ class Comparison:
     only_in_b: List[str]
 
 
-def compare(a, b, out=None, *, threshold: float = 0.05, resamples: int = 2000, confidence: float = 0.95) -> Comparison:
-    """Compare two bench runs of the same suites as `smcbench compare A B` does (CompareRuns: verdict changes first,
-    then the time ratio B/A per suite, backend and size band with a bootstrap interval, flagged beyond threshold).
+def compare(a, b, out=None, *, threshold: float = 0.05, resamples: int = 2000, confidence: float = 0.95,
+            keep_drift: bool = False) -> Comparison:
+    """Compare two bench runs of the same suites as `smcbench compare A B` does (CompareRunFolders: what differed
+    between the runs, verdict changes, then the time ratio B/A per suite, backend and size band with a bootstrap
+    interval, flagged only beyond both runs' noise floor and 1 + threshold, after dividing out a machine drift).
 
     a, b: results folders, their results.json, or DataFrames of bench() / bench_mcp() / load_bench_results().
-    out: a folder to write compare.md to (the command's --out without the figure; None: nothing written).
-    threshold, resamples, confidence: the command's flags. Runs of other suites, or options out of range, raise
-    InvalidInputError (the command's exit status 2)."""
+    out: a folder to write compare.md and compare.json to (the command's --out without the figure; None: nothing
+    written). threshold, resamples, confidence, keep_drift: the command's flags. Runs of other suites, or options
+    out of range, raise InvalidInputError (the command's exit status 2)."""
     with tempfile.TemporaryDirectory(prefix="smcbench-compare-") as scratch:
         runs = [_results_folder(x, "compare", scratch) for x in (a, b)]
         raw = _smcbench._compare(runs[0].folder, runs[1].folder, runs[0].name, runs[1].name, float(threshold),
-                                 int(resamples), float(confidence))
+                                 int(resamples), float(confidence), bool(keep_drift))
     if out is not None:
         os.makedirs(os.fspath(out), exist_ok=True)
         with open(os.path.join(os.fspath(out), "compare.md"), "w", encoding="utf-8") as f:
             f.write(raw["markdown"])
+        with open(os.path.join(os.fspath(out), "compare.json"), "w", encoding="utf-8") as f:
+            f.write(raw["data"] + "\n")
+    raw["data"] = json.loads(raw["data"])
     return Comparison(**raw)
 
 

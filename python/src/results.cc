@@ -56,19 +56,21 @@ py::dict RatioGroupToDict(const RatioGroup& g) {
 // CompareRuns of the folders a and b (labels: how compare.md names them), with what `smcbench compare` prints
 // (summary) and writes (markdown: compare.md without the figure) and the comparison's parts.
 py::dict Compare(const std::string& a, const std::string& b, const std::string& label_a, const std::string& label_b,
-                 double threshold, int resamples, double confidence) {
+                 double threshold, int resamples, double confidence, bool keep_drift) {
   CompareOptions options;
   options.threshold = threshold;
   options.resamples = resamples;
   options.confidence = confidence;
+  options.divide_drift = !keep_drift;
   RunComparison comparison;
   {
     py::gil_scoped_release release;
-    comparison = CompareRuns(ReadBenchResults(a), ReadBenchResults(b), options);
+    comparison = CompareRunFolders(a, b, options);
   }
   py::dict out;
   out["summary"] = CompareSummaryText(comparison, options);
   out["markdown"] = CompareMarkdown(comparison, options, label_a, label_b, "");
+  out["data"] = CompareJson(comparison, options, label_a, label_b).dump(1);
   out["regressed"] = comparison.regressed();
   out["regressions"] = comparison.regressions();
   out["slower_groups"] = comparison.slower_groups();
@@ -90,7 +92,7 @@ void BindResults(py::module_& m) {
   m.def("_report", &Report, "dir"_a, "plots"_a,
         "Write dir/report.md from dir/results.json as `smcbench report` does; returns the markdown.");
   m.def("_compare", &Compare, "a"_a, "b"_a, "label_a"_a, "label_b"_a, "threshold"_a, "resamples"_a, "confidence"_a,
-        "Compare two bench results folders as `smcbench compare` does (see smcbench.compare); returns a dict.");
+        "keep_drift"_a, "Compare two bench results folders as `smcbench compare` does (see smcbench.compare); returns a dict.");
 }
 
 }  // namespace smcbench::python

@@ -68,6 +68,10 @@ def test_compare_of_a_run_with_itself_finds_nothing_and_matches_the_command(run_
     assert (tmp_path / "cli" / "compare.md").read_text(encoding="utf-8") == c.markdown
     assert (tmp_path / "py" / "compare.md").read_text(encoding="utf-8") == c.markdown
     assert done.stdout.startswith(c.summary)
+    # compare.json as the command writes it: the runs side by side (identical here: nothing differs), the method.
+    assert json.loads((tmp_path / "py" / "compare.json").read_text(encoding="utf-8")) == c.data
+    assert json.loads((tmp_path / "cli" / "compare.json").read_text(encoding="utf-8")) == c.data
+    assert c.data["format"] == "smcbench-compare/1" and not c.data["regressed"]
 
 
 def test_a_verdict_that_got_worse_is_a_regression(run_a, tmp_path):

@@ -113,12 +113,7 @@ int CompareCommand::Run(std::ostream& out, std::ostream& err) const {
   CompareOptions options = f.options;
   options.divide_drift = !f.keep_drift;
   try {
-    nlohmann::json environment_a, environment_b;
-    const BenchResults a = ReadBenchResults(f.a, &environment_a);
-    const BenchResults b = ReadBenchResults(f.b, &environment_b);
-    comparison = CompareRuns(a, b, options);
-    comparison.identity = IdentityRows(MakeRunIdentity(a, environment_a, ReadRunOptions(f.a)),
-                                       MakeRunIdentity(b, environment_b, ReadRunOptions(f.b)));
+    comparison = CompareRunFolders(f.a, f.b, options);
   } catch (const InvalidInputError& e) {
     err << "smcbench: " << e.what() << "\n";
     return kExitCompareRefused;
