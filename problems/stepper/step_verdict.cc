@@ -97,7 +97,8 @@ void StepRefiner::Reset(const DenseMatrix& M, const DenseMatrix& S, const DenseM
 void StepRefiner::ForgetActiveSets() {
   for (CachedKkt& kkt : cache_) kkt.size = 0;
   next_slot_ = 0;
-  has_last_mask_ = false;
+  last_slot_ = 0;
+  judged_before_ = false;
 }
 
 std::uint64_t StepRefiner::ActiveMask(const double* mu, const double* s) {
@@ -127,15 +128,20 @@ std::uint64_t StepRefiner::ActiveMask(const double* mu, const double* s) {
 }
 
 const StepRefiner::CachedKkt* StepRefiner::CachedKktFor(std::uint64_t mask) {
-  const bool repeated = has_last_mask_ && last_mask_ == mask;
-  has_last_mask_ = true;
-  last_mask_ = mask;
-  for (const CachedKkt& kkt : cache_) {
-    if (kkt.size > 0 && kkt.mask == mask) return &kkt;
+  const CachedKkt& last = cache_[static_cast<std::size_t>(last_slot_)];  // most steps: the previous step's set
+  if (last.size > 0 && last.mask == mask) return &last;
+  for (int slot = 0; slot < kCachedActiveSets; ++slot) {
+    const CachedKkt& kkt = cache_[static_cast<std::size_t>(slot)];
+    if (kkt.size > 0 && kkt.mask == mask) {
+      last_slot_ = slot;
+      return &kkt;
+    }
   }
-  // A set seen once may be a passage (a step through a face): made when it repeats, so a refiner Reset every step
-  // (the rebuild-every-step stepper) or a run whose active set changes every step pays nothing for the cache.
-  if (!repeated) return nullptr;
+  // A new set: its inverse costs less than the factored path's solve (Gauss–Jordan on the same N×N matrix, no
+  // right-hand side), so it is made even for a set seen once; but not on a refiner's first step since Reset or
+  // ForgetActiveSets (nothing says it will judge another: the rebuild-every-step stepper Resets every step).
+  if (!judged_before_) return nullptr;
+  last_slot_ = next_slot_;
   CachedKkt* kkt = &cache_[static_cast<std::size_t>(next_slot_)];
   next_slot_ = (next_slot_ + 1) % kCachedActiveSets;
   MakeCachedKkt(mask, kkt);
@@ -253,25 +259,37 @@ bool StepRefiner::InvertInPlace(long double* a, int N) {
   return true;
 }
 
+template <int kM>
 bool StepRefiner::RefineCached(const double* q, const double* mu, double* s, StepCheck* check) {
-  if (!cache_on_) return false;
+  const int m = kM > 0 ? kM : m_;  // a compile-time constant for m = 1, 2: the loops unroll
   long double s_norm = 0.0L, data_norm = 0.0L;  // ‖s‖∞, ‖q̃‖∞
-  for (int i = 0; i < m_; ++i) {  // w̃ = M̃ s + q̃, as Refine's
+  std::uint64_t box_mask = 0;
+  for (int i = 0; i < m; ++i) {  // w̃ = M̃ s + q̃, as Refine's
     const long double qi = static_cast<long double>(q[i]) / sigma_;
     long double wi = qi;
-    for (int j = 0; j < m_; ++j) wi += M_[static_cast<std::size_t>(i * m_ + j)] * s[j];
+    for (int j = 0; j < m; ++j) wi += M_[static_cast<std::size_t>(i * m + j)] * s[j];
     w_[static_cast<std::size_t>(i)] = wi;
     r_[static_cast<std::size_t>(i)] = wi;
-    s_norm = std::max(s_norm, std::abs(static_cast<long double>(s[i])));
+    const long double si = s[i];
+    s_norm = std::max(s_norm, std::abs(si));
     data_norm = std::max(data_norm, std::abs(qi));
+    if (box_) {  // ActiveMask's box branch, here while w̃_i is at hand
+      const long double lower = 1.0L + si, upper = 1.0L - si;
+      slack_[static_cast<std::size_t>(i)] = lower;
+      slack_[static_cast<std::size_t>(m + i)] = upper;
+      if (std::max(wi, 0.0L) > lower) box_mask |= std::uint64_t{1} << i;
+      if (std::max(-wi, 0.0L) > upper) box_mask |= std::uint64_t{1} << (m + i);
+    }
   }
-  const CachedKkt* kkt = CachedKktFor(ActiveMask(mu, s));
+  const std::uint64_t mask = box_ ? box_mask : ActiveMask(mu, s);
+  const CachedKkt& last = cache_[static_cast<std::size_t>(last_slot_)];  // most steps: the previous step's set
+  const CachedKkt* kkt = last.size > 0 && last.mask == mask ? &last : CachedKktFor(mask);
   if (kkt == nullptr || !kkt->usable) return false;
   const int N = kkt->size;
   // r = (w̃, g̃_A), the KKT system's residual at the answer (g̃ the active rows' slacks), and z = (δ, μ̃_A) = −X r.
-  for (int c = 0; c < N - m_; ++c) {
+  for (int c = 0; c < N - m; ++c) {
     const int row = kkt->rows[static_cast<std::size_t>(c)];
-    r_[static_cast<std::size_t>(m_ + c)] = slack_[static_cast<std::size_t>(row)];
+    r_[static_cast<std::size_t>(m + c)] = slack_[static_cast<std::size_t>(row)];
     data_norm = std::max(data_norm, std::abs(K_[static_cast<std::size_t>(row)]));
   }
   long double r_norm = 0.0L, z_norm = 0.0L, mu_norm = 0.0L;
@@ -281,7 +299,7 @@ bool StepRefiner::RefineCached(const double* q, const double* mu, double* s, Ste
     for (int j = 0; j < N; ++j) zk -= row[j] * r_[static_cast<std::size_t>(j)];
     z_[static_cast<std::size_t>(k)] = zk;
     z_norm = std::max(z_norm, std::abs(zk));
-    if (k >= m_) mu_norm = std::max(mu_norm, std::abs(zk));
+    if (k >= m) mu_norm = std::max(mu_norm, std::abs(zk));
     r_norm = std::max(r_norm, std::abs(r_[static_cast<std::size_t>(k)]));
   }
   // Row k of z is within 2(‖X_k‖₁ b + β(‖r‖ + e)) of the exact step z* of the unrounded data (M/σ, q/σ, H/h) at s,
@@ -292,7 +310,7 @@ bool StepRefiner::RefineCached(const double* q, const double* mu, double* s, Ste
   const long double b = kkt->gamma * r_norm + e;
   const long double inverse_term = kkt->inverse_error * (r_norm + e);
   long double star_norm = 0.0L, rounded_norm = 0.0L;  // ‖s*‖∞ and ‖fl(s*)‖∞
-  for (int j = 0; j < m_; ++j) {
+  for (int j = 0; j < m; ++j) {
     const long double star = static_cast<long double>(s[j]) + z_[static_cast<std::size_t>(j)];
     star_[static_cast<std::size_t>(j)] = star;
     star_norm = std::max(star_norm, std::abs(star));
@@ -302,7 +320,7 @@ bool StepRefiner::RefineCached(const double* q, const double* mu, double* s, Ste
   // the bound's margin, and H fl(s*) ≥ K as the factored path checks it (the box: 1 − |fl(s*_j)|, its least slack).
   if (!(2.0L * (kkt->delta_rows_norm * b + inverse_term) <= kCachedAccuracy * star_norm)) return false;
   const long double mu_floor = -kVerifyUlps * kEps * (1.0L + mu_norm);
-  for (int k = m_; k < N; ++k) {
+  for (int k = m; k < N; ++k) {
     const long double error = 2.0L * (kkt->row_norm[static_cast<std::size_t>(k)] * b + inverse_term);
     if (!(z_[static_cast<std::size_t>(k)] - error >= mu_floor)) return false;
   }
@@ -310,8 +328,10 @@ bool StepRefiner::RefineCached(const double* q, const double* mu, double* s, Ste
   if (box_ ? !(1.0L - rounded_norm >= slack_floor) : !StarIsFeasible(star_norm)) return false;
   check->exact = true;
   check->cached = true;
-  check->x_error = static_cast<double>(XError(s));
-  for (int j = 0; j < m_; ++j) s[j] = static_cast<double>(star_[static_cast<std::size_t>(j)]);
+  // ‖S δ‖∞; one input: ‖S‖∞ |δ| (the same number, without n products).
+  check->x_error = m == 1 ? static_cast<double>(static_cast<long double>(input_scale_) * std::abs(z_[0]))
+                           : static_cast<double>(XError(s));
+  for (int j = 0; j < m; ++j) s[j] = static_cast<double>(star_[static_cast<std::size_t>(j)]);
   return true;
 }
 
@@ -329,8 +349,21 @@ bool StepRefiner::StarIsFeasible(long double star_norm) const {
 
 StepCheck StepRefiner::Refine(const double* q, const double* mu, double* s) {
   StepCheck check;
-  if (RefineCached(q, mu, s, &check)) return check;
-  // The factored path.
+  bool cached = false;
+  if (cache_on_) {
+    switch (m_) {
+      case 1: cached = RefineCached<1>(q, mu, s, &check); break;
+      case 2: cached = RefineCached<2>(q, mu, s, &check); break;
+      default: cached = RefineCached<0>(q, mu, s, &check); break;
+    }
+  }
+  if (!cached) check = RefineFactored(q, mu, s);
+  judged_before_ = true;
+  return check;
+}
+
+StepCheck StepRefiner::RefineFactored(const double* q, const double* mu, double* s) {
+  StepCheck check;
   // w̃ = M̃ s + q̃, and the multipliers in units of s: μ̃_r = μ_r h_r/σ (the box: w̃'s positive and negative parts).
   long double s_norm = 0.0L;
   for (int i = 0; i < m_; ++i) {

@@ -15,13 +15,15 @@
 // The stepper always continues from s* (so a run is exact to rounding whatever the tolerance handed to the
 // backend), counts the steps whose answer was off by more than the allowance (Trajectory::refined_steps), and
 // reports a step as inaccurate when no exact step is found on the answer's active set (never silently accepted).
-// Two paths solve step 2. The cheap one, first: consecutive steps mostly share their active set, so the inverse of
-// its KKT matrix is kept (long double, verified by its residual I − K K⁻¹ when made; a few active sets, made when
-// a set repeats on consecutive steps) and s* = s − K⁻¹r costs one product, with a rigorous bound on its error (the
-// rounding of r and of the product, the inverse's error); s* is taken only when that bound is below ε/4·‖s*‖∞ (so
-// s* rounds to the same double as the exact step, to within the rounding of a quarter ulp) and s* passes the checks
-// of step 3 with the bound's margin. Otherwise (a new or singular active set, an ill-conditioned one, a step
-// near a face) the factored path above judges the step, unchanged. StepCheck::cached says which one did.
+// Two paths solve step 2. The cached one, first: consecutive steps mostly share their active set, so the inverse
+// of its KKT matrix is kept (long double, verified by its residual I − K X when made; the last 4 active sets, from
+// the second step judged since Reset on) and s* = s − X r costs one product, with a rigorous bound on its error (the
+// rounding of r and of the product, the data's rounding, the inverse's error). s* is taken only when that bound is
+// below ε/4·‖s*‖∞ (so s* is the double the exact step rounds to, but within a quarter ulp of a tie) and s* passes
+// step 3's checks with the bound's margin. Otherwise (a singular or ill-conditioned active set, an active set with
+// no exact step, a refiner's first step) the factored path above judges the step, unchanged, in long double either
+// way: x87 long double costs the same instructions as double, and only it gives s* to the last bit of double.
+// StepCheck::cached says which path judged.
 // Allocation-free after Reset (buffers sized to m + rows of P).
 #pragma once
 
@@ -80,11 +82,14 @@ class StepRefiner {
     std::vector<long double> inverse;  // N×N row-major
     std::vector<long double> row_norm;  // Σ_j |inverse_ij|
   };
-  // The cached path; false leaves the step to the factored one (s untouched).
+  // The factored path: steps 1-3 above.
+  StepCheck RefineFactored(const double* q, const double* mu, double* s);
+  // The cached path; false leaves the step to the factored one (s untouched). kM: m, or 0 (m_ at run time).
+  template <int kM>
   bool RefineCached(const double* q, const double* mu, double* s, StepCheck* check);
   // The natural map's active set (the factored path's first reading) as a bit mask; fills slack_.
   std::uint64_t ActiveMask(const double* mu, const double* s);
-  // The slot of `mask`, made when the mask repeats the previous step's; null when there is none.
+  // The slot of `mask`, made if new (in the next slot, round robin) unless this is the first step judged; or null.
   const CachedKkt* CachedKktFor(std::uint64_t mask);
   void MakeCachedKkt(std::uint64_t mask, CachedKkt* kkt);
   // Inverts the N×N matrix in a (row-major) in place by Gauss–Jordan with complete pivoting; false if singular.
@@ -111,9 +116,9 @@ class StepRefiner {
   // The cached path.
   bool cache_on_ = false;
   std::vector<CachedKkt> cache_;
-  int next_slot_ = 0;
-  bool has_last_mask_ = false;
-  std::uint64_t last_mask_ = 0;                // the previous step's active set
+  int next_slot_ = 0;  // the slot the next new active set takes (round robin)
+  int last_slot_ = 0;  // the slot the previous step used
+  bool judged_before_ = false;  // a step was judged since Reset or ForgetActiveSets
   long double gamma_r_ = 0.0L;  // γ_{m+3}: the rounding of r (its arithmetic and the data's, to long double)
   std::vector<long double> slack_, r_, z_;
   std::vector<int> pivot_row_, pivot_col_, pivoted_;

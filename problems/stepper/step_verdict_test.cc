@@ -1,9 +1,10 @@
-// The step verdict's two paths (problems/stepper/step_verdict.h): a run whose active set repeats is judged by the
-// cached inverse of its KKT matrix, a singular or ill-conditioned active set by the factored path, and both give
-// the same verdict and the same s* (a refiner Reset before every step never caches: it is the factored path).
+// The step verdict's two paths (problems/stepper/step_verdict.h): a run is judged by the cached inverse of its
+// active set's KKT matrix, a singular or ill-conditioned active set by the factored path, and both give the same
+// verdict and the same s* (a refiner's first step since Reset is the factored path: the reference here).
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdio>
 #include <limits>
 #include <memory>
 
@@ -61,8 +62,9 @@ TEST(StepVerdictPaths, AWellConditionedRunIsJudgedByTheCachedPath) {
     x -= S * s;
   }
   EXPECT_LT(x.cwiseAbs().maxCoeff(), 1e-3);  // the run reached the sliding phase near the origin
-  // Only a set's first step (a step through a face, and the one before the set repeats) goes to the factored path.
-  EXPECT_GE(cached, steps - 6);
+  // Only the first step goes to the factored path (and a step the cached path cannot prove exact to a quarter ulp).
+  std::printf("[ info     ] %d of %d steps judged by the cached path\n", cached, steps);
+  EXPECT_GE(cached, steps - 3);
   // A refiner that forgets its active sets judges the next step by the factored path again.
   refiner.ForgetActiveSets();
   Vector s = Vector::Zero(2);
