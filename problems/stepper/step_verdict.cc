@@ -230,7 +230,10 @@ bool StepRefiner::InvertInPlace(long double* a, int N) {
     for (int i = 0; i < N; ++i) {
       if (pivoted_[static_cast<std::size_t>(i)]) continue;
       for (int j = 0; j < N; ++j) {
-        if (!pivoted_[static_cast<std::size_t>(j)] && std::abs(at(i, j)) > best) best = std::abs(at(i, j)), pr = i, pc = j;
+        if (pivoted_[static_cast<std::size_t>(j)] || !(std::abs(at(i, j)) > best)) continue;
+        best = std::abs(at(i, j));
+        pr = i;
+        pc = j;
       }
     }
     if (!(best > kRankThreshold * amax)) return false;

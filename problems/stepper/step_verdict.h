@@ -22,7 +22,7 @@
 // below ε/4·‖s*‖∞ (so s* is the double the exact step rounds to, but within a quarter ulp of a tie) and s* passes
 // step 3's checks with the bound's margin. Otherwise (a singular or ill-conditioned active set, an active set with
 // no exact step, a refiner's first step) the factored path above judges the step, unchanged, in long double either
-// way: x87 long double costs the same instructions as double, and only it gives s* to the last bit of double.
+// way: x87 long double costs about the instructions of double, and keeps s* exact to double's rounding (κε would not).
 // StepCheck::cached says which path judged.
 // Allocation-free after Reset (buffers sized to m + rows of P).
 #pragma once
