@@ -321,6 +321,7 @@ bool StepRefiner::RefineCached(const double* q, const double* mu, double* s, Ste
   }
   // s* is taken when exact to a quarter ulp of ‖s*‖∞, μ̃_A ≥ 0 to rounding (the factored path's test) holds with
   // the bound's margin, and H fl(s*) ≥ K as the factored path checks it (the box: 1 − |fl(s*_j)|, its least slack).
+  if (!(star_norm <= std::numeric_limits<long double>::max())) return false;  // overflow: the factored path says so
   if (!(2.0L * (kkt->delta_rows_norm * b + inverse_term) <= kCachedAccuracy * star_norm)) return false;
   const long double mu_floor = -kVerifyUlps * kEps * (1.0L + mu_norm);
   for (int k = m; k < N; ++k) {
