@@ -295,21 +295,26 @@ bool StepRefiner::RefineCached(const double* q, const double* mu, double* s, Ste
     r_[static_cast<std::size_t>(m + c)] = slack_[static_cast<std::size_t>(row)];
     data_norm = std::max(data_norm, std::abs(K_[static_cast<std::size_t>(row)]));
   }
-  long double r_norm = 0.0L, z_norm = 0.0L, mu_norm = 0.0L;
+  long double r_norm = 0.0L, delta_norm = 0.0L, mu_norm = 0.0L;
   for (int k = 0; k < N; ++k) {
     long double zk = 0.0L;
     const long double* row = kkt->inverse.data() + static_cast<std::size_t>(k * N);
     for (int j = 0; j < N; ++j) zk -= row[j] * r_[static_cast<std::size_t>(j)];
     z_[static_cast<std::size_t>(k)] = zk;
-    z_norm = std::max(z_norm, std::abs(zk));
-    if (k >= m) mu_norm = std::max(mu_norm, std::abs(zk));
+    if (k < m) {
+      delta_norm = std::max(delta_norm, std::abs(zk));
+    } else {
+      mu_norm = std::max(mu_norm, std::abs(zk));
+    }
     r_norm = std::max(r_norm, std::abs(r_[static_cast<std::size_t>(k)]));
   }
   // Row k of z is within 2(‖X_k‖₁ b + β(‖r‖ + e)) of the exact step z* of the unrounded data (M/σ, q/σ, H/h) at s,
   // X the cached inverse, β ≥ ‖K⁻¹ − X‖∞: b = γ_N‖r‖ + e bounds the product's rounding plus r's error, e = γ_{m+3}
-  // (‖q̃, K̃_A‖ + ‖K‖(‖s‖ + ‖z‖)) r's arithmetic and the data's rounding to long double (as a perturbation of K,
-  // seen through z). Doubled for the bound's own rounding and z* ≠ z in the last term.
-  const long double e = gamma_r_ * (data_norm + kkt->matrix_norm * (s_norm + z_norm));
+  // (‖q̃, K̃_A‖ + ‖K‖(‖s‖ + ‖δ‖ + ‖μ̃‖)) r's arithmetic and the data's rounding to long double (a perturbation of K,
+  // seen through z; the box's H̃ = ±1 is exact, so μ̃, large on a face, does not enter). Doubled for the bound's
+  // own rounding and z* ≠ z in the last term.
+  const long double perturbed = s_norm + delta_norm + (box_ ? 0.0L : mu_norm);
+  const long double e = gamma_r_ * (data_norm + kkt->matrix_norm * perturbed);
   const long double b = kkt->gamma * r_norm + e;
   const long double inverse_term = kkt->inverse_error * (r_norm + e);
   long double star_norm = 0.0L, rounded_norm = 0.0L;  // ‖s*‖∞ and ‖fl(s*)‖∞
