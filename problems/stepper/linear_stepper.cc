@@ -247,6 +247,8 @@ class KernelImpl final : public LinearStepper::Kernel {
     const double residue_factor = ResidueFactor(n, m, forced, d);
     const double zero_below = ZeroStateBelow(options, implicit);
     const bool refine = implicit && options.refine_steps;
+    // Every run judges its steps alike: the active sets a previous run left cached do not carry over.
+    if (refine) refiner_.ForgetActiveSets();
     const double tolerance = options.solver.tolerance;
     const Eigen::Index law_rows = polytope ? d.law.H.rows() : 0;
     StepObserver* const observer = options.observer;

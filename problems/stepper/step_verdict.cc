@@ -14,6 +14,15 @@ constexpr long double kEps = std::numeric_limits<double>::epsilon();
 constexpr long double kVerifyUlps = 8.0L;
 // A pivot below this times the largest entry of the KKT matrix counts as 0 (rank deficiency).
 constexpr long double kRankThreshold = 1e-12L;
+// The cached path takes s* when its error bound is below this times ‖s*‖∞: a quarter of double's ulp, so s* rounds
+// to the double of the exact step but within a quarter ulp of a rounding tie (what the factored path gives too).
+constexpr long double kCachedAccuracy = kEps / 4.0L;
+
+// γ_k = k u / (1 − k u), u the unit roundoff of long double: the relative error of a sum of k rounded terms.
+long double Gamma(int k) {
+  constexpr long double u = std::numeric_limits<long double>::epsilon() / 2.0L;
+  return static_cast<long double>(k) * u / (1.0L - static_cast<long double>(k) * u);
+}
 
 }  // namespace
 
@@ -66,9 +75,303 @@ void StepRefiner::Reset(const DenseMatrix& M, const DenseMatrix& S, const DenseM
   star_.assign(static_cast<std::size_t>(m_), 0.0L);
   best_.assign(static_cast<std::size_t>(m_), 0.0L);
   mu_.assign(static_cast<std::size_t>(rows_), 0.0L);
+  // The cached path: active sets of at most min(m, rows) rows (more is singular), so N ≤ m + min(m, rows).
+  cache_on_ = m_ <= kMaxCachedInputs && rows_ <= 64;
+  const std::size_t kkt_cap = cache_on_ ? static_cast<std::size_t>(m_ + std::min(m_, rows_)) : 0;
+  cache_.resize(static_cast<std::size_t>(kCachedActiveSets));
+  for (CachedKkt& kkt : cache_) {
+    kkt.rows.assign(static_cast<std::size_t>(m_), 0);
+    kkt.inverse.assign(kkt_cap * kkt_cap, 0.0L);
+    kkt.row_norm.assign(kkt_cap, 0.0L);
+  }
+  gamma_r_ = Gamma(m_ + 3);
+  slack_.assign(static_cast<std::size_t>(rows_), 0.0L);
+  r_.assign(kkt_cap, 0.0L);
+  z_.assign(kkt_cap, 0.0L);
+  pivot_row_.assign(kkt_cap, 0);
+  pivot_col_.assign(kkt_cap, 0);
+  pivoted_.assign(kkt_cap, 0);
+  ForgetActiveSets();
+}
+
+void StepRefiner::ForgetActiveSets() {
+  for (CachedKkt& kkt : cache_) kkt.size = 0;
+  next_slot_ = 0;
+  last_slot_ = 0;
+  judged_before_ = false;
+}
+
+std::uint64_t StepRefiner::ActiveMask(const double* mu, const double* s) {
+  // The factored path's first reading (Refine below), in the same arithmetic: row r is active when μ̃_r > slack_r.
+  std::uint64_t mask = 0;
+  if (box_) {
+    for (int i = 0; i < m_; ++i) {
+      const long double wi = w_[static_cast<std::size_t>(i)];
+      const long double lower = 1.0L + static_cast<long double>(s[i]);  // s_i ≥ −1
+      const long double upper = 1.0L - static_cast<long double>(s[i]);  // −s_i ≥ −1
+      slack_[static_cast<std::size_t>(i)] = lower;
+      slack_[static_cast<std::size_t>(m_ + i)] = upper;
+      if (std::max(wi, 0.0L) > lower) mask |= std::uint64_t{1} << i;
+      if (std::max(-wi, 0.0L) > upper) mask |= std::uint64_t{1} << (m_ + i);
+    }
+    return mask;
+  }
+  for (int r = 0; r < rows_; ++r) {
+    long double slack = -K_[static_cast<std::size_t>(r)];
+    for (int j = 0; j < m_; ++j) slack += H_[static_cast<std::size_t>(r * m_ + j)] * s[j];
+    slack_[static_cast<std::size_t>(r)] = slack;
+    const long double mr =
+        mu != nullptr ? static_cast<long double>(mu[r]) * hscale_[static_cast<std::size_t>(r)] / sigma_ : 0.0L;
+    if (mr > slack) mask |= std::uint64_t{1} << r;
+  }
+  return mask;
+}
+
+const StepRefiner::CachedKkt* StepRefiner::CachedKktFor(std::uint64_t mask) {
+  const CachedKkt& last = cache_[static_cast<std::size_t>(last_slot_)];  // most steps: the previous step's set
+  if (last.size > 0 && last.mask == mask) return &last;
+  for (int slot = 0; slot < kCachedActiveSets; ++slot) {
+    const CachedKkt& kkt = cache_[static_cast<std::size_t>(slot)];
+    if (kkt.size > 0 && kkt.mask == mask) {
+      last_slot_ = slot;
+      return &kkt;
+    }
+  }
+  // A new set: its inverse costs less than the factored path's solve (Gauss–Jordan on the same N×N matrix, no
+  // right-hand side), so it is made even for a set seen once; but not on a refiner's first step since Reset or
+  // ForgetActiveSets (nothing says it will judge another: the rebuild-every-step stepper Resets every step).
+  if (!judged_before_) return nullptr;
+  last_slot_ = next_slot_;
+  CachedKkt* kkt = &cache_[static_cast<std::size_t>(next_slot_)];
+  next_slot_ = (next_slot_ + 1) % kCachedActiveSets;
+  MakeCachedKkt(mask, kkt);
+  return kkt;
+}
+
+void StepRefiner::MakeCachedKkt(std::uint64_t mask, CachedKkt* kkt) {
+  kkt->mask = mask;
+  kkt->usable = false;
+  int a = 0;
+  for (int r = 0; r < rows_; ++r) {
+    if (((mask >> r) & 1u) == 0) continue;
+    if (a == m_) {  // more active rows than unknowns: singular (left to the factored path)
+      kkt->size = m_ + a + 1;
+      return;
+    }
+    kkt->rows[static_cast<std::size_t>(a++)] = r;
+  }
+  const int N = m_ + a;
+  kkt->size = N;
+  // K = [M̃ −H̃_Aᵀ; H̃_A 0], as SolveOnActiveSet's, in A_ (kept for the residual test below).
+  long double* K = A_.data();
+  const auto idx = [N](int i, int j) { return static_cast<std::size_t>(i * N + j); };
+  for (int i = 0; i < N; ++i) {
+    for (int j = 0; j < N; ++j) {
+      long double v = 0.0L;
+      if (i < m_ && j < m_) {
+        v = M_[static_cast<std::size_t>(i * m_ + j)];
+      } else if (i < m_) {
+        v = -H_[static_cast<std::size_t>(kkt->rows[static_cast<std::size_t>(j - m_)] * m_ + i)];
+      } else if (j < m_) {
+        v = H_[static_cast<std::size_t>(kkt->rows[static_cast<std::size_t>(i - m_)] * m_ + j)];
+      }
+      K[idx(i, j)] = v;
+    }
+  }
+  long double* inverse = kkt->inverse.data();
+  kkt->matrix_norm = 0.0L;
+  for (int i = 0; i < N; ++i) {
+    long double row = 0.0L;
+    for (int j = 0; j < N; ++j) {
+      inverse[idx(i, j)] = K[idx(i, j)];
+      row += std::abs(K[idx(i, j)]);
+    }
+    kkt->matrix_norm = std::max(kkt->matrix_norm, row);
+  }
+  if (!InvertInPlace(inverse, N)) return;
+  // ρ ≥ ‖I − K X‖∞ (the residual computed in long double, plus its own rounding): then ‖K⁻¹ − X‖∞ ≤ ‖X‖∞ ρ/(1 − ρ).
+  long double rho = 0.0L, product_scale = 0.0L, inverse_norm = 0.0L;
+  kkt->delta_rows_norm = 0.0L;
+  for (int i = 0; i < N; ++i) {
+    long double residual_row = 0.0L, scale_row = 0.0L, inverse_row = 0.0L;
+    for (int j = 0; j < N; ++j) {
+      long double kx = 0.0L, kx_abs = 0.0L;
+      for (int k = 0; k < N; ++k) {
+        const long double t = K[idx(i, k)] * inverse[idx(k, j)];
+        kx += t;
+        kx_abs += std::abs(t);
+      }
+      residual_row += std::abs((i == j ? 1.0L : 0.0L) - kx);
+      scale_row += kx_abs;
+      inverse_row += std::abs(inverse[idx(i, j)]);
+    }
+    rho = std::max(rho, residual_row);
+    product_scale = std::max(product_scale, scale_row);
+    inverse_norm = std::max(inverse_norm, inverse_row);
+    kkt->row_norm[static_cast<std::size_t>(i)] = inverse_row;
+    if (i < m_) kkt->delta_rows_norm = std::max(kkt->delta_rows_norm, inverse_row);
+  }
+  rho += Gamma(N + 1) * product_scale;
+  if (!(rho < 0.5L)) return;
+  kkt->inverse_error = inverse_norm * rho / (1.0L - rho);
+  kkt->gamma = Gamma(N);
+  kkt->usable = true;
+}
+
+bool StepRefiner::InvertInPlace(long double* a, int N) {
+  const auto at = [a, N](int i, int j) -> long double& { return a[static_cast<std::size_t>(i * N + j)]; };
+  long double amax = 0.0L;
+  for (int i = 0; i < N * N; ++i) amax = std::max(amax, std::abs(a[i]));
+  for (int i = 0; i < N; ++i) pivoted_[static_cast<std::size_t>(i)] = 0;
+  for (int step = 0; step < N; ++step) {
+    // The largest entry among the rows and columns not pivoted yet; it is moved onto the diagonal (row swap).
+    long double best = -1.0L;
+    int pr = 0, pc = 0;
+    for (int i = 0; i < N; ++i) {
+      if (pivoted_[static_cast<std::size_t>(i)]) continue;
+      for (int j = 0; j < N; ++j) {
+        if (pivoted_[static_cast<std::size_t>(j)] || !(std::abs(at(i, j)) > best)) continue;
+        best = std::abs(at(i, j));
+        pr = i;
+        pc = j;
+      }
+    }
+    if (!(best > kRankThreshold * amax)) return false;
+    pivoted_[static_cast<std::size_t>(pc)] = 1;
+    if (pr != pc) {
+      for (int j = 0; j < N; ++j) std::swap(at(pr, j), at(pc, j));
+    }
+    pivot_row_[static_cast<std::size_t>(step)] = pr;
+    pivot_col_[static_cast<std::size_t>(step)] = pc;
+    const long double inverse_pivot = 1.0L / at(pc, pc);
+    at(pc, pc) = 1.0L;
+    for (int j = 0; j < N; ++j) at(pc, j) *= inverse_pivot;
+    for (int i = 0; i < N; ++i) {
+      if (i == pc) continue;
+      const long double f = at(i, pc);
+      at(i, pc) = 0.0L;
+      for (int j = 0; j < N; ++j) at(i, j) -= f * at(pc, j);
+    }
+  }
+  // The row swaps of the matrix are column swaps of its inverse, undone in reverse order.
+  for (int step = N - 1; step >= 0; --step) {
+    const int pr = pivot_row_[static_cast<std::size_t>(step)], pc = pivot_col_[static_cast<std::size_t>(step)];
+    if (pr == pc) continue;
+    for (int i = 0; i < N; ++i) std::swap(at(i, pr), at(i, pc));
+  }
+  return true;
+}
+
+template <int kM>
+bool StepRefiner::RefineCached(const double* q, const double* mu, double* s, StepCheck* check) {
+  const int m = kM > 0 ? kM : m_;  // a compile-time constant for m = 1, 2: the loops unroll
+  long double s_norm = 0.0L, data_norm = 0.0L;  // ‖s‖∞, ‖q̃‖∞
+  std::uint64_t box_mask = 0;
+  for (int i = 0; i < m; ++i) {  // w̃ = M̃ s + q̃, as Refine's
+    const long double qi = static_cast<long double>(q[i]) / sigma_;
+    long double wi = qi;
+    for (int j = 0; j < m; ++j) wi += M_[static_cast<std::size_t>(i * m + j)] * s[j];
+    w_[static_cast<std::size_t>(i)] = wi;
+    r_[static_cast<std::size_t>(i)] = wi;
+    const long double si = s[i];
+    s_norm = std::max(s_norm, std::abs(si));
+    data_norm = std::max(data_norm, std::abs(qi));
+    if (box_) {  // ActiveMask's box branch, here while w̃_i is at hand
+      const long double lower = 1.0L + si, upper = 1.0L - si;
+      slack_[static_cast<std::size_t>(i)] = lower;
+      slack_[static_cast<std::size_t>(m + i)] = upper;
+      if (std::max(wi, 0.0L) > lower) box_mask |= std::uint64_t{1} << i;
+      if (std::max(-wi, 0.0L) > upper) box_mask |= std::uint64_t{1} << (m + i);
+    }
+  }
+  const std::uint64_t mask = box_ ? box_mask : ActiveMask(mu, s);
+  const CachedKkt& last = cache_[static_cast<std::size_t>(last_slot_)];  // most steps: the previous step's set
+  const CachedKkt* kkt = last.size > 0 && last.mask == mask ? &last : CachedKktFor(mask);
+  if (kkt == nullptr || !kkt->usable) return false;
+  const int N = kkt->size;
+  // r = (w̃, g̃_A), the KKT system's residual at the answer (g̃ the active rows' slacks), and z = (δ, μ̃_A) = −X r.
+  for (int c = 0; c < N - m; ++c) {
+    const int row = kkt->rows[static_cast<std::size_t>(c)];
+    r_[static_cast<std::size_t>(m + c)] = slack_[static_cast<std::size_t>(row)];
+    data_norm = std::max(data_norm, std::abs(K_[static_cast<std::size_t>(row)]));
+  }
+  long double r_norm = 0.0L, delta_norm = 0.0L, mu_norm = 0.0L;
+  for (int k = 0; k < N; ++k) {
+    long double zk = 0.0L;
+    const long double* row = kkt->inverse.data() + static_cast<std::size_t>(k * N);
+    for (int j = 0; j < N; ++j) zk -= row[j] * r_[static_cast<std::size_t>(j)];
+    z_[static_cast<std::size_t>(k)] = zk;
+    if (k < m) {
+      delta_norm = std::max(delta_norm, std::abs(zk));
+    } else {
+      mu_norm = std::max(mu_norm, std::abs(zk));
+    }
+    r_norm = std::max(r_norm, std::abs(r_[static_cast<std::size_t>(k)]));
+  }
+  // Row k of z is within 2(‖X_k‖₁ b + β(‖r‖ + e)) of the exact step z* of the unrounded data (M/σ, q/σ, H/h) at s,
+  // X the cached inverse, β ≥ ‖K⁻¹ − X‖∞: b = γ_N‖r‖ + e bounds the product's rounding plus r's error, e = γ_{m+3}
+  // (‖q̃, K̃_A‖ + ‖K‖(‖s‖ + ‖δ‖ + ‖μ̃‖)) r's arithmetic and the data's rounding to long double (a perturbation of K,
+  // seen through z; the box's H̃ = ±1 is exact, so μ̃, large on a face, does not enter). Doubled for the bound's
+  // own rounding and z* ≠ z in the last term.
+  const long double perturbed = s_norm + delta_norm + (box_ ? 0.0L : mu_norm);
+  const long double e = gamma_r_ * (data_norm + kkt->matrix_norm * perturbed);
+  const long double b = kkt->gamma * r_norm + e;
+  const long double inverse_term = kkt->inverse_error * (r_norm + e);
+  long double star_norm = 0.0L, rounded_norm = 0.0L;  // ‖s*‖∞ and ‖fl(s*)‖∞
+  for (int j = 0; j < m; ++j) {
+    const long double star = static_cast<long double>(s[j]) + z_[static_cast<std::size_t>(j)];
+    star_[static_cast<std::size_t>(j)] = star;
+    star_norm = std::max(star_norm, std::abs(star));
+    rounded_norm = std::max(rounded_norm, std::abs(static_cast<long double>(static_cast<double>(star))));
+  }
+  // s* is taken when exact to a quarter ulp of ‖s*‖∞, μ̃_A ≥ 0 to rounding (the factored path's test) holds with
+  // the bound's margin, and H fl(s*) ≥ K as the factored path checks it (the box: 1 − |fl(s*_j)|, its least slack).
+  if (!(star_norm <= std::numeric_limits<long double>::max())) return false;  // overflow: the factored path says so
+  if (!(2.0L * (kkt->delta_rows_norm * b + inverse_term) <= kCachedAccuracy * star_norm)) return false;
+  const long double mu_floor = -kVerifyUlps * kEps * (1.0L + mu_norm);
+  for (int k = m; k < N; ++k) {
+    const long double error = 2.0L * (kkt->row_norm[static_cast<std::size_t>(k)] * b + inverse_term);
+    if (!(z_[static_cast<std::size_t>(k)] - error >= mu_floor)) return false;
+  }
+  const long double slack_floor = -kVerifyUlps * kEps * (1.0L + star_norm);
+  if (box_ ? !(1.0L - rounded_norm >= slack_floor) : !StarIsFeasible(star_norm)) return false;
+  check->exact = true;
+  check->cached = true;
+  // ‖S δ‖∞; one input: ‖S‖∞ |δ| (the same number, without n products).
+  check->x_error = m == 1 ? static_cast<double>(static_cast<long double>(input_scale_) * std::abs(z_[0]))
+                           : static_cast<double>(XError(s));
+  for (int j = 0; j < m; ++j) s[j] = static_cast<double>(star_[static_cast<std::size_t>(j)]);
+  return true;
+}
+
+bool StepRefiner::StarIsFeasible(long double star_norm) const {
+  for (int r = 0; r < rows_; ++r) {
+    long double slack = -K_[static_cast<std::size_t>(r)];
+    for (int j = 0; j < m_; ++j) {
+      slack += H_[static_cast<std::size_t>(r * m_ + j)] *
+               static_cast<long double>(static_cast<double>(star_[static_cast<std::size_t>(j)]));
+    }
+    if (slack < -kVerifyUlps * kEps * (1.0L + star_norm)) return false;
+  }
+  return true;
 }
 
 StepCheck StepRefiner::Refine(const double* q, const double* mu, double* s) {
+  StepCheck check;
+  bool cached = false;
+  if (cache_on_) {
+    switch (m_) {
+      case 1: cached = RefineCached<1>(q, mu, s, &check); break;
+      case 2: cached = RefineCached<2>(q, mu, s, &check); break;
+      default: cached = RefineCached<0>(q, mu, s, &check); break;
+    }
+  }
+  if (!cached) check = RefineFactored(q, mu, s);
+  judged_before_ = true;
+  return check;
+}
+
+StepCheck StepRefiner::RefineFactored(const double* q, const double* mu, double* s) {
   StepCheck check;
   // w̃ = M̃ s + q̃, and the multipliers in units of s: μ̃_r = μ_r h_r/σ (the box: w̃'s positive and negative parts).
   long double s_norm = 0.0L;
@@ -236,15 +539,7 @@ bool StepRefiner::SolveOnActiveSet(const double* q, const double* s) {
   for (int c = 0; c < a; ++c) {
     if (rhs_[static_cast<std::size_t>(m_ + c)] < -kVerifyUlps * kEps * (1.0L + mu_norm)) return false;
   }
-  for (int r = 0; r < rows_; ++r) {
-    long double slack = -K_[static_cast<std::size_t>(r)];
-    for (int j = 0; j < m_; ++j) {
-      slack += H_[static_cast<std::size_t>(r * m_ + j)] *
-               static_cast<long double>(static_cast<double>(star_[static_cast<std::size_t>(j)]));
-    }
-    if (slack < -kVerifyUlps * kEps * (1.0L + star_norm)) return false;
-  }
-  return true;
+  return StarIsFeasible(star_norm);
 }
 
 }  // namespace smcbench

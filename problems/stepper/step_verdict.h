@@ -15,9 +15,19 @@
 // The stepper always continues from s* (so a run is exact to rounding whatever the tolerance handed to the
 // backend), counts the steps whose answer was off by more than the allowance (Trajectory::refined_steps), and
 // reports a step as inaccurate when no exact step is found on the answer's active set (never silently accepted).
+// Two paths solve step 2. The cached one, first: consecutive steps mostly share their active set, so the inverse
+// of its KKT matrix is kept (long double, verified by its residual I − K X when made; the last 4 active sets, from
+// the second step judged since Reset on) and s* = s − X r costs one product, with a rigorous bound on its error (the
+// rounding of r and of the product, the data's rounding, the inverse's error). s* is taken only when that bound is
+// below ε/4·‖s*‖∞ (so s* is the double the exact step rounds to, but within a quarter ulp of a tie) and s* passes
+// step 3's checks with the bound's margin. Otherwise (a singular or ill-conditioned active set, an active set with
+// no exact step, a refiner's first step) the factored path above judges the step, unchanged, in long double either
+// way: x87 long double costs about the instructions of double, and keeps s* exact to double's rounding (κε would not).
+// StepCheck::cached says which path judged.
 // Allocation-free after Reset (buffers sized to m + rows of P).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "solvers/core/types.h"
@@ -28,6 +38,7 @@ namespace smcbench {
 struct StepCheck {
   bool exact = false;    // s* found and verified on the answer's active set
   double x_error = kNaN;  // ‖S(s − s*)‖∞: the answer's forward error in x_{k+1} (NaN unless exact)
+  bool cached = false;    // judged by the cached inverse of the active set's KKT matrix (else factored)
 };
 
 // The allowance of the step verdict: tol·(‖S‖∞ + ‖x_{k+1}‖∞).
@@ -38,6 +49,10 @@ inline double StepAllowance(double tolerance, double input_scale, double x_next_
 // P with at most this many rows: when the answer's active set has no exact step, every active set of at most m rows
 // is tried (2^rows masks); larger P reports the step instead.
 inline constexpr int kMaxEnumeratedRows = 12;
+
+// The cached path keeps this many active sets, for m ≤ kMaxCachedInputs and P with at most 64 rows (a bit mask).
+inline constexpr int kCachedActiveSets = 4;
+inline constexpr int kMaxCachedInputs = 32;
 
 class StepRefiner {
  public:
@@ -50,8 +65,37 @@ class StepRefiner {
   // ‖S‖∞ (max row sum): the x moved by one unit of s.
   double input_scale() const { return input_scale_; }
   bool ready() const { return m_ > 0; }
+  // Drops the cached active sets (a run that starts afresh is then judged as the first one was).
+  void ForgetActiveSets();
 
  private:
+  // The inverse of the KKT matrix of one active set (scaled units, as SolveOnActiveSet's).
+  struct CachedKkt {
+    std::uint64_t mask = 0;  // the active rows
+    int size = 0;            // N = m + |A|; 0: an empty slot
+    bool usable = false;     // false: singular, too many rows, or the inverse failed its residual test
+    long double inverse_error = 0.0L;  // β ≥ ‖K⁻¹ − inverse‖∞
+    long double gamma = 0.0L;          // γ_N: the rounding of a row of the product inverse · r
+    long double matrix_norm = 0.0L;    // ‖K‖∞
+    long double delta_rows_norm = 0.0L;  // max over δ's rows of Σ_j |inverse_ij|
+    std::vector<int> rows;             // the active rows, in order
+    std::vector<long double> inverse;  // N×N row-major
+    std::vector<long double> row_norm;  // Σ_j |inverse_ij|
+  };
+  // The factored path: steps 1-3 above.
+  StepCheck RefineFactored(const double* q, const double* mu, double* s);
+  // The cached path; false leaves the step to the factored one (s untouched). kM: m, or 0 (m_ at run time).
+  template <int kM>
+  bool RefineCached(const double* q, const double* mu, double* s, StepCheck* check);
+  // The natural map's active set (the factored path's first reading) as a bit mask; fills slack_.
+  std::uint64_t ActiveMask(const double* mu, const double* s);
+  // The slot of `mask`, made if new (in the next slot, round robin) unless this is the first step judged; or null.
+  const CachedKkt* CachedKktFor(std::uint64_t mask);
+  void MakeCachedKkt(std::uint64_t mask, CachedKkt* kkt);
+  // Inverts the N×N matrix in a (row-major) in place by Gauss–Jordan with complete pivoting; false if singular.
+  bool InvertInPlace(long double* a, int N);
+  // H s* ≥ K to the rounding of s* (in star_) to double.
+  bool StarIsFeasible(long double star_norm) const;
   // Solves the KKT system on the rows marked in active_, writes s* into star_; false if singular and inconsistent
   // or not a solution.
   bool SolveOnActiveSet(const double* q, const double* s);
@@ -69,6 +113,15 @@ class StepRefiner {
   std::vector<int> active_rows_;
   std::vector<long double> A_, rhs_, sol_, w_, star_, best_, mu_;
   std::vector<int> colp_;
+  // The cached path.
+  bool cache_on_ = false;
+  std::vector<CachedKkt> cache_;
+  int next_slot_ = 0;  // the slot the next new active set takes (round robin)
+  int last_slot_ = 0;  // the slot the previous step used
+  bool judged_before_ = false;  // a step was judged since Reset or ForgetActiveSets
+  long double gamma_r_ = 0.0L;  // γ_{m+3}: the rounding of r (its arithmetic and the data's, to long double)
+  std::vector<long double> slack_, r_, z_;
+  std::vector<int> pivot_row_, pivot_col_, pivoted_;
 };
 
 }  // namespace smcbench
