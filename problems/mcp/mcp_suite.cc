@@ -73,6 +73,10 @@ void AttachReferences(McpLibraryProblem* p, const std::vector<Vector>& known_sol
   // factorization of n unknowns).
   std::vector<Vector> candidates = known_solutions;
   if (small) candidates.insert(candidates.end(), p->starts.begin(), p->starts.end());
+  // A large problem asks the next backend only from the starts no backend has answered yet (within
+  // kLargeCandidateResidual): a second answer from the same start is a second banded certification and, for
+  // ipopt, most of the suite's build time.
+  std::vector<char> answered(p->starts.size(), 0);
   for (std::string_view name : SolverNames()) {
     std::unique_ptr<Solver> solver = CreateSolver(name);
     // auto's answer is the answer of a backend asked here anyway, from the same start (its chain: newton,
@@ -82,13 +86,17 @@ void AttachReferences(McpLibraryProblem* p, const std::vector<Vector>& known_sol
     // (an external code's dense method factors a dense 10⁴ × 10⁴ Jacobian per iteration, and cannot be
     // interrupted).
     if (!small && (!solver->info().sparse || solver->info().external)) continue;
-    for (const Vector& start : p->starts) {
+    for (std::size_t k = 0; k < p->starts.size(); ++k) {
+      if (!small && answered[k]) continue;
       SolverOptions solver_options;
-      solver_options.warm_start = start;
+      solver_options.warm_start = p->starts[k];
       solver_options.time_limit_seconds = kCandidateTimeLimitSeconds;
       const SolveResult result = solver->Solve(*mcp, solver_options);
       if (result.z.size() != n || !result.z.allFinite()) continue;
-      if (small || ScaledResidual(*mcp, result.z) <= kLargeCandidateResidual) candidates.push_back(result.z);
+      if (small || ScaledResidual(*mcp, result.z) <= kLargeCandidateResidual) {
+        candidates.push_back(result.z);
+        answered[k] = 1;
+      }
     }
   }
   const std::vector<McpCertifiedSolution> solutions = CertifyMCPSolutions(*mcp, candidates, options);
