@@ -85,7 +85,7 @@ inline constexpr double kNotRunJobSeconds = 1e-4;
 // Estimated seconds of one job: one solve at cost.seconds_per_unit·m·(m + nnz(M)) under the time limit (and the
 // job budget), the job at cost.job_seconds plus a warm-up solve plus its samples beyond a tiny solve's (each
 // sample at least min_sample_seconds, together at most max_seconds_per_pair, or half the job budget); a solve that
-// reaches the limit is not repeated. The stepper job is a fixed 120 s as measured (60 s with a job budget, which
+// reaches the limit is not repeated. The stepper job is a fixed 120 s as measured (30 s with a job budget, which
 // shortens it; quick: 3 s). With BackendCost's defaults it balances shards (BenchJob::cost); with a backend's
 // measured costs it is what `--list-jobs` adds up and what the progress line's ETA scales (BenchJob::estimate);
 // never changes what runs.
