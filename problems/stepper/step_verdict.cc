@@ -530,6 +530,15 @@ bool StepRefiner::SolveOnActiveSet(const double* q, const double* s) {
       rhs_[static_cast<std::size_t>(c)] = sol_[static_cast<std::size_t>(j)];  // μ̃ of active row c − m
     }
   }
+  // On the box an active row fixes its coordinate exactly (H̃_A s* = K̃_A with unit rows: s*_j = ±1), not s_j + δ_j,
+  // whose rounding grows with the right-hand side: w̃ = w/σ is large when M is small (h → 0), and a δ_j of 1e-15
+  // on a face would read as s* outside the box (S4 filippov at h = 1e-5 stopped on a correct, saturated answer).
+  if (box_) {
+    for (int c = 0; c < a; ++c) {
+      const int r = active_rows_[static_cast<std::size_t>(c)], j = r % m_;
+      star_[static_cast<std::size_t>(j)] = K_[static_cast<std::size_t>(r)] / H_[static_cast<std::size_t>(r * m_ + j)];
+    }
+  }
   for (int j = 0; j < m_; ++j) {
     if (!std::isfinite(static_cast<double>(star_[static_cast<std::size_t>(j)]))) return false;
     star_norm = std::max(star_norm, std::abs(star_[static_cast<std::size_t>(j)]));

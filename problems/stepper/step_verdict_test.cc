@@ -112,5 +112,23 @@ TEST(StepVerdictPaths, AnIllConditionedActiveSetIsJudgedByTheFactoredPath) {
   ExpectFactoredEveryTime(M, q, answer);
 }
 
+// S4 filippov at h = 1e-5 (M = h(I − hA)⁻¹B ≈ 1e-5 B, |q| ≈ 1): the backend's answer s = (1, −1) is the exact
+// solution (both rows on a face, multipliers of order 1), but w̃ = w/σ ≈ 5e4 made the long double solve's δ of
+// order 1e-15 on the faces, read as s* outside the box: the run stopped on a correct step. On the box an active row
+// fixes its coordinate exactly.
+TEST(StepVerdictPaths, ASaturatedAnswerWithASmallMatrixIsExact) {
+  DenseMatrix M(2, 2);
+  M << 0x1.4f8b588e368f1p-17, -0x1.4f8b588e368f1p-16, 0x1.4f8b588e368f1p-16, 0x1.4f8b588e368f1p-17;
+  Vector q(2);
+  q << -0x1.fbaf102363b66p-1, 0x1.00b827fa1a122p+0;
+  Vector s(2);
+  s << 1.0, -1.0;
+  const StepCheck check = Factored(M, M, q, &s);  // C = I: S = M
+  ASSERT_TRUE(check.exact);
+  EXPECT_EQ(s[0], 1.0);
+  EXPECT_EQ(s[1], -1.0);
+  EXPECT_EQ(check.x_error, 0.0);
+}
+
 }  // namespace
 }  // namespace smcbench
