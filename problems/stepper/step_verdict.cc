@@ -148,6 +148,19 @@ const StepRefiner::CachedKkt* StepRefiner::CachedKktFor(std::uint64_t mask) {
   return kkt;
 }
 
+void StepRefiner::AssembleKkt(const int* rows, int a, long double* K) const {
+  const int N = m_ + a;
+  const auto at = [K, N](int i, int j) -> long double& { return K[static_cast<std::size_t>(i * N + j)]; };
+  for (int i = 0; i < m_; ++i) {
+    for (int j = 0; j < m_; ++j) at(i, j) = M_[static_cast<std::size_t>(i * m_ + j)];
+    for (int c = 0; c < a; ++c) at(i, m_ + c) = -H_[static_cast<std::size_t>(rows[c] * m_ + i)];
+  }
+  for (int c = 0; c < a; ++c) {
+    for (int j = 0; j < m_; ++j) at(m_ + c, j) = H_[static_cast<std::size_t>(rows[c] * m_ + j)];
+    for (int j = 0; j < a; ++j) at(m_ + c, m_ + j) = 0.0L;
+  }
+}
+
 void StepRefiner::MakeCachedKkt(std::uint64_t mask, CachedKkt* kkt) {
   kkt->mask = mask;
   kkt->usable = false;
@@ -165,19 +178,7 @@ void StepRefiner::MakeCachedKkt(std::uint64_t mask, CachedKkt* kkt) {
   // K = [M̃ −H̃_Aᵀ; H̃_A 0], as SolveOnActiveSet's, in A_ (kept for the residual test below).
   long double* K = A_.data();
   const auto idx = [N](int i, int j) { return static_cast<std::size_t>(i * N + j); };
-  for (int i = 0; i < N; ++i) {
-    for (int j = 0; j < N; ++j) {
-      long double v = 0.0L;
-      if (i < m_ && j < m_) {
-        v = M_[static_cast<std::size_t>(i * m_ + j)];
-      } else if (i < m_) {
-        v = -H_[static_cast<std::size_t>(kkt->rows[static_cast<std::size_t>(j - m_)] * m_ + i)];
-      } else if (j < m_) {
-        v = H_[static_cast<std::size_t>(kkt->rows[static_cast<std::size_t>(i - m_)] * m_ + j)];
-      }
-      K[idx(i, j)] = v;
-    }
-  }
+  AssembleKkt(kkt->rows.data(), a, K);
   long double* inverse = kkt->inverse.data();
   kkt->matrix_norm = 0.0L;
   for (int i = 0; i < N; ++i) {
@@ -454,22 +455,13 @@ bool StepRefiner::SolveOnActiveSet(const double* q, const double* s) {
   const auto at = [&](int i, int j) -> long double& { return A_[static_cast<std::size_t>(i * N + j)]; };
   // [M̃  −H̃_Aᵀ] [δ  ]   [−w̃          ]
   // [H̃_A   0  ] [μ̃_A] = [K̃_A − H̃_A s ]
+  AssembleKkt(active_rows_.data(), a, A_.data());
   long double amax = 0.0L;
-  for (int i = 0; i < m_; ++i) {
-    for (int j = 0; j < m_; ++j) at(i, j) = M_[static_cast<std::size_t>(i * m_ + j)];
-    for (int c = 0; c < a; ++c) {
-      at(i, m_ + c) = -H_[static_cast<std::size_t>(active_rows_[static_cast<std::size_t>(c)] * m_ + i)];
-    }
-    rhs_[static_cast<std::size_t>(i)] = -w_[static_cast<std::size_t>(i)];
-  }
+  for (int i = 0; i < m_; ++i) rhs_[static_cast<std::size_t>(i)] = -w_[static_cast<std::size_t>(i)];
   for (int c = 0; c < a; ++c) {
     const int r = active_rows_[static_cast<std::size_t>(c)];
     long double b = K_[static_cast<std::size_t>(r)];
-    for (int j = 0; j < m_; ++j) {
-      at(m_ + c, j) = H_[static_cast<std::size_t>(r * m_ + j)];
-      b -= H_[static_cast<std::size_t>(r * m_ + j)] * s[j];
-    }
-    for (int j = 0; j < a; ++j) at(m_ + c, m_ + j) = 0.0L;
+    for (int j = 0; j < m_; ++j) b -= H_[static_cast<std::size_t>(r * m_ + j)] * s[j];
     rhs_[static_cast<std::size_t>(m_ + c)] = b;
   }
   long double data_scale = 1.0L;  // 1 + ‖q̃‖∞ + ‖K̃_A‖∞ + ‖M̃‖‖s‖: what the consistency test is relative to

@@ -91,6 +91,8 @@ class StepRefiner {
   std::uint64_t ActiveMask(const double* mu, const double* s);
   // The slot of `mask`, made if new (in the next slot, round robin) unless this is the first step judged; or null.
   const CachedKkt* CachedKktFor(std::uint64_t mask);
+  // K = [M̃ −H̃_Aᵀ; H̃_A 0] (N = m + a, row-major) of the active rows rows[0..a): both paths' KKT matrix.
+  void AssembleKkt(const int* rows, int a, long double* K) const;
   void MakeCachedKkt(std::uint64_t mask, CachedKkt* kkt);
   // Inverts the N×N matrix in a (row-major) in place by Gauss–Jordan with complete pivoting; false if singular.
   bool InvertInPlace(long double* a, int N);
