@@ -808,7 +808,7 @@ def report(results, out=None, *, plots: bool = False) -> str:
 @dataclass
 class Comparison:
     """What `smcbench compare A B` found (bench/compare/compare_runs.h). summary: the table the command prints;
-    markdown: its compare.md (without the figure); regressed: what its exit status 1 means (a verdict regression or
+    markdown: its compare.md (linking the figure when one was drawn); regressed: what its exit status 1 means (a verdict regression or
     a group flagged slower); regressions, slower_groups: their counts; matched_records: records both runs hold;
     verdict_changes: dicts (kind "regression" / "improvement" / "changed", suite, problem, start, solver, mode,
     tolerance, verdict_a/b, status_a/b, message_b); groups: per suite × backend × size band the time ratio B/A
@@ -831,25 +831,28 @@ class Comparison:
 
 
 def compare(a, b, out=None, *, threshold: float = 0.05, resamples: int = 2000, confidence: float = 0.95,
-            keep_drift: bool = False) -> Comparison:
+            keep_drift: bool = False, plots: bool = False) -> Comparison:
     """Compare two bench runs of the same suites as `smcbench compare A B` does (CompareRunFolders: what differed
     between the runs, verdict changes, then the time ratio B/A per suite, backend and size band with a bootstrap
     interval, flagged only beyond both runs' noise floor and 1 + threshold, after dividing out a machine drift).
 
     a, b: results folders, their results.json, or DataFrames of bench() / bench_mcp() / load_bench_results().
-    out: a folder to write compare.md and compare.json to (the command's --out without the figure; None: nothing
-    written). threshold, resamples, confidence, keep_drift: the command's flags. Runs of other suites, or options
-    out of range, raise InvalidInputError (the command's exit status 2)."""
+    out: a folder to write compare.md and compare.json to, and with plots the ratio figure
+    compare-ratios.{png,svg,dat,gp}, by the same C++ code as the command's --out (None: nothing written).
+    threshold, resamples, confidence, keep_drift: the command's flags. plots: draw the figure (needs gnuplot, as the
+    command without --no-plots; with plots but no out, InvalidInputError). Runs of other suites, or options out of
+    range, raise InvalidInputError (the command's exit status 2); so does a figure gnuplot could not draw, after
+    compare.md and compare.json were written."""
+    if plots and out is None:
+        raise InvalidInputError("compare: plots=True needs out=, the folder the figure is written to")
     with tempfile.TemporaryDirectory(prefix="smcbench-compare-") as scratch:
         runs = [_results_folder(x, "compare", scratch) for x in (a, b)]
         raw = _smcbench._compare(runs[0].folder, runs[1].folder, runs[0].name, runs[1].name, float(threshold),
-                                 int(resamples), float(confidence), bool(keep_drift))
-    if out is not None:
-        os.makedirs(os.fspath(out), exist_ok=True)
-        with open(os.path.join(os.fspath(out), "compare.md"), "w", encoding="utf-8") as f:
-            f.write(raw["markdown"])
-        with open(os.path.join(os.fspath(out), "compare.json"), "w", encoding="utf-8") as f:
-            f.write(raw["data"] + "\n")
+                                 int(resamples), float(confidence), bool(keep_drift),
+                                 "" if out is None else os.fspath(out), bool(plots))
+    figure_error = raw.pop("figure_error")
+    if figure_error:
+        raise InvalidInputError(f"compare: no figure: {figure_error}")
     raw["data"] = json.loads(raw["data"])
     return Comparison(**raw)
 

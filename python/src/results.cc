@@ -6,6 +6,7 @@
 
 #include <string>
 
+#include "bench/compare/compare_output.h"
 #include "bench/compare/compare_runs.h"
 #include "bench/replay/results_io.h"
 #include "tools/smcbench/bench_report.h"
@@ -54,22 +55,28 @@ py::dict RatioGroupToDict(const RatioGroup& g) {
 }
 
 // CompareRuns of the folders a and b (labels: how compare.md names them), with what `smcbench compare` prints
-// (summary) and writes (markdown: compare.md without the figure) and the comparison's parts.
+// (summary) and writes (markdown: compare.md; data: compare.json) and the comparison's parts. out: a folder to write
+// them to as `smcbench compare --out` does, with the ratio figure when plots (WriteComparisonFolder), or empty;
+// figure_error: why a figure asked for was not drawn.
 py::dict Compare(const std::string& a, const std::string& b, const std::string& label_a, const std::string& label_b,
-                 double threshold, int resamples, double confidence, bool keep_drift) {
+                 double threshold, int resamples, double confidence, bool keep_drift, const std::string& out_dir,
+                 bool plots) {
   CompareOptions options;
   options.threshold = threshold;
   options.resamples = resamples;
   options.confidence = confidence;
   options.divide_drift = !keep_drift;
   RunComparison comparison;
+  ComparisonFiles files;
   {
     py::gil_scoped_release release;
     comparison = CompareRunFolders(a, b, options);
+    if (!out_dir.empty()) files = WriteComparisonFolder(comparison, options, label_a, label_b, out_dir, plots);
   }
   py::dict out;
   out["summary"] = CompareSummaryText(comparison, options);
-  out["markdown"] = CompareMarkdown(comparison, options, label_a, label_b, "");
+  out["markdown"] = CompareMarkdown(comparison, options, label_a, label_b, files.figure_stem);
+  out["figure_error"] = files.figure_error;
   out["data"] = CompareJson(comparison, options, label_a, label_b).dump(1);
   out["regressed"] = comparison.regressed();
   out["regressions"] = comparison.regressions();
@@ -92,7 +99,7 @@ void BindResults(py::module_& m) {
   m.def("_report", &Report, "dir"_a, "plots"_a,
         "Write dir/report.md from dir/results.json as `smcbench report` does; returns the markdown.");
   m.def("_compare", &Compare, "a"_a, "b"_a, "label_a"_a, "label_b"_a, "threshold"_a, "resamples"_a, "confidence"_a,
-        "keep_drift"_a, "Compare two bench results folders as `smcbench compare` does (see smcbench.compare); returns a dict.");
+        "keep_drift"_a, "out"_a, "plots"_a, "Compare two bench results folders as `smcbench compare` does (see smcbench.compare); returns a dict.");
 }
 
 }  // namespace smcbench::python

@@ -74,6 +74,34 @@ def test_compare_of_a_run_with_itself_finds_nothing_and_matches_the_command(run_
     assert c.data["format"] == "smcbench-compare/1" and not c.data["regressed"]
 
 
+def test_compare_draws_the_commands_figure(run_a, tmp_path):
+    folder, _ = run_a
+    if shutil.which("gnuplot") is None:
+        with pytest.raises(smcbench.InvalidInputError, match="compare: no figure: .*gnuplot"):
+            smcbench.compare(folder, folder, out=tmp_path / "py", plots=True)
+        assert (tmp_path / "py" / "compare.md").is_file(), "the comparison is written without its figure"
+        return
+    c = smcbench.compare(folder, folder, out=tmp_path / "py", plots=True)
+    cli("compare", folder, folder, "--out", tmp_path / "cli")
+    # The same files as the command's --out, the figure linked from compare.md and its data identical.
+    for name in ("compare.md", "compare-ratios.dat", "compare-ratios.gp"):
+        assert (tmp_path / "py" / name).read_text(encoding="utf-8") == (tmp_path / "cli" / name).read_text(
+            encoding="utf-8"), name
+    assert "](compare-ratios.png)" in c.markdown
+    assert c.markdown == (tmp_path / "py" / "compare.md").read_text(encoding="utf-8")
+    for name in ("compare-ratios.png", "compare-ratios.svg"):
+        assert (tmp_path / "py" / name).stat().st_size > 1000, name
+    rows = [line for line in (tmp_path / "py" / "compare-ratios.dat").read_text().splitlines()
+            if not line.startswith("#")]
+    assert len(rows) == len(c.groups) and len(rows) > 0, "one row per group"
+
+
+def test_compare_plots_needs_an_out_folder(run_a):
+    folder, _ = run_a
+    with pytest.raises(smcbench.InvalidInputError, match="plots=True needs out="):
+        smcbench.compare(folder, folder, plots=True)
+
+
 def test_a_verdict_that_got_worse_is_a_regression(run_a, tmp_path):
     folder, _ = run_a
     document = json.loads((folder / "results.json").read_text(encoding="utf-8"))
