@@ -14,7 +14,7 @@
 
 #include "problems/io/siconos_format.h"
 #include "solvers/registry/registry.h"
-#include "solvers/siconos/child_process.h"
+#include "solvers/isolation/child_process.h"
 
 // Siconos leaks a few bytes per call in some solvers: tell LeakSanitizer (ASan builds only) that those leaks are
 // Siconos' (as solvers/siconos/siconos_solver_test.cc does).

@@ -11,7 +11,7 @@
 #include <vector>
 
 #include "bench/replay/replay.h"
-#include "solvers/siconos/child_process.h"
+#include "solvers/isolation/child_process.h"
 
 namespace smcbench::replay_internal {
 

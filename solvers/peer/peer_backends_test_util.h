@@ -10,7 +10,7 @@
 #include "solvers/generators/random_problems.h"
 #include "solvers/core/solver.h"
 #include "solvers/registry/registry.h"
-#include "solvers/siconos/child_process.h"
+#include "solvers/isolation/child_process.h"
 
 namespace smcbench::peer_checks {
 

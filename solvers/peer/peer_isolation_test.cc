@@ -10,7 +10,7 @@
 
 #include "solvers/generators/random_problems.h"
 #include "solvers/registry/registry.h"
-#include "solvers/siconos/child_process.h"
+#include "solvers/isolation/child_process.h"
 #include "tests/support/malloc_counter.h"
 
 namespace smcbench {

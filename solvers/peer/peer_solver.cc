@@ -7,7 +7,8 @@
 #include <cstring>
 #include <limits>
 
-#include "solvers/siconos/swapped_stdio.h"
+#include "solvers/isolation/swapped_stdio.h"
+#include "solvers/isolation/worker_call.h"
 
 namespace smcbench {
 namespace {
@@ -199,8 +200,7 @@ bool PeerBoxSolver::RunWherePolicySays(const SolverOptions& options, std::chrono
                        static_cast<std::size_t>(options_.remembered_megabytes * 1024.0 * 1024.0));
     probed = probed_.Find(RequestParts());
   }
-  const bool probe = isolation == IsolationPolicy::kFirst && probed == nullptr;
-  const bool in_process = isolation == IsolationPolicy::kNever || (probed != nullptr && probed->seconds <= limit);
+  const auto [in_process, probe] = DecideWhereToRun(isolation, probed, limit);
   kAnswerProcessDetail.Set(result, in_process ? AnswerProcess::kThisProcess : AnswerProcess::kWorker);
   if (in_process) {
     RunInProcess();
@@ -232,52 +232,13 @@ void PeerBoxSolver::RunInProcess() {
 
 bool PeerBoxSolver::RunIsolated(double limit_seconds, std::chrono::steady_clock::time_point deadline,
                                 SolveResult* result) {
-  const std::size_t N = static_cast<std::size_t>(request_.size);
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    if (!worker_.running()) {
-      std::string error;
-      if (!worker_.Start(&ServePeer, this, /*keep_output=*/false, &error)) {
-        result->status = SolveStatus::kNumericalFailure;
-        result->message = "could not start the worker process: " + error;
-        return false;
-      }
-    }
-    using Io = ChildProcess::Io;
-    const std::array<ProbedProblems::Part, 6> parts = RequestParts();
-    Io io = worker_.Write({{parts[0].data, parts[0].bytes},
-                           {parts[1].data, parts[1].bytes},
-                           {parts[2].data, parts[2].bytes},
-                           {parts[3].data, parts[3].bytes},
-                           {parts[4].data, parts[4].bytes},
-                           {parts[5].data, parts[5].bytes}});
-    if (io == Io::kClosed && attempt == 0) {  // the worker died while idle: start a fresh one, once
-      int signal = 0;
-      worker_.Reap(&signal);
-      continue;
-    }
-    if (io == Io::kOk) io = worker_.Read(&reply_, sizeof reply_, deadline);
-    if (io == Io::kOk) io = worker_.Read(x_.data(), sizeof(double) * N, deadline);
-    if (io == Io::kOk && reply_.magic == kMagic) return true;
-    if (io == Io::kTimeout) {
-      worker_.Stop();
-      result->status = SolveStatus::kTimeLimit;
-      char text[160];
-      std::snprintf(text, sizeof text,
-                    "the library did not return within the time limit (%.3g s); its worker process was killed",
-                    limit_seconds);
-      result->message = text;
-      return false;
-    }
-    int signal = 0;
-    const std::string how = worker_.Reap(&signal);
-    result->status = SolveStatus::kNumericalFailure;
-    result->message = "the worker process died during the solve: " + how;
-    if (signal != 0) result->SetDetail("peer_signal", signal);
-    return false;
-  }
-  result->status = SolveStatus::kNumericalFailure;
-  result->message = "the worker process keeps dying before it reads a request";
-  return false;
+  static constexpr WorkerCallNames kNames{"the library", "the worker process", "peer_signal"};
+  const auto start_worker = [this](std::string* error) {
+    return worker_.Start(&ServePeer, this, /*keep_output=*/false, error);
+  };
+  return CallWorker(&worker_, start_worker, RequestParts(), {&reply_, sizeof reply_},
+                    {x_.data(), sizeof(double) * static_cast<std::size_t>(request_.size)},
+                    [this] { return reply_.magic == kMagic; }, limit_seconds, deadline, kNames, result);
 }
 
 }  // namespace smcbench

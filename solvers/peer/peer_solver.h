@@ -27,8 +27,8 @@
 
 #include "solvers/core/backend_options.h"
 #include "solvers/peer/peer_box_form.h"
-#include "solvers/siconos/child_process.h"
-#include "solvers/siconos/probed_problems.h"
+#include "solvers/isolation/child_process.h"
+#include "solvers/isolation/probed_problems.h"
 #include "solvers/siconos/standard_form.h"
 
 namespace smcbench {

@@ -24,7 +24,7 @@
 #include "solvers/avi/avi_solver.h"
 #include "solvers/avi/planted_avi_test_util.h"
 #include "solvers/registry/registry.h"
-#include "solvers/siconos/child_process.h"
+#include "solvers/isolation/child_process.h"
 #include "tests/support/eigen_literals.h"
 
 // Siconos 4.4 leaks a few bytes per call in some solvers; the in-process calls here are Siconos' (as in

@@ -17,9 +17,9 @@
 #include "NumericsMatrix.h"
 #include "NumericsVerbose.h"
 #include "SolverOptions.h"
-#include "solvers/siconos/child_process.h"
+#include "solvers/isolation/child_process.h"
 #include "solvers/siconos/mcp_standard_form.h"
-#include "solvers/siconos/swapped_stdio.h"
+#include "solvers/isolation/swapped_stdio.h"
 
 namespace smcbench {
 namespace {

@@ -33,7 +33,8 @@
 #include "solvers/siconos/external_backends.h"
 #include "solvers/siconos/siconos_avi_solver.h"
 #include "solvers/siconos/siconos_mcp_solver.h"
-#include "solvers/siconos/swapped_stdio.h"
+#include "solvers/isolation/swapped_stdio.h"
+#include "solvers/isolation/worker_call.h"
 
 namespace smcbench {
 // Method table and wire format, shared by the backend and its worker (named, not anonymous: SiconosSession and
@@ -829,9 +830,7 @@ bool SiconosSolver::RunWherePolicySays(const SolverOptions& options, std::chrono
                        static_cast<std::size_t>(options_.remembered_megabytes * 1024.0 * 1024.0));
     probed = probed_.Find(RequestParts(*outcome));
   }
-  const bool probe = isolation == IsolationPolicy::kFirst && probed == nullptr;
-  const bool in_process =
-      isolation == IsolationPolicy::kNever || (probed != nullptr && probed->seconds <= limit);
+  const auto [in_process, probe] = DecideWhereToRun(isolation, probed, limit);
   kAnswerProcessDetail.Set(result, in_process ? AnswerProcess::kThisProcess : AnswerProcess::kWorker);
   if (in_process) {
     // What to silence: the C streams always (free of system calls, and what Siconos prints may depend on its state,
@@ -925,55 +924,15 @@ void SiconosSolver::RunInProcess(ProbedProblems::Console silence, Outcome* outco
 bool SiconosSolver::RunIsolated(bool keep_output, double limit_seconds,
                                 std::chrono::steady_clock::time_point deadline, Outcome* outcome,
                                 SolveResult* result) {
-  const Request& r = outcome->request;
-  const std::size_t N = static_cast<std::size_t>(r.size);
-  for (int attempt = 0; attempt < 2; ++attempt) {
-    if (worker_.running() && worker_keeps_output_ != keep_output) worker_.Stop();
-    if (!worker_.running()) {
-      std::string error;
-      worker_keeps_output_ = keep_output;  // the worker reads it through the context pointer, at its start
-      if (!worker_.Start(&ServeSiconos, &worker_keeps_output_, keep_output, &error)) {
-        result->status = SolveStatus::kNumericalFailure;
-        result->message = "could not start the Siconos worker process: " + error;
-        return false;
-      }
-    }
-    using Io = ChildProcess::Io;
-    const std::array<ProbedProblems::Part, 6> parts = RequestParts(*outcome);
-    Io io = worker_.Write({{parts[0].data, parts[0].bytes},
-                           {parts[1].data, parts[1].bytes},
-                           {parts[2].data, parts[2].bytes},
-                           {parts[3].data, parts[3].bytes},
-                           {parts[4].data, parts[4].bytes},
-                           {parts[5].data, parts[5].bytes}});
-    if (io == Io::kClosed && attempt == 0) {  // the worker died while idle: start a fresh one, once
-      int signal = 0;
-      worker_.Reap(&signal);
-      continue;
-    }
-    if (io == Io::kOk) io = worker_.Read(&outcome->response, sizeof outcome->response, deadline);
-    if (io == Io::kOk) io = worker_.Read(x_.data(), sizeof(double) * N, deadline);
-    if (io == Io::kOk && outcome->response.magic == kMagic) return true;
-    if (io == Io::kTimeout) {
-      worker_.Stop();
-      result->status = SolveStatus::kTimeLimit;
-      char text[160];
-      std::snprintf(text, sizeof text,
-                    "Siconos did not return within the time limit (%.3g s); its worker process was killed",
-                    limit_seconds);
-      result->message = text;
-      return false;
-    }
-    int signal = 0;
-    const std::string how = worker_.Reap(&signal);
-    result->status = SolveStatus::kNumericalFailure;
-    result->message = "the Siconos worker process died during the solve: " + how;
-    if (signal != 0) result->SetDetail("siconos_signal", signal);
-    return false;
-  }
-  result->status = SolveStatus::kNumericalFailure;
-  result->message = "the Siconos worker process keeps dying before it reads a request";
-  return false;
+  static constexpr WorkerCallNames kNames{"Siconos", "the Siconos worker process", "siconos_signal"};
+  if (worker_.running() && worker_keeps_output_ != keep_output) worker_.Stop();
+  const auto start_worker = [this, keep_output](std::string* error) {
+    worker_keeps_output_ = keep_output;  // the worker reads it through the context pointer, at its start
+    return worker_.Start(&ServeSiconos, &worker_keeps_output_, keep_output, error);
+  };
+  return CallWorker(&worker_, start_worker, RequestParts(*outcome), {&outcome->response, sizeof outcome->response},
+                    {x_.data(), sizeof(double) * static_cast<std::size_t>(outcome->request.size)},
+                    [outcome] { return outcome->response.magic == kMagic; }, limit_seconds, deadline, kNames, result);
 }
 
 namespace {

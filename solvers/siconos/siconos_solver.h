@@ -58,8 +58,8 @@
 
 #include "solvers/core/backend_options.h"
 #include "solvers/core/solver.h"
-#include "solvers/siconos/child_process.h"
-#include "solvers/siconos/probed_problems.h"
+#include "solvers/isolation/child_process.h"
+#include "solvers/isolation/probed_problems.h"
 #include "solvers/siconos/standard_form.h"
 
 namespace smcbench {

@@ -10,7 +10,7 @@
 
 #include "solvers/auto/auto_solver.h"
 #include "solvers/core/duration_text.h"
-#include "solvers/siconos/child_process.h"
+#include "solvers/isolation/child_process.h"
 
 namespace smcbench {
 

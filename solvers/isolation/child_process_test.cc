@@ -1,6 +1,6 @@
 // The worker process behind isolated external backends: request/response, crash and hang containment,
 // silenced output, no inherited descriptors, no worker left behind.
-#include "solvers/siconos/child_process.h"
+#include "solvers/isolation/child_process.h"
 
 #include <fcntl.h>
 #include <gtest/gtest.h>

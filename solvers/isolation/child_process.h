@@ -79,6 +79,7 @@ class ChildProcess {
     std::size_t bytes;
   };
   Io Write(std::initializer_list<Buffer> buffers);
+  Io Write(const Buffer* buffers, std::size_t count);  // the same for an array (at most 8 non-empty buffers)
   Io Read(void* data, std::size_t bytes, Clock::time_point deadline);
 
   // Kills the worker (SIGKILL), reaps it and says how it ended ("killed by signal 9 (Killed)"). The next Start()
@@ -96,6 +97,7 @@ class ChildProcess {
   static bool ReadAll(int fd, void* data, std::size_t bytes);
   static bool WriteAll(int fd, const void* data, std::size_t bytes);
   static bool WriteAll(int fd, std::initializer_list<Buffer> buffers);
+  static bool WriteAll(int fd, const Buffer* buffers, std::size_t count);
   // Worker side: waits until fd has data (or end of stream), trying without sleeping for `spin` first, so that
   // the next request of a tight loop of solves is served without a wake-up delay.
   static void WaitReadable(int fd, std::chrono::microseconds spin);

@@ -1,5 +1,5 @@
 // Forked worker process with a socket, a read deadline and a kill switch (see child_process.h).
-#include "solvers/siconos/child_process.h"
+#include "solvers/isolation/child_process.h"
 
 #include <fcntl.h>
 #include <poll.h>
@@ -110,8 +110,12 @@ ChildProcess::Io ChildProcess::Write(const void* data, std::size_t bytes) {
 }
 
 ChildProcess::Io ChildProcess::Write(std::initializer_list<Buffer> buffers) {
+  return Write(buffers.begin(), buffers.size());
+}
+
+ChildProcess::Io ChildProcess::Write(const Buffer* buffers, std::size_t count) {
   if (!running()) return Io::kClosed;
-  return WriteAll(fd_, buffers) ? Io::kOk : Io::kClosed;
+  return WriteAll(fd_, buffers, count) ? Io::kOk : Io::kClosed;
 }
 
 ChildProcess::Io ChildProcess::Read(void* data, std::size_t bytes, Clock::time_point deadline) {
@@ -231,10 +235,15 @@ void ChildProcess::WaitReadable(int fd, std::chrono::microseconds spin) {
 }
 
 bool ChildProcess::WriteAll(int fd, std::initializer_list<Buffer> buffers) {
+  return WriteAll(fd, buffers.begin(), buffers.size());
+}
+
+bool ChildProcess::WriteAll(int fd, const Buffer* buffers, std::size_t buffer_count) {
   constexpr std::size_t kMaxParts = 8;
   iovec parts[kMaxParts];
   std::size_t count = 0;
-  for (const Buffer& b : buffers) {
+  for (std::size_t k = 0; k < buffer_count; ++k) {
+    const Buffer& b = buffers[k];
     if (b.bytes == 0) continue;
     if (count == kMaxParts) return false;
     parts[count++] = iovec{const_cast<void*>(b.data), b.bytes};
