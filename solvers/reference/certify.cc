@@ -11,6 +11,7 @@
 
 #include "solvers/core/number_text.h"
 #include "solvers/reference/enclosure.h"
+#include "solvers/reference/quad_lu.h"
 
 namespace smcbench {
 namespace {
@@ -87,94 +88,6 @@ Equilibrated Equilibrate(const BoxMLCP& problem) {
   return p;
 }
 
-// P B Q = L U of a k×k block by Gaussian elimination with complete pivoting (rank-revealing). Elimination stops at
-// the first pivot ≤ tolerance: rank counts the pivots taken, and the rest of the block is treated as zero.
-struct BlockLu {
-  int k = 0;
-  int rank = 0;
-  int swaps = 0;              // row plus column interchanges (the determinant's sign)
-  std::vector<Quad> lu;       // row-major: L below the diagonal (unit diagonal implied), U on and above
-  std::vector<int> row, col;  // position s holds the block's row row[s] and column col[s]
-
-  Quad& At(int i, int j) { return lu[Index(i, j, k)]; }
-  Quad At(int i, int j) const { return lu[Index(i, j, k)]; }
-
-  void Factor(int size, std::vector<Quad> block, Quad tolerance) {
-    k = size, rank = 0, swaps = 0;
-    lu = std::move(block);
-    row.resize(k), col.resize(k);
-    for (int s = 0; s < k; ++s) row[s] = col[s] = s;
-    for (int s = 0; s < k; ++s) {
-      int pr = s, pc = s;
-      Quad best = 0;
-      for (int i = s; i < k; ++i) {
-        for (int j = s; j < k; ++j) {
-          if (Abs(At(i, j)) > best) best = Abs(At(i, j)), pr = i, pc = j;
-        }
-      }
-      if (!(best > tolerance)) return;
-      if (pr != s) {
-        for (int j = 0; j < k; ++j) std::swap(At(s, j), At(pr, j));
-        std::swap(row[s], row[pr]);
-        ++swaps;
-      }
-      if (pc != s) {
-        for (int i = 0; i < k; ++i) std::swap(At(i, s), At(i, pc));
-        std::swap(col[s], col[pc]);
-        ++swaps;
-      }
-      const Quad pivot = At(s, s);
-      for (int i = s + 1; i < k; ++i) {
-        const Quad m = At(i, s) / pivot;
-        At(i, s) = m;
-        if (m == 0) continue;
-        for (int j = s + 1; j < k; ++j) At(i, j) -= m * At(s, j);
-      }
-      rank = s + 1;
-    }
-  }
-
-  // x (block order) with the pivot equations met and the rank-deficient variables set to fixed[] (block order).
-  void Solve(const std::vector<Quad>& rhs, const std::vector<Quad>& fixed, std::vector<Quad>* x) const {
-    std::vector<Quad> y(rank);
-    for (int s = 0; s < rank; ++s) {
-      Quad v = rhs[row[s]];
-      for (int t = 0; t < s; ++t) v -= At(s, t) * y[t];
-      for (int t = rank; t < k; ++t) v -= At(s, t) * fixed[col[t]];
-      y[s] = v;
-    }
-    x->resize(k);
-    for (int t = rank; t < k; ++t) (*x)[col[t]] = fixed[col[t]];
-    for (int s = rank - 1; s >= 0; --s) {
-      Quad v = y[s];
-      for (int t = s + 1; t < rank; ++t) v -= At(s, t) * y[t];
-      y[s] = v / At(s, s);
-      (*x)[col[s]] = y[s];
-    }
-  }
-
-  // ‖(L U)⁻¹‖∞ over the leading rank×rank block: ‖B⁻¹‖∞ when B is nonsingular (permutations keep the norm).
-  Quad InverseNorm() const {
-    std::vector<Quad> row_sum(rank, Quad(0)), x(rank);
-    for (int c = 0; c < rank; ++c) {
-      for (int s = 0; s < rank; ++s) {  // L x = e_c
-        Quad v = s == c ? 1 : 0;
-        for (int t = c; t < s; ++t) v -= At(s, t) * x[t];
-        x[s] = s < c ? 0 : v;
-      }
-      for (int s = rank - 1; s >= 0; --s) {  // U x = x
-        Quad v = x[s];
-        for (int t = s + 1; t < rank; ++t) v -= At(s, t) * x[t];
-        x[s] = v / At(s, s);
-        row_sum[s] += Abs(x[s]);
-      }
-    }
-    Quad norm = 0;
-    for (Quad r : row_sum) norm = std::max(norm, r);
-    return norm;
-  }
-};
-
 // H = S + Sᵀ positive definite, tested by LDLᵀ of H − τI with τ = kDefiniteShift·‖H‖∞ (every pivot positive).
 // Not solvers/core/matrix_class.h's double-precision test on purpose: a certificate must hold beyond double rounding.
 bool SymmetricPartPositiveDefinite(const std::vector<Quad>& s, int n) {
@@ -208,7 +121,7 @@ bool SymmetricPartPositiveDefinite(const std::vector<Quad>& s, int n) {
 // Every principal minor of the n×n matrix a positive (a P-matrix), each by complete-pivoting elimination.
 bool PrincipalMinorsPositive(const std::vector<Quad>& a, int n) {
   std::vector<int> idx;
-  BlockLu lu;
+  QuadLu lu;
   for (std::uint32_t mask = 1; mask < (1u << n); ++mask) {
     idx.clear();
     for (int i = 0; i < n; ++i) {
@@ -224,10 +137,7 @@ bool PrincipalMinorsPositive(const std::vector<Quad>& a, int n) {
       }
     }
     lu.Factor(k, std::move(block), kMinorPivot * largest);
-    if (lu.rank < k) return false;
-    bool negative = lu.swaps % 2 != 0;
-    for (int s = 0; s < k; ++s) negative = negative != (lu.At(s, s) < 0);
-    if (negative) return false;
+    if (!lu.PositiveDeterminant()) return false;
   }
   return true;
 }
@@ -447,18 +357,18 @@ class Certifier {
         largest = std::max(largest, Abs(block[Index(r, c, k)]));
       }
     }
-    BlockLu lu;
+    QuadLu lu;
     const Quad tolerance = kPivotTolerance * largest;
     lu.Factor(k, std::move(block), tolerance);
     o.singular = lu.rank < k;
-    lu.Solve(rhs, fixed, &x);
+    lu.Solve(rhs, fixed.data(), &x);
     for (int r = 0; r < k; ++r) o.z[free[r]] = x[r];
     const Quad mu = lu.InverseNorm();
     o.mu = static_cast<double>(mu);
     if (o.singular) {  // the first rank-deficient variable set to 1, the others to 0, the right-hand side to 0
       std::vector<Quad> zero(k, Quad(0)), unit(k, Quad(0));
       unit[lu.col[lu.rank]] = 1;
-      lu.Solve(zero, unit, &x);
+      lu.Solve(zero, unit.data(), &x);
       o.null.assign(n, Quad(0));
       Quad size = 0;
       for (int r = 0; r < k; ++r) size = std::max(size, Abs(x[r]));

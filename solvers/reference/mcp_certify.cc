@@ -9,6 +9,8 @@
 #include <string>
 #include <utility>
 
+#include "solvers/reference/quad_lu.h"
+
 namespace smcbench {
 namespace {
 
@@ -35,83 +37,20 @@ struct ReducedFactor {
   virtual Quad InverseNorm() const = 0;
 };
 
-// Complete-pivoting LU of a k×k row-major block: rank-revealing; solves and ‖B⁻¹‖∞.
+// Complete-pivoting LU of a k×k row-major block (quad_lu.h): rank-revealing; solves and ‖B⁻¹‖∞. Singular below
+// kPivotTolerance times the block's largest entry.
 struct SmallLu final : ReducedFactor {
-  int k = 0, rank = 0, swaps = 0;
-  std::vector<Quad> a;
-  std::vector<int> row, col;
-  Quad At(int i, int j) const { return a[static_cast<std::size_t>(i) * k + j]; }
-  Quad& At(int i, int j) { return a[static_cast<std::size_t>(i) * k + j]; }
-
+  QuadLu lu;
   void Factor(int size, std::vector<Quad> block) {
-    k = size, rank = 0, swaps = 0, a = std::move(block);
-    row.resize(k), col.resize(k);
     Quad largest = 0;
-    for (Quad v : a) largest = std::max(largest, Abs(v));
-    const Quad tolerance = kPivotTolerance * largest;
-    for (int s = 0; s < k; ++s) row[s] = col[s] = s;
-    for (int s = 0; s < k; ++s) {
-      int pr = s, pc = s;
-      Quad best = 0;
-      for (int i = s; i < k; ++i) {
-        for (int j = s; j < k; ++j) {
-          if (Abs(At(i, j)) > best) best = Abs(At(i, j)), pr = i, pc = j;
-        }
-      }
-      if (!(best > tolerance) || !Finite(best)) return;
-      if (pr != s) {
-        for (int j = 0; j < k; ++j) std::swap(At(s, j), At(pr, j));
-        std::swap(row[s], row[pr]);
-        ++swaps;
-      }
-      if (pc != s) {
-        for (int i = 0; i < k; ++i) std::swap(At(i, s), At(i, pc));
-        std::swap(col[s], col[pc]);
-        ++swaps;
-      }
-      for (int i = s + 1; i < k; ++i) {
-        const Quad m = At(i, s) / At(s, s);
-        At(i, s) = m;
-        for (int j = s + 1; j < k; ++j) At(i, j) -= m * At(s, j);
-      }
-      rank = s + 1;
-    }
+    for (Quad v : block) largest = std::max(largest, Abs(v));
+    lu.Factor(size, std::move(block), kPivotTolerance * largest);
   }
-  bool singular() const override { return rank < k; }
+  bool singular() const override { return lu.singular(); }
   // x = B⁻¹ b (nonsingular only).
-  void Solve(const std::vector<Quad>& b, std::vector<Quad>* x) const override {
-    std::vector<Quad> y(k);
-    for (int s = 0; s < k; ++s) {
-      Quad v = b[row[s]];
-      for (int t = 0; t < s; ++t) v -= At(s, t) * y[t];
-      y[s] = v;
-    }
-    x->assign(k, Quad(0));
-    for (int s = k - 1; s >= 0; --s) {
-      Quad v = y[s];
-      for (int t = s + 1; t < k; ++t) v -= At(s, t) * y[t];
-      y[s] = v / At(s, s);
-      (*x)[col[s]] = y[s];
-    }
-  }
-  Quad InverseNorm() const override {
-    std::vector<Quad> e(k, Quad(0)), x, row_sum(k, Quad(0));
-    for (int c = 0; c < k; ++c) {
-      std::fill(e.begin(), e.end(), Quad(0));
-      e[c] = 1;
-      Solve(e, &x);
-      for (int i = 0; i < k; ++i) row_sum[i] += Abs(x[i]);
-    }
-    Quad norm = 0;
-    for (Quad r : row_sum) norm = std::max(norm, r);
-    return norm;
-  }
-  bool PositiveDeterminant() const {
-    if (singular()) return false;
-    bool negative = swaps % 2 != 0;
-    for (int s = 0; s < k; ++s) negative = negative != (At(s, s) < 0);
-    return !negative;
-  }
+  void Solve(const std::vector<Quad>& b, std::vector<Quad>* x) const override { lu.Solve(b, nullptr, x); }
+  Quad InverseNorm() const override { return lu.InverseNorm(); }
+  bool PositiveDeterminant() const { return lu.PositiveDeterminant(); }
 };
 
 // LU without pivoting of a k×k band matrix (lower bandwidth p, upper q; row-major band storage), for the large
