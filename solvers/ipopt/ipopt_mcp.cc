@@ -65,6 +65,7 @@
 #include <cmath>
 #include <cstdio>
 #include <exception>
+#include <memory>
 #include <sstream>
 #include <string>
 #include <utility>
@@ -80,6 +81,7 @@
 #include "solvers/ipopt/ipopt_details.h"
 #include "solvers/ipopt/ipopt_names.h"
 #include "solvers/ipopt/ipopt_qp_solver.h"
+#include "solvers/ipopt/ipopt_runner.h"
 
 namespace smcbench {
 namespace {
@@ -152,7 +154,6 @@ struct IpoptMcpSession::Impl {
   bool OnIteration(Ipopt::AlgorithmMode mode, Index iter);
 
   void SetUpProgram();
-  bool SetIpoptOptions(const SolverOptions& options, const IpoptOptions& o);
   Ipopt::ApplicationReturnStatus RunIpopt(const SolverOptions& options, const IpoptOptions& o);
   void ExplainFailure(Ipopt::ApplicationReturnStatus status, double ipopt_residual, double refined_residual,
                       SolveResult* result);
@@ -163,10 +164,8 @@ struct IpoptMcpSession::Impl {
   }
 
   std::function<bool()> time_up_;
-  Ipopt::SmartPtr<Ipopt::IpoptApplication> app_;
+  std::unique_ptr<IpoptRunner> runner_;  // made at the first solve that reaches Ipopt
   Ipopt::SmartPtr<Ipopt::TNLP> tnlp_;
-  Ipopt::SmartPtr<Ipopt::Journal> journal_;
-  bool initialized_ = false;
 
   // Per solve.
   const MCP* problem_ = nullptr;
@@ -618,56 +617,17 @@ double IpoptMcpSession::Impl::Refine(const Vector& z, Vector* out) {
   return best;
 }
 
-bool IpoptMcpSession::Impl::SetIpoptOptions(const SolverOptions& options, const IpoptOptions& o) {
-  Ipopt::OptionsList& list = *app_->Options();
-  list.clear();  // every solve starts from Ipopt's defaults plus exactly what is set here
-  bool ok = true;
-  ok &= list.SetStringValue("sb", "yes");
-  ok &= list.SetIntegerValue("print_level", options.verbosity > 0 ? o.print_level : 0);
-  ok &= list.SetNumericValue("tol", o.tol);
-  ok &= list.SetIntegerValue("max_iter",
-                             std::max(1, options.max_iterations > 0 ? options.max_iterations : o.max_iter));
-  ok &= list.SetStringValue("mu_strategy", o.mu_strategy == IpoptOptions::kAdaptive ? "adaptive" : "monotone");
-  ok &= list.SetStringValue("linear_solver", LinearSolverName(o.linear_solver));
-  if (o.mcp_hessian == IpoptOptions::kLimitedMemory) {
-    ok &= list.SetStringValue("hessian_approximation", "limited-memory");
-  } else {
-    ok &= list.SetStringValue("hessian_constant", "yes");
-  }
-  // Relaxed bounds would leave z outside [l, u], where F may not even be defined.
-  ok &= list.SetNumericValue("bound_relax_factor", 0.0);
-  if (std::isfinite(options.time_limit_seconds)) {
-    ok &= list.SetNumericValue("max_cpu_time", std::max(options.time_limit_seconds, 1e-6));
-  }
-  return ok;
-}
-
 Ipopt::ApplicationReturnStatus IpoptMcpSession::Impl::RunIpopt(const SolverOptions& options,
                                                               const IpoptOptions& o) {
-  if (options.verbosity > 0) {
-    if (Ipopt::IsNull(journal_)) journal_ = app_->Jnlst()->AddFileJournal("smcbench_stderr", "stderr", Ipopt::J_NONE);
-    const int level = options.verbosity >= 2 ? o.print_level : std::min(o.print_level, int{Ipopt::J_SUMMARY});
-    if (Ipopt::IsValid(journal_)) journal_->SetAllPrintLevels(static_cast<Ipopt::EJournalLevel>(level));
-  } else if (Ipopt::IsValid(journal_)) {
-    app_->Jnlst()->DeleteAllJournals();  // even J_NONE lets insuppressible messages through
-    journal_ = nullptr;
-  }
-  Ipopt::ApplicationReturnStatus status = Ipopt::Internal_Error;
-  try {
-    if (!initialized_) {
-      std::istringstream no_options;  // never read an ipopt.opt from the working directory
-      status = app_->Initialize(no_options);
-      initialized_ = status == Ipopt::Solve_Succeeded;
+  return runner_->Run(tnlp_, options, o, [&o](Ipopt::OptionsList& list) {
+    bool ok = list.SetStringValue("mu_strategy", o.mu_strategy == IpoptOptions::kAdaptive ? "adaptive" : "monotone");
+    if (o.mcp_hessian == IpoptOptions::kLimitedMemory) {
+      ok &= list.SetStringValue("hessian_approximation", "limited-memory");
+    } else {
+      ok &= list.SetStringValue("hessian_constant", "yes");
     }
-    if (initialized_) {
-      status = SetIpoptOptions(options, o) ? app_->OptimizeTNLP(tnlp_) : Ipopt::Invalid_Option;
-    }
-  } catch (const std::exception&) {
-    status = Ipopt::NonIpopt_Exception_Thrown;
-  } catch (...) {
-    status = Ipopt::Unrecoverable_Exception;
-  }
-  return status;
+    return ok;
+  });
 }
 
 void IpoptMcpSession::Impl::Solve(const MCP& p, const SolverOptions& options, const IpoptOptions& o,
@@ -732,8 +692,8 @@ void IpoptMcpSession::Impl::Solve(const MCP& p, const SolverOptions& options, co
     EvaluateJ(start_);  // the program's pattern is J's at the start
   }
   SetUpProgram();
-  if (Ipopt::IsNull(app_)) {
-    app_ = new Ipopt::IpoptApplication(/*create_console_out=*/false);
+  if (runner_ == nullptr) {
+    runner_ = std::make_unique<IpoptRunner>();
     tnlp_ = new McpGapTnlp(this);
   }
   callback_error_ = nullptr;

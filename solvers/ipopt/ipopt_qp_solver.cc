@@ -96,6 +96,7 @@
 #include "solvers/core/matrix_class.h"
 #include "solvers/ipopt/ipopt_details.h"
 #include "solvers/ipopt/ipopt_names.h"
+#include "solvers/ipopt/ipopt_runner.h"
 
 namespace smcbench {
 namespace {
@@ -212,8 +213,6 @@ class Session {
   bool SameMatrixAsCache(const BoxMLCP& p) const;
   void SetupQp(const BoxMLCP& p);
   void SetupGap(const BoxMLCP& p);
-  void ConfigureOutput(int verbosity, int print_level);
-  bool SetIpoptOptions(const SolverOptions& options, const IpoptOptions& o, bool convex_qp);
   // Natural residual at z relative to 1 + min(||z||_inf, ||q||_inf) (file comment); *w receives M z + q.
   double RelResidual(const Vector& z, Vector* w) const;
   double Relative(double residual, const Vector& z) const {
@@ -229,9 +228,7 @@ class Session {
   bool FarkasCertificateHolds(const BoxMLCP& p, const Vector& y) const;
 
   // Ipopt.
-  Ipopt::SmartPtr<Ipopt::IpoptApplication> app_;
-  bool initialized_ = false;
-  Ipopt::SmartPtr<Ipopt::Journal> journal_;
+  IpoptRunner runner_;
   QpTnlp* qp_ = nullptr;  // owned by qp_holder_
   GapTnlp* gap_ = nullptr;
   Ipopt::SmartPtr<Ipopt::TNLP> qp_holder_, gap_holder_;
@@ -478,8 +475,6 @@ class GapTnlp final : public SessionTnlp {
 };
 
 Session::Session() {
-  // No console journal: Ipopt prints nothing unless Solve() adds the stderr journal (verbosity > 0).
-  app_ = new Ipopt::IpoptApplication(/*create_console_out=*/false);
   qp_ = new QpTnlp(this);
   qp_holder_ = qp_;
   gap_ = new GapTnlp(this);
@@ -743,50 +738,6 @@ void Session::SetupGap(const BoxMLCP& p) {
   }
 }
 
-void Session::ConfigureOutput(int verbosity, int print_level) {
-  if (verbosity > 0) {
-    if (Ipopt::IsNull(journal_)) {
-      journal_ = app_->Jnlst()->AddFileJournal("smcbench_stderr", "stderr", Ipopt::J_NONE);
-    }
-    const int level = verbosity >= 2 ? print_level : std::min(print_level, static_cast<int>(Ipopt::J_SUMMARY));
-    if (Ipopt::IsValid(journal_)) journal_->SetAllPrintLevels(static_cast<Ipopt::EJournalLevel>(level));
-  } else if (Ipopt::IsValid(journal_)) {
-    // Even J_NONE lets J_INSUPPRESSIBLE messages through: remove the journal to be completely silent.
-    app_->Jnlst()->DeleteAllJournals();
-    journal_ = nullptr;
-  }
-}
-
-bool Session::SetIpoptOptions(const SolverOptions& options, const IpoptOptions& o, bool convex_qp) {
-  Ipopt::OptionsList& list = *app_->Options();
-  list.clear();  // every solve starts from Ipopt's defaults plus exactly what is set here
-  bool ok = true;
-  ok &= list.SetStringValue("sb", "yes");  // no banner
-  ok &= list.SetIntegerValue("print_level", options.verbosity > 0 ? o.print_level : 0);
-  ok &= list.SetNumericValue("tol", o.tol);
-  ok &= list.SetIntegerValue("max_iter", std::max(1, options.max_iterations > 0 ? options.max_iterations
-                                                                                 : o.max_iter));
-  const bool mehrotra = convex_qp && o.mehrotra;
-  // mehrotra_algorithm chooses its own mu strategy; Ipopt asks not to set it as well.
-  if (mehrotra) {
-    ok &= list.SetStringValue("mehrotra_algorithm", "yes");
-  } else {
-    ok &= list.SetStringValue("mu_strategy", o.mu_strategy == IpoptOptions::kAdaptive ? "adaptive" : "monotone");
-  }
-  ok &= list.SetStringValue("linear_solver", LinearSolverName(o.linear_solver));
-  // Both formulations have a constant Hessian and linear (or no) constraints.
-  ok &= list.SetStringValue("hessian_constant", "yes");
-  ok &= list.SetStringValue("jac_c_constant", "yes");
-  ok &= list.SetStringValue("jac_d_constant", "yes");
-  // The box has a nonempty interior except for fixed rows, which Ipopt turns into parameters; relaxing the
-  // bounds would only leave z outside [l,u] by up to 1e-8 relative, above our merit tolerance.
-  ok &= list.SetNumericValue("bound_relax_factor", 0.0);
-  if (std::isfinite(options.time_limit_seconds)) {
-    ok &= list.SetNumericValue("max_cpu_time", std::max(options.time_limit_seconds, 1e-6));
-  }
-  return ok;
-}
-
 void Session::ActiveSet(const Vector& z, const Vector& w, std::vector<signed char>* state) const {
   const Vector& l = problem_->l();
   const Vector& u = problem_->u();
@@ -974,25 +925,23 @@ std::optional<IpoptFormulation> Session::ChooseFormulation(const BoxMLCP& p, con
 // Ipopt never throws through here: its exceptions become statuses.
 Ipopt::ApplicationReturnStatus Session::RunIpopt(const SolverOptions& options, const IpoptOptions& o,
                                                  IpoptFormulation formulation) {
-  ConfigureOutput(options.verbosity, o.print_level);
-  Ipopt::ApplicationReturnStatus status = Ipopt::Internal_Error;
-  try {
-    if (!initialized_) {
-      std::istringstream no_options;  // never read an ipopt.opt from the working directory
-      status = app_->Initialize(no_options);
-      initialized_ = status == Ipopt::Solve_Succeeded;
-    }
-    if (initialized_) {
-      const bool options_ok = SetIpoptOptions(options, o, formulation == IpoptFormulation::kConvexQp);
-      status = options_ok ? app_->OptimizeTNLP(formulation == IpoptFormulation::kGapNlp ? gap_holder_ : qp_holder_)
-                          : Ipopt::Invalid_Option;
-    }
-  } catch (const std::exception&) {
-    status = Ipopt::NonIpopt_Exception_Thrown;
-  } catch (...) {
-    status = Ipopt::Unrecoverable_Exception;
-  }
-  return status;
+  const bool convex_qp = formulation == IpoptFormulation::kConvexQp;
+  return runner_.Run(formulation == IpoptFormulation::kGapNlp ? gap_holder_ : qp_holder_, options, o,
+                     [&o, convex_qp](Ipopt::OptionsList& list) {
+                       bool ok = true;
+                       // mehrotra_algorithm chooses its own mu strategy; Ipopt asks not to set it as well.
+                       if (convex_qp && o.mehrotra) {
+                         ok &= list.SetStringValue("mehrotra_algorithm", "yes");
+                       } else {
+                         ok &= list.SetStringValue("mu_strategy",
+                                                   o.mu_strategy == IpoptOptions::kAdaptive ? "adaptive" : "monotone");
+                       }
+                       // Both formulations have a constant Hessian and linear (or no) constraints.
+                       ok &= list.SetStringValue("hessian_constant", "yes");
+                       ok &= list.SetStringValue("jac_c_constant", "yes");
+                       ok &= list.SetStringValue("jac_d_constant", "yes");
+                       return ok;
+                     });
 }
 
 Session::Answer Session::TakeIpoptPoint(const IpoptOptions& o, SolveResult* result) {
