@@ -78,6 +78,7 @@
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
 
+#include "solvers/ipopt/gap_program.h"
 #include "solvers/ipopt/ipopt_details.h"
 #include "solvers/ipopt/ipopt_names.h"
 #include "solvers/ipopt/ipopt_qp_solver.h"
@@ -93,7 +94,6 @@ constexpr double kIpoptInf = 2e19;  // beyond Ipopt's nlp_lower/upper_bound_inf:
 
 double IpoptBound(double b) { return std::isfinite(b) ? b : (b > 0 ? kIpoptInf : -kIpoptInf); }
 
-enum MultiplierKind : signed char { kLowerMult = 0, kUpperMult = 1, kFixedMult = 2 };
 enum StopReason { kNotStopped, kStopMerit, kStopRefined, kStopTime };
 constexpr double kRefineMargin = 1e-2;  // the refinement's goal, relative to the tolerance
 
@@ -183,8 +183,7 @@ struct IpoptMcpSession::Impl {
   // An exception from F or J inside Ipopt's callbacks (Ipopt would swallow it): rethrown once Ipopt returned, so it
   // reaches the caller as from every backend.
   std::exception_ptr callback_error_;
-  std::vector<int> mult_row_;
-  std::vector<signed char> mult_kind_;
+  GapMultipliers mult_;  // the gap program's multipliers (gap_program.h), in the program's variables y = z / c
   // Sparse: the Jacobian's pattern at the start (column-major), Ipopt's fixed structure.
   std::vector<int> pattern_outer_, pattern_inner_;
   int objective_gap_hessian_ = 0;
@@ -230,9 +229,9 @@ class McpGapTnlp final : public Ipopt::TNLP {
   }
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& style) override {
-    n = s_->n_ + static_cast<Index>(s_->mult_row_.size());
+    n = s_->n_ + static_cast<Index>(s_->mult_.count());
     m = s_->n_;
-    nnz_jac_g = JacobianEntries() + static_cast<Index>(s_->mult_row_.size());
+    nnz_jac_g = JacobianEntries() + static_cast<Index>(s_->mult_.count());
     nnz_h_lag = s_->objective_gap_hessian_;
     style = C_STYLE;
     return true;
@@ -245,9 +244,9 @@ class McpGapTnlp final : public Ipopt::TNLP {
       x_u[i] = IpoptBound(p.u()[i] / s_->c_[i]);
       g_l[i] = g_u[i] = 0.0;
     }
-    const int count = static_cast<int>(s_->mult_row_.size());
+    const int count = s_->mult_.count();
     for (int k = 0; k < count; ++k) {
-      x_l[m + k] = s_->mult_kind_[k] == kFixedMult ? -kIpoptInf : 0.0;
+      x_l[m + k] = s_->mult_.kind[k] == kFixedMult ? -kIpoptInf : 0.0;
       x_u[m + k] = kIpoptInf;
     }
     return true;
@@ -263,16 +262,7 @@ class McpGapTnlp final : public Ipopt::TNLP {
     if (init_x) {
       for (Index i = 0; i < m; ++i) x[i] = s_->start_[i] / s_->c_[i];
       s_->EvaluateF(s_->start_, &s_->F_);
-      const int count = static_cast<int>(s_->mult_row_.size());
-      for (int k = 0; k < count; ++k) {
-        const int i = s_->mult_row_[k];
-        const double r = s_->F_[i] / s_->d_[i];
-        switch (s_->mult_kind_[k]) {
-          case kLowerMult: x[m + k] = std::max(r, 0.0); break;
-          case kUpperMult: x[m + k] = std::max(-r, 0.0); break;
-          default: x[m + k] = r; break;
-        }
-      }
+      s_->mult_.Start([this](int i) { return s_->F_[i] / s_->d_[i]; }, x + m);
     }
     if (init_z) {
       std::fill(z_l, z_l + n, 1.0);
@@ -283,38 +273,12 @@ class McpGapTnlp final : public Ipopt::TNLP {
   }
 
   bool eval_f(Index, const Number* x, bool, Number& f) override {
-    const MCP& p = *s_->problem_;
-    const int n = s_->n_;
-    const int count = static_cast<int>(s_->mult_row_.size());
-    double gap = 0.0;
-    for (int k = 0; k < count; ++k) {
-      const int i = s_->mult_row_[k];
-      if (s_->mult_kind_[k] == kLowerMult) gap += (x[i] - p.l()[i] / s_->c_[i]) * x[n + k];
-      if (s_->mult_kind_[k] == kUpperMult) gap += (p.u()[i] / s_->c_[i] - x[i]) * x[n + k];
-    }
-    f = gap;
+    f = s_->mult_.Gap(x, s_->n_);
     return std::isfinite(f);
   }
 
   bool eval_grad_f(Index nx, const Number* x, bool, Number* grad) override {
-    const MCP& p = *s_->problem_;
-    const int n = s_->n_;
-    const int count = static_cast<int>(s_->mult_row_.size());
-    std::fill(grad, grad + n, 0.0);
-    for (int k = 0; k < count; ++k) {
-      const int i = s_->mult_row_[k];
-      switch (s_->mult_kind_[k]) {
-        case kLowerMult:
-          grad[i] += x[n + k];
-          grad[n + k] = x[i] - p.l()[i] / s_->c_[i];
-          break;
-        case kUpperMult:
-          grad[i] -= x[n + k];
-          grad[n + k] = p.u()[i] / s_->c_[i] - x[i];
-          break;
-        default: grad[n + k] = 0.0; break;
-      }
-    }
+    s_->mult_.Gradient(x, s_->n_, grad);
     if (s_->last_x_.size() != nx) s_->last_x_.resize(nx);
     std::copy(x, x + nx, s_->last_x_.data());
     s_->have_last_x_ = true;
@@ -329,10 +293,7 @@ class McpGapTnlp final : public Ipopt::TNLP {
     s_->ToZ(x, &s_->z_);
     if (!s_->EvaluateF(s_->z_, &s_->F_)) return false;  // Ipopt then shortens the step
     for (Index i = 0; i < m; ++i) g[i] = s_->F_[i] / s_->d_[i];
-    const int count = static_cast<int>(s_->mult_row_.size());
-    for (int k = 0; k < count; ++k) {
-      g[s_->mult_row_[k]] += (s_->mult_kind_[k] == kUpperMult ? 1.0 : -1.0) * x[m + k];
-    }
+    s_->mult_.AddToConstraints(x, m, g);
     return true;
   }
 
@@ -343,7 +304,7 @@ class McpGapTnlp final : public Ipopt::TNLP {
   bool ConstraintJacobian(Index, const Number* x, bool, Index m, Index, Index* row, Index* col, Number* values) {
     const int n = s_->n_;
     const Index entries = JacobianEntries();
-    const int count = static_cast<int>(s_->mult_row_.size());
+    const int count = s_->mult_.count();
     if (values == nullptr) {
       Index e = 0;
       if (s_->sparse_) {
@@ -362,7 +323,7 @@ class McpGapTnlp final : public Ipopt::TNLP {
         }
       }
       for (int k = 0; k < count; ++k) {
-        row[entries + k] = s_->mult_row_[k];
+        row[entries + k] = s_->mult_.row[k];
         col[entries + k] = m + k;
       }
       return true;
@@ -380,7 +341,7 @@ class McpGapTnlp final : public Ipopt::TNLP {
         for (int i = 0; i < n; ++i, ++e) values[e] = J[e] * c[j] / d[i];
       }
     }
-    for (int k = 0; k < count; ++k) values[entries + k] = s_->mult_kind_[k] == kUpperMult ? 1.0 : -1.0;
+    for (int k = 0; k < count; ++k) values[entries + k] = s_->mult_.ConstraintEntry(k);
     for (Index e = 0; e < entries + count; ++e) {
       if (!std::isfinite(values[e])) return false;
     }
@@ -391,15 +352,14 @@ class McpGapTnlp final : public Ipopt::TNLP {
               Index* col, Number* values) override {
     // The constant Hessian of G (gap mode): (w_k or v_k, y_i) = ±1, lower triangle (n + k > i).
     const int n = s_->n_;
-    const int count = static_cast<int>(s_->mult_row_.size());
     Index e = 0;
-    for (int k = 0; k < count; ++k) {
-      if (s_->mult_kind_[k] == kFixedMult) continue;
+    for (int k = 0; k < s_->mult_.count(); ++k) {
+      if (s_->mult_.kind[k] == kFixedMult) continue;
       if (values == nullptr) {
         row[e] = n + k;
-        col[e] = s_->mult_row_[k];
+        col[e] = s_->mult_.row[k];
       } else {
-        values[e] = obj_factor * (s_->mult_kind_[k] == kLowerMult ? 1.0 : -1.0);
+        values[e] = obj_factor * s_->mult_.HessianEntry(k);
       }
       ++e;
     }
@@ -463,27 +423,8 @@ class McpGapTnlp final : public Ipopt::TNLP {
 
 void IpoptMcpSession::Impl::SetUpProgram() {
   const MCP& p = *problem_;
-  mult_row_.clear();
-  mult_kind_.clear();
-  objective_gap_hessian_ = 0;
-  for (int i = 0; i < n_; ++i) {
-    const double l = p.l()[i], u = p.u()[i];
-    if (l == u) {
-      mult_row_.push_back(i);
-      mult_kind_.push_back(kFixedMult);
-      continue;
-    }
-    if (std::isfinite(l)) {
-      mult_row_.push_back(i);
-      mult_kind_.push_back(kLowerMult);
-      ++objective_gap_hessian_;
-    }
-    if (std::isfinite(u)) {
-      mult_row_.push_back(i);
-      mult_kind_.push_back(kUpperMult);
-      ++objective_gap_hessian_;
-    }
-  }
+  mult_.Build(p.l(), p.u(), &c_);
+  objective_gap_hessian_ = mult_.bounded;
   if (o_->mcp_hessian == IpoptOptions::kLimitedMemory) objective_gap_hessian_ = 0;
   if (sparse_) {
     // J was evaluated at the start (Solve): its pattern is the structure Ipopt keeps.
@@ -777,48 +718,16 @@ void IpoptMcpSession::Impl::ExplainFailure(Ipopt::ApplicationReturnStatus status
         msg << "Ipopt found F(z) = w - v, z in [l,u], w, v >= 0 locally infeasible: for a nonlinear F not a proof "
                "that the MCP has no solution";
         break;
-      case Ipopt::Search_Direction_Becomes_Too_Small:
-        result->status = SolveStatus::kStalled;
-        msg << "Ipopt's search direction became too small";
-        break;
       case Ipopt::Diverging_Iterates:
         result->status = SolveStatus::kDiverged;
         msg << "Ipopt's iterates diverged";
-        break;
-      case Ipopt::User_Requested_Stop:
-      case Ipopt::Maximum_CpuTime_Exceeded:
-        if (stop_ == kStopTime || status == Ipopt::Maximum_CpuTime_Exceeded) {
-          result->status = SolveStatus::kTimeLimit;
-          msg << "time limit reached";
-        } else {
-          result->status = SolveStatus::kNumericalFailure;
-          msg << "Ipopt stopped unexpectedly";
-        }
-        break;
-      case Ipopt::Maximum_Iterations_Exceeded:
-        result->status = SolveStatus::kIterationLimit;
-        msg << "Ipopt reached its iteration limit";
-        break;
-      case Ipopt::Invalid_Option:
-        result->status = SolveStatus::kInvalidOptions;
-        msg << "Ipopt rejected an option (linear_solver '" << LinearSolverName(o_->linear_solver)
-            << "' not available?)";
-        break;
-      case Ipopt::Restoration_Failed:
-        result->status = SolveStatus::kNumericalFailure;
-        msg << "Ipopt's restoration phase failed";
-        break;
-      case Ipopt::Error_In_Step_Computation:
-        result->status = SolveStatus::kNumericalFailure;
-        msg << "Ipopt could not compute a step (KKT system too ill-conditioned)";
         break;
       case Ipopt::Invalid_Number_Detected:
         result->status = SolveStatus::kNumericalFailure;
         msg << "NaN or Inf in F or its Jacobian during Ipopt's iterations";
         break;
-      default:
-        result->status = SolveStatus::kNumericalFailure;
-        msg << "Ipopt failed (" << IpoptStatusName(status) << ")";
+      default:  // what any program's Ipopt run would mean
+        result->status = IpoptFailureStatus(status, o_->linear_solver, stop_ == kStopTime, msg);
         break;
     }
   }

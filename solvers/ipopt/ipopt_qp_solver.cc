@@ -94,6 +94,7 @@
 
 #include "solvers/core/active_set.h"
 #include "solvers/core/matrix_class.h"
+#include "solvers/ipopt/gap_program.h"
 #include "solvers/ipopt/ipopt_details.h"
 #include "solvers/ipopt/ipopt_names.h"
 #include "solvers/ipopt/ipopt_runner.h"
@@ -112,7 +113,6 @@ constexpr double kIpoptInf = 2e19;
 double IpoptBound(double b) { return std::isfinite(b) ? b : (b > 0 ? kIpoptInf : -kIpoptInf); }
 
 enum StopReason { kNotStopped, kStopMerit, kStopPolished, kStopTime };
-enum MultiplierKind : signed char { kLowerMult = 0, kUpperMult = 1, kFixedMult = 2 };
 
 // True if dlopen finds the library (then closed again): Ipopt's run-time loaded linear solvers.
 bool RuntimeLibraryLoadable(const char* name) {
@@ -196,9 +196,8 @@ class Session {
   // Lower triangle of the Hessian (QP: (M+M')/2; gap: the +-1 couplings), triplets.
   std::vector<Index> hess_row_, hess_col_;
   std::vector<Number> hess_val_;
-  // Gap NLP: multiplier k sits in row mult_row_[k], with kind mult_kind_[k]; Jacobian triplets of the rows.
-  std::vector<int> mult_row_;
-  std::vector<signed char> mult_kind_;
+  // Gap NLP: its multipliers (gap_program.h); Jacobian triplets of the rows.
+  GapMultipliers mult_;
   std::vector<Index> jac_row_, jac_col_;
   std::vector<Number> jac_val_;
 
@@ -366,7 +365,7 @@ class GapTnlp final : public SessionTnlp {
   explicit GapTnlp(Session* s) : SessionTnlp(s) {}
 
   bool get_nlp_info(Index& n, Index& m, Index& nnz_jac_g, Index& nnz_h_lag, IndexStyleEnum& style) override {
-    n = s_->n_ + static_cast<Index>(s_->mult_row_.size());
+    n = s_->n_ + static_cast<Index>(s_->mult_.count());
     m = s_->n_;
     nnz_jac_g = static_cast<Index>(s_->jac_row_.size());
     nnz_h_lag = static_cast<Index>(s_->hess_row_.size());
@@ -381,9 +380,9 @@ class GapTnlp final : public SessionTnlp {
       x_u[i] = IpoptBound(p.u()[i]);
       g_l[i] = g_u[i] = -p.q()[i];
     }
-    const int count = static_cast<int>(s_->mult_row_.size());
+    const int count = s_->mult_.count();
     for (int k = 0; k < count; ++k) {
-      const bool free = s_->mult_kind_[k] == kFixedMult;
+      const bool free = s_->mult_.kind[k] == kFixedMult;
       x_l[m + k] = free ? -kIpoptInf : 0.0;
       x_u[m + k] = kIpoptInf;
     }
@@ -397,15 +396,7 @@ class GapTnlp final : public SessionTnlp {
       const BoxMLCP& p = *s_->problem_;
       MutMap(x, m) = s_->start_;
       p.Affine(s_->start_, &s_->product_);
-      const int count = static_cast<int>(s_->mult_row_.size());
-      for (int k = 0; k < count; ++k) {
-        const double r = s_->product_[s_->mult_row_[k]];
-        switch (s_->mult_kind_[k]) {
-          case kLowerMult: x[m + k] = std::max(r, 0.0); break;
-          case kUpperMult: x[m + k] = std::max(-r, 0.0); break;
-          default: x[m + k] = r; break;
-        }
-      }
+      s_->mult_.Start([this](int i) { return s_->product_[i]; }, x + m);
     }
     if (init_z) {
       std::fill(z_l, z_l + n, 1.0);
@@ -416,38 +407,12 @@ class GapTnlp final : public SessionTnlp {
   }
 
   bool eval_f(Index, const Number* x, bool, Number& f) override {
-    const BoxMLCP& p = *s_->problem_;
-    const int n = s_->n_;
-    const int count = static_cast<int>(s_->mult_row_.size());
-    double gap = 0.0;
-    for (int k = 0; k < count; ++k) {
-      const int i = s_->mult_row_[k];
-      if (s_->mult_kind_[k] == kLowerMult) gap += (x[i] - p.l()[i]) * x[n + k];
-      if (s_->mult_kind_[k] == kUpperMult) gap += (p.u()[i] - x[i]) * x[n + k];
-    }
-    f = gap;
+    f = s_->mult_.Gap(x, s_->n_);
     return std::isfinite(f);
   }
 
   bool eval_grad_f(Index nx, const Number* x, bool, Number* grad) override {
-    const BoxMLCP& p = *s_->problem_;
-    const int n = s_->n_;
-    const int count = static_cast<int>(s_->mult_row_.size());
-    std::fill(grad, grad + n, 0.0);
-    for (int k = 0; k < count; ++k) {
-      const int i = s_->mult_row_[k];
-      switch (s_->mult_kind_[k]) {
-        case kLowerMult:
-          grad[i] += x[n + k];
-          grad[n + k] = x[i] - p.l()[i];
-          break;
-        case kUpperMult:
-          grad[i] -= x[n + k];
-          grad[n + k] = p.u()[i] - x[i];
-          break;
-        default: grad[n + k] = 0.0; break;
-      }
-    }
+    s_->mult_.Gradient(x, s_->n_, grad);
     s_->RecordGradientPoint(x, nx);
     return true;
   }
@@ -456,10 +421,7 @@ class GapTnlp final : public SessionTnlp {
   bool eval_g(Index, const Number* x, bool, Index m, Number* g) override {
     MutMap gm(g, m);
     MultiplyM(*s_->problem_, ConstMap(x, m), gm);
-    const int count = static_cast<int>(s_->mult_row_.size());
-    for (int k = 0; k < count; ++k) {
-      g[s_->mult_row_[k]] += (s_->mult_kind_[k] == kUpperMult ? 1.0 : -1.0) * x[m + k];
-    }
+    s_->mult_.AddToConstraints(x, m, g);
     return true;
   }
 
@@ -682,24 +644,7 @@ void Session::SetupQp(const BoxMLCP& p) {
 
 void Session::SetupGap(const BoxMLCP& p) {
   const int n = p.size();
-  mult_row_.clear();
-  mult_kind_.clear();
-  for (int i = 0; i < n; ++i) {
-    const double l = p.l()[i], u = p.u()[i];
-    if (l == u) {
-      mult_row_.push_back(i);
-      mult_kind_.push_back(kFixedMult);
-      continue;
-    }
-    if (std::isfinite(l)) {
-      mult_row_.push_back(i);
-      mult_kind_.push_back(kLowerMult);
-    }
-    if (std::isfinite(u)) {
-      mult_row_.push_back(i);
-      mult_kind_.push_back(kUpperMult);
-    }
-  }
+  mult_.Build(p.l(), p.u(), nullptr);
   jac_row_.clear();
   jac_col_.clear();
   jac_val_.clear();
@@ -726,15 +671,12 @@ void Session::SetupGap(const BoxMLCP& p) {
   hess_row_.clear();
   hess_col_.clear();
   hess_val_.clear();
-  const int count = static_cast<int>(mult_row_.size());
-  for (int k = 0; k < count; ++k) {
-    const bool upper = mult_kind_[k] == kUpperMult;
-    add(mult_row_[k], n + k, upper ? 1.0 : -1.0);
-    if (mult_kind_[k] == kFixedMult) continue;
-    // d2G / (d mult_k d z_i) = +1 for (z_i - l_i) w_i, -1 for (u_i - z_i) v_i; row n+k > column i (lower).
-    hess_row_.push_back(n + k);
-    hess_col_.push_back(mult_row_[k]);
-    hess_val_.push_back(upper ? -1.0 : 1.0);
+  for (int k = 0; k < mult_.count(); ++k) {
+    add(mult_.row[k], n + k, mult_.ConstraintEntry(k));
+    if (mult_.kind[k] == kFixedMult) continue;
+    hess_row_.push_back(n + k);  // row n + k > column i: the lower triangle
+    hess_col_.push_back(mult_.row[k]);
+    hess_val_.push_back(mult_.HessianEntry(k));
   }
 }
 
@@ -842,14 +784,11 @@ bool Session::FarkasCertificateHolds(const BoxMLCP& p, const Vector& y) const {
 }
 
 bool Session::CertifyInfeasible(const BoxMLCP& p) const {
-  const int count = static_cast<int>(mult_row_.size());
-  if (!have_ipopt_x_ || ipopt_full_x_.size() != n_ + count || !ipopt_full_x_.allFinite()) return false;
+  if (!have_ipopt_x_ || ipopt_full_x_.size() != n_ + mult_.count() || !ipopt_full_x_.allFinite()) return false;
   Vector c(n_);
   MultiplyM(p, ipopt_full_x_.head(n_), c);
   c += p.q();
-  for (int k = 0; k < count; ++k) {
-    c[mult_row_[k]] += (mult_kind_[k] == kUpperMult ? 1.0 : -1.0) * ipopt_full_x_[n_ + k];
-  }
+  mult_.AddToConstraints(ipopt_full_x_.data(), n_, c.data());
   const Vector sign = c.array().sign().matrix();
   return FarkasCertificateHolds(p, c) || FarkasCertificateHolds(p, sign);
 }
@@ -1040,50 +979,18 @@ void Session::ExplainFailure(const BoxMLCP& p, const IpoptOptions& o, Ipopt::App
                "with a margin: not a proof that the MLCP has no solution";
       }
       break;
-    case Ipopt::Search_Direction_Becomes_Too_Small:
-      result->status = SolveStatus::kStalled;
-      msg << "Ipopt's search direction became too small";
-      break;
     case Ipopt::Diverging_Iterates:
       result->status = SolveStatus::kDiverged;
       msg << (gap ? "Ipopt's iterates diverged"
                   : "Ipopt's iterates diverged: the QP looks unbounded below (for a PSD M an unbounded QP would "
                     "mean that the MLCP has no solution; diverging iterates are not a proof of it)");
       break;
-    case Ipopt::User_Requested_Stop:
-    case Ipopt::Maximum_CpuTime_Exceeded:
-      if (stop_ == kStopTime || status == Ipopt::Maximum_CpuTime_Exceeded) {
-        result->status = SolveStatus::kTimeLimit;
-        msg << "time limit reached";
-      } else {
-        result->status = SolveStatus::kNumericalFailure;
-        msg << "Ipopt stopped unexpectedly";
-      }
-      break;
-    case Ipopt::Maximum_Iterations_Exceeded:
-      result->status = SolveStatus::kIterationLimit;
-      msg << "Ipopt reached its iteration limit";
-      break;
-    case Ipopt::Invalid_Option:
-      result->status = SolveStatus::kInvalidOptions;
-      msg << "Ipopt rejected an option (linear_solver '" << LinearSolverName(o.linear_solver)
-          << "' not available?)";
-      break;
-    case Ipopt::Restoration_Failed:
-      result->status = SolveStatus::kNumericalFailure;
-      msg << "Ipopt's restoration phase failed";
-      break;
-    case Ipopt::Error_In_Step_Computation:
-      result->status = SolveStatus::kNumericalFailure;
-      msg << "Ipopt could not compute a step (KKT system too ill-conditioned)";
-      break;
     case Ipopt::Invalid_Number_Detected:
       result->status = SolveStatus::kNumericalFailure;
       msg << "NaN or Inf appeared in Ipopt's evaluations";
       break;
-    default:
-      result->status = SolveStatus::kNumericalFailure;
-      msg << "Ipopt failed (" << IpoptStatusName(status) << ")";
+    default:  // what any program's Ipopt run would mean
+      result->status = IpoptFailureStatus(status, o.linear_solver, stop_ == kStopTime, msg);
       break;
   }
   msg << "; Ipopt status " << static_cast<int>(status) << ", " << iterations_ << " iterations, relative natural "

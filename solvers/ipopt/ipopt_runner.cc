@@ -50,4 +50,36 @@ bool IpoptRunner::SetCommonOptions(const SolverOptions& options, const IpoptOpti
   return ok;
 }
 
+SolveStatus IpoptFailureStatus(Ipopt::ApplicationReturnStatus status, int linear_solver, bool stopped_for_time,
+                               std::ostream& msg) {
+  switch (status) {
+    case Ipopt::Search_Direction_Becomes_Too_Small:
+      msg << "Ipopt's search direction became too small";
+      return SolveStatus::kStalled;
+    case Ipopt::User_Requested_Stop:
+    case Ipopt::Maximum_CpuTime_Exceeded:
+      if (stopped_for_time || status == Ipopt::Maximum_CpuTime_Exceeded) {
+        msg << "time limit reached";
+        return SolveStatus::kTimeLimit;
+      }
+      msg << "Ipopt stopped unexpectedly";
+      return SolveStatus::kNumericalFailure;
+    case Ipopt::Maximum_Iterations_Exceeded:
+      msg << "Ipopt reached its iteration limit";
+      return SolveStatus::kIterationLimit;
+    case Ipopt::Invalid_Option:
+      msg << "Ipopt rejected an option (linear_solver '" << LinearSolverName(linear_solver) << "' not available?)";
+      return SolveStatus::kInvalidOptions;
+    case Ipopt::Restoration_Failed:
+      msg << "Ipopt's restoration phase failed";
+      return SolveStatus::kNumericalFailure;
+    case Ipopt::Error_In_Step_Computation:
+      msg << "Ipopt could not compute a step (KKT system too ill-conditioned)";
+      return SolveStatus::kNumericalFailure;
+    default:
+      msg << "Ipopt failed (" << IpoptStatusName(status) << ")";
+      return SolveStatus::kNumericalFailure;
+  }
+}
+
 }  // namespace smcbench

@@ -2,10 +2,13 @@
 // shared half of the box-MLCP adapter (ipopt_qp_solver.cc) and the MCP adapter (ipopt_mcp.cc), which each had it.
 #pragma once
 
+#include <ostream>
+
 #include <IpIpoptApplication.hpp>
 #include <IpTNLP.hpp>
 
 #include "solvers/core/options.h"
+#include "solvers/core/result.h"
 #include "solvers/ipopt/ipopt_qp_solver.h"
 
 namespace smcbench {
@@ -53,5 +56,12 @@ class IpoptRunner {
   bool initialized_ = false;
   Ipopt::ApplicationReturnStatus initialize_status_ = Ipopt::Internal_Error;
 };
+
+// The status of an Ipopt return that says the same for every problem (a short search direction, the iteration or
+// time limit, our stop callback, a rejected option, a failed restoration or step, any other failure), with why
+// written to msg. stopped_for_time: our intermediate callback stopped Ipopt at the time limit. The adapters handle
+// the returns whose meaning depends on the program (converged, infeasible, diverging, a NaN) before calling this.
+SolveStatus IpoptFailureStatus(Ipopt::ApplicationReturnStatus status, int linear_solver, bool stopped_for_time,
+                               std::ostream& msg);
 
 }  // namespace smcbench
