@@ -116,9 +116,14 @@ def main():
         status, out = run(["--source-dir", str(root), "--build-dir", str(build)])
         check(status == 0 and "PASSED README.md:1 " in " ".join(out.split()), "a python block runs with python3", out)
 
+        # The budget counts CPU time, not wall time: a block that waits is within it, one that works is not.
         (root / "README.md").write_text("```sh runnable=quick\nsleep 0.3\n```\n", encoding="utf-8")
         status, out = run(["--source-dir", str(root), "--build-dir", str(build), "--budget", "0.1"])
-        check(status == 1 and "FAILED budget" in out, "the time budget is enforced", out)
+        check(status == 0 and "FAILED budget" not in out, "waiting is not CPU time", out)
+        busy = "```sh runnable=quick\npython3 -c 'import time\nt = time.process_time()\nwhile time.process_time() - t < 0.3: pass'\n```\n"
+        (root / "README.md").write_text(busy, encoding="utf-8")
+        status, out = run(["--source-dir", str(root), "--build-dir", str(build), "--budget", "0.1"])
+        check(status == 1 and "FAILED budget" in out and "of CPU time" in out, "the CPU-time budget is enforced", out)
     print("docs runner self-test: all checks passed")
     return 0
 
