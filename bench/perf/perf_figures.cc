@@ -5,7 +5,7 @@
 #include <utility>
 
 #include "problems/library/capture.h"
-#include "problems/scenes/linear_scene.h"
+#include "problems/scenes/scene.h"
 #include "problems/scenes/registry.h"
 #include "problems/suites/families.h"
 #include "solvers/registry/registry.h"
@@ -47,8 +47,8 @@ class SolveWorkload final : public PerfWorkload {
 
 class StepWorkload final : public PerfWorkload {
  public:
-  StepWorkload(const LinearScene& scene, const std::string& backend)
-      : settings_(scene.defaults()), stepper_(scene.Discretization(settings_)), solver_(CreateSolver(backend)) {
+  StepWorkload(const Scene& scene, const LinearPlant& plant, const std::string& backend)
+      : settings_(scene.defaults()), stepper_(plant.Discretization(settings_)), solver_(CreateSolver(backend)) {
     settings_.stepper.record = false;
     settings_.stepper.solver.tolerance = kTolerance;
     const std::int64_t cap = IsSlow(backend) ? kPerfSlowStepsPerRun : kPerfStepsPerRun;
@@ -129,9 +129,9 @@ std::vector<PerfCase> PerfCases() {
     for (const std::string& backend : backends) {
       cases.push_back({"step/" + scene + "/" + backend, "step", [scene, backend]() -> std::unique_ptr<PerfWorkload> {
                          const std::unique_ptr<Scene> loaded = LoadScene(scene);
-                         const auto* linear = dynamic_cast<const LinearScene*>(loaded.get());
+                         const LinearPlant* linear = loaded->linear_plant();
                          if (!linear) throw InvalidInputError("perf: scene '" + scene + "' is not linear");
-                         return std::make_unique<StepWorkload>(*linear, backend);
+                         return std::make_unique<StepWorkload>(*loaded, *linear, backend);
                        }});
     }
   }

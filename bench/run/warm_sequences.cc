@@ -7,7 +7,7 @@
 
 #include "problems/library/capture.h"
 #include "problems/library/references.h"
-#include "problems/scenes/linear_scene.h"
+#include "problems/scenes/scene.h"
 #include "problems/scenes/registry.h"
 #include "problems/suites/families.h"
 #include "solvers/registry/registry.h"
@@ -106,7 +106,7 @@ std::vector<WarmSequence> SceneWarmSequences(const std::string& suite, bool quic
   std::vector<WarmSequence> out;
   for (const std::string& name : names) {
     const std::unique_ptr<Scene> scene = LoadScene(name);
-    if (dynamic_cast<const LinearScene*>(scene.get()) == nullptr) continue;  // Newton's inner M changes per step
+    if (scene->step_kind() != SceneStepKind::kLinearBox) continue;  // Newton's inner M changes per step
     SimulationSettings settings = scene->defaults();
     if (settings.method == Method::kExplicit) settings.method = Method::kImplicit;  // as the paper suite
     if (settings.method == Method::kZohExplicit) settings.method = Method::kZoh;

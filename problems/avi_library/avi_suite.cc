@@ -6,7 +6,7 @@
 #include <cmath>
 #include <utility>
 
-#include "problems/scenes/linear_scene.h"
+#include "problems/scenes/scene.h"
 #include "problems/scenes/registry.h"
 #include "problems/stepper/linear_stepper.h"
 #include "solvers/avi/avi_reduction.h"
@@ -284,7 +284,7 @@ std::vector<std::int64_t> CaptureSteps(std::int64_t num_steps, bool quick) {
 std::vector<AviLibraryProblem> CaptureSceneAvis(const std::string& scene_name, const std::vector<std::int64_t>& steps,
                                                 const std::string& backend) {
   const std::unique_ptr<Scene> scene = LoadScene(scene_name);
-  const auto* linear = dynamic_cast<const LinearScene*>(scene.get());
+  const LinearPlant* linear = scene->linear_plant();
   if (linear == nullptr) throw InvalidInputError("CaptureSceneAvis: scene '" + scene_name + "' is not a linear scene");
   SimulationSettings settings = scene->defaults();
   LinearStepper stepper(linear->Discretization(settings));

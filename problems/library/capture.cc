@@ -8,8 +8,7 @@
 #include <utility>
 
 #include "problems/library/references.h"
-#include "problems/scenes/linear_scene.h"
-#include "problems/scenes/nonlinear_scene.h"
+#include "problems/scenes/scene.h"
 #include "problems/scenes/registry.h"
 #include "problems/stepper/metrics.h"
 #include "solvers/core/number_text.h"
@@ -44,7 +43,7 @@ CaptureContext MakeCaptureContext(const std::string& set, const Scene& scene, co
   c.h = settings.h;
   if (settings.method == Method::kImplicit || settings.method == Method::kExplicit) c.theta = settings.theta;
   c.backend = std::string(backend);
-  if (dynamic_cast<const NonlinearSceneAdapter*>(&scene)) {
+  if (scene.step_kind() == SceneStepKind::kNonlinear) {
     c.metadata["gamma"] = NumberText(settings.gamma);
     c.metadata["algorithm"] = std::string(ToString(settings.algorithm));
   }
@@ -164,13 +163,11 @@ ProblemSet CapturePaperSuite(const PaperSuiteOptions& options) {
                     " steps per scene; Algorithm 2 inner problems for S9, S10)";
   for (std::string_view name : PaperSceneNames()) {
     const std::unique_ptr<Scene> scene = LoadScene(name);
-    const bool linear = dynamic_cast<const LinearScene*>(scene.get()) != nullptr;
-    const bool nonlinear = dynamic_cast<const NonlinearSceneAdapter*>(scene.get()) != nullptr;
-    if (!linear && !nonlinear) continue;
+    if (scene->step_kind() == SceneStepKind::kSuperTwisting) continue;  // no box-MLCP to capture
     SimulationSettings settings = scene->defaults();
     if (settings.method == Method::kExplicit) settings.method = Method::kImplicit;
     if (settings.method == Method::kZohExplicit) settings.method = Method::kZoh;
-    if (nonlinear) settings.algorithm = NonlinearAlgorithm::kNewtonMlcp;
+    if (scene->step_kind() == SceneStepKind::kNonlinear) settings.algorithm = NonlinearAlgorithm::kNewtonMlcp;
     settings.stepper.solver.tolerance = options.tolerance;
     const std::unique_ptr<Solver> solver = CreateSolver(options.backend);
     CaptureContext context = MakeCaptureContext("paper", *scene, settings, options.backend);

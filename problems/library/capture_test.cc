@@ -147,8 +147,9 @@ TEST(Capture, ObserverDoesNotChangeTheRun) {
 
 TEST(Capture, RebuildingPathCallsTheObserverToo) {
   const auto loaded = LoadScene("galias-yu-2007");
-  const auto& scene = dynamic_cast<const LinearScene&>(*loaded);
-  const SimulationSettings& d = scene.defaults();
+  ASSERT_EQ(loaded->step_kind(), SceneStepKind::kLinearBox);
+  const LinearPlant& scene = *loaded->linear_plant();
+  const SimulationSettings& d = loaded->defaults();
   auto solver = CreateSolver("lemke");
   Counter counter;
   StepperOptions options;

@@ -34,7 +34,7 @@
 
 namespace smcbench {
 
-class LinearScene final : public Scene {
+class LinearScene final : public Scene, public LinearPlant {
  public:
   // source names the document in error messages (normally the file path).
   static std::unique_ptr<LinearScene> FromJson(const nlohmann::json& document, const std::string& source);
@@ -50,18 +50,20 @@ class LinearScene final : public Scene {
   void Run(const SimulationSettings& settings, Solver* solver, Trajectory* out) const override;
   using Scene::Run;
   std::optional<ExactSolution> Exact(const SimulationSettings& settings) const override;
+  SceneStepKind step_kind() const override { return SceneStepKind::kLinearBox; }
+  const LinearPlant* linear_plant() const override { return this; }
 
   // "sign" (E, B, C, D, forcing) or "zoh" (F, G, C, alpha).
-  const std::string& system_type() const;
+  const std::string& system_type() const override;
   // The declared parameters with their default values.
   const SceneParameters& parameters() const;
   // The model with these parameter values (undeclared names are an error; missing ones take their defaults). h is
   // the time step a polytope law's expressions see (system.law may depend on it, as implicit twisting's
   // parallelogram does); absent: the scene's simulation.h.
-  LinearModel Model(const SceneParameters& parameters, std::optional<double> h = std::nullopt) const;
+  LinearModel Model(const SceneParameters& parameters, std::optional<double> h = std::nullopt) const override;
   // Validates settings and discretizes Model(settings.parameters) with settings' method, h and θ: what Run
   // builds its LinearStepper from (benchmarks build it once and time the runs).
-  OneStepData Discretization(const SimulationSettings& settings) const;
+  OneStepData Discretization(const SimulationSettings& settings) const override;
 
   struct Spec;  // the parsed document (implementation detail)
 

@@ -21,6 +21,7 @@ class NonlinearSceneAdapter final : public Scene {
   NonlinearSceneAdapter(Builder build, SceneParameters defaults, std::string reference);
 
   const SceneInfo& info() const override { return info_; }
+  SceneStepKind step_kind() const override { return SceneStepKind::kNonlinear; }
   const SimulationSettings& defaults() const override { return defaults_; }
   // Implicit (s_{k+1} ∈ Sgn(h(x_{k+1}))) and explicit (s_{k+1} = sgn(h(x_k))); ZOH needs a linear plant.
   bool Supports(Method method) const override { return method == Method::kImplicit || method == Method::kExplicit; }

@@ -5,7 +5,7 @@
 #include <chrono>
 #include <system_error>
 
-#include "problems/scenes/super_twisting_scene.h"
+#include "problems/scenes/scene.h"
 #include "solvers/reference/certify.h"
 
 namespace smcbench {
@@ -52,7 +52,7 @@ void SetReferenceErrors(const ReferenceErrors& errors, const Trajectory& run, Re
 
 // The reference backend certifies box-MLCPs: a scene whose steps are none has no reference run.
 std::string SceneSkipReason(const Scene& scene) {
-  if (dynamic_cast<const SuperTwistingScene*>(&scene)) {
+  if (scene.step_kind() == SceneStepKind::kSuperTwisting) {
     return "a super-twisting step is a scalar generalized equation (closed form or MCP), not a box-MLCP the "
            "reference backend certifies";
   }

@@ -5,8 +5,7 @@
 
 #include <nlohmann/json.hpp>
 
-#include "problems/scenes/nonlinear_scene.h"
-#include "problems/scenes/super_twisting_scene.h"
+#include "problems/scenes/scene.h"
 
 namespace smcbench {
 namespace {
@@ -23,8 +22,8 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
   RunMetrics metrics;
   metrics.metrics = ComputeMetrics(tr, reach_tol);
   if (tr.m > 0) metrics.chattering = ComputeChattering(tr, reach_tol);
-  if (const auto* st = dynamic_cast<const SuperTwistingScene*>(&scene)) {
-    metrics.super_twisting = ComputeSuperTwistingPrecision(tr, st->convergence_band());
+  if (const std::optional<double> band = scene.convergence_band()) {
+    metrics.super_twisting = ComputeSuperTwistingPrecision(tr, *band);
   }
   try {
     if (const auto exact = scene.Exact(settings)) metrics.exact_errors = ComputeErrors(tr, *exact);
@@ -49,13 +48,13 @@ json SimulationSummary(const Scene& scene, const SimulationSettings& settings, s
   j["gamma"] = settings.gamma;
   // Only when asked for (a default run's summary is unchanged): the CSV's rows between samples; metrics are on samples.
   if (settings.plant_substeps > 1) j["plant_substeps"] = settings.plant_substeps;
-  if (dynamic_cast<const NonlinearSceneAdapter*>(&scene)) {
+  if (scene.step_kind() == SceneStepKind::kNonlinear) {
     j["algorithm"] = std::string(ToString(settings.algorithm));
     j["newton_tolerance"] = settings.newton_tolerance;
     j["newton_max_iterations"] = settings.newton_max_iterations;
   }
   // The implicit super-twisting step's route (closed-form or mcp); the explicit scheme solves nothing.
-  if (dynamic_cast<const SuperTwistingScene*>(&scene) && settings.method == Method::kImplicit) {
+  if (scene.step_kind() == SceneStepKind::kSuperTwisting && settings.method == Method::kImplicit) {
     j["algorithm"] = std::string(ToString(settings.algorithm));
   }
   j["x0"] = VectorJson(settings.x0);

@@ -57,9 +57,41 @@ struct SceneInfo {
   int m = 0;                // number of sliding surfaces
 };
 
+// What a scene's implicit step is, and so what a caller may do with the scene besides running it (capture its
+// one-step problems, build families from its matrix, replay warm sequences): asked of the scene, never found by a
+// cast to its concrete type.
+enum class SceneStepKind {
+  kLinearBox,      // a linear plant and law (LinearScene): a box-MLCP (or a polytope AVI) with the same matrix every
+                   // step; linear_plant() gives the model and the one-step data
+  kNonlinear,      // a nonlinear plant or input (S9, S10): Algorithm 2's inner box-MLCPs or one MCP per step;
+                   // SimulationSettings::algorithm and the Newton settings apply
+  kSuperTwisting,  // a super-twisting law: a scalar generalized equation per step (closed form or MCP), no box-MLCP
+};
+
+// The capability of a kLinearBox scene: its model and the data of its one-step problem (the same matrix M at
+// every step), for callers that build problems from a scene rather than run it.
+class LinearPlant {
+ public:
+  virtual ~LinearPlant() = default;
+  // "sign" (E, B, C, D, forcing) or "zoh" (F, G, C, alpha).
+  virtual const std::string& system_type() const = 0;
+  // The model with these parameter values (undeclared names are an error; missing ones take their defaults). h is
+  // the time step a polytope law's expressions see; absent: the scene's own.
+  virtual LinearModel Model(const SceneParameters& parameters, std::optional<double> h = std::nullopt) const = 0;
+  // Validates settings and discretizes Model(settings.parameters) with settings' method, h and θ.
+  virtual OneStepData Discretization(const SimulationSettings& settings) const = 0;
+};
+
 class Scene {
  public:
   virtual ~Scene() = default;
+
+  // What its implicit step is (above).
+  virtual SceneStepKind step_kind() const = 0;
+  // The linear plant's model and one-step data for a kLinearBox scene; null for the others.
+  virtual const LinearPlant* linear_plant() const { return nullptr; }
+  // A super-twisting scene's band |σ| ≤ band in which its precision is measured; nullopt for the others.
+  virtual std::optional<double> convergence_band() const { return std::nullopt; }
 
   virtual const SceneInfo& info() const = 0;
   // The scene's own settings (record on, warm start on, stop at the first failed step).

@@ -3,9 +3,7 @@
 #include <cmath>
 #include <variant>
 
-#include "problems/scenes/linear_scene.h"
-#include "problems/scenes/nonlinear_scene.h"
-#include "problems/scenes/super_twisting_scene.h"
+#include "problems/scenes/scene.h"
 #include "solvers/core/number_text.h"
 
 namespace smcbench {
@@ -207,8 +205,8 @@ std::string OverrideName(std::string_view field, OverrideSpelling spelling) {
 SceneRunSettings ApplySceneOverrides(const Scene& scene, const SceneOverrides& o, OverrideSpelling spelling) {
   const Checker check(spelling);
   SceneRunSettings run;
-  const bool super_twisting = dynamic_cast<const SuperTwistingScene*>(&scene) != nullptr;
-  run.nonlinear = super_twisting || dynamic_cast<const NonlinearSceneAdapter*>(&scene) != nullptr;
+  const bool super_twisting = scene.step_kind() == SceneStepKind::kSuperTwisting;
+  run.nonlinear = super_twisting || scene.step_kind() == SceneStepKind::kNonlinear;
   SimulationSettings& s = run.settings;
   s = scene.defaults();
   ApplyMethodAndStep(o, check, &s);
@@ -248,7 +246,7 @@ void CheckSceneBackend(const SceneRunSettings& run, const Solver& backend, Overr
 }
 
 ZohSmcSystem ZohPlantOf(const Scene& scene, const SceneParameters& parameters) {
-  const auto* linear = dynamic_cast<const LinearScene*>(&scene);
+  const LinearPlant* linear = scene.linear_plant();
   if (linear == nullptr) throw InvalidInputError("plant_substeps needs a linear scene of system type zoh");
   const LinearModel model = linear->Model(parameters);
   const auto* plant = std::get_if<ZohSmcSystem>(&model);

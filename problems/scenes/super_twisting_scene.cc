@@ -218,7 +218,7 @@ SuperTwistingScene::~SuperTwistingScene() = default;
 
 const SceneInfo& SuperTwistingScene::info() const { return spec_->info; }
 const SimulationSettings& SuperTwistingScene::defaults() const { return spec_->defaults; }
-double SuperTwistingScene::convergence_band() const { return spec_->band; }
+std::optional<double> SuperTwistingScene::convergence_band() const { return spec_->band; }
 
 SuperTwistingSystem SuperTwistingScene::System(const SceneParameters& overrides) const {
   SceneParameters values = spec_->defaults.parameters;

@@ -31,6 +31,7 @@ class SuperTwistingScene final : public Scene {
   ~SuperTwistingScene() override;
 
   const SceneInfo& info() const override;
+  SceneStepKind step_kind() const override { return SceneStepKind::kSuperTwisting; }
   const SimulationSettings& defaults() const override;
   bool Supports(Method method) const override { return method == Method::kImplicit || method == Method::kExplicit; }
   // Implicit: settings.algorithm closed-form (solver unused, may be null) or mcp (solver must solve MCPs);
@@ -41,7 +42,7 @@ class SuperTwistingScene final : public Scene {
   // The system with these parameter values (undeclared names are an error; missing ones take their defaults).
   SuperTwistingSystem System(const SceneParameters& parameters) const;
   // |σ| ≤ band defines the convergence time of the summary.
-  double convergence_band() const;
+  std::optional<double> convergence_band() const override;
 
   struct Spec;
 

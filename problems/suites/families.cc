@@ -14,7 +14,7 @@
 #include <vector>
 
 #include "problems/library/matrix_tags.h"
-#include "problems/scenes/linear_scene.h"
+#include "problems/scenes/scene.h"
 #include "problems/scenes/registry.h"
 #include "problems/suites/generation_detail.h"
 
@@ -460,9 +460,9 @@ LibraryProblem SceneStepProblem(std::string_view scene_name, double h, std::uint
   const std::string owner = "SceneStepProblem('" + std::string(scene_name) + "')";
   if (!(h > 0.0 && std::isfinite(h))) Fail(owner, "h = " + NumberText(h) + " must be positive and finite");
   const std::unique_ptr<Scene> scene = LoadScene(scene_name);
-  const auto* linear = dynamic_cast<const LinearScene*>(scene.get());
+  const LinearPlant* linear = scene->linear_plant();
   if (linear == nullptr) Fail(owner, "not a linear scene (its one-step problem is not a fixed box-MLCP)");
-  SimulationSettings settings = linear->defaults();
+  SimulationSettings settings = scene->defaults();
   settings.method = Method::kImplicit;
   settings.h = h;
   const OneStepData step = linear->Discretization(settings);
@@ -556,10 +556,10 @@ LibraryProblem SmallHSceneProblem(std::string_view scene_name, double h, std::ui
   const std::string owner = "SmallHSceneProblem('" + std::string(scene_name) + "')";
   if (!(h > 0.0 && std::isfinite(h))) Fail(owner, "h = " + NumberText(h) + " must be positive and finite");
   const std::unique_ptr<Scene> scene = LoadScene(scene_name);
-  const auto* linear = dynamic_cast<const LinearScene*>(scene.get());
+  const LinearPlant* linear = scene->linear_plant();
   if (linear == nullptr) Fail(owner, "not a linear scene (its one-step problem is not a fixed box-MLCP)");
-  if (linear->info().m < 2) Fail(owner, "m = " + std::to_string(linear->info().m) + ": the family takes m >= 2");
-  SimulationSettings settings = linear->defaults();
+  if (scene->info().m < 2) Fail(owner, "m = " + std::to_string(scene->info().m) + ": the family takes m >= 2");
+  SimulationSettings settings = scene->defaults();
   settings.method = Method::kImplicit;
   settings.h = h;
   DenseMatrix W = linear->Discretization(settings).OneStepMatrix();
@@ -828,7 +828,7 @@ ProblemSet FamiliesSuite(const FamiliesOptions& options) {
   if (options.scenes) {
     for (std::string_view scene : PaperSceneNames()) {
       const std::unique_ptr<Scene> loaded = LoadScene(scene);
-      if (dynamic_cast<const LinearScene*>(loaded.get()) == nullptr || loaded->info().m < 2 ||
+      if (loaded->step_kind() != SceneStepKind::kLinearBox || loaded->info().m < 2 ||
           !fits(loaded->info().m)) {
         continue;
       }

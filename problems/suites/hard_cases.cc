@@ -10,7 +10,7 @@
 
 #include "problems/io/siconos_format.h"
 #include "problems/library/matrix_tags.h"
-#include "problems/scenes/linear_scene.h"
+#include "problems/scenes/scene.h"
 #include "problems/scenes/registry.h"
 #include "problems/suites/families.h"
 #include "problems/suites/generation_detail.h"
@@ -185,9 +185,9 @@ LibraryProblem JointlyScaled(double factor, const std::string& name) {
 // stepper builds it (eq:TDS3). m = 1 and W > 0, so the unique solution is z = Π_[−1,1](−q/W).
 LibraryProblem ParasiticFirstStep(double h) {
   const std::unique_ptr<Scene> scene = LoadScene("parasitic");
-  const auto* linear = dynamic_cast<const LinearScene*>(scene.get());
+  const LinearPlant* linear = scene->linear_plant();
   if (linear == nullptr) throw InvalidInputError("HardSuite: scene 'parasitic' is not a linear scene");
-  SimulationSettings settings = linear->defaults();
+  SimulationSettings settings = scene->defaults();
   settings.method = Method::kImplicit;
   settings.h = h;
   const OneStepData step = linear->Discretization(settings);

@@ -20,7 +20,7 @@
 #include "problems/scenes/registry.h"
 #include "problems/scenes/run_summary.h"
 #include "problems/scenes/scene_overrides.h"
-#include "problems/scenes/super_twisting_scene.h"
+#include "problems/scenes/scene.h"
 #include "problems/stepper/sampled_plant.h"
 #include "solvers/core/duration_text.h"
 #include "solvers/core/number_text.h"
@@ -289,7 +289,7 @@ void SetUpRecorder(const Flags& f, SimulatePlan* plan, const std::string& solver
   if (!IsImplicit(s.method)) {
     plan->Fail("--record: method '" + std::string(ToString(s.method)) + "' solves no one-step problem: nothing to record");
   }
-  if (dynamic_cast<const SuperTwistingScene*>(plan->scene.get())) {
+  if (plan->scene->step_kind() == SceneStepKind::kSuperTwisting) {
     plan->Fail("--record captures box-MLCPs; a super-twisting step is a scalar generalized equation (closed form "
                "or MCP): there is nothing to record");
   }
@@ -355,8 +355,8 @@ void SetUpOutputs(const Flags& f, SimulatePlan* plan, std::int64_t num_steps, Si
   o->sinks.Add(&*o->metrics);
   o->chattering.emplace(info.m, plan->reach_tol);
   o->sinks.Add(&*o->chattering);
-  if (const auto* st = dynamic_cast<const SuperTwistingScene*>(plan->scene.get())) {
-    o->super_twisting.emplace(st->convergence_band(), num_steps, s.h);
+  if (const std::optional<double> band = plan->scene->convergence_band()) {
+    o->super_twisting.emplace(*band, num_steps, s.h);
     o->sinks.Add(&*o->super_twisting);
   }
   if (!f.summary.empty()) {

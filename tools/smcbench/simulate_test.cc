@@ -210,7 +210,8 @@ TEST_F(Simulate, ReferenceRunIsSkippedAboveAMillionSteps) {
   EXPECT_FALSE(c.ran);
   EXPECT_THAT(c.skipped, HasSubstr("1000001 steps > 1000000"));
   const auto enumerative = CreateSolver("enum");
-  LinearStepper stepper(dynamic_cast<const LinearScene&>(*scene).Discretization(settings));
+  ASSERT_NE(scene->linear_plant(), nullptr);
+  LinearStepper stepper(scene->linear_plant()->Discretization(settings));
   const Trajectory three_steps = stepper.Run(settings.x0, 3, enumerative.get(), StepperOptions{});
   const nlohmann::json j = SimulationSummary(*scene, settings, "enum", three_steps, 1e-9, 0.0, &c);
   EXPECT_TRUE(j["s_error_max"].is_null());

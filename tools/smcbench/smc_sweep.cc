@@ -9,7 +9,7 @@
 #include <sstream>
 
 #include "bench/figures/gnuplot_figure.h"
-#include "problems/scenes/linear_scene.h"
+#include "problems/scenes/scene.h"
 #include "problems/scenes/registry.h"
 #include "solvers/core/number_text.h"
 #include "solvers/registry/registry.h"
@@ -108,7 +108,7 @@ SmcSweepResult RunSmcSweep(const SmcSweepOptions& input) {
     Fail("the figures need gnuplot (Debian package gnuplot-nox), which is not on PATH; --no-plots writes the table only");
   }
   const std::unique_ptr<Scene> scene = LoadScene(options.scene);
-  const auto* linear = dynamic_cast<const LinearScene*>(scene.get());
+  const LinearPlant* linear = scene->linear_plant();
   if (!linear || linear->system_type() != "zoh") {
     Fail("scene '" + scene->info().name + "' is not a ZOH plant (system type zoh): the sweep compares zoh and "
          "zoh-explicit");

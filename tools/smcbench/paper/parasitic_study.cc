@@ -6,7 +6,7 @@
 #include <ostream>
 #include <string>
 
-#include "problems/scenes/linear_scene.h"
+#include "problems/scenes/scene.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/paper/study.h"
 
@@ -49,7 +49,7 @@ ParasiticStudy MeasureParasitic(Studies& st) {
     s.h = h;
     s.T = h == kSmallestH ? kSmallestHSteps * h : std::min(kParasiticHorizon, kParasiticMaxSteps * h);
     s.stepper.on_failure = FailurePolicy::kContinue;
-    const auto* linear = dynamic_cast<const LinearScene*>(&st.scene(kScene));
+    const LinearPlant* linear = st.scene(kScene).linear_plant();
     const double W = linear ? linear->Discretization(s).OneStepMatrix()(0, 0) : std::nan("");
     for (auto backend : SolverNames()) {
       const Trajectory tr = st.Run(kScene, s, std::string(backend));
