@@ -57,7 +57,8 @@ const SolverInfo& BppSolver::info() const {
   static const SolverInfo kInfo{
       "bpp",
       "block principal pivoting on the box (each row free / at l / at u, n variables), Murty's least-index single "
-      "pivots after non-improving block steps; exact LU of each free block",
+      "pivots after non-improving block steps; each free block solved exactly, by LU or a Schur-complement update "
+      "of the last one",
       "Judice & Pires, Comput. Oper. Res. 21 (1994); Kostreva, Linear Algebra Appl. 21 (1978); Murty, Opsearch 11 "
       "(1974)",
       /*dense=*/true,
