@@ -24,6 +24,10 @@ signed char Flipped(signed char state, double z, double l) {
 // Rows whose state is forced by their bounds: l = u is fixed (kept at l, any w), l = −∞ and u = +∞ always free.
 bool FixedRow(double l, double u) { return l == u; }
 
+// Below this many rows the sweeps are not run: one or two sets of a few rows cost less than the sweeps, and at
+// m = 16 they did not lower the sets (docs/auto.md, "bpp against one factorization of M").
+constexpr int kMinSweptRows = 32;
+
 template <typename... Args>
 void SetMessage(SolveResult* result, const char* format, Args... args) {
   char buffer[400];
@@ -109,7 +113,18 @@ bool BppSolver::SolveActiveSet<false>(const BoxMLCP& problem, double* z) {
   const double* m = problem.dense_matrix().data();
   const double *l = problem.l().data(), *u = problem.u().data();
   const int nf = active_set::PlaceBoundRows<0>(n, s.state, l, u, z, s.free_rows);
-  return updated_.Solve(m, n, problem.q().data(), s.free_rows, nf, options_.pivot_tolerance, z);
+  if (n >= UpdatedFreeBlock::kMinRows) {
+    return updated_.Solve(m, n, problem.q().data(), s.free_rows, nf, options_.pivot_tolerance, z);
+  }
+  // Below kMinRows no block is ever updated: the set is factored here, inline (a paper problem's whole solve is a
+  // few hundred instructions).
+  if (nf == 0) return true;
+  ++small_factorizations_;
+  active_set::ReducedRhs<0>(m, n, problem.q().data(), z, s.free_rows, nf, s.rhs);
+  active_set::GatherFreeBlock(m, n, s.free_rows, nf, s.block, n);
+  if (!dense_lu::Factor(s.block, n, nf, s.pivots, options_.pivot_tolerance)) return false;
+  dense_lu::Solve(s.block, n, nf, s.pivots, s.rhs);
+  return active_set::ScatterFreeRows(s.rhs, s.free_rows, nf, l, u, z) != FreeRowsFit::kNonFinite;
 }
 
 bool BppSolver::SymmetricUpToRowScaling(const BoxMLCP& problem) {
@@ -212,13 +227,17 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
 
   // The first active set: the warm start's own, else the Jacobi-scaled natural map at Π(0) (result->z holds it).
   const bool warm = options.warm_start.size() == n;
-  if constexpr (!Sparse) {
+  const bool updatable = !Sparse && n >= UpdatedFreeBlock::kMinRows;
+  small_factorizations_ = 0;
+  if (updatable) {
     updated_.Resize(n);
     updated_.ResetCounts();
     updated_.set_updates(options_.factor_updates);
   }
   bool swept = false;
-  if constexpr (!Sparse) swept = !warm && options_.guess_sweeps > 0 && SweptGuess(problem, z, s.state);
+  if constexpr (!Sparse) {
+    swept = !warm && options_.guess_sweeps > 0 && n >= kMinSweptRows && SweptGuess(problem, z, s.state);
+  }
   if (!warm && !swept) multiply();
   for (int i = 0; i < n && !swept; ++i) {
     signed char state = kFree;
@@ -253,10 +272,10 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
     result->SetDetail("single_pivots", single_pivots);
     result->SetDetail("singular_blocks", singular_blocks);
     if constexpr (!Sparse) {
-      result->SetDetail("factorizations", updated_.factorizations());
-      result->SetDetail("updated_sets", updated_.updates());
-      result->SetDetail("refactored_answers", refactored_answers);
-      result->SetDetail("swept_guess", swept ? 1 : 0);
+      result->SetDetail("factorizations", updatable ? updated_.factorizations() : small_factorizations_);
+      result->SetDetail("updated_sets", updatable ? updated_.updates() : 0);
+      if (refactored_answers > 0) result->SetDetail("refactored_answers", refactored_answers);
+      if (swept) result->SetDetail("swept_guess", 1);
     }
     if (options.verbosity > 0) {
       std::fprintf(stderr, "bpp: %s after %d active sets (%d block, %d single pivots, %d singular blocks)\n",
@@ -314,7 +333,7 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
       if (bad) infeasible_[count++] = i;
     }
     if constexpr (!Sparse) {
-      if (count == 0 && updated_.last_path() == UpdatedFreeBlock::Path::kUpdated) {
+      if (count == 0 && updatable && updated_.last_path() == UpdatedFreeBlock::Path::kUpdated) {
         // The answer came from an update: its free rows' w must vanish to the margin, else the set is factored
         // afresh and solved again (an update that lost accuracy never makes the answer).
         double free_w = 0.0;

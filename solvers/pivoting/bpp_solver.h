@@ -28,14 +28,14 @@
 //
 // Start: the warm start's active set when SolverOptions::warm_start is given (z_i at or beyond a bound: at that
 // bound, strictly inside: free), else the natural-map set at Π(0) with a Jacobi-scaled w (t_i = z_i − w_i/M_ii), so
-// a 1×1 problem is solved by its first set. On a dense M that is symmetric up to the base's row scaling (M = D S,
-// S symmetric, checked once per matrix) with a positive diagonal, guess_sweeps (3) projected Gauss–Seidel sweeps
+// a 1×1 problem is solved by its first set. On a dense M of at least 32 rows that is symmetric up to the base's row
+// scaling (M = D S, S symmetric, checked once per matrix) with a positive diagonal, guess_sweeps (3) projected Gauss–Seidel sweeps
 // from Π(0) come first and the set is read off their iterate the same way: on SPD M they converge, and they halve
 // the sets at m ≥ 64 (docs/auto.md); on nonsymmetric M they are skipped (measured: they help relays, cost LCPs and
 // mixed bounds). A warm start from the solution's own active set solves in one iteration. Nothing is remembered
 // between solves (the session's reused active set does that).
 //
-// Dense M: the first set's free block is factored (dense_lu up to 64 rows, Eigen's blocked in-place LU above); each
+// Dense M of at least 16 rows (below, every set is factored inline): the first set's free block is factored (dense_lu up to 64 rows, Eigen's blocked in-place LU above); each
 // later set is solved from those factors by a Schur-complement update for the rows that entered or left the free
 // set (updated_free_block.h: the bordered system of Gill–Murray–Saunders–Wright), until the difference exceeds a
 // quarter of the factored block (at most 128 rows), the Schur complement's LU has a pivot below 1e-10 of its
@@ -47,7 +47,8 @@
 // beyond 128 KiB from malloc (free blocks above about 300 rows). Sparse M: each free block is gathered and factored
 // by Eigen's SparseLU (SparseFreeBlock), which allocates; no updates, no sweeps. No Cholesky for symmetric M (the
 // base hands bpp the row-equilibrated M). iterations = active sets solved; details block_pivots, single_pivots,
-// singular_blocks, and for dense M factorizations (fresh LUs), updated_sets, refactored_answers, swept_guess.
+// singular_blocks, and for dense M factorizations (fresh LUs) and updated_sets; refactored_answers and swept_guess
+// (1) when nonzero.
 #pragma once
 
 #include <cstdint>
@@ -78,8 +79,8 @@ struct BppOptions {
   // (updated_free_block.h) instead of refactoring it; a set too far from it, or whose update is ill-conditioned,
   // is factored from scratch. false: every set factored from scratch (the method as published).
   bool factor_updates = true;
-  // Dense M, cold start: projected Gauss–Seidel sweeps from Π(0) before the first set is read off (0: the
-  // Jacobi-scaled natural map at Π(0) alone). Only where they converge for every problem of the class: M symmetric
+  // Dense M of at least 32 rows, cold start: projected Gauss–Seidel sweeps from Π(0) before the first set is read
+  // off (0: the Jacobi-scaled natural map at Π(0) alone). Only where they converge for every problem of the class: M symmetric
   // (up to the base's row scaling) with a positive diagonal; elsewhere they are skipped (measured: on nonsymmetric
   // P-matrices they help relays and cost LCPs and mixed bounds more sets, docs/auto.md).
   int guess_sweeps = 3;
@@ -122,7 +123,8 @@ class BppSolver final : public BackendWithOptions<BppOptions> {
   std::vector<signed char> previous_state_;   // the set before the last pivot, to step back from a singular block
   std::vector<int> infeasible_;               // rows to change this iteration
   Vector w_;                                  // M z + q of the current set
-  UpdatedFreeBlock updated_;                  // dense M: the free block's factors, updated between sets
+  UpdatedFreeBlock updated_;                  // dense M of ≥ kMinRows rows: the free block's factors, updated
+  int small_factorizations_ = 0;              // dense M of fewer rows: the sets factored this solve
   Vector guess_;                              // SweptGuess's iterate
   Vector row_ratio_;                          // SymmetricUpToRowScaling's d_i / d_0
   std::uint64_t symmetry_id_ = 0;             // the matrix_id SymmetricUpToRowScaling last decided, and its answer
