@@ -52,7 +52,7 @@ void Run(int max_m, const char* only) {
   options.time_limit_seconds = 20.0;
   std::printf(
       "| class | m | floor | factorization | bpp, refactor every set | bpp, updates | bpp default | "
-      "refactor / floor | updates / floor | default / floor | sets: refactor / updates (factored) / sweeps (factored) |\n"
+      "refactor / floor | updates / floor | default / floor | sets: refactor / updates (factored) / default (factored) |\n"
       "|---|---:|---|---:|---:|---:|---:|---:|---:|---:|---|\n");
   for (MatrixFamily family : {MatrixFamily::kSymmetricPositiveDefinite, MatrixFamily::kNonsymmetricPMatrix,
                               MatrixFamily::kDiagonallyDominant, MatrixFamily::kSkewPMatrix}) {
