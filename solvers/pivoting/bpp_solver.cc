@@ -7,8 +7,6 @@
 #include <cstddef>
 #include <cstdio>
 
-#include <Eigen/LU>
-
 namespace smcbench {
 namespace {
 
@@ -26,22 +24,9 @@ signed char Flipped(signed char state, double z, double l) {
 // Rows whose state is forced by their bounds: l = u is fixed (kept at l, any w), l = −∞ and u = +∞ always free.
 bool FixedRow(double l, double u) { return l == u; }
 
-// Above this many free rows the free block is factored by Eigen's blocked LU (matrix-matrix updates) instead of the
-// unblocked dense_lu: the factorization is the whole cost of an iteration there.
-constexpr int kBlockedLuRows = 64;
-
-// LU with partial pivoting of the k×k block (column-major, leading dimension ld) in dense_lu's storage: L unit lower
-// and U in place, piv[j] the row swapped with row j at step j (Eigen's row transpositions are the same record), so
-// dense_lu::Solve solves with either. False when a pivot is ≤ small or not finite.
-bool FactorFreeBlock(double* a, int ld, int k, int* piv, double small) {
-  if (k <= kBlockedLuRows) return dense_lu::Factor(a, ld, k, piv, small);
-  int transpositions = 0;
-  Eigen::internal::partial_lu_impl<double, Eigen::ColMajor, int>::blocked_lu(k, k, a, ld, piv, transpositions);
-  for (int j = 0; j < k; ++j) {
-    if (!(std::abs(a[j + static_cast<std::ptrdiff_t>(j) * ld]) > small)) return false;  // NaN too
-  }
-  return true;
-}
+// Below this many rows the sweeps are not run: one or two sets of a few rows cost less than the sweeps, and at
+// m = 16 they did not lower the sets (docs/auto.md, "bpp against one factorization of M").
+constexpr int kMinSweptRows = 32;
 
 template <typename... Args>
 void SetMessage(SolveResult* result, const char* format, Args... args) {
@@ -65,6 +50,10 @@ bool BppOptions::IsValid(std::string* why) const {
     if (why) *why = "bpp: max_single_pivots must be >= 0, or -1 for no limit";
     return false;
   }
+  if (guess_sweeps < 0 || guess_sweeps > 1000) {
+    if (why) *why = "bpp: guess_sweeps must lie in [0, 1000]";
+    return false;
+  }
   return true;
 }
 
@@ -72,7 +61,8 @@ const SolverInfo& BppSolver::info() const {
   static const SolverInfo kInfo{
       "bpp",
       "block principal pivoting on the box (each row free / at l / at u, n variables), Murty's least-index single "
-      "pivots after non-improving block steps; exact LU of each free block",
+      "pivots after non-improving block steps; each free block solved exactly, by LU or a Schur-complement update "
+      "of the last one",
       "Judice & Pires, Comput. Oper. Res. 21 (1994); Kostreva, Linear Algebra Appl. 21 (1978); Murty, Opsearch 11 "
       "(1974)",
       /*dense=*/true,
@@ -98,6 +88,12 @@ void BppSolver::BindOptions(OptionBinder* binder) {
               "free-block LU pivots at or below this are singular (row-equilibrated M), in [0, 1)");
   binder->Add("max_single_pivots", &options_.max_single_pivots,
               "end as iteration_limit after this many least-index single pivots (-1: no limit; auto sets one)");
+  binder->Add("factor_updates", &options_.factor_updates,
+              "dense M: update the last free block's LU by a Schur complement between active sets (false: refactor "
+              "every set)");
+  binder->Add("guess_sweeps", &options_.guess_sweeps,
+              "dense M, cold: projected Gauss-Seidel sweeps from the projection of 0 before the first active set is "
+              "read off, in [0, 1000]");
 }
 
 bool BppSolver::ValidateBackendOptions(std::string* why) const { return options_.IsValid(why); }
@@ -117,12 +113,78 @@ bool BppSolver::SolveActiveSet<false>(const BoxMLCP& problem, double* z) {
   const double* m = problem.dense_matrix().data();
   const double *l = problem.l().data(), *u = problem.u().data();
   const int nf = active_set::PlaceBoundRows<0>(n, s.state, l, u, z, s.free_rows);
+  if (n >= UpdatedFreeBlock::kMinRows) {
+    return updated_.Solve(m, n, problem.q().data(), s.free_rows, nf, options_.pivot_tolerance, z);
+  }
+  // Below kMinRows no block is ever updated: the set is factored here, inline (a paper problem's whole solve is a
+  // few hundred instructions).
   if (nf == 0) return true;
+  ++small_factorizations_;
   active_set::ReducedRhs<0>(m, n, problem.q().data(), z, s.free_rows, nf, s.rhs);
   active_set::GatherFreeBlock(m, n, s.free_rows, nf, s.block, n);
-  if (!FactorFreeBlock(s.block, n, nf, s.pivots, options_.pivot_tolerance)) return false;
+  if (!dense_lu::Factor(s.block, n, nf, s.pivots, options_.pivot_tolerance)) return false;
   dense_lu::Solve(s.block, n, nf, s.pivots, s.rhs);
   return active_set::ScatterFreeRows(s.rhs, s.free_rows, nf, l, u, z) != FreeRowsFit::kNonFinite;
+}
+
+bool BppSolver::SymmetricUpToRowScaling(const BoxMLCP& problem) {
+  if (symmetry_id_ == problem.matrix_id()) return symmetric_;
+  symmetry_id_ = problem.matrix_id();
+  symmetric_ = false;
+  const int n = problem.size();
+  const DenseMatrix& M = problem.dense_matrix();
+  // M = D S with S symmetric: S_ij = M_ij / d_i = M_ji / d_j, so d_i / d_0 = M_i0 / M_0i from the first row and
+  // column (both nonzero, same sign), then every pair is checked to a relative 1e-12.
+  if (row_ratio_.size() != n) row_ratio_.resize(n);
+  row_ratio_[0] = 1.0;
+  for (int i = 1; i < n; ++i) {
+    const double ratio = M(i, 0) / M(0, i);
+    if (!(ratio > 0.0) || !std::isfinite(ratio)) return false;
+    row_ratio_[i] = ratio;
+  }
+  for (int j = 1; j < n; ++j) {
+    for (int i = j + 1; i < n; ++i) {
+      const double a = M(i, j) / row_ratio_[i], b = M(j, i) / row_ratio_[j];
+      if (!(std::abs(a - b) <= 1e-12 * std::max(std::abs(a), std::abs(b)))) return false;
+    }
+  }
+  symmetric_ = true;
+  return true;
+}
+
+bool BppSolver::SweptGuess(const BoxMLCP& problem, const double* z0, signed char* state) {
+  const int n = problem.size();
+  const DenseMatrix& M = problem.dense_matrix();
+  const double *l = problem.l().data(), *u = problem.u().data();
+  for (int i = 0; i < n; ++i) {
+    if (!(M(i, i) > 0.0)) return false;
+  }
+  if (!SymmetricUpToRowScaling(problem)) return false;
+  if (guess_.size() != n) guess_.resize(n);
+  std::copy(z0, z0 + n, guess_.data());
+  w_.noalias() = M * guess_;
+  w_ += problem.q();
+  double* z = guess_.data();
+  double* w = w_.data();
+  for (int sweep = 0; sweep < options_.guess_sweeps; ++sweep) {
+    for (int i = 0; i < n; ++i) {
+      if (FixedRow(l[i], u[i])) continue;
+      const double next = std::min(std::max(z[i] - w[i] / M(i, i), l[i]), u[i]);
+      const double delta = next - z[i];
+      if (delta == 0.0) continue;
+      z[i] = next;
+      const double* column = M.data() + static_cast<std::ptrdiff_t>(i) * n;
+      for (int r = 0; r < n; ++r) w[r] += delta * column[r];
+    }
+  }
+  for (int i = 0; i < n; ++i) {
+    if (!std::isfinite(z[i]) || !std::isfinite(w[i])) return false;
+  }
+  for (int i = 0; i < n; ++i) {
+    state[i] = FixedRow(l[i], u[i]) ? kLower
+                                    : static_cast<signed char>(ClassifyRow(z[i], w[i] / M(i, i), l[i], u[i]));
+  }
+  return true;
 }
 
 template <>
@@ -165,8 +227,19 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
 
   // The first active set: the warm start's own, else the Jacobi-scaled natural map at Π(0) (result->z holds it).
   const bool warm = options.warm_start.size() == n;
-  if (!warm) multiply();
-  for (int i = 0; i < n; ++i) {
+  const bool updatable = !Sparse && n >= UpdatedFreeBlock::kMinRows;
+  small_factorizations_ = 0;
+  if (updatable) {
+    updated_.Resize(n);
+    updated_.ResetCounts();
+    updated_.set_updates(options_.factor_updates);
+  }
+  bool swept = false;
+  if constexpr (!Sparse) {
+    swept = !warm && options_.guess_sweeps > 0 && n >= kMinSweptRows && SweptGuess(problem, z, s.state);
+  }
+  if (!warm && !swept) multiply();
+  for (int i = 0; i < n && !swept; ++i) {
     signed char state = kFree;
     if (FixedRow(l[i], u[i])) {
       state = kLower;
@@ -191,13 +264,19 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
   int credit = options_.block_steps_without_progress;
   bool last_was_block = false;  // the current set came from a block pivot (a singular block steps back)
   bool force_single = false;    // stepped back from a singular block: the next pivot is a single one
-  int iterations = 0, block_pivots = 0, single_pivots = 0, singular_blocks = 0;
+  int iterations = 0, block_pivots = 0, single_pivots = 0, singular_blocks = 0, refactored_answers = 0;
   const auto finish = [&](SolveStatus status) {
     result->status = status;
     result->iterations = iterations;
     result->SetDetail("block_pivots", block_pivots);
     result->SetDetail("single_pivots", single_pivots);
     result->SetDetail("singular_blocks", singular_blocks);
+    if constexpr (!Sparse) {
+      result->SetDetail("factorizations", updatable ? updated_.factorizations() : small_factorizations_);
+      result->SetDetail("updated_sets", updatable ? updated_.updates() : 0);
+      if (refactored_answers > 0) result->SetDetail("refactored_answers", refactored_answers);
+      if (swept) result->SetDetail("swept_guess", 1);
+    }
     if (options.verbosity > 0) {
       std::fprintf(stderr, "bpp: %s after %d active sets (%d block, %d single pivots, %d singular blocks)\n",
                    std::string(ToString(status)).c_str(), iterations, block_pivots, single_pivots, singular_blocks);
@@ -252,6 +331,21 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
                                       : (!FixedRow(l[i], u[i]) &&
                                          (state == kLower ? w_[i] < -margin : w_[i] > margin));
       if (bad) infeasible_[count++] = i;
+    }
+    if constexpr (!Sparse) {
+      if (count == 0 && updatable && updated_.last_path() == UpdatedFreeBlock::Path::kUpdated) {
+        // The answer came from an update: its free rows' w must vanish to the margin, else the set is factored
+        // afresh and solved again (an update that lost accuracy never makes the answer).
+        double free_w = 0.0;
+        for (int i = 0; i < n; ++i) {
+          if (s.state[i] == kFree) free_w = std::max(free_w, std::abs(w_[i]));
+        }
+        if (!(free_w <= margin)) {
+          updated_.Invalidate();
+          ++refactored_answers;
+          continue;
+        }
+      }
     }
     if (count == 0) {
       for (int i = 0; i < n; ++i) z[i] = std::min(std::max(z[i], l[i]), u[i]);

@@ -28,23 +28,37 @@
 //
 // Start: the warm start's active set when SolverOptions::warm_start is given (z_i at or beyond a bound: at that
 // bound, strictly inside: free), else the natural-map set at Π(0) with a Jacobi-scaled w (t_i = z_i − w_i/M_ii), so
-// a 1×1 problem is solved by its first set. A warm start from the solution's own active set solves in one
-// iteration. Nothing is remembered between solves (the session's reused active set does that).
+// a 1×1 problem is solved by its first set. On a dense M of at least 32 rows that is symmetric up to the base's row
+// scaling (M = D S, S symmetric, checked once per matrix) with a positive diagonal, guess_sweeps (3) projected Gauss–Seidel sweeps
+// from Π(0) come first and the set is read off their iterate the same way: on SPD M they converge, and they halve
+// the sets at m ≥ 64 (docs/auto.md); on nonsymmetric M they are skipped (measured: they help relays, cost LCPs and
+// mixed bounds). A warm start from the solution's own active set solves in one iteration. Nothing is remembered
+// between solves (the session's reused active set does that).
 //
-// Dense M: free blocks up to 64 rows are factored by dense_lu, larger ones by Eigen's blocked in-place LU on the same
-// storage (as newton does); nothing is allocated after the first solve of a size, except inside Eigen's level-3
-// kernels, which take scratch beyond 128 KiB from malloc (free blocks above about 300 rows). Sparse M: each free
-// block is gathered and factored by Eigen's SparseLU (SparseFreeBlock), which allocates. Every set is refactored from
-// scratch (no low-rank updates of the factors; no Cholesky for symmetric M, whose symmetry the row equilibration
-// hides). iterations = active sets solved; details block_pivots, single_pivots, singular_blocks.
+// Dense M of at least 16 rows (below, every set is factored inline): the first set's free block is factored (dense_lu up to 64 rows, Eigen's blocked in-place LU above); each
+// later set is solved from those factors by a Schur-complement update for the rows that entered or left the free
+// set (updated_free_block.h: the bordered system of Gill–Murray–Saunders–Wright), until the difference exceeds a
+// quarter of the factored block (at most 128 rows), the Schur complement's LU has a pivot below 1e-10 of its
+// largest entry, or a value is not finite: then the set is factored from scratch and becomes the reference. So a
+// singular free block is always judged by a fresh LU, and an answer solved by an update whose free rows' w does not
+// vanish to the sign margin is factored and solved again (detail refactored_answers). factor_updates = false
+// refactors every set (the method as published). Nothing is allocated after the first solve of a size, except
+// inside Eigen's level-3 kernels (the blocked LU, the update's triangular solves and products), which take scratch
+// beyond 128 KiB from malloc (free blocks above about 300 rows). Sparse M: each free block is gathered and factored
+// by Eigen's SparseLU (SparseFreeBlock), which allocates; no updates, no sweeps. No Cholesky for symmetric M (the
+// base hands bpp the row-equilibrated M). iterations = active sets solved; details block_pivots, single_pivots,
+// singular_blocks, and for dense M factorizations (fresh LUs) and updated_sets; refactored_answers and swept_guess
+// (1) when nonzero.
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
 #include "solvers/core/active_set.h"
 #include "solvers/core/backend_options.h"
 #include "solvers/core/solver.h"
+#include "solvers/pivoting/updated_free_block.h"
 
 namespace smcbench {
 
@@ -61,6 +75,15 @@ struct BppOptions {
   // auto gives its own bpp instance a limit proportional to n (docs/auto.md), so a bpp that leaves its block phase
   // hands the problem to the next candidate before it costs more than that candidate would.
   int max_single_pivots = -1;
+  // Dense M: solve each active set after the first by a Schur-complement update of the last factored free block
+  // (updated_free_block.h) instead of refactoring it; a set too far from it, or whose update is ill-conditioned,
+  // is factored from scratch. false: every set factored from scratch (the method as published).
+  bool factor_updates = true;
+  // Dense M of at least 32 rows, cold start: projected Gauss–Seidel sweeps from Π(0) before the first set is read
+  // off (0: the Jacobi-scaled natural map at Π(0) alone). Only where they converge for every problem of the class: M symmetric
+  // (up to the base's row scaling) with a positive diagonal; elsewhere they are skipped (measured: on nonsymmetric
+  // P-matrices they help relays and cost LCPs and mixed bounds more sets, docs/auto.md).
+  int guess_sweeps = 3;
 
   // True if every field is usable; otherwise *why names the field and the accepted range.
   bool IsValid(std::string* why) const;
@@ -90,10 +113,22 @@ class BppSolver final : public BackendWithOptions<BppOptions> {
   template <bool Sparse>
   bool SolveActiveSet(const BoxMLCP& problem, double* z);
 
+  // The first active set from guess_sweeps projected Gauss–Seidel sweeps (dense M): true when it was read off.
+  bool SweptGuess(const BoxMLCP& problem, const double* z0, signed char* state);
+  // Whether the dense M is D·S for a positive diagonal D and a symmetric S (a symmetric M after row scaling),
+  // decided once per matrix_id.
+  bool SymmetricUpToRowScaling(const BoxMLCP& problem);
+
   ActiveSetWorkspace dense_;                  // the kernel's scratch (block, rhs, state, free rows, pivots)
   std::vector<signed char> previous_state_;   // the set before the last pivot, to step back from a singular block
   std::vector<int> infeasible_;               // rows to change this iteration
   Vector w_;                                  // M z + q of the current set
+  UpdatedFreeBlock updated_;                  // dense M of ≥ kMinRows rows: the free block's factors, updated
+  int small_factorizations_ = 0;              // dense M of fewer rows: the sets factored this solve
+  Vector guess_;                              // SweptGuess's iterate
+  Vector row_ratio_;                          // SymmetricUpToRowScaling's d_i / d_0
+  std::uint64_t symmetry_id_ = 0;             // the matrix_id SymmetricUpToRowScaling last decided, and its answer
+  bool symmetric_ = false;
   // Sparse M only: the free block's factors and its right-hand side and solution.
   SparseFreeBlock sparse_block_;
   Vector sparse_rhs_, sparse_x_, placed_;

@@ -7,11 +7,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <random>
 #include <string>
+#include <vector>
 
 #include "solvers/enumerative/enumerative_solver.h"
 #include "solvers/generators/random_problems.h"
 #include "solvers/lemke/lemke_solver.h"
+#include "solvers/pivoting/updated_free_block.h"
+#include "tests/support/malloc_counter.h"
 
 namespace smcbench {
 namespace {
@@ -301,9 +305,12 @@ TEST(BppSolver, SingularFreeBlockIsAStatus) {
 
 // A singular block reached by a block pivot is stepped back from: M = [[1, 1], [1, 1]] (positive semidefinite),
 // q = (−1, −1): the first guess (both free) is singular, so the method restarts at z = 0; its block pivot makes
-// both rows free again, and the single pivot from z = 0 finds z = (1, 0).
+// both rows free again, and the single pivot from z = 0 finds z = (1, 0). (Without the sweeps, which on this
+// symmetric M would pick a nonsingular first set.)
 TEST(BppSolver, SingularBlockAfterABlockPivotFallsBackToSinglePivots) {
-  BppSolver solver;
+  BppOptions no_sweeps;
+  no_sweeps.guess_sweeps = 0;
+  BppSolver solver(no_sweeps);
   const BoxMLCP problem = BoxMLCP::LCP(Dense(2, {1.0, 1.0, 1.0, 1.0}), Vec({-1.0, -1.0}));
   const SolveResult r = solver.Solve(problem);
   ASSERT_TRUE(r.solved()) << r.message;
@@ -326,6 +333,233 @@ TEST(BppSolver, RepeatedSolvesAreIdentical) {
   ASSERT_TRUE(first.solved());
   EXPECT_EQ(first.iterations, second.iterations);
   EXPECT_EQ((first.z - second.z).cwiseAbs().maxCoeff(), 0.0);
+}
+
+// ---- Factor updates (updated_free_block.h) ----
+
+// A random nonsymmetric n×n matrix with a dominant diagonal (every principal block nonsingular and well
+// conditioned), column-major.
+DenseMatrix RandomDominant(int n, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> entry(-1.0, 1.0);
+  DenseMatrix M(n, n);
+  for (int j = 0; j < n; ++j) {
+    for (int i = 0; i < n; ++i) M(i, j) = entry(rng) / n;
+  }
+  for (int i = 0; i < n; ++i) M(i, i) += 1.0 + 0.5 * std::abs(entry(rng));
+  return M;
+}
+
+// z on the free rows of a set solved by a fresh dense LU (Eigen), with the bound rows placed as given.
+Vector FreshSolve(const DenseMatrix& M, const Vector& q, const std::vector<int>& free_rows, Vector z) {
+  const int nf = static_cast<int>(free_rows.size());
+  DenseMatrix block(nf, nf);
+  Vector rhs(nf);
+  for (int r = 0; r < nf; ++r) {
+    rhs[r] = -q[free_rows[r]];
+    for (int j = 0; j < M.cols(); ++j) rhs[r] -= M(free_rows[r], j) * z[j];
+    for (int c = 0; c < nf; ++c) block(r, c) = M(free_rows[r], free_rows[c]);
+  }
+  const Vector x = block.partialPivLu().solve(rhs);
+  for (int r = 0; r < nf; ++r) z[free_rows[r]] = x[r];
+  return z;
+}
+
+// A walk of free sets, each a few rows away from the last (rows enter, leave, and come back): every set's z from
+// the update agrees with a fresh factorization, and only the first set and the sets beyond MaxRank are factored.
+TEST(UpdatedFreeBlock, UpdatedSetsAgreeWithFreshFactorizations) {
+  const int n = 80;
+  const DenseMatrix M = RandomDominant(n, 5);
+  Vector q(n);
+  for (int i = 0; i < n; ++i) q[i] = std::sin(1.3 * i) - 0.2;
+  std::mt19937_64 rng(9);
+  std::vector<char> free(n, 0);
+  for (int i = 0; i < n; i += 2) free[i] = 1;  // 40 free rows: MaxRank(40) = 10
+  UpdatedFreeBlock block;
+  block.Resize(n);
+  int fresh_expected = 0, rank_since_factor = 0;
+  std::vector<char> reference = free;
+  for (int set = 0; set < 40; ++set) {
+    if (set > 0) {
+      const int flips = 1 + static_cast<int>(rng() % 3);
+      for (int f = 0; f < flips; ++f) {
+        const int i = static_cast<int>(rng() % n);
+        free[i] = !free[i];
+      }
+    }
+    std::vector<int> free_rows;
+    Vector z(n);
+    for (int i = 0; i < n; ++i) {
+      z[i] = free[i] ? 0.0 : (i % 3 == 0 ? -1.0 : 1.0);
+      if (free[i]) free_rows.push_back(i);
+    }
+    const Vector placed = z;
+    int nf0 = 0;
+    rank_since_factor = 0;
+    for (int i = 0; i < n; ++i) {
+      nf0 += reference[i];
+      rank_since_factor += reference[i] != free[i];
+    }
+    const bool fresh = set == 0 || rank_since_factor > UpdatedFreeBlock::MaxRank(nf0);
+    if (fresh) {
+      ++fresh_expected;
+      reference = free;
+    }
+    ASSERT_TRUE(block.Solve(M.data(), n, q.data(), free_rows.data(), static_cast<int>(free_rows.size()), 1e-14,
+                            z.data()));
+    EXPECT_EQ(block.last_path(), fresh ? UpdatedFreeBlock::Path::kFactored : UpdatedFreeBlock::Path::kUpdated)
+        << "set " << set;
+    const Vector expected = FreshSolve(M, q, free_rows, placed);
+    EXPECT_LE((z - expected).cwiseAbs().maxCoeff(), 1e-12 * (1.0 + expected.cwiseAbs().maxCoeff())) << "set " << set;
+  }
+  EXPECT_EQ(block.factorizations(), fresh_expected);
+  EXPECT_EQ(block.updates(), 40 - fresh_expected);
+  EXPECT_GE(block.updates(), 20);  // most sets of the walk were updates
+}
+
+// A set whose block is singular though the reference is not (column 20 equals column 1 on the rows of F): the
+// Schur complement's LU rejects it, the set is factored afresh, and that factorization reports the singularity.
+TEST(UpdatedFreeBlock, ASingularSetIsJudgedByAFreshFactorization) {
+  const int n = 21;
+  DenseMatrix M = RandomDominant(n, 3);
+  for (int i = 0; i < n; ++i) M(i, 20) = M(i, 1);  // F = {1..20}: two equal columns
+  const Vector q = Vector::Constant(n, -1.0);
+  UpdatedFreeBlock block;
+  block.Resize(n);
+  std::vector<int> f0(20), f1(20);
+  for (int k = 0; k < 20; ++k) f0[k] = k, f1[k] = k + 1;
+  Vector z = Vector::Zero(n);
+  z[20] = 1.0;
+  ASSERT_TRUE(block.Solve(M.data(), n, q.data(), f0.data(), 20, 1e-14, z.data()));
+  z.setZero();
+  z[0] = 1.0;
+  EXPECT_FALSE(block.Solve(M.data(), n, q.data(), f1.data(), 20, 1e-14, z.data()));
+  EXPECT_EQ(block.factorizations(), 2);
+  EXPECT_EQ(block.updates(), 0);
+}
+
+// bpp with and without updates on every generated family and bound kind: same verdict, both at the planted z*
+// (unique), and with updates fewer factorizations than sets once a problem needs several sets.
+TEST(BppSolver, FactorUpdatesGiveTheAnswersOfFreshFactorizations) {
+  BppOptions fresh_options;
+  fresh_options.factor_updates = false;
+  BppSolver updated, fresh(fresh_options);
+  int sets = 0, factorizations = 0, updated_sets = 0;
+  for (MatrixFamily family : {MatrixFamily::kSymmetricPositiveDefinite, MatrixFamily::kNonsymmetricPMatrix,
+                              MatrixFamily::kDiagonallyDominant, MatrixFamily::kSkewPMatrix}) {
+    for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kBox, BoundKind::kMixed}) {
+      for (int size : {20, 70, 150}) {
+        GeneratorOptions g;
+        g.family = family;
+        g.bounds = bounds;
+        g.size = size;
+        g.seed = 2;
+        // The strongly nonsymmetric relay of 150 rows exhausts bpp's budget in Murty's phase (no finiteness proof
+        // on the box), with or without updates.
+        if (family == MatrixFamily::kSkewPMatrix && size > 100) continue;
+        const GeneratedProblem gen = GenerateProblem(g);
+        SolverOptions options;
+        options.polish = false;
+        const SolveResult a = updated.Solve(gen.problem, options);
+        const SolveResult b = fresh.Solve(gen.problem, options);
+        ASSERT_TRUE(b.solved()) << gen.problem.name() << ": " << b.message;
+        ASSERT_TRUE(a.solved()) << gen.problem.name() << ": " << a.message;
+        EXPECT_LE(NaturalResidual(gen.problem, a.z), 1e-9) << gen.problem.name();
+        EXPECT_LE(ForwardError(a.z, gen.z_star), 1e-8) << gen.problem.name();
+        EXPECT_EQ(b.GetDetail("updated_sets"), 0.0);
+        EXPECT_EQ(a.GetDetail("factorizations") + a.GetDetail("updated_sets"),
+                  a.iterations - a.GetDetail("singular_blocks"))
+            << gen.problem.name() << ": every set solved is either factored or updated";
+        sets += a.iterations;
+        factorizations += static_cast<int>(a.GetDetail("factorizations"));
+        updated_sets += static_cast<int>(a.GetDetail("updated_sets"));
+      }
+    }
+  }
+  EXPECT_GT(updated_sets, 0);
+  EXPECT_LT(factorizations, sets);
+}
+
+// The strongly nonsymmetric class runs Murty's single pivots: each changes one row, so with updates the sets are
+// rank-1 changes of a factored block, and bpp refactors a small fraction of them.
+TEST(BppSolver, SinglePivotsAreSolvedByUpdates) {
+  GeneratorOptions g;
+  g.family = MatrixFamily::kSkewPMatrix;
+  g.bounds = BoundKind::kRelay;
+  g.size = 64;
+  g.seed = 1;
+  const GeneratedProblem gen = GenerateProblem(g);
+  BppSolver solver;
+  const SolveResult r = solver.Solve(gen.problem);
+  ASSERT_TRUE(r.solved()) << r.message;
+  EXPECT_LE(ForwardError(r.z, gen.z_star), 1e-8);
+  LemkeSolver lemke;
+  const SolveResult by_lemke = lemke.Solve(gen.problem);
+  ASSERT_TRUE(by_lemke.solved());
+  EXPECT_LE(ForwardError(r.z, by_lemke.z), 1e-8);
+  ASSERT_GT(r.GetDetail("single_pivots"), 10.0) << "the problem should need Murty's phase";
+  EXPECT_LE(r.GetDetail("factorizations") * 4, r.iterations)
+      << r.GetDetail("factorizations") << " factorizations for " << r.iterations << " sets";
+}
+
+// A few projected Gauss–Seidel sweeps choose the first set; the answer does not depend on it.
+TEST(BppSolver, SweptGuessesKeepTheAnswer) {
+  for (int sweeps : {0, 1, 3}) {
+    BppOptions o;
+    o.guess_sweeps = sweeps;
+    BppSolver solver(o);
+    for (MatrixFamily family : {MatrixFamily::kSymmetricPositiveDefinite, MatrixFamily::kNonsymmetricPMatrix}) {
+      for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kMixed}) {
+        GeneratorOptions g;
+        g.family = family;
+        g.bounds = bounds;
+        g.size = 90;
+        g.seed = 4;
+        const GeneratedProblem gen = GenerateProblem(g);
+        const SolveResult r = solver.Solve(gen.problem);
+        ASSERT_TRUE(r.solved()) << gen.problem.name() << " sweeps " << sweeps << ": " << r.message;
+        EXPECT_LE(ForwardError(r.z, gen.z_star), 1e-8) << gen.problem.name() << " sweeps " << sweeps;
+      }
+    }
+  }
+  // The sweeps run on symmetric M only (the base hands bpp the row-scaled M, symmetric up to that scaling).
+  GeneratorOptions g;
+  g.size = 40;
+  g.bounds = BoundKind::kRelay;
+  g.family = MatrixFamily::kSymmetricPositiveDefinite;
+  BppSolver solver;
+  EXPECT_EQ(solver.Solve(GenerateProblem(g).problem).GetDetail("swept_guess"), 1.0);
+  g.family = MatrixFamily::kNonsymmetricPMatrix;
+  EXPECT_FALSE(solver.Solve(GenerateProblem(g).problem).GetDetail("swept_guess") == 1.0);
+  std::string error;
+  EXPECT_FALSE(solver.SetOption("guess_sweeps", "-1", &error));
+  EXPECT_NE(error.find("guess_sweeps"), std::string::npos) << error;
+}
+
+// The update path allocates nothing after the first solve of a size (free blocks of 16–64 rows and updates).
+TEST(BppSolver, UpdatedSolvesDoNotAllocate) {
+  if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";
+  for (MatrixFamily family : {MatrixFamily::kNonsymmetricPMatrix, MatrixFamily::kSymmetricPositiveDefinite}) {
+    GeneratorOptions g;
+    g.family = family;
+    g.bounds = BoundKind::kRelay;
+    g.size = 96;
+    g.seed = 3;
+    const GeneratedProblem gen = GenerateProblem(g);
+    BppOptions no_sweeps;  // from the Jacobi-scaled guess these need several sets, hence updates
+    no_sweeps.guess_sweeps = 0;
+    BppSolver solver(no_sweeps);
+    SolverOptions options;
+    SolveResult result;
+    solver.Solve(gen.problem, options, &result);
+    ASSERT_TRUE(result.solved()) << result.message;
+    ASSERT_GT(result.GetDetail("updated_sets"), 0.0) << gen.problem.name();
+    const long allocations = test_support::CountMallocs([&] {
+      for (int k = 0; k < 3; ++k) solver.Solve(gen.problem, options, &result);
+    });
+    EXPECT_EQ(allocations, 0) << gen.problem.name();
+    EXPECT_TRUE(result.solved());
+  }
 }
 
 }  // namespace
