@@ -99,6 +99,15 @@ void StepRefiner::Reset(const DenseMatrix& M, const DenseMatrix& S, const DenseM
   pivot_row_.assign(kkt_cap, 0);
   pivot_col_.assign(kkt_cap, 0);
   pivoted_.assign(kkt_cap, 0);
+  // The box's interior set (no active row: K = M̃) is known now; ProveInside uses its inverse (m ≥ 2; m = 1 divides).
+  inside_.size = 0;
+  inside_.usable = false;
+  if (box_ && cache_on_ && m_ >= 2) {
+    inside_.rows.assign(static_cast<std::size_t>(m_), 0);
+    inside_.inverse.assign(static_cast<std::size_t>(m_) * m_, 0.0L);
+    inside_.row_norm.assign(static_cast<std::size_t>(m_), 0.0L);
+    MakeCachedKkt(0, &inside_);
+  }
   ForgetActiveSets();
 }
 
@@ -430,12 +439,74 @@ bool StepRefiner::ProveOneInput(const double* q, double* s, StepCheck* check) co
   return true;
 }
 
+template <int kM>
+bool StepRefiner::ProveInside(const double* q, double* s, StepCheck* check) {
+  const int m = kM > 0 ? kM : m_;  // a compile-time constant for m = 2: the loops unroll
+  const CachedKkt& kkt = inside_;
+  long double* r = r_.data();
+  long double* z = z_.data();
+  // r = w̃ = q̃ + M̃ s in long double, as RefineCached computes it (the same arithmetic: the same s* and x_error).
+  long double s_norm = 0.0L, q_norm = 0.0L, r_norm = 0.0L;
+  for (int i = 0; i < m; ++i) {
+    const long double qi = static_cast<long double>(q[i]) / sigma_;
+    long double wi = qi;
+    for (int j = 0; j < m; ++j) wi += M_[static_cast<std::size_t>(i * m + j)] * s[j];
+    r[i] = wi;
+    s_norm = std::max(s_norm, std::abs(static_cast<long double>(s[i])));
+    q_norm = std::max(q_norm, std::abs(qi));
+    r_norm = std::max(r_norm, std::abs(wi));
+  }
+  // δ = −X r (X ≈ M̃⁻¹); then the cached path's bound on its error, for K = M̃ (RefineCached: e covers r's rounding
+  // and the data's, b the product's, β X's own error).
+  long double delta_norm = 0.0L;
+  for (int k = 0; k < m; ++k) {
+    const long double* row = kkt.inverse.data() + static_cast<std::size_t>(k * m);
+    long double zk = 0.0L;
+    for (int j = 0; j < m; ++j) zk -= row[j] * r[j];
+    z[k] = zk;
+    delta_norm = std::max(delta_norm, std::abs(zk));
+  }
+  const long double e = gamma_r_ * (q_norm + kkt.matrix_norm * (s_norm + delta_norm));
+  // The answer's active set is empty: |w̃_i| below its slack 1 − |s_i| by more than twice e (so the exact w̃ and the
+  // factored path's reading of it, within e of r, are too; 1 ± s_i is within u_ld of its long double).
+  const long double margin = 2.0L * e + 2.0L * std::numeric_limits<long double>::epsilon();
+  for (int i = 0; i < m; ++i) {
+    if (!(std::abs(r[i]) + margin < 1.0L - std::abs(static_cast<long double>(s[i])))) return false;
+  }
+  const long double b = kkt.gamma * r_norm + e;
+  const long double bound = 2.0L * (kkt.delta_rows_norm * b + kkt.inverse_error * (r_norm + e));
+  long double star_norm = 0.0L, rounded_norm = 0.0L;
+  for (int j = 0; j < m; ++j) {
+    const long double star = static_cast<long double>(s[j]) + z[j];
+    star_[static_cast<std::size_t>(j)] = star;
+    star_norm = std::max(star_norm, std::abs(star));
+    rounded_norm = std::max(rounded_norm, std::abs(static_cast<long double>(static_cast<double>(star))));
+  }
+  // The cached path's terms: s* exact to a quarter ulp of ‖s*‖∞, and fl(s*) in the box to its 8 ulps.
+  if (!(bound <= kCachedAccuracy * star_norm)) return false;
+  if (!(1.0L - rounded_norm >= -kVerifyUlps * kEps * (1.0L + star_norm))) return false;
+  check->exact = true;
+  check->cached = true;
+  check->proved = true;
+  check->x_error = static_cast<double>(XError(s));  // ‖S(s* − s)‖∞
+  for (int j = 0; j < m; ++j) s[j] = static_cast<double>(star_[static_cast<std::size_t>(j)]);
+  return true;
+}
+
 StepCheck StepRefiner::Refine(const double* q, const double* mu, double* s) {
   StepCheck check;
   // The proofs in double first (the box, from the second step judged on: a refiner's first step is the factored
   // path's, the reference the others are compared with).
-  if (box_ && judged_before_ && (m_ == 1 ? ProveOneInput(q, s, &check) : ProveSaturated(q, s, &check))) {
-    return check;
+  if (box_ && judged_before_) {
+    bool proved = false;
+    if (m_ == 1) {
+      proved = ProveOneInput(q, s, &check);
+    } else if (std::abs(s[0]) == 1.0) {  // saturated, or a mixed set (left to the cached path)
+      proved = ProveSaturated(q, s, &check);
+    } else if (inside_.usable) {  // inside, or a mixed set (ProveInside's reading fails on a row at a face)
+      proved = m_ == 2 ? ProveInside<2>(q, s, &check) : ProveInside<0>(q, s, &check);
+    }
+    if (proved) return check;
   }
   bool cached = false;
   if (cache_on_) {

@@ -29,6 +29,9 @@
 // that keeps row i on its face with a margin above the rounding bound of its m + 1 terms (the products M_ij·(±1) are
 // exact, so |fl(w_i) − w_i| ≤ γ_m(|q_i| + Σ_j |M_ij|), Higham 2002, (3.5)); and with m = 1 an answer inside the box
 // whose w is far below its slack reads no active row, and s* = −q/M is the division IEEE rounds correctly.
+// With m ≥ 2, an answer inside the box reads no active row when every |w̃_i| is below its slack by more than w̃'s
+// rounding bound, and its exact step is s − M̃⁻¹w̃: M̃'s inverse is made once at Reset (the cached path's, with its
+// residual-verified error bound) and s* is taken on the cached path's terms (exact to a quarter ulp, in the box).
 // StepCheck::proved says so; a proof that fails leaves the step to the paths above, unchanged.
 // On a polytope the factored path's s* is projected onto its active faces afterwards (H̃_A s* = K̃_A in long double):
 // the solve's rounding grows with its right-hand side w̃ = w/σ, large when M is small (h → 0), and left s* off its
@@ -98,6 +101,9 @@ class StepRefiner {
   bool ProveSaturated(const double* q, double* s, StepCheck* check) const;
   // m = 1: ProveSaturated's proof, or inside the box s* = −q/M.
   bool ProveOneInput(const double* q, double* s, StepCheck* check) const;
+  // m ≥ 2, no active row: s* = s − M̃⁻¹ w̃ with the inverse of Reset. kM: m, or 0 (m_ at run time).
+  template <int kM>
+  bool ProveInside(const double* q, double* s, StepCheck* check);
   // Moves star_ onto the active rows' faces (least-norm correction of H̃_A s* = K̃_A); false if H̃_A H̃_Aᵀ is singular.
   bool ProjectOntoActiveRows(int a);
   // The cached path; false leaves the step to the factored one (s untouched). kM: m, or 0 (m_ at run time).
@@ -138,6 +144,7 @@ class StepRefiner {
   int next_slot_ = 0;  // the slot the next new active set takes (round robin)
   int last_slot_ = 0;  // the slot the previous step used
   bool judged_before_ = false;  // a step was judged since Reset or ForgetActiveSets
+  CachedKkt inside_;            // the box's empty active set (K = M̃), made at Reset: ProveInside's inverse
   long double gamma_r_ = 0.0L;  // γ_{m+3}: the rounding of r (its arithmetic and the data's, to long double)
   std::vector<long double> slack_, r_, z_;
   std::vector<int> pivot_row_, pivot_col_, pivoted_;

@@ -282,6 +282,50 @@ TEST(StepVerdictProofs, AOneInputStepAtTheSlackIsLeftToTheSolve) {
   }
 }
 
+// m = 2 inside the box: s* = s − M̃⁻¹w̃ with the inverse made at Reset, proved on the cached path's terms, near the
+// origin (q = 1e-10, 1e-14, 0 in several directions), at an ordinary state and at h → 0 (M = h B), for exact answers
+// and answers off by 1e-12 (but s* = 0 from an inexact answer: the factored path); near a face (1 − |s_j| down to 2^-40) and past it the verdict is the factored path's,
+// whichever path gives it.
+TEST(StepVerdictProofs, ATwoInputStepInsideTheBoxIsProvedAsTheFactoredPathJudgesIt) {
+  DenseMatrix B(2, 2);
+  B << 1.0, 0.5, 0.25, 1.0;
+  for (const double h : {1e-2, 1e-5}) {
+    const DenseMatrix M = h * B, S = h * DenseMatrix::Identity(2, 2);
+    for (const double r : {1e-10, 1e-14, 0.0, 0.3 * h}) {
+      for (const auto& [a, b] : {std::pair{0.0, 1.0}, {0.6, -0.8}}) {
+        Vector star(2);
+        star << r / h * a, r / h * b;
+        const Vector q = -M * star;
+        for (const double off : {0.0, 1e-12}) {
+          Vector s = star;
+          s[1] += off;
+          const StepCheck check = JudgedAgainstFactored(M, S, q, &s);
+          ASSERT_TRUE(check.exact) << "h " << h << " r " << r << " off " << off;
+          // s* = 0 is taken on the cached path's terms only with a zero error bound (an exact answer, w = 0).
+          if (r != 0.0 || off == 0.0) {
+            EXPECT_TRUE(check.proved) << "h " << h << " r " << r << " off " << off;
+          }
+        }
+      }
+    }
+    for (const double gap : {0x1p-10, 0x1p-30, 0x1p-40, 0.0, -0x1p-30}) {
+      Vector star(2);
+      star << 1.0 - gap, -0.2;
+      const Vector q = -M * star;
+      Vector s = star;
+      s[0] = std::min(s[0], 1.0);
+      const StepCheck check = JudgedAgainstFactored(M, S, q, &s);
+      EXPECT_TRUE(check.exact) << "h " << h << " gap " << gap;
+      if (gap == 0x1p-10) {
+        EXPECT_TRUE(check.proved) << "h " << h;
+      }
+      if (gap <= 0.0) {
+        EXPECT_FALSE(check.proved) << "h " << h << " gap " << gap;
+      }
+    }
+  }
+}
+
 // The polytope law's analogue of ASaturatedAnswerWithASmallMatrixIsExact: the same step with the box stated as
 // H = [I; −I], K = −1 (Siconos' regular twisting states its box so), and a vertex of the rotated square |s_1 ± s_2| ≤ 1,
 // with M scaled down to h = 1e-9. The long double solve's rounding grows with w̃ = w/σ and left s* off the active
