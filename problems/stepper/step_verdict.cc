@@ -403,9 +403,10 @@ bool StepRefiner::ProveSaturated(const double* q, double* s, StepCheck* check) c
 bool StepRefiner::ProveOneInput(const double* q, double* s, StepCheck* check) const {
   constexpr double kEpsD = std::numeric_limits<double>::epsilon();
   const double M = Md_[0], si = s[0], qi = q[0];
-  // w = M s + q rounded once (u|w|, which x_error below needs: the answer of a backend is often s* to an ulp, and
-  // w then cancels); exact product when s = ±1, as ProveSaturated's w.
-  const double w = std::fma(M, si, qi);
+  // w = M s + q in long double (within 2u_ld(|M s| + |q|), the resolution of the other paths' w̃ = q/σ + M̃ s, which
+  // x_error below needs: a backend's answer is often s* to an ulp, and w then cancels); exact when s = ±1.
+  const long double wl = static_cast<long double>(M) * si + qi;
+  const double w = static_cast<double>(wl);
   const double abs_s = std::abs(si);
   if (abs_s == 1.0) {
     // ProveSaturated with m = 1: the bound 2ε(|q| + |M|).
@@ -418,7 +419,7 @@ bool StepRefiner::ProveOneInput(const double* q, double* s, StepCheck* check) co
   }
   if (!(M != 0.0) || !(abs_s < 1.0)) return false;
   // Inside the box the answer's active set is empty when |w̃| < 1 − |s| (the natural map's reading, max(±w̃, 0) >
-  // 1 ± s). |fl(w) − w| ≤ u|w|, and the long double w̃ = w/σ (σ = |M|) the factored path reads is within
+  // 1 ± s). |w − M s − q| ≤ u|w| + 2u_ld(|M s| + |q|), and the long double w̃ = w/σ (σ = |M|) the factored path reads is within
   // 3u_ld(|M s| + |q|)/σ of it: taking 2ε(|M s| + |q|) off the slack |M|(1 − |s|) (1 − |s| exact for |s| ≥ 1/2 by
   // Sterbenz, else within u), less 4ε of it, leaves both readings empty.
   const double error = 2.0 * kEpsD * (std::abs(M * si) + std::abs(qi));
@@ -432,9 +433,8 @@ bool StepRefiner::ProveOneInput(const double* q, double* s, StepCheck* check) co
   check->exact = true;
   check->cached = true;
   check->proved = true;
-  // ‖S(s − s*)‖∞ = ‖S‖∞ |s − s*|, s − s* = w/M for the exact s*: to 3u of it (the other paths' long double δ is
-  // within u_ld(|q|/σ + |s|) of it).
-  check->x_error = input_scale_ * (std::abs(w) / std::abs(M));
+  // ‖S(s − s*)‖∞ = ‖S‖∞ |s − s*|, s − s* = w/M for the exact s* (to the resolution of w, as the other paths' δ).
+  check->x_error = static_cast<double>(static_cast<long double>(input_scale_) * (std::abs(wl) / std::abs(M)));
   s[0] = star;
   return true;
 }
