@@ -24,8 +24,8 @@
 // no exact step, a refiner's first step) the factored path above judges the step, unchanged, in long double either
 // way: x87 long double costs about the instructions of double, and keeps s* exact to double's rounding (κε would not).
 // StepCheck::cached says which path judged.
-// Before both, on the box (from the second step judged on, as the cached path), two proofs in double that need no
-// solve: a saturated answer (every s_j exactly ±1) is its own exact step when every w_i = (M s + q)_i has the sign
+// Before both, on the box (from the second step judged on, as the cached path), proofs that need no solve. In double:
+// a saturated answer (every s_j exactly ±1) is its own exact step when every w_i = (M s + q)_i has the sign
 // that keeps row i on its face with a margin above the rounding bound of its m + 1 terms (the products M_ij·(±1) are
 // exact, so |fl(w_i) − w_i| ≤ γ_m(|q_i| + Σ_j |M_ij|), Higham 2002, (3.5)); and with m = 1 an answer inside the box
 // whose w is far below its slack reads no active row, and s* = −q/M is the division IEEE rounds correctly.
