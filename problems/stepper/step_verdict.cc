@@ -37,6 +37,14 @@ void StepRefiner::Reset(const DenseMatrix& M, const DenseMatrix& S, const DenseM
   for (int i = 0; i < m_; ++i) {
     for (int j = 0; j < m_; ++j) M_[static_cast<std::size_t>(i * m_ + j)] = static_cast<long double>(M(i, j)) / sigma_;
   }
+  Md_.assign(static_cast<std::size_t>(m_) * m_, 0.0);
+  Mrow_abs_.assign(static_cast<std::size_t>(m_), 0.0);
+  for (int i = 0; i < m_; ++i) {
+    for (int j = 0; j < m_; ++j) {
+      Md_[static_cast<std::size_t>(i * m_ + j)] = M(i, j);
+      Mrow_abs_[static_cast<std::size_t>(i)] += std::abs(M(i, j));
+    }
+  }
   S_.assign(static_cast<std::size_t>(n_) * m_, 0.0L);
   input_scale_ = 0.0;
   for (int i = 0; i < n_; ++i) {
@@ -91,6 +99,15 @@ void StepRefiner::Reset(const DenseMatrix& M, const DenseMatrix& S, const DenseM
   pivot_row_.assign(kkt_cap, 0);
   pivot_col_.assign(kkt_cap, 0);
   pivoted_.assign(kkt_cap, 0);
+  // The box's interior set (no active row: K = M̃) is known now; ProveInside uses its inverse (m ≥ 2; m = 1 divides).
+  inside_.size = 0;
+  inside_.usable = false;
+  if (box_ && cache_on_ && m_ >= 2) {
+    inside_.rows.assign(static_cast<std::size_t>(m_), 0);
+    inside_.inverse.assign(static_cast<std::size_t>(m_) * m_, 0.0L);
+    inside_.row_norm.assign(static_cast<std::size_t>(m_), 0.0L);
+    MakeCachedKkt(0, &inside_);
+  }
   ForgetActiveSets();
 }
 
@@ -357,8 +374,140 @@ bool StepRefiner::StarIsFeasible(long double star_norm) const {
   return true;
 }
 
+bool StepRefiner::ProveSaturated(const double* q, double* s, StepCheck* check) const {
+  const int m = m_;
+  for (int i = 0; i < m; ++i) {
+    if (std::abs(s[i]) != 1.0) return false;
+  }
+  // w_i = q_i + Σ_j M_ij s_j: m additions of exact products (s_j = ±1), so |fl(w_i) − w_i| ≤ γ_m (|q_i| + Σ_j |M_ij|)
+  // (Higham 2002, (3.5); additions of subnormals are exact). The bound taken, (m + 1)ε = 2(m + 1)u times the computed
+  // sum, exceeds γ_m times the exact one (the sum's own rounding is a factor 1 + γ_m). Row i stays on its face
+  // (s_i = −1: w_i > 0; s_i = 1: w_i < 0) when fl(w_i) has that sign with a larger margin: then w_i itself has it,
+  // and so has the long double w̃_i = w_i/σ the factored path would read (its error is 2^11 times smaller), which
+  // reads every row active, one per coordinate, and gives s* = s, μ̃ = ±w̃ > 0: the same verdict, without a solve.
+  const double gamma = static_cast<double>(m + 1) * std::numeric_limits<double>::epsilon();
+  for (int i = 0; i < m; ++i) {
+    const double* row = Md_.data() + static_cast<std::size_t>(i * m);
+    double w = q[i];
+    for (int j = 0; j < m; ++j) w += row[j] * s[j];
+    const double bound = gamma * (std::abs(q[i]) + Mrow_abs_[static_cast<std::size_t>(i)]);
+    if (!(s[i] * w < -bound)) return false;
+  }
+  check->exact = true;
+  check->cached = true;
+  check->proved = true;
+  check->x_error = 0.0;  // s* = s
+  return true;
+}
+
+bool StepRefiner::ProveOneInput(const double* q, double* s, StepCheck* check) const {
+  constexpr double kEpsD = std::numeric_limits<double>::epsilon();
+  const double M = Md_[0], si = s[0], qi = q[0];
+  // w = M s + q in long double (within 2u_ld(|M s| + |q|), the resolution of the other paths' w̃ = q/σ + M̃ s, which
+  // x_error below needs: a backend's answer is often s* to an ulp, and w then cancels); exact when s = ±1.
+  const long double wl = static_cast<long double>(M) * si + qi;
+  const double w = static_cast<double>(wl);
+  const double abs_s = std::abs(si);
+  if (abs_s == 1.0) {
+    // ProveSaturated with m = 1: the bound 2ε(|q| + |M|).
+    if (!(si * w < -2.0 * kEpsD * (std::abs(qi) + std::abs(M)))) return false;
+    check->exact = true;
+    check->cached = true;
+    check->proved = true;
+    check->x_error = 0.0;
+    return true;
+  }
+  if (!(M != 0.0) || !(abs_s < 1.0)) return false;
+  // Inside the box the answer's active set is empty when |w̃| < 1 − |s| (the natural map's reading, max(±w̃, 0) >
+  // 1 ± s). |w − M s − q| ≤ u|w| + 2u_ld(|M s| + |q|), and the long double w̃ = w/σ (σ = |M|) the factored path reads is within
+  // 3u_ld(|M s| + |q|)/σ of it: taking 2ε(|M s| + |q|) off the slack |M|(1 − |s|) (1 − |s| exact for |s| ≥ 1/2 by
+  // Sterbenz, else within u), less 4ε of it, leaves both readings empty.
+  const double error = 2.0 * kEpsD * (std::abs(M * si) + std::abs(qi));
+  const double slack = std::abs(M) * (1.0 - abs_s) * (1.0 - 4.0 * kEpsD);
+  if (!(std::abs(w) + error < slack)) return false;
+  // On the empty set the step is M s* + q = 0: s* = −q/M, which IEEE division rounds correctly (the double of the
+  // exact step, as the factored and cached paths give it). It must lie in the box (their 8-ulp test); else the
+  // paths above judge the step (no exact step on this set: another set, or the step is reported).
+  const double star = -qi / M;
+  if (!(1.0 - std::abs(star) >= -static_cast<double>(kVerifyUlps) * kEpsD * (1.0 + std::abs(star)))) return false;
+  check->exact = true;
+  check->cached = true;
+  check->proved = true;
+  // ‖S(s − s*)‖∞ = ‖S‖∞ |s − s*|, s − s* = w/M for the exact s* (to the resolution of w, as the other paths' δ).
+  check->x_error = static_cast<double>(static_cast<long double>(input_scale_) * (std::abs(wl) / std::abs(M)));
+  s[0] = star;
+  return true;
+}
+
+template <int kM>
+bool StepRefiner::ProveInside(const double* q, double* s, StepCheck* check) {
+  const int m = kM > 0 ? kM : m_;  // a compile-time constant for m = 2: the loops unroll
+  const CachedKkt& kkt = inside_;
+  long double* r = r_.data();
+  long double* z = z_.data();
+  // r = w̃ = q̃ + M̃ s in long double, as RefineCached computes it (the same arithmetic: the same s* and x_error).
+  long double s_norm = 0.0L, q_norm = 0.0L, r_norm = 0.0L;
+  for (int i = 0; i < m; ++i) {
+    const long double qi = static_cast<long double>(q[i]) / sigma_;
+    long double wi = qi;
+    for (int j = 0; j < m; ++j) wi += M_[static_cast<std::size_t>(i * m + j)] * s[j];
+    r[i] = wi;
+    s_norm = std::max(s_norm, std::abs(static_cast<long double>(s[i])));
+    q_norm = std::max(q_norm, std::abs(qi));
+    r_norm = std::max(r_norm, std::abs(wi));
+  }
+  // δ = −X r (X ≈ M̃⁻¹); then the cached path's bound on its error, for K = M̃ (RefineCached: e covers r's rounding
+  // and the data's, b the product's, β X's own error).
+  long double delta_norm = 0.0L;
+  for (int k = 0; k < m; ++k) {
+    const long double* row = kkt.inverse.data() + static_cast<std::size_t>(k * m);
+    long double zk = 0.0L;
+    for (int j = 0; j < m; ++j) zk -= row[j] * r[j];
+    z[k] = zk;
+    delta_norm = std::max(delta_norm, std::abs(zk));
+  }
+  const long double e = gamma_r_ * (q_norm + kkt.matrix_norm * (s_norm + delta_norm));
+  // The answer's active set is empty: |w̃_i| below its slack 1 − |s_i| by more than twice e (so the exact w̃ and the
+  // factored path's reading of it, within e of r, are too; 1 ± s_i is within u_ld of its long double).
+  const long double margin = 2.0L * e + 2.0L * std::numeric_limits<long double>::epsilon();
+  for (int i = 0; i < m; ++i) {
+    if (!(std::abs(r[i]) + margin < 1.0L - std::abs(static_cast<long double>(s[i])))) return false;
+  }
+  const long double b = kkt.gamma * r_norm + e;
+  const long double bound = 2.0L * (kkt.delta_rows_norm * b + kkt.inverse_error * (r_norm + e));
+  long double star_norm = 0.0L, rounded_norm = 0.0L;
+  for (int j = 0; j < m; ++j) {
+    const long double star = static_cast<long double>(s[j]) + z[j];
+    star_[static_cast<std::size_t>(j)] = star;
+    star_norm = std::max(star_norm, std::abs(star));
+    rounded_norm = std::max(rounded_norm, std::abs(static_cast<long double>(static_cast<double>(star))));
+  }
+  // The cached path's terms: s* exact to a quarter ulp of ‖s*‖∞, and fl(s*) in the box to its 8 ulps.
+  if (!(bound <= kCachedAccuracy * star_norm)) return false;
+  if (!(1.0L - rounded_norm >= -kVerifyUlps * kEps * (1.0L + star_norm))) return false;
+  check->exact = true;
+  check->cached = true;
+  check->proved = true;
+  check->x_error = static_cast<double>(XError(s));  // ‖S(s* − s)‖∞
+  for (int j = 0; j < m; ++j) s[j] = static_cast<double>(star_[static_cast<std::size_t>(j)]);
+  return true;
+}
+
 StepCheck StepRefiner::Refine(const double* q, const double* mu, double* s) {
   StepCheck check;
+  // The proofs in double first (the box, from the second step judged on: a refiner's first step is the factored
+  // path's, the reference the others are compared with).
+  if (box_ && judged_before_) {
+    bool proved = false;
+    if (m_ == 1) {
+      proved = ProveOneInput(q, s, &check);
+    } else if (std::abs(s[0]) == 1.0) {  // saturated, or a mixed set (left to the cached path)
+      proved = ProveSaturated(q, s, &check);
+    } else if (inside_.usable) {  // inside, or a mixed set (ProveInside's reading fails on a row at a face)
+      proved = m_ == 2 ? ProveInside<2>(q, s, &check) : ProveInside<0>(q, s, &check);
+    }
+    if (proved) return check;
+  }
   bool cached = false;
   if (cache_on_) {
     switch (m_) {
@@ -432,6 +581,55 @@ StepCheck StepRefiner::RefineFactored(const double* q, const double* mu, double*
   if (!check.exact) return check;
   for (int j = 0; j < m_; ++j) s[j] = static_cast<double>(star_[static_cast<std::size_t>(j)]);
   return check;
+}
+
+bool StepRefiner::ProjectOntoActiveRows(int a) {
+  // g = K̃_A − H̃_A s*, G = H̃_A H̃_Aᵀ (a×a, in A_, free after the solve), y = G⁻¹g (in sol_), s* += H̃_Aᵀ y: the
+  // least-norm correction onto the faces, exact on a vertex (a = m) to long double's rounding.
+  const auto h = [this](int c, int j) {
+    return H_[static_cast<std::size_t>(active_rows_[static_cast<std::size_t>(c)] * m_ + j)];
+  };
+  const auto G = [this, a](int c, int d) -> long double& { return A_[static_cast<std::size_t>(c * a + d)]; };
+  long double gmax = 0.0L;
+  for (int c = 0; c < a; ++c) {
+    long double g = K_[static_cast<std::size_t>(active_rows_[static_cast<std::size_t>(c)])];
+    for (int j = 0; j < m_; ++j) g -= h(c, j) * star_[static_cast<std::size_t>(j)];
+    sol_[static_cast<std::size_t>(c)] = g;
+    for (int d = 0; d < a; ++d) {
+      long double v = 0.0L;
+      for (int j = 0; j < m_; ++j) v += h(c, j) * h(d, j);
+      G(c, d) = v;
+      gmax = std::max(gmax, std::abs(v));
+    }
+  }
+  // Gaussian elimination with partial pivoting (G is symmetric positive semidefinite; rows scaled to max 1).
+  for (int k = 0; k < a; ++k) {
+    int p = k;
+    for (int i = k + 1; i < a; ++i) {
+      if (std::abs(G(i, k)) > std::abs(G(p, k))) p = i;
+    }
+    if (!(std::abs(G(p, k)) > kRankThreshold * gmax)) return false;
+    if (p != k) {
+      for (int j = 0; j < a; ++j) std::swap(G(k, j), G(p, j));
+      std::swap(sol_[static_cast<std::size_t>(k)], sol_[static_cast<std::size_t>(p)]);
+    }
+    for (int i = k + 1; i < a; ++i) {
+      const long double f = G(i, k) / G(k, k);
+      for (int j = k; j < a; ++j) G(i, j) -= f * G(k, j);
+      sol_[static_cast<std::size_t>(i)] -= f * sol_[static_cast<std::size_t>(k)];
+    }
+  }
+  for (int i = a - 1; i >= 0; --i) {
+    long double v = sol_[static_cast<std::size_t>(i)];
+    for (int j = i + 1; j < a; ++j) v -= G(i, j) * sol_[static_cast<std::size_t>(j)];
+    sol_[static_cast<std::size_t>(i)] = v / G(i, i);
+  }
+  for (int j = 0; j < m_; ++j) {
+    long double v = 0.0L;
+    for (int c = 0; c < a; ++c) v += h(c, j) * sol_[static_cast<std::size_t>(c)];
+    star_[static_cast<std::size_t>(j)] += v;
+  }
+  return true;
 }
 
 long double StepRefiner::XError(const double* s) const {
@@ -530,6 +728,11 @@ bool StepRefiner::SolveOnActiveSet(const double* q, const double* s) {
       const int r = active_rows_[static_cast<std::size_t>(c)], j = r % m_;
       star_[static_cast<std::size_t>(j)] = K_[static_cast<std::size_t>(r)] / H_[static_cast<std::size_t>(r * m_ + j)];
     }
+  } else if (a > 0) {
+    // A polytope's faces have no coordinate to fix: s* is projected onto them instead (the same rounding, of the
+    // order of u_ld‖w̃‖, left a vertex answer 1e-14 outside P at h = 1e-5; step_verdict_test.cc). A dependent set of
+    // active rows keeps the solve's s*.
+    ProjectOntoActiveRows(a);
   }
   for (int j = 0; j < m_; ++j) {
     if (!std::isfinite(static_cast<double>(star_[static_cast<std::size_t>(j)]))) return false;

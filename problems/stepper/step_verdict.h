@@ -24,6 +24,18 @@
 // no exact step, a refiner's first step) the factored path above judges the step, unchanged, in long double either
 // way: x87 long double costs about the instructions of double, and keeps s* exact to double's rounding (κε would not).
 // StepCheck::cached says which path judged.
+// Before both, on the box (from the second step judged on, as the cached path), proofs that need no solve. In double:
+// a saturated answer (every s_j exactly ±1) is its own exact step when every w_i = (M s + q)_i has the sign
+// that keeps row i on its face with a margin above the rounding bound of its m + 1 terms (the products M_ij·(±1) are
+// exact, so |fl(w_i) − w_i| ≤ γ_m(|q_i| + Σ_j |M_ij|), Higham 2002, (3.5)); and with m = 1 an answer inside the box
+// whose w is far below its slack reads no active row, and s* = −q/M is the division IEEE rounds correctly.
+// With m ≥ 2, an answer inside the box reads no active row when every |w̃_i| is below its slack by more than w̃'s
+// rounding bound, and its exact step is s − M̃⁻¹w̃: M̃'s inverse is made once at Reset (the cached path's, with its
+// residual-verified error bound) and s* is taken on the cached path's terms (exact to a quarter ulp, in the box).
+// StepCheck::proved says so; a proof that fails leaves the step to the paths above, unchanged.
+// On a polytope the factored path's s* is projected onto its active faces afterwards (H̃_A s* = K̃_A in long double):
+// the solve's rounding grows with its right-hand side w̃ = w/σ, large when M is small (h → 0), and left s* off its
+// faces by more than the 8-ulp feasibility test (a correct vertex answer refused; the box fixes s*_j = ±1 instead).
 // Allocation-free after Reset (buffers sized to m + rows of P).
 #pragma once
 
@@ -38,7 +50,8 @@ namespace smcbench {
 struct StepCheck {
   bool exact = false;    // s* found and verified on the answer's active set
   double x_error = kNaN;  // ‖S(s − s*)‖∞: the answer's forward error in x_{k+1} (NaN unless exact)
-  bool cached = false;    // judged by the cached inverse of the active set's KKT matrix (else factored)
+  bool cached = false;    // judged without the factored solve: the cached inverse, or a proof in double (`proved`)
+  bool proved = false;    // judged by a proof in double (a saturated box answer; m = 1 inside the box): no solve
 };
 
 // The allowance of the step verdict: tol·(‖S‖∞ + ‖x_{k+1}‖∞).
@@ -84,6 +97,15 @@ class StepRefiner {
   };
   // The factored path: steps 1-3 above.
   StepCheck RefineFactored(const double* q, const double* mu, double* s);
+  // The box's proofs in double; false leaves the step to the cached and factored paths (s untouched).
+  bool ProveSaturated(const double* q, double* s, StepCheck* check) const;
+  // m = 1: ProveSaturated's proof, or inside the box s* = −q/M.
+  bool ProveOneInput(const double* q, double* s, StepCheck* check) const;
+  // m ≥ 2, no active row: s* = s − M̃⁻¹ w̃ with the inverse of Reset. kM: m, or 0 (m_ at run time).
+  template <int kM>
+  bool ProveInside(const double* q, double* s, StepCheck* check);
+  // Moves star_ onto the active rows' faces (least-norm correction of H̃_A s* = K̃_A); false if H̃_A H̃_Aᵀ is singular.
+  bool ProjectOntoActiveRows(int a);
   // The cached path; false leaves the step to the factored one (s untouched). kM: m, or 0 (m_ at run time).
   template <int kM>
   bool RefineCached(const double* q, const double* mu, double* s, StepCheck* check);
@@ -109,6 +131,7 @@ class StepRefiner {
   double input_scale_ = 0.0;
   long double sigma_ = 1.0L;           // max |M_ij| (1 when M = 0): M̃ = M/σ, q̃ = q/σ
   std::vector<long double> M_, S_;     // M̃ (row-major m×m), S (row-major n×m)
+  std::vector<double> Md_, Mrow_abs_;  // M as given (row-major m×m) and Σ_j |M_ij|: the proofs in double
   std::vector<long double> H_, K_;     // H̃ = H_r/h_r (row-major rows×m), K̃ = K_r/h_r
   std::vector<long double> hscale_;    // h_r = max_j |H_rj|
   std::vector<char> active_;           // rows in the active set
@@ -121,6 +144,7 @@ class StepRefiner {
   int next_slot_ = 0;  // the slot the next new active set takes (round robin)
   int last_slot_ = 0;  // the slot the previous step used
   bool judged_before_ = false;  // a step was judged since Reset or ForgetActiveSets
+  CachedKkt inside_;            // the box's empty active set (K = M̃), made at Reset: ProveInside's inverse
   long double gamma_r_ = 0.0L;  // γ_{m+3}: the rounding of r (its arithmetic and the data's, to long double)
   std::vector<long double> slack_, r_, z_;
   std::vector<int> pivot_row_, pivot_col_, pivoted_;

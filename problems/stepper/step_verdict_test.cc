@@ -130,5 +130,252 @@ TEST(StepVerdictPaths, ASaturatedAnswerWithASmallMatrixIsExact) {
   EXPECT_EQ(check.x_error, 0.0);
 }
 
+// The same answer judged by a refiner that has judged a step before (the proofs in double, the cached path, then
+// the factored path) and by a fresh one (the factored path): the judgement must not depend on which path gave it.
+StepCheck JudgedAgainstFactored(const DenseMatrix& M, const DenseMatrix& S, const Vector& q, Vector* s) {
+  StepRefiner refiner;
+  refiner.Reset(M, S, DenseMatrix(0, M.rows()), Vector());
+  Vector first = *s;
+  refiner.Refine(q.data(), nullptr, first.data());  // the first step judged: the factored path
+  Vector s_factored = *s;
+  const StepCheck factored = Factored(M, S, q, &s_factored);
+  const StepCheck check = refiner.Refine(q.data(), nullptr, s->data());
+  EXPECT_EQ(check.exact, factored.exact);
+  if (check.exact && factored.exact) {
+    for (Eigen::Index j = 0; j < s->size(); ++j) EXPECT_NEAR((*s)[j], s_factored[j], kEps * std::abs(s_factored[j]));
+    // The factored path's δ is within a few u_ld (|q|/σ + |s|) of s* − s (its w̃ = q/σ + M̃ s in long double).
+    const double input_scale = S.cwiseAbs().rowwise().sum().maxCoeff();
+    const double sigma = M.cwiseAbs().maxCoeff() > 0 ? M.cwiseAbs().maxCoeff() : 1.0;
+    const double resolution = input_scale * 0x1p-60 * (q.cwiseAbs().maxCoeff() / sigma + s_factored.cwiseAbs().maxCoeff());
+    EXPECT_NEAR(check.x_error, factored.x_error, 1e-6 * factored.x_error + resolution);
+  }
+  if (check.proved) {
+    EXPECT_TRUE(check.cached);
+  }
+  return check;
+}
+
+// A saturated answer s = −1 with w = q − 1 = k ε exactly (q = 1 + kε, M = 1): the proof's bound is 2ε(|q| + |M|) ≈ 4ε,
+// so k ≥ 5 is proved (s* = s, x_error 0) and k ≤ 4 goes to the solve, which gives the same verdict: exact for k > 0
+// (the face), and for k ≤ 0 the free row's s* = −q (inside by |k|ε), never a proof.
+TEST(StepVerdictProofs, ASaturatedAnswerIsProvedOnlyWithAMarginAboveTheRoundingBound) {
+  DenseMatrix M(1, 1), S(1, 1);
+  M << 1.0;
+  S << 0.1;
+  for (int k = -3; k <= 8; ++k) {
+    Vector q(1), s(1);
+    q << 1.0 + k * kEps;
+    s << -1.0;
+    const StepCheck check = JudgedAgainstFactored(M, S, q, &s);
+    ASSERT_TRUE(check.exact) << "k = " << k;
+    EXPECT_EQ(check.proved, k >= 5) << "k = " << k;
+    if (k >= 0) {
+      EXPECT_EQ(s[0], -1.0) << "k = " << k;
+      EXPECT_EQ(check.x_error, 0.0) << "k = " << k;
+    } else {
+      EXPECT_EQ(s[0], -q[0]) << "k = " << k;
+    }
+  }
+}
+
+// Two inputs (the general proof, m + 1 = 3 terms a row): the second row's w moved across its bound. Far above it the
+// step is proved; at half the bound or less it is not (the solve judges, the same verdict); the wrong sign is never
+// proved (the answer is not on its face: the solve finds the exact step elsewhere).
+TEST(StepVerdictProofs, ATwoInputSaturatedAnswerIsProvedOnlyWithAMargin) {
+  DenseMatrix M(2, 2), S(2, 2);
+  M << 1.0, 0.5, 0.25, 1.0;
+  S << 0.1, 0.02, 0.0, 0.1;
+  Vector s0(2);
+  s0 << -1.0, 1.0;
+  const double bound = 3 * kEps * (0.75 + 1.25);  // (m + 1)ε (|q_1| + Σ_j |M_1j|), q_1 ≈ 0.75
+  for (const double factor : {-8.0, -1.0, -0.5, 0.0, 0.25, 0.5, 2.0, 8.0, 1e6}) {
+    Vector q(2), s = s0;
+    q << 2.0, 0.75;                    // w_0 = 2 − 1 + 0.5 = 1.5 > 0: row 0 on its lower face
+    q[1] = -0.75 - factor * bound;     // w_1 = q_1 − 0.25 + 1 = −factor·bound (to rounding): upper face needs w_1 < 0
+    const double w1 = q[1] + 0.25 * s[0] + 1.0 * s[1];
+    const StepCheck check = JudgedAgainstFactored(M, S, q, &s);
+    if (factor >= 2.0) {
+      EXPECT_TRUE(check.proved) << "factor " << factor << ", w_1 = " << w1;
+      EXPECT_EQ(s, s0);
+    }
+    if (factor <= 0.5) {
+      EXPECT_FALSE(check.proved) << "factor " << factor << ", w_1 = " << w1;
+    }
+    if (check.proved) {
+      EXPECT_EQ(s, s0);
+      EXPECT_EQ(check.x_error, 0.0);
+    }
+  }
+}
+
+// h → 0: M = h B small, q of order 1 (filippov at h = 1e-5, the step of ASaturatedAnswerWithASmallMatrixIsExact, and
+// a one-input relay down to h = 1e-9): the saturated answer is proved, exactly, where the long double solve's δ grows
+// with w/σ.
+TEST(StepVerdictProofs, ASaturatedAnswerWithASmallMatrixIsProved) {
+  DenseMatrix M(2, 2);
+  M << 0x1.4f8b588e368f1p-17, -0x1.4f8b588e368f1p-16, 0x1.4f8b588e368f1p-16, 0x1.4f8b588e368f1p-17;
+  Vector q(2), s(2);
+  q << -0x1.fbaf102363b66p-1, 0x1.00b827fa1a122p+0;
+  s << 1.0, -1.0;
+  StepCheck check = JudgedAgainstFactored(M, M, q, &s);
+  EXPECT_TRUE(check.proved);
+  EXPECT_EQ(s[0], 1.0);
+  EXPECT_EQ(s[1], -1.0);
+  for (const double h : {1e-5, 1e-7, 1e-9}) {
+    DenseMatrix m1(1, 1);
+    m1 << h;
+    Vector q1(1), s1(1);
+    q1 << 0.7;
+    s1 << -1.0;
+    check = JudgedAgainstFactored(m1, m1, q1, &s1);
+    EXPECT_TRUE(check.proved) << "h = " << h;
+    EXPECT_EQ(s1[0], -1.0);
+  }
+}
+
+// m = 1 inside the box: s* = −q/M, the correctly rounded quotient, near the origin (x = 1e-10, 1e-14, 0: q = −x for
+// x' ∈ −sgn(x), M = S = h) and at ordinary states, for answers exact and off by 1e-12 or by an ulp; the verdict is the
+// factored path's, and the proof holds on all of them.
+TEST(StepVerdictProofs, AOneInputStepInsideTheBoxIsTheCorrectlyRoundedQuotient) {
+  for (const double h : {1e-2, 1e-5}) {
+    DenseMatrix M(1, 1);
+    M << h;
+    for (const double x : {1e-10, -1e-14, 0.0, 0.3 * h, -0.999 * h}) {
+      Vector q(1);
+      q << -x;
+      const double exact = x / h;
+      for (const double off : {0.0, 1e-12, -2.2e-16}) {
+        Vector s(1);
+        s << exact + off;
+        const StepCheck check = JudgedAgainstFactored(M, M, q, &s);
+        ASSERT_TRUE(check.exact) << "h " << h << " x " << x << " off " << off;
+        EXPECT_TRUE(check.proved) << "h " << h << " x " << x << " off " << off;
+        EXPECT_EQ(s[0], -q[0] / M(0, 0));
+        // ‖S‖∞|s − s*| = h|off|, to the rounding of the exact quotient.
+        EXPECT_NEAR(check.x_error, h * std::abs(off), h * (1e-3 * std::abs(off) + 2 * kEps * std::abs(exact)) + 1e-300);
+      }
+    }
+  }
+}
+
+// m = 1 inside the box near its face: s = 0.75, w = M s + q moved across the slack 1 − |s| = 0.25 (toward the upper
+// face, w < 0). Far inside the slack it is proved; at the slack (to a few ulps) and past it the solve judges, with the
+// same verdict, and a wrong answer (w far past the slack: the face is active) is never proved.
+TEST(StepVerdictProofs, AOneInputStepAtTheSlackIsLeftToTheSolve) {
+  DenseMatrix M(1, 1);
+  M << 1.0;
+  for (const double w : {-0.2, -0.25 * (1 - 64 * kEps), -0.25 * (1 - 4 * kEps), -0.25, -0.25 * (1 + 4 * kEps), -0.3,
+                         -2.0}) {
+    Vector q(1), s(1);
+    s << 0.75;
+    q << w - 0.75;
+    const StepCheck check = JudgedAgainstFactored(M, 0.1 * M, q, &s);
+    if (w >= -0.2) {
+      EXPECT_TRUE(check.proved) << "w = " << w;
+    }
+    if (w <= -0.25 * (1 - 4 * kEps)) {
+      EXPECT_FALSE(check.proved) << "w = " << w;
+    }
+    if (check.proved) {
+      EXPECT_EQ(s[0], -q[0]);
+    }
+  }
+}
+
+// m = 2 inside the box: s* = s − M̃⁻¹w̃ with the inverse made at Reset, proved on the cached path's terms, near the
+// origin (q = 1e-10, 1e-14, 0 in several directions), at an ordinary state and at h → 0 (M = h B), for exact answers
+// and answers off by 1e-12 (but s* = 0 from an inexact answer: the factored path); near a face (1 − |s_j| down to 2^-40) and past it the verdict is the factored path's,
+// whichever path gives it.
+TEST(StepVerdictProofs, ATwoInputStepInsideTheBoxIsProvedAsTheFactoredPathJudgesIt) {
+  DenseMatrix B(2, 2);
+  B << 1.0, 0.5, 0.25, 1.0;
+  for (const double h : {1e-2, 1e-5}) {
+    const DenseMatrix M = h * B, S = h * DenseMatrix::Identity(2, 2);
+    for (const double r : {1e-10, 1e-14, 0.0, 0.3 * h}) {
+      for (const auto& [a, b] : {std::pair{0.0, 1.0}, {0.6, -0.8}}) {
+        Vector star(2);
+        star << r / h * a, r / h * b;
+        const Vector q = -M * star;
+        for (const double off : {0.0, 1e-12}) {
+          Vector s = star;
+          s[1] += off;
+          const StepCheck check = JudgedAgainstFactored(M, S, q, &s);
+          ASSERT_TRUE(check.exact) << "h " << h << " r " << r << " off " << off;
+          // s* = 0 is taken on the cached path's terms only with a zero error bound (an exact answer, w = 0).
+          if (r != 0.0 || off == 0.0) {
+            EXPECT_TRUE(check.proved) << "h " << h << " r " << r << " off " << off;
+          }
+        }
+      }
+    }
+    for (const double gap : {0x1p-10, 0x1p-30, 0x1p-40, 0.0, -0x1p-30}) {
+      Vector star(2);
+      star << 1.0 - gap, -0.2;
+      const Vector q = -M * star;
+      Vector s = star;
+      s[0] = std::min(s[0], 1.0);
+      const StepCheck check = JudgedAgainstFactored(M, S, q, &s);
+      EXPECT_TRUE(check.exact) << "h " << h << " gap " << gap;
+      if (gap == 0x1p-10) {
+        EXPECT_TRUE(check.proved) << "h " << h;
+      }
+      if (gap <= 0.0) {
+        EXPECT_FALSE(check.proved) << "h " << h << " gap " << gap;
+      }
+    }
+  }
+}
+
+// The polytope law's analogue of ASaturatedAnswerWithASmallMatrixIsExact: the same step with the box stated as
+// H = [I; −I], K = −1 (Siconos' regular twisting states its box so), and a vertex of the rotated square |s_1 ± s_2| ≤ 1,
+// with M scaled down to h = 1e-9. The long double solve's rounding grows with w̃ = w/σ and left s* off the active
+// faces by more than the 8-ulp feasibility test (a correct vertex answer refused at h = 1e-5, 1e-8, 1e-9, and s*
+// 3e-14 off the vertex at h = 1e-6); projected onto the faces it is the vertex, exactly.
+TEST(StepVerdictPaths, APolytopeVertexAnswerWithASmallMatrixIsExact) {
+  DenseMatrix M0(2, 2);
+  M0 << 0x1.4f8b588e368f1p-17, -0x1.4f8b588e368f1p-16, 0x1.4f8b588e368f1p-16, 0x1.4f8b588e368f1p-17;
+  Vector q(2);
+  q << -0x1.fbaf102363b66p-1, 0x1.00b827fa1a122p+0;
+  const Vector K = Vector::Constant(4, -1.0);
+  DenseMatrix box(4, 2), square(4, 2);
+  box << 1, 0, 0, 1, -1, 0, 0, -1;
+  square << 1, 1, 1, -1, -1, -1, -1, 1;  // s_1 + s_2 ≥ −1, s_1 − s_2 ≥ −1, and their negations
+  for (const double h : {1e-5, 1e-6, 1e-7, 1e-8, 1e-9}) {
+    const DenseMatrix M = (h / 1e-5) * M0;
+    {
+      Vector s(2);
+      s << 1.0, -1.0;  // rows 2 (−s_1 ≥ −1) and 1 (s_2 ≥ −1) active
+      const Vector w = M * s + q;
+      Vector mu = Vector::Zero(4);
+      mu[2] = -w[0];
+      mu[1] = w[1];
+      ASSERT_GT(mu.minCoeff(), -1e-300);
+      StepRefiner refiner;
+      refiner.Reset(M, M, box, K);
+      const StepCheck check = refiner.Refine(q.data(), mu.data(), s.data());
+      ASSERT_TRUE(check.exact) << "box, h = " << h;
+      EXPECT_EQ(s[0], 1.0) << "box, h = " << h;
+      EXPECT_EQ(s[1], -1.0) << "box, h = " << h;
+      EXPECT_EQ(check.x_error, 0.0) << "box, h = " << h;
+    }
+    {
+      Vector s(2);
+      s << 0.0, -1.0;  // rows 0 (s_1 + s_2 = −1) and 3 (s_2 − s_1 = −1) active: w = μ_0 (1, 1) + μ_3 (−1, 1)
+      const Vector w = M * s + q;
+      Vector mu = Vector::Zero(4);
+      mu[0] = (w[0] + w[1]) / 2;
+      mu[3] = (w[1] - w[0]) / 2;
+      ASSERT_GT(mu.minCoeff(), -1e-300);
+      StepRefiner refiner;
+      refiner.Reset(M, M, square, K);
+      const StepCheck check = refiner.Refine(q.data(), mu.data(), s.data());
+      ASSERT_TRUE(check.exact) << "square, h = " << h;
+      EXPECT_EQ(s[0], 0.0) << "square, h = " << h;
+      EXPECT_EQ(s[1], -1.0) << "square, h = " << h;
+      EXPECT_EQ(check.x_error, 0.0) << "square, h = " << h;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace smcbench
