@@ -5,6 +5,9 @@
 //   auto_rule_measure spd-test    cost of auto's SPD test (symmetry, Cholesky, condition estimate) against psor
 //   auto_rule_measure overhead    a one-off solve through auto against the same solve by the backend it chose
 //                                 (fastest of 15 samples each, taken in turn)
+//   auto_rule_measure handover [MAX_M]
+//                                 bpp with a cap of c·m single pivots, then lemke when it hands over (auto's chain),
+//                                 against lemke alone and bpp without a cap, per class × bounds × m = 16 … 256
 //   auto_rule_measure classes [MAX_M]
 //                                 every matrix class the generators know × bounds × size (m = 4 … 256, or up to
 //                                 MAX_M): each candidate, newton-min and auto, auto over the fastest, what auto chose
@@ -22,7 +25,9 @@
 #include "solvers/auto/auto_solver.h"
 #include "solvers/core/duration_text.h"
 #include "solvers/generators/random_problems.h"
+#include "solvers/lemke/lemke_solver.h"
 #include "solvers/newton/newton_min_solver.h"
+#include "solvers/pivoting/bpp_solver.h"
 
 namespace smcbench {
 namespace {
@@ -248,6 +253,90 @@ std::string ClassName(const ProblemClass& c) {
          (c.sparse ? "-sparse" : "");
 }
 
+// bpp's per-call safeguard: with max_single_pivots = c·m, a bpp that leaves its block phase hands the problem to
+// lemke (what auto's chain does). Each cell: the chain's time over lemke alone (geometric mean over seeds 1–3 of
+// the median), and how many of the three bpp answered itself; the last columns: bpp without a cap over lemke, and
+// lemke's time.
+void Handover(int max_m) {
+  const double factors[] = {0.25, 0.5, 1.0, 2.0};
+  constexpr int kFactors = 4;
+  SolverOptions options = TimedOptions();
+  options.time_limit_seconds = 0.5;
+  LemkeSolver lemke;
+  BppSolver uncapped;
+  std::printf("Cold solves: bpp capped at c·m single pivots, then lemke if it handed over, over lemke alone "
+              "(geometric mean over seeds 1-3 of the median; in brackets: solves bpp answered itself).\n\n"
+              "| class | m |");
+  for (double c : factors) std::printf(" c = %g |", c);
+  std::printf(" bpp, no cap | lemke |\n|---|---:|");
+  for (int k = 0; k < kFactors + 2; ++k) std::printf("---:|");
+  std::printf("\n");
+  for (MatrixFamily family : {MatrixFamily::kSymmetricPositiveDefinite, MatrixFamily::kNonsymmetricPMatrix,
+                              MatrixFamily::kSkewPMatrix, MatrixFamily::kDiagonallyDominant,
+                              MatrixFamily::kScaledPMatrix}) {
+    for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kMixed}) {
+      for (int m : {16, 32, 64, 128, 256}) {
+        if (m > max_m) continue;
+        std::vector<BoxMLCP> problems;
+        for (std::uint64_t seed : {1u, 2u, 3u}) {
+          GeneratorOptions g;
+          g.family = family;
+          g.bounds = bounds;
+          g.size = m;
+          g.seed = seed;
+          problems.push_back(GenerateProblem(g).problem);
+        }
+        std::printf("| %s | %d |", ClassName({family, bounds}).c_str(), m);
+        // One solve's time (median of repeats; once above 20 ms), and whether it solved.
+        const auto time_of = [&](auto&& solve) {
+          const auto start = Clock::now();
+          const bool ok = solve();
+          const double once = std::chrono::duration<double>(Clock::now() - start).count();
+          const double ns = once > 0.02 ? once * 1e9 : MedianNs([&] { solve(); });
+          return std::make_pair(ns, ok);
+        };
+        double lemke_log = 0.0;
+        std::vector<double> lemke_ns;
+        for (const BoxMLCP& p : problems) {
+          SolveResult r;
+          const auto [ns, ok] = time_of([&] { lemke.Solve(p, options, &r); return r.solved(); });
+          lemke_ns.push_back(ns);
+          lemke_log += std::log(ns);
+        }
+        for (double c : factors) {
+          BppOptions bo;
+          bo.max_single_pivots = std::max(1, static_cast<int>(std::ceil(c * m)));
+          BppSolver capped(bo);
+          double log_ratio = 0.0;
+          int answered = 0;
+          for (std::size_t k = 0; k < problems.size(); ++k) {
+            SolveResult r;
+            bool bpp_answered = false;
+            const auto [ns, ok] = time_of([&] {
+              capped.Solve(problems[k], options, &r);
+              bpp_answered = r.solved();
+              if (!bpp_answered) lemke.Solve(problems[k], options, &r);
+              return r.solved();
+            });
+            (void)ok;
+            answered += bpp_answered;
+            log_ratio += std::log(ns / lemke_ns[k]);
+          }
+          std::printf(" %.2f (%d) |", std::exp(log_ratio / 3.0), answered);
+        }
+        double log_ratio = 0.0;
+        for (std::size_t k = 0; k < problems.size(); ++k) {
+          SolveResult r;
+          const auto [ns, ok] = time_of([&] { uncapped.Solve(problems[k], options, &r); return r.solved(); });
+          log_ratio += std::log(ok ? ns / lemke_ns[k] : 0.5e9 / lemke_ns[k]);
+        }
+        std::printf(" %.2f | %s |\n", std::exp(log_ratio / 3.0), Ns(std::exp(lemke_log / 3.0)).c_str());
+        std::fflush(stdout);
+      }
+    }
+  }
+}
+
 // Every class × size: cold time of each candidate (geometric mean over seeds 1–3 of the median; "> 0.2 s" past the
 // measurement's time limit; a failure names its status), the fastest that solved every seed, auto and auto over
 // it. The rows the docs quote are the worst ratios and the classes the issue named.
@@ -359,6 +448,8 @@ int main(int argc, char** argv) {
     smcbench::SpdTest();
   } else if (mode == "overhead") {
     smcbench::Overhead();
+  } else if (mode == "handover") {
+    smcbench::Handover(argc > 2 ? std::atoi(argv[2]) : 256);
   } else if (mode == "classes") {
     const int max_m = argc > 2 ? std::atoi(argv[2]) : 256;
     if (max_m < 4) {
@@ -368,7 +459,7 @@ int main(int argc, char** argv) {
     }
     smcbench::Classes(max_m);
   } else {
-    std::fprintf(stderr, "usage: %s sizes|condition|spd-test|overhead|classes [MAX_M] (docs/auto.md)\n", argv[0]);
+    std::fprintf(stderr, "usage: %s sizes|condition|spd-test|overhead|handover|classes [MAX_M] (docs/auto.md)\n", argv[0]);
     return 2;
   }
   return 0;

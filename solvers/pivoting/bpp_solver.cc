@@ -50,6 +50,10 @@ bool BppOptions::IsValid(std::string* why) const {
     if (why) *why = "bpp: max_single_pivots must be >= 0, or -1 for no limit";
     return false;
   }
+  if (!(single_pivots_per_row == -1.0 || (single_pivots_per_row > 0.0 && single_pivots_per_row <= 1e6))) {
+    if (why) *why = "bpp: single_pivots_per_row must lie in (0, 1e6], or be -1 for no limit";
+    return false;
+  }
   if (guess_sweeps < 0 || guess_sweeps > 1000) {
     if (why) *why = "bpp: guess_sweeps must lie in [0, 1000]";
     return false;
@@ -88,6 +92,9 @@ void BppSolver::BindOptions(OptionBinder* binder) {
               "free-block LU pivots at or below this are singular (row-equilibrated M), in [0, 1)");
   binder->Add("max_single_pivots", &options_.max_single_pivots,
               "end as iteration_limit after this many least-index single pivots (-1: no limit; auto sets one)");
+  binder->Add("single_pivots_per_row", &options_.single_pivots_per_row,
+              "with max_single_pivots -1: end as iteration_limit after max(4, ceil(this * n)) single pivots (-1: no "
+              "limit; auto sets 0.25)");
   binder->Add("factor_updates", &options_.factor_updates,
               "dense M: update the last free block's LU by a Schur complement between active sets (false: refactor "
               "every set)");
@@ -265,6 +272,12 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
   bool last_was_block = false;  // the current set came from a block pivot (a singular block steps back)
   bool force_single = false;    // stepped back from a singular block: the next pivot is a single one
   int iterations = 0, block_pivots = 0, single_pivots = 0, singular_blocks = 0, refactored_answers = 0;
+  // The work safeguard (max_single_pivots, else single_pivots_per_row): −1 for none.
+  const int single_pivot_limit =
+      options_.max_single_pivots >= 0 ? options_.max_single_pivots
+      : options_.single_pivots_per_row > 0.0
+          ? std::max(4, static_cast<int>(std::min(1e9, std::ceil(options_.single_pivots_per_row * n))))
+          : -1;
   const auto finish = [&](SolveStatus status) {
     result->status = status;
     result->iterations = iterations;
@@ -375,11 +388,11 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
       }
       ++block_pivots;
     } else {
-      if (options_.max_single_pivots >= 0 && single_pivots >= options_.max_single_pivots) {
+      if (single_pivot_limit >= 0 && single_pivots >= single_pivot_limit) {
         SetMessage(result,
-                   "bpp: handed over after %d single pivots (max_single_pivots), %d active sets, best infeasible "
-                   "count %d",
-                   single_pivots, iterations, best_count);
+                   "bpp: handed over after %d single pivots (%s), %d active sets, best infeasible count %d",
+                   single_pivots, options_.max_single_pivots >= 0 ? "max_single_pivots" : "single_pivots_per_row",
+                   iterations, best_count);
         finish(SolveStatus::kIterationLimit);
         return;
       }

@@ -72,9 +72,12 @@ struct BppOptions {
   // Work safeguard: the solve ends as kIterationLimit ("handed over") once this many least-index single pivots
   // were taken, instead of running Murty's scheme to its end (finite on P-matrix LCPs, but it may take thousands
   // of sets on strongly nonsymmetric M where lemke needs tens of pivots). −1: no limit beyond the iteration budget.
-  // auto gives its own bpp instance a limit proportional to n (docs/auto.md), so a bpp that leaves its block phase
-  // hands the problem to the next candidate before it costs more than that candidate would.
+  // auto gives its own bpp instance a limit proportional to n (single_pivots_per_row; docs/auto.md), so a bpp that
+  // leaves its block phase hands the problem to the next candidate before it costs more than that candidate would.
   int max_single_pivots = -1;
+  // The same limit in proportion to the problem: max(4, ⌈single_pivots_per_row · n⌉) single pivots, when > 0 and
+  // max_single_pivots is −1. auto sets 0.25 (measured: auto_rule_measure handover, docs/auto.md).
+  double single_pivots_per_row = -1.0;
   // Dense M: solve each active set after the first by a Schur-complement update of the last factored free block
   // (updated_free_block.h) instead of refactoring it; a set too far from it, or whose update is ill-conditioned,
   // is factored from scratch. false: every set factored from scratch (the method as published).

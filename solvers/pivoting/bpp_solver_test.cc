@@ -250,6 +250,33 @@ TEST(BppSolver, MaxSinglePivotsHandsOverAsIterationLimit) {
   EXPECT_NE(error.find("max_single_pivots"), std::string::npos) << error;
 }
 
+// The safeguard in proportion to the problem (what auto sets): max(4, ⌈c·n⌉) single pivots, then a hand-over
+// naming the option; on the strongly nonsymmetric relay that needs hundreds of single pivots at m = 64.
+TEST(BppSolver, SinglePivotsPerRowCapsTheSinglePivotPhase) {
+  GeneratorOptions g;
+  g.family = MatrixFamily::kSkewPMatrix;
+  g.bounds = BoundKind::kRelay;
+  g.size = 64;
+  g.seed = 1;
+  const GeneratedProblem gen = GenerateProblem(g);
+  BppSolver uncapped;
+  const SolveResult full = uncapped.Solve(gen.problem);
+  ASSERT_GT(full.GetDetail("single_pivots"), 16.0) << "the case needs a long single-pivot phase";
+  BppOptions per_row;
+  per_row.single_pivots_per_row = 0.25;
+  BppSolver capped(per_row);
+  const SolveResult r = capped.Solve(gen.problem);
+  EXPECT_EQ(r.status, SolveStatus::kIterationLimit) << r.message;
+  EXPECT_EQ(r.GetDetail("single_pivots"), 16.0) << "max(4, ceil(0.25 * 64))";
+  EXPECT_NE(r.message.find("single_pivots_per_row"), std::string::npos) << r.message;
+  // A tiny problem still gets 4; max_single_pivots, when set, wins.
+  std::string error;
+  ASSERT_TRUE(capped.SetOption("max_single_pivots", "2", &error)) << error;
+  EXPECT_EQ(capped.Solve(gen.problem).GetDetail("single_pivots"), 2.0);
+  EXPECT_FALSE(capped.SetOption("single_pivots_per_row", "0", &error));
+  EXPECT_NE(error.find("single_pivots_per_row"), std::string::npos) << error;
+}
+
 // A warm start at the solution gives its active set: one set solved, whatever the family or bounds.
 TEST(BppSolver, WarmStartFromTheSolutionSolvesInOneIteration) {
   BppSolver solver;
