@@ -79,7 +79,12 @@ inline std::optional<AutoCandidate> ChosenCandidateOf(const SolveResult& result)
 // Labels an answer as auto's own Solve labels it: solver "auto", detail "chosen" = the candidate that answered,
 // "fallbacks" = how many candidates failed before it. Auto's Solve uses it, and so does a caller whose session or
 // time-stepper called auto's choice directly (DelegateFor) and reports the answer as auto's.
-void LabelAutoAnswer(AutoCandidate chosen, int fallbacks, SolveResult* result);
+// Inline: it ends every solve of auto's, whose paper problems take a few hundred instructions.
+inline void LabelAutoAnswer(AutoCandidate chosen, int fallbacks, SolveResult* result) {
+  result->solver = "auto";
+  kAutoChosenDetail.Set(result, chosen);
+  result->SetDetail("fallbacks", static_cast<double>(fallbacks));
+}
 
 // A fresh backend with default options for a registry name, or nullptr for a name that is not registered.
 using BackendLookup = std::function<std::unique_ptr<Solver>(std::string_view name)>;
@@ -141,7 +146,15 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
   // keeps (their ForgetWarmState).
   WarmStateReset ForgetWarmState() override;
   // The candidates auto tries on this problem, in order (cached per matrix_id; may cost a Cholesky of M once).
-  const AutoChoice& ChoiceFor(const BoxMLCP& problem);
+  // Inline: the cached case is three comparisons on every solve.
+  const AutoChoice& ChoiceFor(const BoxMLCP& problem) {
+    // The rule reads auto's options and enum's size limits.
+    if (choice_matrix_id_ == problem.matrix_id() && choice_generation_ == option_generation() &&
+        choice_enum_generation_ == candidates_[static_cast<int>(AutoCandidate::kEnum)]->option_generation()) {
+      return choice_;
+    }
+    return Reclassify(problem);
+  }
   // The instance auto uses for one candidate (its options can be changed there). The box candidates always exist;
   // newton-min and ipopt only when the lookup knows them (created here on first use), else candidate() throws
   // std::logic_error and FindCandidate returns nullptr.
@@ -164,6 +177,13 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
  private:
   // The rule above, for a problem not seen before.
   AutoChoice Classify(const BoxMLCP& problem) const;
+  // DoSolve past the first candidate's answer (have_answer: result holds it) or after a session's failed delegate
+  // (NoteDelegateFailure): the rest of the chain, the messages and the label. Out of line, so the common case (the
+  // choice answers) sets up nothing.
+  [[gnu::noinline]] void SolveChain(const BoxMLCP& problem, const SolverOptions& given, bool have_answer,
+                                    SolveResult* result);
+  // ChoiceFor's slow half: classifies the problem and caches the choice.
+  const AutoChoice& Reclassify(const BoxMLCP& problem);
   // The options the candidate gets: the caller's, with measure_time off (the base times auto's call; the
   // candidate's own two clock reads would only add to it).
   const SolverOptions& UntimedOptions(const SolverOptions& options);

@@ -138,8 +138,10 @@ class BoxMLCP {
   BoxMLCP Equilibrated() const;
   // For an Equilibrated() copy of `original` (same M, l, u): q ← D⁻¹ original.q(). `original` is valid, so
   // nothing is checked again; no allocation.
+  // N: size() known at compile time (a solve of a dense problem up to kSmallSize rows), the loop unrolled.
+  template <int N = Eigen::Dynamic>
   void AssignEquilibratedQ(const BoxMLCP& original) {
-    const Eigen::Index n = q_.size();
+    const Eigen::Index n = N != Eigen::Dynamic ? N : q_.size();
     const double *in = original.q_.data(), *d = original.row_scale_.data();
     double* out = q_.data();
     double norm = 0.0;

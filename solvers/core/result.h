@@ -50,6 +50,24 @@ struct SolveResult {
   // Adds or overwrites a measurement (names compare by text); silently ignores overflow past kMaxDetails. Set
   // details only through it or a CodeDetail (below): they keep names unique.
   void SetDetail(const char* name, double value) { SetEntry(name, value, nullptr); }
+  // SetDetail for K measurements at once, in this order: the same result as K calls, with one test (and one count
+  // update) for a result reused by a backend that set the same literals in the same order last time (K calls
+  // cost a small solve a tenth of its instructions).
+  template <int K>
+  void SetDetails(const char* const (&names)[K], const double (&values)[K]) {
+    const int at = num_details;
+    bool same = at + K <= distinct_prefix_;
+    for (int k = 0; k < K && same; ++k) same = details[at + k].name == names[k];
+    if (same) {
+      for (int k = 0; k < K; ++k) {
+        details[at + k].value = values[k];
+        details[at + k].code_name = nullptr;
+      }
+      num_details = at + K;
+      return;
+    }
+    for (int k = 0; k < K; ++k) SetEntry(names[k], values[k], nullptr);
+  }
   // Adds or overwrites a code; set codes through their CodeDetail, which fixes the name and the namer once.
   void SetCodeDetail(const char* name, int value, CodeName code_name) {
     SetEntry(name, static_cast<double>(value), code_name);

@@ -233,30 +233,48 @@ std::chrono::steady_clock::time_point StartClock(const SolverOptions& options) {
 }  // namespace
 
 void Solver::Solve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  const SolverInfo& solver_info = info();
+  if (solver_info.delegates) return SolveDelegated(problem, options, result);
   // One size dispatch for the whole shared path: the paper's one-step problems have m = 1, 2.
   if (!problem.is_sparse()) {
     switch (problem.size()) {
-      case 1: return SolveBox<1>(problem, options, result);
-      case 2: return SolveBox<2>(problem, options, result);
-      case 3: return SolveBox<3>(problem, options, result);
-      case 4: return SolveBox<4>(problem, options, result);
+      case 1: return SolveBox<1>(problem, options, solver_info, result);
+      case 2: return SolveBox<2>(problem, options, solver_info, result);
+      case 3: return SolveBox<3>(problem, options, solver_info, result);
+      case 4: return SolveBox<4>(problem, options, solver_info, result);
       default: break;
     }
   }
-  SolveBox<0>(problem, options, result);
+  SolveBox<0>(problem, options, solver_info, result);
+}
+
+void Solver::SolveDelegated(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  const auto start = StartClock(options);
+  if (options.warm_start.size() == 0 && options.ScalarsValid()) {
+    // Valid options and no warm start: the delegate's Solve does every shared step (the result's reset and start
+    // point, the checks of the same options, the merit function and the rule for "solved" at the same tolerance),
+    // so none is done twice here; only the meta-backend's own options are checked, and the call timed. Anything
+    // else (a warm start, options to refuse) takes the full path below.
+    std::string why;  // written only on failure
+    if (ValidateBackendOptions(&why)) {
+      DoSolve(problem, options, result);
+      return StampEnd(start, result);
+    }
+  }
+  if (BeginSolve<0, true>(problem.size(), problem.l(), problem.u(), options, info().name, result)) {
+    DoSolve(problem, options, result);  // the delegate's Solve did the shared work: keep its residuals
+    return Finish(options.tolerance, start, result);
+  }
+  Conclude<0>(problem, options, start, result);  // refused: the merit function at the start point, as any backend
 }
 
 template <int N>
-void Solver::SolveBox(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+void Solver::SolveBox(const BoxMLCP& problem, const SolverOptions& options, const SolverInfo& solver_info,
+                      SolveResult* result) {
   static_assert(N <= BoxMLCP::kSmallSize);
   const auto start = StartClock(options);
-  const SolverInfo& solver_info = info();
   if (BeginSolve<N, true>(problem.size(), problem.l(), problem.u(), options, solver_info.name, result)) {
-    if (solver_info.delegates) {  // the delegate's Solve did the shared work: keep its residuals
-      DoSolve(problem, options, result);
-      return Finish(options.tolerance, start, result);
-    }
-    const BoxMLCP& equilibrated = EquilibratedFor(problem);
+    const BoxMLCP& equilibrated = EquilibratedFixed<N>(problem);
     const BoxMLCP& given = solver_info.equilibrate ? equilibrated : problem;
     if (problem.is_sparse() && !solver_info.sparse) {
       // A dense-only backend gets a dense copy (allocates per solve; sparse inputs are not its hot path),
@@ -293,7 +311,7 @@ void Solver::SolveValidated(const BoxMLCP& problem, const SolverOptions& options
   static_assert(N >= 1 && N <= BoxMLCP::kSmallSize);
   const auto start = StartClock(options);
   if (BeginSolve<N, false>(N, problem.l(), problem.u(), options, info().name, result)) {
-    const BoxMLCP& equilibrated = EquilibratedFor(problem);
+    const BoxMLCP& equilibrated = EquilibratedFixed<N>(problem);
     DoSolve(info().equilibrate ? equilibrated : problem, options, result);
   }
   Conclude<N>(problem, options, start, result);

@@ -152,13 +152,28 @@ class Solver {
   friend class SolveSession;
   // N > 0: n = N known at compile time (dense problems up to BoxMLCP::kSmallSize), 0: read at run time.
   template <int N>
-  void SolveBox(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
+  void SolveBox(const BoxMLCP& problem, const SolverOptions& options, const SolverInfo& solver_info,
+                SolveResult* result);
+  // Solve for a backend with info().delegates (auto): its DoSolve hands the problem to another backend's Solve.
+  void SolveDelegated(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
   template <int N, bool kCheckOptions>
   bool BeginSolve(int n, const Vector& l, const Vector& u, const SolverOptions& options, std::string_view name,
                SolveResult* result);
   // The problem DoSolve receives: the equilibrated copy (made once per matrix_id, its q refreshed per call), or
   // the problem itself for a backend with info().equilibrate false.
   const BoxMLCP& EquilibratedFor(const BoxMLCP& problem);
+  // The same for a dense problem of N rows (0: read at run time): the cached copy's q refreshed inline, the loop
+  // unrolled; a new matrix goes to EquilibratedFor.
+  template <int N>
+  const BoxMLCP& EquilibratedFixed(const BoxMLCP& problem) {
+    if constexpr (N > 0) {
+      if (equilibrated_source_ == problem.matrix_id()) {
+        equilibrated_->template AssignEquilibratedQ<N>(problem);
+        return *equilibrated_;
+      }
+    }
+    return EquilibratedFor(problem);
+  }
   template <int N>
   void Conclude(const BoxMLCP& problem, const SolverOptions& options, std::chrono::steady_clock::time_point start,
                 SolveResult* result);
