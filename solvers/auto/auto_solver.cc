@@ -73,6 +73,22 @@ double SpdReciprocalCondition(const BoxMLCP& problem) {
   return cholesky.info() == Eigen::Success ? cholesky.rcond() : 0.0;
 }
 
+// ‖M − Mᵀ‖_F > 4 ‖M + Mᵀ‖_F: the unsymmetric part of M outweighs its symmetric part four times (m² work, once per
+// matrix). The generators' strongly nonsymmetric P-matrices (unit-entry skew part) are at 4-8 from 16 rows on, their
+// nonsymmetric P-matrices (skew part of the symmetric part's 2-norm) near 1, where bpp is the fastest.
+bool SkewDominant(const DenseMatrix& M) {
+  double skew = 0.0, symmetric = 0.0;
+  const Eigen::Index n = M.rows();
+  for (Eigen::Index j = 0; j < n; ++j) {
+    for (Eigen::Index i = 0; i < n; ++i) {
+      const double a = M(i, j), b = M(j, i);
+      skew += (a - b) * (a - b);
+      symmetric += (a + b) * (a + b);
+    }
+  }
+  return skew > 16.0 * symmetric;
+}
+
 }  // namespace
 
 std::string_view AutoCandidateName(int index) {
@@ -105,6 +121,11 @@ namespace {
     *why = "enum_max_active_sets must be >= 0 (0: never enum), got " + std::to_string(o.enum_max_active_sets);
   } else if (o.bpp_max_size < 0) {
     *why = "bpp_max_size must be >= 0 (0: never bpp), got " + std::to_string(o.bpp_max_size);
+  } else if (o.sparse_bpp_max_size < 0) {
+    *why = "sparse_bpp_max_size must be >= 0 (0: never bpp on sparse M), got " +
+           std::to_string(o.sparse_bpp_max_size);
+  } else if (o.skew_lemke_min_size < 0) {
+    *why = "skew_lemke_min_size must be >= 0 (0: never skip bpp), got " + std::to_string(o.skew_lemke_min_size);
   } else {
     *why = "psor_min_speedup must be >= 0 (0: psor on every SPD M, inf: never), got " +
            std::to_string(o.psor_min_speedup);
@@ -115,7 +136,8 @@ namespace {
 
 bool AutoOptions::IsValid(std::string* why) const {
   const bool ok = enum_max_choice_rows >= 0 && enum_max_choice_rows <= EnumerativeOptions{}.size_limit &&
-                  enum_max_active_sets >= 0.0 && bpp_max_size >= 0 && psor_min_speedup >= 0.0;
+                  enum_max_active_sets >= 0.0 && bpp_max_size >= 0 && skew_lemke_min_size >= 0 && sparse_bpp_max_size >= 0 &&
+                  psor_min_speedup >= 0.0;
   return ok || ExplainInvalid(*this, why);
 }
 
@@ -129,7 +151,11 @@ AutoSolver::AutoSolver(const AutoOptions& options, BackendLookup lookup)
   candidates_[static_cast<int>(AutoCandidate::kPsor)] = std::make_unique<PsorSolver>();
   candidates_[static_cast<int>(AutoCandidate::kLemke)] = std::make_unique<LemkeSolver>();
   candidates_[static_cast<int>(AutoCandidate::kNewton)] = std::make_unique<SemismoothNewtonSolver>();
-  candidates_[static_cast<int>(AutoCandidate::kBpp)] = std::make_unique<BppSolver>();
+  // bpp's single-pivot phase is cut at max(4, n/4) pivots, then the next candidate answers (docs/auto.md,
+  // auto_rule_measure handover): a cap never reached on the classes bpp solves in its block phase.
+  BppOptions bpp;
+  bpp.single_pivots_per_row = 0.25;
+  candidates_[static_cast<int>(AutoCandidate::kBpp)] = std::make_unique<BppSolver>(bpp);
   for (const AutoCandidate own : {AutoCandidate::kEnum, AutoCandidate::kPsor, AutoCandidate::kLemke,
                                   AutoCandidate::kNewton, AutoCandidate::kBpp}) {
     looked_up_[static_cast<int>(own)] = true;
@@ -204,6 +230,10 @@ void AutoSolver::BindOptions(OptionBinder* binder) {
               "dense SPD M goes to psor when lemke's predicted time is at least this many times psor's (0: always)");
   binder->Add("bpp_max_size", &options_.bpp_max_size,
               "dense problems past enum's rows with at most this many rows go to bpp first (0: never)");
+  binder->Add("sparse_bpp_max_size", &options_.sparse_bpp_max_size,
+              "sparse problems with at most this many rows go to bpp (its SparseLU path) before newton (0: never)");
+  binder->Add("skew_lemke_min_size", &options_.skew_lemke_min_size,
+              "skew-dominant M (||M - M'|| > 4 ||M + M'||, Frobenius) with at least this many rows skips bpp (0: never)");
   binder->Add("fallback", &options_.fallback, "try the next candidate when the chosen one fails without a proof");
 }
 
@@ -213,6 +243,7 @@ AutoChoice AutoSolver::Classify(const BoxMLCP& problem) const {
   AutoChoice c;
   const auto add = [&c](AutoCandidate candidate) { c.order[c.count++] = candidate; };
   if (problem.is_sparse()) {
+    if (problem.size() <= options_.sparse_bpp_max_size) add(AutoCandidate::kBpp);
     add(AutoCandidate::kNewton);
     if (problem.size() <= kMaxDensifiedSize) add(AutoCandidate::kLemke);
     return c;
@@ -223,7 +254,9 @@ AutoChoice AutoSolver::Classify(const BoxMLCP& problem) const {
       rows.active_sets <= options_.enum_max_active_sets && rows.active_sets <= enum_options.max_candidates) {
     add(AutoCandidate::kEnum);
   } else {
-    if (problem.size() <= options_.bpp_max_size) add(AutoCandidate::kBpp);
+    const bool skew = options_.skew_lemke_min_size > 0 && problem.size() >= options_.skew_lemke_min_size &&
+                      SkewDominant(problem.dense_matrix());
+    if (problem.size() <= options_.bpp_max_size && !skew) add(AutoCandidate::kBpp);
     const double rcond = rows.lemke_size > 0 ? SpdReciprocalCondition(problem) : 0.0;
     if (rcond > 0.0 && LemkeOverPsor(problem.size(), rows.lemke_size, rcond) >= options_.psor_min_speedup) {
       add(AutoCandidate::kPsor);

@@ -3,12 +3,15 @@
 // docs/auto.md gives the rule and the measurements behind each threshold.
 //
 // The rule (per M, l, u, i.e. per BoxMLCP::matrix_id(); the decision is cached, so a time-stepper pays it once):
-//   sparse M                                        → newton (UMFPACK), then lemke on a dense copy (n ≤ 4096)
+//   sparse M                                        → bpp (up to sparse_bpp_max_size rows), newton (UMFPACK),
+//                                                     then lemke on a dense copy (n ≤ 4096)
 //   dense, at most enum_max_choice_rows rows with a
 //     choice of state (l < u, not free: enum's own
 //     size measure) and enum_max_active_sets sets   → enum, then lemke, then newton
 //   any other dense M with at most bpp_max_size
-//     rows                                          → bpp, then as below
+//     rows, unless M is skew-dominant (‖M − Mᵀ‖_F >
+//     4‖M + Mᵀ‖_F) with skew_lemke_min_size rows
+//     or more                                          → bpp (at most max(4, n/4) single pivots), then as below
 //   dense, symmetric positive definite (a Cholesky
 //     factorization of M succeeds), and psor predicted
 //     faster than lemke from M's condition estimate
@@ -106,6 +109,15 @@ struct AutoOptions {
   // singular on some MLCPs with free rows and some degenerate LCPs, cheaply, and the next candidate answers. The
   // size is the largest at which bpp was measured faster than psor and lemke (docs/auto.md); 0: never.
   int bpp_max_size = 256;
+  // Skew-dominant M (‖M − Mᵀ‖_F > 4‖M + Mᵀ‖_F: the unsymmetric part outweighs the symmetric one) with at least
+  // this many rows skips bpp: there bpp's block phase does not settle and its single pivots run for hundreds of
+  // sets where lemke needs tens of pivots (auto_rule_measure handover: bpp capped, then lemke, 1.1-4.4x lemke alone
+  // at m = 64-128; uncapped 9-48x), while at 16 rows bpp is within 0.6-1.2x of lemke. 0: never skip.
+  int skew_lemke_min_size = 32;
+  // Sparse M with at most this many rows goes to bpp (a sparse LU per active set) before newton: the families'
+  // coupled sliding surfaces (sparse, m = 16 and 64) took newton 10-117 µs and bpp 4-13 µs (9x at 64; bench --suite
+  // families, docs/auto.md). 0: sparse M always to newton first.
+  int sparse_bpp_max_size = 64;
   // Pass the problem to the next candidate when the chosen one fails without a proof.
   bool fallback = true;
 
