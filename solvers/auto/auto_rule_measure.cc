@@ -24,6 +24,7 @@
 
 #include "solvers/auto/auto_solver.h"
 #include "solvers/core/duration_text.h"
+#include "solvers/core/sample_time.h"
 #include "solvers/generators/random_problems.h"
 #include "solvers/lemke/lemke_solver.h"
 #include "solvers/newton/newton_min_solver.h"
@@ -39,17 +40,7 @@ template <typename F>
 double MedianNs(F f) {
   f();  // warm-up: sizes workspaces, fills per-matrix caches
   std::vector<double> samples;
-  for (int k = 0; k < 7; ++k) {
-    int calls = 0;
-    const auto start = Clock::now();
-    double elapsed = 0.0;
-    do {
-      f();
-      ++calls;
-      elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    } while (elapsed < 2e-3);
-    samples.push_back(elapsed / calls * 1e9);
-  }
+  for (int k = 0; k < 7; ++k) samples.push_back(SampleNs(f, 2e-3));
   std::sort(samples.begin(), samples.end());
   return samples[3];
 }
@@ -60,21 +51,10 @@ template <typename F, typename G>
 std::pair<double, double> FastestInTurnNs(F f, G g) {
   f();
   g();
-  const auto sample = [](auto& call) {
-    int calls = 0;
-    const auto start = Clock::now();
-    double elapsed = 0.0;
-    do {
-      call();
-      ++calls;
-      elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-    } while (elapsed < 2e-3);
-    return elapsed / calls * 1e9;
-  };
   double best_f = kInf, best_g = kInf;
   for (int k = 0; k < 15; ++k) {
-    best_f = std::min(best_f, sample(f));
-    best_g = std::min(best_g, sample(g));
+    best_f = std::min(best_f, SampleNs(f, 2e-3));
+    best_g = std::min(best_g, SampleNs(g, 2e-3));
   }
   return {best_f, best_g};
 }
@@ -253,6 +233,31 @@ std::string ClassName(const ProblemClass& c) {
          (c.sparse ? "-sparse" : "");
 }
 
+// The class's problems of size m, seeds 1, 2, 3 (planted solutions).
+std::vector<BoxMLCP> SeededProblems(const ProblemClass& c, int m) {
+  std::vector<BoxMLCP> problems;
+  for (std::uint64_t seed : {1u, 2u, 3u}) {
+    GeneratorOptions g;
+    g.family = c.family;
+    g.bounds = c.bounds;
+    g.size = m;
+    g.seed = seed;
+    g.degenerate_fraction = c.degenerate_fraction;
+    g.sparse = c.sparse;
+    problems.push_back(GenerateProblem(g).problem);
+  }
+  return problems;
+}
+
+// A cold solve's time in ns: once when that first call took over 20 ms (not 7 × 2 ms of repeats), else MedianNs.
+template <typename F>
+double ColdSolveNs(F solve) {
+  const auto start = Clock::now();
+  solve();
+  const double once = std::chrono::duration<double>(Clock::now() - start).count();
+  return once > 0.02 ? once * 1e9 : MedianNs(solve);
+}
+
 // bpp's per-call safeguard: with max_single_pivots = c·m, a bpp that leaves its block phase hands the problem to
 // lemke (what auto's chain does). Each cell: the chain's time over lemke alone (geometric mean over seeds 1–3 of
 // the median), and how many of the three bpp answered itself; the last columns: bpp without a cap over lemke, and
@@ -277,31 +282,14 @@ void Handover(int max_m) {
     for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kMixed}) {
       for (int m : {16, 32, 64, 128, 256}) {
         if (m > max_m) continue;
-        std::vector<BoxMLCP> problems;
-        for (std::uint64_t seed : {1u, 2u, 3u}) {
-          GeneratorOptions g;
-          g.family = family;
-          g.bounds = bounds;
-          g.size = m;
-          g.seed = seed;
-          problems.push_back(GenerateProblem(g).problem);
-        }
+        const std::vector<BoxMLCP> problems = SeededProblems({family, bounds}, m);
         std::printf("| %s | %d |", ClassName({family, bounds}).c_str(), m);
-        // One solve's time (median of repeats; once above 20 ms), and whether it solved.
-        const auto time_of = [&](auto&& solve) {
-          const auto start = Clock::now();
-          const bool ok = solve();
-          const double once = std::chrono::duration<double>(Clock::now() - start).count();
-          const double ns = once > 0.02 ? once * 1e9 : MedianNs([&] { solve(); });
-          return std::make_pair(ns, ok);
-        };
         double lemke_log = 0.0;
         std::vector<double> lemke_ns;
         for (const BoxMLCP& p : problems) {
           SolveResult r;
-          const auto [ns, ok] = time_of([&] { lemke.Solve(p, options, &r); return r.solved(); });
-          lemke_ns.push_back(ns);
-          lemke_log += std::log(ns);
+          lemke_ns.push_back(ColdSolveNs([&] { lemke.Solve(p, options, &r); }));
+          lemke_log += std::log(lemke_ns.back());
         }
         for (double c : factors) {
           BppOptions bo;
@@ -312,13 +300,11 @@ void Handover(int max_m) {
           for (std::size_t k = 0; k < problems.size(); ++k) {
             SolveResult r;
             bool bpp_answered = false;
-            const auto [ns, ok] = time_of([&] {
+            const double ns = ColdSolveNs([&] {
               capped.Solve(problems[k], options, &r);
               bpp_answered = r.solved();
               if (!bpp_answered) lemke.Solve(problems[k], options, &r);
-              return r.solved();
             });
-            (void)ok;
             answered += bpp_answered;
             log_ratio += std::log(ns / lemke_ns[k]);
           }
@@ -327,8 +313,8 @@ void Handover(int max_m) {
         double log_ratio = 0.0;
         for (std::size_t k = 0; k < problems.size(); ++k) {
           SolveResult r;
-          const auto [ns, ok] = time_of([&] { uncapped.Solve(problems[k], options, &r); return r.solved(); });
-          log_ratio += std::log(ok ? ns / lemke_ns[k] : 0.5e9 / lemke_ns[k]);
+          const double ns = ColdSolveNs([&] { uncapped.Solve(problems[k], options, &r); });
+          log_ratio += std::log(r.solved() ? ns / lemke_ns[k] : 0.5e9 / lemke_ns[k]);
         }
         std::printf(" %.2f | %s |\n", std::exp(log_ratio / 3.0), Ns(std::exp(lemke_log / 3.0)).c_str());
         std::fflush(stdout);
@@ -379,17 +365,7 @@ void Classes(int max_m) {
   for (const ProblemClass& c : classes) {
     for (int m : {4, 8, 16, 32, 64, 128, 256}) {
       if (m > max_m) continue;
-      std::vector<BoxMLCP> problems;
-      for (std::uint64_t seed : {1u, 2u, 3u}) {
-        GeneratorOptions g;
-        g.family = c.family;
-        g.bounds = c.bounds;
-        g.size = m;
-        g.seed = seed;
-        g.degenerate_fraction = c.degenerate_fraction;
-        g.sparse = c.sparse;
-        problems.push_back(GenerateProblem(g).problem);
-      }
+      const std::vector<BoxMLCP> problems = SeededProblems(c, m);
       std::printf("| %s | %d |", ClassName(c).c_str(), m);
       double times[kColumns];
       std::string chose;
@@ -404,12 +380,7 @@ void Classes(int max_m) {
         std::string failure;
         for (const BoxMLCP& problem : problems) {
           SolveResult result;
-          const auto start = Clock::now();
-          columns[k].solver->Solve(problem, options, &result);
-          const double once = std::chrono::duration<double>(Clock::now() - start).count();
-          // A solve that took over 20 ms once is timed once more, not 7 × 2 ms.
-          const double ns = once > 0.02 ? (columns[k].solver->Solve(problem, options, &result), once * 1e9)
-                                        : MedianNs([&] { columns[k].solver->Solve(problem, options, &result); });
+          const double ns = ColdSolveNs([&] { columns[k].solver->Solve(problem, options, &result); });
           if (result.solved()) {
             log_sum += std::log(ns);
             ++solved;

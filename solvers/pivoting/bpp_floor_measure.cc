@@ -18,26 +18,13 @@
 
 #include "solvers/core/duration_text.h"
 #include "solvers/generators/random_problems.h"
+#include "solvers/core/sample_time.h"
 #include "solvers/pivoting/bpp_solver.h"
 
 namespace smcbench {
 namespace {
 
-using Clock = std::chrono::steady_clock;
-
-// One sample of f: the time per call over repeats lasting ≥ 3 ms; ns.
-template <typename F>
-double SampleNs(F& f) {
-  int calls = 0;
-  const auto start = Clock::now();
-  double elapsed = 0.0;
-  do {
-    f();
-    ++calls;
-    elapsed = std::chrono::duration<double>(Clock::now() - start).count();
-  } while (elapsed < 3e-3);
-  return elapsed / calls * 1e9;
-}
+constexpr double kSampleSeconds = 3e-3;  // one sample: repeats lasting at least this long
 
 std::string Ns(double ns) { return DurationText(ns * 1e-9); }
 
@@ -92,10 +79,10 @@ void Run(int max_m, const char* only) {
         double floor = kInf, times[3] = {kInf, kInf, kInf};
         const int rounds = m <= 256 ? 21 : 7;
         for (int round = 0; round < rounds; ++round) {
-          floor = std::min(floor, SampleNs(factor));
-          times[0] = std::min(times[0], SampleNs(solve0));
-          times[1] = std::min(times[1], SampleNs(solve1));
-          times[2] = std::min(times[2], SampleNs(solve2));
+          floor = std::min(floor, SampleNs(factor, kSampleSeconds));
+          times[0] = std::min(times[0], SampleNs(solve0, kSampleSeconds));
+          times[1] = std::min(times[1], SampleNs(solve1, kSampleSeconds));
+          times[2] = std::min(times[2], SampleNs(solve2, kSampleSeconds));
         }
         std::printf("| %s-%s | %d | %s | %s |", ToString(family).c_str(), ToString(bounds).c_str(), m,
                     spd ? "LLT" : "LU", Ns(floor).c_str());
