@@ -20,6 +20,16 @@
 namespace smcbench {
 namespace {
 
+// A generated problem with its planted solution.
+GeneratedProblem Planted(MatrixFamily family, BoundKind bounds, int size, std::uint64_t seed) {
+  GeneratorOptions g;
+  g.family = family;
+  g.bounds = bounds;
+  g.size = size;
+  g.seed = seed;
+  return GenerateProblem(g);
+}
+
 // ‖z − Π_[l,u](z − (Mz+q))‖∞, recomputed from scratch (dense or sparse M).
 double NaturalResidual(const BoxMLCP& problem, const Vector& z) {
   const Vector w = problem.is_sparse() ? Vector(problem.sparse_matrix() * z + problem.q())
@@ -117,12 +127,7 @@ TEST(BppSolver, GeneratedProblemsAgreeWithPlantedSolutionAndLemke) {
     for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kBox, BoundKind::kMixed}) {
       for (int size : {3, 12, 60}) {
         for (std::uint64_t seed : {1u, 2u}) {
-          GeneratorOptions g;
-          g.family = family;
-          g.bounds = bounds;
-          g.size = size;
-          g.seed = seed;
-          const GeneratedProblem gen = GenerateProblem(g);
+          const GeneratedProblem gen = Planted(family, bounds, size, seed);
           for (bool polish : {true, false}) {
             SolverOptions options;
             options.polish = polish;
@@ -167,12 +172,7 @@ TEST(BppSolver, LargeFreeBlocksTakeTheBlockedFactorization) {
   BppSolver solver;
   for (MatrixFamily family : {MatrixFamily::kSymmetricPositiveDefinite, MatrixFamily::kNonsymmetricPMatrix}) {
     for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay}) {
-      GeneratorOptions g;
-      g.family = family;
-      g.bounds = bounds;
-      g.size = 300;
-      g.seed = 3;
-      const GeneratedProblem gen = GenerateProblem(g);
+      const GeneratedProblem gen = Planted(family, bounds, 300, 3);
       SolverOptions options;
       options.polish = false;
       const SolveResult r = solver.Solve(gen.problem, options);
@@ -253,12 +253,7 @@ TEST(BppSolver, MaxSinglePivotsHandsOverAsIterationLimit) {
 // The safeguard in proportion to the problem (what auto sets): max(4, ⌈c·n⌉) single pivots, then a hand-over
 // naming the option; on the strongly nonsymmetric relay that needs hundreds of single pivots at m = 64.
 TEST(BppSolver, SinglePivotsPerRowCapsTheSinglePivotPhase) {
-  GeneratorOptions g;
-  g.family = MatrixFamily::kSkewPMatrix;
-  g.bounds = BoundKind::kRelay;
-  g.size = 64;
-  g.seed = 1;
-  const GeneratedProblem gen = GenerateProblem(g);
+  const GeneratedProblem gen = Planted(MatrixFamily::kSkewPMatrix, BoundKind::kRelay, 64, 1);
   BppSolver uncapped;
   const SolveResult full = uncapped.Solve(gen.problem);
   ASSERT_GT(full.GetDetail("single_pivots"), 16.0) << "the case needs a long single-pivot phase";
@@ -281,12 +276,7 @@ TEST(BppSolver, SinglePivotsPerRowCapsTheSinglePivotPhase) {
 TEST(BppSolver, WarmStartFromTheSolutionSolvesInOneIteration) {
   BppSolver solver;
   for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kBox, BoundKind::kMixed}) {
-    GeneratorOptions g;
-    g.family = MatrixFamily::kNonsymmetricPMatrix;
-    g.bounds = bounds;
-    g.size = 40;
-    g.seed = 7;
-    const GeneratedProblem gen = GenerateProblem(g);
+    const GeneratedProblem gen = Planted(MatrixFamily::kNonsymmetricPMatrix, bounds, 40, 7);
     const SolveResult cold = solver.Solve(gen.problem);
     ASSERT_TRUE(cold.solved()) << gen.problem.name();
     SolverOptions options;
@@ -302,12 +292,7 @@ TEST(BppSolver, WarmStartFromTheSolutionSolvesInOneIteration) {
 // first set, so a repeated q costs one set and a nearby q few.
 TEST(BppSolver, SessionWarmStartsGiveTheFirstActiveSet) {
   BppSolver solver;
-  GeneratorOptions g;
-  g.family = MatrixFamily::kSymmetricPositiveDefinite;
-  g.bounds = BoundKind::kRelay;
-  g.size = 50;
-  g.seed = 4;
-  const GeneratedProblem gen = GenerateProblem(g);
+  const GeneratedProblem gen = Planted(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 50, 4);
   SessionOptions no_reuse;
   no_reuse.reuse_active_set = false;
   SolveSession session = solver.Prepare(gen.problem, SolverOptions{}, no_reuse);
@@ -476,15 +461,10 @@ TEST(BppSolver, FactorUpdatesGiveTheAnswersOfFreshFactorizations) {
                               MatrixFamily::kDiagonallyDominant, MatrixFamily::kSkewPMatrix}) {
     for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kBox, BoundKind::kMixed}) {
       for (int size : {20, 70, 150}) {
-        GeneratorOptions g;
-        g.family = family;
-        g.bounds = bounds;
-        g.size = size;
-        g.seed = 2;
         // The strongly nonsymmetric relay of 150 rows exhausts bpp's budget in Murty's phase (no finiteness proof
         // on the box), with or without updates.
         if (family == MatrixFamily::kSkewPMatrix && size > 100) continue;
-        const GeneratedProblem gen = GenerateProblem(g);
+        const GeneratedProblem gen = Planted(family, bounds, size, 2);
         SolverOptions options;
         options.polish = false;
         const SolveResult a = updated.Solve(gen.problem, options);
@@ -510,12 +490,7 @@ TEST(BppSolver, FactorUpdatesGiveTheAnswersOfFreshFactorizations) {
 // The strongly nonsymmetric class runs Murty's single pivots: each changes one row, so with updates the sets are
 // rank-1 changes of a factored block, and bpp refactors a small fraction of them.
 TEST(BppSolver, SinglePivotsAreSolvedByUpdates) {
-  GeneratorOptions g;
-  g.family = MatrixFamily::kSkewPMatrix;
-  g.bounds = BoundKind::kRelay;
-  g.size = 64;
-  g.seed = 1;
-  const GeneratedProblem gen = GenerateProblem(g);
+  const GeneratedProblem gen = Planted(MatrixFamily::kSkewPMatrix, BoundKind::kRelay, 64, 1);
   BppSolver solver;
   const SolveResult r = solver.Solve(gen.problem);
   ASSERT_TRUE(r.solved()) << r.message;
@@ -537,12 +512,7 @@ TEST(BppSolver, SweptGuessesKeepTheAnswer) {
     BppSolver solver(o);
     for (MatrixFamily family : {MatrixFamily::kSymmetricPositiveDefinite, MatrixFamily::kNonsymmetricPMatrix}) {
       for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kMixed}) {
-        GeneratorOptions g;
-        g.family = family;
-        g.bounds = bounds;
-        g.size = 90;
-        g.seed = 4;
-        const GeneratedProblem gen = GenerateProblem(g);
+        const GeneratedProblem gen = Planted(family, bounds, 90, 4);
         const SolveResult r = solver.Solve(gen.problem);
         ASSERT_TRUE(r.solved()) << gen.problem.name() << " sweeps " << sweeps << ": " << r.message;
         EXPECT_LE(ForwardError(r.z, gen.z_star), 1e-8) << gen.problem.name() << " sweeps " << sweeps;
@@ -567,12 +537,7 @@ TEST(BppSolver, SweptGuessesKeepTheAnswer) {
 TEST(BppSolver, UpdatedSolvesDoNotAllocate) {
   if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";
   for (MatrixFamily family : {MatrixFamily::kNonsymmetricPMatrix, MatrixFamily::kSymmetricPositiveDefinite}) {
-    GeneratorOptions g;
-    g.family = family;
-    g.bounds = BoundKind::kRelay;
-    g.size = 96;
-    g.seed = 3;
-    const GeneratedProblem gen = GenerateProblem(g);
+    const GeneratedProblem gen = Planted(family, BoundKind::kRelay, 96, 3);
     BppOptions no_sweeps;  // from the Jacobi-scaled guess these need several sets, hence updates
     no_sweeps.guess_sweeps = 0;
     BppSolver solver(no_sweeps);
