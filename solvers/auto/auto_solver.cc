@@ -242,16 +242,19 @@ bool AutoSolver::ValidateBackendOptions(std::string* why) const { return options
 AutoChoice AutoSolver::Classify(const BoxMLCP& problem) const {
   AutoChoice c;
   const auto add = [&c](AutoCandidate candidate) { c.order[c.count++] = candidate; };
+  const RowCounts rows = CountRows(problem);
+  const auto& enum_options = static_cast<const EnumerativeSolver&>(candidate(AutoCandidate::kEnum)).options();
+  const bool enum_fits = rows.choice <= options_.enum_max_choice_rows && rows.choice <= enum_options.size_limit &&
+                         rows.active_sets <= options_.enum_max_active_sets &&
+                         rows.active_sets <= enum_options.max_candidates;
   if (problem.is_sparse()) {
-    if (problem.size() <= options_.sparse_bpp_max_size) add(AutoCandidate::kBpp);
+    // A small sparse problem is solved on a dense copy (enum) or by bpp's sparse LU per set; larger ones by newton.
+    if (problem.size() <= options_.sparse_bpp_max_size) add(enum_fits ? AutoCandidate::kEnum : AutoCandidate::kBpp);
     add(AutoCandidate::kNewton);
     if (problem.size() <= kMaxDensifiedSize) add(AutoCandidate::kLemke);
     return c;
   }
-  const RowCounts rows = CountRows(problem);
-  const auto& enum_options = static_cast<const EnumerativeSolver&>(candidate(AutoCandidate::kEnum)).options();
-  if (rows.choice <= options_.enum_max_choice_rows && rows.choice <= enum_options.size_limit &&
-      rows.active_sets <= options_.enum_max_active_sets && rows.active_sets <= enum_options.max_candidates) {
+  if (enum_fits) {
     add(AutoCandidate::kEnum);
   } else {
     const bool skew = options_.skew_lemke_min_size > 0 && problem.size() >= options_.skew_lemke_min_size &&

@@ -3,8 +3,9 @@
 // docs/auto.md gives the rule and the measurements behind each threshold.
 //
 // The rule (per M, l, u, i.e. per BoxMLCP::matrix_id(); the decision is cached, so a time-stepper pays it once):
-//   sparse M                                        → bpp (up to sparse_bpp_max_size rows), newton (UMFPACK),
-//                                                     then lemke on a dense copy (n ≤ 4096)
+//   sparse M                                        → up to sparse_bpp_max_size rows enum (on a dense copy) where
+//                                                     it would take the dense problem, else bpp; then newton
+//                                                     (UMFPACK), then lemke on a dense copy (n ≤ 4096)
 //   dense, at most enum_max_choice_rows rows with a
 //     choice of state (l < u, not free: enum's own
 //     size measure) and enum_max_active_sets sets   → enum, then lemke, then newton
@@ -114,9 +115,10 @@ struct AutoOptions {
   // sets where lemke needs tens of pivots (auto_rule_measure handover: bpp capped, then lemke, 1.1-4.4x lemke alone
   // at m = 64-128; uncapped 9-48x), while at 16 rows bpp is within 0.6-1.2x of lemke. 0: never skip.
   int skew_lemke_min_size = 32;
-  // Sparse M with at most this many rows goes to bpp (a sparse LU per active set) before newton: the families'
-  // coupled sliding surfaces (sparse, m = 16 and 64) took newton 10-117 µs and bpp 4-13 µs (9x at 64; bench --suite
-  // families, docs/auto.md). 0: sparse M always to newton first.
+  // Sparse M with at most this many rows goes to enum (on a dense copy, when it has enum's few rows with a choice)
+  // or bpp (a sparse LU per active set) before newton: the families' coupled sliding surfaces (sparse, m = 16 and 64)
+  // took newton 10-117 µs and bpp 4-13 µs (9x at 64), and at 4-8 rows enum took 0.7-1.6 µs where bpp took 2.8-11 µs
+  // (auto_rule_measure classes, docs/auto.md). 0: sparse M always to newton first.
   int sparse_bpp_max_size = 64;
   // Pass the problem to the next candidate when the chosen one fails without a proof.
   bool fallback = true;

@@ -312,11 +312,14 @@ TEST(AutoSolver, ANotedDelegateFailureIsNotRunAgain) {
   EXPECT_EQ(Chosen(r), AutoCandidate::kBpp);
 }
 
-// Sparse M: bpp up to sparse_bpp_max_size rows (its sparse LU per set), newton above it (UMFPACK) or without bpp.
+// Sparse M up to sparse_bpp_max_size rows: enum on a dense copy where it would take the problem, else bpp (its sparse
+// LU per set); newton above it (UMFPACK), or with sparse_bpp_max_size 0.
 TEST(AutoSolver, SmallSparseGoesToBppLargeSparseToNewton) {
   ExpectChoice(Generate(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 200, true),
                AutoCandidate::kNewton);
-  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kMixed, 3, true), AutoCandidate::kBpp);
+  ExpectChoice(Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kMixed, 3, true), AutoCandidate::kEnum);
+  ExpectChoice(Generate(MatrixFamily::kDiagonallyDominant, BoundKind::kRelay, 6, true), AutoCandidate::kEnum);
+  ExpectChoice(Generate(MatrixFamily::kDiagonallyDominant, BoundKind::kRelay, 8, true), AutoCandidate::kBpp);  // 3^8 sets
   ExpectChoice(Generate(MatrixFamily::kDiagonallyDominant, BoundKind::kRelay, 64, true), AutoCandidate::kBpp);
   AutoOptions no_bpp;
   no_bpp.sparse_bpp_max_size = 0;
