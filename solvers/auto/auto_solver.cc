@@ -89,6 +89,21 @@ bool SkewDominant(const DenseMatrix& M) {
   return skew > 16.0 * symmetric;
 }
 
+// M lower triangular (every entry above the diagonal exactly 0) with a positive diagonal: then the box-MLCP has one
+// solution, found by forward substitution, z_i = Π_[l_i,u_i](−(q_i + Σ_{j<i} M_ij z_j) / M_ii), which is what one
+// projected Gauss–Seidel sweep in row order computes (psor's second sweep confirms it). Murty's family is the case
+// (lemke takes 2ⁿ pivots there from the standard start, bpp one set per row). The scan stops at the first entry
+// above the diagonal, so a matrix that is not triangular pays a few reads.
+bool LowerTriangularWithPositiveDiagonal(const DenseMatrix& M) {
+  const Eigen::Index n = M.rows();
+  for (Eigen::Index j = 1; j < n; ++j) {
+    for (Eigen::Index i = 0; i < j; ++i) {
+      if (M(i, j) != 0.0) return false;
+    }
+  }
+  return (M.diagonal().array() > 0.0).all();
+}
+
 }  // namespace
 
 std::string_view AutoCandidateName(int index) {
@@ -203,10 +218,11 @@ AutoSolver::~AutoSolver() = default;
 const SolverInfo& AutoSolver::info() const {
   static const SolverInfo kInfo{
       "auto",
-      "picks per problem the fastest backend that is exact or reliable for its class: enum (dense, few rows with "
-      "a choice), bpp (dense, up to 256 rows), psor (dense SPD, well conditioned), lemke (other dense), newton "
-      "(sparse, nonlinear MCP); on a failure that proves nothing it tries the next (psor, lemke, newton; MCPs: "
-      "newton-min, ipopt); a session gets the first candidate after bpp; details chosen, fallbacks",
+      "picks per problem the fastest backend that is exact or reliable for its class: psor (dense lower "
+      "triangular), enum (dense, few rows with a choice), bpp (dense, up to 256 rows), psor (dense SPD, well "
+      "conditioned), lemke (other dense), newton (sparse, nonlinear MCP); on a failure that proves nothing it "
+      "tries the next (psor, lemke, newton; MCPs: newton-min, ipopt); a session gets the first candidate after "
+      "bpp; details chosen, fallbacks",
       "docs/auto.md (the rule and the measurements behind it); the chosen backend's own reference",
       /*dense=*/true,
       /*sparse=*/true,
@@ -254,7 +270,11 @@ AutoChoice AutoSolver::Classify(const BoxMLCP& problem) const {
     if (problem.size() <= kMaxDensifiedSize) add(AutoCandidate::kLemke);
     return c;
   }
-  if (enum_fits) {
+  if (problem.size() > 4 && LowerTriangularWithPositiveDiagonal(problem.dense_matrix())) {
+    // From 5 rows: up to 4 enum's fixed-size kernel answers as fast (the paper's one-step problems and the
+    // time-steppers' diagonal M stay there).
+    add(AutoCandidate::kPsor);
+  } else if (enum_fits) {
     add(AutoCandidate::kEnum);
   } else {
     const bool skew = options_.skew_lemke_min_size > 0 && problem.size() >= options_.skew_lemke_min_size &&

@@ -6,6 +6,9 @@
 //   sparse M                                        → up to sparse_bpp_max_size rows enum (on a dense copy) where
 //                                                     it would take the dense problem, else bpp; then newton
 //                                                     (UMFPACK), then lemke on a dense copy (n ≤ 4096)
+//   dense, lower triangular with a positive
+//     diagonal, from 5 rows                         → psor (one sweep is the forward substitution), then lemke,
+//                                                     then newton
 //   dense, at most enum_max_choice_rows rows with a
 //     choice of state (l < u, not free: enum's own
 //     size measure) and enum_max_active_sets sets   → enum, then lemke, then newton

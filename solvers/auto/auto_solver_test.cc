@@ -171,6 +171,61 @@ TEST(AutoSolver, SkewDominantMatricesSkipBppFromThirtyTwoRows) {
   EXPECT_NE(why.find("skew_lemke_min_size"), std::string::npos) << why;
 }
 
+// Murty's LCP of n rows: M̃(n) (1 on the diagonal, 2 below), q = −(2ⁿ⁺¹ − 2ⁿ⁻ⁱ), z* = 2ⁿ e₁ (exact in double).
+BoxMLCP MurtyLcp(int n) {
+  DenseMatrix M = DenseMatrix::Zero(n, n);
+  Vector q(n);
+  for (int i = 0; i < n; ++i) {
+    M(i, i) = 1.0;
+    for (int j = 0; j < i; ++j) M(i, j) = 2.0;
+    q[i] = -(2.0 * std::ldexp(1.0, n) - std::ldexp(1.0, n - i));
+  }
+  return BoxMLCP::LCP(std::move(M), std::move(q));
+}
+
+// Lower triangular M with a positive diagonal, from 5 rows (before enum; up to 4 rows enum's fixed-size kernel): psor, whose first sweep in row order is
+// the forward substitution, exact on Murty's LCPs; a mixed box with free rows is checked against the substitution
+// computed here. One entry above the diagonal, and the matrix is no longer triangular: bpp, as any nonsymmetric
+// P-matrix of its size.
+TEST(AutoSolver, LowerTriangularGoesToPsor) {
+  for (const int n : {5, 12}) {  // within enum's rows, and past them
+    AutoSolver solver;
+    const SolveResult r = solver.Solve(MurtyLcp(n));
+    ASSERT_TRUE(r.solved()) << r.message;
+    EXPECT_EQ(Chosen(r), AutoCandidate::kPsor) << n;
+    Vector z_star = Vector::Zero(n);
+    z_star[0] = std::ldexp(1.0, n);
+    EXPECT_EQ(r.z, z_star) << n;
+  }
+  AutoSolver solver;
+
+  const int m = 20;
+  DenseMatrix L = DenseMatrix::Zero(m, m);
+  Vector qm(m), l(m), u(m);
+  for (int i = 0; i < m; ++i) {
+    L(i, i) = 1.0 + 0.1 * i;
+    for (int j = 0; j < i; ++j) L(i, j) = std::sin(1.0 + i * m + j);
+    qm[i] = 2.0 * std::cos(3.0 * i);
+    l[i] = i % 3 == 0 ? -kInf : -0.5;
+    u[i] = i % 3 == 0 ? kInf : (i % 3 == 1 ? 0.5 : kInf);
+  }
+  Vector z(m);  // forward substitution: z_i = Π_[l_i,u_i](−(q_i + Σ_{j<i} L_ij z_j) / L_ii)
+  for (int i = 0; i < m; ++i) {
+    const double free_value = -(qm[i] + L.row(i).head(i).dot(z.head(i))) / L(i, i);
+    z[i] = std::min(std::max(free_value, l[i]), u[i]);
+  }
+  const BoxMLCP mixed(L, qm, l, u);
+  const SolveResult rm = solver.Solve(mixed);
+  ASSERT_TRUE(rm.solved()) << rm.message;
+  EXPECT_EQ(Chosen(rm), AutoCandidate::kPsor);
+  EXPECT_LE((rm.z - z).cwiseAbs().maxCoeff(), 1e-12 * (1.0 + z.cwiseAbs().maxCoeff()));
+
+  DenseMatrix not_triangular = L;
+  not_triangular(0, m - 1) = 1e-3;
+  EXPECT_EQ(solver.ChoiceFor(BoxMLCP(not_triangular, qm, l, u)).order[0], AutoCandidate::kBpp);
+  EXPECT_EQ(solver.ChoiceFor(MurtyLcp(4)).order[0], AutoCandidate::kEnum);  // 4 rows: enum's kernel
+}
+
 // Without bpp (bpp_max_size 0, or past it): SPD relay at m = 64 (condition ≈ 100) goes to psor, predicted (and
 // measured, docs/auto.md) several times faster than lemke, whose LCP has 2m variables. The same matrix with LCP
 // bounds gives lemke an LCP of size m: no longer predicted slower, so lemke. With bpp, bpp first and a session
