@@ -27,7 +27,6 @@
 #include <Eigen/LU>
 #include <Eigen/UmfPackSupport>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -35,18 +34,16 @@
 #include <vector>
 
 #include "solvers/newton/fischer_burmeister.h"
+#include "solvers/newton/newton_globalization.h"
 
 namespace smcbench {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-enum class Exit { kConverged, kBudget, kTimeLimit, kStalled, kSingular, kNumericalFailure, kDiverged };
-
-// DFK 1996 sufficient-descent test gd ≤ −ρ‖d‖^p.
-bool SufficientDescent(double gd, double norm_d, double rho, double p) {
-  return gd < 0.0 && gd <= -rho * std::pow(norm_d, p);
-}
+using newton::Exit;
+static_assert(NewtonMinOptions::kMaxStagnationWindow == newton::MeritWindow::kMaxWindow,
+              "the stagnation window's bound is the shared one's");
 
 }  // namespace
 
@@ -100,14 +97,14 @@ struct NewtonMinSolver::Workspace {
   int verbosity = 0;
 
   // ---- Iterate and work vectors (size n) ----
-  Vector z, F, zt, Ft, dir, g, w, Jw, phi, weight_z, weight_F, rhs, zbest;
+  Vector z, F, zt, Ft, dir, g, w, Jw, phi, weight_z, weight_F, rhs;
   Vector units;           // c: the variables' units (ones when the problem states none)
   Vector in_units;        // a step or gradient measured in the units c (the norms the tests compare)
   Vector reform_rows;     // d₀: the row scales of the reformulation, fixed for the solve
   Vector stop_rows;       // the row scales of J at z, for the stopping test
   Vector row_eq;          // equilibration of the reduced dense rows
   Vector alpha, beta, r;  // the rows of the Newton system being solved: α_i d_i + β_i J_i d = r_i
-  double best_residual = kInf;
+  newton::BestIterate best;  // by the scale-free residual
 
   // ---- Dense linear algebra ----
   DenseMatrix A;         // n×n buffer; the leading |R|×|R| block is used
@@ -122,8 +119,9 @@ struct NewtonMinSolver::Workspace {
   bool umf_analyzed = false;
   Eigen::UmfPackLU<SparseMatrix> umf;
 
-  // ---- Psi at the last stagnation_window + 1 iterations (MeritStagnated) ----
-  std::array<double, NewtonMinOptions::kMaxStagnationWindow + 1> psi_history{};
+  // ---- The Armijo rule, and Psi at the last stagnation_window + 1 iterations (MeritStagnated) ----
+  newton::ArmijoRule armijo;
+  newton::MeritWindow psi_history;
 
   // ---- Counters and the reason of a failure ----
   int iterations = 0, newton_steps = 0, fb_newton_steps = 0, gradient_steps = 0, backtracks = 0, factorizations = 0;
@@ -133,7 +131,7 @@ struct NewtonMinSolver::Workspace {
   void Resize(int size) {
     if (n == size && z.size() == size) return;
     n = size;
-    for (Vector* x : {&z, &F, &zt, &Ft, &dir, &g, &w, &Jw, &phi, &weight_z, &weight_F, &rhs, &zbest, &units,
+    for (Vector* x : {&z, &F, &zt, &Ft, &dir, &g, &w, &Jw, &phi, &weight_z, &weight_F, &rhs, &best.z, &units,
                       &in_units, &reform_rows, &stop_rows, &row_eq, &alpha, &beta, &r}) {
       x->resize(n);
     }
@@ -237,13 +235,6 @@ struct NewtonMinSolver::Workspace {
     const double scaled = McpScaledResidual(x, Fx, *l, *u, stop_rows, mcp ? mcp->variable_scale() : no_units);
     if (!box) return scaled;
     return std::max(scaled, NaturalResidualNorm(x, Fx, *l, *u) / box->residual_scale());
-  }
-
-  void TrackBest(double residual) {
-    if (residual < best_residual) {
-      best_residual = residual;
-      zbest = z;
-    }
   }
 
   // ---------------------------------------------------------------- Newton systems α_i d_i + β_i J_i d = r_i
@@ -425,11 +416,8 @@ struct NewtonMinSolver::Workspace {
 
   // Armijo backtracking from t = 1 along dir. On success zt, Ft hold the accepted point and *psi_out its merit.
   bool LineSearch(double psi, double gd, double* psi_out, bool* all_nan) {
-    const NewtonMinOptions& o = *opt;
     if (box) box->Multiply(dir, &Jw);  // F(z + t d) = F + t M d: no product per trial
-    double t = 1.0;
-    *all_nan = true;
-    for (int j = 0; j <= o.max_backtracks; ++j) {
+    const auto merit_at = [this](double t, double* psi_t) {
       zt = z + t * dir;
       bool finite = true;
       if (box) {
@@ -437,26 +425,18 @@ struct NewtonMinSolver::Workspace {
       } else {
         finite = EvalF(zt, &Ft);
       }
-      if (finite) {
-        *all_nan = false;
-        const double psi_t = Merit(zt, Ft);
-        if (psi_t <= psi + o.armijo_sigma * t * gd) {
-          *psi_out = psi_t;
-          return true;
-        }
-      }
-      ++backtracks;
-      t *= o.backtrack_factor;
-    }
-    return false;
+      if (finite) *psi_t = Merit(zt, Ft);
+      return finite;
+    };
+    double t = 0.0;
+    return newton::ArmijoBacktrack(armijo, psi, gd, merit_at, psi_out, &t, all_nan, &backtracks);
   }
 
   // Records Psi after `iterations` steps; true if it is above stagnation_ratio × its value stagnation_window steps
   // earlier (the iterates crawl towards a minimizer of Psi that is not a solution, or cycle).
   bool MeritStagnated(double psi) {
-    const int window = opt->stagnation_window;
-    psi_history[iterations % (window + 1)] = psi;
-    return iterations >= window && psi > opt->stagnation_ratio * psi_history[(iterations - window) % (window + 1)];
+    psi_history.Record(iterations, psi);
+    return psi_history.Stagnated(iterations, psi, opt->stagnation_ratio);
   }
 
   // dir if it passes the DFK sufficient-descent test and its Armijo search (then zt, Ft, *psi_new are the new point).
@@ -464,7 +444,7 @@ struct NewtonMinSolver::Workspace {
   bool TryDirection(double psi, double* psi_new, bool* all_nan) {
     const double gd = g.dot(dir);
     in_units.array() = dir.array() / units.array();
-    return SufficientDescent(gd, in_units.norm(), opt->descent_rho, opt->descent_power) &&
+    return newton::SufficientDescent(gd, in_units.norm(), opt->descent_rho, opt->descent_power) &&
            LineSearch(psi, gd, psi_new, all_nan);
   }
 
@@ -484,7 +464,7 @@ struct NewtonMinSolver::Workspace {
     for (;;) {
       if (box == nullptr || iterations == 0) RowScalesOfJ(&stop_rows);  // a box-MLCP's J = M never changes
       const double residual = StoppingResidual(z, F);
-      TrackBest(residual);
+      best.Track(residual, z);
       if (residual <= tolerance) return Exit::kConverged;
       if (iterations >= budget) return Exit::kBudget;
       if (owner->TimeLimitReached()) return Exit::kTimeLimit;
@@ -543,12 +523,10 @@ struct NewtonMinSolver::Workspace {
       if (verbosity >= 2) {
         std::fprintf(stderr, "newton-min %4d residual %.3e psi %.3e step %s\n", iterations, residual, psi, step);
       }
-      bool moved = false;
-      for (int i = 0; i < n && !moved; ++i) moved = std::abs(zt[i] - z[i]) > 2.0 * kEps * std::abs(z[i]);
-      if (!moved) return Stop(Exit::kStalled, "the step length collapsed to rounding level");
+      if (!newton::StepMoved(z, zt)) return Stop(Exit::kStalled, "the step length collapsed to rounding level");
       z.swap(zt);
       F.swap(Ft);
-      if (!((z.array() / units.array()).abs().maxCoeff() < 1e100)) {
+      if (!newton::IterateBounded((z.array() / units.array()).abs().maxCoeff())) {
         return Stop(Exit::kDiverged, "the iterates grew without bound");
       }
       if (!UpdateJacobian()) return Exit::kNumericalFailure;
@@ -568,44 +546,13 @@ struct NewtonMinSolver::Workspace {
   void Conclude(Exit exit, SolveResult* result) {
     if (exit == Exit::kConverged) {
       ProjectIfItPasses();
-    } else if (best_residual < kInf) {
-      z = zbest;
+    } else if (best.residual < kInf) {
+      z = best.z;
     }
     result->z = z;
     result->iterations = iterations;
-    if (exit == Exit::kConverged) {
-      result->status = SolveStatus::kSolved;
-    } else {
-      std::ostringstream s;
-      switch (exit) {
-        case Exit::kBudget:
-          result->status = SolveStatus::kIterationLimit;
-          s << "iteration limit (" << budget << ") reached";
-          break;
-        case Exit::kTimeLimit:
-          result->status = SolveStatus::kTimeLimit;
-          s << "time limit reached";
-          break;
-        case Exit::kStalled:
-          result->status = SolveStatus::kStalled;
-          s << failure_detail;
-          break;
-        case Exit::kSingular:
-          result->status = SolveStatus::kSingular;
-          s << failure_detail;
-          break;
-        case Exit::kDiverged:
-          result->status = SolveStatus::kDiverged;
-          s << failure_detail;
-          break;
-        default:
-          result->status = SolveStatus::kNumericalFailure;
-          s << failure_detail;
-          break;
-      }
-      s << " after " << iterations << " iterations; best scale-free residual " << best_residual;
-      result->message = s.str();
-    }
+    newton::ReportExit(exit, failure_detail, iterations, budget, /*rounds=*/0, "scale-free residual", best.residual,
+                       result);
     result->SetDetail("newton_steps", newton_steps);
     result->SetDetail("fb_newton_steps", fb_newton_steps);
     result->SetDetail("gradient_steps", gradient_steps);
@@ -699,7 +646,9 @@ void NewtonMinSolver::RunAndConclude(const SolverOptions& options, SolveResult* 
   ws.budget = IterationBudget(options, kDefaultMaxIterations);
   ws.iterations = ws.newton_steps = ws.fb_newton_steps = ws.gradient_steps = ws.backtracks = 0;
   ws.factorizations = ws.max_system = 0;
-  ws.best_residual = kInf;
+  ws.best.Reset();
+  ws.psi_history.SetWindow(options_.stagnation_window);
+  ws.armijo = newton::ArmijoRule{options_.armijo_sigma, options_.backtrack_factor, options_.max_backtracks};
   ws.failure_detail = "";
   ws.z = result->z;
   ws.Conclude(ws.Run(), result);

@@ -65,24 +65,17 @@
 #include <vector>
 
 #include "solvers/newton/fischer_burmeister.h"
+#include "solvers/newton/newton_globalization.h"
 
 namespace smcbench {
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr int kMaxStagnationWindow = 64;
-
-// How one run of the Newton loop ended.
-enum class Exit {
-  kConverged,
-  kBudget,     // the loop's own iteration budget (which may be the global one)
-  kStalled,    // line search failed along the Newton and the gradient direction, or the step collapsed
-  kStagnated,  // Psi did not decrease enough over stagnation_window iterations
-  kSingular,   // no direction: Newton system singular and ∇Psi = 0 (or gradient fallback disabled)
-  kNumericalFailure,
-  kTimeLimit,
-  kDiverged,
-};
+using newton::Exit;
+using newton::IsHardFailure;
+using newton::SufficientDescent;
+constexpr int kMaxStagnationWindow = newton::MeritWindow::kMaxWindow;
+static_assert(NewtonOptions::kMaxNonmonotoneMemory == newton::NonmonotoneReference::kMaxMemory,
+              "the GLL memory's bound is the shared line search's");
 
 // Symmetric to rounding (|a_ij − a_ji| ≤ 1e-13·(|a_ij| + |a_ji|)); exits at the first asymmetric pair, so a
 // nonsymmetric matrix costs almost nothing. Block-wise so both triangles are read cache-friendly.
@@ -101,60 +94,6 @@ bool IsNumericallySymmetric(const DenseMatrix& M) {
     }
   }
   return true;
-}
-
-// DFK 1996 sufficient-descent test gd ≤ −ρ‖d‖^p, evaluating the power only when the bounds
-// ‖d‖² ≥ ‖d‖^p (‖d‖ ≤ 1) and ‖d‖³ ≥ ‖d‖^p (‖d‖ ≥ 1, p ≤ 3) do not decide it.
-bool SufficientDescent(double gd, double norm_d, double rho, double p) {
-  if (!(gd < 0.0)) return false;
-  const double n2 = norm_d * norm_d;
-  if (p <= 3.0 && gd <= -rho * (norm_d <= 1.0 ? n2 : n2 * norm_d)) return true;
-  return gd <= -rho * std::pow(norm_d, p);
-}
-
-bool IsHardFailure(Exit e) { return e == Exit::kNumericalFailure || e == Exit::kTimeLimit || e == Exit::kDiverged; }
-
-// Status and message for a loop exit that is not convergence.
-void ReportExit(Exit exit, const char* detail, int iterations, int budget, int rounds, const char* measure,
-                double residual, SolveResult* result) {
-  if (exit == Exit::kConverged) {
-    result->status = SolveStatus::kSolved;
-    return;
-  }
-  std::ostringstream s;
-  switch (exit) {
-    case Exit::kConverged:
-      break;
-    case Exit::kBudget:
-      result->status = SolveStatus::kIterationLimit;
-      s << "iteration limit (" << budget << ") reached";
-      break;
-    case Exit::kStalled:
-    case Exit::kStagnated:
-      result->status = SolveStatus::kStalled;
-      s << detail;
-      break;
-    case Exit::kSingular:
-      result->status = SolveStatus::kSingular;
-      s << detail;
-      break;
-    case Exit::kNumericalFailure:
-      result->status = SolveStatus::kNumericalFailure;
-      s << detail;
-      break;
-    case Exit::kTimeLimit:
-      result->status = SolveStatus::kTimeLimit;
-      s << "time limit reached";
-      break;
-    case Exit::kDiverged:
-      result->status = SolveStatus::kDiverged;
-      s << detail;
-      break;
-  }
-  s << " after " << iterations << " iterations";
-  if (rounds > 0) s << "; " << rounds << " proximal-perturbation rounds did not recover";
-  s << "; best " << measure << " " << residual;
-  result->message = s.str();
 }
 
 }  // namespace
@@ -231,11 +170,11 @@ struct SemismoothNewtonSolver::Workspace {
   bool F_is_incremental = false;  // LCP: F was updated as F + t·M d and not yet recomputed
 
   // ---- Iterate and work vectors (size n) ----
-  Vector z, F, Phi, Da, Db, g, d, Md, zt, Ft, v, w, e, Je, zbar, zbest, rhs;
+  Vector z, F, Phi, Da, Db, g, d, Md, zt, Ft, v, w, e, Je, zbar, rhs;
   Vector row_scale;             // s_i: Phi_i uses s_i·F_i (see ComputeRowScaling)
   Vector jac_row_max;           // max_j |∂F_i/∂z_j| at the start (row equilibration of the dense LU)
   Vector row_eq;                // equilibration factors of the current reduced rows
-  double best_residual = kInf;  // the stopping measure at zbest (Relative, or the MCP's scale-free residual)
+  newton::BestIterate best;     // by the stopping measure (Relative, or the MCP's scale-free residual)
   Vector mcp_row_scales;        // MCP: McpRowScales of ∇G at the point last measured (StopMeasure)
   // MCP: Newton runs on y = z/c with G(y) = D⁻¹F(c∘y) (the file comment): the units c, 1/d of the row scales d of
   // ∇F at the start, the bounds l/c, u/c, and c∘y (mutable: EvalF is const).
@@ -260,14 +199,14 @@ struct SemismoothNewtonSolver::Workspace {
   bool umf_analyzed = false;
   Eigen::UmfPackLU<SparseMatrix> umf;
 
-  // ---- Line-search memory ----
-  std::array<double, NewtonOptions::kMaxNonmonotoneMemory> psi_memory{};
-  int psi_memory_count = 0, psi_memory_next = 0;
+  // ---- Line search, its memory and the stagnation window ----
+  newton::ArmijoRule armijo;
+  newton::NonmonotoneReference reference;
   int memory = 1;      // the GLL memory of this solve (nonmonotone_memory, or mcp_nonmonotone_memory for an MCP)
   int crash_left = 0;  // crash steps still allowed (Loop's first run on an MCP only)
   int stagnation_window = 10;    // stagnation_window, or mcp_stagnation_window for an MCP
   double proximal_lambda = 1.0;  // proximal_lambda, or mcp_proximal_lambda for an MCP
-  std::array<double, kMaxStagnationWindow + 1> psi_window{};
+  newton::MeritWindow psi_window;
 
   // ---- Counters ----
   int iterations = 0, backtracks = 0, gradient_steps = 0, factorizations = 0, max_system = 0;
@@ -284,7 +223,7 @@ struct SemismoothNewtonSolver::Workspace {
     if (n == size && z.size() == size) return;
     n = size;
     for (Vector* x : {&z, &F, &Phi, &Da, &Db,   &g,     &d,   &Md,        &zt,          &Ft,
-                      &v, &w, &e,   &Je, &zbar, &zbest, &rhs, &row_scale, &jac_row_max, &row_eq,
+                      &v, &w, &e,   &Je, &zbar, &best.z, &rhs, &row_scale, &jac_row_max, &row_eq,
                       &mcp_row_scales, &mcp_c, &mcp_inv_d, &mcp_l, &mcp_u, &mcp_z}) {
       x->resize(n);
     }
@@ -465,7 +404,7 @@ struct SemismoothNewtonSolver::Workspace {
   [[gnu::noinline]] int McpConvergence(double r, double target_abs, double* measure) {
     if (!UpdateJacobian()) return -1;
     *measure = StopMeasure(z, F);
-    TrackBest(*measure);
+    best.Track(*measure, z);
     return *measure <= tolerance || (lambda > 0.0 && r <= target_abs) ? 1 : 0;
   }
   // ProjectionConverged for an MCP whose z lies outside the box (zt = Π(z)), out of line like McpConvergence. ∇G at
@@ -495,15 +434,6 @@ struct SemismoothNewtonSolver::Workspace {
     if (!ResetF() || !UpdateJacobian()) return false;
     ComputeRowScaling(opt->row_scaling);
     return true;
-  }
-
-  // The stopping measure need not decrease with the merit function, so the best iterate is the one where it is
-  // smallest.
-  void TrackBest(double measure) {
-    if (measure < best_residual) {
-      best_residual = measure;
-      zbest = z;
-    }
   }
 
   // ---------------------------------------------------------------- generalized Jacobian and gradient
@@ -756,14 +686,11 @@ struct SemismoothNewtonSolver::Workspace {
   }
 
   // ---------------------------------------------------------------- line search
-  // Backtracking from t = 1 along d until Psi(z + t d) ≤ psi_ref + σ t gd. On success zt/Ft hold the accepted
+  // Armijo backtracking from t = 1 along d until Psi(z + t d) ≤ psi_ref + σ t gd. On success zt/Ft hold the accepted
   // point and *psi_out its merit. *all_nan reports that every trial had a non-finite F (MCP).
   bool LineSearch(double psi_ref, double gd, double* psi_out, double* t_out, bool* all_nan) {
-    const NewtonOptions& o = *opt;
     if (lcp) ApplyJ(d, &Md);  // F is affine: F(z + t d) = F + t M d, no product per trial
-    double t = 1.0;
-    *all_nan = true;
-    for (int j = 0; j <= o.max_backtracks; ++j) {
+    const auto merit_at = [this](double t, double* psi) {
       zt = z + t * d;
       bool finite = true;
       if (lcp) {
@@ -771,37 +698,15 @@ struct SemismoothNewtonSolver::Workspace {
       } else {
         finite = EvalF(zt, &Ft);
       }
-      if (finite) {
-        *all_nan = false;
-        const double psi = Merit(zt, Ft);
-        if (psi <= psi_ref + o.armijo_sigma * t * gd) {
-          *psi_out = psi;
-          *t_out = t;
-          return true;
-        }
-      }
-      ++backtracks;
-      t *= o.backtrack_factor;
-    }
-    return false;
+      if (finite) *psi = Merit(zt, Ft);
+      return finite;
+    };
+    return newton::ArmijoBacktrack(armijo, psi_ref, gd, merit_at, psi_out, t_out, all_nan, &backtracks);
   }
 
-  void ResetMemory(double psi) {
-    psi_memory_count = 0;
-    psi_memory_next = 0;
-    PushMemory(psi);
-  }
-  void PushMemory(double psi) {
-    const int m = memory;
-    psi_memory[psi_memory_next] = psi;
-    psi_memory_next = (psi_memory_next + 1) % m;
-    psi_memory_count = std::min(psi_memory_count + 1, m);
-  }
-  double ReferenceMerit() const {
-    double r = psi_memory[0];
-    for (int k = 1; k < psi_memory_count; ++k) r = std::max(r, psi_memory[k]);
-    return r;
-  }
+  void ResetMemory(double psi) { reference.Reset(memory, psi); }
+  void PushMemory(double psi) { reference.Push(psi); }
+  double ReferenceMerit() const { return reference.Reference(); }
 
   // ---------------------------------------------------------------- the Newton loop
   // Runs on the problem F + λ(z − zbar) (λ = this->lambda) from z (F = F(z) of the original problem, finite).
@@ -812,11 +717,11 @@ struct SemismoothNewtonSolver::Workspace {
     ResetMemory(psi);
     double psi_best = psi;
     int since_best = 0;
-    const int window = stagnation_window;
+    psi_window.SetWindow(stagnation_window);
     for (int k = 0;; ++k) {
       // The stagnation test compares reference merits (max of the GLL memory) so that a non-monotone
       // line search is not mistaken for stagnation; with memory 1 this is Psi itself.
-      psi_window[k % (window + 1)] = ReferenceMerit();
+      psi_window.Record(k, ReferenceMerit());
       double r = ResidualOfCurrent(z, F);
       bool converged;
       double measure = 0.0;  // MCP: the stopping measure of the original problem at z
@@ -839,11 +744,11 @@ struct SemismoothNewtonSolver::Workspace {
           ResetMemory(psi);
           psi_best = psi;
           since_best = 0;
-          psi_window.fill(kInf);
+          psi_window.Fill(kInf);
         }
       } else {
         const double r_original = lambda == 0.0 ? r : NaturalResidualNorm(z, F, *l, *u);
-        TrackBest(Relative(r_original, z));
+        best.Track(Relative(r_original, z), z);
         converged = lambda == 0.0 ? Relative(r, z) <= tolerance : r <= target_abs;
       }
       if (converged && F_is_incremental) {
@@ -965,9 +870,7 @@ struct SemismoothNewtonSolver::Workspace {
         return Exit::kStalled;
       }
       // Step collapse: the accepted point equals z to rounding.
-      bool moved = false;
-      for (int i = 0; i < n && !moved; ++i) moved = std::abs(zt[i] - z[i]) > 2.0 * kEps * std::abs(z[i]);
-      if (!moved) {
+      if (!newton::StepMoved(z, zt)) {
         failure_detail = "the step length collapsed to rounding level";
         return Exit::kStalled;
       }
@@ -987,13 +890,12 @@ struct SemismoothNewtonSolver::Workspace {
         ResetMemory(psi);
         since_best = 0;
       }
-      if (!(z.cwiseAbs().maxCoeff() < 1e100)) {
+      if (!newton::IterateBounded(z.cwiseAbs().maxCoeff())) {
         failure_detail = "the iterates grew without bound";
         return Exit::kDiverged;
       }
-      // psi_window[(k + 1) % (window + 1)] holds Psi at iteration k + 1 − (window + 1) = k − window.
-      if (detect_stagnation && k >= window &&
-          ReferenceMerit() > o.stagnation_ratio * psi_window[(k + 1) % (window + 1)]) {
+      // The reference merit after iteration k + 1 against the one recorded at iteration k − window.
+      if (detect_stagnation && psi_window.Stagnated(k, ReferenceMerit(), o.stagnation_ratio)) {
         failure_detail = "the merit function stagnated at a point that is not a solution";
         return Exit::kStagnated;
       }
@@ -1011,7 +913,7 @@ struct SemismoothNewtonSolver::Workspace {
   Exit Run() {
     const NewtonOptions& o = *opt;
     lambda = 0.0;
-    best_residual = kInf;
+    best.Reset();
     if (!ResetF()) {
       failure_detail = "F is NaN/Inf at the starting point";
       return Exit::kNumericalFailure;
@@ -1109,13 +1011,13 @@ struct SemismoothNewtonSolver::Workspace {
     if (exit == Exit::kConverged) {
       // An MCP whose Loop already checked Π(z) is not evaluated there a second time.
       if ((mcp != nullptr && projection_verified) || ProjectionConverged()) z.swap(zt);  // else z passes, outside
-    } else if (best_residual < kInf) {
-      z = zbest;
+    } else if (best.residual < kInf) {
+      z = best.z;
     }
     result->z = z;
     result->iterations = iterations;
-    ReportExit(exit, failure_detail, iterations, budget, safeguard_failed ? proximal_rounds : 0,
-               mcp != nullptr ? "scale-free residual" : "relative natural residual", best_residual, result);
+    newton::ReportExit(exit, failure_detail, iterations, budget, safeguard_failed ? proximal_rounds : 0,
+                       mcp != nullptr ? "scale-free residual" : "relative natural residual", best.residual, result);
     result->SetDetail("backtracks", backtracks);
     result->SetDetail("gradient_steps", gradient_steps);
     result->SetDetail("proximal_rounds", proximal_rounds);
@@ -1229,6 +1131,7 @@ void SemismoothNewtonSolver::RunAndConclude(const SolverOptions& options, SolveR
   ws.crash_steps = ws.nonmonotone_steps = ws.row_rescalings = 0;
   const bool mcp = ws.mcp != nullptr;
   ws.memory = mcp ? options_.mcp_nonmonotone_memory : options_.nonmonotone_memory;
+  ws.armijo = newton::ArmijoRule{options_.armijo_sigma, options_.backtrack_factor, options_.max_backtracks};
   ws.stagnation_window = mcp ? options_.mcp_stagnation_window : options_.stagnation_window;
   ws.proximal_lambda = mcp ? options_.mcp_proximal_lambda : options_.proximal_lambda;
   ws.safeguard_failed = false;
