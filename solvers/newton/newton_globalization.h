@@ -10,6 +10,7 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "solvers/core/result.h"
 #include "solvers/core/types.h"
@@ -56,6 +57,30 @@ struct ArmijoRule {
   double backtrack_factor = 0.5;  // β ∈ (0, 1)
   int max_backtracks = 40;
 };
+
+// The checks of the options both solvers share, each with the option names and ranges in *why on failure. They
+// run at every Solve(): the test is inline, only the message is built out of line.
+// armijo_sigma ∈ (0, ½), backtrack_factor ∈ (0, 1), max_backtracks ∈ [1, 200];
+bool ExplainArmijoRule(const ArmijoRule& rule, std::string* why);
+inline bool ValidArmijoRule(const ArmijoRule& rule, std::string* why) {
+  if (rule.sigma > 0.0 && rule.sigma < 0.5 && rule.backtrack_factor > 0.0 && rule.backtrack_factor < 1.0 &&
+      rule.max_backtracks >= 1 && rule.max_backtracks <= 200) {
+    return true;
+  }
+  return ExplainArmijoRule(rule, why);
+}
+// descent_rho > 0 finite, descent_power > 2 finite (DFK 1996);
+bool ExplainDescentTest(double rho, double power, std::string* why);
+inline bool ValidDescentTest(double rho, double power, std::string* why) {
+  if (rho > 0.0 && std::isfinite(rho) && power > 2.0 && std::isfinite(power)) return true;
+  return ExplainDescentTest(rho, power, why);
+}
+// stagnation_window ∈ [1, MeritWindow::kMaxWindow], stagnation_ratio ∈ (0, 1) (MeritWindow is below).
+bool ExplainStagnation(int window, double ratio, std::string* why);
+inline bool ValidStagnation(int window, double ratio, std::string* why) {
+  if (window >= 1 && window <= 64 && ratio > 0.0 && ratio < 1.0) return true;
+  return ExplainStagnation(window, ratio, why);
+}
 
 // Backtracking line search along a direction d with gd = ∇Psiᵀd < 0 from the reference merit psi_ref (Psi(z), or the
 // non-monotone reference). merit_at(t, &psi_t) evaluates the trial point z + t d (the caller keeps it, e.g. in zt
@@ -122,7 +147,7 @@ class NonmonotoneReference {
 // k ≥ window; the caller records every iteration from 0 on).
 class MeritWindow {
  public:
-  static constexpr int kMaxWindow = 64;
+  static constexpr int kMaxWindow = 64;  // ValidStagnation's bound
 
   void SetWindow(int window) { window_ = window; }  // window ∈ [1, kMaxWindow] (the caller validates it)
   int window() const { return window_; }

@@ -240,6 +240,25 @@ TEST(ReportExitTest, StatusAndMessage) {
   EXPECT_EQ(r.message, "why after 1 iterations; best m 1");
 }
 
+TEST(OptionChecksTest, NameTheFieldAndTheRange) {
+  std::string why;
+  EXPECT_TRUE(ValidArmijoRule(ArmijoRule{}, &why));
+  EXPECT_FALSE(ValidArmijoRule(ArmijoRule{0.5, 0.5, 40}, &why));
+  EXPECT_EQ(why, "armijo_sigma must be in (0, 0.5), got 0.5");
+  EXPECT_FALSE(ValidArmijoRule(ArmijoRule{1e-4, 1.0, 40}, &why));
+  EXPECT_EQ(why, "backtrack_factor must be in (0, 1), got 1");
+  EXPECT_FALSE(ValidArmijoRule(ArmijoRule{1e-4, 0.5, 0}, nullptr));
+  EXPECT_TRUE(ValidDescentTest(1e-8, 2.1, &why));
+  EXPECT_FALSE(ValidDescentTest(1e-8, 2.0, &why));
+  EXPECT_EQ(why, "descent_power must be > 2 (DFK 1996 require p > 2), got 2");
+  EXPECT_FALSE(ValidDescentTest(kInf, 2.1, &why));
+  EXPECT_TRUE(ValidStagnation(MeritWindow::kMaxWindow, 0.9, &why));
+  EXPECT_FALSE(ValidStagnation(MeritWindow::kMaxWindow + 1, 0.9, &why));
+  EXPECT_EQ(why, "stagnation_window must be in [1, 64], got 65");
+  EXPECT_FALSE(ValidStagnation(10, 1.0, &why));
+  EXPECT_EQ(why, "stagnation_ratio must be in (0, 1), got 1");
+}
+
 }  // namespace
 }  // namespace newton
 }  // namespace smcbench

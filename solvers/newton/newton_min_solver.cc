@@ -25,7 +25,6 @@
 #include "solvers/newton/newton_min_solver.h"
 
 #include <Eigen/LU>
-#include <Eigen/UmfPackSupport>
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
@@ -35,6 +34,7 @@
 
 #include "solvers/newton/fischer_burmeister.h"
 #include "solvers/newton/newton_globalization.h"
+#include "solvers/newton/newton_jacobian.h"
 
 namespace smcbench {
 namespace {
@@ -60,26 +60,18 @@ bool NewtonMinOptions::IsValid(std::string* why) const {
     return fail("globalization must be fb-line-search or none, got the code ", static_cast<int>(globalization));
   if (merit_scaling != kJacobianRowScaling && merit_scaling != kNoRowScaling)
     return fail("merit_scaling must be jacobian-rows or none, got the code ", static_cast<int>(merit_scaling));
-  if (!(armijo_sigma > 0.0 && armijo_sigma < 0.5)) return fail("armijo_sigma must be in (0, 0.5), got ", armijo_sigma);
-  if (!(backtrack_factor > 0.0 && backtrack_factor < 1.0))
-    return fail("backtrack_factor must be in (0, 1), got ", backtrack_factor);
-  if (max_backtracks < 1 || max_backtracks > 200)
-    return fail("max_backtracks must be in [1, 200], got ", max_backtracks);
-  if (!(descent_rho > 0.0) || !std::isfinite(descent_rho))
-    return fail("descent_rho must be a positive finite number, got ", descent_rho);
-  if (!(descent_power > 2.0) || !std::isfinite(descent_power))
-    return fail("descent_power must be > 2 (DFK 1996 require p > 2), got ", descent_power);
+  if (!newton::ValidArmijoRule(newton::ArmijoRule{armijo_sigma, backtrack_factor, max_backtracks}, why) ||
+      !newton::ValidDescentTest(descent_rho, descent_power, why)) {
+    return false;
+  }
   if (linear_solver < NewtonOptions::kAutoLinearSolver || linear_solver > NewtonOptions::kSparseLinearSolver)
     return fail("linear_solver must be auto, dense or sparse, got the code ", static_cast<int>(linear_solver));
   if (dense_max_size < 0) return fail("dense_max_size must be >= 0, got ", dense_max_size);
-  if (stagnation_window < 1 || stagnation_window > kMaxStagnationWindow)
-    return fail("stagnation_window must be in [1, ", kMaxStagnationWindow, "], got ", stagnation_window);
-  if (!(stagnation_ratio > 0.0 && stagnation_ratio < 1.0))
-    return fail("stagnation_ratio must be in (0, 1), got ", stagnation_ratio);
-  return true;
+  return newton::ValidStagnation(stagnation_window, stagnation_ratio, why);
 }
 
-struct NewtonMinSolver::Workspace {
+// J, its copies and the sparse system's pattern live in the shared JacobianStore (newton_jacobian.h).
+struct NewtonMinSolver::Workspace : newton::JacobianStore {
   // ---- Problem view (set per solve) ----
   const NewtonMinSolver* owner = nullptr;
   const NewtonMinOptions* opt = nullptr;
@@ -88,10 +80,6 @@ struct NewtonMinSolver::Workspace {
   const Vector* l = nullptr;
   const Vector* u = nullptr;
   int n = 0;
-  bool native_sparse = false;        // J arrives sparse
-  bool dense_la = true;              // dense LU of J_RR, else UMFPACK on the full system
-  const DenseMatrix* Jd = nullptr;   // J at z, dense (native or a copy when dense_la)
-  const SparseMatrix* Js = nullptr;  // J at z, sparse (native or a copy when !dense_la)
   double tolerance = 1e-10;
   int budget = 0;
   int verbosity = 0;
@@ -110,14 +98,6 @@ struct NewtonMinSolver::Workspace {
   DenseMatrix A;         // n×n buffer; the leading |R|×|R| block is used
   Eigen::VectorXi perm;  // row transpositions of the LU
   Eigen::VectorXi ridx;  // the rows R with β ≠ 0 (the free rows of the min-Newton system)
-  DenseMatrix J_dense;   // MCP dense Jacobian, or dense copy of sparse data
-  // ---- Sparse linear algebra ----
-  SparseMatrix J_sparse;                          // MCP sparse Jacobian, or sparse copy of dense data
-  SparseMatrix H;                                 // pattern J ∪ diag
-  std::vector<int> pattern_outer, pattern_inner;  // the J pattern H was built for
-  bool pattern_ready = false;
-  bool umf_analyzed = false;
-  Eigen::UmfPackLU<SparseMatrix> umf;
 
   // ---- The Armijo rule, and Psi at the last stagnation_window + 1 iterations (MeritStagnated) ----
   newton::ArmijoRule armijo;
@@ -138,9 +118,7 @@ struct NewtonMinSolver::Workspace {
     perm.resize(n);
     ridx.resize(n);
     A.resize(0, 0);  // allocated on first dense use
-    J_dense.resize(0, 0);
-    pattern_ready = false;
-    umf_analyzed = false;
+    ResetStorage();
   }
 
   // ---------------------------------------------------------------- F and J
@@ -193,14 +171,6 @@ struct NewtonMinSolver::Workspace {
     return exit;
   }
 
-  void CopySparseToDense(const SparseMatrix& S) {
-    if (J_dense.rows() != n || J_dense.cols() != n) J_dense.resize(n, n);
-    J_dense.setZero();
-    for (int k = 0; k < S.outerSize(); ++k) {
-      for (SparseMatrix::InnerIterator it(S, k); it; ++it) J_dense(it.row(), it.col()) += it.value();
-    }
-  }
-
   void RowScalesOfJ(Vector* d) const {
     const Vector no_units;  // empty: no allocation
     const Vector& c = mcp ? mcp->variable_scale() : no_units;
@@ -208,21 +178,6 @@ struct NewtonMinSolver::Workspace {
       McpRowScales(*Js, c, d);
     } else {
       McpRowScales(*Jd, c, d);
-    }
-  }
-
-  void ApplyJ(const Vector& x, Vector* out) const {
-    if (native_sparse) {
-      out->noalias() = (*Js) * x;
-    } else {
-      out->noalias() = (*Jd) * x;
-    }
-  }
-  void ApplyJt(const Vector& x, Vector* out) const {
-    if (native_sparse) {
-      out->noalias() = Js->transpose() * x;
-    } else {
-      out->noalias() = Jd->transpose() * x;
     }
   }
 
@@ -324,31 +279,6 @@ struct NewtonMinSolver::Workspace {
     a.triangularView<Eigen::Upper>().solveInPlace(x);
     for (int k = 0; k < nr; ++k) dir[ridx[k]] = x[k] * units[ridx[k]];
     return dir.allFinite();
-  }
-
-  // H's pattern J ∪ diag, rebuilt only when the pattern of J changes (it allocates then only).
-  void EnsureSparsePattern(const SparseMatrix& J) {
-    const int nnz = static_cast<int>(J.nonZeros());
-    if (pattern_ready && static_cast<int>(pattern_inner.size()) == nnz &&
-        std::equal(pattern_outer.begin(), pattern_outer.end(), J.outerIndexPtr()) &&
-        std::equal(pattern_inner.begin(), pattern_inner.end(), J.innerIndexPtr())) {
-      return;
-    }
-    pattern_outer.assign(J.outerIndexPtr(), J.outerIndexPtr() + n + 1);
-    pattern_inner.assign(J.innerIndexPtr(), J.innerIndexPtr() + nnz);
-    std::vector<Eigen::Triplet<double, int>> triplets;
-    triplets.reserve(nnz + n);
-    for (int j = 0; j < n; ++j) {
-      for (int k = J.outerIndexPtr()[j]; k < J.outerIndexPtr()[j + 1]; ++k) {
-        triplets.emplace_back(J.innerIndexPtr()[k], j, 0.0);
-      }
-      triplets.emplace_back(j, j, 0.0);
-    }
-    H.resize(n, n);
-    H.setFromTriplets(triplets.begin(), triplets.end());
-    H.makeCompressed();
-    pattern_ready = true;
-    umf_analyzed = false;
   }
 
   // The full system H = (diag(α) + diag(β) J) C on the pattern J ∪ diag, for the unknowns d/c: UMFPACK's scaling
@@ -623,20 +553,7 @@ void NewtonMinSolver::SetUpSolve(int n, const Vector& l, const Vector& u, bool n
   ws.opt = &options_;
   ws.l = &l;
   ws.u = &u;
-  ws.native_sparse = native_sparse;
-  switch (options_.linear_solver) {
-    case NewtonOptions::kDenseLinearSolver:
-      ws.dense_la = true;
-      break;
-    case NewtonOptions::kSparseLinearSolver:
-      ws.dense_la = false;
-      break;
-    default:
-      ws.dense_la = !native_sparse || n <= options_.dense_max_size;
-      break;
-  }
-  ws.Jd = nullptr;
-  ws.Js = nullptr;
+  ws.ChooseAlgebra(options_.linear_solver, options_.dense_max_size, n, native_sparse);
 }
 
 void NewtonMinSolver::RunAndConclude(const SolverOptions& options, SolveResult* result) {
@@ -660,19 +577,7 @@ void NewtonMinSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& optio
   ws.box = &problem;
   ws.mcp = nullptr;
   ws.units.setOnes();
-  if (problem.is_sparse()) {
-    ws.Js = &problem.sparse_matrix();
-    if (ws.dense_la) {
-      ws.CopySparseToDense(problem.sparse_matrix());
-      ws.Jd = &ws.J_dense;
-    }
-  } else {
-    ws.Jd = &problem.dense_matrix();
-    if (!ws.dense_la) {
-      ws.J_sparse = problem.dense_matrix().sparseView();  // forced sparse LA on dense data
-      ws.Js = &ws.J_sparse;
-    }
-  }
+  ws.BindBoxMatrix(problem);
   RunAndConclude(options, result);
 }
 

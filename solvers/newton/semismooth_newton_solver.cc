@@ -55,7 +55,6 @@
 // iterative refinement.
 #include "solvers/newton/semismooth_newton_solver.h"
 
-#include <Eigen/UmfPackSupport>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -66,6 +65,7 @@
 
 #include "solvers/newton/fischer_burmeister.h"
 #include "solvers/newton/newton_globalization.h"
+#include "solvers/newton/newton_jacobian.h"
 
 namespace smcbench {
 namespace {
@@ -108,11 +108,7 @@ bool NewtonOptions::IsValid(std::string* why) const {
     }
     return false;
   };
-  if (!(armijo_sigma > 0.0 && armijo_sigma < 0.5)) return fail("armijo_sigma must be in (0, 0.5), got ", armijo_sigma);
-  if (!(backtrack_factor > 0.0 && backtrack_factor < 1.0))
-    return fail("backtrack_factor must be in (0, 1), got ", backtrack_factor);
-  if (max_backtracks < 1 || max_backtracks > 200)
-    return fail("max_backtracks must be in [1, 200], got ", max_backtracks);
+  if (!newton::ValidArmijoRule(newton::ArmijoRule{armijo_sigma, backtrack_factor, max_backtracks}, why)) return false;
   if (nonmonotone_memory < 1 || nonmonotone_memory > kMaxNonmonotoneMemory)
     return fail("nonmonotone_memory must be in [1, ", kMaxNonmonotoneMemory, "], got ", nonmonotone_memory);
   if (mcp_nonmonotone_memory < 1 || mcp_nonmonotone_memory > kMaxNonmonotoneMemory)
@@ -122,10 +118,7 @@ bool NewtonOptions::IsValid(std::string* why) const {
   if (!(mcp_proximal_lambda > 0.0) || !std::isfinite(mcp_proximal_lambda))
     return fail("mcp_proximal_lambda must be a positive finite number, got ", mcp_proximal_lambda);
   if (crash_steps < 0 || crash_steps > 1000) return fail("crash_steps must be in [0, 1000], got ", crash_steps);
-  if (!(descent_rho > 0.0) || !std::isfinite(descent_rho))
-    return fail("descent_rho must be a positive finite number, got ", descent_rho);
-  if (!(descent_power > 2.0) || !std::isfinite(descent_power))
-    return fail("descent_power must be > 2 (DFK 1996 require p > 2), got ", descent_power);
+  if (!newton::ValidDescentTest(descent_rho, descent_power, why)) return false;
   if (linear_solver < kAutoLinearSolver || linear_solver > kSparseLinearSolver)
     return fail("linear_solver must be auto, dense or sparse, got the code ", static_cast<int>(linear_solver));
   if (dense_max_size < 0) return fail("dense_max_size must be >= 0, got ", dense_max_size);
@@ -136,17 +129,15 @@ bool NewtonOptions::IsValid(std::string* why) const {
   if (max_proximal_rounds < 0) return fail("max_proximal_rounds must be >= 0, got ", max_proximal_rounds);
   if (!(proximal_lambda > 0.0) || !std::isfinite(proximal_lambda))
     return fail("proximal_lambda must be a positive finite number, got ", proximal_lambda);
-  if (stagnation_window < 1 || stagnation_window > kMaxStagnationWindow)
-    return fail("stagnation_window must be in [1, ", kMaxStagnationWindow, "], got ", stagnation_window);
-  if (!(stagnation_ratio > 0.0 && stagnation_ratio < 1.0))
-    return fail("stagnation_ratio must be in (0, 1), got ", stagnation_ratio);
+  if (!newton::ValidStagnation(stagnation_window, stagnation_ratio, why)) return false;
   if (proximal_inner_iterations < 1)
     return fail("proximal_inner_iterations must be >= 1, got ", proximal_inner_iterations);
   return true;
 }
 
 // Everything a solve touches, sized once per problem size. Holds the problem view for the current solve.
-struct SemismoothNewtonSolver::Workspace {
+// ∇F, its copies and the sparse system's pattern live in the shared JacobianStore (newton_jacobian.h).
+struct SemismoothNewtonSolver::Workspace : newton::JacobianStore {
   // ---- Problem view (set per solve) ----
   const SemismoothNewtonSolver* owner = nullptr;
   const NewtonOptions* opt = nullptr;
@@ -155,11 +146,7 @@ struct SemismoothNewtonSolver::Workspace {
   const Vector* l = nullptr;
   const Vector* u = nullptr;
   int n = 0;
-  bool native_sparse = false;        // ∇F arrives sparse (sparse M or a sparse MCP Jacobian)
-  bool dense_la = true;              // dense reduced LU, else UMFPACK
   bool symmetric_jacobian = false;   // dense LCP with symmetric M: Cholesky on the reduced system
-  const DenseMatrix* Jd = nullptr;   // ∇F at z, dense (native dense, or a copy when dense_la)
-  const SparseMatrix* Js = nullptr;  // ∇F at z, sparse (native sparse, or a copy when !dense_la)
   double scale = 1.0;                // relative-residual scale: 1 + ‖q‖∞, or 1 + ‖F(Π(0))‖∞ for an MCP
   bool z_relative = false;           // box-MLCP: residuals relative to 1 + min(‖z‖∞, ‖q‖∞) (file comment)
   double tolerance = 1e-10;
@@ -188,16 +175,9 @@ struct SemismoothNewtonSolver::Workspace {
   DenseMatrix A;         // n×n LU buffer; the leading |R|×|R| block is used
   Eigen::VectorXi perm;  // row transpositions of the LU
   Eigen::VectorXi ridx;  // the rows R kept in the reduced system
-  DenseMatrix J_dense;   // MCP dense Jacobian, or dense copy of sparse data
-  // ---- Sparse linear algebra ----
-  SparseMatrix J_sparse;                          // MCP sparse Jacobian, or sparse copy of dense data
-  SparseMatrix H;                                 // pattern ∇F ∪ diag
-  std::vector<int> h_map;                         // ∇F nonzero k → position in H's value array
-  std::vector<int> h_diag;                        // row i → position of H(i, i)
-  std::vector<int> pattern_outer, pattern_inner;  // the ∇F pattern H was built for
-  bool pattern_ready = false;
-  bool umf_analyzed = false;
-  Eigen::UmfPackLU<SparseMatrix> umf;
+  // ---- Sparse linear algebra (H, its pattern and UMFPACK in JacobianStore) ----
+  std::vector<int> h_map;   // ∇F nonzero k → position in H's value array
+  std::vector<int> h_diag;  // row i → position of H(i, i)
 
   // ---- Line search, its memory and the stagnation window ----
   newton::ArmijoRule armijo;
@@ -230,9 +210,7 @@ struct SemismoothNewtonSolver::Workspace {
     perm.resize(n);
     ridx.resize(n);
     A.resize(0, 0);  // allocated on first dense use
-    J_dense.resize(0, 0);
-    pattern_ready = false;
-    umf_analyzed = false;
+    ResetStorage();
   }
 
   // ---------------------------------------------------------------- model: F and its Jacobian
@@ -295,29 +273,6 @@ struct SemismoothNewtonSolver::Workspace {
     return true;
   }
 
-  void CopySparseToDense(const SparseMatrix& S) {
-    if (J_dense.rows() != n || J_dense.cols() != n) J_dense.resize(n, n);
-    J_dense.setZero();
-    for (int k = 0; k < S.outerSize(); ++k) {
-      for (SparseMatrix::InnerIterator it(S, k); it; ++it) J_dense(it.row(), it.col()) += it.value();
-    }
-  }
-
-  // out = ∇F x (original ∇F, no λ), using the native storage.
-  void ApplyJ(const Vector& x, Vector* out) const {
-    if (native_sparse) {
-      out->noalias() = (*Js) * x;
-    } else {
-      out->noalias() = (*Jd) * x;
-    }
-  }
-  void ApplyJt(const Vector& x, Vector* out) const {
-    if (native_sparse) {
-      out->noalias() = Js->transpose() * x;
-    } else {
-      out->noalias() = Jd->transpose() * x;
-    }
-  }
   double JacobianInfNorm() const {
     if (native_sparse) {
       Vector& sums = const_cast<Vector&>(v);
@@ -561,27 +516,10 @@ struct SemismoothNewtonSolver::Workspace {
     }
   }
 
-  // Builds H's pattern (∇F ∪ diag) and the value maps when the pattern of ∇F changed (allocates then only).
-  void EnsureSparsePattern(const SparseMatrix& J) {
+  // H's pattern (∇F ∪ diag, JacobianStore) and the value maps when the pattern of ∇F changed (allocates then only).
+  void EnsureSparseMaps(const SparseMatrix& J) {
+    if (!EnsureSparsePattern(J)) return;
     const int nnz = static_cast<int>(J.nonZeros());
-    if (pattern_ready && static_cast<int>(pattern_inner.size()) == nnz &&
-        std::equal(pattern_outer.begin(), pattern_outer.end(), J.outerIndexPtr()) &&
-        std::equal(pattern_inner.begin(), pattern_inner.end(), J.innerIndexPtr())) {
-      return;
-    }
-    pattern_outer.assign(J.outerIndexPtr(), J.outerIndexPtr() + n + 1);
-    pattern_inner.assign(J.innerIndexPtr(), J.innerIndexPtr() + nnz);
-    std::vector<Eigen::Triplet<double, int>> triplets;
-    triplets.reserve(nnz + n);
-    for (int j = 0; j < n; ++j) {
-      for (int k = J.outerIndexPtr()[j]; k < J.outerIndexPtr()[j + 1]; ++k) {
-        triplets.emplace_back(J.innerIndexPtr()[k], j, 1.0);
-      }
-      triplets.emplace_back(j, j, 1.0);
-    }
-    H.resize(n, n);
-    H.setFromTriplets(triplets.begin(), triplets.end());
-    H.makeCompressed();
     const auto position = [&](int row, int col) {
       const int* begin = H.innerIndexPtr() + H.outerIndexPtr()[col];
       const int* end = H.innerIndexPtr() + H.outerIndexPtr()[col + 1];
@@ -595,13 +533,11 @@ struct SemismoothNewtonSolver::Workspace {
     }
     h_diag.resize(n);
     for (int i = 0; i < n; ++i) h_diag[i] = position(i, i);
-    pattern_ready = true;
-    umf_analyzed = false;
   }
 
   bool SolveSparse() {
     const SparseMatrix& J = *Js;
-    EnsureSparsePattern(J);
+    EnsureSparseMaps(J);
     double* hv = H.valuePtr();
     std::fill(hv, hv + H.nonZeros(), 0.0);
     const double* jv = J.valuePtr();
@@ -1104,20 +1040,7 @@ void SemismoothNewtonSolver::SetUpSolve(int n, const Vector& l, const Vector& u,
   ws.opt = &options_;
   ws.l = &l;
   ws.u = &u;
-  ws.native_sparse = native_sparse;
-  switch (options_.linear_solver) {
-    case NewtonOptions::kDenseLinearSolver:
-      ws.dense_la = true;
-      break;
-    case NewtonOptions::kSparseLinearSolver:
-      ws.dense_la = false;
-      break;
-    default:
-      ws.dense_la = !native_sparse || n <= options_.dense_max_size;
-      break;
-  }
-  ws.Jd = nullptr;
-  ws.Js = nullptr;
+  ws.ChooseAlgebra(options_.linear_solver, options_.dense_max_size, n, native_sparse);
 }
 
 // The other half they share: the stopping test and budget, zeroed counters, the start in result->z; then Newton.
@@ -1147,19 +1070,7 @@ void SemismoothNewtonSolver::DoSolve(const BoxMLCP& problem, const SolverOptions
   Workspace& ws = *ws_;
   ws.lcp = &problem;
   ws.mcp = nullptr;
-  if (problem.is_sparse()) {
-    ws.Js = &problem.sparse_matrix();
-    if (ws.dense_la) {
-      ws.CopySparseToDense(problem.sparse_matrix());
-      ws.Jd = &ws.J_dense;
-    }
-  } else {
-    ws.Jd = &problem.dense_matrix();
-    if (!ws.dense_la) {
-      ws.J_sparse = problem.dense_matrix().sparseView();  // forced sparse LA on dense data
-      ws.Js = &ws.J_sparse;
-    }
-  }
+  ws.BindBoxMatrix(problem);
   ws.symmetric_jacobian = ws.dense_la && options_.use_cholesky && IsNumericallySymmetric(*ws.Jd);
   ws.scale = problem.residual_scale();
   ws.z_relative = true;
