@@ -25,9 +25,7 @@
 #include "solvers/newton/newton_min_solver.h"
 
 #include <Eigen/LU>
-#include <Eigen/UmfPackSupport>
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -35,18 +33,17 @@
 #include <vector>
 
 #include "solvers/newton/fischer_burmeister.h"
+#include "solvers/newton/newton_globalization.h"
+#include "solvers/newton/newton_jacobian.h"
 
 namespace smcbench {
 namespace {
 
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 
-enum class Exit { kConverged, kBudget, kTimeLimit, kStalled, kSingular, kNumericalFailure, kDiverged };
-
-// DFK 1996 sufficient-descent test gd ≤ −ρ‖d‖^p.
-bool SufficientDescent(double gd, double norm_d, double rho, double p) {
-  return gd < 0.0 && gd <= -rho * std::pow(norm_d, p);
-}
+using newton::Exit;
+static_assert(NewtonMinOptions::kMaxStagnationWindow == newton::MeritWindow::kMaxWindow,
+              "the stagnation window's bound is the shared one's");
 
 }  // namespace
 
@@ -63,26 +60,18 @@ bool NewtonMinOptions::IsValid(std::string* why) const {
     return fail("globalization must be fb-line-search or none, got the code ", static_cast<int>(globalization));
   if (merit_scaling != kJacobianRowScaling && merit_scaling != kNoRowScaling)
     return fail("merit_scaling must be jacobian-rows or none, got the code ", static_cast<int>(merit_scaling));
-  if (!(armijo_sigma > 0.0 && armijo_sigma < 0.5)) return fail("armijo_sigma must be in (0, 0.5), got ", armijo_sigma);
-  if (!(backtrack_factor > 0.0 && backtrack_factor < 1.0))
-    return fail("backtrack_factor must be in (0, 1), got ", backtrack_factor);
-  if (max_backtracks < 1 || max_backtracks > 200)
-    return fail("max_backtracks must be in [1, 200], got ", max_backtracks);
-  if (!(descent_rho > 0.0) || !std::isfinite(descent_rho))
-    return fail("descent_rho must be a positive finite number, got ", descent_rho);
-  if (!(descent_power > 2.0) || !std::isfinite(descent_power))
-    return fail("descent_power must be > 2 (DFK 1996 require p > 2), got ", descent_power);
+  if (!newton::ValidArmijoRule(newton::ArmijoRule{armijo_sigma, backtrack_factor, max_backtracks}, why) ||
+      !newton::ValidDescentTest(descent_rho, descent_power, why)) {
+    return false;
+  }
   if (linear_solver < NewtonOptions::kAutoLinearSolver || linear_solver > NewtonOptions::kSparseLinearSolver)
     return fail("linear_solver must be auto, dense or sparse, got the code ", static_cast<int>(linear_solver));
   if (dense_max_size < 0) return fail("dense_max_size must be >= 0, got ", dense_max_size);
-  if (stagnation_window < 1 || stagnation_window > kMaxStagnationWindow)
-    return fail("stagnation_window must be in [1, ", kMaxStagnationWindow, "], got ", stagnation_window);
-  if (!(stagnation_ratio > 0.0 && stagnation_ratio < 1.0))
-    return fail("stagnation_ratio must be in (0, 1), got ", stagnation_ratio);
-  return true;
+  return newton::ValidStagnation(stagnation_window, stagnation_ratio, why);
 }
 
-struct NewtonMinSolver::Workspace {
+// J, its copies and the sparse system's pattern live in the shared JacobianStore (newton_jacobian.h).
+struct NewtonMinSolver::Workspace : newton::JacobianStore {
   // ---- Problem view (set per solve) ----
   const NewtonMinSolver* owner = nullptr;
   const NewtonMinOptions* opt = nullptr;
@@ -91,39 +80,28 @@ struct NewtonMinSolver::Workspace {
   const Vector* l = nullptr;
   const Vector* u = nullptr;
   int n = 0;
-  bool native_sparse = false;        // J arrives sparse
-  bool dense_la = true;              // dense LU of J_RR, else UMFPACK on the full system
-  const DenseMatrix* Jd = nullptr;   // J at z, dense (native or a copy when dense_la)
-  const SparseMatrix* Js = nullptr;  // J at z, sparse (native or a copy when !dense_la)
   double tolerance = 1e-10;
   int budget = 0;
   int verbosity = 0;
 
   // ---- Iterate and work vectors (size n) ----
-  Vector z, F, zt, Ft, dir, g, w, Jw, phi, weight_z, weight_F, rhs, zbest;
+  Vector z, F, zt, Ft, dir, g, w, Jw, phi, weight_z, weight_F, rhs;
   Vector units;           // c: the variables' units (ones when the problem states none)
   Vector in_units;        // a step or gradient measured in the units c (the norms the tests compare)
   Vector reform_rows;     // d₀: the row scales of the reformulation, fixed for the solve
   Vector stop_rows;       // the row scales of J at z, for the stopping test
   Vector row_eq;          // equilibration of the reduced dense rows
   Vector alpha, beta, r;  // the rows of the Newton system being solved: α_i d_i + β_i J_i d = r_i
-  double best_residual = kInf;
+  newton::BestIterate best;  // by the scale-free residual
 
   // ---- Dense linear algebra ----
   DenseMatrix A;         // n×n buffer; the leading |R|×|R| block is used
   Eigen::VectorXi perm;  // row transpositions of the LU
   Eigen::VectorXi ridx;  // the rows R with β ≠ 0 (the free rows of the min-Newton system)
-  DenseMatrix J_dense;   // MCP dense Jacobian, or dense copy of sparse data
-  // ---- Sparse linear algebra ----
-  SparseMatrix J_sparse;                          // MCP sparse Jacobian, or sparse copy of dense data
-  SparseMatrix H;                                 // pattern J ∪ diag
-  std::vector<int> pattern_outer, pattern_inner;  // the J pattern H was built for
-  bool pattern_ready = false;
-  bool umf_analyzed = false;
-  Eigen::UmfPackLU<SparseMatrix> umf;
 
-  // ---- Psi at the last stagnation_window + 1 iterations (MeritStagnated) ----
-  std::array<double, NewtonMinOptions::kMaxStagnationWindow + 1> psi_history{};
+  // ---- The Armijo rule, and Psi at the last stagnation_window + 1 iterations (MeritStagnated) ----
+  newton::ArmijoRule armijo;
+  newton::MeritWindow psi_history;
 
   // ---- Counters and the reason of a failure ----
   int iterations = 0, newton_steps = 0, fb_newton_steps = 0, gradient_steps = 0, backtracks = 0, factorizations = 0;
@@ -133,16 +111,14 @@ struct NewtonMinSolver::Workspace {
   void Resize(int size) {
     if (n == size && z.size() == size) return;
     n = size;
-    for (Vector* x : {&z, &F, &zt, &Ft, &dir, &g, &w, &Jw, &phi, &weight_z, &weight_F, &rhs, &zbest, &units,
+    for (Vector* x : {&z, &F, &zt, &Ft, &dir, &g, &w, &Jw, &phi, &weight_z, &weight_F, &rhs, &best.z, &units,
                       &in_units, &reform_rows, &stop_rows, &row_eq, &alpha, &beta, &r}) {
       x->resize(n);
     }
     perm.resize(n);
     ridx.resize(n);
     A.resize(0, 0);  // allocated on first dense use
-    J_dense.resize(0, 0);
-    pattern_ready = false;
-    umf_analyzed = false;
+    ResetStorage();
   }
 
   // ---------------------------------------------------------------- F and J
@@ -195,14 +171,6 @@ struct NewtonMinSolver::Workspace {
     return exit;
   }
 
-  void CopySparseToDense(const SparseMatrix& S) {
-    if (J_dense.rows() != n || J_dense.cols() != n) J_dense.resize(n, n);
-    J_dense.setZero();
-    for (int k = 0; k < S.outerSize(); ++k) {
-      for (SparseMatrix::InnerIterator it(S, k); it; ++it) J_dense(it.row(), it.col()) += it.value();
-    }
-  }
-
   void RowScalesOfJ(Vector* d) const {
     const Vector no_units;  // empty: no allocation
     const Vector& c = mcp ? mcp->variable_scale() : no_units;
@@ -210,21 +178,6 @@ struct NewtonMinSolver::Workspace {
       McpRowScales(*Js, c, d);
     } else {
       McpRowScales(*Jd, c, d);
-    }
-  }
-
-  void ApplyJ(const Vector& x, Vector* out) const {
-    if (native_sparse) {
-      out->noalias() = (*Js) * x;
-    } else {
-      out->noalias() = (*Jd) * x;
-    }
-  }
-  void ApplyJt(const Vector& x, Vector* out) const {
-    if (native_sparse) {
-      out->noalias() = Js->transpose() * x;
-    } else {
-      out->noalias() = Jd->transpose() * x;
     }
   }
 
@@ -237,13 +190,6 @@ struct NewtonMinSolver::Workspace {
     const double scaled = McpScaledResidual(x, Fx, *l, *u, stop_rows, mcp ? mcp->variable_scale() : no_units);
     if (!box) return scaled;
     return std::max(scaled, NaturalResidualNorm(x, Fx, *l, *u) / box->residual_scale());
-  }
-
-  void TrackBest(double residual) {
-    if (residual < best_residual) {
-      best_residual = residual;
-      zbest = z;
-    }
   }
 
   // ---------------------------------------------------------------- Newton systems α_i d_i + β_i J_i d = r_i
@@ -335,31 +281,6 @@ struct NewtonMinSolver::Workspace {
     return dir.allFinite();
   }
 
-  // H's pattern J ∪ diag, rebuilt only when the pattern of J changes (it allocates then only).
-  void EnsureSparsePattern(const SparseMatrix& J) {
-    const int nnz = static_cast<int>(J.nonZeros());
-    if (pattern_ready && static_cast<int>(pattern_inner.size()) == nnz &&
-        std::equal(pattern_outer.begin(), pattern_outer.end(), J.outerIndexPtr()) &&
-        std::equal(pattern_inner.begin(), pattern_inner.end(), J.innerIndexPtr())) {
-      return;
-    }
-    pattern_outer.assign(J.outerIndexPtr(), J.outerIndexPtr() + n + 1);
-    pattern_inner.assign(J.innerIndexPtr(), J.innerIndexPtr() + nnz);
-    std::vector<Eigen::Triplet<double, int>> triplets;
-    triplets.reserve(nnz + n);
-    for (int j = 0; j < n; ++j) {
-      for (int k = J.outerIndexPtr()[j]; k < J.outerIndexPtr()[j + 1]; ++k) {
-        triplets.emplace_back(J.innerIndexPtr()[k], j, 0.0);
-      }
-      triplets.emplace_back(j, j, 0.0);
-    }
-    H.resize(n, n);
-    H.setFromTriplets(triplets.begin(), triplets.end());
-    H.makeCompressed();
-    pattern_ready = true;
-    umf_analyzed = false;
-  }
-
   // The full system H = (diag(α) + diag(β) J) C on the pattern J ∪ diag, for the unknowns d/c: UMFPACK's scaling
   // and pivoting then see the same matrix whatever the variables' units. J's entries are a subset of H's in every
   // column (both with sorted row indices), so one merged pass per column fills H.
@@ -425,11 +346,8 @@ struct NewtonMinSolver::Workspace {
 
   // Armijo backtracking from t = 1 along dir. On success zt, Ft hold the accepted point and *psi_out its merit.
   bool LineSearch(double psi, double gd, double* psi_out, bool* all_nan) {
-    const NewtonMinOptions& o = *opt;
     if (box) box->Multiply(dir, &Jw);  // F(z + t d) = F + t M d: no product per trial
-    double t = 1.0;
-    *all_nan = true;
-    for (int j = 0; j <= o.max_backtracks; ++j) {
+    const auto merit_at = [this](double t, double* psi_t) {
       zt = z + t * dir;
       bool finite = true;
       if (box) {
@@ -437,26 +355,18 @@ struct NewtonMinSolver::Workspace {
       } else {
         finite = EvalF(zt, &Ft);
       }
-      if (finite) {
-        *all_nan = false;
-        const double psi_t = Merit(zt, Ft);
-        if (psi_t <= psi + o.armijo_sigma * t * gd) {
-          *psi_out = psi_t;
-          return true;
-        }
-      }
-      ++backtracks;
-      t *= o.backtrack_factor;
-    }
-    return false;
+      if (finite) *psi_t = Merit(zt, Ft);
+      return finite;
+    };
+    double t = 0.0;
+    return newton::ArmijoBacktrack(armijo, psi, gd, merit_at, psi_out, &t, all_nan, &backtracks);
   }
 
   // Records Psi after `iterations` steps; true if it is above stagnation_ratio × its value stagnation_window steps
   // earlier (the iterates crawl towards a minimizer of Psi that is not a solution, or cycle).
   bool MeritStagnated(double psi) {
-    const int window = opt->stagnation_window;
-    psi_history[iterations % (window + 1)] = psi;
-    return iterations >= window && psi > opt->stagnation_ratio * psi_history[(iterations - window) % (window + 1)];
+    psi_history.Record(iterations, psi);
+    return psi_history.Stagnated(iterations, psi, opt->stagnation_ratio);
   }
 
   // dir if it passes the DFK sufficient-descent test and its Armijo search (then zt, Ft, *psi_new are the new point).
@@ -464,7 +374,7 @@ struct NewtonMinSolver::Workspace {
   bool TryDirection(double psi, double* psi_new, bool* all_nan) {
     const double gd = g.dot(dir);
     in_units.array() = dir.array() / units.array();
-    return SufficientDescent(gd, in_units.norm(), opt->descent_rho, opt->descent_power) &&
+    return newton::SufficientDescent(gd, in_units.norm(), opt->descent_rho, opt->descent_power) &&
            LineSearch(psi, gd, psi_new, all_nan);
   }
 
@@ -484,7 +394,7 @@ struct NewtonMinSolver::Workspace {
     for (;;) {
       if (box == nullptr || iterations == 0) RowScalesOfJ(&stop_rows);  // a box-MLCP's J = M never changes
       const double residual = StoppingResidual(z, F);
-      TrackBest(residual);
+      best.Track(residual, z);
       if (residual <= tolerance) return Exit::kConverged;
       if (iterations >= budget) return Exit::kBudget;
       if (owner->TimeLimitReached()) return Exit::kTimeLimit;
@@ -543,12 +453,10 @@ struct NewtonMinSolver::Workspace {
       if (verbosity >= 2) {
         std::fprintf(stderr, "newton-min %4d residual %.3e psi %.3e step %s\n", iterations, residual, psi, step);
       }
-      bool moved = false;
-      for (int i = 0; i < n && !moved; ++i) moved = std::abs(zt[i] - z[i]) > 2.0 * kEps * std::abs(z[i]);
-      if (!moved) return Stop(Exit::kStalled, "the step length collapsed to rounding level");
+      if (!newton::StepMoved(z, zt)) return Stop(Exit::kStalled, "the step length collapsed to rounding level");
       z.swap(zt);
       F.swap(Ft);
-      if (!((z.array() / units.array()).abs().maxCoeff() < 1e100)) {
+      if (!newton::IterateBounded((z.array() / units.array()).abs().maxCoeff())) {
         return Stop(Exit::kDiverged, "the iterates grew without bound");
       }
       if (!UpdateJacobian()) return Exit::kNumericalFailure;
@@ -568,44 +476,13 @@ struct NewtonMinSolver::Workspace {
   void Conclude(Exit exit, SolveResult* result) {
     if (exit == Exit::kConverged) {
       ProjectIfItPasses();
-    } else if (best_residual < kInf) {
-      z = zbest;
+    } else if (best.residual < kInf) {
+      z = best.z;
     }
     result->z = z;
     result->iterations = iterations;
-    if (exit == Exit::kConverged) {
-      result->status = SolveStatus::kSolved;
-    } else {
-      std::ostringstream s;
-      switch (exit) {
-        case Exit::kBudget:
-          result->status = SolveStatus::kIterationLimit;
-          s << "iteration limit (" << budget << ") reached";
-          break;
-        case Exit::kTimeLimit:
-          result->status = SolveStatus::kTimeLimit;
-          s << "time limit reached";
-          break;
-        case Exit::kStalled:
-          result->status = SolveStatus::kStalled;
-          s << failure_detail;
-          break;
-        case Exit::kSingular:
-          result->status = SolveStatus::kSingular;
-          s << failure_detail;
-          break;
-        case Exit::kDiverged:
-          result->status = SolveStatus::kDiverged;
-          s << failure_detail;
-          break;
-        default:
-          result->status = SolveStatus::kNumericalFailure;
-          s << failure_detail;
-          break;
-      }
-      s << " after " << iterations << " iterations; best scale-free residual " << best_residual;
-      result->message = s.str();
-    }
+    newton::ReportExit(exit, failure_detail, iterations, budget, /*rounds=*/0, "scale-free residual", best.residual,
+                       result);
     result->SetDetail("newton_steps", newton_steps);
     result->SetDetail("fb_newton_steps", fb_newton_steps);
     result->SetDetail("gradient_steps", gradient_steps);
@@ -676,20 +553,7 @@ void NewtonMinSolver::SetUpSolve(int n, const Vector& l, const Vector& u, bool n
   ws.opt = &options_;
   ws.l = &l;
   ws.u = &u;
-  ws.native_sparse = native_sparse;
-  switch (options_.linear_solver) {
-    case NewtonOptions::kDenseLinearSolver:
-      ws.dense_la = true;
-      break;
-    case NewtonOptions::kSparseLinearSolver:
-      ws.dense_la = false;
-      break;
-    default:
-      ws.dense_la = !native_sparse || n <= options_.dense_max_size;
-      break;
-  }
-  ws.Jd = nullptr;
-  ws.Js = nullptr;
+  ws.ChooseAlgebra(options_.linear_solver, options_.dense_max_size, n, native_sparse);
 }
 
 void NewtonMinSolver::RunAndConclude(const SolverOptions& options, SolveResult* result) {
@@ -699,7 +563,9 @@ void NewtonMinSolver::RunAndConclude(const SolverOptions& options, SolveResult* 
   ws.budget = IterationBudget(options, kDefaultMaxIterations);
   ws.iterations = ws.newton_steps = ws.fb_newton_steps = ws.gradient_steps = ws.backtracks = 0;
   ws.factorizations = ws.max_system = 0;
-  ws.best_residual = kInf;
+  ws.best.Reset();
+  ws.psi_history.SetWindow(options_.stagnation_window);
+  ws.armijo = newton::ArmijoRule{options_.armijo_sigma, options_.backtrack_factor, options_.max_backtracks};
   ws.failure_detail = "";
   ws.z = result->z;
   ws.Conclude(ws.Run(), result);
@@ -711,19 +577,7 @@ void NewtonMinSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& optio
   ws.box = &problem;
   ws.mcp = nullptr;
   ws.units.setOnes();
-  if (problem.is_sparse()) {
-    ws.Js = &problem.sparse_matrix();
-    if (ws.dense_la) {
-      ws.CopySparseToDense(problem.sparse_matrix());
-      ws.Jd = &ws.J_dense;
-    }
-  } else {
-    ws.Jd = &problem.dense_matrix();
-    if (!ws.dense_la) {
-      ws.J_sparse = problem.dense_matrix().sparseView();  // forced sparse LA on dense data
-      ws.Js = &ws.J_sparse;
-    }
-  }
+  ws.BindBoxMatrix(problem);
   RunAndConclude(options, result);
 }
 

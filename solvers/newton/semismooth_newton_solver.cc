@@ -55,7 +55,6 @@
 // iterative refinement.
 #include "solvers/newton/semismooth_newton_solver.h"
 
-#include <Eigen/UmfPackSupport>
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -65,24 +64,18 @@
 #include <vector>
 
 #include "solvers/newton/fischer_burmeister.h"
+#include "solvers/newton/newton_globalization.h"
+#include "solvers/newton/newton_jacobian.h"
 
 namespace smcbench {
 namespace {
 
-constexpr double kEps = std::numeric_limits<double>::epsilon();
-constexpr int kMaxStagnationWindow = 64;
-
-// How one run of the Newton loop ended.
-enum class Exit {
-  kConverged,
-  kBudget,     // the loop's own iteration budget (which may be the global one)
-  kStalled,    // line search failed along the Newton and the gradient direction, or the step collapsed
-  kStagnated,  // Psi did not decrease enough over stagnation_window iterations
-  kSingular,   // no direction: Newton system singular and ∇Psi = 0 (or gradient fallback disabled)
-  kNumericalFailure,
-  kTimeLimit,
-  kDiverged,
-};
+using newton::Exit;
+using newton::IsHardFailure;
+using newton::SufficientDescent;
+constexpr int kMaxStagnationWindow = newton::MeritWindow::kMaxWindow;
+static_assert(NewtonOptions::kMaxNonmonotoneMemory == newton::NonmonotoneReference::kMaxMemory,
+              "the GLL memory's bound is the shared line search's");
 
 // Symmetric to rounding (|a_ij − a_ji| ≤ 1e-13·(|a_ij| + |a_ji|)); exits at the first asymmetric pair, so a
 // nonsymmetric matrix costs almost nothing. Block-wise so both triangles are read cache-friendly.
@@ -103,60 +96,6 @@ bool IsNumericallySymmetric(const DenseMatrix& M) {
   return true;
 }
 
-// DFK 1996 sufficient-descent test gd ≤ −ρ‖d‖^p, evaluating the power only when the bounds
-// ‖d‖² ≥ ‖d‖^p (‖d‖ ≤ 1) and ‖d‖³ ≥ ‖d‖^p (‖d‖ ≥ 1, p ≤ 3) do not decide it.
-bool SufficientDescent(double gd, double norm_d, double rho, double p) {
-  if (!(gd < 0.0)) return false;
-  const double n2 = norm_d * norm_d;
-  if (p <= 3.0 && gd <= -rho * (norm_d <= 1.0 ? n2 : n2 * norm_d)) return true;
-  return gd <= -rho * std::pow(norm_d, p);
-}
-
-bool IsHardFailure(Exit e) { return e == Exit::kNumericalFailure || e == Exit::kTimeLimit || e == Exit::kDiverged; }
-
-// Status and message for a loop exit that is not convergence.
-void ReportExit(Exit exit, const char* detail, int iterations, int budget, int rounds, const char* measure,
-                double residual, SolveResult* result) {
-  if (exit == Exit::kConverged) {
-    result->status = SolveStatus::kSolved;
-    return;
-  }
-  std::ostringstream s;
-  switch (exit) {
-    case Exit::kConverged:
-      break;
-    case Exit::kBudget:
-      result->status = SolveStatus::kIterationLimit;
-      s << "iteration limit (" << budget << ") reached";
-      break;
-    case Exit::kStalled:
-    case Exit::kStagnated:
-      result->status = SolveStatus::kStalled;
-      s << detail;
-      break;
-    case Exit::kSingular:
-      result->status = SolveStatus::kSingular;
-      s << detail;
-      break;
-    case Exit::kNumericalFailure:
-      result->status = SolveStatus::kNumericalFailure;
-      s << detail;
-      break;
-    case Exit::kTimeLimit:
-      result->status = SolveStatus::kTimeLimit;
-      s << "time limit reached";
-      break;
-    case Exit::kDiverged:
-      result->status = SolveStatus::kDiverged;
-      s << detail;
-      break;
-  }
-  s << " after " << iterations << " iterations";
-  if (rounds > 0) s << "; " << rounds << " proximal-perturbation rounds did not recover";
-  s << "; best " << measure << " " << residual;
-  result->message = s.str();
-}
-
 }  // namespace
 
 bool NewtonOptions::IsValid(std::string* why) const {
@@ -169,11 +108,7 @@ bool NewtonOptions::IsValid(std::string* why) const {
     }
     return false;
   };
-  if (!(armijo_sigma > 0.0 && armijo_sigma < 0.5)) return fail("armijo_sigma must be in (0, 0.5), got ", armijo_sigma);
-  if (!(backtrack_factor > 0.0 && backtrack_factor < 1.0))
-    return fail("backtrack_factor must be in (0, 1), got ", backtrack_factor);
-  if (max_backtracks < 1 || max_backtracks > 200)
-    return fail("max_backtracks must be in [1, 200], got ", max_backtracks);
+  if (!newton::ValidArmijoRule(newton::ArmijoRule{armijo_sigma, backtrack_factor, max_backtracks}, why)) return false;
   if (nonmonotone_memory < 1 || nonmonotone_memory > kMaxNonmonotoneMemory)
     return fail("nonmonotone_memory must be in [1, ", kMaxNonmonotoneMemory, "], got ", nonmonotone_memory);
   if (mcp_nonmonotone_memory < 1 || mcp_nonmonotone_memory > kMaxNonmonotoneMemory)
@@ -183,10 +118,7 @@ bool NewtonOptions::IsValid(std::string* why) const {
   if (!(mcp_proximal_lambda > 0.0) || !std::isfinite(mcp_proximal_lambda))
     return fail("mcp_proximal_lambda must be a positive finite number, got ", mcp_proximal_lambda);
   if (crash_steps < 0 || crash_steps > 1000) return fail("crash_steps must be in [0, 1000], got ", crash_steps);
-  if (!(descent_rho > 0.0) || !std::isfinite(descent_rho))
-    return fail("descent_rho must be a positive finite number, got ", descent_rho);
-  if (!(descent_power > 2.0) || !std::isfinite(descent_power))
-    return fail("descent_power must be > 2 (DFK 1996 require p > 2), got ", descent_power);
+  if (!newton::ValidDescentTest(descent_rho, descent_power, why)) return false;
   if (linear_solver < kAutoLinearSolver || linear_solver > kSparseLinearSolver)
     return fail("linear_solver must be auto, dense or sparse, got the code ", static_cast<int>(linear_solver));
   if (dense_max_size < 0) return fail("dense_max_size must be >= 0, got ", dense_max_size);
@@ -197,17 +129,15 @@ bool NewtonOptions::IsValid(std::string* why) const {
   if (max_proximal_rounds < 0) return fail("max_proximal_rounds must be >= 0, got ", max_proximal_rounds);
   if (!(proximal_lambda > 0.0) || !std::isfinite(proximal_lambda))
     return fail("proximal_lambda must be a positive finite number, got ", proximal_lambda);
-  if (stagnation_window < 1 || stagnation_window > kMaxStagnationWindow)
-    return fail("stagnation_window must be in [1, ", kMaxStagnationWindow, "], got ", stagnation_window);
-  if (!(stagnation_ratio > 0.0 && stagnation_ratio < 1.0))
-    return fail("stagnation_ratio must be in (0, 1), got ", stagnation_ratio);
+  if (!newton::ValidStagnation(stagnation_window, stagnation_ratio, why)) return false;
   if (proximal_inner_iterations < 1)
     return fail("proximal_inner_iterations must be >= 1, got ", proximal_inner_iterations);
   return true;
 }
 
 // Everything a solve touches, sized once per problem size. Holds the problem view for the current solve.
-struct SemismoothNewtonSolver::Workspace {
+// ∇F, its copies and the sparse system's pattern live in the shared JacobianStore (newton_jacobian.h).
+struct SemismoothNewtonSolver::Workspace : newton::JacobianStore {
   // ---- Problem view (set per solve) ----
   const SemismoothNewtonSolver* owner = nullptr;
   const NewtonOptions* opt = nullptr;
@@ -216,11 +146,7 @@ struct SemismoothNewtonSolver::Workspace {
   const Vector* l = nullptr;
   const Vector* u = nullptr;
   int n = 0;
-  bool native_sparse = false;        // ∇F arrives sparse (sparse M or a sparse MCP Jacobian)
-  bool dense_la = true;              // dense reduced LU, else UMFPACK
   bool symmetric_jacobian = false;   // dense LCP with symmetric M: Cholesky on the reduced system
-  const DenseMatrix* Jd = nullptr;   // ∇F at z, dense (native dense, or a copy when dense_la)
-  const SparseMatrix* Js = nullptr;  // ∇F at z, sparse (native sparse, or a copy when !dense_la)
   double scale = 1.0;                // relative-residual scale: 1 + ‖q‖∞, or 1 + ‖F(Π(0))‖∞ for an MCP
   bool z_relative = false;           // box-MLCP: residuals relative to 1 + min(‖z‖∞, ‖q‖∞) (file comment)
   double tolerance = 1e-10;
@@ -231,11 +157,11 @@ struct SemismoothNewtonSolver::Workspace {
   bool F_is_incremental = false;  // LCP: F was updated as F + t·M d and not yet recomputed
 
   // ---- Iterate and work vectors (size n) ----
-  Vector z, F, Phi, Da, Db, g, d, Md, zt, Ft, v, w, e, Je, zbar, zbest, rhs;
+  Vector z, F, Phi, Da, Db, g, d, Md, zt, Ft, v, w, e, Je, zbar, rhs;
   Vector row_scale;             // s_i: Phi_i uses s_i·F_i (see ComputeRowScaling)
   Vector jac_row_max;           // max_j |∂F_i/∂z_j| at the start (row equilibration of the dense LU)
   Vector row_eq;                // equilibration factors of the current reduced rows
-  double best_residual = kInf;  // the stopping measure at zbest (Relative, or the MCP's scale-free residual)
+  newton::BestIterate best;     // by the stopping measure (Relative, or the MCP's scale-free residual)
   Vector mcp_row_scales;        // MCP: McpRowScales of ∇G at the point last measured (StopMeasure)
   // MCP: Newton runs on y = z/c with G(y) = D⁻¹F(c∘y) (the file comment): the units c, 1/d of the row scales d of
   // ∇F at the start, the bounds l/c, u/c, and c∘y (mutable: EvalF is const).
@@ -249,25 +175,18 @@ struct SemismoothNewtonSolver::Workspace {
   DenseMatrix A;         // n×n LU buffer; the leading |R|×|R| block is used
   Eigen::VectorXi perm;  // row transpositions of the LU
   Eigen::VectorXi ridx;  // the rows R kept in the reduced system
-  DenseMatrix J_dense;   // MCP dense Jacobian, or dense copy of sparse data
-  // ---- Sparse linear algebra ----
-  SparseMatrix J_sparse;                          // MCP sparse Jacobian, or sparse copy of dense data
-  SparseMatrix H;                                 // pattern ∇F ∪ diag
-  std::vector<int> h_map;                         // ∇F nonzero k → position in H's value array
-  std::vector<int> h_diag;                        // row i → position of H(i, i)
-  std::vector<int> pattern_outer, pattern_inner;  // the ∇F pattern H was built for
-  bool pattern_ready = false;
-  bool umf_analyzed = false;
-  Eigen::UmfPackLU<SparseMatrix> umf;
+  // ---- Sparse linear algebra (H, its pattern and UMFPACK in JacobianStore) ----
+  std::vector<int> h_map;   // ∇F nonzero k → position in H's value array
+  std::vector<int> h_diag;  // row i → position of H(i, i)
 
-  // ---- Line-search memory ----
-  std::array<double, NewtonOptions::kMaxNonmonotoneMemory> psi_memory{};
-  int psi_memory_count = 0, psi_memory_next = 0;
+  // ---- Line search, its memory and the stagnation window ----
+  newton::ArmijoRule armijo;
+  newton::NonmonotoneReference reference;
   int memory = 1;      // the GLL memory of this solve (nonmonotone_memory, or mcp_nonmonotone_memory for an MCP)
   int crash_left = 0;  // crash steps still allowed (Loop's first run on an MCP only)
   int stagnation_window = 10;    // stagnation_window, or mcp_stagnation_window for an MCP
   double proximal_lambda = 1.0;  // proximal_lambda, or mcp_proximal_lambda for an MCP
-  std::array<double, kMaxStagnationWindow + 1> psi_window{};
+  newton::MeritWindow psi_window;
 
   // ---- Counters ----
   int iterations = 0, backtracks = 0, gradient_steps = 0, factorizations = 0, max_system = 0;
@@ -284,16 +203,14 @@ struct SemismoothNewtonSolver::Workspace {
     if (n == size && z.size() == size) return;
     n = size;
     for (Vector* x : {&z, &F, &Phi, &Da, &Db,   &g,     &d,   &Md,        &zt,          &Ft,
-                      &v, &w, &e,   &Je, &zbar, &zbest, &rhs, &row_scale, &jac_row_max, &row_eq,
+                      &v, &w, &e,   &Je, &zbar, &best.z, &rhs, &row_scale, &jac_row_max, &row_eq,
                       &mcp_row_scales, &mcp_c, &mcp_inv_d, &mcp_l, &mcp_u, &mcp_z}) {
       x->resize(n);
     }
     perm.resize(n);
     ridx.resize(n);
     A.resize(0, 0);  // allocated on first dense use
-    J_dense.resize(0, 0);
-    pattern_ready = false;
-    umf_analyzed = false;
+    ResetStorage();
   }
 
   // ---------------------------------------------------------------- model: F and its Jacobian
@@ -356,29 +273,6 @@ struct SemismoothNewtonSolver::Workspace {
     return true;
   }
 
-  void CopySparseToDense(const SparseMatrix& S) {
-    if (J_dense.rows() != n || J_dense.cols() != n) J_dense.resize(n, n);
-    J_dense.setZero();
-    for (int k = 0; k < S.outerSize(); ++k) {
-      for (SparseMatrix::InnerIterator it(S, k); it; ++it) J_dense(it.row(), it.col()) += it.value();
-    }
-  }
-
-  // out = ∇F x (original ∇F, no λ), using the native storage.
-  void ApplyJ(const Vector& x, Vector* out) const {
-    if (native_sparse) {
-      out->noalias() = (*Js) * x;
-    } else {
-      out->noalias() = (*Jd) * x;
-    }
-  }
-  void ApplyJt(const Vector& x, Vector* out) const {
-    if (native_sparse) {
-      out->noalias() = Js->transpose() * x;
-    } else {
-      out->noalias() = Jd->transpose() * x;
-    }
-  }
   double JacobianInfNorm() const {
     if (native_sparse) {
       Vector& sums = const_cast<Vector&>(v);
@@ -465,7 +359,7 @@ struct SemismoothNewtonSolver::Workspace {
   [[gnu::noinline]] int McpConvergence(double r, double target_abs, double* measure) {
     if (!UpdateJacobian()) return -1;
     *measure = StopMeasure(z, F);
-    TrackBest(*measure);
+    best.Track(*measure, z);
     return *measure <= tolerance || (lambda > 0.0 && r <= target_abs) ? 1 : 0;
   }
   // ProjectionConverged for an MCP whose z lies outside the box (zt = Π(z)), out of line like McpConvergence. ∇G at
@@ -495,15 +389,6 @@ struct SemismoothNewtonSolver::Workspace {
     if (!ResetF() || !UpdateJacobian()) return false;
     ComputeRowScaling(opt->row_scaling);
     return true;
-  }
-
-  // The stopping measure need not decrease with the merit function, so the best iterate is the one where it is
-  // smallest.
-  void TrackBest(double measure) {
-    if (measure < best_residual) {
-      best_residual = measure;
-      zbest = z;
-    }
   }
 
   // ---------------------------------------------------------------- generalized Jacobian and gradient
@@ -631,27 +516,10 @@ struct SemismoothNewtonSolver::Workspace {
     }
   }
 
-  // Builds H's pattern (∇F ∪ diag) and the value maps when the pattern of ∇F changed (allocates then only).
-  void EnsureSparsePattern(const SparseMatrix& J) {
+  // H's pattern (∇F ∪ diag, JacobianStore) and the value maps when the pattern of ∇F changed (allocates then only).
+  void EnsureSparseMaps(const SparseMatrix& J) {
+    if (!EnsureSparsePattern(J)) return;
     const int nnz = static_cast<int>(J.nonZeros());
-    if (pattern_ready && static_cast<int>(pattern_inner.size()) == nnz &&
-        std::equal(pattern_outer.begin(), pattern_outer.end(), J.outerIndexPtr()) &&
-        std::equal(pattern_inner.begin(), pattern_inner.end(), J.innerIndexPtr())) {
-      return;
-    }
-    pattern_outer.assign(J.outerIndexPtr(), J.outerIndexPtr() + n + 1);
-    pattern_inner.assign(J.innerIndexPtr(), J.innerIndexPtr() + nnz);
-    std::vector<Eigen::Triplet<double, int>> triplets;
-    triplets.reserve(nnz + n);
-    for (int j = 0; j < n; ++j) {
-      for (int k = J.outerIndexPtr()[j]; k < J.outerIndexPtr()[j + 1]; ++k) {
-        triplets.emplace_back(J.innerIndexPtr()[k], j, 1.0);
-      }
-      triplets.emplace_back(j, j, 1.0);
-    }
-    H.resize(n, n);
-    H.setFromTriplets(triplets.begin(), triplets.end());
-    H.makeCompressed();
     const auto position = [&](int row, int col) {
       const int* begin = H.innerIndexPtr() + H.outerIndexPtr()[col];
       const int* end = H.innerIndexPtr() + H.outerIndexPtr()[col + 1];
@@ -665,13 +533,11 @@ struct SemismoothNewtonSolver::Workspace {
     }
     h_diag.resize(n);
     for (int i = 0; i < n; ++i) h_diag[i] = position(i, i);
-    pattern_ready = true;
-    umf_analyzed = false;
   }
 
   bool SolveSparse() {
     const SparseMatrix& J = *Js;
-    EnsureSparsePattern(J);
+    EnsureSparseMaps(J);
     double* hv = H.valuePtr();
     std::fill(hv, hv + H.nonZeros(), 0.0);
     const double* jv = J.valuePtr();
@@ -756,14 +622,11 @@ struct SemismoothNewtonSolver::Workspace {
   }
 
   // ---------------------------------------------------------------- line search
-  // Backtracking from t = 1 along d until Psi(z + t d) ≤ psi_ref + σ t gd. On success zt/Ft hold the accepted
+  // Armijo backtracking from t = 1 along d until Psi(z + t d) ≤ psi_ref + σ t gd. On success zt/Ft hold the accepted
   // point and *psi_out its merit. *all_nan reports that every trial had a non-finite F (MCP).
   bool LineSearch(double psi_ref, double gd, double* psi_out, double* t_out, bool* all_nan) {
-    const NewtonOptions& o = *opt;
     if (lcp) ApplyJ(d, &Md);  // F is affine: F(z + t d) = F + t M d, no product per trial
-    double t = 1.0;
-    *all_nan = true;
-    for (int j = 0; j <= o.max_backtracks; ++j) {
+    const auto merit_at = [this](double t, double* psi) {
       zt = z + t * d;
       bool finite = true;
       if (lcp) {
@@ -771,37 +634,15 @@ struct SemismoothNewtonSolver::Workspace {
       } else {
         finite = EvalF(zt, &Ft);
       }
-      if (finite) {
-        *all_nan = false;
-        const double psi = Merit(zt, Ft);
-        if (psi <= psi_ref + o.armijo_sigma * t * gd) {
-          *psi_out = psi;
-          *t_out = t;
-          return true;
-        }
-      }
-      ++backtracks;
-      t *= o.backtrack_factor;
-    }
-    return false;
+      if (finite) *psi = Merit(zt, Ft);
+      return finite;
+    };
+    return newton::ArmijoBacktrack(armijo, psi_ref, gd, merit_at, psi_out, t_out, all_nan, &backtracks);
   }
 
-  void ResetMemory(double psi) {
-    psi_memory_count = 0;
-    psi_memory_next = 0;
-    PushMemory(psi);
-  }
-  void PushMemory(double psi) {
-    const int m = memory;
-    psi_memory[psi_memory_next] = psi;
-    psi_memory_next = (psi_memory_next + 1) % m;
-    psi_memory_count = std::min(psi_memory_count + 1, m);
-  }
-  double ReferenceMerit() const {
-    double r = psi_memory[0];
-    for (int k = 1; k < psi_memory_count; ++k) r = std::max(r, psi_memory[k]);
-    return r;
-  }
+  void ResetMemory(double psi) { reference.Reset(memory, psi); }
+  void PushMemory(double psi) { reference.Push(psi); }
+  double ReferenceMerit() const { return reference.Reference(); }
 
   // ---------------------------------------------------------------- the Newton loop
   // Runs on the problem F + λ(z − zbar) (λ = this->lambda) from z (F = F(z) of the original problem, finite).
@@ -812,11 +653,11 @@ struct SemismoothNewtonSolver::Workspace {
     ResetMemory(psi);
     double psi_best = psi;
     int since_best = 0;
-    const int window = stagnation_window;
+    psi_window.SetWindow(stagnation_window);
     for (int k = 0;; ++k) {
       // The stagnation test compares reference merits (max of the GLL memory) so that a non-monotone
       // line search is not mistaken for stagnation; with memory 1 this is Psi itself.
-      psi_window[k % (window + 1)] = ReferenceMerit();
+      psi_window.Record(k, ReferenceMerit());
       double r = ResidualOfCurrent(z, F);
       bool converged;
       double measure = 0.0;  // MCP: the stopping measure of the original problem at z
@@ -839,11 +680,11 @@ struct SemismoothNewtonSolver::Workspace {
           ResetMemory(psi);
           psi_best = psi;
           since_best = 0;
-          psi_window.fill(kInf);
+          psi_window.Fill(kInf);
         }
       } else {
         const double r_original = lambda == 0.0 ? r : NaturalResidualNorm(z, F, *l, *u);
-        TrackBest(Relative(r_original, z));
+        best.Track(Relative(r_original, z), z);
         converged = lambda == 0.0 ? Relative(r, z) <= tolerance : r <= target_abs;
       }
       if (converged && F_is_incremental) {
@@ -965,9 +806,7 @@ struct SemismoothNewtonSolver::Workspace {
         return Exit::kStalled;
       }
       // Step collapse: the accepted point equals z to rounding.
-      bool moved = false;
-      for (int i = 0; i < n && !moved; ++i) moved = std::abs(zt[i] - z[i]) > 2.0 * kEps * std::abs(z[i]);
-      if (!moved) {
+      if (!newton::StepMoved(z, zt)) {
         failure_detail = "the step length collapsed to rounding level";
         return Exit::kStalled;
       }
@@ -987,13 +826,12 @@ struct SemismoothNewtonSolver::Workspace {
         ResetMemory(psi);
         since_best = 0;
       }
-      if (!(z.cwiseAbs().maxCoeff() < 1e100)) {
+      if (!newton::IterateBounded(z.cwiseAbs().maxCoeff())) {
         failure_detail = "the iterates grew without bound";
         return Exit::kDiverged;
       }
-      // psi_window[(k + 1) % (window + 1)] holds Psi at iteration k + 1 − (window + 1) = k − window.
-      if (detect_stagnation && k >= window &&
-          ReferenceMerit() > o.stagnation_ratio * psi_window[(k + 1) % (window + 1)]) {
+      // The reference merit after iteration k + 1 against the one recorded at iteration k − window.
+      if (detect_stagnation && psi_window.Stagnated(k, ReferenceMerit(), o.stagnation_ratio)) {
         failure_detail = "the merit function stagnated at a point that is not a solution";
         return Exit::kStagnated;
       }
@@ -1011,7 +849,7 @@ struct SemismoothNewtonSolver::Workspace {
   Exit Run() {
     const NewtonOptions& o = *opt;
     lambda = 0.0;
-    best_residual = kInf;
+    best.Reset();
     if (!ResetF()) {
       failure_detail = "F is NaN/Inf at the starting point";
       return Exit::kNumericalFailure;
@@ -1109,13 +947,13 @@ struct SemismoothNewtonSolver::Workspace {
     if (exit == Exit::kConverged) {
       // An MCP whose Loop already checked Π(z) is not evaluated there a second time.
       if ((mcp != nullptr && projection_verified) || ProjectionConverged()) z.swap(zt);  // else z passes, outside
-    } else if (best_residual < kInf) {
-      z = zbest;
+    } else if (best.residual < kInf) {
+      z = best.z;
     }
     result->z = z;
     result->iterations = iterations;
-    ReportExit(exit, failure_detail, iterations, budget, safeguard_failed ? proximal_rounds : 0,
-               mcp != nullptr ? "scale-free residual" : "relative natural residual", best_residual, result);
+    newton::ReportExit(exit, failure_detail, iterations, budget, safeguard_failed ? proximal_rounds : 0,
+                       mcp != nullptr ? "scale-free residual" : "relative natural residual", best.residual, result);
     result->SetDetail("backtracks", backtracks);
     result->SetDetail("gradient_steps", gradient_steps);
     result->SetDetail("proximal_rounds", proximal_rounds);
@@ -1202,20 +1040,7 @@ void SemismoothNewtonSolver::SetUpSolve(int n, const Vector& l, const Vector& u,
   ws.opt = &options_;
   ws.l = &l;
   ws.u = &u;
-  ws.native_sparse = native_sparse;
-  switch (options_.linear_solver) {
-    case NewtonOptions::kDenseLinearSolver:
-      ws.dense_la = true;
-      break;
-    case NewtonOptions::kSparseLinearSolver:
-      ws.dense_la = false;
-      break;
-    default:
-      ws.dense_la = !native_sparse || n <= options_.dense_max_size;
-      break;
-  }
-  ws.Jd = nullptr;
-  ws.Js = nullptr;
+  ws.ChooseAlgebra(options_.linear_solver, options_.dense_max_size, n, native_sparse);
 }
 
 // The other half they share: the stopping test and budget, zeroed counters, the start in result->z; then Newton.
@@ -1229,6 +1054,7 @@ void SemismoothNewtonSolver::RunAndConclude(const SolverOptions& options, SolveR
   ws.crash_steps = ws.nonmonotone_steps = ws.row_rescalings = 0;
   const bool mcp = ws.mcp != nullptr;
   ws.memory = mcp ? options_.mcp_nonmonotone_memory : options_.nonmonotone_memory;
+  ws.armijo = newton::ArmijoRule{options_.armijo_sigma, options_.backtrack_factor, options_.max_backtracks};
   ws.stagnation_window = mcp ? options_.mcp_stagnation_window : options_.stagnation_window;
   ws.proximal_lambda = mcp ? options_.mcp_proximal_lambda : options_.proximal_lambda;
   ws.safeguard_failed = false;
@@ -1244,19 +1070,7 @@ void SemismoothNewtonSolver::DoSolve(const BoxMLCP& problem, const SolverOptions
   Workspace& ws = *ws_;
   ws.lcp = &problem;
   ws.mcp = nullptr;
-  if (problem.is_sparse()) {
-    ws.Js = &problem.sparse_matrix();
-    if (ws.dense_la) {
-      ws.CopySparseToDense(problem.sparse_matrix());
-      ws.Jd = &ws.J_dense;
-    }
-  } else {
-    ws.Jd = &problem.dense_matrix();
-    if (!ws.dense_la) {
-      ws.J_sparse = problem.dense_matrix().sparseView();  // forced sparse LA on dense data
-      ws.Js = &ws.J_sparse;
-    }
-  }
+  ws.BindBoxMatrix(problem);
   ws.symmetric_jacobian = ws.dense_la && options_.use_cholesky && IsNumericallySymmetric(*ws.Jd);
   ws.scale = problem.residual_scale();
   ws.z_relative = true;
