@@ -206,7 +206,8 @@ bool BppSolver::PolishWouldRepeat(const BoxMLCP& problem, const double* z, const
   const int n = problem.size();
   if (n > kMaxPolishDenseSize) return false;  // the base does not polish there
   if (static_cast<int>(polish_state_.size()) != n) polish_state_.assign(n, 0);
-  ClassifyRowsForPolish<0>(problem, z, polish_state_.data());
+  if (polish_w_.size() != n) polish_w_.resize(n);
+  ClassifyRowsForPolish<0>(problem, z, polish_state_.data(), polish_w_.data());
   const double *l = problem.l().data(), *u = problem.u().data();
   for (int i = 0; i < n; ++i) {
     if (polish_state_[i] == state[i]) continue;
@@ -397,6 +398,7 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
           // the set's exact answer from it needs no polish (PolishWouldRepeat below).
           updated_.Invalidate();
           ++final_cholesky;
+          --iterations;  // the same set once more, not a new one (iterations counts active sets)
           continue;
         }
       }

@@ -50,10 +50,12 @@
 // positive diagonal: the reference blocks are factored by Cholesky of (R⁻¹ M)_FF, the LU taking over for the rest of
 // the solve when one is not positive definite (option cholesky). When the answer's set was factored afresh (not
 // updated), no value was clipped and the base's polish would read the same set off z, bpp tells the base so
-// (Solver::NotePolishRedundant): the polish, which would factor that block once more, is skipped when z passes.
-// iterations = active sets solved; details block_pivots, single_pivots, singular_blocks, and for dense M
-// factorizations (fresh LUs or Cholesky factorizations) and updated_sets; cholesky_factorizations,
-// refactored_answers and swept_guess (1) when nonzero.
+// (Solver::NotePolishRedundant): the polish, which would factor that block once more, is skipped when z passes. On
+// the Cholesky path an answer solved by an update is factored once more by Cholesky when the base would polish it
+// (n ≤ kMaxPolishDenseSize): half the flops of the polish's LU, which it then replaces (detail final_cholesky; the
+// same set, not counted as another). iterations = active sets solved; details block_pivots, single_pivots,
+// singular_blocks, and for dense M factorizations (fresh LUs or Cholesky factorizations) and updated_sets;
+// cholesky_factorizations, final_cholesky, refactored_answers and swept_guess (1) when nonzero.
 #pragma once
 
 #include <cstdint>
@@ -145,6 +147,7 @@ class BppSolver final : public BackendWithOptions<BppOptions> {
   Vector guess_;                              // SweptGuess's iterate
   Vector row_ratio_, inv_row_ratio_;          // SymmetricUpToRowScaling's d_i / d_0 and d_0 / d_i
   std::vector<signed char> polish_state_;     // PolishWouldRepeat's classification
+  Vector polish_w_;                           // and its w
   std::uint64_t symmetry_id_ = 0;             // the matrix_id SymmetricUpToRowScaling last decided, and its answer
   bool symmetric_ = false;
   // Sparse M only: the free block's factors and its right-hand side and solution.
