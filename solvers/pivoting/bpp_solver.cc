@@ -260,12 +260,13 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
   const bool warm = options.warm_start.size() == n;
   const bool updatable = !Sparse && n >= UpdatedFreeBlock::kMinRows;
   small_factorizations_ = 0;
+  bool cholesky = false;
   if (updatable) {
     updated_.Resize(n);
     updated_.ResetCounts();
     updated_.set_updates(options_.factor_updates);
     if constexpr (!Sparse) {
-      const bool cholesky = options_.cholesky && SymmetricUpToRowScaling(problem);
+      cholesky = options_.cholesky && SymmetricUpToRowScaling(problem);
       updated_.set_symmetric_scale(cholesky ? row_ratio_.data() : nullptr,
                                    cholesky ? inv_row_ratio_.data() : nullptr);
     }
@@ -308,6 +309,10 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
       : options_.single_pivots_per_row > 0.0
           ? std::max(4, static_cast<int>(std::min(1e9, std::ceil(options_.single_pivots_per_row * n))))
           : -1;
+  // On the Cholesky path, when the base will polish (n ≤ kMaxPolishDenseSize), a set reached by a block pivot is
+  // factored afresh: a Cholesky costs half an LU, and an answer from an update would be factored again anyway (the
+  // final re-solve below), so the update loses (measured: docs/auto.md); single pivots (one row) are still updated.
+  const bool fresh_block_sets = updatable && cholesky && options.polish && n <= kMaxPolishDenseSize;
   const auto finish = [&](SolveStatus status) {
     result->status = status;
     result->iterations = iterations;
@@ -343,6 +348,7 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
       return;
     }
     ++iterations;
+    if (fresh_block_sets && last_was_block) updated_.Invalidate();
     if (!SolveActiveSet<Sparse>(problem, z)) {
       ++singular_blocks;
       if (last_was_block) {

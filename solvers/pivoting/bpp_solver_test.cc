@@ -11,6 +11,7 @@
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "solvers/enumerative/enumerative_solver.h"
@@ -717,19 +718,30 @@ TEST(BppSolver, AFreshlyFactoredAnswerIsNotFactoredAgainByThePolish) {
   EXPECT_LE(polished.residual_scaled, 1e-13);
 }
 
-// The update path allocates nothing after the first solve of a size (free blocks of 16–64 rows and updates).
+// The update path allocates nothing after the first solve of a size (free blocks of 16–64 rows and updates, LU
+// and Cholesky).
 TEST(BppSolver, UpdatedSolvesDoNotAllocate) {
   if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";
-  for (MatrixFamily family : {MatrixFamily::kNonsymmetricPMatrix, MatrixFamily::kSymmetricPositiveDefinite}) {
+  // The symmetric problem twice: unpolished, its block pivots are updates of a Cholesky; polished, they are fresh
+  // Cholesky factorizations (bpp_solver.h).
+  for (const auto& [family, polish] : {std::pair{MatrixFamily::kNonsymmetricPMatrix, true},
+                                       std::pair{MatrixFamily::kSymmetricPositiveDefinite, false},
+                                       std::pair{MatrixFamily::kSymmetricPositiveDefinite, true}}) {
     const GeneratedProblem gen = Planted(family, BoundKind::kRelay, 96, 3);
     BppOptions no_sweeps;  // from the Jacobi-scaled guess these need several sets, hence updates
     no_sweeps.guess_sweeps = 0;
     BppSolver solver(no_sweeps);
     SolverOptions options;
+    options.polish = polish;
     SolveResult result;
     solver.Solve(gen.problem, options, &result);
     ASSERT_TRUE(result.solved()) << result.message;
-    ASSERT_GT(result.GetDetail("updated_sets"), 0.0) << gen.problem.name();
+    if (family == MatrixFamily::kSymmetricPositiveDefinite) {
+      ASSERT_GT(result.GetDetail("cholesky_factorizations"), 0.0) << gen.problem.name();
+    }
+    if (!(family == MatrixFamily::kSymmetricPositiveDefinite && polish)) {
+      ASSERT_GT(result.GetDetail("updated_sets"), 0.0) << gen.problem.name();
+    }
     const long allocations = test_support::CountMallocs([&] {
       for (int k = 0; k < 3; ++k) solver.Solve(gen.problem, options, &result);
     });
