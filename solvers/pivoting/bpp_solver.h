@@ -53,7 +53,8 @@
 // (Solver::NotePolishRedundant): the polish, which would factor that block once more, is skipped when z passes. On
 // the Cholesky path an answer solved by an update is factored once more by Cholesky when the base would polish it
 // (n ≤ kMaxPolishDenseSize): half the flops of the polish's LU, which it then replaces (detail final_cholesky; the
-// same set, not counted as another). iterations = active sets solved; details block_pivots, single_pivots,
+// same set, not counted as another); there, too, a set reached by a block pivot is factored afresh rather than
+// updated (its update plus that final Cholesky cost more than one Cholesky; single pivots are still updated). iterations = active sets solved; details block_pivots, single_pivots,
 // singular_blocks, and for dense M factorizations (fresh LUs or Cholesky factorizations) and updated_sets;
 // cholesky_factorizations, final_cholesky, refactored_answers and swept_guess (1) when nonzero.
 #pragma once
