@@ -4,6 +4,8 @@
 // found the right active set (the paper's Lemma "yahoo": x is exactly 0 after the arrival, whatever the backend).
 #pragma once
 
+#include <cstddef>
+
 #include "solvers/core/active_set.h"
 #include "solvers/core/problem.h"
 
@@ -14,16 +16,30 @@ namespace smcbench {
 inline constexpr int kPolishPasses = 3;
 
 // The active set the polish reads from z: ClassifyRow of every row of the dense equilibrated problem, with
-// w = M z + q summed as written (q first, then the columns in order). N = n, or 0 for a run-time n.
+// w = M z + q summed as written (q first, then the columns in order). N = n, or 0 for a run-time n; then w is n
+// entries of scratch, and the sums run down the columns (M is column-major: a row at a time would read M with a
+// stride of n doubles, which at n = 512 costs more than the sums), each row's sum in the same order.
 template <int N>
-inline void ClassifyRowsForPolish(const BoxMLCP& equilibrated, const double* z, signed char* state) {
+inline void ClassifyRowsForPolish(const BoxMLCP& equilibrated, const double* z, signed char* state,
+                                  double* w_scratch) {
   const int n = N > 0 ? N : equilibrated.size();
   const double* a = equilibrated.dense_matrix().data();
   const double *q = equilibrated.q().data(), *l = equilibrated.l().data(), *u = equilibrated.u().data();
-  for (int i = 0; i < n; ++i) {
-    double w = q[i];
-    for (int j = 0; j < n; ++j) w += a[i + j * n] * z[j];
-    state[i] = static_cast<signed char>(ClassifyRow(z[i], w, l[i], u[i]));
+  if constexpr (N > 0) {
+    for (int i = 0; i < n; ++i) {
+      double w = q[i];
+      for (int j = 0; j < n; ++j) w += a[i + j * n] * z[j];
+      state[i] = static_cast<signed char>(ClassifyRow(z[i], w, l[i], u[i]));
+    }
+  } else {
+    double* w = w_scratch;
+    for (int i = 0; i < n; ++i) w[i] = q[i];
+    for (int j = 0; j < n; ++j) {
+      const double* column = a + static_cast<std::ptrdiff_t>(j) * n;
+      const double zj = z[j];
+      for (int i = 0; i < n; ++i) w[i] += column[i] * zj;
+    }
+    for (int i = 0; i < n; ++i) state[i] = static_cast<signed char>(ClassifyRow(z[i], w[i], l[i], u[i]));
   }
 }
 
@@ -40,7 +56,7 @@ bool PolishDense(const BoxMLCP& equilibrated, const double* z, double* out, cons
   const int n = N > 0 ? N : equilibrated.size();
   const double* a = equilibrated.dense_matrix().data();
   const double *q = equilibrated.q().data(), *l = equilibrated.l().data(), *u = equilibrated.u().data();
-  ClassifyRowsForPolish<N>(equilibrated, z, s.state);
+  ClassifyRowsForPolish<N>(equilibrated, z, s.state, s.rhs);  // rhs: scratch until the set is solved
   for (int pass = 0; pass < kPolishPasses; ++pass) {
     int nf = 0;
     // Threshold 0: only an exact zero (or NaN) pivot is singular; the merit function judges the result.

@@ -60,6 +60,7 @@ template <int N, bool kCheckOptions>
                                                    const SolverOptions& options, std::string_view name,
                                                    SolveResult* result) {
   const int n = N > 0 ? N : n_runtime;
+  polish_redundant_ = false;
   result->Reset();
   result->solver = name;
   if (result->z.size() != n) result->z.resize(n);
@@ -172,11 +173,16 @@ template <int N>
   constexpr int kFixedN = N > 0 ? N : 1;
   Residual r = fixed ? problem.template NaturalResidualFixed<kFixedN>(result->z, &result->w)
                      : problem.NaturalResidual(result->z, &result->w);
-  // A zero residual cannot be improved; an infinite one is a z with NaN/Inf (nothing to start from).
+  // A zero residual cannot be improved; an infinite one is a z with NaN/Inf (nothing to start from); a backend's
+  // exact answer of the set the polish would solve (NotePolishRedundant) that passes is not solved again.
+  const bool redundant = polish_redundant_;
+  polish_redundant_ = false;
   if (options.polish && Polishable(result->status) && equilibrated_ &&
       equilibrated_source_ == problem.matrix_id() && result->z.size() == problem.size()) {
     if (r.abs == 0.0) {
       UpgradeShortStop(options.tolerance, r, result);
+    } else if (redundant && PassesBoxMlcpTolerance(r, options.tolerance)) {
+      // Nothing to do: the status is the backend's and stands (Finish applies the rule).
     } else if (r.abs < kInf) {
       if (fixed) {
         Polish<kFixedN>(problem, options.tolerance, &r, result);

@@ -131,6 +131,13 @@ class Solver {
   // Checks the backend's typed options; false with *why when invalid.
   virtual bool ValidateBackendOptions(std::string* why) const;
 
+  // DoSolve's answer is the exact solution of the very active set the polish would read off it (the same rows
+  // free, the same bounds; ClassifyRowsForPolish), its free block freshly factored: the polish would factor that
+  // block once more for the same point. The base then skips it for this solve when the answer passes the tolerance
+  // (so the verdict is the one the polish would give: a polished point is kept only if not worse); otherwise it
+  // polishes as usual. Cleared at the start and end of every solve.
+  void NotePolishRedundant() { polish_redundant_ = true; }
+
   // A backend whose options can change other than through SetOption (a mutable_options() accessor, a setter)
   // calls this from there, so prepared sessions validate them again.
   void OptionsChanged() { ++option_generation_; }
@@ -218,6 +225,7 @@ class Solver {
   std::uint64_t option_generation_ = 1;
   std::chrono::steady_clock::time_point deadline_{};
   bool has_deadline_ = false;
+  bool polish_redundant_ = false;  // NotePolishRedundant during this solve
 };
 
 }  // namespace smcbench

@@ -31,10 +31,12 @@ class ScriptedSolver final : public Solver {
   Vector z_to_report;
   Vector seen_start;
   Options options;
+  bool note_polish_redundant = false;  // DoSolve calls NotePolishRedundant
 
  protected:
   void DoSolve(const BoxMLCP&, const SolverOptions&, SolveResult* result) override {
     seen_start = result->z;
+    if (note_polish_redundant) NotePolishRedundant();
     if (z_to_report.size()) result->z = z_to_report;
     result->status = status_to_report;
     result->iterations = 7;
@@ -932,6 +934,31 @@ TEST(Polish, ReplacesANearbyAnswerWithTheExactOne) {
   EXPECT_NEAR(r.z[1], 0.25, 1e-15);
   EXPECT_EQ(r.z[0], 1.0);
   EXPECT_LE(r.residual_scaled, 1e-15);
+}
+
+// A backend that says its answer is the exact solve of the set the polish would read (NotePolishRedundant) is not
+// polished when that answer passes; one that does not pass is polished as before, and the note lasts one solve.
+TEST(Polish, ANotedRedundantPolishIsSkippedOnlyForAPassingAnswer) {
+  Vector s_star;
+  const BoxMLCP p = SmallHRelay(1e-8, &s_star);
+  ScriptedSolver solver;
+  solver.note_polish_redundant = true;
+  solver.z_to_report = s_star;
+  solver.z_to_report[1] += 1e-13;  // passes (scaled residual ~1e-13), not exact
+  SolveResult r = solver.Solve(p);
+  EXPECT_EQ(r.status, SolveStatus::kSolved);
+  EXPECT_TRUE(std::isnan(r.GetDetail("polished")));
+  EXPECT_EQ(r.z, solver.z_to_report) << "the backend's own answer is returned";
+  EXPECT_GT(r.residual_scaled, 0.0);
+  solver.z_to_report[1] = s_star[1] + 1e-4;  // fails: the polish runs whatever the backend said
+  r = solver.Solve(p);
+  EXPECT_EQ(r.status, SolveStatus::kSolved);
+  EXPECT_EQ(r.GetDetail("polished"), 1.0);
+  EXPECT_NEAR(r.z[1], 0.25, 1e-15);
+  solver.note_polish_redundant = false;  // the note of an earlier solve does not carry over
+  solver.z_to_report[1] = s_star[1] + 1e-13;
+  r = solver.Solve(p);
+  EXPECT_EQ(r.GetDetail("polished"), 1.0);
 }
 
 TEST(Polish, AVerifiedAnswerOutranksTheBackendsFailureStatus) {

@@ -7,6 +7,8 @@
 #include <cstddef>
 #include <cstdio>
 
+#include "solvers/core/polish.h"
+
 namespace smcbench {
 namespace {
 
@@ -98,6 +100,9 @@ void BppSolver::BindOptions(OptionBinder* binder) {
   binder->Add("factor_updates", &options_.factor_updates,
               "dense M: update the last free block's LU by a Schur complement between active sets (false: refactor "
               "every set)");
+  binder->Add("cholesky", &options_.cholesky,
+              "dense M symmetric up to the row scaling, positive diagonal: factor free blocks by Cholesky (false: "
+              "LU only)");
   binder->Add("guess_sweeps", &options_.guess_sweeps,
               "dense M, cold: projected Gauss-Seidel sweeps from the projection of 0 before the first active set is "
               "read off, in [0, 1000]");
@@ -140,14 +145,20 @@ bool BppSolver::SymmetricUpToRowScaling(const BoxMLCP& problem) {
   symmetric_ = false;
   const int n = problem.size();
   const DenseMatrix& M = problem.dense_matrix();
+  for (int i = 0; i < n; ++i) {
+    if (!(M(i, i) > 0.0)) return false;
+  }
   // M = D S with S symmetric: S_ij = M_ij / d_i = M_ji / d_j, so d_i / d_0 = M_i0 / M_0i from the first row and
   // column (both nonzero, same sign), then every pair is checked to a relative 1e-12.
   if (row_ratio_.size() != n) row_ratio_.resize(n);
-  row_ratio_[0] = 1.0;
+  if (inv_row_ratio_.size() != n) inv_row_ratio_.resize(n);
+  row_ratio_[0] = inv_row_ratio_[0] = 1.0;
   for (int i = 1; i < n; ++i) {
     const double ratio = M(i, 0) / M(0, i);
     if (!(ratio > 0.0) || !std::isfinite(ratio)) return false;
     row_ratio_[i] = ratio;
+    inv_row_ratio_[i] = M(0, i) / M(i, 0);
+    if (!(inv_row_ratio_[i] > 0.0) || !std::isfinite(inv_row_ratio_[i])) return false;
   }
   for (int j = 1; j < n; ++j) {
     for (int i = j + 1; i < n; ++i) {
@@ -163,10 +174,7 @@ bool BppSolver::SweptGuess(const BoxMLCP& problem, const double* z0, signed char
   const int n = problem.size();
   const DenseMatrix& M = problem.dense_matrix();
   const double *l = problem.l().data(), *u = problem.u().data();
-  for (int i = 0; i < n; ++i) {
-    if (!(M(i, i) > 0.0)) return false;
-  }
-  if (!SymmetricUpToRowScaling(problem)) return false;
+  if (!SymmetricUpToRowScaling(problem)) return false;  // also checks the positive diagonal
   if (guess_.size() != n) guess_.resize(n);
   std::copy(z0, z0 + n, guess_.data());
   w_.noalias() = M * guess_;
@@ -190,6 +198,22 @@ bool BppSolver::SweptGuess(const BoxMLCP& problem, const double* z0, signed char
   for (int i = 0; i < n; ++i) {
     state[i] = FixedRow(l[i], u[i]) ? kLower
                                     : static_cast<signed char>(ClassifyRow(z[i], w[i] / M(i, i), l[i], u[i]));
+  }
+  return true;
+}
+
+bool BppSolver::PolishWouldRepeat(const BoxMLCP& problem, const double* z, const signed char* state) {
+  const int n = problem.size();
+  if (n > kMaxPolishDenseSize) return false;  // the base does not polish there
+  if (static_cast<int>(polish_state_.size()) != n) polish_state_.assign(n, 0);
+  if (polish_w_.size() != n) polish_w_.resize(n);
+  ClassifyRowsForPolish<0>(problem, z, polish_state_.data(), polish_w_.data());
+  const double *l = problem.l().data(), *u = problem.u().data();
+  for (int i = 0; i < n; ++i) {
+    if (polish_state_[i] == state[i]) continue;
+    // A fixed row (l = u) sits at that value whichever bound the natural map names (it never calls it free).
+    if (FixedRow(l[i], u[i]) && polish_state_[i] != kFree) continue;
+    return false;
   }
   return true;
 }
@@ -236,10 +260,16 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
   const bool warm = options.warm_start.size() == n;
   const bool updatable = !Sparse && n >= UpdatedFreeBlock::kMinRows;
   small_factorizations_ = 0;
+  bool cholesky = false;
   if (updatable) {
     updated_.Resize(n);
     updated_.ResetCounts();
     updated_.set_updates(options_.factor_updates);
+    if constexpr (!Sparse) {
+      cholesky = options_.cholesky && SymmetricUpToRowScaling(problem);
+      updated_.set_symmetric_scale(cholesky ? row_ratio_.data() : nullptr,
+                                   cholesky ? inv_row_ratio_.data() : nullptr);
+    }
   }
   bool swept = false;
   if constexpr (!Sparse) {
@@ -272,12 +302,17 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
   bool last_was_block = false;  // the current set came from a block pivot (a singular block steps back)
   bool force_single = false;    // stepped back from a singular block: the next pivot is a single one
   int iterations = 0, block_pivots = 0, single_pivots = 0, singular_blocks = 0, refactored_answers = 0;
+  int final_cholesky = 0;  // answers from an update factored afresh by Cholesky in place of the polish
   // The work safeguard (max_single_pivots, else single_pivots_per_row): −1 for none.
   const int single_pivot_limit =
       options_.max_single_pivots >= 0 ? options_.max_single_pivots
       : options_.single_pivots_per_row > 0.0
           ? std::max(4, static_cast<int>(std::min(1e9, std::ceil(options_.single_pivots_per_row * n))))
           : -1;
+  // On the Cholesky path, when the base will polish (n ≤ kMaxPolishDenseSize), a set reached by a block pivot is
+  // factored afresh: a Cholesky costs half an LU, and an answer from an update would be factored again anyway (the
+  // final re-solve below), so the update loses (measured: docs/auto.md); single pivots (one row) are still updated.
+  const bool fresh_block_sets = updatable && cholesky && options.polish && n <= kMaxPolishDenseSize;
   const auto finish = [&](SolveStatus status) {
     result->status = status;
     result->iterations = iterations;
@@ -287,7 +322,11 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
     if constexpr (!Sparse) {
       result->SetDetail("factorizations", updatable ? updated_.factorizations() : small_factorizations_);
       result->SetDetail("updated_sets", updatable ? updated_.updates() : 0);
+      if (updatable && updated_.cholesky_factorizations() > 0) {
+        result->SetDetail("cholesky_factorizations", updated_.cholesky_factorizations());
+      }
       if (refactored_answers > 0) result->SetDetail("refactored_answers", refactored_answers);
+      if (final_cholesky > 0) result->SetDetail("final_cholesky", final_cholesky);
       if (swept) result->SetDetail("swept_guess", 1);
     }
     if (options.verbosity > 0) {
@@ -309,6 +348,7 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
       return;
     }
     ++iterations;
+    if (fresh_block_sets && last_was_block) updated_.Invalidate();
     if (!SolveActiveSet<Sparse>(problem, z)) {
       ++singular_blocks;
       if (last_was_block) {
@@ -358,10 +398,32 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
           ++refactored_answers;
           continue;
         }
+        if (options.polish && n <= kMaxPolishDenseSize && iterations < budget &&
+            updated_.reference_is_cholesky()) {
+          // The base's polish would factor the answer's block by LU (2/3·nf³); a Cholesky of it costs half, and
+          // the set's exact answer from it needs no polish (PolishWouldRepeat below).
+          updated_.Invalidate();
+          ++final_cholesky;
+          --iterations;  // the same set once more, not a new one (iterations counts active sets)
+          continue;
+        }
       }
     }
     if (count == 0) {
-      for (int i = 0; i < n; ++i) z[i] = std::min(std::max(z[i], l[i]), u[i]);
+      bool clipped = false;
+      for (int i = 0; i < n; ++i) {
+        const double clip = std::min(std::max(z[i], l[i]), u[i]);
+        clipped |= clip != z[i];
+        z[i] = clip;
+      }
+      if constexpr (!Sparse) {
+        // The answer's block was factored afresh (an update's answer is left to the polish) and is exact: when the
+        // polish would read the same set off z, it would only factor the block again.
+        if (options.polish && updatable && !clipped && updated_.last_path() == UpdatedFreeBlock::Path::kFactored &&
+            PolishWouldRepeat(problem, z, s.state)) {
+          NotePolishRedundant();
+        }
+      }
       finish(SolveStatus::kSolved);
       return;
     }

@@ -45,10 +45,18 @@
 // refactors every set (the method as published). Nothing is allocated after the first solve of a size, except
 // inside Eigen's level-3 kernels (the blocked LU, the update's triangular solves and products), which take scratch
 // beyond 128 KiB from malloc (free blocks above about 300 rows). Sparse M: each free block is gathered and factored
-// by Eigen's SparseLU (SparseFreeBlock), which allocates; no updates, no sweeps. No Cholesky for symmetric M (the
-// base hands bpp the row-equilibrated M). iterations = active sets solved; details block_pivots, single_pivots,
-// singular_blocks, and for dense M factorizations (fresh LUs) and updated_sets; refactored_answers and swept_guess
-// (1) when nonzero.
+// by Eigen's SparseLU (SparseFreeBlock), which allocates; no updates, no sweeps. Dense M of at least 16 rows that is
+// symmetric up to the base's row scaling (M = R S, as the base hands bpp a symmetric M row-equilibrated) with a
+// positive diagonal: the reference blocks are factored by Cholesky of (R⁻¹ M)_FF, the LU taking over for the rest of
+// the solve when one is not positive definite (option cholesky). When the answer's set was factored afresh (not
+// updated), no value was clipped and the base's polish would read the same set off z, bpp tells the base so
+// (Solver::NotePolishRedundant): the polish, which would factor that block once more, is skipped when z passes. On
+// the Cholesky path an answer solved by an update is factored once more by Cholesky when the base would polish it
+// (n ≤ kMaxPolishDenseSize): half the flops of the polish's LU, which it then replaces (detail final_cholesky; the
+// same set, not counted as another); there, too, a set reached by a block pivot is factored afresh rather than
+// updated (its update plus that final Cholesky cost more than one Cholesky; single pivots are still updated). iterations = active sets solved; details block_pivots, single_pivots,
+// singular_blocks, and for dense M factorizations (fresh LUs or Cholesky factorizations) and updated_sets;
+// cholesky_factorizations, final_cholesky, refactored_answers and swept_guess (1) when nonzero.
 #pragma once
 
 #include <cstdint>
@@ -87,6 +95,10 @@ struct BppOptions {
   // (up to the base's row scaling) with a positive diagonal; elsewhere they are skipped (measured: on nonsymmetric
   // P-matrices they help relays and cost LCPs and mixed bounds more sets, docs/auto.md).
   int guess_sweeps = 3;
+  // Dense M of at least UpdatedFreeBlock::kMinRows rows that is symmetric up to the base's row scaling with a
+  // positive diagonal: factor the free blocks by Cholesky of the symmetric (R⁻¹ M)_FF (half the LU's flops), the LU
+  // taking over for the rest of the solve when one is not positive definite (updated_free_block.h). false: LU only.
+  bool cholesky = true;
 
   // True if every field is usable; otherwise *why names the field and the accepted range.
   bool IsValid(std::string* why) const;
@@ -118,9 +130,14 @@ class BppSolver final : public BackendWithOptions<BppOptions> {
 
   // The first active set from guess_sweeps projected Gauss–Seidel sweeps (dense M): true when it was read off.
   bool SweptGuess(const BoxMLCP& problem, const double* z0, signed char* state);
-  // Whether the dense M is D·S for a positive diagonal D and a symmetric S (a symmetric M after row scaling),
-  // decided once per matrix_id.
+  // Whether the dense M is D·S for a positive diagonal D and a symmetric S (a symmetric M after row scaling) with a
+  // positive diagonal, decided once per matrix_id (O(n²) then; row_ratio_ and inv_row_ratio_ hold d_i / d_0 and its
+  // inverse when true).
   bool SymmetricUpToRowScaling(const BoxMLCP& problem);
+  // Dense M, n ≥ kMinRows, a solved set whose free block was just factored afresh (not updated) and nothing clipped:
+  // true when the active set the base's polish reads off z (ClassifyRowsForPolish) is this set, so the polish would
+  // factor the same block again for the same answer (Solver::NotePolishRedundant).
+  bool PolishWouldRepeat(const BoxMLCP& problem, const double* z, const signed char* state);
 
   ActiveSetWorkspace dense_;                  // the kernel's scratch (block, rhs, state, free rows, pivots)
   std::vector<signed char> previous_state_;   // the set before the last pivot, to step back from a singular block
@@ -129,7 +146,9 @@ class BppSolver final : public BackendWithOptions<BppOptions> {
   UpdatedFreeBlock updated_;                  // dense M of ≥ kMinRows rows: the free block's factors, updated
   int small_factorizations_ = 0;              // dense M of fewer rows: the sets factored this solve
   Vector guess_;                              // SweptGuess's iterate
-  Vector row_ratio_;                          // SymmetricUpToRowScaling's d_i / d_0
+  Vector row_ratio_, inv_row_ratio_;          // SymmetricUpToRowScaling's d_i / d_0 and d_0 / d_i
+  std::vector<signed char> polish_state_;     // PolishWouldRepeat's classification
+  Vector polish_w_;                           // and its w
   std::uint64_t symmetry_id_ = 0;             // the matrix_id SymmetricUpToRowScaling last decided, and its answer
   bool symmetric_ = false;
   // Sparse M only: the free block's factors and its right-hand side and solution.

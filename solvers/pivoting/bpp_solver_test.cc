@@ -5,10 +5,13 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/Eigenvalues>
+
 #include <algorithm>
 #include <cmath>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "solvers/enumerative/enumerative_solver.h"
@@ -533,19 +536,212 @@ TEST(BppSolver, SweptGuessesKeepTheAnswer) {
   EXPECT_NE(error.find("guess_sweeps"), std::string::npos) << error;
 }
 
-// The update path allocates nothing after the first solve of a size (free blocks of 16–64 rows and updates).
+// ---- Cholesky of the free block on symmetric M ----
+
+// z with the set read off a known solution (rows strictly inside their box free, the others at the bound they
+// touch) solved directly on the user's M by Eigen's full-pivoting LU: independent of bpp's kernels, scaling and
+// pivoting.
+Vector DirectSolveOnKnownSet(const BoxMLCP& problem, const Vector& known) {
+  const DenseMatrix& M = problem.dense_matrix();
+  const int n = problem.size();
+  std::vector<int> free_rows;
+  Vector z(n);
+  for (int i = 0; i < n; ++i) {
+    const double l = problem.l()[i], u = problem.u()[i], gap = 1e-9 * (1.0 + std::abs(known[i]));
+    if (known[i] <= l + gap) {
+      z[i] = l;
+    } else if (known[i] >= u - gap) {
+      z[i] = u;
+    } else {
+      z[i] = 0.0;
+      free_rows.push_back(i);
+    }
+  }
+  const int nf = static_cast<int>(free_rows.size());
+  DenseMatrix block(nf, nf);
+  Vector rhs(nf);
+  for (int r = 0; r < nf; ++r) {
+    rhs[r] = -problem.q()[free_rows[r]] - M.row(free_rows[r]).dot(z);
+    for (int c = 0; c < nf; ++c) block(r, c) = M(free_rows[r], free_rows[c]);
+  }
+  const Vector x = block.fullPivLu().solve(rhs);
+  for (int r = 0; r < nf; ++r) z[free_rows[r]] = x[r];
+  return z;
+}
+
+// SPD problems (every bound kind, sizes from the update's 16 rows to the blocked factorization's) are factored by
+// Cholesky only, and the answer is the planted z* and the direct solve of its set to rounding, with and without
+// the base's polish; the LU path (cholesky = false) gives the same verdict and point.
+TEST(BppSolver, SymmetricPositiveDefiniteBlocksAreFactoredByCholesky) {
+  BppOptions lu_only;
+  lu_only.cholesky = false;
+  BppSolver cholesky, lu(lu_only);
+  for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kBox, BoundKind::kMixed}) {
+    for (int size : {16, 20, 50, 150}) {
+      for (bool polish : {true, false}) {
+        const GeneratedProblem gen = Planted(MatrixFamily::kSymmetricPositiveDefinite, bounds, size, 6);
+        SolverOptions options;
+        options.polish = polish;
+        const SolveResult a = cholesky.Solve(gen.problem, options);
+        const SolveResult b = lu.Solve(gen.problem, options);
+        const std::string where = gen.problem.name() + (polish ? " polished" : " raw");
+        ASSERT_TRUE(a.solved()) << where << ": " << a.message;
+        ASSERT_TRUE(b.solved()) << where << ": " << b.message;
+        EXPECT_GT(a.GetDetail("factorizations"), 0.0) << where;
+        EXPECT_EQ(a.GetDetail("cholesky_factorizations"), a.GetDetail("factorizations")) << where;
+        EXPECT_TRUE(std::isnan(b.GetDetail("cholesky_factorizations"))) << where;
+        const Vector direct = DirectSolveOnKnownSet(gen.problem, gen.z_star);
+        EXPECT_LE(ForwardError(a.z, direct), 1e-12) << where;
+        EXPECT_LE(ForwardError(a.z, gen.z_star), 1e-10) << where;
+        EXPECT_LE(ForwardError(a.z, b.z), 1e-12) << where;
+        EXPECT_LE(NaturalResidual(gen.problem, a.z), 1e-11 * (1.0 + gen.problem.q().cwiseAbs().maxCoeff())) << where;
+      }
+    }
+  }
+  // Small enough for enum (3^16 sets would not be: 2 free choices on 16 LCP rows are 65536): a 16-row LCP.
+  const GeneratedProblem gen = Planted(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kLCP, 16, 7);
+  const SolveResult a = cholesky.Solve(gen.problem);
+  ASSERT_TRUE(a.solved()) << a.message;
+  EXPECT_EQ(a.GetDetail("cholesky_factorizations"), a.GetDetail("factorizations"));
+  EnumerativeSolver enumerative;
+  const SolveResult e = enumerative.Solve(gen.problem);
+  ASSERT_TRUE(e.solved()) << e.message;
+  EXPECT_LE(ForwardError(a.z, e.z), 1e-12);
+}
+
+// A symmetric M given with its rows scaled (M = D S, D positive diagonal, not symmetric as stored) is symmetric
+// after the base's row equilibration up to that scaling: still factored by Cholesky, same answer.
+TEST(BppSolver, RowScaledSymmetricMatricesTakeTheCholeskyPath) {
+  const GeneratedProblem gen = Planted(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 60, 8);
+  const int n = gen.problem.size();
+  Vector d(n);
+  for (int i = 0; i < n; ++i) d[i] = std::exp(std::sin(3.0 * i) * 4.0);  // 0.02 … 55
+  const DenseMatrix scaled = d.asDiagonal() * gen.problem.dense_matrix();
+  const BoxMLCP problem =
+      BoxMLCP(scaled, d.cwiseProduct(gen.problem.q()), gen.problem.l(), gen.problem.u(), "row-scaled-spd");
+  ASSERT_FALSE(problem.IsSymmetric());
+  BppSolver solver;
+  SolverOptions options;
+  options.polish = false;
+  const SolveResult r = solver.Solve(problem, options);
+  ASSERT_TRUE(r.solved()) << r.message;
+  EXPECT_GT(r.GetDetail("cholesky_factorizations"), 0.0);
+  EXPECT_EQ(r.GetDetail("cholesky_factorizations"), r.GetDetail("factorizations"));
+  EXPECT_LE(ForwardError(r.z, DirectSolveOnKnownSet(problem, gen.z_star)), 1e-12);
+}
+
+// A symmetric indefinite M (a 2×2 principal block [1 2; 2 1] with eigenvalue −1 in an otherwise dominant
+// diagonal): the problem's answer z* has every row free, the Cholesky of that block fails, the LU takes over and
+// solves it, and the answer is the direct solve. Below and above the sweeps' 32 rows.
+TEST(BppSolver, SymmetricIndefiniteBlocksFallBackToTheLu) {
+  for (int n : {20, 48}) {
+    DenseMatrix M = DenseMatrix::Zero(n, n);
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> entry(-1.0, 1.0);
+    for (int j = 0; j < n; ++j) {
+      for (int i = j + 1; i < n; ++i) M(i, j) = M(j, i) = 0.05 * entry(rng) / n;
+      M(j, j) = 1.0 + 0.5 * std::abs(entry(rng));
+    }
+    M(0, 0) = M(1, 1) = 1.0;
+    M(0, 1) = M(1, 0) = 2.0;
+    Vector z_star(n);
+    for (int i = 0; i < n; ++i) z_star[i] = 0.1 * std::sin(1.7 * i + 0.3);
+    const Vector q = -M * z_star;
+    const BoxMLCP problem(M, q, Vector::Constant(n, -1.0), Vector::Constant(n, 1.0), "symmetric-indefinite");
+    ASSERT_TRUE(problem.IsSymmetric());
+    ASSERT_LT(Eigen::SelfAdjointEigenSolver<DenseMatrix>(M).eigenvalues().minCoeff(), -0.5);
+    // From the Jacobi-scaled guess every row starts free (|q_i| < M_ii), so the first block is all of M.
+    BppOptions guess, lu_only;
+    guess.guess_sweeps = 0;
+    lu_only.guess_sweeps = 0;
+    lu_only.cholesky = false;
+    BppSolver solver(guess), lu(lu_only), swept;
+    for (bool polish : {true, false}) {
+      SolverOptions options;
+      options.polish = polish;
+      const SolveResult r = solver.Solve(problem, options);
+      const SolveResult b = lu.Solve(problem, options);
+      ASSERT_TRUE(r.solved()) << n << ": " << r.message;
+      ASSERT_TRUE(b.solved()) << n << ": " << b.message;
+      EXPECT_EQ(r.iterations, 1) << n;
+      EXPECT_EQ(r.GetDetail("factorizations"), 1.0) << n;
+      EXPECT_TRUE(std::isnan(r.GetDetail("cholesky_factorizations"))) << n << ": the LU took over";
+      EXPECT_LE(ForwardError(r.z, z_star), 1e-13) << n;
+      EXPECT_LE(ForwardError(r.z, DirectSolveOnKnownSet(problem, z_star)), 1e-13) << n;
+      EXPECT_LE(ForwardError(r.z, b.z), 1e-13) << n;
+      // With the default sweeps (from 32 rows) the first set differs; M is not a P-matrix, so the answer may be
+      // another solution: solved, and one by the natural residual recomputed here.
+      const SolveResult c = swept.Solve(problem, options);
+      ASSERT_TRUE(c.solved()) << n << ": " << c.message;
+      EXPECT_LE(NaturalResidual(problem, c.z), 1e-13) << n;
+    }
+  }
+}
+
+// Nonsymmetric M never takes the Cholesky: with the option on or off, bpp's path and answer are the same bits.
+TEST(BppSolver, NonsymmetricProblemsAreUnchangedByTheCholeskyOption) {
+  BppOptions lu_only;
+  lu_only.cholesky = false;
+  BppSolver with, without(lu_only);
+  for (MatrixFamily family : {MatrixFamily::kNonsymmetricPMatrix, MatrixFamily::kDiagonallyDominant,
+                              MatrixFamily::kSkewPMatrix}) {
+    for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kMixed}) {
+      const GeneratedProblem gen = Planted(family, bounds, 40, 3);
+      ASSERT_FALSE(gen.problem.IsSymmetric());
+      const SolveResult a = with.Solve(gen.problem);
+      const SolveResult b = without.Solve(gen.problem);
+      ASSERT_TRUE(a.solved()) << gen.problem.name() << ": " << a.message;
+      EXPECT_TRUE(std::isnan(a.GetDetail("cholesky_factorizations"))) << gen.problem.name();
+      EXPECT_EQ(a.iterations, b.iterations) << gen.problem.name();
+      EXPECT_EQ(a.GetDetail("factorizations"), b.GetDetail("factorizations")) << gen.problem.name();
+      EXPECT_EQ(a.z, b.z) << gen.problem.name();
+      EXPECT_LE(ForwardError(a.z, gen.z_star), 1e-8) << gen.problem.name();
+    }
+  }
+}
+
+// An answer whose set was factored afresh, unclipped, and is the set the base's polish reads off it is not polished
+// again (the polish would factor the same block once more): the point is bpp's own, bit for bit as with the polish
+// off, and exact to rounding.
+TEST(BppSolver, AFreshlyFactoredAnswerIsNotFactoredAgainByThePolish) {
+  const GeneratedProblem gen = Planted(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 64, 1);
+  BppSolver solver;
+  SolverOptions raw;
+  raw.polish = false;
+  const SolveResult polished = solver.Solve(gen.problem);
+  const SolveResult unpolished = solver.Solve(gen.problem, raw);
+  ASSERT_TRUE(polished.solved()) << polished.message;
+  ASSERT_EQ(polished.GetDetail("updated_sets"), 0.0) << "a set factored afresh is the point of this test";
+  EXPECT_TRUE(std::isnan(polished.GetDetail("polished")));
+  EXPECT_EQ(polished.z, unpolished.z);
+  EXPECT_LE(ForwardError(polished.z, DirectSolveOnKnownSet(gen.problem, gen.z_star)), 1e-13);
+  EXPECT_LE(polished.residual_scaled, 1e-13);
+}
+
+// The update path allocates nothing after the first solve of a size (free blocks of 16–64 rows and updates, LU
+// and Cholesky).
 TEST(BppSolver, UpdatedSolvesDoNotAllocate) {
   if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";
-  for (MatrixFamily family : {MatrixFamily::kNonsymmetricPMatrix, MatrixFamily::kSymmetricPositiveDefinite}) {
+  // The symmetric problem twice: unpolished, its block pivots are updates of a Cholesky; polished, they are fresh
+  // Cholesky factorizations (bpp_solver.h).
+  for (const auto& [family, polish] : {std::pair{MatrixFamily::kNonsymmetricPMatrix, true},
+                                       std::pair{MatrixFamily::kSymmetricPositiveDefinite, false},
+                                       std::pair{MatrixFamily::kSymmetricPositiveDefinite, true}}) {
     const GeneratedProblem gen = Planted(family, BoundKind::kRelay, 96, 3);
     BppOptions no_sweeps;  // from the Jacobi-scaled guess these need several sets, hence updates
     no_sweeps.guess_sweeps = 0;
     BppSolver solver(no_sweeps);
     SolverOptions options;
+    options.polish = polish;
     SolveResult result;
     solver.Solve(gen.problem, options, &result);
     ASSERT_TRUE(result.solved()) << result.message;
-    ASSERT_GT(result.GetDetail("updated_sets"), 0.0) << gen.problem.name();
+    if (family == MatrixFamily::kSymmetricPositiveDefinite) {
+      ASSERT_GT(result.GetDetail("cholesky_factorizations"), 0.0) << gen.problem.name();
+    }
+    if (!(family == MatrixFamily::kSymmetricPositiveDefinite && polish)) {
+      ASSERT_GT(result.GetDetail("updated_sets"), 0.0) << gen.problem.name();
+    }
     const long allocations = test_support::CountMallocs([&] {
       for (int k = 0; k < 3; ++k) solver.Solve(gen.problem, options, &result);
     });

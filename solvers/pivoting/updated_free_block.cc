@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstddef>
 
+#include <Eigen/Cholesky>
 #include <Eigen/LU>
 
 #include "solvers/core/active_set.h"
@@ -75,8 +76,14 @@ bool UpdatedFreeBlock::Factor(const double* m, int n, const double* q, const int
   slots_ = 0;
   nf0_ = 0;
   has_base_ = false;
-  active_set::GatherFreeBlock(m, n, free_rows, nf, lu_.data(), n);
-  if (!FactorFreeBlock(lu_.data(), n, nf, pivots_.data(), small)) return false;
+  base_cholesky_ = ratio_ != nullptr && !cholesky_failed_ && FactorCholesky(m, n, free_rows, nf, small);
+  if (base_cholesky_) {
+    ++cholesky_;
+  } else {
+    if (ratio_ != nullptr) cholesky_failed_ = true;
+    active_set::GatherFreeBlock(m, n, free_rows, nf, lu_.data(), n);
+    if (!FactorFreeBlock(lu_.data(), n, nf, pivots_.data(), small)) return false;
+  }
   nf0_ = nf;
   for (int p = 0; p < nf; ++p) {
     base_rows_[p] = free_rows[p];
@@ -85,12 +92,55 @@ bool UpdatedFreeBlock::Factor(const double* m, int n, const double* q, const int
   has_base_ = true;
   double* b = y_.data();
   active_set::ReducedRhs<0>(m, n, q, z, free_rows, nf, b);
-  dense_lu::Solve(lu_.data(), n, nf, pivots_.data(), b);
+  SolveBase(b);
   for (int k = 0; k < nf; ++k) {
     z[free_rows[k]] = b[k];
     if (!std::isfinite(b[k])) return false;
   }
   return true;
+}
+
+bool UpdatedFreeBlock::FactorCholesky(const double* m, int n, const int* free_rows, int nf, double small) {
+  // The lower triangle of (R⁻¹ M)_FF: row p of the block divided by r of its row.
+  double* a = lu_.data();
+  const double* inv = inv_ratio_;
+  for (int c = 0; c < nf; ++c) {
+    const double* column = m + static_cast<std::ptrdiff_t>(free_rows[c]) * n;
+    double* out = a + static_cast<std::ptrdiff_t>(c) * n;
+    for (int p = c; p < nf; ++p) out[p] = column[free_rows[p]] * inv[free_rows[p]];
+  }
+  Eigen::Map<Eigen::MatrixXd, 0, Eigen::OuterStride<>> block(a, nf, nf, Eigen::OuterStride<>(n));
+  if (Eigen::internal::llt_inplace<double, Eigen::Lower>::blocked(block) >= 0) return false;
+  for (int j = 0; j < nf; ++j) {
+    const double l = a[j + static_cast<std::ptrdiff_t>(j) * n];
+    if (!(ratio_[free_rows[j]] * l * l > small) || !(l < kInf)) return false;  // NaN too
+  }
+  return true;
+}
+
+void UpdatedFreeBlock::SolveBase(double* b) const {
+  const int k = nf0_;
+  const double* a = lu_.data();
+  const std::ptrdiff_t ld = n_;
+  if (!base_cholesky_) {
+    dense_lu::Solve(a, n_, k, pivots_.data(), b);
+    return;
+  }
+  // A0 = R L Lᵀ: b ← R⁻¹ b, then L y = b (column axpys) and Lᵀ x = y (column dot products).
+  const int* rows = base_rows_.data();
+  for (int p = 0; p < k; ++p) b[p] *= inv_ratio_[rows[p]];
+  for (int j = 0; j < k; ++j) {
+    const double* cj = a + j * ld;
+    const double bj = b[j] /= cj[j];
+    if (bj == 0.0) continue;
+    for (int i = j + 1; i < k; ++i) b[i] -= cj[i] * bj;
+  }
+  for (int j = k - 1; j >= 0; --j) {
+    const double* cj = a + j * ld;
+    double sum = b[j];
+    for (int i = j + 1; i < k; ++i) sum -= cj[i] * b[i];
+    b[j] = sum / cj[j];
+  }
 }
 
 void UpdatedFreeBlock::AddSlot(const double* m, int n, int row) {
@@ -123,15 +173,26 @@ void UpdatedFreeBlock::FinishSlots(const double* m, int n, int first) {
   const int nf0 = nf0_, k = slots_, added = k - first;
   // W's new columns: A0⁻¹ B_new, all at once (row swaps, then the triangular solves with several right-hand sides).
   double* w_new = w_.data() + static_cast<std::size_t>(first) * n;
-  const int* piv = pivots_.data();
-  for (int j = 0; j < nf0; ++j) {
-    if (piv[j] == j) continue;
-    for (int c = 0; c < added; ++c) std::swap(w_new[j + static_cast<std::size_t>(c) * n], w_new[piv[j] + c * n]);
-  }
   const ConstMap a0(lu_.data(), nf0, nf0, Eigen::OuterStride<>(n));
   Map w_block(w_new, nf0, added, Eigen::OuterStride<>(n));
-  a0.triangularView<Eigen::UnitLower>().solveInPlace(w_block);
-  a0.triangularView<Eigen::Upper>().solveInPlace(w_block);
+  if (base_cholesky_) {
+    // A0 = R L Lᵀ: the rows scaled by R⁻¹, then L and Lᵀ.
+    const int* rows = base_rows_.data();
+    for (int c = 0; c < added; ++c) {
+      double* column = w_new + static_cast<std::size_t>(c) * n;
+      for (int p = 0; p < nf0; ++p) column[p] *= inv_ratio_[rows[p]];
+    }
+    a0.triangularView<Eigen::Lower>().solveInPlace(w_block);
+    a0.triangularView<Eigen::Lower>().transpose().solveInPlace(w_block);
+  } else {
+    const int* piv = pivots_.data();
+    for (int j = 0; j < nf0; ++j) {
+      if (piv[j] == j) continue;
+      for (int c = 0; c < added; ++c) std::swap(w_new[j + static_cast<std::size_t>(c) * n], w_new[piv[j] + c * n]);
+    }
+    a0.triangularView<Eigen::UnitLower>().solveInPlace(w_block);
+    a0.triangularView<Eigen::Upper>().solveInPlace(w_block);
+  }
   // S = D − C W: the new rows (every column) and the new columns of the old rows.
   const ConstMap w(w_.data(), nf0, k, Eigen::OuterStride<>(n));
   const ConstMap c(c_.data(), nf0, k, Eigen::OuterStride<>(n));
@@ -202,7 +263,7 @@ bool UpdatedFreeBlock::TryUpdate(const double* m, int n, const double* q, const 
   // y = A0⁻¹ b_F0 (rows of R included: their equations are absorbed by λ).
   double* y = y_.data();
   active_set::ReducedRhs<0>(m, n, q, z, base, nf0, y);
-  dense_lu::Solve(lu_.data(), n, nf0, pivots_.data(), y);
+  SolveBase(y);
   const int k = slots_;
   double* t = t_.data();
   if (k > 0) {

@@ -16,6 +16,15 @@
 // LU has no pivot below kSchurPivotRatio of its largest entry and every value is finite; otherwise F is factored
 // from scratch and becomes the new reference (so a singular M_FF is always judged by a fresh LU, as without
 // updates). Nothing is allocated after Resize.
+//
+// Symmetric M (set_symmetric_scale): when the caller knows M = R·S with S symmetric and R a positive diagonal (the
+// row-equilibrated copy of a symmetric M), the reference block is factored by Cholesky instead: A0 = R_F0 L Lᵀ with
+// L L ᵀ = (R⁻¹ M)_F0F0, half the flops of the LU; a solve with A0 scales by R⁻¹ and runs the two triangular
+// solves. A block whose Cholesky meets a pivot r_j·L_jj² ≤ small (the LU pivot M_FF would have without row swaps;
+// not positive definite, or nearly singular) is factored by the LU instead, and the LU is used for every later block
+// until the next set_symmetric_scale: so an indefinite M costs at most one failed Cholesky per solve, and a
+// singular block is still judged by a fresh LU. The Schur complement S stays an LU (it is k×k, and indefinite when
+// rows leave the set).
 #pragma once
 
 #include <algorithm>
@@ -40,6 +49,14 @@ class UpdatedFreeBlock {
   void Invalidate() { has_base_ = false; }
   // Use updates (true) or factor every set from scratch (false, the method without updates).
   void set_updates(bool on) { updates_ = on; }
+  // M = R·S with S symmetric (see above): ratio[i] = r_i > 0 and inv_ratio[i] = 1 / r_i for every row, kept by the
+  // caller while it solves with this M; nullptrs: M is not known to be symmetric, every block is factored by LU.
+  // Also re-arms the Cholesky after a failure.
+  void set_symmetric_scale(const double* ratio, const double* inv_ratio) {
+    ratio_ = ratio;
+    inv_ratio_ = inv_ratio;
+    cholesky_failed_ = false;
+  }
 
   // How the last Solve found z_F.
   enum class Path { kFactored, kUpdated };
@@ -51,7 +68,9 @@ class UpdatedFreeBlock {
   Path last_path() const { return last_path_; }
   int factorizations() const { return factorizations_; }  // fresh LUs since the last ResetCounts
   int updates() const { return updates_done_; }           // sets solved through the Schur complement
-  void ResetCounts() { factorizations_ = updates_done_ = 0; }
+  int cholesky_factorizations() const { return cholesky_; }  // of factorizations(), those by Cholesky
+  bool reference_is_cholesky() const { return has_base_ && base_cholesky_; }  // the current reference's factors
+  void ResetCounts() { factorizations_ = updates_done_ = cholesky_ = 0; }
 
   // Most rows that may differ from a reference of nf0 rows before F is refactored: the update's cost grows with k
   // (k solves with A0 when the rows enter, an LU of S per set), a refactor costs (2/3)·nf³.
@@ -66,14 +85,24 @@ class UpdatedFreeBlock {
   // their rows and columns of S.
   void FinishSlots(const double* m, int n, int first);
   void RemoveSlot(int slot);
+  // The reference block's Cholesky (true) of (R⁻¹ M)_FF, gathered into lu_ (lower triangle); false when a pivot is
+  // ≤ small (r_j·L_jj², in units of M) or not finite.
+  bool FactorCholesky(const double* m, int n, const int* free_rows, int nf, double small);
+  // b ← A0⁻¹ b for one right-hand side of nf0 entries (the LU's or the Cholesky's factors).
+  void SolveBase(double* b) const;
   double& S(int i, int j) { return s_[i + static_cast<std::size_t>(j) * kMaxRankCap]; }
 
   int n_ = 0;
   bool updates_ = true;
   bool has_base_ = false;
   Path last_path_ = Path::kFactored;
-  int factorizations_ = 0, updates_done_ = 0;
-  // The reference set F0 and its LU (column-major, leading dimension n; dense_lu's row swaps in pivots_).
+  int factorizations_ = 0, updates_done_ = 0, cholesky_ = 0;
+  const double* ratio_ = nullptr;      // set_symmetric_scale's r (nullptr: LU only)
+  const double* inv_ratio_ = nullptr;  // and 1 / r
+  bool cholesky_failed_ = false;       // a Cholesky failed since set_symmetric_scale: LU only
+  bool base_cholesky_ = false;         // the reference's factors in lu_ are a Cholesky (else an LU)
+  // The reference set F0 and its LU (column-major, leading dimension n; dense_lu's row swaps in pivots_), or its
+  // Cholesky factor L (lower triangle of lu_).
   int nf0_ = 0;
   std::vector<int> base_rows_, base_pos_, pivots_;  // base_pos_[i]: row i's place in F0, −1 outside
   std::vector<double> lu_;
