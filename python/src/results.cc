@@ -1,5 +1,5 @@
 // smcbench.report and smcbench.compare: the report of a bench results folder (`smcbench report DIR`,
-// tools/smcbench/bench_report.h) and the comparison of two (`smcbench compare A B`, bench/compare/compare_runs.h),
+// bench/analysis/report_markdown.h) and the comparison of two (`smcbench compare A B`, bench/compare/compare_runs.h),
 // through the same C++ functions the commands call, so Python prints the same markdown.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
@@ -9,7 +9,7 @@
 #include "bench/compare/compare_output.h"
 #include "bench/compare/compare_runs.h"
 #include "bench/replay/results_io.h"
-#include "tools/smcbench/bench_report.h"
+#include "bench/analysis/report_markdown.h"
 
 namespace py = pybind11;
 
