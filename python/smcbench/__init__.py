@@ -29,7 +29,7 @@ __all__ = [
     "InvalidInputError", "SolveResult", "Simulation", "Problem", "McpProblem", "solvers", "solve", "solve_mcp",
     "judge_mcp", "bench_mcp", "simulate", "scenes", "scenes_directory", "read_problem_set", "write_problem_set",
     "load_bench_results", "bench", "AffineVI", "AviResult", "AviFile", "AviProblem", "solve_avi", "read_avi",
-    "write_avi", "judge", "report", "compare", "Comparison",
+    "write_avi", "judge", "report", "report_tables", "compare", "Comparison",
 ]
 
 
@@ -803,6 +803,36 @@ def report(results, out=None, *, plots: bool = False) -> str:
                 if name not in ("results.json", "report.md"):
                     shutil.copyfile(os.path.join(work, name), os.path.join(os.fspath(out), name))
         return markdown
+
+
+# Columns of report_tables() that hold measurements (kept float even when every value is a whole number).
+_MEASURED = ("time", "ratio", "error", "residual", "tolerance", "success", "/ floor", "min", "max")
+
+
+def report_tables(results) -> Dict[str, Any]:
+    """The tables report.md is rendered from, as pandas DataFrames: one per table, columns named as the report's
+    markdown names them, computed by the same C++ functions (bench/analysis/report_tables.h). Keys, in order:
+    "summary" (per problem class), "failures" (per backend), then with a column "suite": "backends", "statuses",
+    "audit", "bands", "ladder", "sweep", "peers", "profiles". Counts are ints; times in seconds, ratios and errors
+    are floats (NaN where the report leaves a blank or a "–").
+
+    results: as for report(): a `smcbench bench --out` folder, its results.json, or a DataFrame of bench(),
+    bench_mcp() or load_bench_results(). InvalidInputError for anything else."""
+    import pandas as pd
+
+    with tempfile.TemporaryDirectory(prefix="smcbench-report-tables-") as scratch:
+        source = _results_folder(results, "report_tables", scratch)
+        raw = _smcbench._report_tables(source.folder)
+    frames = {}
+    for name, columns, rows in raw:
+        frame = pd.DataFrame(rows, columns=columns)
+        for column in columns:
+            values = frame[column]
+            if values.dtype.kind == "f" and not any(word in column for word in _MEASURED) and values.notna().all() \
+                    and (values == values.round()).all():
+                frame[column] = values.astype("int64")
+        frames[name] = frame
+    return frames
 
 
 @dataclass

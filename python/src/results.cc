@@ -1,6 +1,6 @@
-// smcbench.report and smcbench.compare: the report of a bench results folder (`smcbench report DIR`,
-// tools/smcbench/bench_report.h) and the comparison of two (`smcbench compare A B`, bench/compare/compare_runs.h),
-// through the same C++ functions the commands call, so Python prints the same markdown.
+// smcbench.report, smcbench.report_tables and smcbench.compare: the report of a bench results folder (`smcbench
+// report DIR`, bench/analysis/report_markdown.h), its tables (bench/analysis/report_tables.h) and the comparison of
+// two (`smcbench compare A B`, bench/compare/compare_runs.h), through the same C++ functions the commands call.
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
@@ -9,7 +9,8 @@
 #include "bench/compare/compare_output.h"
 #include "bench/compare/compare_runs.h"
 #include "bench/replay/results_io.h"
-#include "tools/smcbench/bench_report.h"
+#include "bench/analysis/report_markdown.h"
+#include "bench/analysis/report_tables.h"
 
 namespace py = pybind11;
 
@@ -20,6 +21,32 @@ namespace {
 std::string Report(const std::string& dir, bool plots) {
   py::gil_scoped_release release;
   return WriteBenchReport(dir, plots);
+}
+
+// ReportTables of dir/results.json: a list of (name, columns, rows), each row a list of floats and strings.
+py::list Tables(const std::string& dir) {
+  std::vector<ReportTable> tables;
+  {
+    py::gil_scoped_release release;
+    tables = ReportTables(ReadBenchResults(dir, nullptr));
+  }
+  py::list out;
+  for (const ReportTable& t : tables) {
+    py::list rows;
+    for (const auto& row : t.rows) {
+      py::list cells;
+      for (const TableCell& cell : row) {
+        if (const double* v = std::get_if<double>(&cell)) {
+          cells.append(py::float_(*v));
+        } else {
+          cells.append(py::str(std::get<std::string>(cell)));
+        }
+      }
+      rows.append(cells);
+    }
+    out.append(py::make_tuple(t.name, t.columns, rows));
+  }
+  return out;
 }
 
 py::dict VerdictChangeToDict(const VerdictChange& c) {
@@ -98,6 +125,8 @@ void BindResults(py::module_& m) {
   using namespace pybind11::literals;
   m.def("_report", &Report, "dir"_a, "plots"_a,
         "Write dir/report.md from dir/results.json as `smcbench report` does; returns the markdown.");
+  m.def("_report_tables", &Tables, "dir"_a,
+        "The report's tables of dir/results.json (bench/analysis/report_tables.h): a list of (name, columns, rows).");
   m.def("_compare", &Compare, "a"_a, "b"_a, "label_a"_a, "label_b"_a, "threshold"_a, "resamples"_a, "confidence"_a,
         "keep_drift"_a, "out"_a, "plots"_a, "Compare two bench results folders as `smcbench compare` does (see smcbench.compare); returns a dict.");
 }

@@ -21,7 +21,7 @@
 #include "bench/run/run_shard.h"
 #include "problems/io/data_dirs.h"
 #include "solvers/registry/registry.h"
-#include "tools/smcbench/bench_report.h"
+#include "bench/analysis/report_markdown.h"
 #include "tools/smcbench/history_report.h"
 #include "tools/smcbench/number_flags.h"
 #include "tools/smcbench/solve_report.h"

@@ -22,7 +22,7 @@
 #include "problems/library/problem_set_io.h"
 #include "solvers/registry/registry.h"
 #include "tools/smcbench/bench_command.h"
-#include "tools/smcbench/bench_report.h"
+#include "bench/analysis/report_markdown.h"
 #include "tools/smcbench/cli_test_runner.h"
 
 namespace smcbench {

@@ -8,7 +8,7 @@
 #include "bench/replay/jobs.h"
 #include "bench/replay/results_io.h"
 #include "solvers/core/problem.h"
-#include "tools/smcbench/bench_report.h"
+#include "bench/analysis/report_markdown.h"
 #include "tools/smcbench/output_paths.h"
 
 namespace smcbench {

@@ -1,16 +1,12 @@
-// `smcbench report DIR`: turns a bench run's results.json into DIR/report.md with PNG plots — per suite and
-// backend the verdict counts (wrong answers apart), the statuses the backends returned, success rate, shifted
-// geometric mean time (failure penalty stated beside it), worst residuals (relative and row-equilibrated) and worst
-// forward error, the backends that solved nothing listed apart with their reason, the fastest correct backend per
-// size band, the audit of the backends' own success flags, the tolerance ladder, Dolan–Moré performance profiles,
-// time against the forward error and against the residual reached (tolerance sweep), the time-stepper's
-// work-precision diagrams and warm/cold table, the scale family's growth exponent, and for an MCP suite its own
-// section (success per backend and per start, where each backend fails and with what status, speed against
-// forward error, profile).
+// Per suite and backend, as plain structs computed by pure functions over a suite's records: the verdict counts,
+// success and shifted geometric mean time (SummarizeSuite), the fastest correct backend per size band, the audit of
+// the backends' own success flags, the Dolan–Moré ratios, the size-band and warm-track views of a suite, the growth
+// exponent. The report's tables are rendered from these (report_markdown.h).
 #pragma once
 
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "bench/replay/results_io.h"
@@ -80,18 +76,6 @@ struct BandWinner {
 // One entry per band that has records, smallest band first.
 std::vector<BandWinner> FastestCorrectPerBand(const SuiteResults& suite, double time_limit_seconds = 10.0);
 
-// Success at each tolerance of the sweep records (mode "sweep"): correct answers (solved or correctly refused) of
-// each backend over the swept problems, per tolerance.
-struct ToleranceLadder {
-  std::vector<double> tolerances;  // loosest first, those the sweep records hold (kSweepTolerances today)
-  struct Row {
-    std::string solver;
-    std::vector<int> correct, problems;  // per tolerance (problems 0: that rung was not run, e.g. skipped)
-  };
-  std::vector<Row> rows;  // in the order the backends first appear
-};
-ToleranceLadder BuildToleranceLadder(const SuiteResults& suite);
-
 // What the backend itself said: its library's own return code where the record has one (ReplayRecord::backend_code,
 // 0 = success), else its status is solved.
 bool ClaimedSolved(const ReplayRecord& record);
@@ -107,22 +91,8 @@ struct ClaimAudit {
 };
 std::vector<ClaimAudit> AuditClaims(const SuiteResults& suite);
 
-// The look of a backend's curve: colour (Okabe–Ito, without its yellow, which vanishes on white), gnuplot dash
-// type and point type. Ours solid (dash 1), the external siconos-* ones dashed (dash ≥ 2).
-struct PlotStyle {
-  std::string colour;  // "#RRGGBB"
-  int dash = 1;
-  int point = 7;
-  double width = 2.5;
-};
-// The index-th style of a family (ours, or external): no two indices below 49 of one family share colour and
-// point, and no two below 28 of the external family share colour and dash; the families differ in dash.
-PlotStyle StyleOf(std::size_t index, bool external);
-// A backend's style in every figure: its family and its position in the registry's order (SolverNames, then
-// newton-sparse-path), so a backend looks the same in every figure; a label naming a backend ("implicit, lemke")
-// gets that backend's, one naming none a style from a hash of it. As gnuplot options ("lw 2.5 lc rgb '#0072B2' dt 1
-// pt 7").
-std::string BackendStyle(const std::string& label);
+// The most common ending of records that are not correct: its status, its most common message, the median time.
+FailureReason MostCommonFailureOf(const std::vector<const ReplayRecord*>& not_correct);
 
 // Dolan–Moré: for each backend, ρ(τ) = fraction of problems solved within τ × the best time on that problem.
 // Returns, per backend, the ratios r_p = t_p / min_s t_p (∞ for problems it does not solve), sorted.
@@ -135,29 +105,14 @@ SuiteResults SizeBandSlice(const SuiteResults& suite, SizeBand band);
 // sequence × backend one record (time per step), so the cold tables, profiles and band winners apply to them.
 SuiteResults WarmTrackAsSuite(const SuiteResults& suite);
 
-// Ours against each external library's best, per size band, cold and warm: on each problem (warm: sequence) the
-// fastest correct answer of our backends and of each peer family (the name's first part: "siconos", "bullet",
-// "dart"), and the ratio peer time / our time over the problems both solve, sorted.
-struct PeerRatioRow {
-  SizeBand band = SizeBand::kTiny;
-  bool warm = false;
-  std::map<std::string, std::vector<double>> by_peer;  // family → sorted ratios
-};
-// Bands smallest first, for each the cold row then the warm row (a row only when some ratio exists).
-std::vector<PeerRatioRow> OursAgainstPeersPerBand(const SuiteResults& suite);
-
 // Least-squares slope of log(time) against log(size) over the solved records of one backend (NaN if < 2 sizes).
 double GrowthExponent(const SuiteResults& suite, const std::string& solver);
 
-// The verdict in two sentences a user can check by hand (the report's text and `smcbench bench --help`).
-extern const char* const kVerdictInTwoSentences;
-
-// The report's warning when compared times come from shared hosts: records measured while other bench jobs ran on
-// their host (ReplayRecord::concurrent_jobs > 1) or records from more than one host. Empty when neither.
-std::string SharedHostWarning(const BenchResults& results);
-
-// Writes dir/report.md (and PNGs when plots is true and gnuplot is on PATH). Returns the markdown.
-// InvalidInputError if results are missing or gnuplot is required but absent.
-std::string WriteBenchReport(const std::string& dir, bool plots);
+// The suite without its records whose timed solves could not all start cold (mode "cached"), which no cold table or
+// profile may compare; *cached receives "backend on problem" for each.
+SuiteResults WithoutCachedRecords(const SuiteResults& suite, std::vector<std::string>* cached);
+// The suite without its records cut by a time budget (mode "cut"), which have no verdict and so belong in no table;
+// *cut receives them.
+SuiteResults WithoutCutRecords(const SuiteResults& suite, std::vector<ReplayRecord>* cut);
 
 }  // namespace smcbench

@@ -10,8 +10,8 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/replay/floor.h"
-#include "tools/smcbench/bench_report.h"
-#include "tools/smcbench/report_classes.h"
+#include "bench/analysis/class_tables.h"
+#include "bench/analysis/report_markdown.h"
 
 namespace smcbench {
 namespace {

@@ -1,5 +1,5 @@
 // What the report's opening summary and its floor columns compute, as pure functions over results (no text, no
-// files), so they can move to an analysis layer unchanged: the problem class of a record from its tags (matrix
+// files), rendered by report_markdown.h: the problem class of a record from its tags (matrix
 // class × size band × bounds), the floor of each problem (one factorization of its matrix, bench/replay/floor.h) and
 // a backend's times against it, per class the fastest correct and the most reliable backend with its gap to the
 // floor, and per backend its failures with their most common cause.
@@ -9,9 +9,10 @@
 #include <string>
 #include <vector>
 
+#include "bench/analysis/record_facts.h"
+#include "bench/analysis/suite_tables.h"
 #include "bench/replay/results_io.h"
 #include "bench/replay/size_band.h"
-#include "tools/smcbench/bench_report.h"
 
 namespace smcbench {
 
@@ -35,11 +36,10 @@ struct ProblemClass {
   bool operator<(const ProblemClass& o) const;
   bool operator==(const ProblemClass& o) const;
 };
+// The class of a record: MatrixClassOf (mcp, avi: the suite's kind), its size band, BoundsClassOf.
+ProblemClass ClassOfRecord(const ReplayRecord& record, bool mcp_suite, bool avi_suite);
 // "SPD · relay" (the band is a column of its own).
 std::string ClassName(const ProblemClass& c);
-
-// What a time is compared over: the problem, or for an MCP record the problem × start.
-std::string InstanceOf(const ReplayRecord& record);
 
 // The floor's median time per instance of one suite (ReplayResults::floor, keyed by InstanceOf); empty when the
 // run measured none.
@@ -49,9 +49,6 @@ std::map<std::string, double> FloorTimes(const SuiteResults& suite);
 // and the floor was measured, sorted. Empty when there is none.
 std::vector<double> FloorRatios(const std::vector<ReplayRecord>& records, const std::map<std::string, double>& floor,
                                 const std::string& solver);
-
-// The median of sorted values (the upper middle one for an even count, as the report's other medians); NaN if empty.
-double MedianOfSorted(const std::vector<double>& sorted);
 
 // One row of the summary: a class, its fastest correct backend and its most reliable one.
 struct ClassSummary {
@@ -101,17 +98,5 @@ struct BackendFailures {
 };
 // Every backend of the run's cold records, in the order they first appear.
 std::vector<BackendFailures> FailuresPerBackend(const BenchResults& results);
-
-// The most common ending of records that are not correct: its status, its most common message, the median time.
-FailureReason MostCommonFailureOf(const std::vector<const ReplayRecord*>& not_correct);
-
-// Ours against each external library's best per class × size band (cold), as OursAgainstPeersPerBand pools them,
-// with ours over the floor beside them.
-struct PeerClassRow {
-  ProblemClass problem_class;
-  std::map<std::string, std::vector<double>> by_peer;  // family → sorted ratios (library's best / ours)
-  std::vector<double> ours_over_floor;                 // our best / floor on each problem, sorted
-};
-std::vector<PeerClassRow> OursAgainstPeersPerClass(const SuiteResults& suite);
 
 }  // namespace smcbench

@@ -1,4 +1,5 @@
-#include "tools/smcbench/report_classes.h"
+// The class summary and the failures per backend: class_tables.h.
+#include "bench/analysis/class_tables.h"
 
 #include <algorithm>
 #include <cmath>
@@ -6,17 +7,11 @@
 #include <string_view>
 #include <tuple>
 
+#include "bench/analysis/record_facts.h"
 #include "bench/replay/jobs.h"
-#include "solvers/registry/registry.h"
 
 namespace smcbench {
 namespace {
-
-bool Correct(const ReplayRecord& r) { return r.verdict == Verdict::kSolved || r.verdict == Verdict::kCorrectlyRefused; }
-
-bool IsWrongVerdict(Verdict v) {
-  return v == Verdict::kWronglyClaimed || v == Verdict::kInaccurate || v == Verdict::kWronglyRefused;
-}
 
 std::vector<std::string> SplitTags(const std::string& tags) {
   std::vector<std::string> out;
@@ -49,11 +44,11 @@ int BoundsOrder(const std::string& bounds) {
   return 4;
 }
 
+}  // namespace
+
 ProblemClass ClassOfRecord(const ReplayRecord& r, bool mcp, bool avi) {
   return ProblemClass{MatrixClassOf(r, mcp, avi), SizeBandOf(r.size), BoundsClassOf(r)};
 }
-
-}  // namespace
 
 std::string MatrixClassOf(const ReplayRecord& record, bool mcp_suite, bool avi_suite) {
   const std::vector<std::string> tags = SplitTags(record.tags);
@@ -86,8 +81,6 @@ bool ProblemClass::operator==(const ProblemClass& o) const {
 
 std::string ClassName(const ProblemClass& c) { return c.matrix + " · " + c.bounds; }
 
-std::string InstanceOf(const ReplayRecord& r) { return r.start.empty() ? r.problem : r.problem + "@" + r.start; }
-
 std::map<std::string, double> FloorTimes(const SuiteResults& suite) {
   std::map<std::string, double> out;
   for (const ReplayRecord& r : suite.replay.floor) {
@@ -100,16 +93,12 @@ std::vector<double> FloorRatios(const std::vector<ReplayRecord>& records, const 
                                 const std::string& solver) {
   std::vector<double> out;
   for (const ReplayRecord& r : records) {
-    if (r.solver != solver || !Correct(r) || r.samples == 0) continue;
+    if (r.solver != solver || !IsCorrect(r) || r.samples == 0) continue;
     const auto it = floor.find(InstanceOf(r));
     if (it != floor.end() && it->second > 0.0) out.push_back(r.time_median / it->second);
   }
   std::sort(out.begin(), out.end());
   return out;
-}
-
-double MedianOfSorted(const std::vector<double>& sorted) {
-  return sorted.empty() ? kNaN : sorted[sorted.size() / 2];
 }
 
 std::vector<ReplayRecord> PooledColdRecords(const BenchResults& results, std::map<std::string, double>* floor) {
@@ -174,32 +163,6 @@ std::vector<ClassSummary> SummarizeClasses(const BenchResults& results, double t
   return out;
 }
 
-FailureReason MostCommonFailureOf(const std::vector<const ReplayRecord*>& not_correct) {
-  FailureReason reason;
-  std::vector<SolveStatus> order;
-  std::map<SolveStatus, int> by_status;
-  for (const ReplayRecord* r : not_correct) {
-    if (by_status[r->status]++ == 0) order.push_back(r->status);
-  }
-  for (SolveStatus s : order) {
-    if (by_status[s] > reason.count) reason.status = s, reason.count = by_status[s];
-  }
-  std::vector<std::string> messages;
-  std::map<std::string, int> by_message;
-  std::vector<double> times;
-  for (const ReplayRecord* r : not_correct) {
-    if (r->status != reason.status) continue;
-    if (by_message[r->message]++ == 0) messages.push_back(r->message);
-    if (!std::isnan(r->time_median)) times.push_back(r->time_median);
-  }
-  for (const std::string& m : messages) {
-    if (by_message[m] > reason.message_count) reason.message = m, reason.message_count = by_message[m];
-  }
-  std::sort(times.begin(), times.end());
-  reason.median_time = MedianOfSorted(times);
-  return reason;
-}
-
 std::vector<BackendFailures> FailuresPerBackend(const BenchResults& results) {
   const std::vector<ReplayRecord> pooled = PooledColdRecords(results, nullptr);
   std::vector<BackendFailures> out;
@@ -213,9 +176,9 @@ std::vector<BackendFailures> FailuresPerBackend(const BenchResults& results) {
     }
     BackendFailures& b = out[it->second];
     ++b.records;
-    if (Correct(r)) continue;
+    if (IsCorrect(r)) continue;
     ++b.not_correct;
-    b.wrong += IsWrongVerdict(r.verdict);
+    b.wrong += IsWrong(r.verdict);
     not_correct[r.solver].push_back(&r);
     const ProblemClass c = ClassOfRecord(r, false, false);
     b.entries.push_back({InstanceOf(r), ClassName(c) + " · " + std::string(ShortName(c.band)), r.status, r.verdict,
@@ -223,46 +186,6 @@ std::vector<BackendFailures> FailuresPerBackend(const BenchResults& results) {
   }
   for (BackendFailures& b : out) {
     if (b.not_correct > 0) b.cause = MostCommonFailureOf(not_correct[b.solver]);
-  }
-  return out;
-}
-
-std::vector<PeerClassRow> OursAgainstPeersPerClass(const SuiteResults& suite) {
-  const bool mcp = IsMcpSuite(suite), avi = IsAviSuite(suite);
-  const std::map<std::string, double> floor = FloorTimes(suite);
-  std::map<std::string, double> ours;                               // instance → our fastest correct time
-  std::map<std::string, std::map<std::string, double>> peers;       // family → instance → its fastest
-  std::map<std::string, ProblemClass> class_of;
-  for (const ReplayRecord& r : suite.replay.records) {
-    if (r.verdict != Verdict::kSolved || r.solver == kGenericSparsePath || r.mode == "cached") continue;
-    const std::string key = InstanceOf(r);
-    class_of.emplace(key, ClassOfRecord(r, mcp, avi));
-    std::map<std::string, double>& times =
-        IsExternalBackendName(r.solver) ? peers[r.solver.substr(0, r.solver.find('-'))] : ours;
-    auto [it, inserted] = times.emplace(key, r.time_median);
-    if (!inserted) it->second = std::min(it->second, r.time_median);
-  }
-  std::map<ProblemClass, PeerClassRow> rows;
-  for (const auto& [family, times] : peers) {
-    for (const auto& [key, t] : times) {
-      if (!ours.count(key)) continue;
-      PeerClassRow& row = rows[class_of.at(key)];
-      row.problem_class = class_of.at(key);
-      row.by_peer[family].push_back(t / ours.at(key));
-    }
-  }
-  for (const auto& [key, t] : ours) {
-    const auto f = floor.find(key);
-    if (f == floor.end() || !(f->second > 0.0)) continue;
-    PeerClassRow& row = rows[class_of.at(key)];
-    row.problem_class = class_of.at(key);
-    row.ours_over_floor.push_back(t / f->second);
-  }
-  std::vector<PeerClassRow> out;
-  for (auto& [c, row] : rows) {
-    for (auto& [family, ratios] : row.by_peer) std::sort(ratios.begin(), ratios.end());
-    std::sort(row.ours_over_floor.begin(), row.ours_over_floor.end());
-    out.push_back(std::move(row));
   }
   return out;
 }
