@@ -255,18 +255,6 @@ TEST(ReportAudit, OwnSuccessFlagAgainstTheVerdict) {
   EXPECT_THAT(md, HasSubstr("| ours | 2 | 1 | 0 | 1 | 0 | 3/4 (75%) | **1** | 0 | 0/4 |\n"));
 }
 
-// The library's own claim as a code, 0 = success: Siconos' info as it is, Bullet's and DART's flag 1 → 0, 0 → 1.
-TEST(ReportAudit, BackendReturnCodeReadsSiconosInfoAndThePeersFlag) {
-  SolveResult siconos, peer_yes, peer_no, ours;
-  siconos.SetDetail("siconos_info", 2.0);
-  peer_yes.SetDetail("peer_success", 1.0);
-  peer_no.SetDetail("peer_success", 0.0);
-  EXPECT_EQ(BackendReturnCode(siconos), std::optional<int>(2));
-  EXPECT_EQ(BackendReturnCode(peer_yes), std::optional<int>(0));
-  EXPECT_EQ(BackendReturnCode(peer_no), std::optional<int>(1));
-  EXPECT_EQ(BackendReturnCode(ours), std::nullopt);
-}
-
 // The suite heading counts, per problem, the verified references an interval enclosure proved and gives the
 // largest radius; reference_radius goes through results.json.
 TEST(ReportReferences, HeadingCountsTheProvedReferencesAndTheirLargestRadius) {
@@ -312,13 +300,6 @@ TEST(ReportAudit, ReturnCodeRoundTripsThroughTheResultFiles) {
   EXPECT_THAT(csv, HasSubstr(",,,nan,0\n"));   // empty start, no code
   EXPECT_EQ(ReadBenchResults(dir.string()).suites[0].replay.records[0].backend_code, std::optional<int>(3));
   fs::remove_all(dir);
-}
-
-TEST(ReportAudit, BackendReturnCodeIsSiconosInfo) {
-  SolveResult result;
-  EXPECT_EQ(BackendReturnCode(result), std::nullopt);
-  result.SetDetail("siconos_info", 1.0);
-  EXPECT_EQ(BackendReturnCode(result), std::optional<int>(1));
 }
 
 // A Siconos backend, when built: the record keeps Siconos' own info (0 on a problem it solves).

@@ -84,7 +84,7 @@ ReplayRecord ReplayAviOne(const AviProblemSet& set, const AviLibraryProblem& p, 
   r.forward_error_rel = j.forward_error_rel;
   r.forward_allowance = j.forward_allowance;
   r.verdict = j.verdict;
-  r.backend_code = BackendReturnCode(result.reduced);
+  r.backend_code = result.reduced.backend_code;
   return r;
 }
 

@@ -103,7 +103,7 @@ ReplayRecord ReplayMcpOne(const McpProblemSet& set, const McpLibraryProblem& p, 
   r.forward_error_rel = j.forward_error_rel;
   r.forward_allowance = j.forward_allowance;
   r.verdict = j.verdict;
-  r.backend_code = BackendReturnCode(result);
+  r.backend_code = result.backend_code;
   return r;
 }
 

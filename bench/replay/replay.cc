@@ -48,7 +48,7 @@ void Fill(const LibraryProblem& p, const SolveResult& result, double tolerance, 
   r->reference_proved_unique = p.reference.proved_unique;
   r->tolerance = tolerance;
   r->verdict = j.verdict;
-  r->backend_code = BackendReturnCode(result);
+  r->backend_code = result.backend_code;
 }
 
 }  // namespace
@@ -59,14 +59,6 @@ std::vector<std::size_t> SweepProblemIndices(std::size_t problems, int sweep_pro
   const std::size_t n = std::min(problems, static_cast<std::size_t>(sweep_problems));
   for (std::size_t i = 0; i < n; ++i) out.push_back(n == problems ? i : (2 * i + 1) * problems / (2 * n));
   return out;
-}
-
-std::optional<int> BackendReturnCode(const SolveResult& result) {
-  const double info = result.GetDetail("siconos_info");
-  if (!std::isnan(info)) return static_cast<int>(info);
-  const double success = result.GetDetail("peer_success");  // Bullet's and DART's bool, as a code: 0 = success
-  if (!std::isnan(success)) return success != 0.0 ? 0 : 1;
-  return std::nullopt;
 }
 
 void TimeSolves(Solver* solver, const BoxMLCP& problem, const SolverOptions& options, const ReplayOptions& replay,

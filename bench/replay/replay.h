@@ -86,7 +86,7 @@ struct ReplayRecord {
   // solved in process). False for every backend of ours, and for siconos-* ones by default: the untimed warm-up
   // solve is the probe, the timed ones run in process (detail "in_process" of solvers/siconos/siconos_solver.h).
   bool timed_in_worker = false;
-  // An external library's own return code for this answer, 0 meaning its success (Siconos' info, BackendReturnCode):
+  // An external library's own return code for this answer, 0 meaning its success (SolveResult::backend_code):
   // what a program calling that library trusts, before our base layer re-judged the answer (its polish may upgrade a
   // short stop, its residual check downgrade a false success). Empty for our backends and when the library was not
   // called (refused, crashed, timed out); the report's audit of claims then takes `status`.
@@ -115,11 +115,6 @@ inline constexpr double kSweepTolerances[] = {1e-3, 1e-6, 1e-9, 1e-12};
 // sweep_problems of them evenly spaced (the middle of each of as many equal slices), so that the ladder sees the
 // whole suite (its sizes and families) rather than its first problems. Empty when sweep_problems ≤ 0.
 std::vector<std::size_t> SweepProblemIndices(std::size_t problems, int sweep_problems);
-
-// The external library's own claim stored in result's details, as a code with 0 = success: detail "siconos_info"
-// of the siconos-* backends (box and MCP), or "peer_success" of bullet-* and dart-* (1 → 0, 0 → 1); empty when the
-// result has neither (our backends, or a peer that was never called).
-std::optional<int> BackendReturnCode(const SolveResult& result);
 
 // The backends by name (empty: every registered one) with options.settings applied, in the order of *names (filled
 // in when empty). InvalidInputError for an unknown name or a rejected setting (a setting must reach one of the

@@ -181,7 +181,7 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
       r.status = result.status;
       r.message = "step " + std::to_string(k) + " (" + step.id + "): " + std::string(ToString(j.verdict)) +
                   (result.message.empty() ? "" : ": " + result.message);
-      r.backend_code = BackendReturnCode(result);
+      r.backend_code = result.backend_code;
     }
     ClassifyAnswer(step.problem, result, &state);
     if (k > 0 && state != previous) ++c.active_set_changes;
@@ -202,7 +202,7 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
     r.message = message + (r.message.empty() ? std::string() : "; first failed step " + r.message);
     r.backend_code.reset();
   } else if (first_failure) {
-    r.backend_code = BackendReturnCode(results.back());
+    r.backend_code = results.back().backend_code;
   }
   if (answers) {
     answers->clear();

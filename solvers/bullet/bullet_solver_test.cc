@@ -58,6 +58,8 @@ TEST(BulletBackends, ASolveOverItsTimeLimitIsKilledAndReportedAsTimeLimit) {
   EXPECT_NE(r.message.find("killed"), std::string::npos) << r.message;
   const SolveResult next = solver->Solve(gen.problem, SolverOptions{});
   EXPECT_EQ(Detail(next, "peer_success"), 1.0);  // answered by a fresh worker (Bullet's PGS always says true)
+  EXPECT_EQ(next.backend_code, std::optional<int>(0));  // its flag as a code, 0 = success
+  EXPECT_EQ(r.backend_code, std::nullopt);  // killed: Bullet never answered
 }
 
 // Dantzig assumes symmetry (LDL^T updates); on nonsymmetric P-matrix relays Bullet's
@@ -71,6 +73,7 @@ TEST(BulletBackends, DantzigOnANonsymmetricPMatrixRelayIsNotSolvedWhateverItsFla
     const SolveResult r = CreateSolver("bullet-dantzig")->Solve(gen.problem, raw);
     EXPECT_FALSE(r.solved());
     EXPECT_EQ(Detail(r, "peer_success"), 0.0);
+    EXPECT_EQ(r.backend_code, std::optional<int>(1));  // false as a code
     EXPECT_EQ(r.status, SolveStatus::kNumericalFailure) << r.message;
     EXPECT_GT(r.residual_rel, 0.1);
     // The same problem is solved by Bullet's Lemke (which does not assume symmetry).

@@ -29,6 +29,11 @@ struct SolveResult {
   double residual_rel = kInf;
   double residual_scaled = kInf;  // of the row-equilibrated problem, relative to 1 + ‖z‖∞ (Residual::scaled)
   double solve_seconds = 0.0;  // wall time of the whole Solve() call (0 when options.measure_time is off)
+  // An external library's own return code for this answer, 0 meaning it claims success: Siconos' info, Bullet's
+  // and DART's success flag as 0 (true) / 1 (false). A claim recorded beside the verdict, never trusted over it;
+  // unset for our own backends and for a library that never answered. The typed accessor bench reads instead of a
+  // backend's details by name.
+  std::optional<int> backend_code;
 
   // Names the values of a code (an enum's explicit values): "" for a number the enum does not have.
   using CodeName = std::string_view (*)(int value);
@@ -85,6 +90,7 @@ struct SolveResult {
     residual_rel = kInf;
     residual_scaled = kInf;
     solve_seconds = 0.0;
+    backend_code.reset();
     num_details = 0;
   }
 

@@ -176,6 +176,16 @@ TEST(SolverBase, OptionsAreValidatedOnEverySolveNotOnlyTheFirst) {
   EXPECT_THAT(r.message, HasSubstr("warm_start[0] is not finite"));
 }
 
+// A library's return code belongs to one answer: Reset (the start of every solve) clears it with the details.
+TEST(SolveResultDetails, ResetClearsTheLibrarysReturnCode) {
+  SolveResult r;
+  r.backend_code = 2;
+  r.SetDetail("siconos_info", 2.0);
+  r.Reset();
+  EXPECT_EQ(r.backend_code, std::nullopt);
+  EXPECT_EQ(r.num_details, 0);
+}
+
 TEST(SolveResultDetails, NamesStayUniqueWhenReusedInAnotherOrder) {
   static const char kAlpha[] = "alpha";
   const std::string alpha_copy = "alpha";  // same text, another pointer

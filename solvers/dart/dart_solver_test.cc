@@ -93,6 +93,8 @@ TEST(DartBackends, PgsClaimIsCheckedByOurVerdict) {
   const SolveResult gave_up = CreateSolver("dart-pgs")->Solve(
       Generate(MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 20, 1).problem, raw);
   EXPECT_EQ(Detail(gave_up, "peer_success"), 0.0);
+  EXPECT_EQ(claimed.backend_code, std::optional<int>(0));  // the flags as codes, 0 = success
+  EXPECT_EQ(gave_up.backend_code, std::optional<int>(1));
   EXPECT_EQ(gave_up.status, SolveStatus::kIterationLimit) << gave_up.message;
 }
 

@@ -37,6 +37,7 @@ inline void ExpectSolves(const std::string& backend, const GeneratedProblem& gen
   EXPECT_LE(r.residual_rel, options.tolerance);
   EXPECT_LE((r.z - gen.z_star).cwiseAbs().maxCoeff(), 1e-6 * (1.0 + gen.z_star.cwiseAbs().maxCoeff()));
   EXPECT_EQ(Detail(r, "peer_success"), 1.0);
+  EXPECT_EQ(r.backend_code, std::optional<int>(0));
   EXPECT_EQ(Detail(r, "standard_size") > 0, true);
 }
 
@@ -53,6 +54,7 @@ inline void ExpectSameAnswerInWorkerAndInProcess(const std::string& backend, con
   EXPECT_EQ(probe.status, again.status);
   EXPECT_EQ(probe.z, again.z);
   EXPECT_EQ(Detail(probe, "peer_success"), Detail(again, "peer_success"));
+  EXPECT_EQ(probe.backend_code, again.backend_code);
   for (const char* isolate : {"always", "never"}) {
     const auto other = CreateSolver(backend);
     std::string error;

@@ -164,6 +164,7 @@ void PeerBoxSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
   if (!answered) return;  // status set: a crash, a signal or the deadline (z: the start point)
   result->iterations = reply_.iterations >= 0 ? reply_.iterations : 0;
   result->SetDetail("peer_success", reply_.success != 0 ? 1.0 : 0.0);
+  result->backend_code = reply_.success != 0 ? 0 : 1;
   if (HasCode()) result->SetDetail("peer_code", reply_.code);
   if (!AllFinite(x_)) {
     result->status = SolveStatus::kNumericalFailure;

@@ -165,6 +165,7 @@ void SiconosAviSolver::SolveAtVertex(const DenseMatrix& M, const Vector& q, cons
       result->SetDetail(d.name, d.value);
     }
   }
+  result->backend_code = stage3_result_.backend_code;
   result->iterations = stage3_result_.iterations;
   const Vector& z = stage3_result_.z;
   const bool answered = z.size() == rows && z.allFinite();
@@ -176,7 +177,7 @@ void SiconosAviSolver::SolveAtVertex(const DenseMatrix& M, const Vector& q, cons
     for (Eigen::Index k = 0; k < inactive; ++k) (*multipliers)[order[static_cast<std::size_t>(n + k)]] = z[k];
   }
   // Siconos' info 0 is a claim, judged by the caller's rule on λ (the stage-3 LCP's own residual does not decide).
-  if (stage3_result_.GetDetail("siconos_info") == 0.0 && answered) {
+  if (stage3_result_.backend_code == 0 && answered) {
     result->status = SolveStatus::kSolved;
   } else {
     result->status = stage3_result_.status == SolveStatus::kSolved ? SolveStatus::kNumericalFailure

@@ -64,6 +64,7 @@ TEST(SiconosAviCaoFerris, TwistingProjectionOfTheDocs) {
     ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
     EXPECT_EQ(r.judgement.verdict, Verdict::kSolved);
     EXPECT_EQ(r.reduced.GetDetail("siconos_info"), 0.0);
+    EXPECT_EQ(r.reduced.backend_code, std::optional<int>(0));  // what bench records
     EXPECT_EQ(AnswerProcessOf(r.reduced),
               std::string(isolate) == "always" ? AnswerProcess::kWorker : AnswerProcess::kThisProcess);
     EXPECT_LE((r.solution.lambda - Vec({1, 1.05})).cwiseAbs().maxCoeff(), 1e-14);
@@ -131,6 +132,7 @@ TEST(SiconosAviCaoFerris, NoVertexIsNotApplicable) {
     EXPECT_EQ(r.status, SolveStatus::kNotApplicable) << avi->name();
     EXPECT_THAT(r.message, ::testing::HasSubstr("no vertex")) << avi->name();
     EXPECT_TRUE(std::isnan(r.reduced.GetDetail("siconos_info")));
+    EXPECT_EQ(r.reduced.backend_code, std::nullopt);  // Siconos never called
   }
   const BoxMLCP mixed(DenseMatrix::Identity(2, 2), Vec({1, -1}), Vec({0, -kInf}), Vec({kInf, kInf}));
   const SolveResult r = solver->Solve(mixed);
@@ -150,6 +152,7 @@ TEST(SiconosAviCaoFerris, BoxAsPolytopeAgreesWithLemke) {
   const SolveResult r = solver->Solve(box);
   ASSERT_TRUE(r.solved()) << r.message;
   EXPECT_EQ(r.GetDetail("siconos_info"), 0.0);
+  EXPECT_EQ(r.backend_code, std::optional<int>(0));
   EXPECT_EQ(r.GetDetail("standard_size"), 7.0);  // rows of P: 2 + 1 + 2 (the fixed row) + 2
   EXPECT_LE((r.z - reference.z).cwiseAbs().maxCoeff(), 1e-12);
   EXPECT_EQ(r.z[2], 0.25);

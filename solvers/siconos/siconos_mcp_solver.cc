@@ -204,6 +204,7 @@ void SiconosMcpSolver::DoSolveMCP(const MCP& problem, const SolverOptions& optio
 
   result->iterations = iterations;
   result->SetDetail("siconos_info", info);
+  result->backend_code = info;
   result->SetDetail("siconos_error", error);
   result->SetDetail("standard_size", N);
   if (info == -1) {

@@ -100,6 +100,7 @@ TEST(SiconosMcp, NanInFAtTheStartIsANumericalFailureBeforeSiconosRuns) {
     EXPECT_EQ(r.status, SolveStatus::kNumericalFailure);
     EXPECT_NE(r.message.find("F[1]"), std::string::npos) << r.message;
     EXPECT_TRUE(std::isnan(r.GetDetail("siconos_info")));  // never called
+    EXPECT_EQ(r.backend_code, std::nullopt);
   }
 }
 
@@ -149,6 +150,7 @@ TEST(SiconosMcp, IterationLimitAtTheBudget) {
   const SolveResult r = solver.Solve(mcp, o);
   EXPECT_EQ(r.status, SolveStatus::kIterationLimit) << r.message;
   EXPECT_EQ(r.GetDetail("siconos_info"), 1.0);
+  EXPECT_EQ(r.backend_code, std::optional<int>(1));  // Siconos' info as it is
 }
 
 TEST(SiconosMcp, TimeLimitPassedBeforeTheCall) {

@@ -789,6 +789,7 @@ void SiconosSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options
   form_.ToBox(problem, x_, &result->z);
   result->iterations = out.iterations;
   result->SetDetail("siconos_info", out.info);
+  result->backend_code = out.info;
   if (out.algorithm_info != out.info) result->SetDetail("siconos_algorithm_info", out.algorithm_info);
   if (std::isfinite(out.error)) result->SetDetail("siconos_error", out.error);
   ClassifyAnswer(method_, spec, out, AllFinite(x_), outcome.request.tolerance, ComplementarityCount(spec, rows),

@@ -267,11 +267,13 @@ TEST(SiconosWrongSuccess, PgsStoppedByItsBudgetIsNotSolved) {
   const SolveResult r = Make("siconos-relay-pgs")->Solve(p, options);
   EXPECT_EQ(r.status, SolveStatus::kIterationLimit) << r.message;
   EXPECT_EQ(r.GetDetail("siconos_info"), 1.0);
+  EXPECT_EQ(r.backend_code, std::optional<int>(1));  // what bench records as the library's claim
   EXPECT_EQ(r.iterations, 1);
   EXPECT_GT((r.z - z_star).cwiseAbs().maxCoeff(), 1e-3);
   options.max_iterations = 0;  // Siconos' default budget: converges
   const SolveResult full = Make("siconos-relay-pgs")->Solve(p, options);
   EXPECT_TRUE(full.solved()) << full.message;
+  EXPECT_EQ(full.backend_code, std::optional<int>(0));
   EXPECT_LE((full.z - z_star).cwiseAbs().maxCoeff(), 1e-8);
 }
 
