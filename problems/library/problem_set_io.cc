@@ -17,6 +17,7 @@
 #include <system_error>
 #include <unordered_map>
 #include <unordered_set>
+#include <tuple>
 #include <utility>
 #include <vector>
 
@@ -1380,11 +1381,53 @@ Frame CheckFrame(std::string_view data, const std::string& file) {
   return frame;
 }
 
+// The record walk both set kinds share: the set record first and only once (its name and description into *name
+// and *description), every other record handed to on_record(kind, pos, body, length), up to the end record.
+template <typename OnRecord>
+void WalkRecords(std::string_view data, const Frame& frame, const std::string& file, std::string* name,
+                 std::string* description, OnRecord on_record) {
+  bool have_set = false;
+  std::size_t pos = kHeaderBytes;
+  while (pos < frame.end_at) {
+    const auto kind = static_cast<std::uint8_t>(data[pos]);
+    const std::size_t body = pos + kRecordHeaderBytes;
+    const auto length = static_cast<std::size_t>(LoadLE(data.data() + pos + 1, 8));
+    if (kind != kSetRecord && !have_set) FailAtByte(file, pos, std::string(KindName(kind)) + " before the set record");
+    if (kind == kSetRecord) {
+      if (have_set) FailAtByte(file, pos, "a second set record");
+      Decoder d(data, body, body + length, file, "set record");
+      *name = d.Str("name");
+      *description = d.Str("description");
+      d.ExpectEnd();
+      have_set = true;
+    } else {
+      on_record(kind, pos, body, length);
+    }
+    pos = body + length;
+  }
+  if (!have_set) FailAtByte(file, frame.end_at, "no set record before the end record");
+}
+
+// The end record's counts checked against what was decoded; returns them (matrices, problems). what: "problems" or
+// "AVIs", for the message.
+std::pair<std::uint64_t, std::uint64_t> CheckEndCounts(std::string_view data, const Frame& frame,
+                                                       const std::string& file, std::size_t matrices_read,
+                                                       std::size_t problems_read, const char* what) {
+  const std::uint64_t matrices = LoadLE(data.data() + frame.end_at + kRecordHeaderBytes, 8);
+  const std::uint64_t problems = LoadLE(data.data() + frame.end_at + kRecordHeaderBytes + 8, 8);
+  if (matrices != matrices_read || problems != problems_read) {
+    FailAtByte(file, frame.end_at,
+               "end record counts " + std::to_string(matrices) + " matrices and " + std::to_string(problems) + " " +
+                   what + " but the file holds " + std::to_string(matrices_read) + " and " +
+                   std::to_string(problems_read));
+  }
+  return {matrices, problems};
+}
+
 Decoded Decode(std::string_view data, const std::string& file) {
   const auto fail = [&](std::size_t offset, const std::string& what) { FailAtByte(file, offset, what); };
   const Frame frame = CheckFrame(data, file);
   const std::uint32_t version = frame.header.version;
-  const std::size_t end_at = frame.end_at;
   if (frame.header.kind != ProblemSetKind::kBoxMlcp) {
     fail(12, std::string(KindText(frame.header.kind)) + ", not of box-MLCPs (read it as an AVI set)");
   }
@@ -1399,23 +1442,9 @@ Decoded Decode(std::string_view data, const std::string& file) {
   std::uint64_t expanded = 0;  // bytes of matrix data once every problem holds its own copy
   std::uint64_t inherited = 0;  // bytes of text the problems take from the one before them (version 3)
   std::unordered_set<std::string> ids;
-  bool have_set = false;
-  std::size_t pos = kHeaderBytes;
-  while (pos < end_at) {
-    const auto kind = static_cast<std::uint8_t>(data[pos]);
-    const std::size_t body = pos + kRecordHeaderBytes;
-    const auto length = static_cast<std::size_t>(LoadLE(data.data() + pos + 1, 8));
-    if (kind != kSetRecord && !have_set) fail(pos, std::string(KindName(kind)) + " before the set record");
+  WalkRecords(data, frame, file, &out.set.name, &out.set.description,
+              [&](std::uint8_t kind, std::size_t pos, std::size_t body, std::size_t length) {
     switch (kind) {
-      case kSetRecord: {
-        if (have_set) fail(pos, "a second set record");
-        Decoder d(data, body, body + length, file, "set record");
-        out.set.name = d.Str("name");
-        out.set.description = d.Str("description");
-        d.ExpectEnd();
-        have_set = true;
-        break;
-      }
       case kMatrixRecord: {
         Decoder d(data, body, body + length, file, "matrix #" + std::to_string(table.size()));
         table.push_back(DecodeMatrix(d));
@@ -1455,18 +1484,9 @@ Decoded Decode(std::string_view data, const std::string& file) {
         fail(pos, "unknown record kind " + std::to_string(kind) +
                       " (this build knows 1 set, 2 matrix, 3 problem, 4 end, 5 bounds; 6 AVI in a set of AVIs)");
     }
-    pos = body + length;
-  }
-  if (!have_set) fail(end_at, "no set record before the end record");
-  const std::uint64_t matrices = LoadLE(data.data() + end_at + kRecordHeaderBytes, 8);
-  const std::uint64_t problems = LoadLE(data.data() + end_at + kRecordHeaderBytes + 8, 8);
-  if (matrices != table.size() || problems != out.set.problems.size()) {
-    fail(end_at, "end record counts " + std::to_string(matrices) + " matrices and " + std::to_string(problems) +
-                     " problems but the file holds " + std::to_string(table.size()) + " and " +
-                     std::to_string(out.set.problems.size()));
-  }
-  out.info.matrices = matrices;
-  out.info.problems = problems;
+  });
+  std::tie(out.info.matrices, out.info.problems) =
+      CheckEndCounts(data, frame, file, table.size(), out.set.problems.size(), "problems");
   return out;
 }
 
@@ -1648,23 +1668,9 @@ DecodedAvis DecodeAvis(std::string_view data, const std::string& file) {
   std::vector<DenseMatrix> table;
   std::uint64_t expanded = 0;
   std::unordered_set<std::string> ids;
-  bool have_set = false;
-  std::size_t pos = kHeaderBytes;
-  while (pos < frame.end_at) {
-    const auto kind = static_cast<std::uint8_t>(data[pos]);
-    const std::size_t body = pos + kRecordHeaderBytes;
-    const auto length = static_cast<std::size_t>(LoadLE(data.data() + pos + 1, 8));
-    if (kind != kSetRecord && !have_set) fail(pos, std::string(KindName(kind)) + " before the set record");
+  WalkRecords(data, frame, file, &out.set.name, &out.set.description,
+              [&](std::uint8_t kind, std::size_t pos, std::size_t body, std::size_t length) {
     switch (kind) {
-      case kSetRecord: {
-        if (have_set) fail(pos, "a second set record");
-        Decoder d(data, body, body + length, file, "set record");
-        out.set.name = d.Str("name");
-        out.set.description = d.Str("description");
-        d.ExpectEnd();
-        have_set = true;
-        break;
-      }
       case kMatrixRecord: {
         Decoder d(data, body, body + length, file, "matrix #" + std::to_string(table.size()));
         table.push_back(DecodeAviMatrix(d));
@@ -1682,18 +1688,9 @@ DecodedAvis DecodeAvis(std::string_view data, const std::string& file) {
         fail(pos, "record kind " + std::to_string(kind) + " in a set of AVIs (it holds 1 set, 2 matrix, 6 AVI, " +
                       "4 end)");
     }
-    pos = body + length;
-  }
-  if (!have_set) fail(frame.end_at, "no set record before the end record");
-  const std::uint64_t matrices = LoadLE(data.data() + frame.end_at + kRecordHeaderBytes, 8);
-  const std::uint64_t problems = LoadLE(data.data() + frame.end_at + kRecordHeaderBytes + 8, 8);
-  if (matrices != table.size() || problems != out.set.problems.size()) {
-    fail(frame.end_at, "end record counts " + std::to_string(matrices) + " matrices and " + std::to_string(problems) +
-                           " AVIs but the file holds " + std::to_string(table.size()) + " and " +
-                           std::to_string(out.set.problems.size()));
-  }
-  out.info.matrices = matrices;
-  out.info.problems = problems;
+  });
+  std::tie(out.info.matrices, out.info.problems) =
+      CheckEndCounts(data, frame, file, table.size(), out.set.problems.size(), "AVIs");
   return out;
 }
 
