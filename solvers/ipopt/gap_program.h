@@ -55,6 +55,25 @@ struct GapMultipliers {
     }
   }
 
+  // The multipliers' bounds in the program's variables m, m + 1, …: a fixed row's multiplier is free, every other
+  // one nonnegative (inf: Ipopt's infinity).
+  void Bounds(int m, double inf, double* x_l, double* x_u) const {
+    for (int k = 0; k < count(); ++k) {
+      x_l[m + k] = kind[k] == kFixedMult ? -inf : 0.0;
+      x_u[m + k] = inf;
+    }
+  }
+
+  // The duals Ipopt may ask a start for: 1 for every bound's (Ipopt pushes them into the interior), 0 for the m
+  // constraints'.
+  static void StartDuals(int n, bool init_z, double* z_l, double* z_u, int m, bool init_lambda, double* lambda) {
+    if (init_z) {
+      std::fill(z_l, z_l + n, 1.0);
+      std::fill(z_u, z_u + n, 1.0);
+    }
+    if (init_lambda) std::fill(lambda, lambda + m, 0.0);
+  }
+
   // The gap at x = (z of size n, multipliers).
   double Gap(const double* x, int n) const {
     double gap = 0.0;

@@ -244,11 +244,7 @@ class McpGapTnlp final : public Ipopt::TNLP {
       x_u[i] = IpoptBound(p.u()[i] / s_->c_[i]);
       g_l[i] = g_u[i] = 0.0;
     }
-    const int count = s_->mult_.count();
-    for (int k = 0; k < count; ++k) {
-      x_l[m + k] = s_->mult_.kind[k] == kFixedMult ? -kIpoptInf : 0.0;
-      x_u[m + k] = kIpoptInf;
-    }
+    s_->mult_.Bounds(m, kIpoptInf, x_l, x_u);
     return true;
   }
 
@@ -264,11 +260,7 @@ class McpGapTnlp final : public Ipopt::TNLP {
       s_->EvaluateF(s_->start_, &s_->F_);
       s_->mult_.Start([this](int i) { return s_->F_[i] / s_->d_[i]; }, x + m);
     }
-    if (init_z) {
-      std::fill(z_l, z_l + n, 1.0);
-      std::fill(z_u, z_u + n, 1.0);
-    }
-    if (init_lambda) std::fill(lambda, lambda + m, 0.0);
+    GapMultipliers::StartDuals(n, init_z, z_l, z_u, m, init_lambda, lambda);
     return true;
   }
 

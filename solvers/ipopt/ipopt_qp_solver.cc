@@ -380,12 +380,7 @@ class GapTnlp final : public SessionTnlp {
       x_u[i] = IpoptBound(p.u()[i]);
       g_l[i] = g_u[i] = -p.q()[i];
     }
-    const int count = s_->mult_.count();
-    for (int k = 0; k < count; ++k) {
-      const bool free = s_->mult_.kind[k] == kFixedMult;
-      x_l[m + k] = free ? -kIpoptInf : 0.0;
-      x_u[m + k] = kIpoptInf;
-    }
+    s_->mult_.Bounds(m, kIpoptInf, x_l, x_u);
     return true;
   }
 
@@ -398,11 +393,7 @@ class GapTnlp final : public SessionTnlp {
       p.Affine(s_->start_, &s_->product_);
       s_->mult_.Start([this](int i) { return s_->product_[i]; }, x + m);
     }
-    if (init_z) {
-      std::fill(z_l, z_l + n, 1.0);
-      std::fill(z_u, z_u + n, 1.0);
-    }
-    if (init_lambda) std::fill(lambda, lambda + m, 0.0);
+    GapMultipliers::StartDuals(n, init_z, z_l, z_u, m, init_lambda, lambda);
     return true;
   }
 
