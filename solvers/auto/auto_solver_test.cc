@@ -562,10 +562,15 @@ TEST(AutoSolver, FallsBackWhenTheChoiceFailsWithoutProof) {
   options.tolerance = kTol;
   options.max_iterations = 100;  // sweeps for psor (far too few at this condition), pivots for lemke (enough)
   options.polish = false;        // the base's polish would finish psor's job from a good active set
+  // and so would psor's own subspace step: plain sweeps here, so that psor fails
+  std::string error;
+  ASSERT_TRUE(solver.candidate(AutoCandidate::kPsor).SetOption("subspace_sweeps", "0", &error)) << error;
   ASSERT_EQ(solver.DelegateFor(gen.problem, options), &solver.candidate(AutoCandidate::kPsor));
 
   // What psor alone does with this budget: no answer, and no proof either.
-  PsorSolver psor;
+  PsorOptions plain;
+  plain.subspace_sweeps = 0;
+  PsorSolver psor(plain);
   const SolveResult alone = psor.Solve(gen.problem, options);
   ASSERT_FALSE(alone.solved());
   ASSERT_NE(alone.status, SolveStatus::kInfeasible);

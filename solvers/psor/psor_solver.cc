@@ -13,6 +13,12 @@
 #include <cmath>
 #include <cstdio>
 #include <limits>
+#include <memory>
+#include <type_traits>
+#include <vector>
+
+#include "solvers/core/active_set.h"
+#include "solvers/core/polish.h"
 
 namespace smcbench {
 namespace {
@@ -29,6 +35,7 @@ class DenseColumns {
       : M_(M.data(), M.rows(), M.cols()), n_(static_cast<int>(M.rows())) {}
 
   int size() const { return N > 0 ? N : n_; }
+  const double* data() const { return M_.data(); }
   double Diagonal(int j) const { return M_(j, j); }
   double MaxAbs() const { return M_.cwiseAbs().maxCoeff(); }
   // w += a · M(:,j): contiguous in column-major storage.
@@ -116,6 +123,30 @@ inline Merit EvaluateMerit(int n, const double* z, const double* w, const double
   return m;
 }
 
+// The active set the natural map reads off (z, w) in the same pass (the subspace step's trigger): each row as the
+// polish classifies it (ClassifyRow: z_i − w_i at or below l_i, at or above u_i, or inside) stored in pattern as −1,
+// +1 or 0; *changed counts the entries that differ from what pattern held, *inside the rows inside.
+inline Merit EvaluateMeritAndPattern(int n, const double* z, const double* w, const double* l, const double* u,
+                                     signed char* pattern, int* changed, int* inside) {
+  Merit m;
+  double nan_probe = 0.0;
+  int changes = 0, free_rows = 0;
+  for (int i = 0; i < n; ++i) {
+    const double t = z[i] - w[i];
+    m.residual = std::max(m.residual, std::abs(z[i] - Clamp(t, l[i], u[i])));
+    m.z_norm = std::max(m.z_norm, std::abs(z[i]));
+    nan_probe += (z[i] - z[i]) + (w[i] - w[i]);
+    const int now = static_cast<int>(t >= u[i]) - static_cast<int>(t <= l[i]);  // branch-free: 1, −1 or 0
+    changes += static_cast<int>(now != pattern[i]);
+    free_rows += static_cast<int>(now == 0);
+    pattern[i] = static_cast<signed char>(now);
+  }
+  m.finite = nan_probe == 0.0;
+  *changed = changes;
+  *inside = free_rows;
+  return m;
+}
+
 // One projected SOR sweep in row order (CPS §5.2, eq. for z^{k+1}_i with the newest z_j, j < i); w follows
 // every change of z so that row i+1 sees it. Returns how many z_i moved.
 template <typename Columns>
@@ -173,6 +204,12 @@ struct PsorRun {
   double window_best = kInf;  // best residual when the current stall window opened
   int window_start = 0;
   double divergence_limit = kInf;
+  // The subspace step's trigger (dense run-time n with the step on, else null): the natural map's active set at the
+  // last merit check, how many rows it changed there, and how many rows it has inside.
+  // It is tracked only while the residual falls slowly (track_pattern, set by the step): fast runs pay nothing.
+  signed char* pattern = nullptr;
+  bool track_pattern = false, pattern_tracked = false;
+  int pattern_changes = 0, inside = 0;
 
   // w = M z + q exactly (a cold start at 0: w = q without a product).
   [[gnu::always_inline]] void Refresh() {
@@ -241,7 +278,15 @@ template <typename Columns, typename TimeUp>
                        SolveResult* result) {
   const double tolerance = run->options.tolerance;
   const bool fixed_point = updates == 0;
-  Merit merit = EvaluateMerit(run->n, run->z, run->w, run->l, run->u);
+  Merit merit;
+  if constexpr (std::is_same_v<Columns, DenseColumns<Eigen::Dynamic>>) {
+    run->pattern_tracked = run->track_pattern;
+    merit = !run->track_pattern ? EvaluateMerit(run->n, run->z, run->w, run->l, run->u)
+                                : EvaluateMeritAndPattern(run->n, run->z, run->w, run->l, run->u, run->pattern,
+                                                          &run->pattern_changes, &run->inside);
+  } else {
+    merit = EvaluateMerit(run->n, run->z, run->w, run->l, run->u);
+  }
   run->rel = merit.relative(run->q_norm);
   if (!merit.finite) {
     SetMessage(result,
@@ -304,6 +349,111 @@ template <typename Columns>
   }
 }
 
+// When the subspace step tries (psor_solver.h): merit checks since the bound pattern last changed, the stable
+// checks a try waits for (doubled after a failed one), the residual of the previous check (for the rate).
+struct SubspaceSchedule {
+  int stable = 0;
+  int wait = 0;
+  double last_rel = kInf;
+};
+
+enum class SubspaceOutcome { kNone, kSolved, kSolvedAsPolishWould };
+
+// The rate per merit check at or below which the subspace step neither tracks the pattern nor tries (the run is
+// fast enough on its own).
+constexpr double kFastRate = 0.5;
+
+// Block exchanges the subspace step may add to the set read off the sweeps before it gives up.
+constexpr int kSubspaceCorrections = 4;
+
+// One block exchange on the set in s.state whose exact solution is (z, w): bound rows with w of the wrong sign
+// (rows with l_i = u_i excepted) become free, then the set is solved again (free rows that leave the box are moved to the bound they crossed, up to
+// kPolishPasses times, as the polish does). False when no row changed or the new set cannot be solved.
+bool ExchangeRows(const PsorRun<DenseColumns<Eigen::Dynamic>>& run, double* z, const double* w,
+                  const PolishScratch& s) {
+  bool changed = false;
+  for (int i = 0; i < run.n; ++i) {
+    const auto state = static_cast<RowState>(s.state[i]);
+    if (run.l[i] == run.u[i]) continue;  // a fixed row takes any w
+    if ((state == RowState::kLower && w[i] < 0.0) || (state == RowState::kUpper && w[i] > 0.0)) {
+      s.state[i] = static_cast<signed char>(RowState::kFree);
+      changed = true;
+    }
+  }
+  if (!changed) return false;
+  for (int pass = 0; pass < kPolishPasses; ++pass) {
+    int nf = 0;
+    const ActiveSetOutcome outcome =
+        active_set::SolveDense<0>(run.M.data(), run.n, run.q, run.l, run.u, s.state, 0.0, s, z, &nf);
+    if (outcome == ActiveSetOutcome::kSolved) return true;
+    if (outcome != ActiveSetOutcome::kOutsideBox) return false;
+    for (int k = 0; k < nf; ++k) {
+      const int i = s.free_rows[k];
+      if (z[i] < run.l[i]) s.state[i] = static_cast<signed char>(RowState::kLower);
+      if (z[i] > run.u[i]) s.state[i] = static_cast<signed char>(RowState::kUpper);
+    }
+  }
+  return false;
+}
+
+// After a merit check of a dense run-time-n run (which updated run->pattern): updates the schedule and, when the
+// pattern is stable and the sweeps still needed at the observed rate (log(tol/rel) / log(rate)) would cost more
+// than the exact solve (the polish's classification and the candidate's w, 2n², the right-hand side n·n_f, the LU
+// n_f³/3), solves the free rows exactly (PolishDense) and keeps the candidate when it passes the sweeps' own
+// stopping test. kSolvedAsPolishWould: the base's polish would read the same set off the answer and factor the
+// same block again.
+template <typename Workspace>
+SubspaceOutcome SubspaceStep(const BoxMLCP& problem, PsorRun<DenseColumns<Eigen::Dynamic>>* run, int updates,
+                             SubspaceSchedule* schedule, Workspace* ws) {
+  const double rate = run->rel / schedule->last_rel;
+  schedule->last_rel = run->rel;
+  // A residual that at least halves per check converges within a few dozen sweeps, and one that does not fall is
+  // not converging to anything a step could read: neither tracks the pattern nor tries.
+  run->track_pattern = rate > kFastRate && rate < 1.0;
+  schedule->stable = run->pattern_tracked && run->pattern_changes == 0 ? schedule->stable + 1 : 0;
+  if (schedule->stable < schedule->wait) return SubspaceOutcome::kNone;
+  const double n = run->n, nf = run->inside;
+  const double remaining = rate < 1.0 ? std::log(run->options.tolerance / run->rel) / std::log(rate)
+                                      : static_cast<double>(run->budget - run->sweeps);
+  const double sweep_cost = n * (1.0 + updates);
+  const double solve_cost = 2.0 * n * n + n * nf + nf * nf * nf / 3.0;
+  if (!(solve_cost < remaining * sweep_cost)) return SubspaceOutcome::kNone;
+
+  ++ws->tries;
+  schedule->stable = 0;
+  const PolishScratch scratch = ws->active_set.For(run->n);
+  double* candidate = ws->candidate.data();
+  double* candidate_w = ws->candidate_w.data();
+  if (PolishDense<0>(problem, run->z, candidate, scratch)) {
+    // The set read off the sweeps, then up to kSubspaceCorrections block exchanges (Júdice & Pires, 1994): every
+    // bound row whose w pushes away from its bound is freed, every free row that leaves the box goes to the bound
+    // it crossed, and the set is solved again. A row near its switching point is where the sweeps' set is wrong.
+    for (int pass = 0;; ++pass) {
+      run->M.Affine(candidate, run->q, candidate_w);
+      const Merit merit = EvaluateMerit(run->n, candidate, candidate_w, run->l, run->u);
+      const double rel = merit.relative(run->q_norm);
+      if (merit.finite && rel <= run->options.tolerance) {
+        std::copy(candidate, candidate + run->n, run->z);
+        std::copy(candidate_w, candidate_w + run->n, run->w);
+        run->rel = rel;
+        run->best = std::min(run->best, rel);
+        run->w_exact = true;
+        run->since_refresh = 0;
+        ++ws->steps;
+        ClassifyRowsForPolish<0>(problem, candidate, ws->candidate_state.data(), scratch.rhs);
+        return std::equal(ws->candidate_state.begin(), ws->candidate_state.end(), scratch.state)
+                   ? SubspaceOutcome::kSolvedAsPolishWould
+                   : SubspaceOutcome::kSolved;
+      }
+      if (pass == kSubspaceCorrections || !merit.finite || !ExchangeRows(*run, candidate, candidate_w, scratch)) {
+        break;
+      }
+    }
+  }
+  schedule->wait *= 2;
+  return SubspaceOutcome::kNone;
+}
+
 }  // namespace
 
 bool PsorOptions::IsValid(std::string* why) const {
@@ -322,8 +472,30 @@ bool PsorOptions::IsValid(std::string* why) const {
   if (stall_sweeps < 0) return fail("psor: stall_sweeps must be >= 0 (0 disables the stall test)");
   if (!(stall_factor > 0.0 && stall_factor < 1.0)) return fail("psor: stall_factor must lie in (0, 1)");
   if (!(min_diagonal >= 0.0 && min_diagonal < 1.0)) return fail("psor: min_diagonal must lie in [0, 1)");
+  if (subspace_sweeps < 0) return fail("psor: subspace_sweeps must be >= 0 (0 disables the subspace step)");
   return true;
 }
+
+// The subspace step's storage (psor_solver.h), sized once per n: the bound pattern of the last check, the exact
+// candidate and its exact w, the polish's classification of the candidate, the active-set solve's scratch.
+struct PsorSolver::SubspaceWorkspace {
+  std::vector<signed char> pattern, candidate_state;
+  Vector candidate, candidate_w;
+  ActiveSetWorkspace active_set;
+  int tries = 0, steps = 0;  // this solve's exact solves, and those accepted
+
+  void Resize(int n) {
+    if (static_cast<int>(pattern.size()) == n) return;
+    pattern.assign(n, 0);
+    candidate_state.assign(n, 0);
+    candidate.resize(n);
+    candidate_w.resize(n);
+  }
+};
+
+PsorSolver::PsorSolver() = default;
+PsorSolver::PsorSolver(const PsorOptions& options) : BackendWithOptions(options) {}
+PsorSolver::~PsorSolver() = default;
 
 const SolverInfo& PsorSolver::info() const {
   static const SolverInfo kInfo{
@@ -355,6 +527,8 @@ void PsorSolver::BindOptions(OptionBinder* binder) {
               "stalled if the best residual does not fall by stall_factor within this many sweeps (0: off)");
   binder->Add("stall_factor", &options_.stall_factor, "required decrease of the best residual, in (0,1)");
   binder->Add("min_diagonal", &options_.min_diagonal, "rows need M_ii > min_diagonal * max|M_jk|, in [0,1)");
+  binder->Add("subspace_sweeps", &options_.subspace_sweeps,
+              "merit checks with an unchanged bound pattern before an exact solve on it (dense 5..512 rows; 0: off)");
 }
 
 bool PsorSolver::ValidateBackendOptions(std::string* why) const {
@@ -375,7 +549,13 @@ void PsorSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, S
     case 2: Iterate(DenseColumns<2>(M), problem, options, result); break;
     case 3: Iterate(DenseColumns<3>(M), problem, options, result); break;
     case 4: Iterate(DenseColumns<4>(M), problem, options, result); break;
-    default: Iterate(DenseColumns<Eigen::Dynamic>(M), problem, options, result); break;
+    default: {
+      if (subspace_) subspace_->tries = subspace_->steps = 0;
+      Iterate(DenseColumns<Eigen::Dynamic>(M), problem, options, result);
+      result->SetDetail("subspace_tries", subspace_ ? subspace_->tries : 0);
+      result->SetDetail("subspace_steps", subspace_ ? subspace_->steps : 0);
+      break;
+    }
   }
 }
 
@@ -407,6 +587,21 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
   run.divergence_limit = options_.divergence_threshold *
                          (1.0 + run.z0_norm + (run.min_diagonal < kInf ? run.q_norm / run.min_diagonal : 0.0));
   run.window_best = run.rel;
+  // The subspace step (psor_solver.h) runs on dense problems of run-time size only: the fixed-size kernels of
+  // n ≤ 4 stay as they are, and the sparse path has no dense kernel to call.
+  constexpr bool kSubspace = std::is_same_v<Columns, DenseColumns<Eigen::Dynamic>>;
+  SubspaceSchedule schedule;
+  if constexpr (kSubspace) {
+    if (options_.subspace_sweeps > 0 && run.n <= kMaxPolishDenseSize) {
+      if (!subspace_) subspace_ = std::make_unique<SubspaceWorkspace>();
+      subspace_->Resize(run.n);
+      run.pattern = subspace_->pattern.data();
+      // No row matches 2 (a pattern entry is −1, 0 or 1): a cold solve starts from nothing an earlier one left.
+      std::fill(subspace_->pattern.begin(), subspace_->pattern.end(), static_cast<signed char>(2));
+      schedule.wait = options_.subspace_sweeps;
+      schedule.last_rel = run.rel;
+    }
+  }
   int until_check = options_.check_interval;  // a countdown: no integer division per sweep
   const auto time_up = [this] { return TimeLimitReached(); };
   while (true) {
@@ -430,6 +625,13 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
       until_check = options_.check_interval;
       const SolveStatus status = Checkpoint(&run, updates, swept_with_exact_w, time_up, result);
       if (status != SolveStatus::kNotRun) return FinishRun(run, status, result);
+      if constexpr (kSubspace) {
+        if (schedule.wait > 0) {
+          const SubspaceOutcome outcome = SubspaceStep(problem, &run, updates, &schedule, subspace_.get());
+          if (outcome == SubspaceOutcome::kSolvedAsPolishWould) NotePolishRedundant();
+          if (outcome != SubspaceOutcome::kNone) return FinishRun(run, SolveStatus::kSolved, result);
+        }
+      }
     }
     // Bound the rounding drift of the incremental w; also makes a fixed point found on a drifted w be re-tested.
     if (!run.w_exact && (run.since_refresh >= options_.refresh_interval || fixed_point)) run.Refresh();

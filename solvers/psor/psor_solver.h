@@ -33,11 +33,21 @@
 // residual within stall_sweeps sweeps, is kStalled; the sweep budget (default 10000) is kIterationLimit.
 // result->iterations counts sweeps.
 //
+// Subspace step (the idea of PGS with subspace minimization: Morales, Nocedal & Smelyanskiy, "An algorithm for the
+// fast solution of symmetric linear complementarity problems", Numer. Math. 111, 2008): projected sweeps identify
+// the active set long before they converge on ill-conditioned M (small h, cond 1e6: thousands of sweeps). When the
+// bound pattern has been stable and the remaining sweeps, predicted from the residual's rate, would cost more than
+// one LU of the free block, the free rows are solved exactly on that pattern (the base's polish kernel,
+// polish.h). The answer is accepted by the same stopping test as a sweep's, so it changes the cost, never the
+// verdict; a pattern that is not the solution's only costs that one solve. Details "subspace_tries" and
+// "subspace_steps" (accepted).
+//
 // Stopping test: the base's verdict on the problem PSOR is given (row-equilibrated by Solver's base): its natural
 // residual, in units of z, at most tol·(1 + ‖z‖∞) and tol·(1 + ‖q‖∞). "Converged" means right in units of z,
 // whatever the size of M; scaled residuals are reported in the messages.
 #pragma once
 
+#include <memory>
 #include <string>
 
 #include "solvers/core/backend_options.h"
@@ -60,6 +70,11 @@ struct PsorOptions {
   double stall_factor = 0.5;  // in (0, 1)
   // A row with l_i < u_i needs M_ii > min_diagonal · max|M_jk| (relative, in [0, 1)).
   double min_diagonal = 1e-12;
+  // The subspace step (dense 5 ≤ n ≤ 512): once the bound pattern (which rows sit at l, at u, inside) has not
+  // changed for subspace_sweeps merit checks, and the sweeps still needed at the observed rate would cost more than
+  // one factorization, PSOR solves that pattern's reduced system exactly and keeps the answer only if it passes the
+  // stopping test; a failed try doubles the wait. 0 disables it (plain PSOR).
+  int subspace_sweeps = 3;
 
   // True if every field is usable; otherwise *why names the field and the accepted range.
   bool IsValid(std::string* why) const;
@@ -70,8 +85,11 @@ class PsorSolver final : public BackendWithOptions<PsorOptions> {
   // Default iteration budget (sweeps) when SolverOptions::max_iterations ≤ 0.
   static constexpr int kDefaultMaxSweeps = 10000;
 
-  PsorSolver() = default;
-  explicit PsorSolver(const PsorOptions& options) : BackendWithOptions(options) {}
+  PsorSolver();
+  explicit PsorSolver(const PsorOptions& options);
+  ~PsorSolver() override;
+  PsorSolver(const PsorSolver&) = delete;
+  PsorSolver& operator=(const PsorSolver&) = delete;
 
   const SolverInfo& info() const override;
 
@@ -86,6 +104,8 @@ class PsorSolver final : public BackendWithOptions<PsorOptions> {
 
   Vector step_;  // ω / M_ii per row (0 for fixed rows l_i = u_i); sized once per n
   Vector w_;     // M z + q, updated incrementally
+  struct SubspaceWorkspace;  // the subspace step's storage (dense n > 4 only), made on first use, sized once per n
+  std::unique_ptr<SubspaceWorkspace> subspace_;
 };
 
 }  // namespace smcbench

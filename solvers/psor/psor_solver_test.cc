@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include <Eigen/QR>
+
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
@@ -542,6 +544,112 @@ TEST(PsorSolver, RepeatedSolvesDoNotTouchTheHeap) {
     EXPECT_EQ(test_support::StopCountingMallocs(), 0) << problem->name();
     EXPECT_EQ(result.status, SolveStatus::kSolved);
   }
+}
+
+// ---- The subspace step (psor_solver.h) ------------------------------------------------------------------------
+
+// An SPD relay of condition number cond (M = Q diag(1 … 1/cond) Qᵀ): PSOR's rate is about 1 − 1/cond, so plain
+// sweeps take thousands, while the active set is read off after a few.
+Planted IllConditionedSpdRelay(int n, double cond, unsigned seed) {
+  std::mt19937_64 rng(seed);
+  std::normal_distribution<double> normal;
+  DenseMatrix B(n, n);
+  for (int j = 0; j < n; ++j)
+    for (int i = 0; i < n; ++i) B(i, j) = normal(rng);
+  const Eigen::HouseholderQR<DenseMatrix> qr(B);
+  const DenseMatrix Q = qr.householderQ();
+  Vector eigenvalues(n);
+  for (int i = 0; i < n; ++i) eigenvalues[i] = std::pow(cond, -static_cast<double>(i) / (n - 1));
+  DenseMatrix M = Q * eigenvalues.asDiagonal() * Q.transpose();
+  M = (0.5 * (M + M.transpose())).eval();
+  const Vector l = Vector::Constant(n, -1.0), u = Vector::Constant(n, 1.0);
+  Vector zstar, q;
+  PlantSolution(M, l, u, rng, &zstar, &q);
+  return {BoxMLCP::Relay(std::move(M), std::move(q), -1.0, 1.0, "ill_conditioned_relay"), zstar};
+}
+
+TEST(PsorSubspaceStep, SolvesAnIllConditionedRelayInAFewSweeps) {
+  PsorOptions plain;
+  plain.subspace_sweeps = 0;
+  int hard = 0;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    const Planted p = IllConditionedSpdRelay(8, 1e6, seed);
+    const SolveResult fast = PsorSolver().Solve(p.problem, Tight());
+    const SolveResult slow = PsorSolver(plain).Solve(p.problem, Tight());
+    ASSERT_EQ(fast.status, SolveStatus::kSolved) << fast.message;
+    ASSERT_EQ(slow.status, SolveStatus::kSolved) << slow.message;
+    EXPECT_EQ(slow.GetDetail("subspace_tries"), 0.0);
+    EXPECT_LE(fast.iterations, slow.iterations);
+    // The exact answer of the planted set, independently of the polish: the planted z*.
+    EXPECT_LE((fast.z - p.zstar).cwiseAbs().maxCoeff(), 1e-9 * (1.0 + p.zstar.cwiseAbs().maxCoeff()))
+        << "seed " << seed;
+    EXPECT_LE(MyResidual(p.problem, fast.z), 1e-10);
+    if (slow.iterations < 200) continue;  // every row settles at a bound within a few sweeps: nothing to gain
+    ++hard;
+    EXPECT_EQ(fast.GetDetail("subspace_steps"), 1.0) << "seed " << seed;
+    EXPECT_LE(fast.iterations, 40) << "seed " << seed << " (plain PSOR: " << slow.iterations << " sweeps; tries "
+                                   << fast.GetDetail("subspace_tries") << ")";
+  }
+  EXPECT_GE(hard, 3) << "too few seeds where plain PSOR is slow: the test shows nothing";
+}
+
+TEST(PsorSubspaceStep, FastConvergenceNeverTriesIt) {
+  // Strictly diagonally dominant: the residual falls by more than half per sweep, so the pattern is not even
+  // tracked, and the answer is bit for bit the plain one.
+  const SparseDensePair banded = BandedMixed(64, 3);
+  PsorOptions plain;
+  plain.subspace_sweeps = 0;
+  const SolveResult with = PsorSolver().Solve(banded.dense, Tight());
+  const SolveResult without = PsorSolver(plain).Solve(banded.dense, Tight());
+  ASSERT_EQ(with.status, SolveStatus::kSolved) << with.message;
+  EXPECT_EQ(with.GetDetail("subspace_tries"), 0.0);
+  EXPECT_EQ(with.iterations, without.iterations);
+  EXPECT_EQ(with.z, without.z);
+}
+
+TEST(PsorSubspaceStep, NeverChangesTheVerdict) {
+  // Random SPD problems of every bound kind, well and badly conditioned: the same status with and without the step,
+  // and answers that agree to the tolerance (the step's answer passes the sweeps' own stopping test).
+  PsorOptions plain;
+  plain.subspace_sweeps = 0;
+  int tried = 0;
+  for (unsigned seed = 1; seed <= 12; ++seed) {
+    for (const Planted& p : {SpdLcp(12, seed), SpdRelay(20, seed), IllConditionedSpdRelay(16, 1e4, seed)}) {
+      const SolveResult with = PsorSolver().Solve(p.problem, Tight());
+      const SolveResult without = PsorSolver(plain).Solve(p.problem, Tight());
+      EXPECT_EQ(with.status, without.status) << p.problem.name() << " seed " << seed;
+      EXPECT_LE(with.iterations, without.iterations);
+      if (with.status == SolveStatus::kSolved) {
+        EXPECT_LE((with.z - without.z).cwiseAbs().maxCoeff(), 1e-8 * (1.0 + p.zstar.cwiseAbs().maxCoeff()));
+      }
+      tried += with.GetDetail("subspace_tries") > 0.0 ? 1 : 0;
+    }
+  }
+  EXPECT_GT(tried, 0) << "no problem exercised the step";
+}
+
+TEST(PsorSubspaceStep, RepeatedSolvesDoNotTouchTheHeap) {
+  if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc is owned by the sanitizer runtime";
+  const Planted p = IllConditionedSpdRelay(8, 1e6, 1);
+  PsorSolver solver;
+  SolveResult result;
+  SolverOptions options = Tight();
+  options.polish = false;  // the base's generic polish allocates by design above kSmallSize (polish.h)
+  solver.Solve(p.problem, options, &result);
+  ASSERT_EQ(result.status, SolveStatus::kSolved) << result.message;
+  ASSERT_EQ(result.GetDetail("subspace_steps"), 1.0);
+  test_support::StartCountingMallocs();
+  for (int k = 0; k < 5; ++k) solver.Solve(p.problem, options, &result);
+  EXPECT_EQ(test_support::StopCountingMallocs(), 0);
+  EXPECT_EQ(result.GetDetail("subspace_steps"), 1.0);
+}
+
+TEST(PsorSubspaceStep, NegativeSweepsAreRefusedWithTheField) {
+  PsorOptions o;
+  o.subspace_sweeps = -1;
+  std::string why;
+  EXPECT_FALSE(o.IsValid(&why));
+  EXPECT_TRUE(Contains(why, "subspace_sweeps must be >= 0"));
 }
 
 // ---- Small h: relay W = h·G with a planted s* -----------------------------------------------------------------

@@ -1,8 +1,9 @@
 // `smcbench compare` end to end: two real `bench` runs of a small suite, the second with psor under-relaxed
-// (--set psor.omega=0.05: each sweep moves z a twentieth of the Gauss–Seidel step, so psor needs some 20× the
-// sweeps), and compare flags psor and only psor. The slowdown is well over 5× on every band and the threshold 2 (flag
-// only when the whole interval lies above 3): robust to a busy machine, whose run-to-run drift alone has been seen
-// to halve or double a backend's times.
+// and without its subspace step (--set psor.omega=0.05 --set psor.subspace_sweeps=0: each sweep moves z a
+// twentieth of the Gauss–Seidel step and no exact solve cuts the sweeps short, so psor needs some 20× the sweeps),
+// and compare flags psor and only psor. The slowdown is well over 5× on every band and the threshold 2 (flag only
+// when the whole interval lies above 3): robust to a busy machine, whose run-to-run drift alone has been seen to
+// halve or double a backend's times.
 #include "tools/smcbench/compare_command.h"
 
 #include <gmock/gmock.h>
@@ -38,14 +39,15 @@ class CompareCommandTest : public ::testing::Test {
     fs::remove_all(*root_);
     delete root_;
   }
-  // "a": lemke and psor on the quick families suite; "b": the same with psor under-relaxed.
+  // "a": lemke and psor on the quick families suite; "b": the same with psor under-relaxed and without its subspace
+  // step (which would finish the damped sweeps' job from their active set): plain damped sweeps, far slower.
   static std::string Run(const std::string& name) {
     const fs::path dir = *root_ / name;
     if (!fs::exists(dir / "results.json")) {
       std::vector<std::string> args{"bench", "--suite", "families", "--quick", "--solver", "lemke", "psor",
                                     "--repetitions", "3", "--no-stepper", "--progress-every", "0",
                                     "--out", dir.string()};
-      if (name == "b") args.insert(args.end(), {"--set", "psor.omega=0.05"});
+      if (name == "b") args.insert(args.end(), {"--set", "psor.omega=0.05", "--set", "psor.subspace_sweeps=0"});
       const auto run = RunSmcbench(args);
       EXPECT_EQ(run.code, 0) << run.err;
     }
@@ -83,21 +85,21 @@ TEST_F(CompareCommandTest, UnderRelaxedPsorIsFlaggedAndLemkeIsNot) {
   EXPECT_EQ(run.code, kExitCompareRegressed) << run.out << run.err;
   EXPECT_THAT(run.out, Not(testing::ContainsRegex("families/lemke [^\n]*SLOWER")));
   EXPECT_THAT(run.out, testing::ContainsRegex("families/psor +m5-64 [^\n]*SLOWER"));
-  EXPECT_THAT(run.out, HasSubstr("differs: settings [] vs [\"psor.omega=0.05\"]"));
+  EXPECT_THAT(run.out, HasSubstr("differs: settings [] vs [\"psor.omega=0.05\",\"psor.subspace_sweeps=0\"]"));
   EXPECT_THAT(run.out, Not(HasSubstr("different machines")));
   std::ifstream md_file(out / "compare.md");
   std::stringstream md;
   md << md_file.rdbuf();
   EXPECT_THAT(md.str(), HasSubstr("| families | psor | m5-64 |"));
   EXPECT_THAT(md.str(), HasSubstr("paired bootstrap (2000 resamples"));
-  EXPECT_THAT(md.str(), HasSubstr("| setting | settings **≠** | [] | [\"psor.omega=0.05\"] |"));
+  EXPECT_THAT(md.str(), HasSubstr("| setting | settings **≠** | [] | [\"psor.omega=0.05\",\"psor.subspace_sweeps=0\"] |"));
   EXPECT_THAT(md.str(), HasSubstr("| setting | repetitions | 3 | 3 |"));
   EXPECT_THAT(md.str(), HasSubstr("Noise floor (A/A calibration"));
   EXPECT_THAT(md.str(), HasSubstr("| iterations A | iterations B |"));
   std::ifstream json_file(out / "compare.json");
   const nlohmann::json j = nlohmann::json::parse(json_file);
   EXPECT_EQ(j["regressed"], true);
-  EXPECT_EQ(j["differences"], "settings [] vs [\"psor.omega=0.05\"]");
+  EXPECT_EQ(j["differences"], "settings [] vs [\"psor.omega=0.05\",\"psor.subspace_sweeps=0\"]");
   EXPECT_GE(j["slower_groups"].get<int>(), 2);
   if (GnuplotAvailable()) {
     EXPECT_TRUE(fs::is_regular_file(out / "compare-ratios.png"));
