@@ -89,19 +89,26 @@ bool SkewDominant(const DenseMatrix& M) {
   return skew > 16.0 * symmetric;
 }
 
-// M lower triangular (every entry above the diagonal exactly 0) with a positive diagonal: then the box-MLCP has one
-// solution, found by forward substitution, z_i = Π_[l_i,u_i](−(q_i + Σ_{j<i} M_ij z_j) / M_ii), which is what one
-// projected Gauss–Seidel sweep in row order computes (psor's second sweep confirms it). Murty's family is the case
-// (lemke takes 2ⁿ pivots there from the standard start, bpp one set per row). The scan stops at the first entry
-// above the diagonal, so a matrix that is not triangular pays a few reads.
-bool LowerTriangularWithPositiveDiagonal(const DenseMatrix& M) {
+// Which triangle of M holds its off-diagonal nonzeros, when that is one triangle and the diagonal is positive.
+enum class Triangular { kNo, kLower, kUpper };
+
+// M triangular (every entry on one side of the diagonal exactly 0) with a positive diagonal: then the box-MLCP has
+// one solution, found by substitution, z_i = Π_[l_i,u_i](−(q_i + Σ_{j≠i} M_ij z_j) / M_ii) with the z_j known so far,
+// which is what one projected Gauss–Seidel sweep computes: in row order for lower triangular M (the forward
+// substitution), in reverse row order for upper triangular M (the back substitution); psor's second sweep confirms
+// it. Murty's family is the case (lemke takes 2ⁿ pivots there from the standard start, bpp one set per row). The
+// scan, column by column, stops once it has seen a nonzero on both sides, so a matrix that is not triangular pays a
+// few reads. A diagonal M is kLower (the forward sweep, psor's default).
+Triangular TriangularWithPositiveDiagonal(const DenseMatrix& M) {
   const Eigen::Index n = M.rows();
-  for (Eigen::Index j = 1; j < n; ++j) {
-    for (Eigen::Index i = 0; i < j; ++i) {
-      if (M(i, j) != 0.0) return false;
-    }
+  bool above = false, below = false;
+  for (Eigen::Index j = 0; j < n; ++j) {
+    for (Eigen::Index i = 0; i < j && !above; ++i) above = M(i, j) != 0.0;
+    for (Eigen::Index i = j + 1; i < n && !below; ++i) below = M(i, j) != 0.0;
+    if (above && below) return Triangular::kNo;
   }
-  return (M.diagonal().array() > 0.0).all();
+  if (!(M.diagonal().array() > 0.0).all()) return Triangular::kNo;
+  return above ? Triangular::kUpper : Triangular::kLower;
 }
 
 }  // namespace
@@ -204,6 +211,21 @@ const Solver& AutoSolver::candidate(AutoCandidate c) const {
   return *solver;
 }
 
+Solver& AutoSolver::BackwardPsor() {
+  const auto& configured = static_cast<const PsorSolver&>(candidate(AutoCandidate::kPsor));
+  if (backward_psor_ == nullptr || backward_psor_generation_ != configured.option_generation()) {
+    PsorOptions options = configured.options();
+    options.sweep = PsorOptions::kBackwardSweep;
+    if (backward_psor_ == nullptr) {
+      backward_psor_ = std::make_unique<PsorSolver>(options);
+    } else {
+      backward_psor_->set_options(options);
+    }
+    backward_psor_generation_ = configured.option_generation();
+  }
+  return *backward_psor_;
+}
+
 AutoChoice AutoSolver::McpChoice() {
   AutoChoice c;
   for (const AutoCandidate candidate : {AutoCandidate::kNewton, AutoCandidate::kNewtonMin, AutoCandidate::kIpopt}) {
@@ -218,11 +240,11 @@ AutoSolver::~AutoSolver() = default;
 const SolverInfo& AutoSolver::info() const {
   static const SolverInfo kInfo{
       "auto",
-      "picks per problem the fastest backend that is exact or reliable for its class: psor (dense lower "
-      "triangular), enum (dense, few rows with a choice), bpp (dense, up to 256 rows), psor (dense SPD, well "
-      "conditioned), lemke (other dense), newton (sparse, nonlinear MCP); on a failure that proves nothing it "
-      "tries the next (psor, lemke, newton; MCPs: newton-min, ipopt); a session gets the first candidate after "
-      "bpp; details chosen, fallbacks",
+      "picks per problem the fastest backend that is exact or reliable for its class: psor (dense triangular; "
+      "the backward sweep on upper triangular M), enum (dense, few rows with a choice), bpp (dense, up to 256 "
+      "rows), psor (dense SPD, well conditioned), lemke (other dense), newton (sparse, nonlinear MCP); on a "
+      "failure that proves nothing it tries the next (psor, lemke, newton; MCPs: newton-min, ipopt); a session "
+      "gets the first candidate after bpp; details chosen, fallbacks",
       "docs/auto.md (the rule and the measurements behind it); the chosen backend's own reference",
       /*dense=*/true,
       /*sparse=*/true,
@@ -270,10 +292,13 @@ AutoChoice AutoSolver::Classify(const BoxMLCP& problem) const {
     if (problem.size() <= kMaxDensifiedSize) add(AutoCandidate::kLemke);
     return c;
   }
-  if (problem.size() > 4 && LowerTriangularWithPositiveDiagonal(problem.dense_matrix())) {
-    // From 5 rows: up to 4 enum's fixed-size kernel answers as fast (the paper's one-step problems and the
-    // time-steppers' diagonal M stay there).
+  // From 5 rows: up to 4 enum's fixed-size kernel answers as fast (the paper's one-step problems and the
+  // time-steppers' diagonal M stay there).
+  const Triangular triangular =
+      problem.size() > 4 ? TriangularWithPositiveDiagonal(problem.dense_matrix()) : Triangular::kNo;
+  if (triangular != Triangular::kNo) {
     add(AutoCandidate::kPsor);
+    c.psor_backward = triangular == Triangular::kUpper;
   } else if (enum_fits) {
     add(AutoCandidate::kEnum);
   } else {
@@ -305,7 +330,7 @@ Solver* AutoSolver::DelegateFor(const BoxMLCP& problem, const SolverOptions&) {
   std::string why;
   if (!options_.IsValid(&why)) return nullptr;
   const AutoChoice& choice = ChoiceFor(problem);
-  return &candidate(choice.order[choice.first]);
+  return &Backend(choice, choice.first);
 }
 
 WarmStateReset AutoSolver::ForgetWarmState() {
@@ -318,6 +343,7 @@ WarmStateReset AutoSolver::ForgetWarmState() {
   for (const std::unique_ptr<Solver>& c : candidates_) {
     if (c != nullptr) reset = LeastCold(reset, c->ForgetWarmState());
   }
+  if (backward_psor_ != nullptr) reset = LeastCold(reset, backward_psor_->ForgetWarmState());
   return reset;
 }
 
@@ -344,7 +370,7 @@ void AutoSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, S
   if (skip_matrix_id_ != 0) return SolveChain(problem, given, /*answered=*/false, result);
   // The common case first, with nothing else to set up: the choice answers.
   const AutoCandidate first = choice.order[choice.first];
-  candidate(first).Solve(problem, given, result);
+  Backend(choice, choice.first).Solve(problem, given, result);
   if (result->status == SolveStatus::kSolved) return LabelAutoAnswer(first, 0, result);
   SolveChain(problem, given, /*answered=*/true, result);
 }
@@ -364,7 +390,7 @@ void AutoSolver::SolveChain(const BoxMLCP& problem, const SolverOptions& given, 
     skip_matrix_id_ = 0;
   }
   for (;;) {
-    Solver& backend = candidate(choice.order[at]);
+    Solver& backend = Backend(choice, at);
     if (!have_answer) backend.Solve(problem, given, result);
     have_answer = false;
     if (at == last || !PassOn(result->status, backend.info().exact)) break;
@@ -373,7 +399,7 @@ void AutoSolver::SolveChain(const BoxMLCP& problem, const SolverOptions& given, 
     ++at;
   }
   const int fallbacks = at - choice.first;
-  const Solver& answered = candidate(choice.order[at]);
+  const Solver& answered = Backend(choice_, at);
   if (result->status == SolveStatus::kInfeasible && !answered.info().exact) {
     result->status = SolveStatus::kNumericalFailure;
     result->message = std::string(answered.info().name) + " reported infeasible, which is not a proof (it is not "

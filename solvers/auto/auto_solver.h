@@ -9,6 +9,9 @@
 //   dense, lower triangular with a positive
 //     diagonal, from 5 rows                         → psor (one sweep is the forward substitution), then lemke,
 //                                                     then newton
+//   dense, upper triangular with a positive
+//     diagonal, from 5 rows                         → psor with the backward sweep (one sweep is the back
+//                                                     substitution), then lemke, then newton
 //   dense, at most enum_max_choice_rows rows with a
 //     choice of state (l < u, not free: enum's own
 //     size measure) and enum_max_active_sets sets   → enum, then lemke, then newton
@@ -36,6 +39,8 @@
 // that hand-over starts the chain after the delegate (NoteDelegateFailure), which is not run twice.
 // That is warm state: ForgetWarmState drops it, so a cold repeat runs the whole chain again.
 //
+// The backward-sweep psor is auto's second PsorSolver: the psor candidate's options (as set through candidate() or
+// `--set psor.X=...`), copied when they change, with sweep = backward; it answers as candidate psor.
 // Details: "chosen" = the AutoCandidate of the backend whose answer is returned (read it with ChosenCandidateOf),
 // "fallbacks" = how many candidates failed before it; the chosen backend's own details are kept. The result's
 // solver name is "auto".
@@ -53,6 +58,8 @@
 #include "solvers/core/solver.h"
 
 namespace smcbench {
+
+class PsorSolver;
 
 // The backends auto chooses from, in a fixed order: detail "chosen" stores this value, so values are never
 // renumbered (new candidates are appended).
@@ -136,6 +143,9 @@ struct AutoChoice {
   int count = 0;
   // Where the chain starts: 0, or the candidate that answered after a fallback on this matrix.
   int first = 0;
+  // psor runs as auto's backward-sweep instance on this matrix (upper triangular M: one sweep is the back
+  // substitution), else as the psor candidate itself.
+  bool psor_backward = false;
 
   AutoCandidate chosen() const { return order[first]; }
 };
@@ -182,6 +192,15 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
   }
   const Solver& candidate(AutoCandidate c) const;
   Solver* FindCandidate(AutoCandidate c);
+  // The instance that runs entry `at` of a choice: candidate(order[at]), except psor on a choice with
+  // psor_backward, which runs as the backward-sweep instance. Inline: on every solve.
+  Solver& Backend(const AutoChoice& choice, int at) {
+    const AutoCandidate c = choice.order[at];
+    return choice.psor_backward && c == AutoCandidate::kPsor ? BackwardPsor() : candidate(c);
+  }
+  // The backward-sweep psor, with the psor candidate's current options but sweep = backward (created on first
+  // use, its options copied again when the candidate's change).
+  Solver& BackwardPsor();
   // The MCP chain on this build, in order (newton, then newton-min and ipopt where the lookup knows them).
   AutoChoice McpChoice();
 
@@ -208,6 +227,9 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
   Solver& CreateCandidate(AutoCandidate c);
 
   std::array<std::unique_ptr<Solver>, kAutoCandidateCount> candidates_;
+  // BackwardPsor's instance (nullptr until first used) and the psor candidate's option generation it copied.
+  std::unique_ptr<PsorSolver> backward_psor_;
+  std::uint64_t backward_psor_generation_ = 0;
   BackendLookup lookup_;
   // Candidates the lookup was asked for (created or not), so an unknown name is looked up once.
   std::array<bool, kAutoCandidateCount> looked_up_{};

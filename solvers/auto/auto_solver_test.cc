@@ -8,6 +8,7 @@
 #include <cmath>
 #include <string>
 
+#include "problems/io/siconos_format.h"
 #include "solvers/generators/random_problems.h"
 #include "solvers/ipopt/ipopt_qp_solver.h"
 #include "solvers/pivoting/bpp_solver.h"
@@ -224,6 +225,99 @@ TEST(AutoSolver, LowerTriangularGoesToPsor) {
   not_triangular(0, m - 1) = 1e-3;
   EXPECT_EQ(solver.ChoiceFor(BoxMLCP(not_triangular, qm, l, u)).order[0], AutoCandidate::kBpp);
   EXPECT_EQ(solver.ChoiceFor(MurtyLcp(4)).order[0], AutoCandidate::kEnum);  // 4 rows: enum's kernel
+}
+
+// Murty's LCP transposed (Murty 1988 ch. 6; Siconos' lcp_exp_murty2.dat is n = 6): 1 on the diagonal, 2 above,
+// q_i = −(2ⁿ⁺¹ − 2ⁱ⁺¹), z* = 2ⁿ e_n (exact in double).
+BoxMLCP UpperMurtyLcp(int n) {
+  DenseMatrix M = DenseMatrix::Zero(n, n);
+  Vector q(n);
+  for (int i = 0; i < n; ++i) {
+    M(i, i) = 1.0;
+    for (int j = i + 1; j < n; ++j) M(i, j) = 2.0;
+    q[i] = -(std::ldexp(1.0, n + 1) - std::ldexp(1.0, i + 1));
+  }
+  return BoxMLCP::LCP(std::move(M), std::move(q));
+}
+
+// The sweep order auto's choice runs psor with on this problem (the delegate is auto's psor instance).
+PsorOptions::SweepOrder DelegatedPsorSweep(AutoSolver& solver, const BoxMLCP& problem) {
+  const auto* psor = dynamic_cast<const PsorSolver*>(solver.DelegateFor(problem, {}));
+  EXPECT_NE(psor, nullptr);
+  return psor != nullptr ? psor->options().sweep : PsorOptions::kForwardSweep;
+}
+
+// Upper triangular M with a positive diagonal, from 5 rows: psor with the backward sweep, whose first sweep is the
+// back substitution: exact on Murty's transposed LCPs and on lcp_exp_murty2.dat; a mixed box with free rows is
+// checked against the back substitution computed here. One entry below the diagonal, and the matrix is no longer
+// triangular: bpp. 4 rows: enum's kernel, as before. The psor candidate's own options reach the backward instance
+// (its sweep stays backward).
+TEST(AutoSolver, UpperTriangularGoesToPsorWithTheBackwardSweep) {
+  for (const int n : {5, 12}) {  // within enum's rows, and past them
+    AutoSolver solver;
+    const BoxMLCP murty = UpperMurtyLcp(n);
+    const SolveResult r = solver.Solve(murty);
+    ASSERT_TRUE(r.solved()) << r.message;
+    EXPECT_EQ(Chosen(r), AutoCandidate::kPsor) << n;
+    EXPECT_TRUE(solver.ChoiceFor(murty).psor_backward) << n;
+    EXPECT_EQ(DelegatedPsorSweep(solver, murty), PsorOptions::kBackwardSweep) << n;
+    EXPECT_LE(r.iterations, 2) << n;  // one sweep solves, a second one at most confirms
+    Vector z_star = Vector::Zero(n);
+    z_star[n - 1] = std::ldexp(1.0, n);
+    EXPECT_EQ(r.z, z_star) << n;
+  }
+  {
+    AutoSolver solver;
+    const BoxMLCP file =
+        ReadSiconosFile(std::string(SMCBENCH_PEER_DATA_DIR) + "/siconos/lcp/lcp_exp_murty2.dat", SiconosKind::kLCP);
+    ASSERT_EQ(file.size(), 6);
+    const SolveResult r = solver.Solve(file);
+    ASSERT_TRUE(r.solved()) << r.message;
+    EXPECT_EQ(Chosen(r), AutoCandidate::kPsor);
+    EXPECT_EQ(DelegatedPsorSweep(solver, file), PsorOptions::kBackwardSweep);
+    Vector z_star = Vector::Zero(6);
+    z_star[5] = 64.0;
+    EXPECT_EQ(r.z, z_star);
+  }
+  AutoSolver solver;
+  const int m = 20;
+  DenseMatrix U = DenseMatrix::Zero(m, m);
+  Vector qm(m), l(m), u(m);
+  for (int i = 0; i < m; ++i) {
+    U(i, i) = 1.0 + 0.1 * i;
+    for (int j = i + 1; j < m; ++j) U(i, j) = std::sin(1.0 + i * m + j);
+    qm[i] = 2.0 * std::cos(3.0 * i);
+    l[i] = i % 3 == 0 ? -kInf : -0.5;
+    u[i] = i % 3 == 0 ? kInf : (i % 3 == 1 ? 0.5 : kInf);
+  }
+  Vector z = Vector::Zero(m);  // back substitution: z_i = Π_[l_i,u_i](−(q_i + Σ_{j>i} U_ij z_j) / U_ii)
+  for (int i = m - 1; i >= 0; --i) {
+    const double free_value = -(qm[i] + U.row(i).tail(m - 1 - i).dot(z.tail(m - 1 - i))) / U(i, i);
+    z[i] = std::min(std::max(free_value, l[i]), u[i]);
+  }
+  const BoxMLCP mixed(U, qm, l, u);
+  const SolveResult rm = solver.Solve(mixed);
+  ASSERT_TRUE(rm.solved()) << rm.message;
+  EXPECT_EQ(Chosen(rm), AutoCandidate::kPsor);
+  EXPECT_EQ(DelegatedPsorSweep(solver, mixed), PsorOptions::kBackwardSweep);
+  EXPECT_LE((rm.z - z).cwiseAbs().maxCoeff(), 1e-12 * (1.0 + z.cwiseAbs().maxCoeff()));
+
+  // The psor candidate's options (here omega) reach the backward instance; its sweep stays backward.
+  static_cast<PsorSolver&>(solver.candidate(AutoCandidate::kPsor)).mutable_options().omega = 0.9;
+  const auto* backward = dynamic_cast<const PsorSolver*>(solver.DelegateFor(mixed, {}));
+  ASSERT_NE(backward, nullptr);
+  EXPECT_EQ(backward->options().omega, 0.9);
+  EXPECT_EQ(backward->options().sweep, PsorOptions::kBackwardSweep);
+  EXPECT_NE(backward, &solver.candidate(AutoCandidate::kPsor));
+
+  DenseMatrix not_triangular = U;
+  not_triangular(m - 1, 0) = 1e-3;
+  const AutoChoice& other = solver.ChoiceFor(BoxMLCP(not_triangular, qm, l, u));
+  EXPECT_EQ(other.order[0], AutoCandidate::kBpp);
+  EXPECT_FALSE(other.psor_backward);
+  EXPECT_EQ(solver.ChoiceFor(UpperMurtyLcp(4)).order[0], AutoCandidate::kEnum);  // 4 rows: enum's kernel
+  EXPECT_FALSE(solver.ChoiceFor(MurtyLcp(12)).psor_backward);                     // lower: the forward sweep
+  EXPECT_EQ(DelegatedPsorSweep(solver, MurtyLcp(12)), PsorOptions::kForwardSweep);
 }
 
 // Without bpp (bpp_max_size 0, or past it): SPD relay at m = 64 (condition ≈ 100) goes to psor, predicted (and

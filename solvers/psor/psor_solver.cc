@@ -111,7 +111,9 @@ struct Merit {
   double relative(double q_norm) const { return residual / (1.0 + std::min(z_norm, q_norm)); }
 };
 
-inline Merit EvaluateMerit(int n, const double* z, const double* w, const double* l, const double* u) {
+// Always inlined: with the backward and symmetric sweeps' instantiations GCC would otherwise call it out of line,
+// which cost the m ≤ 4 forward path some 8 % of its instructions (the perf gate).
+[[gnu::always_inline]] inline Merit EvaluateMerit(int n, const double* z, const double* w, const double* l, const double* u) {
   Merit m;
   double nan_probe = 0.0;  // x − x is 0 for finite x and NaN for ±∞ or NaN: one branch-free test for all
   for (int i = 0; i < n; ++i) {
@@ -147,13 +149,14 @@ inline Merit EvaluateMeritAndPattern(int n, const double* z, const double* w, co
   return m;
 }
 
-// One projected SOR sweep in row order (CPS §5.2, eq. for z^{k+1}_i with the newest z_j, j < i); w follows
-// every change of z so that row i+1 sees it. Returns how many z_i moved.
-template <typename Columns>
-inline int Sweep(const Columns& M, const double* step, const double* l, const double* u, double* z, double* w) {
+// One projected SOR pass over the rows, in row order (forward) or reversed (CPS §5.2, eq. for z^{k+1}_i with the
+// newest z_j); w follows every change of z so that the next row sees it. Returns how many z_i moved.
+template <bool kBackward, typename Columns>
+inline int SweepRows(const Columns& M, const double* step, const double* l, const double* u, double* z, double* w) {
   const int n = M.size();
   int updates = 0;
-  for (int i = 0; i < n; ++i) {
+  for (int k = 0; k < n; ++k) {
+    const int i = kBackward ? n - 1 - k : k;
     const double zi = z[i];
     const double next = Clamp(zi - step[i] * w[i], l[i], u[i]);
     // Rows that do not move are skipped: measured faster than branch-free zero updates for n = 4..64, and it
@@ -165,6 +168,20 @@ inline int Sweep(const Columns& M, const double* step, const double* l, const do
     }
   }
   return updates;
+}
+
+// One sweep in PsorOptions::sweep's order (symmetric: the forward pass, then the backward one). Returns how many
+// z_i moved (both passes' moves for symmetric).
+template <PsorOptions::SweepOrder Order, typename Columns>
+inline int Sweep(const Columns& M, const double* step, const double* l, const double* u, double* z, double* w) {
+  if constexpr (Order == PsorOptions::kForwardSweep) {
+    return SweepRows<false>(M, step, l, u, z, w);
+  } else if constexpr (Order == PsorOptions::kBackwardSweep) {
+    return SweepRows<true>(M, step, l, u, z, w);
+  } else {
+    const int forward = SweepRows<false>(M, step, l, u, z, w);
+    return forward + SweepRows<true>(M, step, l, u, z, w);
+  }
 }
 
 // The message of an unsolved result, printf-style (counts as %d, values as %g/%e).
@@ -464,6 +481,9 @@ bool PsorOptions::IsValid(std::string* why) const {
   if (!(omega > 0.0 && omega < 2.0)) {
     return fail("psor: omega must lie in the open interval (0, 2) (PSOR diverges or stands still outside it)");
   }
+  if (sweep != kForwardSweep && sweep != kBackwardSweep && sweep != kSymmetricSweep) {
+    return fail("psor: sweep must be forward, backward or symmetric");
+  }
   if (check_interval < 1) return fail("psor: check_interval must be >= 1");
   if (refresh_interval < 1) return fail("psor: refresh_interval must be >= 1");
   if (!(divergence_threshold > 1.0) || std::isnan(divergence_threshold)) {
@@ -529,6 +549,12 @@ void PsorSolver::BindOptions(OptionBinder* binder) {
   binder->Add("min_diagonal", &options_.min_diagonal, "rows need M_ii > min_diagonal * max|M_jk|, in [0,1)");
   binder->Add("subspace_sweeps", &options_.subspace_sweeps,
               "merit checks with an unchanged bound pattern before an exact solve on it (dense 5..512 rows; 0: off)");
+  binder->Add("sweep", &options_.sweep,
+              {{"forward", PsorOptions::kForwardSweep},
+               {"backward", PsorOptions::kBackwardSweep},
+               {"symmetric", PsorOptions::kSymmetricSweep}},
+              "row order of a sweep: forward (0..n-1), backward (n-1..0: one sweep solves upper triangular M) or "
+              "symmetric (forward then backward, projected SSOR)");
 }
 
 bool PsorSolver::ValidateBackendOptions(std::string* why) const {
@@ -539,29 +565,46 @@ void PsorSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, S
   const int n = problem.size();
   if (step_.size() != n) step_.resize(n);
   if (w_.size() != n) w_.resize(n);
+  if (options_.sweep != PsorOptions::kForwardSweep) return IterateBackwardOrSymmetric(problem, options, result);
+  constexpr PsorOptions::SweepOrder kForward = PsorOptions::kForwardSweep;
   if (problem.is_sparse()) {
-    Iterate(SparseColumns(problem.sparse_matrix()), problem, options, result);
+    Iterate<kForward>(SparseColumns(problem.sparse_matrix()), problem, options, result);
     return;
   }
   const DenseMatrix& M = problem.dense_matrix();
   switch (n) {
-    case 1: Iterate(DenseColumns<1>(M), problem, options, result); break;
-    case 2: Iterate(DenseColumns<2>(M), problem, options, result); break;
-    case 3: Iterate(DenseColumns<3>(M), problem, options, result); break;
-    case 4: Iterate(DenseColumns<4>(M), problem, options, result); break;
-    default: {
-      if (subspace_) subspace_->tries = subspace_->steps = 0;
-      Iterate(DenseColumns<Eigen::Dynamic>(M), problem, options, result);
-      result->SetDetail("subspace_tries", subspace_ ? subspace_->tries : 0);
-      result->SetDetail("subspace_steps", subspace_ ? subspace_->steps : 0);
-      break;
-    }
+    case 1: Iterate<kForward>(DenseColumns<1>(M), problem, options, result); break;
+    case 2: Iterate<kForward>(DenseColumns<2>(M), problem, options, result); break;
+    case 3: Iterate<kForward>(DenseColumns<3>(M), problem, options, result); break;
+    case 4: Iterate<kForward>(DenseColumns<4>(M), problem, options, result); break;
+    default: IterateDense<kForward>(problem, options, result); break;
   }
+}
+
+void PsorSolver::IterateBackwardOrSymmetric(const BoxMLCP& problem, const SolverOptions& options,
+                                            SolveResult* result) {
+  const bool backward = options_.sweep == PsorOptions::kBackwardSweep;
+  if (problem.is_sparse()) {
+    const SparseColumns M(problem.sparse_matrix());
+    return backward ? Iterate<PsorOptions::kBackwardSweep>(M, problem, options, result)
+                    : Iterate<PsorOptions::kSymmetricSweep>(M, problem, options, result);
+  }
+  return backward ? IterateDense<PsorOptions::kBackwardSweep>(problem, options, result)
+                  : IterateDense<PsorOptions::kSymmetricSweep>(problem, options, result);
+}
+
+// A dense problem of run-time size, with the subspace step's counts as details.
+template <PsorOptions::SweepOrder Order>
+void PsorSolver::IterateDense(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
+  if (subspace_) subspace_->tries = subspace_->steps = 0;
+  Iterate<Order>(DenseColumns<Eigen::Dynamic>(problem.dense_matrix()), problem, options, result);
+  result->SetDetail("subspace_tries", subspace_ ? subspace_->tries : 0);
+  result->SetDetail("subspace_steps", subspace_ ? subspace_->steps : 0);
 }
 
 // The phases in order: the diagonal safeguard, the projected start, then sweeps with a merit checkpoint every
 // check_interval sweeps (and at a fixed point or the last sweep), refreshing the incremental w to bound its drift.
-template <typename Columns>
+template <PsorOptions::SweepOrder Order, typename Columns>
 void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverOptions& options,
                          SolveResult* result) {
   PsorRun<Columns> run(M, options_, options, problem, result->z.data(), w_.data(), step_.data());
@@ -612,7 +655,7 @@ void PsorSolver::Iterate(const Columns& M, const BoxMLCP& problem, const SolverO
                  run.budget, run.rel, run.best);
       return FinishRun(run, SolveStatus::kIterationLimit, result);
     }
-    const int updates = Sweep(M, run.step, run.l, run.u, run.z, run.w);
+    const int updates = Sweep<Order>(M, run.step, run.l, run.u, run.z, run.w);
     ++run.sweeps;
     ++run.since_refresh;
     run.column_updates += updates;

@@ -2,9 +2,12 @@
 // relaxation ω, Cottle–Pang–Stone, "The Linear Complementarity Problem" (1992), §5.2, extended from z ≥ 0 to the
 // box [l,u] (the projection is the only change).
 //
-// One sweep visits the rows in order i = 0, …, n−1 and sets
+// One sweep visits the rows in order i = 0, …, n−1 (PsorOptions::sweep: or n−1, …, 0, or both in turn) and sets
 //     z_i ← Π_[l_i,u_i]( z_i − ω (M z + q)_i / M_ii ),
-// always using the newest z (Gauss–Seidel). ω = 1 is projected Gauss–Seidel.
+// always using the newest z (Gauss–Seidel). ω = 1 is projected Gauss–Seidel. With ω = 1 the first forward sweep
+// from any start solves a lower triangular M with positive diagonal exactly (it is the forward substitution), the
+// first backward sweep an upper triangular one (the back substitution); the symmetric sweep (forward, then
+// backward: projected SSOR) does not depend on the row order on symmetric M.
 //
 // Convergence (what the theory promises, and what it does not):
 //  * M symmetric positive definite, 0 < ω < 2: PSOR is a relaxed coordinate descent on the strictly convex QP
@@ -56,8 +59,20 @@
 namespace smcbench {
 
 struct PsorOptions {
+  // Values of sweep (`--set psor.sweep=NAME`): the order in which one sweep visits the rows.
+  enum SweepOrder : int {
+    // "forward": i = 0, …, n−1 (CPS §5.2). One sweep is the forward substitution on lower triangular M.
+    kForwardSweep = 0,
+    // "backward": i = n−1, …, 0. One sweep is the back substitution on upper triangular M.
+    kBackwardSweep = 1,
+    // "symmetric": forward, then backward, counted as one sweep (projected SSOR): on symmetric M neither row
+    // order is favoured.
+    kSymmetricSweep = 2,
+  };
+
   // Relaxation factor ω ∈ (0, 2). 1 is projected Gauss–Seidel.
   double omega = 1.0;
+  SweepOrder sweep = kForwardSweep;
   // Sweeps between evaluations of the merit function (≥ 1). It costs O(n) thanks to the incremental w.
   int check_interval = 1;
   // Sweeps between exact recomputations of w = M z + q, which bound the drift of the incremental update (≥ 1).
@@ -70,8 +85,8 @@ struct PsorOptions {
   double stall_factor = 0.5;  // in (0, 1)
   // A row with l_i < u_i needs M_ii > min_diagonal · max|M_jk| (relative, in [0, 1)).
   double min_diagonal = 1e-12;
-  // The subspace step (dense 5 ≤ n ≤ 512): once the bound pattern (which rows sit at l, at u, inside) has not
-  // changed for subspace_sweeps merit checks, and the sweeps still needed at the observed rate would cost more than
+  // The subspace step (dense 5 ≤ n ≤ 512): once the active set the natural map reads off the sweeps (which rows
+  // sit at l, at u, inside) has not changed for subspace_sweeps merit checks, and the sweeps still needed at the observed rate would cost more than
   // one factorization, PSOR solves that pattern's reduced system exactly and keeps the answer only if it passes the
   // stopping test; a failed try doubles the wait. 0 disables it (plain PSOR).
   int subspace_sweeps = 3;
@@ -99,8 +114,14 @@ class PsorSolver final : public BackendWithOptions<PsorOptions> {
   bool ValidateBackendOptions(std::string* why) const override;
 
  private:
-  template <typename Columns>
+  // The backward and symmetric sweeps, on the general dense and the sparse kernel only (no fixed-size one: their
+  // use is larger triangular and symmetric M), out of line: the default forward path compiles as without them.
+  [[gnu::noinline]] void IterateBackwardOrSymmetric(const BoxMLCP& problem, const SolverOptions& options,
+                                                    SolveResult* result);
+  template <PsorOptions::SweepOrder Order, typename Columns>
   void Iterate(const Columns& columns, const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
+  template <PsorOptions::SweepOrder Order>
+  void IterateDense(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result);
 
   Vector step_;  // ω / M_ii per row (0 for fixed rows l_i = u_i); sized once per n
   Vector w_;     // M z + q, updated incrementally

@@ -261,6 +261,130 @@ TEST(PsorSolver, OmegaSetFromTextIsUsed) {
   EXPECT_NE(r.GetDetail("column_updates"), gauss_seidel.GetDetail("column_updates"));  // omega was used
 }
 
+// ---- Sweep order ------------------------------------------------------------------------------------------------
+
+PsorSolver SweepingIn(PsorOptions::SweepOrder order) {
+  PsorOptions o;
+  o.sweep = order;
+  return PsorSolver(o);
+}
+
+// Triangular M (upper or lower) with a positive diagonal, a mixed box (LCP, relay, free and half-bounded rows)
+// and its one solution by substitution, computed here: z_i = Π_[l_i,u_i](−(q_i + Σ_{j≠i} M_ij z_j) / M_ii) in
+// the order in which the z_j it needs are known.
+struct Triangular {
+  BoxMLCP problem;
+  Vector z;
+};
+
+Triangular TriangularMixed(int n, bool upper) {
+  DenseMatrix M = DenseMatrix::Zero(n, n);
+  Vector q(n), l(n), u(n);
+  for (int i = 0; i < n; ++i) {
+    M(i, i) = 1.0 + 0.1 * i;
+    for (int j = 0; j < n; ++j) {
+      if (upper ? j > i : j < i) M(i, j) = std::sin(1.0 + i * n + j);
+    }
+    q[i] = 2.0 * std::cos(3.0 * i);
+    l[i] = i % 4 == 2 ? -kInf : (i % 4 == 1 ? -0.5 : 0.0);
+    u[i] = i % 4 == 1 ? 0.5 : (i % 4 == 3 ? 1.0 : kInf);
+  }
+  Vector z = Vector::Zero(n);
+  for (int k = 0; k < n; ++k) {
+    const int i = upper ? n - 1 - k : k;
+    const double free_value = -(q[i] + M.row(i).dot(z)) / M(i, i);  // z_i is still 0 here
+    z[i] = std::min(std::max(free_value, l[i]), u[i]);
+  }
+  return {BoxMLCP(std::move(M), std::move(q), std::move(l), std::move(u), upper ? "upper" : "lower"), z};
+}
+
+// Upper triangular M: one backward sweep is the back substitution (solved after at most two sweeps, the second
+// confirming), where the forward sweep needs about one sweep per row.
+TEST(PsorSolver, BackwardSweepIsTheBackSubstitutionOnUpperTriangularM) {
+  const Triangular t = TriangularMixed(20, /*upper=*/true);
+  const SolveResult backward = SweepingIn(PsorOptions::kBackwardSweep).Solve(t.problem, Tight());
+  ASSERT_EQ(backward.status, SolveStatus::kSolved) << backward.message;
+  EXPECT_LE((backward.z - t.z).cwiseAbs().maxCoeff(), 1e-12 * (1.0 + t.z.cwiseAbs().maxCoeff()));
+  EXPECT_LE(backward.iterations, 2);
+  const SolveResult forward = PsorSolver().Solve(t.problem, Tight());
+  ASSERT_EQ(forward.status, SolveStatus::kSolved) << forward.message;
+  EXPECT_LE((forward.z - t.z).cwiseAbs().maxCoeff(), 1e-10 * (1.0 + t.z.cwiseAbs().maxCoeff()));
+  EXPECT_GT(forward.iterations, backward.iterations);
+}
+
+// Lower triangular M: the forward sweep is the substitution; backward and symmetric sweeps reach the same one
+// solution (the row order changes the path, not the answer). Murty's LCP (1 on the diagonal, 2 below, z* = 2ⁿe₁)
+// and the mixed box.
+TEST(PsorSolver, EverySweepOrderSolvesLowerTriangularM) {
+  const int n = 12;
+  DenseMatrix M = DenseMatrix::Zero(n, n);
+  Vector q(n);
+  for (int i = 0; i < n; ++i) {
+    M(i, i) = 1.0;
+    for (int j = 0; j < i; ++j) M(i, j) = 2.0;
+    q[i] = -(2.0 * std::ldexp(1.0, n) - std::ldexp(1.0, n - i));
+  }
+  const BoxMLCP murty = BoxMLCP::LCP(std::move(M), std::move(q), "murty12");
+  Vector murty_z = Vector::Zero(n);
+  murty_z[0] = std::ldexp(1.0, n);
+  const Triangular mixed = TriangularMixed(20, /*upper=*/false);
+  for (const auto order : {PsorOptions::kForwardSweep, PsorOptions::kBackwardSweep, PsorOptions::kSymmetricSweep}) {
+    SCOPED_TRACE("sweep " + std::to_string(static_cast<int>(order)));
+    const SolveResult r = SweepingIn(order).Solve(murty, Tight());
+    ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
+    EXPECT_LE((r.z - murty_z).cwiseAbs().maxCoeff(), 1e-10 * murty_z[0]);
+    const SolveResult rm = SweepingIn(order).Solve(mixed.problem, Tight());
+    ASSERT_EQ(rm.status, SolveStatus::kSolved) << rm.message;
+    EXPECT_LE((rm.z - mixed.z).cwiseAbs().maxCoeff(), 1e-10 * (1.0 + mixed.z.cwiseAbs().maxCoeff()));
+    if (order != PsorOptions::kBackwardSweep) {
+      EXPECT_LE(r.iterations, 2);
+    }
+  }
+}
+
+// Symmetric positive definite M (dense LCP and relay, sparse and dense banded mixed box): the symmetric sweep
+// (projected SSOR) and the backward sweep converge to the planted solution, as the forward one does, also with
+// over-relaxation.
+TEST(PsorSolver, SymmetricAndBackwardSweepsSolveSpdProblems) {
+  const Planted lcp = SpdLcp(30, 5);
+  const Planted relay = SpdRelay(20, 9);
+  const SparseDensePair banded = BandedMixed(120, 42);
+  const struct {
+    const BoxMLCP* problem;
+    const Vector* zstar;
+  } cases[] = {{&lcp.problem, &lcp.zstar}, {&relay.problem, &relay.zstar}, {&banded.sparse, &banded.zstar},
+               {&banded.dense, &banded.zstar}};
+  for (const auto order : {PsorOptions::kBackwardSweep, PsorOptions::kSymmetricSweep}) {
+    for (const double omega : {1.0, 1.4}) {
+      for (const auto& c : cases) {
+        SCOPED_TRACE(c.problem->name() + " sweep " + std::to_string(static_cast<int>(order)) + " omega " +
+                     std::to_string(omega));
+        PsorOptions o;
+        o.sweep = order;
+        o.omega = omega;
+        const SolveResult r = PsorSolver(o).Solve(*c.problem, Tight());
+        ASSERT_EQ(r.status, SolveStatus::kSolved) << r.message;
+        EXPECT_LE(MyResidual(*c.problem, r.z), 1e-10);
+        EXPECT_LE((r.z - *c.zstar).lpNorm<Eigen::Infinity>(), 1e-7 * (1.0 + c.zstar->lpNorm<Eigen::Infinity>()));
+      }
+    }
+  }
+}
+
+TEST(PsorSolver, SweepIsSetByNameAndListed) {
+  PsorSolver solver;
+  std::string error;
+  ASSERT_TRUE(solver.SetOption("sweep", "backward", &error)) << error;
+  EXPECT_EQ(solver.options().sweep, PsorOptions::kBackwardSweep);
+  ASSERT_TRUE(solver.SetOption("sweep", "symmetric", &error)) << error;
+  EXPECT_EQ(solver.options().sweep, PsorOptions::kSymmetricSweep);
+  EXPECT_FALSE(solver.SetOption("sweep", "sideways", &error));
+  EXPECT_TRUE(Contains(error, "sweep"));
+  EXPECT_TRUE(Contains(error, "forward"));
+  EXPECT_TRUE(Contains(PsorSolver().OptionsHelp(), "sweep"));
+  EXPECT_TRUE(Contains(PsorSolver().OptionsHelp(), "forward"));
+}
+
 TEST(PsorSolver, CheckIntervalAndRefreshIntervalDoNotChangeTheAnswer) {
   const Planted p = SpdLcp(40, 77);
   PsorOptions o;
@@ -480,6 +604,7 @@ TEST(PsorOptions, ValidationNamesTheField) {
   invalid([](PsorOptions& o) { o.omega = 0.0; }, "omega");
   invalid([](PsorOptions& o) { o.omega = 2.0; }, "omega");
   invalid([](PsorOptions& o) { o.omega = std::nan(""); }, "omega");
+  invalid([](PsorOptions& o) { o.sweep = static_cast<PsorOptions::SweepOrder>(7); }, "sweep");
   invalid([](PsorOptions& o) { o.check_interval = 0; }, "check_interval");
   invalid([](PsorOptions& o) { o.refresh_interval = 0; }, "refresh_interval");
   invalid([](PsorOptions& o) { o.divergence_threshold = 0.5; }, "divergence_threshold");
@@ -531,18 +656,21 @@ TEST(PsorSolver, RepeatedSolvesDoNotTouchTheHeap) {
   const SparseDensePair banded = BandedMixed(64, 8);
   const BoxMLCP* problems[] = {&small.problem, &mid.problem, &banded.sparse, &banded.dense};
   for (const BoxMLCP* problem : problems) {
-    PsorSolver solver;
-    SolveResult result;
-    SolverOptions options = Tight();
-    // PSOR's own path, and the whole of Solve on the small-solve path (n ≤ BoxMLCP::kSmallSize, where the base's
-    // polish is fixed-size). Above that the base's generic polish allocates by design (polish.h), so it is off.
-    options.polish = problem->size() <= BoxMLCP::kSmallSize;
-    solver.Solve(*problem, options, &result);  // sizes the workspace
-    ASSERT_EQ(result.status, SolveStatus::kSolved) << result.message;
-    test_support::StartCountingMallocs();
-    for (int k = 0; k < 5; ++k) solver.Solve(*problem, options, &result);
-    EXPECT_EQ(test_support::StopCountingMallocs(), 0) << problem->name();
-    EXPECT_EQ(result.status, SolveStatus::kSolved);
+    for (const auto order :
+         {PsorOptions::kForwardSweep, PsorOptions::kBackwardSweep, PsorOptions::kSymmetricSweep}) {
+      PsorSolver solver = SweepingIn(order);
+      SolveResult result;
+      SolverOptions options = Tight();
+      // PSOR's own path, and the whole of Solve on the small-solve path (n ≤ BoxMLCP::kSmallSize, where the base's
+      // polish is fixed-size). Above that the base's generic polish allocates by design (polish.h), so it is off.
+      options.polish = problem->size() <= BoxMLCP::kSmallSize;
+      solver.Solve(*problem, options, &result);  // sizes the workspace
+      ASSERT_EQ(result.status, SolveStatus::kSolved) << result.message;
+      test_support::StartCountingMallocs();
+      for (int k = 0; k < 5; ++k) solver.Solve(*problem, options, &result);
+      EXPECT_EQ(test_support::StopCountingMallocs(), 0) << problem->name() << " sweep " << order;
+      EXPECT_EQ(result.status, SolveStatus::kSolved);
+    }
   }
 }
 
