@@ -493,6 +493,74 @@ bool StepRefiner::ProveInside(const double* q, double* s, StepCheck* check) {
   return true;
 }
 
+template <int kM>
+bool StepRefiner::ProveMixed(const double* q, double* s, StepCheck* check) {
+  const int m = kM > 0 ? kM : m_;  // a compile-time constant for m = 2: the loops unroll
+  constexpr long double u = std::numeric_limits<long double>::epsilon() / 2.0L;
+  // The one row inside the box (every other s_a exactly ±1, so its δ_a is 0 on the saturated set).
+  int i = -1;
+  for (int j = 0; j < m; ++j) {
+    if (std::abs(s[j]) == 1.0) continue;
+    if (i >= 0) return false;  // two or more rows inside: the cached path's
+    i = j;
+  }
+  if (i < 0 || !(std::abs(s[i]) < 1.0)) return false;
+  // w̃ = q̃ + M̃ s in long double, as RefineCached computes it (the same reading of the active set). Its rounding,
+  // with the data's (q/σ, M/σ to long double), is e_j = γ_{m+3}(|q̃_j| + Σ_k |M̃_jk|) (|s_k| ≤ 1): the other paths'
+  // reading of row j agrees with the exact one when w̃_j clears its threshold by e_j. A saturated row must read its
+  // face (s_a = −1: w̃_a > 0; s_a = 1: w̃_a < 0), the row inside no face (|w̃_i| below its slack 1 − |s_i|, less
+  // ProveInside's margin).
+  long double saturated_error = 0.0L, interior_error = 0.0L;  // max e_a over the saturated rows; e_i
+  for (int j = 0; j < m; ++j) {
+    const long double qj = static_cast<long double>(q[j]) / sigma_;
+    long double wj = qj;
+    for (int k = 0; k < m; ++k) wj += M_[static_cast<std::size_t>(j * m + k)] * s[k];
+    w_[static_cast<std::size_t>(j)] = wj;
+    const long double row_abs = static_cast<long double>(Mrow_abs_[static_cast<std::size_t>(j)]) / sigma_;
+    const long double ej = gamma_r_ * (std::abs(qj) + row_abs);
+    if (j == i) {
+      interior_error = ej;
+      continue;
+    }
+    if (!(-static_cast<long double>(s[j]) * wj > 2.0L * ej)) return false;
+    saturated_error = std::max(saturated_error, ej);
+  }
+  const long double wi = w_[static_cast<std::size_t>(i)];
+  const long double si = s[i];
+  const long double margin = 2.0L * interior_error + 4.0L * u;
+  if (!(std::abs(wi) + margin < 1.0L - std::abs(si))) return false;
+  // The exact step on the saturated set: δ_A = 0 and M̃_ii δ_i = −w̃_i, for the unrounded data (M_ii/σ, w_i/σ).
+  // δ = −w̃_i/M̃_ii in long double is within e_i/|M̃_ii| + 2u|δ| of it (w̃_i's error; M̃_ii's rounding and the
+  // quotient's), s*_i = s_i + δ within u|s*_i| more; doubled for the bound's own rounding and second-order terms.
+  const long double mii = M_[static_cast<std::size_t>(i * m + i)];
+  if (!(mii != 0.0L)) return false;
+  const long double delta = -wi / mii;
+  const long double star = si + delta;
+  const long double delta_error = 2.0L * (interior_error / std::abs(mii) + 2.0L * u * std::abs(delta));
+  const long double star_error = delta_error + 2.0L * u * std::abs(star);
+  // The cached path's terms: s* exact to a quarter ulp of ‖s*‖∞ = 1 (the saturated rows), and s*_i strictly inside.
+  if (!(star_error <= kCachedAccuracy)) return false;
+  if (!(std::abs(star) + star_error + 2.0L * u < 1.0L)) return false;
+  // Each saturated row's multiplier at s*, w̃*_a = w̃_a + M̃_ai δ (s*_a = s_a): its face's sign by more than its
+  // error (w̃_a's, M̃_ai times δ's, and the product's and sum's rounding), as RefineCached's μ̃_A ≥ 0 with margin.
+  for (int a = 0; a < m; ++a) {
+    if (a == i) continue;
+    const long double mai = M_[static_cast<std::size_t>(a * m + i)];
+    const long double wa = w_[static_cast<std::size_t>(a)] + mai * delta;
+    const long double error =
+        2.0L * (saturated_error + std::abs(mai) * (delta_error + 2.0L * u * std::abs(delta)) + u * std::abs(wa));
+    if (!(-static_cast<long double>(s[a]) * wa > error)) return false;
+  }
+  for (int j = 0; j < m; ++j) star_[static_cast<std::size_t>(j)] = s[j];
+  star_[static_cast<std::size_t>(i)] = star;
+  check->exact = true;
+  check->cached = true;
+  check->proved = true;
+  check->x_error = static_cast<double>(XError(s));  // ‖S(s* − s)‖∞
+  s[i] = static_cast<double>(star);
+  return true;
+}
+
 StepCheck StepRefiner::Refine(const double* q, const double* mu, double* s) {
   StepCheck check;
   // The proofs in double first (the box, from the second step judged on: a refiner's first step is the factored
@@ -501,10 +569,12 @@ StepCheck StepRefiner::Refine(const double* q, const double* mu, double* s) {
     bool proved = false;
     if (m_ == 1) {
       proved = ProveOneInput(q, s, &check);
-    } else if (std::abs(s[0]) == 1.0) {  // saturated, or a mixed set (left to the cached path)
-      proved = ProveSaturated(q, s, &check);
-    } else if (inside_.usable) {  // inside, or a mixed set (ProveInside's reading fails on a row at a face)
-      proved = m_ == 2 ? ProveInside<2>(q, s, &check) : ProveInside<0>(q, s, &check);
+    } else if (std::abs(s[0]) == 1.0) {  // saturated, or a mixed set
+      proved = ProveSaturated(q, s, &check) ||
+               (m_ == 2 ? ProveMixed<2>(q, s, &check) : ProveMixed<0>(q, s, &check));
+    } else {  // inside, or a mixed set (ProveInside's reading fails on a row at a face: the sliding phase pays nothing)
+      proved = (inside_.usable && (m_ == 2 ? ProveInside<2>(q, s, &check) : ProveInside<0>(q, s, &check))) ||
+               (m_ == 2 ? ProveMixed<2>(q, s, &check) : ProveMixed<0>(q, s, &check));
     }
     if (proved) return check;
   }

@@ -32,6 +32,13 @@
 // With m ≥ 2, an answer inside the box reads no active row when every |w̃_i| is below its slack by more than w̃'s
 // rounding bound, and its exact step is s − M̃⁻¹w̃: M̃'s inverse is made once at Reset (the cached path's, with its
 // residual-verified error bound) and s* is taken on the cached path's terms (exact to a quarter ulp, in the box).
+// A mixed answer (m ≥ 2, every s_a exactly ±1 but one s_i inside) reads the set of its saturated rows when each w̃_a
+// has its face's sign and |w̃_i| is below its slack, both by more than w̃'s rounding bound; its exact step keeps s_A
+// and solves row i alone, s*_i = s_i − w̃_i/M̃_ii (one long double quotient, its error bounded as the cached path's).
+// s* is taken on the cached path's terms (a quarter ulp), with s*_i strictly inside the box and the saturated rows'
+// multipliers w̃*_a = w̃_a + M̃_ai δ_i of their face's sign, both by more than their error bound. Two or more rows
+// inside are left to the cached path. (The saturated w̃_a never enters s*_i: at h → 0, w̃_a = w_a/σ is large, and
+// the cached path's bound, which grows with it, sent these steps to the factored solve.)
 // StepCheck::proved says so; a proof that fails leaves the step to the paths above, unchanged.
 // On a polytope the factored path's s* is projected onto its active faces afterwards (H̃_A s* = K̃_A in long double):
 // the solve's rounding grows with its right-hand side w̃ = w/σ, large when M is small (h → 0), and left s* off its
@@ -51,7 +58,7 @@ struct StepCheck {
   bool exact = false;    // s* found and verified on the answer's active set
   double x_error = kNaN;  // ‖S(s − s*)‖∞: the answer's forward error in x_{k+1} (NaN unless exact)
   bool cached = false;    // judged without the factored solve: the cached inverse, or a proof in double (`proved`)
-  bool proved = false;    // judged by a proof in double (a saturated box answer; m = 1 inside the box): no solve
+  bool proved = false;    // judged by a proof without a solve (the box: saturated, inside, or one row inside)
 };
 
 // The allowance of the step verdict: tol·(‖S‖∞ + ‖x_{k+1}‖∞).
@@ -104,6 +111,10 @@ class StepRefiner {
   // m ≥ 2, no active row: s* = s − M̃⁻¹ w̃ with the inverse of Reset. kM: m, or 0 (m_ at run time).
   template <int kM>
   bool ProveInside(const double* q, double* s, StepCheck* check);
+  // m ≥ 2, a mixed set: every row but one saturated (s_a = ±1 exactly), row i inside, s*_i = s_i − w̃_i/M̃_ii.
+  // kM: m, or 0 (m_ at run time).
+  template <int kM>
+  bool ProveMixed(const double* q, double* s, StepCheck* check);
   // Moves star_ onto the active rows' faces (least-norm correction of H̃_A s* = K̃_A); false if H̃_A H̃_Aᵀ is singular.
   bool ProjectOntoActiveRows(int a);
   // The cached path; false leaves the step to the factored one (s untouched). kM: m, or 0 (m_ at run time).

@@ -7,6 +7,7 @@
 #include <cstdio>
 #include <limits>
 #include <memory>
+#include <string>
 
 #include "problems/stepper/step_verdict.h"
 #include "solvers/core/problem.h"
@@ -284,8 +285,8 @@ TEST(StepVerdictProofs, AOneInputStepAtTheSlackIsLeftToTheSolve) {
 
 // m = 2 inside the box: s* = s − M̃⁻¹w̃ with the inverse made at Reset, proved on the cached path's terms, near the
 // origin (q = 1e-10, 1e-14, 0 in several directions), at an ordinary state and at h → 0 (M = h B), for exact answers
-// and answers off by 1e-12 (but s* = 0 from an inexact answer: the factored path); near a face (1 − |s_j| down to 2^-40) and past it the verdict is the factored path's,
-// whichever path gives it.
+// and answers off by 1e-12 (but s* = 0 from an inexact answer: the factored path); near a face (1 − |s_j| down to
+// 2^-40) and past it the verdict is the factored path's, whichever path gives it.
 TEST(StepVerdictProofs, ATwoInputStepInsideTheBoxIsProvedAsTheFactoredPathJudgesIt) {
   DenseMatrix B(2, 2);
   B << 1.0, 0.5, 0.25, 1.0;
@@ -319,11 +320,173 @@ TEST(StepVerdictProofs, ATwoInputStepInsideTheBoxIsProvedAsTheFactoredPathJudges
       if (gap == 0x1p-10) {
         EXPECT_TRUE(check.proved) << "h " << h;
       }
-      if (gap <= 0.0) {
-        EXPECT_FALSE(check.proved) << "h " << h << " gap " << gap;
+      // At the face the answer s_0 = 1 is a mixed one: past it (w_0 = −M_00 2^-30, the face's sign far above its
+      // rounding) the mixed proof holds; at it, w_0 is the rounding of q = −M s* and the proof may or may not.
+      if (gap < 0.0) {
+        EXPECT_TRUE(check.proved) << "h " << h << " gap " << gap;
       }
     }
   }
+}
+
+// m = 2, a mixed set: row a saturated (s_a = ±1 exactly, its w_a of its face's sign), the other row inside with
+// s*_i = −(q_i + M_ia s_a)/M_ii. Every face, either row saturated, interior values ordinary, near the origin and 0,
+// exact answers and answers off by 1e-12 or 1e-6 (s* is the exact step and x_error says how far the answer was:
+// the stepper's allowance then refines it): proved, with the factored path's verdict, and s* as the cached path
+// takes it (within a quarter ulp of ‖s*‖∞ = 1 of the exact step each: an interior 1e-12 is the difference of
+// q_i and M_ia s_a, of order 1, and no path resolves it below u_ld).
+TEST(StepVerdictProofs, AMixedAnswerIsProvedAsTheFactoredPathJudgesIt) {
+  DenseMatrix B(2, 2);
+  B << 1.0, 0.5, 0.25, 1.0;
+  const double h = 1e-2;
+  const DenseMatrix M = h * B, S = h * DenseMatrix::Identity(2, 2);
+  for (const int a : {0, 1}) {
+    const int i = 1 - a;
+    for (const double face : {-1.0, 1.0}) {
+      for (const double interior : {0.3, -0.7, 1e-12, 0.0}) {
+        for (const double off : {0.0, 1e-12, 1e-6}) {
+          Vector star(2);
+          star[a] = face;
+          star[i] = interior;
+          Vector q = -M * star;
+          q[a] += -face * 0.3 * h;  // w_a = −face·0.3h: the face's sign (s_a = −1: w_a > 0)
+          StepRefiner refiner;
+          refiner.Reset(M, S, DenseMatrix(0, 2), Vector());
+          Vector first = star;
+          refiner.Refine(q.data(), nullptr, first.data());  // the first step judged: the factored path
+          Vector s = star, s_factored = star;
+          s[i] += off;
+          s_factored[i] += off;
+          const StepCheck check = refiner.Refine(q.data(), nullptr, s.data());
+          const StepCheck factored = Factored(M, S, q, &s_factored);
+          const std::string where = "a " + std::to_string(a) + " face " + std::to_string(face) + " interior " +
+                                    std::to_string(interior) + " off " + std::to_string(off);
+          ASSERT_TRUE(factored.exact) << where;
+          ASSERT_TRUE(check.exact) << where;
+          EXPECT_TRUE(check.proved) << where;
+          EXPECT_TRUE(check.cached) << where;
+          EXPECT_EQ(s[a], face) << where;
+          EXPECT_NEAR(s[i], s_factored[i], kEps / 2) << where;
+          // x_error = h|s − s*|: off, to the resolution of w̃ (u_ld times terms of order 1, in units of s).
+          EXPECT_NEAR(check.x_error, factored.x_error, 1e-6 * factored.x_error + h * 0x1p-58) << where;
+          EXPECT_NEAR(check.x_error, h * off, 1e-6 * h * off + h * 4 * kEps) << where;
+        }
+      }
+    }
+  }
+}
+
+// The mixed proof falls through (the cached or factored path judges, with the same verdict) when the saturated row's
+// w has the wrong sign, is 0, or is positive by less than its rounding bound; when the row inside reads its face; and
+// when the step's s*_i is inside the box by less than its error bound. M = [[1, 2^-70], [1/4, 1]]: w_0 = q_0 − 1 +
+// 2^-70 s_1 is exact in binary.
+TEST(StepVerdictProofs, AMixedAnswerIsProvedOnlyWithItsMargins) {
+  DenseMatrix M(2, 2);
+  M << 1.0, 0x1p-70, 0.25, 1.0;
+  const DenseMatrix S = 0.1 * M;
+  struct Case {
+    double d;   // q_0 = 1 + d
+    double s1;  // the answer's (and the step's) s_1: q_1 = 1/4 − s_1
+    bool proved;
+  };
+  for (const Case c : {Case{-0.3, 0.25, false}, Case{0.0, 0.0, false}, Case{0.0, 0.25, false},  // w_0 < 0, 0, 2^-72
+                       Case{0.3, 0.25, true}}) {
+    Vector q(2), s(2);
+    q << 1.0 + c.d, 0.25 - c.s1;
+    s << -1.0, c.s1;
+    const StepCheck check = JudgedAgainstFactored(M, S, q, &s);
+    EXPECT_EQ(check.proved, c.proved) << "d " << c.d << " s_1 " << c.s1;
+  }
+  // The row inside read at its face: s_1 = 0.95 with w̃_1 = −0.1 past its slack 0.05 (the step is on both faces).
+  {
+    DenseMatrix B(2, 2);
+    B << 1.0, 0.5, 0.25, 1.0;
+    Vector q(2), s(2);
+    s << -1.0, 0.95;
+    q << 1.0 - 0.5 * 0.95 + 0.3, 0.25 - 0.95 - 0.1;
+    const StepCheck check = JudgedAgainstFactored(B, 0.1 * B, q, &s);
+    EXPECT_TRUE(check.exact);
+    EXPECT_FALSE(check.proved);
+  }
+  // s*_1 = 1 − gap (M_10 = −gap, q_1 = −1, s_0 = −1): proved far inside (2^-10, 2^-40), not within the bound of the
+  // face (2^-70: the answer's double is 1 − 2^-53, an ulp inside, whose slack |w̃_1| misses by 2^-70) nor at it.
+  for (const double gap : {0x1p-10, 0x1p-40, 0x1p-70, 0.0}) {
+    DenseMatrix Mg(2, 2);
+    Mg << 1.0, 0.5, -gap, 1.0;
+    Vector q(2), s(2);
+    s << -1.0, gap >= 0x1p-40 ? 1.0 - gap : std::nextafter(1.0, 0.0);
+    q << 0.3 - (-1.0 + 0.5 * s[1]), -1.0;
+    const StepCheck check = JudgedAgainstFactored(Mg, 0.1 * Mg, q, &s);
+    EXPECT_TRUE(check.exact) << "gap " << gap;
+    EXPECT_EQ(check.proved, gap >= 0x1p-40) << "gap " << gap;
+  }
+}
+
+// filippov (S4) at h = 1e-5, step 77778 (t = 0.77778): row 0 on its lower face, row 1 reaching its surface, s*_1 =
+// (x_2 + 2h)/h. w̃_0 = w_0/σ ≈ 2e4 entered the long double solve's rounding: the factored path's s*_1 was 15.7 ulps
+// (2^-53) below the exact step's double, 0x1.ffffe3ed5e6c7p-1 (x_2 after the step 1.7e-20 instead of 0); the proof's
+// quotient does not see w̃_0, and gives that double from either answer.
+TEST(StepVerdictProofs, AMixedAnswerWithASmallMatrixIsTheExactStep) {
+  const double h = 1e-5;
+  DenseMatrix B(2, 2);
+  B << 1.0, -2.0, 2.0, 1.0;
+  const DenseMatrix M = h * B;
+  Vector q(2);
+  q << 0.4444300000003037, 1.000000433268082e-05;  // −x_k
+  for (const double answer : {0.9999995667319164, 0.9999995667319181}) {
+    StepRefiner refiner;
+    refiner.Reset(M, M, DenseMatrix(0, 2), Vector());
+    Vector first(2);
+    first << -1.0, answer;
+    refiner.Refine(q.data(), nullptr, first.data());  // the first step judged: the factored path
+    Vector s(2);
+    s << -1.0, answer;
+    const StepCheck check = refiner.Refine(q.data(), nullptr, s.data());
+    ASSERT_TRUE(check.exact);
+    EXPECT_TRUE(check.proved);
+    EXPECT_EQ(s[0], -1.0);
+    EXPECT_EQ(s[1], 0.9999995667319181) << "answer " << answer;
+  }
+}
+
+// A two-input relay run with a mixed phase (row 0 reaches its surface first): every step judged as the factored
+// path judges it, and the mixed steps by the proof.
+TEST(StepVerdictProofs, ARunsMixedStepsAreProved) {
+  const double h = 0.01;
+  DenseMatrix Bm(2, 2), C(2, 2);
+  Bm << 1.0, 0.2, 0.0, 1.0;
+  C << 1.0, 0.0, 0.3, 1.0;
+  const DenseMatrix S = h * Bm, M = C * S;
+  StepRefiner refiner;
+  refiner.Reset(M, S, DenseMatrix(0, 2), Vector());
+  auto solver = CreateSolver("lemke");
+  SolverOptions options;
+  options.tolerance = 1e-10;
+  Vector x(2);
+  x << 0.05, -0.6;
+  int mixed = 0, mixed_proved = 0;
+  for (int k = 0; k < 200; ++k) {
+    const Vector q = -C * x;
+    SolveResult result;
+    solver->Solve(BoxMLCP::Relay(M, q), options, &result);
+    ASSERT_EQ(result.status, SolveStatus::kSolved) << "step " << k;
+    Vector s = result.z, s_factored = result.z;
+    const StepCheck check = refiner.Refine(q.data(), nullptr, s.data());
+    const StepCheck factored = Factored(M, S, q, &s_factored);
+    ASSERT_TRUE(check.exact) << "step " << k;
+    ASSERT_TRUE(factored.exact) << "step " << k;
+    // The cached path's standard: s* within a quarter ulp of ‖s*‖∞ of the exact step, x_error to w̃'s resolution.
+    for (int j = 0; j < 2; ++j) EXPECT_NEAR(s[j], s_factored[j], kEps / 2) << "step " << k;
+    EXPECT_NEAR(check.x_error, factored.x_error, 1e-6 * factored.x_error + h * 0x1p-58) << "step " << k;
+    if (k > 0 && (std::abs(s[0]) == 1.0) != (std::abs(s[1]) == 1.0)) {
+      ++mixed;
+      mixed_proved += check.proved ? 1 : 0;
+    }
+    x -= S * s;
+  }
+  std::printf("[ info     ] %d of %d mixed steps proved\n", mixed_proved, mixed);
+  EXPECT_GT(mixed, 10);
+  EXPECT_EQ(mixed_proved, mixed);
 }
 
 // The polytope law's analogue of ASaturatedAnswerWithASmallMatrixIsExact: the same step with the box stated as
