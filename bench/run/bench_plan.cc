@@ -15,6 +15,7 @@
 #include "problems/library/references.h"
 #include "problems/avi_library/avi_suite.h"
 #include "problems/mcp/mcp_suite.h"
+#include "solvers/core/glob_match.h"
 #include "solvers/registry/backend_settings.h"
 #include "solvers/registry/registry.h"
 
@@ -26,6 +27,24 @@ using Clock = std::chrono::steady_clock;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
+}
+
+// Keeps the items of a list whose id the filter keeps, in order: the one place a run's problems are selected, for
+// every kind of suite (box problems, MCP ids, AVIs, warm sequences).
+template <typename Item, typename IdOf>
+void KeepSelected(std::vector<Item>* items, IdOf id_of, ProblemFilter* filter) {
+  const auto dropped = [&](const Item& item) { return !filter->Keeps(id_of(item)); };
+  items->erase(std::remove_if(items->begin(), items->end(), dropped), items->end());
+}
+
+const std::string& IdOf(const std::string& id) { return id; }
+const std::string& IdOf(const LibraryProblem& p) { return p.id; }
+const std::string& IdOf(const AviLibraryProblem& p) { return p.id; }
+const std::string& IdOf(const WarmSequence& w) { return w.id; }
+
+template <typename Item>
+void KeepSelected(std::vector<Item>* items, ProblemFilter* filter) {
+  KeepSelected(items, [](const Item& item) -> const std::string& { return IdOf(item); }, filter);
 }
 
 bool IsMcpSuiteName(const std::string& name) { return name == "mcp"; }
@@ -52,7 +71,11 @@ std::vector<std::string> ResolveSolverNames(const std::vector<std::string>& name
 
 // A suite's problems, built (captured suites certify while capturing), validated and (with certify) given their
 // certified references, with one line for the log: size, time taken and certificates.
-ProblemSet BuildBoxSuite(const std::string& name, const BenchRequest& request, std::string* line) {
+// The problems filter rejects are dropped before the references are computed; a suite left with none is returned
+// empty (no line), for the caller to leave out. first_id: the suite's first problem, filtered or not (the no-match
+// error's example).
+ProblemSet BuildBoxSuite(const std::string& name, const BenchRequest& request, ProblemFilter* filter,
+                         std::string* first_id, std::string* line) {
   SuiteRequest suite_request;
   suite_request.siconos_dir = request.siconos_dir;
   suite_request.quick = request.quick;
@@ -60,6 +83,9 @@ ProblemSet BuildBoxSuite(const std::string& name, const BenchRequest& request, s
   const auto build_start = Clock::now();
   ProblemSet set = BuildSuite(name, suite_request);
   if (set.problems.empty()) throw InvalidInputError("bench: suite '" + name + "' holds no problem");
+  *first_id = set.problems.front().id;
+  KeepSelected(&set.problems, filter);
+  if (set.problems.empty()) return set;
   set.Validate();
   if (!request.certify) return set;
   const auto references_start = Clock::now();
@@ -84,10 +110,11 @@ ProblemSet BuildBoxSuite(const std::string& name, const BenchRequest& request, s
   return set;
 }
 
-// The MCP suite (references attached by the suite itself), validated, with one line for the log.
-McpProblemSet BuildMcpBenchSuite(bool quick, std::string* line) {
+// The MCP suite of these ids (references attached by the suite itself, to them only), validated, with one line
+// for the log.
+McpProblemSet BuildMcpBenchSuite(bool quick, const std::vector<std::string>& ids, std::string* line) {
   const auto build_start = Clock::now();
-  McpProblemSet set = BuildMcpSuite(quick);
+  McpProblemSet set = BuildMcpSuite(quick, ids);
   set.Validate();
   std::size_t instances = 0;
   std::map<std::string, int> certificates;
@@ -156,7 +183,34 @@ LibraryProblem ProbeProblem(int m) {
   return p;
 }
 
+// A list for a message: 'a', 'b', 'c'.
+std::string QuotedList(const std::vector<std::string>& items) {
+  std::string out;
+  for (const std::string& item : items) out += (out.empty() ? "'" : ", '") + item + "'";
+  return out;
+}
+
 }  // namespace
+
+ProblemFilter::ProblemFilter(std::vector<std::string> globs_in)
+    : globs(std::move(globs_in)), matched(globs.size(), 0) {}
+
+bool ProblemFilter::Keeps(std::string_view id) {
+  if (globs.empty()) return true;
+  bool keep = false;
+  for (std::size_t g = 0; g < globs.size(); ++g) {
+    if (GlobMatch(globs[g], id)) keep = true, matched[g] = 1;  // every glob asked: each learns that it matched
+  }
+  return keep;
+}
+
+std::vector<std::string> ProblemFilter::Unmatched() const {
+  std::vector<std::string> out;
+  for (std::size_t g = 0; g < globs.size(); ++g) {
+    if (!matched[g]) out.push_back(globs[g]);
+  }
+  return out;
+}
 
 std::map<std::string, BackendCost> CalibrateBackendCosts(const ReplayOptions& options,
                                                          const std::vector<std::string>& solvers) {
@@ -212,6 +266,9 @@ void CheckBenchRequest(const BenchRequest& request) {
                               request.siconos_dir + "' is not a folder");
     }
   }
+  for (const std::string& glob : request.problems) {
+    if (glob.empty()) throw InvalidInputError("bench: --problem needs a non-empty GLOB (a problem id pattern)");
+  }
   const std::vector<std::string> solvers = ResolveSolverNames(request.solvers);
   try {
     CheckBackendSettings(request.settings, solvers);  // the one --set parser: solvers/registry/backend_settings.h
@@ -260,19 +317,45 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
   options.polish = request.polish;
   CreateReplaySolvers(options, &plan.solvers);  // applies the settings once: a rejected value fails here
 
+  // Every suite's problems through the one filter (ProblemFilter); a suite with no problem left is left out of the
+  // run (and of suite_names), said in the log.
+  ProblemFilter filter(request.problems);
+  std::vector<std::string> kept_suite_names, first_ids;
   for (const std::string& name : plan.suite_names) {
-    std::string line;
+    std::string line, first_id;
+    bool kept = true;
     if (IsMcpSuiteName(name)) {
-      plan.mcp_suites.push_back(BuildMcpBenchSuite(request.quick, &line));
-    } else if (IsAviSuiteName(name)) {
-      plan.avi_suites.push_back(BuildAviBenchSuite(request.quick, &line));
-    } else if (IsAviSetFile(name)) {
-      plan.avi_suites.push_back(ReadAviBenchSuite(name, &line));
+      std::vector<std::string> ids = McpSuiteIds(request.quick);
+      first_id = ids.empty() ? "" : ids.front();
+      KeepSelected(&ids, &filter);
+      kept = !ids.empty();
+      if (kept) plan.mcp_suites.push_back(BuildMcpBenchSuite(request.quick, ids, &line));
+    } else if (IsAviSuiteName(name) || IsAviSetFile(name)) {
+      // The AVI suite is built whole (its certificates are cheap), then filtered.
+      AviProblemSet set =
+          IsAviSuiteName(name) ? BuildAviBenchSuite(request.quick, &line) : ReadAviBenchSuite(name, &line);
+      first_id = set.problems.empty() ? "" : set.problems.front().id;
+      const std::size_t built = set.problems.size();
+      KeepSelected(&set.problems, &filter);
+      kept = !set.problems.empty();
+      if (kept && set.problems.size() < built) {
+        line += "; " + std::to_string(set.problems.size()) + " of them selected by --problem";
+      }
+      if (kept) plan.avi_suites.push_back(std::move(set));
     } else {
-      plan.suites.push_back(BuildBoxSuite(name, request, &line));
+      ProblemSet set = BuildBoxSuite(name, request, &filter, &first_id, &line);
+      kept = !set.problems.empty();
+      if (kept) plan.suites.push_back(std::move(set));
+    }
+    if (!first_id.empty()) first_ids.push_back(first_id);
+    if (kept) kept_suite_names.push_back(name);
+    if (!kept) {
+      line = "suite " + name + ": no problem matches --problem " + QuotedList(request.problems) + ", left out";
     }
     if (log && !line.empty()) log(line);
   }
+  const std::vector<std::string> all_suite_names = plan.suite_names;
+  plan.suite_names = kept_suite_names;
   JobListRequest jobs;
   // The box suites' backends: every chosen one that solves box-MLCPs (an MCP-only adapter would only add rows of
   // not_applicable to every box table).
@@ -289,8 +372,14 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
       const bool is_file =
           std::find(std::begin(kBenchSuiteNames), std::end(kBenchSuiteNames), name) == std::end(kBenchSuiteNames);
       const auto warm_start = Clock::now();
-      plan.warm_sequences.push_back(
-          WarmSequencesForSuite(set, WarmSuiteKindOf(name, is_file), request.quick, request.certify));
+      // Listed uncertified, filtered by their ids, then the kept ones certified: a filtered run pays for its own.
+      std::vector<WarmSequence> sequences =
+          WarmSequencesForSuite(set, WarmSuiteKindOf(name, is_file), request.quick, /*certify=*/false);
+      KeepSelected(&sequences, &filter);
+      if (request.certify) {
+        for (WarmSequence& sequence : sequences) CertifyWarmSequence(&sequence);
+      }
+      plan.warm_sequences.push_back(std::move(sequences));
       if (log && !plan.warm_sequences.back().empty()) {
         std::size_t steps = 0;
         for (const WarmSequence& w : plan.warm_sequences.back()) steps += w.steps.size();
@@ -302,7 +391,19 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
     }
     jobs.warm = &plan.warm_sequences;
   }
-  plan.stepper = IncludesStepperStudy(plan.suite_names, request.stepper);
+  if (const std::vector<std::string> unmatched = filter.Unmatched(); !unmatched.empty()) {
+    std::string suites;
+    for (const std::string& name : all_suite_names) suites += (suites.empty() ? "" : ", ") + name;
+    throw InvalidInputError("bench: --problem " + QuotedList(unmatched) +
+                            (unmatched.size() == 1 ? " matches" : " match") + " no problem of the suites " + suites +
+                            " (ids look like " + QuotedList(first_ids) + "; '*' matches any characters, '/' "
+                            "included)");
+  }
+  // The stepper studies run scenes, not problems: a run restricted to some problems runs them only when asked to.
+  const StepperStudyChoice stepper = request.problems.empty() || request.stepper != StepperStudyChoice::kIfSceneSuite
+                                         ? request.stepper
+                                         : StepperStudyChoice::kNever;
+  plan.stepper = IncludesStepperStudy(plan.suite_names, stepper);
   jobs.stepper = plan.stepper;
   jobs.floor = true;  // the report's floor: one factorization per problem (bench/replay/floor.h)
   if (!plan.mcp_suites.empty()) {
@@ -366,20 +467,23 @@ std::vector<SuiteResults> PlanSuites(const BenchPlan& plan) {
 
 nlohmann::json PlanOptionsJson(const BenchPlan& plan) {
   const ReplayOptions& o = plan.options;
-  return {{"solvers", plan.solvers},
-          {"settings", plan.request.settings},
-          {"tolerance", o.tolerance},
-          {"time_limit", o.time_limit_seconds},
-          {"repetitions", o.repetitions},
-          {"max_seconds_per_pair", o.max_seconds_per_pair},
-          {"tolerance_sweep_problems", o.tolerance_sweep_problems},
-          {"polish", o.polish},
-          {"quick", plan.request.quick},
-          {"stepper", plan.stepper},
-          {"warm", plan.request.warm},
-          {"backend_budget", plan.request.backend_budget_seconds},
-          {"job_budget", plan.request.job_budget_seconds},
-          {"sequence_budget", plan.request.sequence_budget_seconds}};
+  nlohmann::json options = {{"solvers", plan.solvers},
+                            {"settings", plan.request.settings},
+                            {"tolerance", o.tolerance},
+                            {"time_limit", o.time_limit_seconds},
+                            {"repetitions", o.repetitions},
+                            {"max_seconds_per_pair", o.max_seconds_per_pair},
+                            {"tolerance_sweep_problems", o.tolerance_sweep_problems},
+                            {"polish", o.polish},
+                            {"quick", plan.request.quick},
+                            {"stepper", plan.stepper},
+                            {"warm", plan.request.warm},
+                            {"backend_budget", plan.request.backend_budget_seconds},
+                            {"job_budget", plan.request.job_budget_seconds},
+                            {"sequence_budget", plan.request.sequence_budget_seconds}};
+  // Only when given: a run without a filter keeps the manifest earlier runs wrote (resumable, mergeable).
+  if (!plan.request.problems.empty()) options["problems"] = plan.request.problems;
+  return options;
 }
 
 BenchResults PlanResults(const BenchPlan& plan, const std::map<std::size_t, JobLine>& done) {

@@ -7,6 +7,7 @@
 #include <functional>
 #include <map>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <nlohmann/json_fwd.hpp>
@@ -71,6 +72,23 @@ struct BenchRequest {
   // Attach certified references to the suites' problems. Off only to list the jobs (their cost does not depend
   // on them): verdicts without references cannot judge forward errors.
   bool certify = true;
+  // `bench --problem GLOB` (repeatable; empty: every problem): only the problems whose id matches one of these globs
+  // run, in every suite (ProblemFilter); a suite left with none is left out, and with globs the stepper studies run
+  // only when asked for (StepperStudyChoice::kAlways). Each glob must match some problem.
+  std::vector<std::string> problems;
+};
+
+// The problem filter of a run (BenchRequest::problems): an id (a box problem's, an MCP's, an AVI's or a warm
+// sequence's, "<suite>/warm/...") is kept when it matches one of the globs (GlobMatch: '*' any characters, '/'
+// included, '?' one); without globs every id is. It remembers which globs matched, so that a glob that matches
+// nothing (a typo) is refused rather than run as an empty benchmark.
+struct ProblemFilter {
+  std::vector<std::string> globs;
+  std::vector<char> matched;  // per glob: it matched an id Keeps was asked about
+
+  explicit ProblemFilter(std::vector<std::string> globs_in);
+  bool Keeps(std::string_view id);
+  std::vector<std::string> Unmatched() const;  // the globs that matched no id, in the order given
 };
 
 struct BenchPlan {
@@ -92,10 +110,12 @@ struct BenchPlan {
 // naming the field and value; the caller's flag names are its own business.
 void CheckBenchRequest(const BenchRequest& request);
 
-// Checks the request (CheckBenchRequest), builds and validates its suites, attaches certified references (unless
-// request.certify is false) and lists the jobs. One line per suite (size, time taken, certificates) goes to log
-// when given, and one when no chosen backend solves the MCP (or the AVI) suite. InvalidInputError for any bad
-// input, including a problem-set file that cannot be read or holds no problem.
+// Checks the request (CheckBenchRequest), builds and validates its suites, keeps the problems request.problems
+// selects (ProblemFilter, before any reference is computed: a filtered run pays only for what it runs), attaches
+// certified references (unless request.certify is false) and lists the jobs. One line per suite (size, time
+// taken, certificates; or that the filter left it out) goes to log when given, and one when no chosen backend
+// solves the MCP (or the AVI) suite. InvalidInputError for any bad input, including a problem-set file that cannot
+// be read or holds no problem, and a --problem glob that matches no problem of the suites (naming it).
 BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(const std::string&)>& log = {});
 
 // Each backend's job costs (bench/replay/jobs.h: BackendCost) measured on this machine: one cold job (as a run

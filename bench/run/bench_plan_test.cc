@@ -12,6 +12,8 @@
 #include <set>
 #include <unistd.h>
 
+#include <nlohmann/json.hpp>
+
 #include "problems/library/problem_set_io.h"
 
 namespace smcbench {
@@ -135,6 +137,128 @@ TEST(BenchPlan, WarmJobsForTheFamiliesSequencesUnlessTurnedOff) {
   EXPECT_TRUE(cold.warm_sequences.empty());
   EXPECT_EQ(cold.jobs.size(), plan.jobs.size() - 4);
   EXPECT_EQ(PlanOptionsJson(cold)["warm"], false);
+}
+
+// The ids of a plan's problems, per suite in order: box, MCP, AVI.
+std::vector<std::vector<std::string>> PlanIds(const BenchPlan& plan) {
+  std::vector<std::vector<std::string>> out;
+  for (const ProblemSet& set : plan.suites) {
+    out.emplace_back();
+    for (const LibraryProblem& p : set.problems) out.back().push_back(p.id);
+  }
+  for (const McpProblemSet& set : plan.mcp_suites) {
+    out.emplace_back();
+    for (const McpLibraryProblem& p : set.problems) out.back().push_back(p.id);
+  }
+  for (const AviProblemSet& set : plan.avi_suites) {
+    out.emplace_back();
+    for (const AviLibraryProblem& p : set.problems) out.back().push_back(p.id);
+  }
+  return out;
+}
+
+// --problem: every kind of suite keeps exactly the problems whose id matches a glob (box: families and tiny; the
+// MCP suite; the AVI suite), the jobs are theirs only, a suite left with none is left out, a warm sequence stays only
+// when its own id matches, and the stepper studies need --stepper.
+TEST(BenchPlan, ProblemGlobsKeepExactlyTheMatchingProblemsOfEverySuiteKind) {
+  BenchRequest request;
+  request.suites = {"families", "tiny", "mcp", "avi"};
+  request.solvers = {"lemke", "newton"};
+  request.quick = true;
+  request.certify = false;
+  request.calibrate = false;
+  request.problems = {"families/murty/*", "tiny/infeasible*", "mcp/hard/three-*", "avi/planted/n2/*"};
+  const BenchPlan plan = MakeBenchPlan(request);
+  EXPECT_EQ(plan.suite_names, (std::vector<std::string>{"families", "tiny", "mcp", "avi"}));
+  const std::vector<std::vector<std::string>> ids = PlanIds(plan);
+  ASSERT_EQ(ids.size(), 4u);
+  // families: exactly its murty problems (the unfiltered suite's, in order).
+  SuiteRequest families_request;
+  families_request.quick = true;
+  families_request.references = false;
+  std::vector<std::string> murty;
+  for (const LibraryProblem& p : BuildSuite("families", families_request).problems) {
+    if (p.id.rfind("families/murty/", 0) == 0) murty.push_back(p.id);
+  }
+  ASSERT_FALSE(murty.empty());
+  EXPECT_EQ(ids[0], murty);
+  EXPECT_EQ(ids[1], std::vector<std::string>{"tiny/infeasible-lcp"});
+  EXPECT_EQ(ids[2], std::vector<std::string>{"mcp/hard/three-solutions"});
+  EXPECT_EQ(plan.mcp_suites[0].problems[0].starts.size(), 3u);
+  EXPECT_EQ(plan.mcp_suites[0].problems[0].references.size(), 3u);  // references of the kept MCP, attached
+  ASSERT_FALSE(ids[3].empty());
+  for (const std::string& id : ids[3]) EXPECT_EQ(id.rfind("avi/planted/n2/", 0), 0u) << id;
+  // The families' warm sequences ("families/warm/...") match no glob: none.
+  ASSERT_EQ(plan.warm_sequences.size(), 2u);
+  EXPECT_TRUE(plan.warm_sequences[0].empty());
+  EXPECT_FALSE(plan.stepper);
+  // Every job is one of a kept problem.
+  std::set<std::string> kept;
+  for (const auto& suite : ids) kept.insert(suite.begin(), suite.end());
+  for (const BenchJob& job : plan.jobs) {
+    EXPECT_TRUE(kept.count(job.problem_id)) << job.id;
+  }
+  EXPECT_EQ(PlanOptionsJson(plan)["problems"], nlohmann::json(request.problems));
+
+  // A glob for the warm sequences keeps them; a suite none of whose problems matches is left out.
+  BenchRequest warm = request;
+  warm.suites = {"families", "tiny"};
+  warm.problems = {"families/*", "tiny/*"};
+  const BenchPlan with_warm = MakeBenchPlan(warm);
+  ASSERT_EQ(with_warm.warm_sequences.size(), 2u);
+  EXPECT_EQ(with_warm.warm_sequences[0].size(), 2u);  // as without a filter (WarmJobsForTheFamiliesSequences...)
+  warm.problems = {"tiny/*"};
+  const BenchPlan tiny_only = MakeBenchPlan(warm);
+  EXPECT_EQ(tiny_only.suite_names, std::vector<std::string>{"tiny"});
+  ASSERT_EQ(tiny_only.suites.size(), 1u);
+  EXPECT_EQ(tiny_only.suites[0].name, "tiny");
+  EXPECT_EQ(tiny_only.suites[0].problems.size(), TinySuite().problems.size());
+  // Asked for, the stepper studies stay.
+  warm.stepper = StepperStudyChoice::kAlways;
+  EXPECT_TRUE(MakeBenchPlan(warm).stepper);
+}
+
+// A glob that matches no problem of the run is an error naming the flag and every such glob; an empty one too.
+TEST(BenchPlan, AProblemGlobThatMatchesNothingIsRefused) {
+  BenchRequest r = TinyRequest();
+  r.calibrate = false;
+  r.problems = {"tiny/*", "nope/*", "mcp/x"};
+  EXPECT_THAT(MessageOf(r), HasSubstr("bench: --problem 'nope/*', 'mcp/x' match no problem of the suites tiny (ids "
+                                      "look like 'tiny/"));
+  r.problems = {"tiny"};
+  EXPECT_THAT(MessageOf(r), HasSubstr("--problem 'tiny' matches no problem of the suites tiny"));
+  r.problems = {""};
+  EXPECT_THAT(MessageOf(r), HasSubstr("--problem needs a non-empty GLOB"));
+}
+
+// The globs go into the manifest's options, back unchanged; a run without them writes no "problems" (earlier
+// manifests stay resumable), and other globs are another run.
+TEST(BenchPlan, ProblemGlobsRoundTripThroughTheManifest) {
+  const fs::path dir = fs::temp_directory_path() / ("smcbench-plan-problems-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  fs::create_directories(dir);
+  BenchRequest r = TinyRequest();
+  r.calibrate = false;
+  r.problems = {"tiny/infeasible*", "tiny/*"};
+  const BenchPlan plan = MakeBenchPlan(r);
+  RunManifest manifest;
+  manifest.options = PlanOptionsJson(plan);
+  manifest.suites = PlanSuites(plan);
+  manifest.jobs = plan.jobs;
+  manifest.job_shard = AssignShards(manifest.jobs, 1);
+  WriteRunManifest(manifest, dir.string());
+  const RunManifest back = ReadRunManifest(dir.string());
+  EXPECT_EQ(back.options.at("problems"), nlohmann::json(r.problems));
+  EXPECT_EQ(ManifestMismatch(manifest, back), "");
+
+  r.problems = {"tiny/infeasible*"};
+  RunManifest other = manifest;
+  other.options = PlanOptionsJson(MakeBenchPlan(r));
+  EXPECT_THAT(ManifestMismatch(manifest, other), HasSubstr("options.problems"));
+  r.problems.clear();
+  const nlohmann::json unfiltered = PlanOptionsJson(MakeBenchPlan(r));
+  EXPECT_FALSE(unfiltered.contains("problems"));
+  fs::remove_all(dir);
 }
 
 TEST(BenchPlan, EveryBadInputIsRefusedNamingTheField) {

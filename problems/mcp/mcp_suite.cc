@@ -144,12 +144,15 @@ void AttachMcpReferences(McpLibraryProblem* problem) {
   AttachReferences(problem, builtin ? entry.known_solutions : std::vector<Vector>{});
 }
 
-McpProblemSet BuildMcpSuite(bool quick) {
+McpProblemSet BuildMcpSuite(bool quick) { return BuildMcpSuite(quick, McpSuiteIds(quick)); }
+
+McpProblemSet BuildMcpSuite(bool quick, const std::vector<std::string>& ids) {
+  if (ids.empty()) throw InvalidInputError("BuildMcpSuite: no id given");
   McpProblemSet set;
   set.name = "mcp";
   set.description = std::string("nonlinear MCPs: classic (MCPLIB-style), hard cases, families, S9/S10 steps") +
                     (quick ? " (quick sizes)" : "");
-  for (const std::string& id : McpSuiteIds(quick)) {
+  for (const std::string& id : ids) {
     BuiltinMcpEntry entry = MakeEntry(id);
     AttachReferences(&entry.problem, entry.known_solutions);
     set.problems.push_back(std::move(entry.problem));

@@ -21,6 +21,11 @@ std::vector<std::string> McpSuiteIds(bool quick);
 // references).
 McpProblemSet BuildMcpSuite(bool quick);
 
+// The suite of these ids only (built-in ids, normally a subset of McpSuiteIds(quick), in the given order),
+// references attached to them alone: a run filtered by `bench --problem` pays only for the problems it runs.
+// InvalidInputError for an unknown id (MakeBuiltinMcp's), or no id at all.
+McpProblemSet BuildMcpSuite(bool quick, const std::vector<std::string>& ids);
+
 // The MCP of a built-in id (any id of McpSuiteIds, and any size of a family or step of a scene of the same form).
 // InvalidInputError for an unknown id, listing the closest known ids.
 std::shared_ptr<const MCP> MakeBuiltinMcp(const std::string& id);

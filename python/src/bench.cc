@@ -24,9 +24,10 @@ namespace {
 void Bench(const std::vector<std::string>& suites, const std::vector<std::string>& solvers,
            const std::vector<std::string>& settings, double tolerance, int repetitions, double time_limit,
            double backend_budget, bool quick, bool polish, bool warm, const std::string& siconos_dir,
-           const std::string& out_dir) {
+           const std::vector<std::string>& problems, const std::string& out_dir) {
   BenchRequest request;
   request.suites = suites;
+  request.problems = problems;
   if (suites.empty()) throw InvalidInputError("bench: suites is empty (give a suite name or a problem-set file)");
   request.solvers = solvers;
   request.settings = settings;
@@ -54,7 +55,7 @@ void Bench(const std::vector<std::string>& suites, const std::vector<std::string
 void BindBench(py::module_& m) {
   using namespace pybind11::literals;
   m.def("_bench", &Bench, "suites"_a, "solvers"_a, "settings"_a, "tol"_a, "repetitions"_a, "time_limit"_a,
-        "backend_budget"_a, "quick"_a, "polish"_a, "warm"_a, "siconos_dir"_a, "out_dir"_a,
+        "backend_budget"_a, "quick"_a, "polish"_a, "warm"_a, "siconos_dir"_a, "problems"_a, "out_dir"_a,
         "Run a benchmark as `smcbench bench` does and write out_dir/results.{json,csv} (see smcbench.bench).");
 }
 

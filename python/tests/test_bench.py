@@ -90,6 +90,15 @@ def test_bad_input_is_a_value_error_naming_it():
         smcbench.bench("tiny", solvers=["lemke"], time_limit=float("nan"))
 
 
+def test_problems_keeps_only_the_matching_ids_and_refuses_a_glob_that_matches_none(tmp_path):
+    df = smcbench.bench("tiny", solvers="lemke", repetitions=1, quick=True, problems=["tiny/infeasible*"],
+                        out=tmp_path)
+    assert set(df.problem) == {"tiny/infeasible-lcp"}
+    assert len(df[df["mode"] == "cold"]) == 1
+    with pytest.raises(smcbench.InvalidInputError, match=r"--problem 'tiny/nope\*' matches no problem"):
+        smcbench.bench("tiny", solvers="lemke", problems="tiny/nope*")
+
+
 def test_docs_example_prints_what_its_comments_say():
     """docs/python.md's benchmark example (docs_quick only checks that it runs)."""
     import contextlib

@@ -32,26 +32,6 @@ namespace smcbench {
 namespace fs = std::filesystem;
 
 
-bool GlobMatch(std::string_view pattern, std::string_view text) {
-  // Iterative wildcard matching with one backtrack point (the last '*'): linear in practice, no recursion.
-  std::size_t p = 0, t = 0, star = std::string_view::npos, resume = 0;
-  while (t < text.size()) {
-    if (p < pattern.size() && (pattern[p] == '?' || pattern[p] == text[t])) {
-      ++p, ++t;
-    } else if (p < pattern.size() && pattern[p] == '*') {
-      star = p++;
-      resume = t;
-    } else if (star != std::string_view::npos) {
-      p = star + 1;
-      t = ++resume;
-    } else {
-      return false;
-    }
-  }
-  while (p < pattern.size() && pattern[p] == '*') ++p;
-  return p == pattern.size();
-}
-
 std::string FormatEta(double elapsed_seconds, double estimated_done, double estimated_total) {
   if (!(estimated_done > 0.0) || !(elapsed_seconds >= 0.0)) return "ETA ?";
   const double left = std::max(0.0, elapsed_seconds * (estimated_total - estimated_done) / estimated_done);
@@ -71,6 +51,7 @@ std::string FormatEta(double elapsed_seconds, double estimated_done, double esti
 
 struct BenchCommand::Flags {
   std::vector<std::string> suites, solvers, sets, allow_wrong;
+  std::vector<std::string> problems;  // --problem GLOB: only the problems whose id matches one (BenchRequest::problems)
   // Empty: a fresh folder ./smcbench-bench-YYYYMMDD-HHMMSS (DefaultOutputFolder), so a run without --out never
   // replaces earlier results, the committed results/bench included.
   std::string out, siconos_dir = DataDirectory(DataFolder::kSiconosCollection), report_dir, history;
@@ -100,6 +81,13 @@ BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
                      "default: paper families hard siconos mcp avi; mcp: the nonlinear MCPs, problem x start, on the "
                      "backends that solve MCPs; avi: affine variational inequalities over polytopes, through their "
                      "reduction on every box backend)");
+  bench_->add_option("--problem", f.problems,
+                     "run only the problems whose id matches GLOB ('*' any characters, '/' included; '?' one), e.g. "
+                     "'families/murty/*' or 'mcp/classic/*' (repeatable: a problem runs when it matches any), in "
+                     "every suite: box problems, MCPs, AVIs, warm sequences by their id (<suite>/warm/...); a suite "
+                     "left with none is left out, no stepper study unless --stepper; a GLOB that matches no problem "
+                     "is an error. Recorded in the manifest: --resume and merge need the same")
+      ->type_name("GLOB");
   bench_->add_option("--solver", f.solvers, "backend (repeatable; default: every registered backend)");
   bench_->add_option("--set", f.sets, "typed backend option BACKEND.OPTION=VALUE (see `smcbench list`)");
   bench_->add_option("--out", f.out, "output folder (default: a fresh ./smcbench-bench-YYYYMMDD-HHMMSS); a folder "
@@ -299,6 +287,7 @@ void CheckBenchFlags(const BenchCommand::Flags& f) {
 BenchRequest MakeRequest(const BenchCommand::Flags& f) {
   BenchRequest request;
   request.suites = f.suites;
+  request.problems = f.problems;
   request.solvers = f.solvers;
   request.settings = f.sets;
   request.siconos_dir = f.siconos_dir;

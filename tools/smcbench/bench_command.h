@@ -12,16 +12,13 @@
 // The suite catalogue (BuildSuite, TinySuite, SiconosSuite, ...) lives below the command line; included here for the
 // commands that name suites.
 #include "problems/suites/catalogue.h"
+#include "solvers/core/glob_match.h"  // GlobMatch: --allow-wrong's patterns
 
 namespace CLI {
 class App;
 }
 
 namespace smcbench {
-
-// True when text matches the glob pattern ('*' any run of characters, '?' one character, no escapes): how
-// `bench --allow-wrong 'siconos-*'` names backends.
-bool GlobMatch(std::string_view pattern, std::string_view text);
 
 // The progress line's time left: elapsed seconds scaled by the estimated seconds still to run over those run so far
 // (each job's BenchJob::cost, so a slow job ahead counts for what it costs), as "ETA 1m05s" ("ETA 42s", "ETA

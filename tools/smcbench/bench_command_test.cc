@@ -24,6 +24,7 @@
 #include "tools/smcbench/bench_command.h"
 #include "bench/analysis/report_markdown.h"
 #include "tools/smcbench/cli_test_runner.h"
+#include "tools/smcbench/compare_command.h"
 
 namespace smcbench {
 namespace {
@@ -1043,30 +1044,46 @@ TEST(Report, McpSectionNamesSuccessPerStartAndWhoFailsWhere) {
   fs::remove_all(dir);
 }
 
+// Two MCPs of the quick suite for the tests of the MCP plumbing (jobs, runs, shards, merge, budget): a 1-unknown
+// problem with three solutions (three starts) and a degenerate 2-unknown one (two starts), whose references take a
+// few quick solves (about 0.1 s each to list in release, where mcp/hard/no-solution takes 0.9 s of the whole quick
+// suite's 2.0 s: backends run long on it). The whole suite's references (every backend from every start) take
+// 40-76 s under ASan, and these tests built them once per run; the suite's content is mcp_library_test's.
+const std::vector<std::string> kMcpPlumbingProblems{"--problem", "mcp/hard/three-solutions", "--problem",
+                                                    "mcp/hard/degen*"};
+constexpr std::size_t kMcpPlumbingStarts = 3 + 2;
+
+std::vector<std::string> McpPlumbingArgs(std::vector<std::string> args) {
+  args.insert(args.end(), kMcpPlumbingProblems.begin(), kMcpPlumbingProblems.end());
+  return args;
+}
+
 // `bench --suite mcp`: MCP jobs only on the backends that solve MCPs, one per problem × start; the run's summary
 // gets an mcp row and the report its MCP section.
 TEST(Bench, McpSuiteJobsAndRun) {
-  CliRun r = RunSmcbench({"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "lemke", "--solver",
-                          "newton", "--list-jobs"});
+  CliRun r = RunSmcbench(McpPlumbingArgs({"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "lemke",
+                                          "--solver", "newton", "--list-jobs"}));
   ASSERT_EQ(r.code, 0) << r.err;
-  std::size_t jobs = 0;
+  std::size_t jobs = 0, floors = 0;
   for (const std::string& line : Lines(r.out)) {
     if (line.empty() || line[0] == '#') continue;
     EXPECT_THAT(line, HasSubstr("@"));
     if (line.find("\tfloor\t") != std::string::npos) {  // the floor of each problem × start, after its MCP job
       EXPECT_THAT(line, HasSubstr("|floor|floor|"));
+      ++floors;
       continue;
     }
     ++jobs;
-    EXPECT_THAT(line, HasSubstr("\tmcp\tmcp|"));
+    EXPECT_THAT(line, HasSubstr("\tmcp\tmcp|mcp/hard/"));  // only the problems --problem names
     EXPECT_THAT(line, HasSubstr("|newton|cold|"));  // lemke does not solve MCPs: no job
   }
-  EXPECT_GT(jobs, 0u);
+  EXPECT_EQ(jobs, kMcpPlumbingStarts);
+  EXPECT_EQ(floors, kMcpPlumbingStarts);
 
   const fs::path dir = fs::temp_directory_path() / ("smcbench-bench-mcp-" + std::to_string(::getpid()));
   fs::remove_all(dir);
-  r = RunSmcbench({"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "lemke", "--solver", "newton",
-                   "--out", dir.string(), "--report", "--no-plots"});
+  r = RunSmcbench(McpPlumbingArgs({"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "lemke",
+                                   "--solver", "newton", "--out", dir.string(), "--report", "--no-plots"}));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.out, HasSubstr("| mcp | newton | " + std::to_string(jobs) + " | "));
   EXPECT_THAT(r.out, Not(HasSubstr("| mcp | lemke |")));
@@ -1078,8 +1095,8 @@ TEST(Bench, McpSuiteJobsAndRun) {
   for (const ReplayRecord& rec : back.suites[0].replay.records) EXPECT_FALSE(rec.start.empty());
 
   // Only box backends chosen: said on stderr, no MCP record, and the report says why the suite is empty.
-  r = RunSmcbench({"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "lemke", "--out", dir.string(),
-                   "--overwrite", "--report", "--no-plots"});
+  r = RunSmcbench(McpPlumbingArgs({"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "lemke",
+                                   "--out", dir.string(), "--overwrite", "--report", "--no-plots"}));
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("no chosen backend solves MCPs"));
   EXPECT_THAT(r.out, Not(HasSubstr("| mcp |")));
@@ -1093,7 +1110,8 @@ TEST(Shards, McpJobsMergeToTheSingleRunAndRespectTheBudget) {
   const fs::path root = fs::temp_directory_path() / ("smcbench-mcp-shards-" + std::to_string(::getpid()));
   fs::remove_all(root);
   const auto args = [](std::vector<std::string> extra) {
-    std::vector<std::string> a{"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "newton"};
+    std::vector<std::string> a =
+        McpPlumbingArgs({"bench", "--suite", "mcp", "--quick", "--no-stepper", "--solver", "newton"});
     a.insert(a.end(), extra.begin(), extra.end());
     return a;
   };
@@ -1107,8 +1125,9 @@ TEST(Shards, McpJobsMergeToTheSingleRunAndRespectTheBudget) {
   const CliRun merged = RunSmcbench(merge);
   ASSERT_EQ(merged.code, 0) << merged.err;
   const std::vector<nlohmann::json> expected = TimelessRecords(root / "single");
-  ASSERT_GE(expected.size(), 2u);
+  ASSERT_EQ(expected.size(), 1u + kMcpPlumbingStarts);  // the suite, then one record per problem × start
   EXPECT_EQ(expected[0]["suite"], "mcp");
+  EXPECT_EQ(expected[0]["problems"], 2);
   EXPECT_EQ(expected[0]["checksum"].get<std::string>().size(), 16u);
   EXPECT_EQ(TimelessRecords(root / "merged"), expected);
 
@@ -1116,13 +1135,100 @@ TEST(Shards, McpJobsMergeToTheSingleRunAndRespectTheBudget) {
   ASSERT_EQ(budget.code, 0) << budget.err;
   const std::vector<nlohmann::json> cut = TimelessRecords(root / "budget");
   ASSERT_EQ(cut.size(), expected.size());
-  if (cut.size() > 2) {
-    EXPECT_EQ(cut[2]["status"], "not_run");
-    EXPECT_EQ(cut[2]["mode"], "cut");
-    EXPECT_THAT(cut[2]["message"].get<std::string>(), HasSubstr("--backend-budget"));
-    EXPECT_EQ(cut[2]["start"], expected[2]["start"]);
-    EXPECT_THAT(budget.err, HasSubstr("problem x start of suite mcp"));
+  for (std::size_t i = 2; i < cut.size(); ++i) {  // the first job spends the budget, every later one is cut
+    EXPECT_EQ(cut[i]["status"], "not_run");
+    EXPECT_EQ(cut[i]["mode"], "cut");
+    EXPECT_THAT(cut[i]["message"].get<std::string>(), HasSubstr("--backend-budget"));
+    EXPECT_EQ(cut[i]["start"], expected[i]["start"]);
   }
+  EXPECT_EQ(cut[2]["start"], "z0=2");  // the second start of mcp/hard/degenerate: a cut record keeps its label
+  EXPECT_THAT(budget.err, HasSubstr("problem x start of suite mcp"));
+  fs::remove_all(root);
+}
+
+// `bench --problem GLOB`: only the matching problems run, in box and MCP suites alike; the globs are in the
+// manifest, so --resume with other globs is refused and compare shows them among the settings; --list-jobs and
+// --shard list only their jobs; a glob that matches nothing is an error naming the flag and the glob.
+TEST(Bench, ProblemFilterRunsOnlyTheMatchingProblemsAndIsRecorded) {
+  const fs::path root = fs::temp_directory_path() / ("smcbench-bench-problem-" + std::to_string(::getpid()));
+  fs::remove_all(root);
+  const auto args = [](std::vector<std::string> extra, const std::string& mcp_glob = "mcp/hard/degen*") {
+    std::vector<std::string> a{"bench", "--suite", "tiny", "--suite", "mcp", "--quick", "--no-stepper",
+                               "--repetitions", "1", "--solver", "lemke", "--solver", "newton",
+                               "--allow-wrong", "newton", "--problem", "tiny/infeasible*", "--problem", mcp_glob};
+    a.insert(a.end(), extra.begin(), extra.end());
+    return a;
+  };
+  const CliRun run = RunSmcbench(args({"--out", (root / "filtered").string()}));
+  ASSERT_EQ(run.code, 0) << run.err;
+  const BenchResults results = ReadBenchResults((root / "filtered").string());
+  ASSERT_EQ(results.suites.size(), 2u);
+  EXPECT_EQ(results.suites[0].suite, "tiny");
+  EXPECT_EQ(results.suites[0].problems, 1);
+  EXPECT_EQ(results.suites[0].replay.records.size(), 2u);  // tiny/infeasible-lcp on lemke and newton
+  EXPECT_EQ(results.suites[1].suite, "mcp");
+  EXPECT_EQ(results.suites[1].problems, 1);
+  EXPECT_EQ(results.suites[1].replay.records.size(), 2u);  // mcp/hard/degenerate from its two starts, newton
+  for (const SuiteResults& suite : results.suites) {
+    for (const auto* records : {&suite.replay.records, &suite.replay.sweep, &suite.replay.floor}) {
+      for (const ReplayRecord& r : *records) {
+        EXPECT_TRUE(r.problem == "tiny/infeasible-lcp" || r.problem == "mcp/hard/degenerate") << r.problem;
+      }
+    }
+  }
+  const auto manifest = nlohmann::json::parse(ReadText(root / "filtered" / "manifest.json"));
+  EXPECT_EQ(manifest["options"]["problems"], nlohmann::json({"tiny/infeasible*", "mcp/hard/degen*"}));
+
+  // The same command resumes (nothing left to run); other globs are another run.
+  const CliRun resumed = RunSmcbench(args({"--resume", (root / "filtered").string()}));
+  EXPECT_EQ(resumed.code, 0) << resumed.err;
+  EXPECT_THAT(resumed.err, HasSubstr(" 0 to run"));
+  const CliRun refused = RunSmcbench(args({"--resume", (root / "filtered").string()}, "mcp/hard/three-*"));
+  EXPECT_EQ(refused.code, 1);
+  EXPECT_THAT(refused.err, HasSubstr("not the same run: other options (options.problems"));
+
+  // --list-jobs with --shard: each shard lists only jobs of the kept problems, and the shards together all of them.
+  std::size_t listed = 0;
+  for (int k = 1; k <= 2; ++k) {
+    const CliRun jobs = RunSmcbench(args({"--list-jobs", "--shard", std::to_string(k) + "/2"}));
+    ASSERT_EQ(jobs.code, 0) << jobs.err;
+    for (const std::string& line : Lines(jobs.out)) {
+      if (line.empty() || line[0] == '#') continue;
+      ++listed;
+      EXPECT_TRUE(line.find("|tiny/infeasible-lcp|") != std::string::npos ||
+                  line.find("|mcp/hard/degenerate@") != std::string::npos)
+          << line;
+    }
+  }
+  const RunManifest written = ReadRunManifest((root / "filtered").string());
+  EXPECT_EQ(listed, written.jobs.size());
+
+  // compare: other problems are not comparable (the suites' checksums differ); the same problems chosen by other
+  // globs are, and the globs are among the settings that differ.
+  const auto tiny_run = [&](const std::string& glob, const std::string& out) {
+    std::vector<std::string> a{"bench", "--suite", "tiny", "--quick", "--no-stepper", "--repetitions", "1",
+                               "--solver", "lemke", "--out", (root / out).string()};
+    if (!glob.empty()) a.insert(a.end(), {"--problem", glob});
+    return RunSmcbench(a).code;
+  };
+  ASSERT_EQ(tiny_run("", "all"), 0);
+  ASSERT_EQ(tiny_run("tiny/infeasible*", "glob"), 0);
+  ASSERT_EQ(tiny_run("tiny/infeasible-lcp", "exact"), 0);
+  const CliRun other_problems = RunSmcbench({"compare", (root / "all").string(), (root / "glob").string()});
+  EXPECT_EQ(other_problems.code, kExitCompareRefused);
+  EXPECT_THAT(other_problems.err, HasSubstr("other problems in suite tiny"));
+  const CliRun same_problems = RunSmcbench({"compare", (root / "glob").string(), (root / "exact").string(),
+                                            "--out", (root / "compared").string(), "--no-plots"});
+  EXPECT_NE(same_problems.code, kExitCompareRefused) << same_problems.err;  // 0, or 1 if timing noise flags it
+  EXPECT_THAT(same_problems.out, HasSubstr("problems [\"tiny/infeasible*\"] vs [\"tiny/infeasible-lcp\"]"));
+
+  // A glob that matches nothing: an error naming the flag and the glob, before any folder is made.
+  const CliRun none = RunSmcbench({"bench", "--suite", "tiny", "--quick", "--solver", "lemke", "--problem",
+                                   "tiny/*", "--problem", "tiny/nope*", "--out", (root / "none").string()});
+  EXPECT_EQ(none.code, 1);
+  EXPECT_THAT(none.err, HasSubstr("--problem 'tiny/nope*' matches no problem of the suites tiny (ids look like "
+                                  "'tiny/"));
+  EXPECT_FALSE(fs::exists(root / "none"));
   fs::remove_all(root);
 }
 
