@@ -47,16 +47,14 @@ inline void ClassifyRowsForPolish(const BoxMLCP& equilibrated, const double* z, 
 using PolishScratch = ActiveSetScratch;
 using PolishWorkspace = ActiveSetWorkspace;
 
-// The polish of a dense n×n problem (N = n fixed at compile time for the time-stepper's small solves, N = 0 for a
-// run-time n): the active set solved by active_set::SolveDense, nothing allocated. Writes the polished point to
-// out (n entries); false if the free block is singular or the result is not finite or will not stay in the box
-// within kPolishPasses passes.
+// The active set in s.state solved exactly into out, a free row that leaves the box moved to the bound it crossed
+// and the set solved again, up to kPolishPasses times (N = n, or 0 for a run-time n). False if the free block is
+// singular or the result is not finite or will not stay in the box. Nothing allocated.
 template <int N>
-bool PolishDense(const BoxMLCP& equilibrated, const double* z, double* out, const PolishScratch& s) {
+bool SolveSetMovingCrossedRows(const BoxMLCP& equilibrated, const PolishScratch& s, double* out) {
   const int n = N > 0 ? N : equilibrated.size();
   const double* a = equilibrated.dense_matrix().data();
   const double *q = equilibrated.q().data(), *l = equilibrated.l().data(), *u = equilibrated.u().data();
-  ClassifyRowsForPolish<N>(equilibrated, z, s.state, s.rhs);  // rhs: scratch until the set is solved
   for (int pass = 0; pass < kPolishPasses; ++pass) {
     int nf = 0;
     // Threshold 0: only an exact zero (or NaN) pivot is singular; the merit function judges the result.
@@ -70,6 +68,15 @@ bool PolishDense(const BoxMLCP& equilibrated, const double* z, double* out, cons
     }
   }
   return false;
+}
+
+// The polish of a dense n×n problem (N = n fixed at compile time for the time-stepper's small solves, N = 0 for a
+// run-time n): the active set read off z (ClassifyRowsForPolish), then SolveSetMovingCrossedRows. Writes the
+// polished point to out (n entries); false when that fails.
+template <int N>
+bool PolishDense(const BoxMLCP& equilibrated, const double* z, double* out, const PolishScratch& s) {
+  ClassifyRowsForPolish<N>(equilibrated, z, s.state, s.rhs);  // rhs: scratch until the set is solved
+  return SolveSetMovingCrossedRows<N>(equilibrated, s, out);
 }
 
 // Dense problems above this size are not polished (the O(n³) solve and n² workspace would dominate an iterative

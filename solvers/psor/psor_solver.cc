@@ -35,7 +35,6 @@ class DenseColumns {
       : M_(M.data(), M.rows(), M.cols()), n_(static_cast<int>(M.rows())) {}
 
   int size() const { return N > 0 ? N : n_; }
-  const double* data() const { return M_.data(); }
   double Diagonal(int j) const { return M_(j, j); }
   double MaxAbs() const { return M_.cwiseAbs().maxCoeff(); }
   // w += a · M(:,j): contiguous in column-major storage.
@@ -384,10 +383,10 @@ constexpr double kFastRate = 0.5;
 constexpr int kSubspaceCorrections = 4;
 
 // One block exchange on the set in s.state whose exact solution is (z, w): bound rows with w of the wrong sign
-// (rows with l_i = u_i excepted) become free, then the set is solved again (free rows that leave the box are moved to the bound they crossed, up to
-// kPolishPasses times, as the polish does). False when no row changed or the new set cannot be solved.
-bool ExchangeRows(const PsorRun<DenseColumns<Eigen::Dynamic>>& run, double* z, const double* w,
-                  const PolishScratch& s) {
+// (rows with l_i = u_i excepted) become free, then the set is solved again as the polish solves it
+// (SolveSetMovingCrossedRows). False when no row changed or the new set cannot be solved.
+bool ExchangeRows(const BoxMLCP& problem, const PsorRun<DenseColumns<Eigen::Dynamic>>& run, double* z,
+                  const double* w, const PolishScratch& s) {
   bool changed = false;
   for (int i = 0; i < run.n; ++i) {
     const auto state = static_cast<RowState>(s.state[i]);
@@ -397,20 +396,7 @@ bool ExchangeRows(const PsorRun<DenseColumns<Eigen::Dynamic>>& run, double* z, c
       changed = true;
     }
   }
-  if (!changed) return false;
-  for (int pass = 0; pass < kPolishPasses; ++pass) {
-    int nf = 0;
-    const ActiveSetOutcome outcome =
-        active_set::SolveDense<0>(run.M.data(), run.n, run.q, run.l, run.u, s.state, 0.0, s, z, &nf);
-    if (outcome == ActiveSetOutcome::kSolved) return true;
-    if (outcome != ActiveSetOutcome::kOutsideBox) return false;
-    for (int k = 0; k < nf; ++k) {
-      const int i = s.free_rows[k];
-      if (z[i] < run.l[i]) s.state[i] = static_cast<signed char>(RowState::kLower);
-      if (z[i] > run.u[i]) s.state[i] = static_cast<signed char>(RowState::kUpper);
-    }
-  }
-  return false;
+  return changed && SolveSetMovingCrossedRows<0>(problem, s, z);
 }
 
 // After a merit check of a dense run-time-n run (which updated run->pattern): updates the schedule and, when the
@@ -462,7 +448,7 @@ SubspaceOutcome SubspaceStep(const BoxMLCP& problem, PsorRun<DenseColumns<Eigen:
                    ? SubspaceOutcome::kSolvedAsPolishWould
                    : SubspaceOutcome::kSolved;
       }
-      if (pass == kSubspaceCorrections || !merit.finite || !ExchangeRows(*run, candidate, candidate_w, scratch)) {
+      if (pass == kSubspaceCorrections || !merit.finite || !ExchangeRows(problem, *run, candidate, candidate_w, scratch)) {
         break;
       }
     }
