@@ -156,11 +156,11 @@ double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions&
   const double step = std::max(cost.seconds_per_unit * Units(sequence.steps.front()), 1e-6);
   const double pass = static_cast<double>(sequence.steps.size()) * step;
   const double budget = budgets.sequence_seconds;
-  if (budget > 0.0 && pass > budget) return cost.job_seconds + budget + step;  // cut after the step that spent it
-  if (budget > 0.0 && pass > 0.5 * budget) return cost.job_seconds + pass;     // the untimed pass is the sample
-  const double cap = budget > 0.0 ? std::min(options.max_seconds_per_pair, 0.5 * budget)
-                                  : options.max_seconds_per_pair;
-  return cost.job_seconds + pass + std::min(options.repetitions * pass, cap + pass);
+  if (budget > 0.0 && pass > budget) return cost.job_seconds + budget;     // cut before the step that would pass it
+  if (budget > 0.0 && pass > 0.5 * budget) return cost.job_seconds + pass;  // the untimed pass is the sample
+  double timed = std::min(options.repetitions * pass, options.max_seconds_per_pair + pass);
+  if (budget > 0.0) timed = std::min(timed, std::max(pass, budget - pass));  // passes that end inside the budget
+  return cost.job_seconds + pass + timed;
 }
 
 std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites, const ReplayOptions& options,
@@ -577,6 +577,7 @@ BenchResults AssembleResults(const RunManifest& m, const std::map<std::size_t, J
   BenchResults out;
   out.command = m.command;
   out.polish = m.options.value("polish", true);
+  out.options = m.options;
   for (const SuiteResults& s : m.suites) {
     SuiteResults suite = s;
     suite.replay = {};

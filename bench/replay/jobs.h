@@ -101,7 +101,7 @@ double EstimateAviJobSeconds(const AviLibraryProblem& problem, const ReplayOptio
                              const BackendCost& cost = {}, const JobBudgets& budgets = {});
 // The same for one warm job: an untimed and the timed passes of every step, each step a cold solve's guess (at
 // least 1 µs, a call's fixed cost), plus cost.job_seconds once; with a sequence budget, a pass longer than it is
-// cut there, one longer than half of it is the only pass, and the timed passes stop after half of it.
+// cut at the budget, one longer than half of it is the only pass, and the timed passes end inside it.
 double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions& options,
                               const BackendCost& cost = {}, const JobBudgets& budgets = {});
 

@@ -313,6 +313,7 @@ json ToJson(const BenchResults& results, const json& environment) {
   j["format"] = "smcbench-bench/1";
   j["command"] = results.command;
   j["polish"] = results.polish;
+  if (!results.options.is_null()) j["options"] = results.options;  // since results.json recorded them
   j["environment"] = environment;
   j["suites"] = json::array();
   for (const SuiteResults& s : results.suites) {
@@ -344,6 +345,7 @@ BenchResults BenchResultsFromJson(const json& j) {
     BenchResults out;
     out.command = j.at("command").get<std::string>();
     out.polish = j.value("polish", false);  // written since the exact polish; before it, answers were raw
+    out.options = j.value("options", json());
     for (const json& s : j.at("suites")) {
       SuiteResults suite;
       suite.suite = s.at("suite").get<std::string>();

@@ -5,7 +5,7 @@
 #include <string>
 #include <vector>
 
-#include <nlohmann/json_fwd.hpp>
+#include <nlohmann/json.hpp>
 
 #include "bench/replay/replay.h"
 #include "bench/replay/stepper_study.h"
@@ -47,6 +47,9 @@ struct SuiteResults {
 struct BenchResults {
   std::string command;      // the command line that produced them
   bool polish = true;       // SolverOptions::polish of every solve (false: `bench --no-polish`, raw algorithms)
+  // The options the run measured under, as its manifest records them (bench/run/bench_plan.h: PlanOptionsJson:
+  // backends, settings, tolerance, budgets, the --problem globs, ...); null in results written before they were.
+  nlohmann::json options;
   std::vector<SuiteResults> suites;
   bool has_stepper = false;
   StepperStudy stepper;

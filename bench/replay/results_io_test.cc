@@ -157,5 +157,16 @@ TEST(ResultsIo, EveryVerdictReadsBackByItsNameAndAnUnknownOneNamesTheField) {
   }
 }
 
+// The run's options (budgets, --problem globs, ...) read back as written; results written before them have none.
+TEST(ResultsIo, TheRunsOptionsReadBack) {
+  BenchResults results = EveryStatus();
+  results.options = {{"sequence_budget", 1.0}, {"problems", {"families/spd-*"}}};
+  const BenchResults back = ReadBenchResults(Written(results, "options").string());
+  EXPECT_EQ(back.options, results.options);
+  nlohmann::json older = ToJson(EveryStatus(), nlohmann::json::object());
+  EXPECT_FALSE(older.contains("options"));
+  EXPECT_TRUE(BenchResultsFromJson(older).options.is_null());
+}
+
 }  // namespace
 }  // namespace smcbench

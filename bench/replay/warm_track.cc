@@ -87,7 +87,12 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
   r.reference_radius = head.reference.proved_radius;
   r.reference_proved_unique = head.reference.proved_unique;
 
-  const SolverOptions o = ReplaySolverOptions(options, tolerance);  // timed around the whole sequence
+  const bool budgeted = budget_seconds > 0.0;
+  SolverOptions o = ReplaySolverOptions(options, tolerance);  // timed around the whole sequence
+  // With a budget below the time limit, no step's solve may outlast the budget either (as a cold job's under
+  // --job-budget): a solve the budget stopped cuts the sequence.
+  const bool budget_limits_solves = budgeted && budget_seconds < o.time_limit_seconds;
+  if (budget_limits_solves) o.time_limit_seconds = budget_seconds;
   SessionOptions session_options;
   session_options.reuse_active_set = true;  // the session itself leaves it off for external backends
   // One result per step, so step k starts from step k−1's answer without a copy; storage reused pass after pass.
@@ -95,40 +100,53 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
   // A step that ran into the time limit ends the pass: the steps after it are not run (a time-stepper stops there
   // too), so a backend that cannot solve the sequence costs one time limit, not one per step.
   std::size_t steps_run = 0;
-  const bool budgeted = budget_seconds > 0.0;
-  // budget: seconds after which the pass stops (the untimed pass only; 0: none).
+  // budget: seconds the pass may take (the untimed pass only; 0: none). It stops after a step when the next one,
+  // at the pace of the last, would end past the budget: the job keeps to its budget rather than overrunning it by
+  // a step.
   const auto pass = [&](double budget) {
     const auto pass_start = Clock::now();
+    auto step_start = pass_start;
     SolveSession session = solver->Prepare(head.problem, o, session_options);
     steps_run = 0;
     for (std::size_t k = 0; k < steps; ++k) {
       session.Solve(sequence.steps[k].problem.q(), &results[k], k == 0 ? nullptr : &results[k - 1].z);
       ++steps_run;
       if (results[k].status == SolveStatus::kTimeLimit) break;
-      if (budget > 0.0 && std::chrono::duration<double>(Clock::now() - pass_start).count() > budget) break;
+      if (budget > 0.0) {
+        const auto now = Clock::now();
+        const double spent = std::chrono::duration<double>(now - pass_start).count();
+        const double last_step = std::chrono::duration<double>(now - step_start).count();
+        step_start = now;
+        if (spent + last_step > budget) break;
+      }
     }
   };
   // Untimed: sizes every result's storage, and is a siconos-* backend's probe of the problem.
   const auto first_start = Clock::now();
   pass(budget_seconds);
   const double first = std::chrono::duration<double>(Clock::now() - first_start).count();
-  const bool timed_out = results[steps_run - 1].status == SolveStatus::kTimeLimit;
-  const bool cut = steps_run < steps && !timed_out;  // the budget ended the pass, not the backend
+  const bool hit_time_limit = results[steps_run - 1].status == SolveStatus::kTimeLimit;
+  // The budget ended the pass: before a step it had no time left for, or inside a solve it stopped.
+  const bool cut = (steps_run < steps && !hit_time_limit) || (hit_time_limit && budget_limits_solves);
+  const bool timed_out = hit_time_limit && !cut;
   std::vector<double> samples;
   // After a time limit the limit is the sample, not a measurement; a pass that took more than half the budget is
   // its own only sample (another would overrun the budget).
   if (timed_out || (budgeted && !cut && first > 0.5 * budget_seconds)) {
     samples.push_back(first / static_cast<double>(steps_run));
   }
-  const double max_timed = budgeted ? std::min(options.max_seconds_per_pair, 0.5 * budget_seconds)
-                                    : options.max_seconds_per_pair;
-  const auto start = Clock::now();
   const int wanted = cut ? 0 : !samples.empty() ? 1 : std::max(1, options.repetitions);
+  // The timed passes: at most options.max_seconds_per_pair of them, and with a budget only while the next pass, at
+  // the pace of the last, ends inside it (the first always runs: the untimed pass took at most half the budget).
+  const auto start = Clock::now();
   while (static_cast<int>(samples.size()) < wanted) {
     const auto s0 = Clock::now();
     pass(0.0);
-    samples.push_back(std::chrono::duration<double>(Clock::now() - s0).count() / static_cast<double>(steps));
-    if (std::chrono::duration<double>(Clock::now() - start).count() > max_timed) break;
+    const auto now = Clock::now();
+    const double last = std::chrono::duration<double>(now - s0).count();
+    samples.push_back(last / static_cast<double>(steps));
+    if (std::chrono::duration<double>(now - start).count() > options.max_seconds_per_pair) break;
+    if (budgeted && std::chrono::duration<double>(now - first_start).count() + last > budget_seconds) break;
   }
   if (cut) samples.push_back(first / static_cast<double>(steps_run));  // not a sample: what the steps run took
   r.samples = cut ? 0 : static_cast<int>(samples.size());
@@ -149,9 +167,11 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
   r.residual_abs = r.residual_rel = r.residual_scaled = 0.0;
   std::vector<signed char> state, previous;
   bool first_failure = true;
+  // The step whose solve the budget stopped has no answer to judge, as the steps never run.
+  const std::size_t answered = cut && hit_time_limit ? steps_run - 1 : steps_run;
   for (std::size_t k = 0; k < steps; ++k) {
     const LibraryProblem& step = sequence.steps[k];
-    if (k >= steps_run) {  // after a time limit or the budget: not run, no answer
+    if (k >= answered) {  // after a time limit or the budget: not run, no answer
       if (cut) break;
       if (first_failure) {
         first_failure = false;
@@ -194,8 +214,13 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
   if (cut) {
     // No verdict: the steps run were judged (their counts and worst residuals are kept), the rest never ran.
     char message[200];
-    std::snprintf(message, sizeof message, "cut after %zu of %zu steps: sequence budget of %g s spent (%.3g s)",
-                  steps_run, steps, budget_seconds, first);
+    if (hit_time_limit) {
+      std::snprintf(message, sizeof message, "cut in step %zu of %zu: its solve reached the sequence budget of %g s "
+                    "(the time limit is %g s)", steps_run, steps, budget_seconds, options.time_limit_seconds);
+    } else {
+      std::snprintf(message, sizeof message, "cut after %zu of %zu steps: the next would pass the sequence budget "
+                    "of %g s (%.3g s spent)", steps_run, steps, budget_seconds, first);
+    }
     r.mode = kCutMode;
     r.status = SolveStatus::kNotRun;
     r.verdict = Verdict::kFailed;  // kept out of every count by its mode
@@ -206,7 +231,7 @@ WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, cons
   }
   if (answers) {
     answers->clear();
-    for (std::size_t k = 0; k < steps_run; ++k) answers->push_back(results[k].z);
+    for (std::size_t k = 0; k < answered; ++k) answers->push_back(results[k].z);
   }
   r.iterations = static_cast<int>(std::min<std::int64_t>(c.iterations, std::numeric_limits<int>::max()));
   return out;

@@ -69,10 +69,13 @@ inline constexpr const char* kCutMode = "cut";
 // options.max_seconds_per_pair; the last pass's answers are judged at tolerance (and copied to *answers, one per
 // step run, when given). A step that runs into the time limit ends a pass (the rest are not run: failed) and the
 // untimed pass is then the only sample. A backend that fails is a record.
-// budget_seconds > 0 bounds the job: the untimed pass stops after the step that used the budget up, and if steps
-// remain the record is cut (mode kCutMode, status not_run, the judged counts those of the steps run, the message
-// "cut after N of M steps: sequence budget of B s spent (T s)"); an untimed pass that fits but took more than
-// half the budget is the only sample (as after a time limit), and the timed passes stop after half the budget.
+// budget_seconds > 0 bounds the job: every solve runs under min(time limit, budget); the untimed pass stops after
+// a step when the next, at the pace of the last, would end past the budget, and if steps remain (or the budget
+// stopped a solve) the record is cut (mode kCutMode, status not_run, the judged counts those of the steps answered,
+// the message "cut after N of M steps: the next would pass the sequence budget of B s (T s spent)" or "cut in step
+// N of M: its solve reached the sequence budget ..."); an untimed pass that fits but took more than half the budget
+// is the only sample (as after a time limit), and a timed pass follows another only while it would end inside the
+// budget.
 WarmRecord ReplayWarmSequence(const WarmSequence& sequence, Solver* solver, const std::string& solver_name,
                               const ReplayOptions& options, double tolerance, std::vector<Vector>* answers = nullptr,
                               double budget_seconds = 0.0);

@@ -132,7 +132,8 @@ TEST(WarmTrack, ASequencePastItsBudgetIsCutAfterTheStepThatSpentIt) {
   EXPECT_EQ(cut.record.mode, kCutMode);
   EXPECT_EQ(cut.record.status, SolveStatus::kNotRun);
   EXPECT_EQ(cut.record.samples, 0);
-  EXPECT_EQ(cut.record.message.rfind("cut after 1 of 6 steps: sequence budget of 1e-12 s spent (", 0), 0u)
+  EXPECT_EQ(cut.record.message.rfind("cut after 1 of 6 steps: the next would pass the sequence budget of 1e-12 s (", 0),
+            0u)
       << cut.record.message;
   ASSERT_EQ(answers.size(), 1u);  // step 0 ran, and was solved: z = clamp(-q) = -0.5
   EXPECT_EQ(answers[0], Vector::Constant(3, -0.5));
@@ -163,12 +164,14 @@ TEST(WarmTrack, JobEstimatesFollowTheCostModelAndTheBudgets) {
   EXPECT_NEAR(EstimateJobSeconds(p, o, JobKind::kCold, cost, budgets), 0.01 + 0.001 - 0.0007, 1e-12);
   // Warm: a pass is 6 × 3.6 ms = 21.6 ms; unbudgeted, the untimed pass and 7 timed ones.
   EXPECT_NEAR(EstimateWarmJobSeconds(sequence, o, cost), 0.01 + 8 * 0.0216, 1e-12);
-  // A sequence budget below the pass: cut after the step that spent it.
-  EXPECT_NEAR(EstimateWarmJobSeconds(sequence, o, cost, {0.0, 0.01}), 0.01 + 0.01 + 0.0036, 1e-12);
+  // A sequence budget below the pass: cut before the step that would pass it, so the budget.
+  EXPECT_NEAR(EstimateWarmJobSeconds(sequence, o, cost, {0.0, 0.01}), 0.01 + 0.01, 1e-12);
   // A pass over half the budget is its own only sample.
   EXPECT_NEAR(EstimateWarmJobSeconds(sequence, o, cost, {0.0, 0.04}), 0.01 + 0.0216, 1e-12);
-  // Under half: the timed passes stop after half the budget (plus the pass running then).
-  EXPECT_NEAR(EstimateWarmJobSeconds(sequence, o, cost, {0.0, 0.05}), 0.01 + 0.0216 + 0.025 + 0.0216, 1e-12);
+  // Under half: the timed passes end inside the budget (the untimed pass and 0.0284 s of timed ones).
+  EXPECT_NEAR(EstimateWarmJobSeconds(sequence, o, cost, {0.0, 0.05}), 0.01 + 0.05, 1e-12);
+  // A budget far above the passes: the repetitions, as without one.
+  EXPECT_NEAR(EstimateWarmJobSeconds(sequence, o, cost, {0.0, 100.0}), 0.01 + 8 * 0.0216, 1e-12);
 }
 
 // A machine's measured costs change the estimates (--list-jobs, the ETA) but not BenchJob::cost, so every process

@@ -41,7 +41,7 @@ bool IncludesStepperStudy(const std::vector<std::string>& suite_names, StepperSt
 // The budgets of a default run, chosen so that the main job (tools/bench.sh) fits in 10 min on a 2-core machine
 // (docs/benchmarks.md); `bench --full` sets all three to 0, the full campaign.
 inline constexpr double kDefaultJobBudgetSeconds = 1.0;
-inline constexpr double kDefaultSequenceBudgetSeconds = 2.0;
+inline constexpr double kDefaultSequenceBudgetSeconds = 1.0;
 
 struct BenchRequest {
   std::vector<std::string> suites;    // kBenchSuiteNames or problem-set files; empty: kDefaultBenchSuites

@@ -121,8 +121,8 @@ TEST(RunShard, WarmJobsReplayTheirSequencesOrAreNotRunPastTheBudget) {
   }
 }
 
-// The per-job budgets: a warm sequence past the sequence budget is cut after its first step; a solve stopped by a
-// job budget below the time limit cuts its job (newton checks its clock before any iteration). Cut records have
+// The per-job budgets: a warm sequence past the sequence budget is cut in or after its first step; a solve stopped
+// by a job budget below the time limit cuts its job (newton checks its clock before any iteration). Cut records have
 // mode "cut" and no verdict.
 TEST(RunShard, JobAndSequenceBudgetsCutTheJobsAndSaySo) {
   BenchPlan plan = TinyPlan();
@@ -140,7 +140,7 @@ TEST(RunShard, JobAndSequenceBudgetsCutTheJobsAndSaySo) {
     ++warm;
     EXPECT_EQ(line.warm.record.mode, kCutMode) << line.id;
     EXPECT_EQ(line.warm.record.status, SolveStatus::kNotRun) << line.id;
-    EXPECT_THAT(line.warm.record.message, HasSubstr("cut after 1 of 8 steps: sequence budget of 1e-12 s spent"));
+    EXPECT_THAT(line.warm.record.message, HasSubstr("sequence budget of 1e-12 s"));
   }
   EXPECT_EQ(warm, 3);
 

@@ -646,7 +646,8 @@ def write_problem_set(path, problems: Iterable, name: str = "python", descriptio
 
 def bench(suites, solvers=None, tol: float = 1e-10, repetitions: int = 7, time_limit: float = 10.0, *,
           settings: Optional[List[str]] = None, quick: bool = False, polish: bool = True, warm: bool = True,
-          backend_budget: float = 60.0, siconos_dir=None, problems: Optional[List[str]] = None, out=None):
+          backend_budget: float = 60.0, job_budget: float = 1.0, sequence_budget: float = 1.0, siconos_dir=None,
+          problems: Optional[List[str]] = None, out=None):
     """Run a benchmark as `smcbench bench` does, through the same engine: a pandas DataFrame with the columns of
     results.csv, one row per record (problem × backend, then the tolerance sweep's rows, mode "sweep", then the warm
     track's rows, mode "warm": one per sequence × backend, seconds per step; warm=False skips them, as --no-warm).
@@ -654,8 +655,9 @@ def bench(suites, solvers=None, tol: float = 1e-10, repetitions: int = 7, time_l
     suites: a suite name ("tiny", "paper", "families", "hard", "siconos", "scale", "mcp", "avi", "all"), the path of
     a .smcps file, a list of those, or a list of Problem or of AviProblem (read_problem_set's list, or your own),
     run as one suite named "python". solvers: a backend name or a list (None: every registered backend). settings: typed backend options
-    "BACKEND.OPTION=VALUE". quick, polish, backend_budget (seconds per backend and suite, 0: no limit) and
-    siconos_dir (None: bench's default) as the flags of `smcbench bench`; no time-stepper studies. problems: globs
+    "BACKEND.OPTION=VALUE". quick, polish, backend_budget (seconds per backend and suite, 0: no limit),
+    job_budget (seconds per cold job), sequence_budget (seconds per warm sequence × backend; 0: no limit, as
+    `bench --full` sets all three) and siconos_dir (None: bench's default) as the flags of `smcbench bench`; no time-stepper studies. problems: globs
     over problem ids, as `smcbench bench --problem` (a str or a list; None: every problem), e.g.
     problems=["mcp/classic/*"]: only the problems whose id matches one run; a glob that matches none raises
     InvalidInputError. out: a folder to
@@ -679,7 +681,7 @@ def bench(suites, solvers=None, tol: float = 1e-10, repetitions: int = 7, time_l
             paths = [os.fspath(item) for item in items]
         folder = os.fspath(out) if out is not None else os.path.join(scratch, "results")
         _smcbench._bench(paths, names, list(settings or []), float(tol), int(repetitions), float(time_limit),
-                         float(backend_budget), bool(quick), bool(polish), bool(warm),
+                         float(backend_budget), float(job_budget), float(sequence_budget), bool(quick), bool(polish), bool(warm),
                          "" if siconos_dir is None else os.fspath(siconos_dir), globs, folder)
         return _with_results(_with_text_columns(pd.read_csv(os.path.join(folder, "results.csv")), folder), folder,
                              out)

@@ -23,7 +23,7 @@ namespace {
 // replay records only (cold, sweep, and warm-track rows when warm).
 void Bench(const std::vector<std::string>& suites, const std::vector<std::string>& solvers,
            const std::vector<std::string>& settings, double tolerance, int repetitions, double time_limit,
-           double backend_budget, bool quick, bool polish, bool warm, const std::string& siconos_dir,
+           double backend_budget, double job_budget, double sequence_budget, bool quick, bool polish, bool warm, const std::string& siconos_dir,
            const std::vector<std::string>& problems, const std::string& out_dir) {
   BenchRequest request;
   request.suites = suites;
@@ -36,6 +36,8 @@ void Bench(const std::vector<std::string>& suites, const std::vector<std::string
   request.repetitions = repetitions;
   request.time_limit_seconds = time_limit;
   request.backend_budget_seconds = backend_budget;
+  request.job_budget_seconds = job_budget;
+  request.sequence_budget_seconds = sequence_budget;
   request.quick = quick;
   request.polish = polish;
   request.warm = warm;
@@ -55,7 +57,7 @@ void Bench(const std::vector<std::string>& suites, const std::vector<std::string
 void BindBench(py::module_& m) {
   using namespace pybind11::literals;
   m.def("_bench", &Bench, "suites"_a, "solvers"_a, "settings"_a, "tol"_a, "repetitions"_a, "time_limit"_a,
-        "backend_budget"_a, "quick"_a, "polish"_a, "warm"_a, "siconos_dir"_a, "problems"_a, "out_dir"_a,
+        "backend_budget"_a, "job_budget"_a, "sequence_budget"_a, "quick"_a, "polish"_a, "warm"_a, "siconos_dir"_a, "problems"_a, "out_dir"_a,
         "Run a benchmark as `smcbench bench` does and write out_dir/results.{json,csv} (see smcbench.bench).");
 }
 

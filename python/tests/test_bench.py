@@ -79,6 +79,22 @@ def test_problems_sharing_m_l_u_are_also_replayed_in_order_as_a_warm_sequence():
                                   no_warm[no_warm["mode"] == "cold"][cold].reset_index(drop=True))
 
 
+def test_the_budgets_are_those_of_the_flags():
+    # A sequence budget of 1e-12 s cuts the warm sequence in or after its first step: a record of mode "cut" (no
+    # verdict) saying which budget; budgets of 0 (bench --full) let it run to its end.
+    M = np.array([[2.0, 1.0], [1.0, 2.0]])
+    steps = [smcbench.Problem(id=f"run/step{k}", M=M, q=np.array([-1.0 - 0.1 * k, -1.0]), l=np.full(2, -np.inf),
+                              u=np.full(2, np.inf), expected="solvable") for k in range(3)]
+    cut = smcbench.bench(steps, solvers="lemke", repetitions=1, quick=True, sequence_budget=1e-12)
+    assert list(cut[cut["mode"] == "cut"].message.str.contains("sequence budget of 1e-12 s")) == [True]
+    assert not (cut["mode"] == "warm").any()
+    full = smcbench.bench(steps, solvers="lemke", repetitions=1, quick=True, job_budget=0, sequence_budget=0,
+                          backend_budget=0)
+    assert list(full[full["mode"] == "warm"].verdict) == ["solved"]
+    with pytest.raises(ValueError, match="sequence budget must be a finite number of seconds >= 0, got -1"):
+        smcbench.bench(steps, solvers="lemke", sequence_budget=-1)
+
+
 def test_bad_input_is_a_value_error_naming_it():
     with pytest.raises(ValueError, match="unknown suite 'tinny'"):
         smcbench.bench(["tiny", "tinny"], solvers=["lemke"])

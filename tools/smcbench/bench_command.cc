@@ -113,9 +113,10 @@ BenchCommand::BenchCommand(CLI::App* app) : flags_(std::make_unique<Flags>()) {
                      "solve stopped by it cuts the job, recorded with mode cut (no verdict: neither solved nor failed)")
       ->check(NonNegativeNumber());
   bench_->add_option("--sequence-budget", f.sequence_budget,
-                     "seconds one warm sequence x backend may take (default 2, 0: no limit): its untimed pass stops "
-                     "after the step that spent it and the record says 'cut after N of M steps' (mode cut, no "
-                     "verdict); a pass over S/2 is timed once")
+                     "seconds one warm sequence x backend may take (default 1, 0: no limit): its solves run under "
+                     "min(--time-limit, S), its untimed pass stops before a step that would pass S and the record "
+                     "says 'cut after N of M steps' (mode cut, no verdict); a pass over S/2 is timed once, and "
+                     "timed passes run only while they end inside S")
       ->check(NonNegativeNumber());
   bench_->add_flag("--full", f.full, "the full campaign: no budget (--job-budget 0 --sequence-budget 0 "
                                      "--backend-budget 0): every job runs to its time limit, every sequence to its "
