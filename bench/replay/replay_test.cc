@@ -103,6 +103,24 @@ TEST(TimeSolves, ABackendThatKeepsNothingAnswersAsAPlainSolve) {
   EXPECT_GT(record.solves_per_sample, 1);
 }
 
+// A solve longer than the sampling window is not repeated: the warm-up, answered in this process, is the record's
+// one sample (a budgeted run's job keeps to its budget instead of taking two solves for a median of two).
+TEST(TimeSolves, AWarmUpLongerThanTheSamplingWindowIsTheOneSample) {
+  const BoxMLCP problem = TwentyRowRelay();
+  CachingBackend backend(/*can_forget=*/true);
+  ReplayOptions replay = QuickTiming();
+  replay.max_seconds_per_pair = 0.0;  // every solve outlasts it
+  SolveResult result;
+  ReplayRecord record;
+  TimeSolves(&backend, problem, Untimed(), replay, &result, &record);
+  EXPECT_EQ(backend.solved_by_lemke(), 1);
+  EXPECT_EQ(record.samples, 1);
+  EXPECT_EQ(record.solves_per_sample, 1);
+  EXPECT_TRUE(result.solved());
+  EXPECT_EQ(record.time_min, record.time_max);
+  EXPECT_GT(record.time_median, 0.0);
+}
+
 TEST(ResultsIo, ACachedRecordKeepsItsModeThroughTheResultsFiles) {
   ReplayRecord record;
   record.suite = "mine";

@@ -1,6 +1,6 @@
 // How `bench` times one solve configuration, shared by the box replay (TimeSolves) and the MCP replay
 // (TimeMcpSolves): an untimed warm-up solve, then samples of repeated solves, each lasting at least
-// min_sample_seconds, until repetitions or max_seconds_per_pair. A template so the box's smallest solves are not
+// min_sample_seconds, until repetitions or max_seconds_per_pair (a warm-up longer than that is the one sample). A template so the box's smallest solves are not
 // timed through an indirect call, whose cost would be a visible part of theirs. Private to bench/replay.
 #pragma once
 
@@ -57,13 +57,18 @@ void SampleSolveTimes(SolveOnce&& solve, const SolveResult* result, const Replay
   const bool forgetting = after_warm_up != WarmStateReset::kNothingRemembered;
   bool cached = after_warm_up == WarmStateReset::kCannotForget;
   bool forgotten = true;  // the state the next timed solve starts from is the forgotten one
-  const int wanted = std::max(1, replay.repetitions);
-  // A solve that ran into the time limit is not repeated: its time is the limit, not a measurement.
-  if (result->status == SolveStatus::kTimeLimit) {
+  // A solve that ran into the time limit is not repeated: its time is the limit, not a measurement. Nor is one
+  // that outlasted the sampling window (max_seconds_per_pair: half the job budget in a budgeted run), answered in
+  // this process: a second solve would double the job for a median of two, and the warm-up of a solve that long is
+  // a measurement (a worker's answer is not: that one is timed again, in process).
+  const bool outlasted_window = first > replay.max_seconds_per_pair && !answered_in_worker();
+  const bool warm_up_only = result->status == SolveStatus::kTimeLimit || outlasted_window;
+  if (warm_up_only) {
     samples.push_back(first);
     count = 1;
     record->timed_in_worker = answered_in_worker();
   }
+  const int wanted = warm_up_only ? 1 : std::max(1, replay.repetitions);
   while (static_cast<int>(samples.size()) < wanted) {
     double seconds = 0.0;
     if (!forgetting) {
