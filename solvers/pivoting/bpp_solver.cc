@@ -30,6 +30,13 @@ bool FixedRow(double l, double u) { return l == u; }
 // m = 16 they did not lower the sets (docs/auto.md, "bpp against one factorization of M").
 constexpr int kMinSweptRows = 32;
 
+// From this many rows up to UpdatedFreeBlock::kMinRows, a symmetric M's sets are solved by PrefixCholesky and an
+// answer the polish would only solve again is not polished. Below, the inline LU of a few rows costs no more than the
+// Cholesky, and the classification that skips the polish costs more than it saves (measured by the perf gate: at 5
+// rows, solve/families/spd-relay/m8 took 5263 instructions against 4245; at m = 15, relay1.dat, the solve's
+// instructions fell from about 118 k to 46 k).
+constexpr int kMinPrefixCholeskyRows = 12;
+
 template <typename... Args>
 void SetMessage(SolveResult* result, const char* format, Args... args) {
   char buffer[400];
@@ -132,6 +139,19 @@ bool BppSolver::SolveActiveSet<false>(const BoxMLCP& problem, double* z) {
   // few hundred instructions).
   if (nf == 0) return true;
   ++small_factorizations_;
+  if (small_cholesky_) {
+    switch (prefix_.Solve(m, n, problem.q().data(), row_ratio_.data(), inv_row_ratio_.data(), s.free_rows, nf,
+                          options_.pivot_tolerance, z)) {
+      case PrefixCholesky::Outcome::kSolved:
+        ++small_cholesky_sets_;
+        return true;
+      case PrefixCholesky::Outcome::kNonFinite:
+        return false;
+      case PrefixCholesky::Outcome::kNotPositive:  // the LU judges this set, and solves the rest
+        small_cholesky_ = false;
+        break;
+    }
+  }
   active_set::ReducedRhs<0>(m, n, problem.q().data(), z, s.free_rows, nf, s.rhs);
   active_set::GatherFreeBlock(m, n, s.free_rows, nf, s.block, n);
   if (!dense_lu::Factor(s.block, n, nf, s.pivots, options_.pivot_tolerance)) return false;
@@ -260,6 +280,16 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
   const bool warm = options.warm_start.size() == n;
   const bool updatable = !Sparse && n >= UpdatedFreeBlock::kMinRows;
   small_factorizations_ = 0;
+  small_cholesky_sets_ = 0;
+  small_cholesky_ = false;
+  if constexpr (!Sparse) {
+    if (n < UpdatedFreeBlock::kMinRows && n >= kMinPrefixCholeskyRows && options_.cholesky &&
+        SymmetricUpToRowScaling(problem)) {
+      small_cholesky_ = true;
+      prefix_.Resize(n);
+      prefix_.ResetCounts();
+    }
+  }
   bool cholesky = false;
   if (updatable) {
     updated_.Resize(n);
@@ -324,6 +354,10 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
       result->SetDetail("updated_sets", updatable ? updated_.updates() : 0);
       if (updatable && updated_.cholesky_factorizations() > 0) {
         result->SetDetail("cholesky_factorizations", updated_.cholesky_factorizations());
+      }
+      if (!updatable && small_cholesky_sets_ > 0) {
+        result->SetDetail("cholesky_factorizations", small_cholesky_sets_);
+        result->SetDetail("reused_cholesky_rows", prefix_.reused_rows());
       }
       if (refactored_answers > 0) result->SetDetail("refactored_answers", refactored_answers);
       if (final_cholesky > 0) result->SetDetail("final_cholesky", final_cholesky);
@@ -419,7 +453,8 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
       if constexpr (!Sparse) {
         // The answer's block was factored afresh (an update's answer is left to the polish) and is exact: when the
         // polish would read the same set off z, it would only factor the block again.
-        if (options.polish && updatable && !clipped && updated_.last_path() == UpdatedFreeBlock::Path::kFactored &&
+        if (options.polish && !clipped &&
+            (updatable ? updated_.last_path() == UpdatedFreeBlock::Path::kFactored : n >= kMinPrefixCholeskyRows) &&
             PolishWouldRepeat(problem, z, s.state)) {
           NotePolishRedundant();
         }

@@ -17,6 +17,7 @@
 #include "solvers/enumerative/enumerative_solver.h"
 #include "solvers/generators/random_problems.h"
 #include "solvers/lemke/lemke_solver.h"
+#include "solvers/pivoting/prefix_cholesky.h"
 #include "solvers/pivoting/updated_free_block.h"
 #include "tests/support/malloc_counter.h"
 
@@ -632,9 +633,10 @@ TEST(BppSolver, RowScaledSymmetricMatricesTakeTheCholeskyPath) {
 
 // A symmetric indefinite M (a 2×2 principal block [1 2; 2 1] with eigenvalue −1 in an otherwise dominant
 // diagonal): the problem's answer z* has every row free, the Cholesky of that block fails, the LU takes over and
-// solves it, and the answer is the direct solve. Below and above the sweeps' 32 rows.
+// solves it, and the answer is the direct solve. On PrefixCholesky's small blocks (12, 14 rows) and the updated
+// ones, below and above the sweeps' 32 rows.
 TEST(BppSolver, SymmetricIndefiniteBlocksFallBackToTheLu) {
-  for (int n : {20, 48}) {
+  for (int n : {12, 14, 20, 48}) {
     DenseMatrix M = DenseMatrix::Zero(n, n);
     std::mt19937_64 rng(11);
     std::uniform_real_distribution<double> entry(-1.0, 1.0);
@@ -746,6 +748,163 @@ TEST(BppSolver, UpdatedSolvesDoNotAllocate) {
       for (int k = 0; k < 3; ++k) solver.Solve(gen.problem, options, &result);
     });
     EXPECT_EQ(allocations, 0) << gen.problem.name();
+    EXPECT_TRUE(result.solved());
+  }
+}
+
+// M = R·S (S symmetric positive definite, R a positive diagonal) and a sequence of free sets: each PrefixCholesky
+// solve gives M_FF⁻¹ b_F (an LU of the block, computed here), keeps the leading rows of the last order that are
+// still free, and a row that leaves truncates the factor at its place.
+TEST(PrefixCholesky, SolvesAgreeWithAnLuOfTheBlockAndKeepTheLeadingRows) {
+  const int n = 12;
+  const GeneratedProblem gen = Planted(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kBox, n, 5);
+  Vector ratio(n), inv_ratio(n);
+  for (int i = 0; i < n; ++i) {
+    ratio[i] = std::exp(2.0 * std::sin(1.3 * i));
+    inv_ratio[i] = 1.0 / ratio[i];
+  }
+  const DenseMatrix M = ratio.asDiagonal() * gen.problem.dense_matrix();
+  const Vector q = ratio.cwiseProduct(gen.problem.q());
+  PrefixCholesky factor;
+  factor.Resize(n);
+  struct Step {
+    std::vector<int> free;
+    int reused;  // rows of L kept from the set before
+  };
+  const std::vector<Step> steps = {{{0, 1, 2, 3, 4, 5, 6, 7, 8, 9}, 0},
+                                   {{0, 1, 2, 3, 4, 5, 6, 7, 10, 11}, 8},   // 8, 9 leave at the end, 10, 11 enter
+                                   {{1, 2, 3, 4, 5, 6, 7, 10, 11}, 0},      // row 0 leaves: nothing is kept
+                                   {{1, 2, 3, 4, 5, 6, 7, 10, 11}, 9},      // the same set: all kept
+                                   {{1, 2, 3, 4, 5, 6, 8, 9, 10, 11}, 6},   // 7 leaves: 1..6 kept
+                                   {{}, 0},
+                                   {{3, 4}, 0}};
+  int reused = 0;
+  for (std::size_t k = 0; k < steps.size(); ++k) {
+    const std::vector<int>& f = steps[k].free;
+    const int nf = static_cast<int>(f.size());
+    Vector z(n);
+    std::vector<char> in(n, 0);
+    for (int i : f) in[i] = 1;
+    for (int i = 0; i < n; ++i) z[i] = in[i] ? 0.0 : (i % 2 ? gen.problem.l()[i] : gen.problem.u()[i]);
+    if (nf == 0) continue;  // bpp does not call it with no free row
+    ASSERT_EQ(factor.Solve(M.data(), n, q.data(), ratio.data(), inv_ratio.data(), f.data(), nf, 1e-14, z.data()),
+              PrefixCholesky::Outcome::kSolved)
+        << k;
+    reused += steps[k].reused;
+    EXPECT_EQ(factor.reused_rows(), reused) << k;
+    DenseMatrix block(nf, nf);
+    Vector rhs(nf);
+    for (int r = 0; r < nf; ++r) {
+      rhs[r] = -q[f[r]];
+      for (int j = 0; j < n; ++j) {
+        if (!in[j]) rhs[r] -= M(f[r], j) * z[j];
+      }
+      for (int c = 0; c < nf; ++c) block(r, c) = M(f[r], f[c]);
+    }
+    const Vector x = block.partialPivLu().solve(rhs);
+    for (int r = 0; r < nf; ++r) EXPECT_NEAR(z[f[r]], x[r], 1e-12 * (1.0 + x.cwiseAbs().maxCoeff())) << k;
+  }
+}
+
+// A set whose block is not positive definite ends the factorization (kNotPositive) and drops it: the next set is
+// factored from its first row and solved right.
+TEST(PrefixCholesky, ABlockThatIsNotPositiveDefiniteDropsTheFactor) {
+  const int n = 6;
+  DenseMatrix M = DenseMatrix::Identity(n, n) * 2.0;
+  M(2, 3) = M(3, 2) = 3.0;  // [2 3; 3 2]: eigenvalue −1
+  M(0, 1) = M(1, 0) = 0.5;
+  const Vector q = Vector::LinSpaced(n, -1.0, 1.0);
+  const Vector ones = Vector::Ones(n);
+  PrefixCholesky factor;
+  factor.Resize(n);
+  Vector z = Vector::Zero(n);
+  const std::vector<int> bad = {0, 1, 2, 3}, good = {0, 1, 4, 5};
+  EXPECT_EQ(factor.Solve(M.data(), n, q.data(), ones.data(), ones.data(), bad.data(), 4, 1e-14, z.data()),
+            PrefixCholesky::Outcome::kNotPositive);
+  z.setZero();
+  ASSERT_EQ(factor.Solve(M.data(), n, q.data(), ones.data(), ones.data(), good.data(), 4, 1e-14, z.data()),
+            PrefixCholesky::Outcome::kSolved);
+  EXPECT_EQ(factor.reused_rows(), 0);
+  // Rows 0, 1: [2 0.5; 0.5 2] z = −q; rows 4, 5 decoupled: z = −q / 2 (rows 2, 3 at 0).
+  const double det = 2.0 * 2.0 - 0.25;
+  EXPECT_NEAR(z[0], (-q[0] * 2.0 + 0.5 * q[1]) / det, 1e-15);
+  EXPECT_NEAR(z[1], (-q[1] * 2.0 + 0.5 * q[0]) / det, 1e-15);
+  EXPECT_NEAR(z[4], -q[4] / 2.0, 1e-15);
+  EXPECT_NEAR(z[5], -q[5] / 2.0, 1e-15);
+}
+
+// Below UpdatedFreeBlock::kMinRows, a symmetric M's sets are solved by PrefixCholesky: the same answers as the LU
+// (cholesky = false), the planted solution, enum's (LCPs) or lemke's, and an answer the polish would only solve
+// again is not polished (the point is the raw one, bit for bit).
+TEST(BppSolver, SmallSymmetricBlocksTakeThePrefixCholesky) {
+  BppOptions lu_only;
+  lu_only.cholesky = false;
+  BppSolver cholesky, lu(lu_only);
+  EnumerativeSolver enumerative;
+  LemkeSolver lemke;
+  for (BoundKind bounds : {BoundKind::kLCP, BoundKind::kRelay, BoundKind::kBox, BoundKind::kMixed}) {
+    for (int size : {12, 13, 15}) {
+      for (std::uint64_t seed : {1, 2, 3}) {
+        const GeneratedProblem gen = Planted(MatrixFamily::kSymmetricPositiveDefinite, bounds, size, seed);
+        const std::string where = gen.problem.name();
+        SolverOptions raw;
+        raw.polish = false;
+        const SolveResult a = cholesky.Solve(gen.problem);
+        const SolveResult r = cholesky.Solve(gen.problem, raw);
+        const SolveResult b = lu.Solve(gen.problem);
+        ASSERT_TRUE(a.solved()) << where << ": " << a.message;
+        ASSERT_TRUE(b.solved()) << where << ": " << b.message;
+        if (a.GetDetail("factorizations") > 0.0) {  // 0 when the first set has every row at a bound
+          EXPECT_EQ(a.GetDetail("cholesky_factorizations"), a.GetDetail("factorizations")) << where;
+        }
+        EXPECT_TRUE(std::isnan(b.GetDetail("cholesky_factorizations"))) << where;
+        EXPECT_LE(ForwardError(a.z, DirectSolveOnKnownSet(gen.problem, gen.z_star)), 1e-12) << where;
+        EXPECT_LE(ForwardError(a.z, b.z), 1e-12) << where;
+        EXPECT_LE(NaturalResidual(gen.problem, a.z), 1e-11 * (1.0 + gen.problem.q().cwiseAbs().maxCoeff())) << where;
+        if (std::isnan(a.GetDetail("polished"))) {
+          EXPECT_EQ(a.z, r.z) << where;
+        }
+        const SolveResult e = bounds == BoundKind::kLCP ? enumerative.Solve(gen.problem) : lemke.Solve(gen.problem);
+        ASSERT_TRUE(e.solved()) << where << ": " << e.message;
+        EXPECT_LE(ForwardError(a.z, e.z), 1e-10) << where;
+      }
+    }
+  }
+  // A relay whose entries span 8 decades (the shape of Siconos' relay1.dat: a graded symmetric positive definite
+  // M, bounds far below q's scale): the prefix keeps rows between sets, and the answer is lemke's.
+  const int n = 15;
+  DenseMatrix M(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) M(i, j) = std::pow(10.0, 7.0 - 0.25 * (i + j)) / (1.0 + i + j);  // Hilbert, graded
+  }
+  M.diagonal() *= 2.0;
+  const BoxMLCP relay = BoxMLCP::Relay(M, Vector::Constant(n, -13.3), -0.1, 0.1, "graded-relay");
+  ASSERT_TRUE(relay.IsSymmetric());
+  const SolveResult a = cholesky.Solve(relay);
+  ASSERT_TRUE(a.solved()) << a.message;
+  EXPECT_GT(a.GetDetail("cholesky_factorizations"), 0.0);
+  const SolveResult e = lemke.Solve(relay);
+  ASSERT_TRUE(e.solved()) << e.message;
+  EXPECT_LE(ForwardError(a.z, e.z), 1e-8);
+  EXPECT_LE(a.residual_scaled, 1e-10);
+}
+
+// The small Cholesky path allocates nothing after the first solve of a size, polished or not.
+TEST(BppSolver, SmallCholeskySolvesDoNotAllocate) {
+  if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";
+  const GeneratedProblem gen = Planted(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 12, 3);
+  for (bool polish : {true, false}) {
+    BppSolver solver;
+    SolverOptions options;
+    options.polish = polish;
+    SolveResult result;
+    solver.Solve(gen.problem, options, &result);
+    ASSERT_TRUE(result.solved()) << result.message;
+    ASSERT_GT(result.GetDetail("cholesky_factorizations"), 0.0);
+    const long allocations = test_support::CountMallocs([&] {
+      for (int k = 0; k < 3; ++k) solver.Solve(gen.problem, options, &result);
+    });
+    EXPECT_EQ(allocations, 0) << polish;
     EXPECT_TRUE(result.solved());
   }
 }
