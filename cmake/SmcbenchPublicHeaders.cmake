@@ -71,6 +71,13 @@ set(SMCBENCH_PUBLIC_HEADERS
   # A benchmark run from C++, its jobs and results on disk, two runs compared.
   bench/run/bench_plan.h
   bench/run/run_shard.h
+  bench/kinds/problem_kind.h
+  bench/kinds/problem_filter.h
+  bench/kinds/job_list.h
+  bench/kinds/builtin_kinds.h
+  bench/kinds/box_kind.h
+  bench/kinds/mcp_kind.h
+  bench/kinds/avi_kind.h
   bench/replay/jobs.h
   bench/replay/replay.h
   bench/replay/mcp_replay.h

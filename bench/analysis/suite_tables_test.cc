@@ -26,6 +26,8 @@
 #include "bench/analysis/report_test_records.h"
 #include "bench/analysis/sweep_tables.h"
 #include "bench/figures/gnuplot_figure.h"
+#include "bench/kinds/box_kind.h"
+#include "bench/kinds/job_list.h"
 
 namespace smcbench {
 namespace {
@@ -400,7 +402,7 @@ TEST(ReportSweep, EveryBackendGetsEveryRung) {
   JobListRequest request;
   request.solvers = {"lemke", "psor"};
   std::set<std::tuple<std::string, std::string, double>> sweep;
-  for (const BenchJob& job : ListBenchJobs({set}, options, request)) {
+  for (const BenchJob& job : ListBenchJobs(BoxSuites({set}), options, request)) {
     if (job.kind == JobKind::kSweep) sweep.insert({job.problem_id, job.solver, job.tolerance});
   }
   EXPECT_EQ(sweep.size(), 2u * 2u * std::size(kSweepTolerances));

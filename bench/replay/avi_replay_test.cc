@@ -15,6 +15,9 @@
 
 #include "bench/replay/jobs.h"
 #include "bench/replay/results_io.h"
+#include "bench/kinds/avi_kind.h"
+#include "bench/kinds/box_kind.h"
+#include "bench/kinds/job_list.h"
 #include "solvers/registry/registry.h"
 #include "tests/support/caching_backend.h"
 
@@ -200,18 +203,18 @@ TEST(AviJobs, ListedAfterTheOtherSuitesShardedAndAssembled) {
   const ReplayOptions options = Quick({});
   JobListRequest request;
   request.solvers = {"lemke"};
-  request.avi_solvers = {"lemke", "newton"};
-  const std::vector<BenchJob> jobs = ListBenchJobs({box}, {}, {set}, options, request);
+  request.kind_solvers["avi"] = {"lemke", "newton"};
+  const std::vector<BenchJob> jobs = ListBenchJobs({MakeBoxSuite(box), MakeAviSuite(set)}, options, request);
   ASSERT_EQ(jobs.size(), 4u);
   EXPECT_EQ(jobs[0].id, "avi-test|avi/test/box-projection|lemke|cold|1e-10");
   EXPECT_EQ(jobs[3].id, "avi-test|avi/test/no-solution|newton|cold|1e-10");
   for (std::size_t i = 0; i < jobs.size(); ++i) {
-    EXPECT_EQ(jobs[i].kind, JobKind::kAvi);
+    EXPECT_EQ(jobs[i].kind, JobKind::kCold);
+    EXPECT_EQ(jobs[i].kind_name, "avi");  // the manifest's name of an AVI job, as before the problem kinds
     EXPECT_EQ(jobs[i].index, i);
     EXPECT_EQ(jobs[i].suite, 1u);  // after the one box suite (and no MCP suite)
     EXPECT_GT(jobs[i].cost, 0.0);
   }
-  EXPECT_EQ(std::string(ToString(JobKind::kAvi)), "avi");
   const std::vector<int> shard = AssignShards(jobs, 2);
   EXPECT_EQ(shard, AssignShards(jobs, 2));
 
@@ -231,7 +234,8 @@ TEST(AviJobs, ListedAfterTheOtherSuitesShardedAndAssembled) {
   const RunManifest back = RunManifestFromJson(RunManifestToJson(manifest), "manifest");
   EXPECT_EQ(ManifestMismatch(manifest, back), "");
   ASSERT_EQ(back.jobs.size(), 4u);
-  EXPECT_EQ(back.jobs[2].kind, JobKind::kAvi);
+  EXPECT_EQ(back.jobs[2].kind, JobKind::kCold);
+  EXPECT_EQ(back.jobs[2].kind_name, "avi");
   std::map<std::size_t, JobLine> lines;
   for (const BenchJob& job : back.jobs) {
     auto solver = CreateSolver(job.solver);

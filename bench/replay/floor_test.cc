@@ -9,6 +9,8 @@
 #include "bench/replay/floor.h"
 #include "bench/replay/jobs.h"
 #include "bench/replay/results_io.h"
+#include "bench/kinds/box_kind.h"
+#include "bench/kinds/job_list.h"
 #include "solvers/generators/random_problems.h"
 
 namespace smcbench {
@@ -109,7 +111,7 @@ TEST(Floor, OneJobPerProblemAndItsRecordsStayApartFromTheBackends) {
   JobListRequest request;
   request.solvers = {"lemke", "psor"};
   request.floor = true;
-  const std::vector<BenchJob> jobs = ListBenchJobs({set}, FewSamples(), request);
+  const std::vector<BenchJob> jobs = ListBenchJobs(BoxSuites({set}), FewSamples(), request);
   int floors = 0;
   for (const BenchJob& job : jobs) {
     if (job.kind != JobKind::kFloor) continue;
@@ -119,7 +121,7 @@ TEST(Floor, OneJobPerProblemAndItsRecordsStayApartFromTheBackends) {
   }
   EXPECT_EQ(floors, 2);
   request.floor = false;
-  EXPECT_EQ(ListBenchJobs({set}, FewSamples(), request).size(), jobs.size() - 2);
+  EXPECT_EQ(ListBenchJobs(BoxSuites({set}), FewSamples(), request).size(), jobs.size() - 2);
 
   // Through the run's files: the floor records come back as floor records, never as backend records.
   RunManifest manifest;

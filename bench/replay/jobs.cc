@@ -32,47 +32,14 @@ std::uint64_t Fnv1a64(const std::string& text) {
   return h;
 }
 
+// A manifest's job kind; the names older manifests gave the cold jobs of MCP and AVI suites and of the generic
+// sparse path ("mcp", "avi", "generic-sparse") are cold jobs.
 JobKind JobKindFromText(const std::string& text, const std::string& where) {
-  for (JobKind k : {JobKind::kCold, JobKind::kGenericSparse, JobKind::kSweep, JobKind::kStepper, JobKind::kMcp,
-                    JobKind::kWarm, JobKind::kAvi, JobKind::kFloor}) {
+  for (JobKind k : {JobKind::kCold, JobKind::kSweep, JobKind::kStepper, JobKind::kWarm, JobKind::kFloor}) {
     if (text == ToString(k)) return k;
   }
+  if (text == "mcp" || text == "avi" || text == "generic-sparse") return JobKind::kCold;
   throw InvalidInputError(where + ": unknown job kind '" + text + "'");
-}
-
-BackendCost CostOf(const JobListRequest& request, const std::string& solver) {
-  const auto it = request.costs.find(solver);
-  return it == request.costs.end() ? BackendCost{} : it->second;
-}
-
-std::string JobId(const BenchJob& job) {
-  if (job.kind == JobKind::kStepper) return "stepper";
-  const char* mode = job.kind == JobKind::kSweep   ? "sweep"
-                     : job.kind == JobKind::kWarm  ? "warm"
-                     : job.kind == JobKind::kFloor ? kFloorSolver
-                                                   : "cold";
-  if (job.kind == JobKind::kMcp || (job.kind == JobKind::kFloor && !job.start_label.empty())) {
-    return job.suite_name + "|" + job.problem_id + "@" + job.start_label + "|" + job.solver + "|" + mode + "|" +
-           NumberText(job.tolerance);
-  }
-  return job.suite_name + "|" + job.problem_id + "|" + job.solver + "|" + mode + "|" + NumberText(job.tolerance);
-}
-
-// The backend budget in the estimates, as a single run applies it (run_shard.cc, OverBudget): in job order, a
-// backend's jobs on a suite run until their estimates add up to the budget, the rest are not run. The floor and the
-// stepper are nobody's budget. Only the estimates change (the shards' costs stay machine-independent).
-void ApplyBackendBudget(double budget_seconds, std::vector<BenchJob>* jobs) {
-  if (!(budget_seconds > 0.0)) return;
-  std::map<std::pair<std::size_t, std::string>, double> spent;
-  for (BenchJob& job : *jobs) {
-    if (job.kind == JobKind::kFloor || job.kind == JobKind::kStepper) continue;
-    double& so_far = spent[{job.suite, job.solver}];
-    if (so_far >= budget_seconds) {
-      job.estimate = kNotRunJobSeconds;
-    } else {
-      so_far += job.estimate;
-    }
-  }
 }
 
 }  // namespace
@@ -80,15 +47,16 @@ void ApplyBackendBudget(double budget_seconds, std::vector<BenchJob>* jobs) {
 const char* ToString(JobKind kind) {
   switch (kind) {
     case JobKind::kCold: return "cold";
-    case JobKind::kGenericSparse: return "generic-sparse";
     case JobKind::kSweep: return "sweep";
     case JobKind::kStepper: return "stepper";
-    case JobKind::kMcp: return "mcp";
     case JobKind::kWarm: return "warm";
-    case JobKind::kAvi: return "avi";
     case JobKind::kFloor: return "floor";
   }
   return "?";
+}
+
+std::string JobKindName(const BenchJob& job) {
+  return job.kind_name.empty() ? std::string(ToString(job.kind)) : job.kind_name;
 }
 
 std::string StableHashHex(const std::string& text) {
@@ -161,143 +129,6 @@ double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions&
   double timed = std::min(options.repetitions * pass, options.max_seconds_per_pair + pass);
   if (budget > 0.0) timed = std::min(timed, std::max(pass, budget - pass));  // passes that end inside the budget
   return cost.job_seconds + pass + timed;
-}
-
-std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites, const ReplayOptions& options,
-                                    const JobListRequest& request) {
-  return ListBenchJobs(suites, {}, options, request);
-}
-
-std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
-                                    const std::vector<McpProblemSet>& mcp_suites,
-                                    const ReplayOptions& options, const JobListRequest& request) {
-  return ListBenchJobs(suites, mcp_suites, {}, options, request);
-}
-
-std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
-                                    const std::vector<McpProblemSet>& mcp_suites,
-                                    const std::vector<AviProblemSet>& avi_suites, const ReplayOptions& options,
-                                    const JobListRequest& request) {
-  std::vector<BenchJob> jobs;
-  const auto add = [&](JobKind kind, std::size_t s, std::size_t p, const std::string& solver, double tolerance) {
-    BenchJob job;
-    job.index = jobs.size();
-    job.kind = kind;
-    job.suite = s;
-    job.problem = p;
-    job.suite_name = suites[s].name;
-    job.problem_id = suites[s].problems[p].id;
-    job.solver = solver;
-    job.tolerance = tolerance;
-    job.cost = EstimateJobSeconds(suites[s].problems[p], options, kind, {}, request.budgets);
-    job.estimate = EstimateJobSeconds(suites[s].problems[p], options, kind, CostOf(request, solver), request.budgets);
-    job.id = JobId(job);
-    jobs.push_back(std::move(job));
-  };
-  for (std::size_t s = 0; s < suites.size(); ++s) {
-    const std::size_t n = suites[s].problems.size();
-    for (std::size_t p = 0; p < n; ++p) {
-      for (const std::string& solver : request.solvers) add(JobKind::kCold, s, p, solver, options.tolerance);
-    }
-    if (request.floor && !request.solvers.empty()) {
-      for (std::size_t p = 0; p < n; ++p) add(JobKind::kFloor, s, p, kFloorSolver, options.tolerance);
-    }
-    if (request.generic_sparse_path && suites[s].name == "paper") {
-      for (std::size_t p = 0; p < n; ++p) add(JobKind::kGenericSparse, s, p, kGenericSparsePath, options.tolerance);
-    }
-    for (const std::size_t p : SweepProblemIndices(n, options.tolerance_sweep_problems)) {
-      for (const std::string& solver : request.solvers) {
-        for (const double tol : kSweepTolerances) add(JobKind::kSweep, s, p, solver, tol);
-      }
-    }
-  }
-  // The backends of the MCP (AVI) jobs, then the floor when it is asked for and some backend runs there.
-  const auto with_floor = [&](std::vector<std::string> names) {
-    if (request.floor && !names.empty()) names.push_back(kFloorSolver);
-    return names;
-  };
-  const std::vector<std::string> mcp_jobs = with_floor(request.mcp_solvers), avi_jobs = with_floor(request.avi_solvers);
-  for (std::size_t k = 0; k < mcp_suites.size(); ++k) {
-    const McpProblemSet& set = mcp_suites[k];
-    for (std::size_t p = 0; p < set.problems.size(); ++p) {
-      const McpLibraryProblem& problem = set.problems[p];
-      for (std::size_t start = 0; start < problem.starts.size(); ++start) {
-        for (const std::string& solver : mcp_jobs) {
-          BenchJob job;
-          job.index = jobs.size();
-          job.kind = solver == kFloorSolver ? JobKind::kFloor : JobKind::kMcp;
-          job.suite = suites.size() + k;
-          job.problem = p;
-          job.start = start;
-          job.suite_name = set.name;
-          job.problem_id = problem.id;
-          job.start_label = start < problem.start_labels.size() ? problem.start_labels[start] : "";
-          job.solver = solver;
-          job.tolerance = options.tolerance;
-          job.cost = EstimateMcpJobSeconds(problem, options, {}, request.budgets);
-          job.estimate = EstimateMcpJobSeconds(problem, options, CostOf(request, solver), request.budgets);
-          job.id = JobId(job);
-          jobs.push_back(std::move(job));
-        }
-      }
-    }
-  }
-  for (std::size_t k = 0; k < avi_suites.size(); ++k) {
-    const AviProblemSet& set = avi_suites[k];
-    for (std::size_t p = 0; p < set.problems.size(); ++p) {
-      for (const std::string& solver : avi_jobs) {
-        BenchJob job;
-        job.index = jobs.size();
-        job.kind = solver == kFloorSolver ? JobKind::kFloor : JobKind::kAvi;
-        job.suite = suites.size() + mcp_suites.size() + k;
-        job.problem = p;
-        job.suite_name = set.name;
-        job.problem_id = set.problems[p].id;
-        job.solver = solver;
-        job.tolerance = options.tolerance;
-        job.cost = EstimateAviJobSeconds(set.problems[p], options, {}, request.budgets);
-        job.estimate = EstimateAviJobSeconds(set.problems[p], options, CostOf(request, solver), request.budgets);
-        job.id = JobId(job);
-        jobs.push_back(std::move(job));
-      }
-    }
-  }
-  if (request.warm) {
-    for (std::size_t s = 0; s < suites.size() && s < request.warm->size(); ++s) {
-      const std::vector<WarmSequence>& sequences = (*request.warm)[s];
-      for (std::size_t q = 0; q < sequences.size(); ++q) {
-        for (const std::string& solver : request.solvers) {
-          BenchJob job;
-          job.index = jobs.size();
-          job.kind = JobKind::kWarm;
-          job.suite = s;
-          job.problem = q;
-          job.suite_name = suites[s].name;
-          job.problem_id = sequences[q].id;
-          job.solver = solver;
-          job.tolerance = options.tolerance;
-          job.cost = EstimateWarmJobSeconds(sequences[q], options, {}, request.budgets);
-          job.estimate = EstimateWarmJobSeconds(sequences[q], options, CostOf(request, solver), request.budgets);
-          job.id = JobId(job);
-          jobs.push_back(std::move(job));
-        }
-      }
-    }
-  }
-  if (request.stepper) {
-    BenchJob job;
-    job.index = jobs.size();
-    job.kind = JobKind::kStepper;
-    // Measured (`bench --suite paper`, its line "time-stepper studies took"): 112 s for the full studies (6
-    // refinements) on a 2-core Xeon; 29-30 s for 5 refinements under a job budget on a 2-core AMD EPYC (2026-12,
-    // with the step verdict's cached path).
-    job.cost = options.repetitions <= 3 ? 3.0 : request.budgets.job_seconds > 0.0 ? 30.0 : 120.0;
-    job.estimate = job.cost;
-    job.id = JobId(job);
-    jobs.push_back(std::move(job));
-  }
-  ApplyBackendBudget(request.budgets.backend_seconds, &jobs);
-  return jobs;
 }
 
 std::vector<int> AssignShards(const std::vector<BenchJob>& jobs, int shards) {
@@ -458,10 +289,10 @@ json RunManifestToJson(const RunManifest& m) {
   j["jobs"] = json::array();
   for (std::size_t i = 0; i < m.jobs.size(); ++i) {
     const BenchJob& b = m.jobs[i];
-    j["jobs"].push_back({{"id", b.id}, {"kind", ToString(b.kind)}, {"suite", b.suite}, {"problem", b.problem},
+    j["jobs"].push_back({{"id", b.id}, {"kind", JobKindName(b)}, {"suite", b.suite}, {"problem", b.problem},
                          {"suite_name", b.suite_name}, {"problem_id", b.problem_id}, {"solver", b.solver},
                          {"tolerance", b.tolerance}, {"cost", b.cost}, {"shard", m.job_shard.at(i) + 1}});
-    if (b.kind == JobKind::kMcp || !b.start_label.empty()) j["jobs"].back()["start"] = {{"index", b.start}, {"label", b.start_label}};
+    if ((b.has_start && b.kind == JobKind::kCold) || !b.start_label.empty()) j["jobs"].back()["start"] = {{"index", b.start}, {"label", b.start_label}};
   }
   return j;
 }
@@ -487,7 +318,8 @@ RunManifest RunManifestFromJson(const json& j, const std::string& where) {
       BenchJob job;
       job.index = m.jobs.size();
       job.id = b.at("id").get<std::string>();
-      job.kind = JobKindFromText(b.at("kind").get<std::string>(), where);
+      job.kind_name = b.at("kind").get<std::string>();
+      job.kind = JobKindFromText(job.kind_name, where);
       job.suite = b.at("suite").get<std::size_t>();
       job.problem = b.at("problem").get<std::size_t>();
       job.suite_name = b.at("suite_name").get<std::string>();
@@ -496,7 +328,8 @@ RunManifest RunManifestFromJson(const json& j, const std::string& where) {
       job.tolerance = b.at("tolerance").get<double>();
       job.cost = b.at("cost").get<double>();
       job.estimate = job.cost;
-      if (job.kind == JobKind::kMcp || b.contains("start")) {  // an MCP job, or an MCP problem's floor job
+      if (b.contains("start")) {  // a unit problem × start (an MCP's)
+        job.has_start = true;
         job.start = b.at("start").at("index").get<std::size_t>();
         job.start_label = b.at("start").at("label").get<std::string>();
       }

@@ -24,16 +24,14 @@
 
 namespace smcbench {
 
-// What one job runs.
+// What one job runs. The kind of problem is not a job kind: a cold, sweep or floor job runs whatever its suite's
+// problem kind replays (bench/kinds/problem_kind.h).
 enum class JobKind {
-  kCold,           // problem × backend at the run's tolerance (ReplayOne, mode "cold")
-  kGenericSparse,  // the paper suite's problems with M stored sparse, newton through UMFPACK ("newton-sparse-path")
-  kSweep,          // problem × backend at one tolerance of kSweepTolerances (mode "sweep")
-  kStepper,        // the time-stepper studies (warm/cold starts, work-precision), one job
-  kMcp,            // nonlinear MCP × start × MCP backend at the run's tolerance (ReplayMcpOne, mode "cold")
-  kWarm,           // warm sequence × backend at the run's tolerance (ReplayWarmSequence, mode "warm")
-  kAvi,            // AVI × box backend through SolveAvi at the run's tolerance (ReplayAviOne, mode "cold")
-  kFloor,          // one factorization of the problem's matrix, timed as a cold solve (bench/replay/floor.h)
+  kCold,     // unit × backend at the run's tolerance (mode "cold"): a box problem, an MCP × start, an AVI, ...
+  kSweep,    // problem × backend at one tolerance of kSweepTolerances (mode "sweep")
+  kStepper,  // the time-stepper studies (warm/cold starts, work-precision), one job
+  kWarm,     // warm sequence × backend at the run's tolerance (ReplayWarmSequence, mode "warm")
+  kFloor,    // one factorization of the unit's matrix, timed as a cold solve (bench/replay/floor.h)
 };
 const char* ToString(JobKind kind);
 
@@ -42,9 +40,13 @@ struct BenchJob {
   JobKind kind = JobKind::kCold;
   std::size_t suite = 0;    // index of the suite in the run (not used by kStepper)
   std::size_t problem = 0;  // index of the problem in its suite (kWarm: of the sequence in the suite's sequences)
-  std::size_t start = 0;    // kMcp: index of the start in McpLibraryProblem::starts
+  bool has_start = false;   // the unit is problem × start (an MCP's)
+  std::size_t start = 0;    // with has_start: index of the start in McpLibraryProblem::starts
   std::string suite_name, problem_id, solver;
-  std::string start_label;  // kMcp: McpLibraryProblem::start_labels[start]
+  std::string start_label;  // with has_start: McpLibraryProblem::start_labels[start]
+  // The manifest's "kind" (ToString(kind), or for a cold job its suite's KindSuite::ColdJobName: "mcp", "avi" and
+  // "generic-sparse" as manifests wrote them before the problem kinds); read back as written.
+  std::string kind_name;
   double tolerance = 0.0;
   // Estimated seconds for balancing shards (EstimateJobSeconds with BackendCost's defaults): the same on every
   // machine, so every shard of a run computes the same shards.
@@ -57,6 +59,9 @@ struct BenchJob {
   // label); "suite|sequence|solver|warm|tolerance" for a warm job; "stepper" for the stepper job.
   std::string id;
 };
+
+// What the manifest and `bench --list-jobs` call a job's kind: BenchJob::kind_name, or ToString(kind) when unset.
+std::string JobKindName(const BenchJob& job);
 
 // The name the generic sparse path's records carry as their backend.
 inline constexpr const char* kGenericSparsePath = "newton-sparse-path";
@@ -107,13 +112,10 @@ double EstimateWarmJobSeconds(const WarmSequence& sequence, const ReplayOptions&
 
 struct JobListRequest {
   std::vector<std::string> solvers;  // resolved names (never empty)
-  bool generic_sparse_path = false;  // add the newton-sparse-path jobs for a suite named "paper"
   bool stepper = false;              // add the stepper job (last)
-  // The backends of the MCP jobs: the resolved names whose backend has SolverInfo::mcp (BackendsWith). The others
-  // are not run on MCPs.
-  std::vector<std::string> mcp_solvers;
-  // The backends of the AVI jobs: the resolved names whose backend solves box-MLCPs (BackendsWith).
-  std::vector<std::string> avi_solvers;
+  // The backends of the jobs of each problem kind (KindSuite::kind(); the plan asks ProblemKind::Backends, e.g. the
+  // names whose backend has SolverInfo::mcp for "mcp"); a kind not named here: solvers.
+  std::map<std::string, std::vector<std::string>> kind_solvers;
   // The warm sequences of each box suite (indexed as the suites; null or shorter: none), run on every backend of
   // solvers (warm_track.h).
   const std::vector<std::vector<WarmSequence>>* warm = nullptr;
@@ -125,20 +127,7 @@ struct JobListRequest {
   bool floor = false;
 };
 
-// Every job of a run, in the order a single run writes its results: per suite the cold jobs (problem, then
-// backend), the floor jobs (problem; with request.floor), the generic sparse path (problem), the sweep (SweepProblemIndices, backend, tolerance); then per MCP
-// suite its jobs (problem, start, MCP backend; BenchJob::suite counts on after the box suites: suites.size() + k);
-// then per AVI suite its jobs (problem, box backend; BenchJob::suite counts on after the MCP suites:
-// suites.size() + mcp_suites.size() + k); then the warm jobs (box suite, sequence, backend); then the stepper job.
-std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites, const ReplayOptions& options,
-                                    const JobListRequest& request);
-std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
-                                    const std::vector<McpProblemSet>& mcp_suites,
-                                    const ReplayOptions& options, const JobListRequest& request);
-std::vector<BenchJob> ListBenchJobs(const std::vector<ProblemSet>& suites,
-                                    const std::vector<McpProblemSet>& mcp_suites,
-                                    const std::vector<AviProblemSet>& avi_suites, const ReplayOptions& options,
-                                    const JobListRequest& request);
+// Every job of a run: ListBenchJobs (bench/kinds/job_list.h).
 
 // The shard (0-based, < shards) of every job: longest estimated job first (ties in the order of a stable hash of
 // the job's id, FNV-1a 64), each to the shard with the least estimated work so far (ties: the lowest shard).
@@ -211,8 +200,7 @@ struct RunManifest {
   std::string command;
   nlohmann::json environment;     // BenchEnvironment of the process that started the folder
   nlohmann::json options;         // the options that change what is measured (BenchRunOptions)
-  // suite, description, problems, checksum; no records. The box suites, then the MCP suites, then the AVI suites
-  // (BenchJob::suite).
+  // suite, description, problems, checksum; no records. The plan's suites in its order (BenchJob::suite).
   std::vector<SuiteResults> suites;
   std::vector<BenchJob> jobs;     // the whole run's job list
   int shard = 0, shards = 1;      // this folder's share (0-based)

@@ -17,6 +17,9 @@
 
 #include "bench/replay/jobs.h"
 #include "bench/replay/results_io.h"
+#include "bench/kinds/box_kind.h"
+#include "bench/kinds/job_list.h"
+#include "bench/kinds/mcp_kind.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {
@@ -338,20 +341,20 @@ TEST(McpJobs, ListedPerStartAfterTheBoxSuitesShardedAndAssembled) {
   ReplayOptions options = Quick({});
   JobListRequest request;
   request.solvers = {"lemke", "newton"};
-  request.mcp_solvers = {"newton"};
-  const std::vector<BenchJob> jobs = ListBenchJobs({box}, {set}, options, request);
+  request.kind_solvers["mcp"] = {"newton"};
+  const std::vector<BenchJob> jobs = ListBenchJobs({MakeBoxSuite(box), MakeMcpSuite(set)}, options, request);
   ASSERT_EQ(jobs.size(), 3u);  // (2 + 1 starts) × newton; lemke does not solve MCPs
   EXPECT_EQ(jobs[0].id, "mcp-test|mcp/test/cubic@z0=0|newton|cold|1e-10");
   EXPECT_EQ(jobs[1].id, "mcp-test|mcp/test/cubic@z0=3|newton|cold|1e-10");
   EXPECT_EQ(jobs[2].id, "mcp-test|mcp/test/none@z0=0|newton|cold|1e-10");
   for (std::size_t i = 0; i < jobs.size(); ++i) {
-    EXPECT_EQ(jobs[i].kind, JobKind::kMcp);
+    EXPECT_EQ(jobs[i].kind, JobKind::kCold);
+    EXPECT_EQ(jobs[i].kind_name, "mcp");  // the manifest's name of an MCP job, as before the problem kinds
     EXPECT_EQ(jobs[i].index, i);
     EXPECT_EQ(jobs[i].suite, 1u);  // after the one box suite
     EXPECT_GT(jobs[i].cost, 0.0);
   }
   EXPECT_EQ(jobs[1].start, 1u);
-  EXPECT_EQ(std::string(ToString(JobKind::kMcp)), "mcp");
 
   // Shards: every job in exactly one of them, the same assignment every time.
   const std::vector<int> shard = AssignShards(jobs, 2);
@@ -376,7 +379,8 @@ TEST(McpJobs, ListedPerStartAfterTheBoxSuitesShardedAndAssembled) {
   const RunManifest back = RunManifestFromJson(RunManifestToJson(manifest), "manifest");
   EXPECT_EQ(ManifestMismatch(manifest, back), "");
   ASSERT_EQ(back.jobs.size(), 3u);
-  EXPECT_EQ(back.jobs[1].kind, JobKind::kMcp);
+  EXPECT_EQ(back.jobs[1].kind, JobKind::kCold);
+  EXPECT_EQ(back.jobs[1].kind_name, "mcp");
   EXPECT_EQ(back.jobs[1].start, 1u);
   EXPECT_EQ(back.jobs[1].start_label, "z0=3");
   auto newton = CreateSolver("newton");

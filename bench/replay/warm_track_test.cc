@@ -17,6 +17,8 @@
 #include "bench/replay/jobs.h"
 #include "bench/replay/results_io.h"
 #include "bench/run/warm_sequences.h"
+#include "bench/kinds/box_kind.h"
+#include "bench/kinds/job_list.h"
 #include "solvers/registry/registry.h"
 
 namespace smcbench {
@@ -187,12 +189,12 @@ TEST(WarmTrack, MeasuredCostsChangeTheEstimatesNotTheShards) {
   JobListRequest request;
   request.solvers = {"lemke", "psor"};
   request.warm = &warm;
-  const std::vector<BenchJob> guessed = ListBenchJobs({set}, options, request);
+  const std::vector<BenchJob> guessed = ListBenchJobs(BoxSuites({set}), options, request);
   BackendCost slow;  // lemke measured 100 times slower per unit of work than the guess, plus 0.5 s per job
   slow.job_seconds = 0.5;
   slow.seconds_per_unit = 1e-7;
   request.costs["lemke"] = slow;
-  const std::vector<BenchJob> measured = ListBenchJobs({set}, options, request);
+  const std::vector<BenchJob> measured = ListBenchJobs(BoxSuites({set}), options, request);
   ASSERT_EQ(measured.size(), 6u);  // 2 problems × 2 backends cold, 1 sequence × 2 backends warm
   for (std::size_t i = 0; i < measured.size(); ++i) {
     SCOPED_TRACE(measured[i].id);
@@ -227,9 +229,9 @@ TEST(WarmTrack, TheBackendBudgetCutsTheEstimatesWhereTheRunCutsTheJobs) {
   BackendCost slow;  // lemke: 0.5 s per job
   slow.job_seconds = 0.5;
   request.costs["lemke"] = slow;
-  const std::vector<BenchJob> unbudgeted = ListBenchJobs({set}, options, request);
+  const std::vector<BenchJob> unbudgeted = ListBenchJobs(BoxSuites({set}), options, request);
   request.budgets.backend_seconds = 0.9;  // lemke's second cold job reaches it
-  const std::vector<BenchJob> budgeted = ListBenchJobs({set}, options, request);
+  const std::vector<BenchJob> budgeted = ListBenchJobs(BoxSuites({set}), options, request);
   ASSERT_EQ(budgeted.size(), 8u);  // 3 problems × 2 backends cold, 1 sequence × 2 backends warm
   int lemke_run = 0, lemke_cut = 0;
   for (std::size_t i = 0; i < budgeted.size(); ++i) {
@@ -339,7 +341,7 @@ TEST(WarmTrack, WarmRecordsRoundTripThroughResultsAndJobLines) {
   request.warm = &warm;
   ReplayOptions options = FewRepeats();
   options.tolerance_sweep_problems = 0;
-  const std::vector<BenchJob> jobs = ListBenchJobs({set}, options, request);
+  const std::vector<BenchJob> jobs = ListBenchJobs(BoxSuites({set}), options, request);
   ASSERT_EQ(jobs.size(), 2u);
   EXPECT_EQ(jobs[1].kind, JobKind::kWarm);
   EXPECT_EQ(jobs[1].id, "handmade|handmade/warm/identity-relay|lemke|warm|1e-10");

@@ -12,10 +12,11 @@
 
 #include <nlohmann/json_fwd.hpp>
 
+#include "bench/kinds/job_list.h"
+#include "bench/kinds/problem_filter.h"
+#include "bench/kinds/problem_kind.h"
 #include "bench/replay/jobs.h"
 #include "bench/replay/warm_track.h"
-#include "problems/avi_library/avi_library.h"
-#include "problems/mcp/mcp_library.h"
 #include "problems/suites/catalogue.h"
 
 namespace smcbench {
@@ -76,31 +77,22 @@ struct BenchRequest {
   // run, in every suite (ProblemFilter); a suite left with none is left out, and with globs the stepper studies run
   // only when asked for (StepperStudyChoice::kAlways). Each glob must match some problem.
   std::vector<std::string> problems;
-};
-
-// The problem filter of a run (BenchRequest::problems): an id (a box problem's, an MCP's, an AVI's or a warm
-// sequence's, "<suite>/warm/...") is kept when it matches one of the globs (GlobMatch: '*' any characters, '/'
-// included, '?' one); without globs every id is. It remembers which globs matched, so that a glob that matches
-// nothing (a typo) is refused rather than run as an empty benchmark.
-struct ProblemFilter {
-  std::vector<std::string> globs;
-  std::vector<char> matched;  // per glob: it matched an id Keeps was asked about
-
-  explicit ProblemFilter(std::vector<std::string> globs_in);
-  bool Keeps(std::string_view id);
-  std::vector<std::string> Unmatched() const;  // the globs that matched no id, in the order given
+  // The problem kinds the run knows (bench/kinds/problem_kind.h), in the order their suites come in the plan; a
+  // suite name is built by the first kind that Builds it. Empty: BuiltinProblemKinds() (box, MCP, AVI). A caller
+  // adds a kind of its own here, and nothing else changes.
+  ProblemKinds kinds;
 };
 
 struct BenchPlan {
   BenchRequest request;
   std::vector<std::string> suite_names;  // the request's, defaults filled in and "all" expanded
   std::vector<std::string> solvers;      // resolved (never empty), in the order of the jobs
-  ReplayOptions options;                 // what each job's ReplayOne / ReplayMcpOne / ReplayAviOne is given
-  std::vector<ProblemSet> suites;        // the box suites, in the order named
-  std::vector<McpProblemSet> mcp_suites;  // the MCP suites; BenchJob::suite counts them after suites
-  std::vector<AviProblemSet> avi_suites;  // the AVI suites; BenchJob::suite counts them after mcp_suites
+  ReplayOptions options;                 // what each job's KindSuite::Replay is given
+  // The suites of every kind, grouped by kind in the order of request.kinds (box, MCP, AVI, ...), each kind's in
+  // the order named; BenchJob::suite indexes this list.
+  std::vector<PlanSuite> suites;
   bool stepper = false;                  // the job list ends with the stepper job
-  // The warm sequences of each box suite (indexed as suites; empty without request.warm).
+  // The warm sequences of each suite (indexed as suites: none for a suite without; empty without request.warm).
   std::vector<std::vector<WarmSequence>> warm_sequences;
   std::vector<BenchJob> jobs;            // every job, in the order a single run writes its results
 };
@@ -125,8 +117,8 @@ BenchPlan MakeBenchPlan(const BenchRequest& request, const std::function<void(co
 std::map<std::string, BackendCost> CalibrateBackendCosts(const ReplayOptions& options,
                                                          const std::vector<std::string>& solvers);
 
-// The plan's suites as results.json and the manifest list them (name, description, problems, checksum; no
-// records): the box suites, then the MCP suites, then the AVI suites.
+// The plan's suites as results.json and the manifest list them (KindSuite::Describe: name, description, problems,
+// checksum; no records), in the plan's order.
 std::vector<SuiteResults> PlanSuites(const BenchPlan& plan);
 
 // The options that change what a run measures, as the manifest records them (shards and resumed runs must agree).

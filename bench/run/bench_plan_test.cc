@@ -1,6 +1,8 @@
 // A benchmark plan: its job list for a known suite and backends, when the stepper studies belong to it, and every
 // bad input refused with the field named before anything runs.
 #include "bench/run/bench_plan.h"
+#include "bench/kinds/box_kind.h"
+#include "bench/kinds/mcp_kind.h"
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -43,8 +45,8 @@ std::string MessageOf(const BenchRequest& request) {
 TEST(BenchPlan, ListsColdJobsProblemByProblemThenTheIterativeBackendsSweep) {
   const BenchPlan plan = MakeBenchPlan(TinyRequest());
   ASSERT_EQ(plan.suites.size(), 1u);
-  ASSERT_EQ(plan.suites[0].problems.size(), 5u);
-  EXPECT_TRUE(plan.mcp_suites.empty());
+  ASSERT_EQ(BoxSet(*plan.suites[0]).problems.size(), 5u);
+  EXPECT_EQ(plan.suites[0]->kind(), "box");
   EXPECT_EQ(plan.solvers, (std::vector<std::string>{"lemke", "psor"}));
   EXPECT_FALSE(plan.stepper) << "tiny is not a scene suite";
   EXPECT_EQ(plan.options.repetitions, 3) << "quick: at most 3 samples";
@@ -56,7 +58,7 @@ TEST(BenchPlan, ListsColdJobsProblemByProblemThenTheIterativeBackendsSweep) {
     EXPECT_EQ(job.problem, k / 2);
     EXPECT_EQ(job.solver, k % 2 == 0 ? "lemke" : "psor");
     EXPECT_EQ(job.tolerance, 1e-10);
-    EXPECT_EQ(job.problem_id, plan.suites[0].problems[k / 2].id);
+    EXPECT_EQ(job.problem_id, BoxSet(*plan.suites[0]).problems[k / 2].id);
   }
   // Then the floor, one job per problem (one factorization of its M, bench/replay/floor.h), then the tolerance
   // ladder, for every backend (exact ones too: the ladder is a success rate per tolerance), and nothing else.
@@ -73,7 +75,7 @@ TEST(BenchPlan, ListsColdJobsProblemByProblemThenTheIterativeBackendsSweep) {
   EXPECT_EQ(swept, (std::set<std::string>{"lemke", "psor"}));
   for (const BenchJob& job : plan.jobs) EXPECT_TRUE(ids.insert(job.id).second) << "duplicate id " << job.id;
   // Every problem got its certified reference (the verdict judges forward errors against it).
-  for (const LibraryProblem& p : plan.suites[0].problems) {
+  for (const LibraryProblem& p : BoxSet(*plan.suites[0]).problems) {
     if (p.expected == ExpectedOutcome::kSolvable) {
       EXPECT_TRUE(p.reference.unique()) << p.id;
     }
@@ -83,7 +85,7 @@ TEST(BenchPlan, ListsColdJobsProblemByProblemThenTheIterativeBackendsSweep) {
   ASSERT_EQ(suites.size(), 1u);
   EXPECT_EQ(suites[0].suite, "tiny");
   EXPECT_EQ(suites[0].problems, 5);
-  EXPECT_EQ(suites[0].checksum, ProblemSetContentChecksum(plan.suites[0]));
+  EXPECT_EQ(suites[0].checksum, ProblemSetContentChecksum(BoxSet(*plan.suites[0])));
   EXPECT_EQ(PlanOptionsJson(plan)["stepper"], false);
 }
 
@@ -142,17 +144,13 @@ TEST(BenchPlan, WarmJobsForTheFamiliesSequencesUnlessTurnedOff) {
 // The ids of a plan's problems, per suite in order: box, MCP, AVI.
 std::vector<std::vector<std::string>> PlanIds(const BenchPlan& plan) {
   std::vector<std::vector<std::string>> out;
-  for (const ProblemSet& set : plan.suites) {
+  for (const PlanSuite& suite : plan.suites) {
     out.emplace_back();
-    for (const LibraryProblem& p : set.problems) out.back().push_back(p.id);
-  }
-  for (const McpProblemSet& set : plan.mcp_suites) {
-    out.emplace_back();
-    for (const McpLibraryProblem& p : set.problems) out.back().push_back(p.id);
-  }
-  for (const AviProblemSet& set : plan.avi_suites) {
-    out.emplace_back();
-    for (const AviLibraryProblem& p : set.problems) out.back().push_back(p.id);
+    std::string last;
+    for (const SuiteUnit& unit : suite->Units()) {  // an MCP's units are its problem × start: each problem once
+      if (unit.problem_id != last) out.back().push_back(unit.problem_id);
+      last = unit.problem_id;
+    }
   }
   return out;
 }
@@ -184,12 +182,12 @@ TEST(BenchPlan, ProblemGlobsKeepExactlyTheMatchingProblemsOfEverySuiteKind) {
   EXPECT_EQ(ids[0], murty);
   EXPECT_EQ(ids[1], std::vector<std::string>{"tiny/infeasible-lcp"});
   EXPECT_EQ(ids[2], std::vector<std::string>{"mcp/hard/three-solutions"});
-  EXPECT_EQ(plan.mcp_suites[0].problems[0].starts.size(), 3u);
-  EXPECT_EQ(plan.mcp_suites[0].problems[0].references.size(), 3u);  // references of the kept MCP, attached
+  EXPECT_EQ(McpSet(*plan.suites[2]).problems[0].starts.size(), 3u);
+  EXPECT_EQ(McpSet(*plan.suites[2]).problems[0].references.size(), 3u);  // references of the kept MCP, attached
   ASSERT_FALSE(ids[3].empty());
   for (const std::string& id : ids[3]) EXPECT_EQ(id.rfind("avi/planted/n2/", 0), 0u) << id;
   // The families' warm sequences ("families/warm/...") match no glob: none.
-  ASSERT_EQ(plan.warm_sequences.size(), 2u);
+  ASSERT_EQ(plan.warm_sequences.size(), 4u);  // one list per suite; the MCP and AVI suites have none
   EXPECT_TRUE(plan.warm_sequences[0].empty());
   EXPECT_FALSE(plan.stepper);
   // Every job is one of a kept problem.
@@ -211,8 +209,8 @@ TEST(BenchPlan, ProblemGlobsKeepExactlyTheMatchingProblemsOfEverySuiteKind) {
   const BenchPlan tiny_only = MakeBenchPlan(warm);
   EXPECT_EQ(tiny_only.suite_names, std::vector<std::string>{"tiny"});
   ASSERT_EQ(tiny_only.suites.size(), 1u);
-  EXPECT_EQ(tiny_only.suites[0].name, "tiny");
-  EXPECT_EQ(tiny_only.suites[0].problems.size(), TinySuite().problems.size());
+  EXPECT_EQ(tiny_only.suites[0]->name(), "tiny");
+  EXPECT_EQ(BoxSet(*tiny_only.suites[0]).problems.size(), TinySuite().problems.size());
   // Asked for, the stepper studies stay.
   warm.stepper = StepperStudyChoice::kAlways;
   EXPECT_TRUE(MakeBenchPlan(warm).stepper);

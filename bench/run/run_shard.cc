@@ -8,9 +8,6 @@
 #include <memory>
 #include <utility>
 
-#include "bench/replay/avi_replay.h"
-#include "bench/replay/floor.h"
-#include "bench/replay/mcp_replay.h"
 #include "bench/replay/stepper_study.h"
 #include "bench/replay/warm_track.h"
 #include "solvers/reference/certify.h"
@@ -24,23 +21,6 @@ using Clock = std::chrono::steady_clock;
 
 double SecondsSince(Clock::time_point start) {
   return std::chrono::duration<double>(Clock::now() - start).count();
-}
-
-// The generic path the report compares against: the same problems with M stored sparse, solved by the semismooth
-// Newton backend through UMFPACK (what a general sparse complementarity code does), judged against the same
-// certified solutions.
-ProblemSet SparseCopy(const ProblemSet& set) {
-  ProblemSet sparse;
-  sparse.name = set.name;
-  sparse.description = set.description;
-  for (const LibraryProblem& p : set.problems) {
-    const SparseMatrix S = p.problem.dense_matrix().sparseView();
-    LibraryProblem copy = MakeLibraryProblem(p.id, p.source, BoxMLCP(S, p.problem.q(), p.problem.l(), p.problem.u()));
-    copy.expected = p.expected;
-    copy.reference = p.reference;
-    sparse.problems.push_back(std::move(copy));
-  }
-  return sparse;
 }
 
 // The jobs of one shard, run in order with one backend instance per name (the timed solves are cold sessions, so
@@ -60,23 +40,13 @@ class ShardRunner {
   std::vector<BudgetSkip> Skipped() const {
     std::vector<BudgetSkip> out;
     for (const auto& [key, count] : skipped_) {
+      const KindSuite& suite = *plan_.suites.at(key.first);
       BudgetSkip skip;
       skip.solver = key.second;
       skip.skipped = count;
-      const std::size_t first_avi = plan_.suites.size() + plan_.mcp_suites.size();
-      skip.mcp = key.first >= plan_.suites.size() && key.first < first_avi;
-      if (key.first >= first_avi) {
-        const AviProblemSet& set = plan_.avi_suites[key.first - first_avi];
-        skip.suite = set.name;
-        skip.problems = set.problems.size();
-      } else if (skip.mcp) {
-        const McpProblemSet& set = plan_.mcp_suites[key.first - plan_.suites.size()];
-        skip.suite = set.name;
-        for (const McpLibraryProblem& p : set.problems) skip.problems += p.starts.size();
-      } else {
-        skip.suite = plan_.suites[key.first].name;
-        skip.problems = plan_.suites[key.first].problems.size();
-      }
+      skip.suite = suite.name();
+      skip.units = suite.UnitsNoun();
+      skip.problems = suite.Units().size();
       out.push_back(std::move(skip));
     }
     return out;
@@ -173,45 +143,11 @@ class ShardRunner {
     return it->second.get();
   }
 
-  const AviProblemSet& AviSuiteOf(const BenchJob& job) const {
-    return plan_.avi_suites.at(job.suite - plan_.suites.size() - plan_.mcp_suites.size());
-  }
-
+  // A cold, sweep or floor job, replayed by its suite's kind.
   ReplayRecord Replay(const BenchJob& job) {
-    if (job.kind == JobKind::kFloor) return ReplayFloorJob(job);
-    if (job.kind == JobKind::kAvi) {
-      const AviProblemSet& set = AviSuiteOf(job);
-      return ReplayAviOne(set, set.problems.at(job.problem), SolverFor(job.solver), job.solver, options_,
-                          job.tolerance);
-    }
-    if (job.kind == JobKind::kMcp) {
-      const McpProblemSet& set = plan_.mcp_suites.at(job.suite - plan_.suites.size());
-      return ReplayMcpOne(set, set.problems.at(job.problem), job.start, SolverFor(job.solver), job.solver,
-                          options_, job.tolerance);
-    }
-    const ProblemSet& set = plan_.suites.at(job.suite);
-    if (job.kind != JobKind::kGenericSparse) {
-      return ReplayOne(set, set.problems.at(job.problem), SolverFor(job.solver), job.solver, options_,
-                       job.kind == JobKind::kSweep ? "sweep" : "cold", job.tolerance);
-    }
-    auto it = sparse_.find(job.suite);
-    if (it == sparse_.end()) it = sparse_.emplace(job.suite, SparseCopy(set)).first;
-    return ReplayOne(it->second, it->second.problems.at(job.problem), SolverFor(job.solver), job.solver,
-                     options_, "cold", job.tolerance);
-  }
-
-  // The floor of the job's problem (bench/replay/floor.h), for a box, MCP or AVI suite.
-  ReplayRecord ReplayFloorJob(const BenchJob& job) const {
-    if (job.suite < plan_.suites.size()) {
-      const ProblemSet& set = plan_.suites[job.suite];
-      return ReplayFloor(set, set.problems.at(job.problem), plan_.options);
-    }
-    if (job.suite < plan_.suites.size() + plan_.mcp_suites.size()) {
-      const McpProblemSet& set = plan_.mcp_suites.at(job.suite - plan_.suites.size());
-      return ReplayMcpFloor(set, set.problems.at(job.problem), job.start, plan_.options);
-    }
-    const AviProblemSet& set = AviSuiteOf(job);
-    return ReplayAviFloor(set, set.problems.at(job.problem), plan_.options);
+    const KindSuite& suite = *plan_.suites.at(job.suite);
+    if (job.kind == JobKind::kFloor) return suite.Floor(job, plan_.options);
+    return suite.Replay(job, SolverFor(job.solver), options_);
   }
 
   std::string NotRunMessage(const BenchJob& job) const {
@@ -230,46 +166,20 @@ class ShardRunner {
   }
 
   ReplayRecord UnjudgedRecord(const BenchJob& job) const {
-    if (job.kind == JobKind::kAvi) {
-      const AviProblemSet& set = AviSuiteOf(job);
-      return AviNotRunRecord(set, set.problems.at(job.problem), job.solver, job.tolerance, NotRunMessage(job));
-    }
-    if (job.kind == JobKind::kMcp) {
-      const McpProblemSet& set = plan_.mcp_suites.at(job.suite - plan_.suites.size());
-      return McpNotRunRecord(set, set.problems.at(job.problem), job.start, job.solver, job.tolerance,
-                             NotRunMessage(job));
-    }
-    if (job.kind == JobKind::kWarm) {
-      const WarmSequence& sequence = plan_.warm_sequences.at(job.suite).at(job.problem);
-      ReplayRecord r;
-      r.suite = sequence.suite;
-      r.problem = sequence.id;
-      r.solver = job.solver;
-      r.size = sequence.steps.front().size();
-      r.sparse = sequence.steps.front().sparse();
-      r.expected = sequence.steps.front().expected;
-      r.mode = "warm";
-      r.status = SolveStatus::kTimeLimit;
-      r.message = NotRunMessage(job);
-      r.verdict = Verdict::kFailed;
-      r.residual_abs = r.residual_rel = r.residual_scaled = kInf;
-      r.tolerance = job.tolerance;
-      return r;
-    }
-    const LibraryProblem& p = plan_.suites.at(job.suite).problems.at(job.problem);
+    if (job.kind != JobKind::kWarm) return plan_.suites.at(job.suite)->NotRun(job, NotRunMessage(job));
+    const WarmSequence& sequence = plan_.warm_sequences.at(job.suite).at(job.problem);
     ReplayRecord r;
-    r.suite = plan_.suites[job.suite].name;
-    r.problem = p.id;
+    r.suite = sequence.suite;
+    r.problem = sequence.id;
     r.solver = job.solver;
-    r.size = p.size();
-    r.sparse = p.sparse() || job.kind == JobKind::kGenericSparse;
-    for (const auto& t : p.tags) r.tags += (r.tags.empty() ? "" : ",") + t;
-    r.expected = p.expected;
+    r.size = sequence.steps.front().size();
+    r.sparse = sequence.steps.front().sparse();
+    r.expected = sequence.steps.front().expected;
+    r.mode = "warm";
     r.status = SolveStatus::kTimeLimit;
     r.message = NotRunMessage(job);
-    r.verdict = Verdict::kFailed;  // not run is no answer, even on a problem with no solution
+    r.verdict = Verdict::kFailed;
     r.residual_abs = r.residual_rel = r.residual_scaled = kInf;
-    r.certificate = std::string(ToString(p.reference.certificate));
     r.tolerance = job.tolerance;
     return r;
   }
@@ -324,7 +234,6 @@ class ShardRunner {
   const ReplayOptions options_;  // plan_.options with the job budget applied (BudgetedOptions)
   HostActivity activity_;
   std::map<std::string, std::unique_ptr<Solver>> solvers_;
-  std::map<std::size_t, ProblemSet> sparse_;
   std::map<std::pair<std::size_t, std::string>, double> spent_;
   std::map<std::pair<std::size_t, std::string>, int> skipped_;
 };

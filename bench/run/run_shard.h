@@ -39,10 +39,10 @@ struct ShardSelection {
 };
 
 // A backend that spent its budget on a suite: how many of the suite's jobs for it were not run (sweep jobs
-// included), of how many problems (MCP: problem x start).
+// included), of how many units (KindSuite::Units: problems, or an MCP's problem x start).
 struct BudgetSkip {
   std::string suite, solver;
-  bool mcp = false;
+  std::string units = "problems";  // what the units are (KindSuite::UnitsNoun)
   int skipped = 0;
   std::size_t problems = 0;
 };

@@ -10,6 +10,7 @@
 #include <set>
 
 #include "bench/run/warm_sequences.h"
+#include "bench/kinds/box_kind.h"
 
 namespace smcbench {
 namespace {
@@ -154,7 +155,9 @@ TEST(RunShard, JobAndSequenceBudgetsCutTheJobsAndSaySo) {
   BenchPlan budgeted = MakeBenchPlan(newton);
   // One problem no solve ends within a nanosecond (the tiny suite's are solved before newton first reads its clock):
   // the m = 64 P-matrix LCP that starts the families trajectory.
-  budgeted.suites[0].problems = {TrajectoryWarmSequences("families", /*quick=*/true).back().steps.front()};
+  ProblemSet one_problem = BoxSet(*budgeted.suites[0]);
+  one_problem.problems = {TrajectoryWarmSequences("families", /*quick=*/true).back().steps.front()};
+  budgeted.suites[0] = MakeBoxSuite(std::move(one_problem));
   JobListRequest one;
   one.solvers = budgeted.solvers;
   budgeted.jobs = ListBenchJobs(budgeted.suites, budgeted.options, one);
@@ -205,7 +208,7 @@ TEST(RunShard, ABackendPastItsBudgetIsNotRunOnTheRestOfTheSuite) {
   ASSERT_EQ(summary.skipped.size(), 3u);
   for (const BudgetSkip& skip : summary.skipped) {
     EXPECT_EQ(skip.suite, "tiny");
-    EXPECT_FALSE(skip.mcp);
+    EXPECT_EQ(skip.units, "problems");
     EXPECT_EQ(skip.problems, 5u);
     EXPECT_EQ(skip.skipped, 4) << skip.solver;  // problems: the skipped ladder rungs are not counted
   }

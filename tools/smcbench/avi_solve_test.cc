@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "bench/replay/avi_replay.h"
+#include "bench/kinds/avi_kind.h"
 #include "bench/run/bench_plan.h"
 #include "problems/avi_library/avi_suite.h"
 #include "problems/io/avi_file.h"
@@ -262,9 +263,9 @@ TEST(SolveAviCli, TheAviSuiteWrittenAsOneSetReadsBackAndIsListed) {
   request.solvers = {"lemke"};
   request.quick = true;
   const BenchPlan plan = MakeBenchPlan(request);
-  ASSERT_EQ(plan.avi_suites.size(), 1u);
-  EXPECT_TRUE(plan.suites.empty());
-  EXPECT_EQ(AviProblemSetChecksum(plan.avi_suites[0]), AviProblemSetChecksum(suite));
+  ASSERT_EQ(plan.suites.size(), 1u);
+  EXPECT_EQ(plan.suites[0]->kind(), "avi");
+  EXPECT_EQ(AviProblemSetChecksum(AviSet(*plan.suites[0])), AviProblemSetChecksum(suite));
   // `solve FILE.smcps --id` solves the AVI of the set as its .avi.json file is solved: same answer, bit for bit.
   const AviLibraryProblem& first = suite.problems[0];
   const CliRun from_set = RunSmcbench({"solve", file, "--id", first.id, "--solver", "lemke", "--json"});

@@ -382,7 +382,7 @@ void PrintJobs(const std::vector<BenchJob>& jobs, const std::vector<int>& shard,
     char cost[32];
     std::snprintf(cost, sizeof cost, "%.3g", job.estimate);
     out << job.index + 1 << '\t' << shard[job.index] + 1 << '/' << shards << '\t' << cost << '\t'
-        << ToString(job.kind) << '\t' << job.id << '\n';
+        << JobKindName(job) << '\t' << job.id << '\n';
     total += job.estimate;
     ++listed;
   }
@@ -454,7 +454,7 @@ int BenchCommand::RunBench(const std::string& command_line, std::ostream& out, s
   progress.Finish();
   for (const BudgetSkip& skip : summary.skipped) {
     err << "bench: " << skip.solver << " skipped " << skip.skipped << " of " << skip.problems
-        << (skip.mcp ? " problem x start of suite " : " problems of suite ") << skip.suite
+        << " " << skip.units << " of suite " << skip.suite
         << " after spending its budget of " << f.backend_budget << " s (--backend-budget; recorded as cut)\n";
   }
 
