@@ -687,7 +687,7 @@ template <int N>
   // search would judge another candidate, not this one); it recomputes the merit, a cold path.
   double z_norm = 0.0;
   for (int i = 0; i < N; ++i) z_norm = std::max(z_norm, std::abs(z[i]));
-  const double abs = FixedSizeMerit<N>(problem, result).abs;
+  const double abs = problem.template NaturalResidualAbsFixed<N>(z);  // the merit's abs, without w (the base's)
   if (!(abs <= options.tolerance * std::min(problem.residual_scale(), 1.0 + z_norm) * (1.0 - 4.0 * kEps)) &&
       !PassesBoxMlcpTolerance(FixedSizeMerit<N>(problem, result), options.tolerance)) {
     for (int i = 0; i < N; ++i) zr[i] = z0[i];  // the search starts from the caller's point
