@@ -11,8 +11,10 @@
 
 #include "bench/replay/floor.h"
 #include "bench/run/warm_sequences.h"
+#include "problems/avi_library/avi_library.h"
 #include "problems/library/problem_set_io.h"
 #include "problems/library/references.h"
+#include "problems/mcp/mcp_library.h"
 #include "problems/suites/catalogue.h"
 #include "solvers/core/solver.h"
 
@@ -156,6 +158,8 @@ class BoxKind final : public ProblemKind {
 
   bool Builds(const std::string& suite_name) const override {
     if (IsBoxSuiteName(suite_name)) return true;
+    // The other kinds' built-in suites, never a file of this one (even beside a file of that name).
+    if (suite_name == kMcpSuiteName || suite_name == kAviSuiteName) return false;
     std::error_code ec;
     if (!std::filesystem::is_regular_file(suite_name, ec)) return false;
     try {

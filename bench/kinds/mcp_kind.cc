@@ -72,7 +72,7 @@ class McpKindSuite final : public KindSuite {
 class McpKind final : public ProblemKind {
  public:
   std::string name() const override { return "mcp"; }
-  bool Builds(const std::string& suite_name) const override { return suite_name == "mcp"; }
+  bool Builds(const std::string& suite_name) const override { return suite_name == kMcpSuiteName; }
 
   // The MCP suite of the ids the filter keeps (references attached by the suite itself, to them only), validated,
   // with one line for the log.

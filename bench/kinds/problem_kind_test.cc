@@ -7,6 +7,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
 #include <map>
 #include <memory>
 #include <string>
@@ -16,7 +17,10 @@
 
 #include "bench/analysis/report_markdown.h"
 #include "bench/compare/compare_runs.h"
+#include "bench/kinds/avi_kind.h"
+#include "bench/kinds/box_kind.h"
 #include "bench/kinds/builtin_kinds.h"
+#include "bench/kinds/mcp_kind.h"
 #include "bench/replay/floor.h"
 #include "bench/replay/jobs.h"
 #include "bench/run/bench_plan.h"
@@ -254,6 +258,24 @@ TEST(ProblemKind, UnknownSuitesAreRefusedAndTheFilterReachesEveryKind) {
   ASSERT_EQ(plan.suites.size(), 1u);  // tiny left out
   EXPECT_EQ(plan.suites[0]->Units().size(), 1u);
   EXPECT_EQ(plan.suite_names, std::vector<std::string>{"root"});
+}
+
+// A built-in suite of one kind goes to that kind even beside a file of its name: `bench --suite mcp` in a folder
+// that holds a file named mcp runs the MCP suite, as it did before the kinds (the box kind reads files).
+TEST(ProblemKind, ABuiltInSuiteNameIsNeverReadAsAFile) {
+  const fs::path dir = fs::path(testing::TempDir()) / "kind-names";
+  fs::create_directories(dir);
+  const fs::path before = fs::current_path();
+  fs::current_path(dir);
+  for (const char* name : {"mcp", "avi", "mine.smcps"}) std::ofstream(name) << "not a problem set\n";
+  EXPECT_FALSE(BoxProblemKind()->Builds("mcp"));
+  EXPECT_FALSE(BoxProblemKind()->Builds("avi"));
+  EXPECT_TRUE(McpProblemKind()->Builds("mcp"));
+  EXPECT_TRUE(AviProblemKind()->Builds("avi"));
+  EXPECT_TRUE(BoxProblemKind()->Builds("mine.smcps"));  // a file: the box reader says what is wrong with it
+  EXPECT_TRUE(BoxProblemKind()->Builds("paper"));
+  fs::current_path(before);
+  fs::remove_all(dir);
 }
 
 }  // namespace

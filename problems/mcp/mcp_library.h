@@ -41,8 +41,11 @@ struct McpLibraryProblem {
   bool sparse() const { return problem && problem->jacobian_kind() == MCP::JacobianKind::kSparse; }
 };
 
+// The name of the built-in suite (`bench --suite mcp`) and of its records' suite.
+inline constexpr const char* kMcpSuiteName = "mcp";
+
 struct McpProblemSet {
-  std::string name;         // "mcp", or a user's name
+  std::string name;         // kMcpSuiteName, or a user's name
   std::string description;  // one line
   std::vector<McpLibraryProblem> problems;
 
