@@ -133,7 +133,7 @@ class BoxMLCP {
   double NaturalResidualAbsFixed(const double* z) const {
     const double *a = dense_.data(), *q = q_.data(), *l = l_.data(), *u = u_.data();
     double r = 0.0;
-    bool nan = false;
+    int nan = 0;  // an int, so that the three tests below are or-ed without branches (and without clang's warning)
     for (int i = 0; i < N; ++i) {
       double sum = 0.0;
       for (int j = 0; j < N; ++j) sum += a[i + j * N] * z[j];
@@ -141,7 +141,7 @@ class BoxMLCP {
       const double above_lower = z[i] - l[i];
       const double above_upper = z[i] - u[i];
       const double e = wi > above_lower ? above_lower : (wi < above_upper ? above_upper : wi);
-      nan |= std::isnan(e) | std::isnan(wi) | std::isnan(z[i]);
+      nan |= static_cast<int>(std::isnan(e)) | static_cast<int>(std::isnan(wi)) | static_cast<int>(std::isnan(z[i]));
       r = std::max(r, std::abs(e));
     }
     return nan ? kInf : r;
@@ -209,7 +209,7 @@ class BoxMLCP {
   Residual SmallDenseResidual(const double* a, const double* z, double* w) const {
     const double *q = q_.data(), *l = l_.data(), *u = u_.data(), *inv_d = inv_row_scale_.data();
     double r = 0.0, rs = 0.0, z_norm = 0.0;
-    bool nan = false;
+    int nan = 0;  // an int, so that the three tests below are or-ed without branches (and without clang's warning)
     for (int i = 0; i < N; ++i) {
       double sum = 0.0;
       for (int j = 0; j < N; ++j) sum += a[i + j * N] * z[j];
