@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <map>
 
+#include "bench/kinds/set_kind_suite.h"
 #include "bench/replay/avi_replay.h"
 #include "bench/replay/floor.h"
 #include "problems/avi_library/avi_suite.h"
@@ -27,29 +28,11 @@ bool IsAviSetFile(const std::string& name) {
   }
 }
 
-class AviKindSuite final : public KindSuite {
+class AviKindSuite final : public SetKindSuite<AviProblemSet, AviProblemSetChecksum> {
  public:
-  explicit AviKindSuite(AviProblemSet set) : set_(std::move(set)) {}
-
-  const AviProblemSet& set() const { return set_; }
+  using SetKindSuite::SetKindSuite;
 
   std::string kind() const override { return "avi"; }
-  std::string name() const override { return set_.name; }
-
-  SuiteResults Describe() const override {
-    SuiteResults suite;
-    suite.suite = set_.name;
-    suite.description = set_.description;
-    suite.problems = static_cast<int>(set_.problems.size());
-    suite.checksum = AviProblemSetChecksum(set_);
-    return suite;
-  }
-
-  std::vector<SuiteUnit> Units() const override {
-    std::vector<SuiteUnit> units;
-    for (std::size_t p = 0; p < set_.problems.size(); ++p) units.push_back({p, set_.problems[p].id, false, 0, ""});
-    return units;
-  }
 
   std::string ColdJobName(const std::string& /*solver*/) const override { return "avi"; }
 
@@ -70,8 +53,6 @@ class AviKindSuite final : public KindSuite {
     return AviNotRunRecord(set_, set_.problems.at(job.problem), job.solver, job.tolerance, message);
   }
 
- private:
-  AviProblemSet set_;
 };
 
 class AviKind final : public ProblemKind {
@@ -138,9 +119,7 @@ std::shared_ptr<const ProblemKind> AviProblemKind() { return std::make_shared<Av
 PlanSuite MakeAviSuite(AviProblemSet set) { return std::make_shared<AviKindSuite>(std::move(set)); }
 
 const AviProblemSet& AviSet(const KindSuite& suite) {
-  const auto* avi = dynamic_cast<const AviKindSuite*>(&suite);
-  if (!avi) throw InvalidInputError("suite " + suite.name() + " is of kind " + suite.kind() + ", not avi");
-  return avi->set();
+  return SetOf<AviKindSuite>(suite, "avi");
 }
 
 }  // namespace smcbench

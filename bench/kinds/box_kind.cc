@@ -9,6 +9,7 @@
 #include <map>
 #include <mutex>
 
+#include "bench/kinds/set_kind_suite.h"
 #include "bench/replay/floor.h"
 #include "bench/run/warm_sequences.h"
 #include "problems/avi_library/avi_library.h"
@@ -48,30 +49,12 @@ ProblemSet SparseCopy(const ProblemSet& set) {
   return sparse;
 }
 
-class BoxKindSuite final : public KindSuite {
+class BoxKindSuite final : public SetKindSuite<ProblemSet, ProblemSetContentChecksum> {
  public:
   BoxKindSuite(ProblemSet set, bool generic_sparse_path)
-      : set_(std::move(set)), generic_sparse_path_(generic_sparse_path && set_.name == "paper") {}
-
-  const ProblemSet& set() const { return set_; }
+      : SetKindSuite(std::move(set)), generic_sparse_path_(generic_sparse_path && set_.name == "paper") {}
 
   std::string kind() const override { return "box"; }
-  std::string name() const override { return set_.name; }
-
-  SuiteResults Describe() const override {
-    SuiteResults suite;
-    suite.suite = set_.name;
-    suite.description = set_.description;
-    suite.problems = static_cast<int>(set_.problems.size());
-    suite.checksum = ProblemSetContentChecksum(set_);
-    return suite;
-  }
-
-  std::vector<SuiteUnit> Units() const override {
-    std::vector<SuiteUnit> units;
-    for (std::size_t p = 0; p < set_.problems.size(); ++p) units.push_back({p, set_.problems[p].id, false, 0, ""});
-    return units;
-  }
 
   // Per suite: the cold jobs (problem, backend), the floor (problem), the generic sparse path (problem), the sweep
   // (SweepProblemIndices, backend, tolerance).
@@ -146,7 +129,6 @@ class BoxKindSuite final : public KindSuite {
     return sparse_;
   }
 
-  ProblemSet set_;
   bool generic_sparse_path_;
   mutable std::once_flag sparse_made_;
   mutable ProblemSet sparse_;
@@ -256,9 +238,7 @@ PlanSuite MakeBoxSuite(ProblemSet set, bool generic_sparse_path) {
 }
 
 const ProblemSet& BoxSet(const KindSuite& suite) {
-  const auto* box = dynamic_cast<const BoxKindSuite*>(&suite);
-  if (!box) throw InvalidInputError("suite " + suite.name() + " is of kind " + suite.kind() + ", not box");
-  return box->set();
+  return SetOf<BoxKindSuite>(suite, "box");
 }
 
 std::vector<PlanSuite> BoxSuites(std::vector<ProblemSet> sets) {

@@ -4,6 +4,7 @@
 #include <cstdio>
 #include <map>
 
+#include "bench/kinds/set_kind_suite.h"
 #include "bench/replay/floor.h"
 #include "bench/replay/mcp_replay.h"
 #include "problems/mcp/mcp_suite.h"
@@ -14,23 +15,11 @@ namespace {
 
 using Clock = std::chrono::steady_clock;
 
-class McpKindSuite final : public KindSuite {
+class McpKindSuite final : public SetKindSuite<McpProblemSet, McpProblemSetChecksum> {
  public:
-  explicit McpKindSuite(McpProblemSet set) : set_(std::move(set)) {}
-
-  const McpProblemSet& set() const { return set_; }
+  using SetKindSuite::SetKindSuite;
 
   std::string kind() const override { return "mcp"; }
-  std::string name() const override { return set_.name; }
-
-  SuiteResults Describe() const override {
-    SuiteResults suite;
-    suite.suite = set_.name;
-    suite.description = set_.description;
-    suite.problems = static_cast<int>(set_.problems.size());
-    suite.checksum = McpProblemSetChecksum(set_);
-    return suite;
-  }
 
   // Problem × start, in that order.
   std::vector<SuiteUnit> Units() const override {
@@ -65,8 +54,6 @@ class McpKindSuite final : public KindSuite {
     return McpNotRunRecord(set_, set_.problems.at(job.problem), job.start, job.solver, job.tolerance, message);
   }
 
- private:
-  McpProblemSet set_;
 };
 
 class McpKind final : public ProblemKind {
@@ -121,9 +108,7 @@ std::shared_ptr<const ProblemKind> McpProblemKind() { return std::make_shared<Mc
 PlanSuite MakeMcpSuite(McpProblemSet set) { return std::make_shared<McpKindSuite>(std::move(set)); }
 
 const McpProblemSet& McpSet(const KindSuite& suite) {
-  const auto* mcp = dynamic_cast<const McpKindSuite*>(&suite);
-  if (!mcp) throw InvalidInputError("suite " + suite.name() + " is of kind " + suite.kind() + ", not mcp");
-  return mcp->set();
+  return SetOf<McpKindSuite>(suite, "mcp");
 }
 
 }  // namespace smcbench

@@ -7,27 +7,20 @@ Usage: callgrind_instr.py DUMP BINARY REGEX [UNITS]
 Make the dump with --dump-instr=yes --compress-strings=no --compress-pos=no (docs/auto.md, "Issue 34.3").
 """
 import collections
+import os
 import re
 import subprocess
 import sys
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from callgrind_self import self_cost_lines  # noqa: E402  the dump's own-cost lines, read as callgrind_self reads them
+
 
 def instruction_costs(path, pattern):
     costs = collections.Counter()
-    fn = None
-    after_call = False
-    with open(path) as f:
-        for line in f:
-            if line.startswith("fn="):
-                fn = line[3:].rstrip("\n")
-            elif line.startswith("calls="):
-                after_call = True
-            elif line.startswith("0x"):
-                if after_call:
-                    after_call = False  # the callee's inclusive cost, not this instruction's
-                elif fn is not None and re.search(pattern, fn):
-                    fields = line.split()
-                    costs[int(fields[0], 16)] += int(fields[-1])
+    for fn, fields in self_cost_lines(path):
+        if fields[0].startswith("0x") and fn is not None and re.search(pattern, fn):
+            costs[int(fields[0], 16)] += int(fields[-1])
     return costs
 
 

@@ -10,8 +10,8 @@ import collections
 import sys
 
 
-def self_costs(path):
-    costs = collections.Counter()
+def self_cost_lines(path):
+    """(function, fields) of every cost line of the dump that is the function's own (position(s), then cost)."""
     fn = None
     after_call = False
     with open(path) as f:
@@ -25,7 +25,13 @@ def self_costs(path):
                 if after_call:
                     after_call = False  # the callee's inclusive cost, not this function's own
                 elif len(fields) >= 2:
-                    costs[fn] += int(fields[-1])
+                    yield fn, fields
+
+
+def self_costs(path):
+    costs = collections.Counter()
+    for fn, fields in self_cost_lines(path):
+        costs[fn] += int(fields[-1])
     return costs
 
 
