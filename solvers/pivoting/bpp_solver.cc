@@ -36,6 +36,13 @@ constexpr int kMinSweptRows = 32;
 // rows, solve/families/spd-relay/m8 took 5263 instructions against 4245; at m = 15, relay1.dat, the solve's
 // instructions fell from about 118 k to 46 k).
 constexpr int kMinPrefixCholeskyRows = 12;
+// ... and only from the set after this many (the symmetry test too): the first sets are factored by the inline LU,
+// as below 12 rows. A solve of two or three sets, most at these sizes, gains nothing from rows kept between sets,
+// and taking the Cholesky path from the first set cost more there (random SPD relays, LCPs and mixed bounds at
+// m = 12-15: 4-10 % more time in `bench`, median per class; 1.03-1.41x the instructions through smcbench.solve,
+// which tests the symmetry on every call); a solve of many sets (relay1.dat: 7; an SPD relay of condition 1e6:
+// 186) keeps rows from the third set on.
+constexpr int kLuSetsBeforePrefixCholesky = 2;
 
 template <typename... Args>
 void SetMessage(SolveResult* result, const char* format, Args... args) {
@@ -139,7 +146,10 @@ bool BppSolver::SolveActiveSet<false>(const BoxMLCP& problem, double* z) {
   // few hundred instructions).
   if (nf == 0) return true;
   ++small_factorizations_;
-  if (small_cholesky_) {
+  if (small_cholesky_ && small_factorizations_ == kLuSetsBeforePrefixCholesky + 1) {
+    small_cholesky_ = SymmetricUpToRowScaling(problem);  // also checks the positive diagonal
+  }
+  if (small_cholesky_ && small_factorizations_ > kLuSetsBeforePrefixCholesky) {
     switch (prefix_.Solve(m, n, problem.q().data(), row_ratio_.data(), inv_row_ratio_.data(), s.free_rows, nf,
                           options_.pivot_tolerance, z)) {
       case PrefixCholesky::Outcome::kSolved:
@@ -283,8 +293,8 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
   small_cholesky_sets_ = 0;
   small_cholesky_ = false;
   if constexpr (!Sparse) {
-    if (n < UpdatedFreeBlock::kMinRows && n >= kMinPrefixCholeskyRows && options_.cholesky &&
-        SymmetricUpToRowScaling(problem)) {
+    // A candidate: SolveActiveSet tests the symmetry when the third set comes (kLuSetsBeforePrefixCholesky).
+    if (n < UpdatedFreeBlock::kMinRows && n >= kMinPrefixCholeskyRows && options_.cholesky) {
       small_cholesky_ = true;
       prefix_.Resize(n);
       prefix_.ResetCounts();
@@ -454,7 +464,7 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
         // The answer's block was factored afresh (an update's answer is left to the polish) and is exact: when the
         // polish would read the same set off z, it would only factor the block again.
         if (options.polish && !clipped &&
-            (updatable ? updated_.last_path() == UpdatedFreeBlock::Path::kFactored : n >= kMinPrefixCholeskyRows) &&
+            (updatable ? updated_.last_path() == UpdatedFreeBlock::Path::kFactored : small_cholesky_sets_ > 0) &&
             PolishWouldRepeat(problem, z, s.state)) {
           NotePolishRedundant();
         }

@@ -35,8 +35,8 @@
 // mixed bounds). A warm start from the solution's own active set solves in one iteration. Nothing is remembered
 // between solves (the session's reused active set does that).
 //
-// Dense M of 12 to 15 rows that is symmetric up to the base's row scaling with a positive diagonal: each set is solved
-// by a Cholesky factor of (R⁻¹ M)_FF that keeps the leading rows of the last set's factor (prefix_cholesky.h), the
+// Dense M of 12 to 15 rows that is symmetric up to the base's row scaling with a positive diagonal: from the third
+// set on (the first two by the inline LU), each set is solved by a Cholesky factor of (R⁻¹ M)_FF that keeps the leading rows of the last set's factor (prefix_cholesky.h), the
 // inline LU taking over for the rest of the solve when a block is not positive definite (option cholesky); an
 // answer the polish would only solve again is not polished (as below). Detail reused_cholesky_rows.
 // Dense M of at least 16 rows (below, every set is factored inline): the first set's free block is factored (dense_lu up to 64 rows, Eigen's blocked in-place LU above); each
@@ -151,7 +151,7 @@ class BppSolver final : public BackendWithOptions<BppOptions> {
   UpdatedFreeBlock updated_;                  // dense M of ≥ kMinRows rows: the free block's factors, updated
   int small_factorizations_ = 0;              // dense M of fewer rows: the sets factored this solve
   PrefixCholesky prefix_;                     // dense symmetric M of fewer rows: the free blocks' Cholesky
-  bool small_cholesky_ = false;               // this solve factors the small blocks by prefix_ (until one fails)
+  bool small_cholesky_ = false;               // this solve may factor its small blocks by prefix_ (until one fails)
   int small_cholesky_sets_ = 0;               // of small_factorizations_, the sets prefix_ solved
   Vector guess_;                              // SweptGuess's iterate
   Vector row_ratio_, inv_row_ratio_;          // SymmetricUpToRowScaling's d_i / d_0 and d_0 / d_i

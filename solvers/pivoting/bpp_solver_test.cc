@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/QR>
 
 #include <algorithm>
 #include <cmath>
@@ -833,9 +834,40 @@ TEST(PrefixCholesky, ABlockThatIsNotPositiveDefiniteDropsTheFactor) {
   EXPECT_NEAR(z[5], -q[5] / 2.0, 1e-15);
 }
 
-// Below UpdatedFreeBlock::kMinRows, a symmetric M's sets are solved by PrefixCholesky: the same answers as the LU
-// (cholesky = false), the planted solution, enum's (LCPs) or lemke's, and an answer the polish would only solve
-// again is not polished (the point is the raw one, bit for bit).
+// A relay whose entries span 8 decades (the shape of Siconos' relay1.dat: a graded symmetric positive definite M,
+// bounds far below q's scale).
+BoxMLCP GradedRelay() {
+  const int n = 15;
+  DenseMatrix M(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) M(i, j) = std::pow(10.0, 7.0 - 0.25 * (i + j)) / (1.0 + i + j);  // Hilbert, graded
+  }
+  M.diagonal() *= 2.0;
+  return BoxMLCP::Relay(M, Vector::Constant(n, -13.3), -0.1, 0.1, "graded-relay");
+}
+
+// An SPD relay of condition 1e6 (U diag(1 … 1e-6) Uᵀ, U a random rotation; m = 15, q of the bounds' scale): bpp goes
+// through many sets, more than the two it factors by LU before PrefixCholesky.
+BoxMLCP IllConditionedRelay() {
+  const int n = 15;
+  std::mt19937_64 rng(5);
+  std::normal_distribution<double> normal;
+  DenseMatrix A(n, n);
+  for (int i = 0; i < n; ++i) {
+    for (int j = 0; j < n; ++j) A(i, j) = normal(rng);
+  }
+  const DenseMatrix U = Eigen::HouseholderQR<DenseMatrix>(A).householderQ();
+  Vector spectrum(n), q(n);
+  for (int i = 0; i < n; ++i) spectrum[i] = std::pow(10.0, -6.0 * i / (n - 1));
+  for (int i = 0; i < n; ++i) q[i] = 2e-3 * normal(rng);
+  const DenseMatrix M = U * spectrum.asDiagonal() * U.transpose();
+  const DenseMatrix S = 0.5 * (M + M.transpose());
+  return BoxMLCP::Relay(S, q, -1.0, 1.0, "ill-conditioned-relay");
+}
+
+// Below UpdatedFreeBlock::kMinRows, a symmetric M's sets after the second are solved by PrefixCholesky (the first
+// two by the inline LU): the same answers as the LU (cholesky = false), the planted solution, enum's (LCPs) or
+// lemke's, and an answer the polish would only solve again is not polished (the point is the raw one, bit for bit).
 TEST(BppSolver, SmallSymmetricBlocksTakeThePrefixCholesky) {
   BppOptions lu_only;
   lu_only.cholesky = false;
@@ -854,8 +886,11 @@ TEST(BppSolver, SmallSymmetricBlocksTakeThePrefixCholesky) {
         const SolveResult b = lu.Solve(gen.problem);
         ASSERT_TRUE(a.solved()) << where << ": " << a.message;
         ASSERT_TRUE(b.solved()) << where << ": " << b.message;
-        if (a.GetDetail("factorizations") > 0.0) {  // 0 when the first set has every row at a bound
-          EXPECT_EQ(a.GetDetail("cholesky_factorizations"), a.GetDetail("factorizations")) << where;
+        const double factorizations = a.GetDetail("factorizations");  // 0 when the first set has every row bound
+        if (factorizations > 2.0) {
+          EXPECT_EQ(a.GetDetail("cholesky_factorizations"), factorizations - 2.0) << where;
+        } else {
+          EXPECT_TRUE(std::isnan(a.GetDetail("cholesky_factorizations"))) << where << ": the two LU sets";
         }
         EXPECT_TRUE(std::isnan(b.GetDetail("cholesky_factorizations"))) << where;
         EXPECT_LE(ForwardError(a.z, DirectSolveOnKnownSet(gen.problem, gen.z_star)), 1e-12) << where;
@@ -870,39 +905,56 @@ TEST(BppSolver, SmallSymmetricBlocksTakeThePrefixCholesky) {
       }
     }
   }
-  // A relay whose entries span 8 decades (the shape of Siconos' relay1.dat: a graded symmetric positive definite
-  // M, bounds far below q's scale): the prefix keeps rows between sets, and the answer is lemke's.
-  const int n = 15;
-  DenseMatrix M(n, n);
-  for (int i = 0; i < n; ++i) {
-    for (int j = 0; j < n; ++j) M(i, j) = std::pow(10.0, 7.0 - 0.25 * (i + j)) / (1.0 + i + j);  // Hilbert, graded
+  // The graded relay, and one of many sets: the answers are lemke's; on the second, the prefix keeps rows between
+  // its sets after the first two.
+  for (const BoxMLCP& relay : {GradedRelay(), IllConditionedRelay()}) {
+    ASSERT_TRUE(relay.IsSymmetric());
+    const SolveResult a = cholesky.Solve(relay);
+    ASSERT_TRUE(a.solved()) << relay.name() << ": " << a.message;
+    const SolveResult e = lemke.Solve(relay);
+    ASSERT_TRUE(e.solved()) << e.message;
+    EXPECT_LE(ForwardError(a.z, e.z), 1e-8) << relay.name();
+    EXPECT_LE(a.residual_scaled, 1e-10) << relay.name();
   }
-  M.diagonal() *= 2.0;
-  const BoxMLCP relay = BoxMLCP::Relay(M, Vector::Constant(n, -13.3), -0.1, 0.1, "graded-relay");
-  ASSERT_TRUE(relay.IsSymmetric());
-  const SolveResult a = cholesky.Solve(relay);
-  ASSERT_TRUE(a.solved()) << a.message;
-  EXPECT_GT(a.GetDetail("cholesky_factorizations"), 0.0);
-  const SolveResult e = lemke.Solve(relay);
-  ASSERT_TRUE(e.solved()) << e.message;
-  EXPECT_LE(ForwardError(a.z, e.z), 1e-8);
-  EXPECT_LE(a.residual_scaled, 1e-10);
+  const SolveResult many = cholesky.Solve(IllConditionedRelay());
+  ASSERT_GT(many.GetDetail("factorizations"), 3.0);
+  EXPECT_EQ(many.GetDetail("cholesky_factorizations"), many.GetDetail("factorizations") - 2.0);
+  EXPECT_GT(many.GetDetail("reused_cholesky_rows"), 0.0);
+}
+
+TEST(BppSolver, SmallSymmetricBlocksOfAFewSetsStayWithTheLu) {
+  // At most two sets (most solves at these sizes): the inline LU alone, the same bits as with cholesky = false.
+  BppOptions lu_only;
+  lu_only.cholesky = false;
+  BppSolver cholesky, lu(lu_only);
+  int checked = 0;
+  for (std::uint64_t seed : {1, 2, 3, 4, 5}) {
+    const GeneratedProblem gen = Planted(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 14, seed);
+    const SolveResult a = cholesky.Solve(gen.problem);
+    if (!(a.GetDetail("factorizations") <= 2.0)) continue;
+    ++checked;
+    const SolveResult b = lu.Solve(gen.problem);
+    EXPECT_EQ(a.z, b.z) << gen.problem.name();
+    EXPECT_EQ(a.iterations, b.iterations) << gen.problem.name();
+    EXPECT_TRUE(std::isnan(a.GetDetail("cholesky_factorizations"))) << gen.problem.name();
+  }
+  EXPECT_GT(checked, 0);
 }
 
 // The small Cholesky path allocates nothing after the first solve of a size, polished or not.
 TEST(BppSolver, SmallCholeskySolvesDoNotAllocate) {
   if (!test_support::CanCountMallocs()) GTEST_SKIP() << "malloc belongs to the sanitizer runtime in this build";
-  const GeneratedProblem gen = Planted(MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 12, 3);
+  const BoxMLCP relay = IllConditionedRelay();  // more sets than the two the LU factors first
   for (bool polish : {true, false}) {
     BppSolver solver;
     SolverOptions options;
     options.polish = polish;
     SolveResult result;
-    solver.Solve(gen.problem, options, &result);
+    solver.Solve(relay, options, &result);
     ASSERT_TRUE(result.solved()) << result.message;
     ASSERT_GT(result.GetDetail("cholesky_factorizations"), 0.0);
     const long allocations = test_support::CountMallocs([&] {
-      for (int k = 0; k < 3; ++k) solver.Solve(gen.problem, options, &result);
+      for (int k = 0; k < 3; ++k) solver.Solve(relay, options, &result);
     });
     EXPECT_EQ(allocations, 0) << polish;
     EXPECT_TRUE(result.solved());
