@@ -78,13 +78,17 @@ void WriteCachedNote(std::ostream& md, const std::vector<std::string>& cached) {
 }
 
 void WriteSuite(std::ostream& md, const SuiteResults& suite, const std::string& dir, bool plots) {
-  if (suite.replay.records.empty() && suite.replay.sweep.empty()) {
+  if (suite.replay.records.empty() && suite.replay.sweep.empty() && suite.warm.empty()) {
     md << "## Suite `" << suite.suite << "`: " << suite.description << "\n\nNo records: no chosen backend ran on it "
        << "(an MCP suite runs only on the backends that solve MCPs, an AVI suite on those that solve box-MLCPs).\n\n";
     return;
   }
   if (IsMcpSuite(suite)) return WriteMcpSection(md, suite, dir, plots);
   if (IsAviSuite(suite)) return WriteAviSection(md, suite, dir, plots);
+  if (suite.replay.records.empty() && suite.replay.sweep.empty()) {  // its warm sequences alone were chosen
+    md << "## Suite `" << suite.suite << "`: " << suite.description << "\n\n";
+    return WriteWarmTrack(md, suite, dir, plots);
+  }
   WriteSuiteSummary(md, suite);
   WriteSolvedNothing(md, suite);
   WriteStatusesAndClaims(md, suite);

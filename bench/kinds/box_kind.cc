@@ -167,10 +167,12 @@ class BoxKind final : public ProblemKind {
     if (set.problems.empty()) throw InvalidInputError("bench: suite '" + suite_name + "' holds no problem");
     built.first_id = set.problems.front().id;
     KeepSelected(&set.problems, [](const LibraryProblem& p) -> const std::string& { return p.id; }, filter);
-    if (set.problems.empty()) return built;
-    set.Validate();
-    if (request.certify) built.line = Certify(&set, build_start);
+    // The warm sequences are filtered on their own ids: `--problem 'families/warm/*'` keeps the suite for them alone,
+    // with no cold problem.
     if (request.warm) built.warm = WarmSequences(set, suite_name, request, filter, &built.warm_line);
+    if (set.problems.empty() && built.warm.empty()) return built;
+    set.Validate();
+    if (request.certify && !set.problems.empty()) built.line = Certify(&set, build_start);
     const bool generic_sparse_path =
         request.solvers.empty() ||
         std::find(request.solvers.begin(), request.solvers.end(), "newton") != request.solvers.end();

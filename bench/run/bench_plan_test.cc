@@ -211,6 +211,19 @@ TEST(BenchPlan, ProblemGlobsKeepExactlyTheMatchingProblemsOfEverySuiteKind) {
   ASSERT_EQ(tiny_only.suites.size(), 1u);
   EXPECT_EQ(tiny_only.suites[0]->name(), "tiny");
   EXPECT_EQ(BoxSet(*tiny_only.suites[0]).problems.size(), TinySuite().problems.size());
+  // A glob for the warm sequences alone keeps the suite for them, with no cold problem and only warm jobs.
+  warm.problems = {"families/warm/*"};
+  const BenchPlan warm_only = MakeBenchPlan(warm);
+  EXPECT_EQ(warm_only.suite_names, std::vector<std::string>{"families"});
+  ASSERT_EQ(warm_only.suites.size(), 1u);
+  EXPECT_TRUE(BoxSet(*warm_only.suites[0]).problems.empty());
+  ASSERT_EQ(warm_only.warm_sequences.size(), 1u);
+  EXPECT_EQ(warm_only.warm_sequences[0].size(), 2u);
+  ASSERT_FALSE(warm_only.jobs.empty());
+  for (const BenchJob& job : warm_only.jobs) {
+    EXPECT_TRUE(job.kind == JobKind::kWarm) << job.id;
+    EXPECT_EQ(job.problem_id.rfind("families/warm/", 0), 0u) << job.id;
+  }
   // Asked for, the stepper studies stay.
   warm.stepper = StepperStudyChoice::kAlways;
   EXPECT_TRUE(MakeBenchPlan(warm).stepper);

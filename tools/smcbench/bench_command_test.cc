@@ -1104,6 +1104,26 @@ TEST(Bench, McpSuiteJobsAndRun) {
   fs::remove_all(dir);
 }
 
+// `--problem 'families/warm/*'` alone runs the families' warm sequences (no cold problem matches): the report's
+// section of the suite is its warm track.
+TEST(BenchCommand, AGlobForTheWarmSequencesAloneRunsThem) {
+  const fs::path dir = fs::temp_directory_path() / ("smcbench-bench-warm-only-" + std::to_string(::getpid()));
+  fs::remove_all(dir);
+  const CliRun r = RunSmcbench({"bench", "--suite", "families", "--quick", "--problem", "families/warm/*",
+                                "--solver", "lemke", "--out", dir.string(), "--report", "--no-plots"});
+  ASSERT_EQ(r.code, 0) << r.err;
+  EXPECT_THAT(r.err, HasSubstr("warm track of suite families: 2 sequences"));
+  const BenchResults back = ReadBenchResults(dir.string());
+  ASSERT_EQ(back.suites.size(), 1u);
+  EXPECT_TRUE(back.suites[0].replay.records.empty());
+  ASSERT_EQ(back.suites[0].warm.size(), 2u);
+  for (const WarmRecord& w : back.suites[0].warm) EXPECT_EQ(w.record.verdict, Verdict::kSolved) << w.record.problem;
+  const std::string md = ReadText(dir / "report.md");
+  EXPECT_THAT(md, HasSubstr("### Warm track of suite `families`"));
+  EXPECT_THAT(md, Not(HasSubstr("No records")));
+  fs::remove_all(dir);
+}
+
 // The MCP suite's jobs shard, merge and resume like the box's: two shards merged are the single run, and a backend
 // past its budget gets its remaining problem × start recorded as not run, start label kept.
 TEST(Shards, McpJobsMergeToTheSingleRunAndRespectTheBudget) {
