@@ -18,9 +18,13 @@ constexpr double kInfTime = std::numeric_limits<double>::infinity();
 
 }  // namespace
 
-bool IsAviSuite(const SuiteResults& suite) { return suite.suite == kAviSuiteName; }
+// By the suite's recorded kind; results written before it was recorded: by the name (AVI) or the records (MCP).
+bool IsAviSuite(const SuiteResults& suite) {
+  return suite.kind.empty() ? suite.suite == kAviSuiteName : suite.kind == "avi";  // AviProblemKind's name
+}
 
 bool IsMcpSuite(const SuiteResults& suite) {
+  if (!suite.kind.empty()) return suite.kind == "mcp";  // McpProblemKind's name
   return std::any_of(suite.replay.records.begin(), suite.replay.records.end(),
                      [](const ReplayRecord& r) { return !r.start.empty(); });
 }

@@ -42,9 +42,10 @@ struct BackendSummary {
   int correct() const { return solved + correctly_refused; }
 };
 
-// True when the suite's records are MCP problem × start (ReplayRecord::start set): the report's MCP section.
+// True for a suite of the MCP kind (SuiteResults::kind "mcp"; in older results, records that are problem × start):
+// the report's MCP section.
 bool IsMcpSuite(const SuiteResults& suite);
-// True for the `avi` suite (kAviSuiteName): AVI × box backend records, the report's AVI section.
+// True for a suite of the AVI kind (kind "avi"; in older results, the suite named `avi`): the report's AVI section.
 bool IsAviSuite(const SuiteResults& suite);
 
 // Shifted geometric mean of the per-problem median times, shift 1e-6 s, a problem the backend does not get right

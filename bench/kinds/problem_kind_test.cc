@@ -80,6 +80,7 @@ class RootSuite final : public KindSuite {
   SuiteResults Describe() const override {
     SuiteResults suite;
     suite.suite = "root";
+    suite.kind = "root";
     suite.description = "scalar roots of x^3 + a x = b";
     suite.problems = static_cast<int>(problems_.size());
     suite.checksum = StableHashHex(std::to_string(problems_.size()));

@@ -25,6 +25,7 @@ class SetKindSuite : public KindSuite {
   SuiteResults Describe() const override {
     SuiteResults suite;
     suite.suite = set_.name;
+    suite.kind = kind();
     suite.description = set_.description;
     suite.problems = static_cast<int>(set_.problems.size());
     suite.checksum = checksum(set_);

@@ -284,6 +284,7 @@ json RunManifestToJson(const RunManifest& m) {
   for (const SuiteResults& s : m.suites) {
     j["suites"].push_back(
         {{"suite", s.suite}, {"description", s.description}, {"problems", s.problems}, {"checksum", s.checksum}});
+    if (!s.kind.empty()) j["suites"].back()["kind"] = s.kind;  // since recorded
   }
   j["shard"] = {{"index", m.shard + 1}, {"count", m.shards}};
   j["jobs"] = json::array();
@@ -310,6 +311,7 @@ RunManifest RunManifestFromJson(const json& j, const std::string& where) {
       suite.description = s.at("description").get<std::string>();
       suite.problems = s.at("problems").get<int>();
       suite.checksum = s.at("checksum").get<std::string>();
+      suite.kind = s.value("kind", std::string());  // older manifests: none
       m.suites.push_back(std::move(suite));
     }
     m.shard = j.at("shard").at("index").get<int>() - 1;

@@ -319,6 +319,7 @@ json ToJson(const BenchResults& results, const json& environment) {
   for (const SuiteResults& s : results.suites) {
     json suite = {{"suite", s.suite}, {"description", s.description}, {"problems", s.problems},
                   {"checksum", s.checksum}};
+    if (!s.kind.empty()) suite["kind"] = s.kind;  // since recorded
     suite["records"] = json::array();
     for (const auto& r : s.replay.records) suite["records"].push_back(RecordJson(r));
     suite["sweep"] = json::array();
@@ -352,6 +353,7 @@ BenchResults BenchResultsFromJson(const json& j) {
       suite.description = s.at("description").get<std::string>();
       suite.problems = s.at("problems").get<int>();
       suite.checksum = s.value("checksum", std::string());
+      suite.kind = s.value("kind", std::string());  // older results: none
       for (const json& r : s.at("records")) suite.replay.records.push_back(RecordFromJson(r));
       for (const json& r : s.at("sweep")) suite.replay.sweep.push_back(RecordFromJson(r));
       if (s.contains("floor")) {  // written since the floor

@@ -42,6 +42,9 @@ struct SuiteResults {
   std::string checksum;
   ReplayResults replay;
   std::vector<WarmRecord> warm = {};  // mode "warm": one per warm sequence of the suite × backend (warm_track.h)
+  // Its ProblemKind's name ("box", "mcp", "avi", ...: bench/kinds/problem_kind.h), which chooses its report section;
+  // empty in results and manifests written before it was recorded (the section is then found as it was before).
+  std::string kind = {};
 };
 
 struct BenchResults {

@@ -10,6 +10,8 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "bench/replay/jobs.h"
+
 namespace smcbench {
 namespace {
 
@@ -166,6 +168,26 @@ TEST(ResultsIo, TheRunsOptionsReadBack) {
   nlohmann::json older = ToJson(EveryStatus(), nlohmann::json::object());
   EXPECT_FALSE(older.contains("options"));
   EXPECT_TRUE(BenchResultsFromJson(older).options.is_null());
+}
+
+// A suite's kind goes into results.json and the manifest and back; results and manifests written before it have
+// none (read as empty, which the report takes as "find the section as before").
+TEST(ResultsIo, ASuitesKindReadsBack) {
+  BenchResults results = EveryStatus();
+  ASSERT_FALSE(results.suites.empty());
+  results.suites[0].kind = "mcp";
+  const BenchResults back = ReadBenchResults(Written(results, "kind").string());
+  EXPECT_EQ(back.suites[0].kind, "mcp");
+  nlohmann::json older = ToJson(EveryStatus(), nlohmann::json::object());
+  EXPECT_FALSE(older["suites"][0].contains("kind"));
+  EXPECT_EQ(BenchResultsFromJson(older).suites[0].kind, "");
+  RunManifest manifest;
+  manifest.suites = {results.suites[0]};
+  nlohmann::json m = RunManifestToJson(manifest);
+  EXPECT_EQ(m["suites"][0]["kind"], "mcp");
+  EXPECT_EQ(RunManifestFromJson(m, "manifest").suites[0].kind, "mcp");
+  m["suites"][0].erase("kind");
+  EXPECT_EQ(RunManifestFromJson(m, "manifest").suites[0].kind, "");
 }
 
 }  // namespace

@@ -168,6 +168,7 @@ py::list BenchMcp(const py::list& problems, std::vector<std::string> solver_name
   std::vector<std::unique_ptr<Solver>> solvers = McpSolvers(&solver_names);
   SuiteResults suite;
   suite.suite = set.name;
+  suite.kind = "mcp";  // McpProblemKind's name: the report's MCP section whatever the suite's name
   suite.description = set.description;
   suite.problems = static_cast<int>(set.problems.size());
   suite.checksum = McpProblemSetChecksum(set);  // calls F at every start (the GIL is held)

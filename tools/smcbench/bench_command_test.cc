@@ -977,6 +977,17 @@ TEST(Report, McpSuiteIsSummarizedPerProblemAndStart) {
   SuiteResults box = s;
   for (auto& r : box.replay.records) r.start.clear();
   EXPECT_FALSE(IsMcpSuite(box));
+  // A recorded kind decides, whatever the records or the name: the AVI and MCP sections by kind alone.
+  box.kind = "mcp";
+  EXPECT_TRUE(IsMcpSuite(box));
+  s.kind = "box";
+  EXPECT_FALSE(IsMcpSuite(s));
+  s.suite = "avi";
+  EXPECT_FALSE(IsAviSuite(s));
+  box.suite = "mine";
+  box.kind = "avi";
+  EXPECT_TRUE(IsAviSuite(box));
+  EXPECT_FALSE(IsMcpSuite(box));
 }
 
 TEST(Report, McpSectionNamesSuccessPerStartAndWhoFailsWhere) {
