@@ -333,6 +333,11 @@ void PrintSummaryTable(const BenchResults& results, double time_limit, std::ostr
     cut += static_cast<std::size_t>(std::count_if(records.begin(), records.end(), is_cut));
     records.erase(std::remove_if(records.begin(), records.end(), is_cut), records.end());
     for (const WarmRecord& w : suite.warm) cut += is_cut(w.record);
+    // A suite run for its warm sequences alone (`--problem 'families/warm/*'`): its warm track's counts.
+    if (records.empty() && suite.replay.sweep.empty() && !suite.warm.empty()) {
+      suite = WarmTrackAsSuite(suite);
+      records.erase(std::remove_if(records.begin(), records.end(), is_cut), records.end());
+    }
     const std::vector<BackendSummary> summary = SummarizeSuite(suite, time_limit);
     for (const BackendSummary& b : summary) {
       out << "| " << suite.suite << " | " << b.solver << " | " << b.problems << " | " << b.solved << " | "

@@ -1124,6 +1124,7 @@ TEST(BenchCommand, AGlobForTheWarmSequencesAloneRunsThem) {
                                 "--solver", "lemke", "--out", dir.string(), "--report", "--no-plots"});
   ASSERT_EQ(r.code, 0) << r.err;
   EXPECT_THAT(r.err, HasSubstr("warm track of suite families: 2 sequences"));
+  EXPECT_THAT(r.out, HasSubstr("| families warm | lemke | 2 | 2 | 0 | 0 | 0 | 0 | 0 | "));
   const BenchResults back = ReadBenchResults(dir.string());
   ASSERT_EQ(back.suites.size(), 1u);
   EXPECT_TRUE(back.suites[0].replay.records.empty());
