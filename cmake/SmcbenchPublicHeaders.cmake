@@ -88,5 +88,6 @@ set(SMCBENCH_PUBLIC_HEADERS
   bench/replay/size_band.h
   bench/compare/run_identity.h
   bench/compare/compare_runs.h
+  bench/compare/compare_render.h
   # The command line as a function, for a program that registers its own backend first (docs/custom-backend.md).
   tools/smcbench/commands.h)

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/compare/compare_render.h"
 #include "bench/figures/gnuplot_figure.h"
 #include "solvers/core/number_text.h"
 #include "solvers/core/problem.h"

@@ -124,6 +124,9 @@ std::string_view ToString(DriftSource source);  // "none", "floor", "groups"
 
 inline constexpr int kMinGroupsForDrift = 3;
 
+// Whether a ratio lies in [1/limit, limit]: inside the flag limit, neither slower nor faster.
+inline bool WithinBand(double ratio, double limit) { return ratio <= limit && ratio >= 1.0 / limit; }
+
 struct Drift {
   DriftSource source = DriftSource::kNone;
   double factor = 1.0;          // the common ratio found (1 when source is none)
@@ -171,23 +174,5 @@ RunComparison CompareRuns(const BenchResults& a, const BenchResults& b, const Co
 // machine side by side (identity): what `smcbench compare A B` and Python's smcbench.compare both report.
 // InvalidInputError for an unreadable folder, as CompareRuns for runs that cannot be compared.
 RunComparison CompareRunFolders(const std::string& a, const std::string& b, const CompareOptions& options);
-
-// compare.md: the runs side by side (their differences named, a warning when the machines differ), how they were
-// compared (noise floor, drift), verdict changes, then the ratio table (one row per group: times, raw and
-// normalized ratio, interval, median iterations, flag). figure_stem: the ratio figure's file stem to link (empty:
-// none).
-std::string CompareMarkdown(const RunComparison& comparison, const CompareOptions& options, const std::string& label_a,
-                            const std::string& label_b, const std::string& figure_stem);
-
-// compare.json: the same as data (format "smcbench-compare/1"): the runs side by side and their differences, the
-// method and its parameters, the noise floor, the flag limit, the drift, the verdict changes and the groups (raw and
-// ÷ drift ratio, interval, median iterations, flag "slower" / "faster" / "none"), and whether B regressed.
-nlohmann::json CompareJson(const RunComparison& comparison, const CompareOptions& options, const std::string& label_a,
-                           const std::string& label_b);
-
-// The short table for a terminal: counts, the verdict changes (at most max_changes), and the groups (all when at most
-// max_groups, else only the flagged ones).
-std::string CompareSummaryText(const RunComparison& comparison, const CompareOptions& options,
-                               std::size_t max_changes = 10, std::size_t max_groups = 30);
 
 }  // namespace smcbench

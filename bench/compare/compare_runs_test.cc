@@ -12,6 +12,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "bench/compare/compare_render.h"
 #include "solvers/core/problem.h"
 
 namespace smcbench {

@@ -7,7 +7,7 @@
 #include <string>
 
 #include "bench/compare/compare_output.h"
-#include "bench/compare/compare_runs.h"
+#include "bench/compare/compare_render.h"
 #include "bench/replay/results_io.h"
 #include "bench/analysis/report_markdown.h"
 #include "bench/analysis/report_tables.h"

@@ -4,7 +4,7 @@
 #include <ostream>
 
 #include "bench/compare/compare_output.h"
-#include "bench/compare/compare_runs.h"
+#include "bench/compare/compare_render.h"
 #include "solvers/core/problem.h"
 #include "tools/smcbench/output_paths.h"
 
