@@ -9,8 +9,10 @@
 #include <string>
 
 #include "problems/io/siconos_format.h"
+#include "problems/suites/families.h"
 #include "solvers/generators/random_problems.h"
 #include "solvers/ipopt/ipopt_qp_solver.h"
+#include "solvers/lemke/lemke_solver.h"
 #include "solvers/pivoting/bpp_solver.h"
 #include "solvers/psor/psor_solver.h"
 #include "tests/support/small_mcps.h"
@@ -868,6 +870,34 @@ TEST(AutoSolver, RejectsBadOptionsNamingTheField) {
   EXPECT_EQ(r.status, SolveStatus::kInvalidOptions);
   EXPECT_NE(r.message.find("psor_min_speedup"), std::string::npos) << r.message;
   EXPECT_EQ(solver.DelegateFor(p, SolverOptions{}), nullptr);  // a session then reports them too
+}
+
+// Issue 34: the small-h P-matrix relay of condition 1e6 at m = 8 (families.h), where DART's PGS plus our polish was
+// faster than auto. auto gives it to bpp (3⁸ active sets, past enum's limit), whose first set now comes from
+// projected sweeps (a nonsymmetric box): two sets where the natural map at Π(0) took nine, the same answer, which is
+// the planted one and lemke's.
+TEST(AutoSolver, SmallHRelayIsSolvedByBppFromASweptFirstSet) {
+  for (double h : {1e-2, 1e-8}) {
+    const LibraryProblem p = SmallHPMatrixProblem(8, 6, h, 1);
+    AutoSolver solver;
+    const SolveResult r = solver.Solve(p.problem);
+    ASSERT_TRUE(r.solved()) << r.message;
+    EXPECT_EQ(ChosenCandidateOf(r), AutoCandidate::kBpp);
+    EXPECT_EQ(r.GetDetail("swept_guess"), 1.0);
+    EXPECT_LE(r.iterations, 2);
+    LemkeSolver lemke;
+    const SolveResult by_lemke = lemke.Solve(p.problem);
+    ASSERT_TRUE(by_lemke.solved()) << by_lemke.message;
+    EXPECT_LE((r.z - by_lemke.z).cwiseAbs().maxCoeff(), 1e-8);
+    EXPECT_LE((r.z - p.solution).cwiseAbs().maxCoeff(), 1e-8);
+    BppOptions unswept;
+    unswept.guess_sweeps = 0;
+    BppSolver from_zero(unswept);
+    const SolveResult r0 = from_zero.Solve(p.problem);
+    ASSERT_TRUE(r0.solved()) << r0.message;
+    EXPECT_GT(r0.iterations, 4) << "the natural map at the projection of 0 should need many sets here";
+    EXPECT_LE((r0.z - r.z).cwiseAbs().maxCoeff(), 1e-8);
+  }
 }
 
 }  // namespace

@@ -26,9 +26,33 @@ signed char Flipped(signed char state, double z, double l) {
 // Rows whose state is forced by their bounds: l = u is fixed (kept at l, any w), l = −∞ and u = +∞ always free.
 bool FixedRow(double l, double u) { return l == u; }
 
+// Whether the set has a free row (a block to factor): a set with none is exact as placed, and so is its polish.
+bool AnyFree(const signed char* state, int n) {
+  for (int i = 0; i < n; ++i) {
+    if (state[i] == kFree) return true;
+  }
+  return false;
+}
+
 // Below this many rows the sweeps are not run: one or two sets of a few rows cost less than the sweeps, and at
 // m = 16 they did not lower the sets (docs/auto.md, "bpp against one factorization of M").
 constexpr int kMinSweptRows = 32;
+// From this many rows up to kMinSweptRows − 1, the sweeps also choose the first set of a box (every row with a choice
+// has both bounds finite) with a positive diagonal whose M is neither symmetric up to the row scaling nor strictly
+// diagonally dominant by rows. On a box the projected iterate cannot run off whatever M is, so a poor guess costs
+// sets and nothing else; on these matrices the natural map at Π(0) can be far from the answer's set (small-h
+// P-matrix relay of condition 1e6 at m = 8: 9 sets from Π(0), 2 from the sweeps; docs/auto.md, "Issue 34: swept
+// first sets on small nonsymmetric boxes"). Where M is strictly diagonally dominant the natural map at Π(0) is
+// already a contraction's first step and usually the answer's set (diagdom-relay at m = 8: one set either way, the
+// sweeps twice its time), and a symmetric box below kMinSweptRows keeps it as measured before (spd-relay at m = 8:
+// one set, the sweeps 10 % more instructions). Nor where the skew part of M outweighs its symmetric part
+// (‖M − Mᵀ‖_F > kMaxSweptSkewRatio·‖M + Mᵀ‖_F, on the row-scaled M bpp is given): projected Gauss–Seidel does not
+// converge there, and its guess sent bpp into Murty's single pivots (the strongly nonsymmetric relay at m = 8, about
+// 2.9 by auto's measure on M as stated: auto's bpp handed seed 13 over to lemke; the nonsymmetric P-matrices measure
+// about 1.4). Below
+// 5 rows enum's fixed-size kernels take every problem auto sends.
+constexpr int kMinBoxSweptRows = 5;
+constexpr double kMaxSweptSkewRatio = 2.0;
 
 // From this many rows up to UpdatedFreeBlock::kMinRows, a symmetric M's sets are solved by PrefixCholesky and an
 // answer the polish would only solve again is not polished. Below, the inline LU of a few rows costs no more than the
@@ -200,27 +224,85 @@ bool BppSolver::SymmetricUpToRowScaling(const BoxMLCP& problem) {
   return true;
 }
 
-bool BppSolver::SweptGuess(const BoxMLCP& problem, const double* z0, signed char* state) {
+bool BppSolver::BoxWithPositiveDiagonal(const BoxMLCP& problem) const {
   const int n = problem.size();
   const DenseMatrix& M = problem.dense_matrix();
   const double *l = problem.l().data(), *u = problem.u().data();
-  if (!SymmetricUpToRowScaling(problem)) return false;  // also checks the positive diagonal
+  for (int i = 0; i < n; ++i) {
+    if (FixedRow(l[i], u[i])) continue;
+    if (!(M(i, i) > 0.0) || !std::isfinite(l[i]) || !std::isfinite(u[i])) return false;
+  }
+  return true;
+}
+
+bool BppSolver::SweepsChooseTheFirstSet(const BoxMLCP& problem) {
+  if (sweep_first_id_ == problem.matrix_id()) return sweep_first_;
+  sweep_first_id_ = problem.matrix_id();
+  sweep_first_ = false;
+  const int n = problem.size();
+  const DenseMatrix& M = problem.dense_matrix();
+  if (dominance_sums_.size() != n) dominance_sums_.resize(n);
+  dominance_sums_.setZero();
+  double symmetric = 0.0, skew = 0.0;  // ‖M + Mᵀ‖_F², ‖M − Mᵀ‖_F² over the pairs i < j and the diagonal
+  for (int j = 0; j < n; ++j) {  // Σ_j≠i |M_ij| column by column (column-major M)
+    const double* column = M.data() + static_cast<std::ptrdiff_t>(j) * n;
+    for (int i = 0; i < n; ++i) dominance_sums_[i] += i == j ? 0.0 : std::abs(column[i]);
+    symmetric += 4.0 * column[j] * column[j];
+    for (int i = j + 1; i < n; ++i) {
+      const double a = column[i], b = M(j, i);
+      symmetric += 2.0 * (a + b) * (a + b);
+      skew += 2.0 * (a - b) * (a - b);
+    }
+  }
+  bool dominant = true;
+  for (int i = 0; i < n && dominant; ++i) dominant = M(i, i) > dominance_sums_[i];
+  sweep_first_ = !dominant && skew <= kMaxSweptSkewRatio * kMaxSweptSkewRatio * symmetric;
+  return sweep_first_;
+}
+
+bool BppSolver::SweptGuess(const BoxMLCP& problem, const double* z0, signed char* state, bool on_box) {
+  const int n = problem.size();
+  const DenseMatrix& M = problem.dense_matrix();
+  const double *l = problem.l().data(), *u = problem.u().data();
+  // On a box the caller checked BoxWithPositiveDiagonal; otherwise symmetric up to the row scaling, which also
+  // checks the positive diagonal.
+  if (!on_box && !SymmetricUpToRowScaling(problem)) return false;
   if (guess_.size() != n) guess_.resize(n);
-  std::copy(z0, z0 + n, guess_.data());
-  w_.noalias() = M * guess_;
-  w_ += problem.q();
+  if (z0 != nullptr) {
+    std::copy(z0, z0 + n, guess_.data());
+  } else {
+    for (int i = 0; i < n; ++i) guess_[i] = std::min(std::max(0.0, l[i]), u[i]);  // Π(0)
+  }
   double* z = guess_.data();
   double* w = w_.data();
+  if (on_box) {
+    // w = q + Σ_j z0_j M(:, j) over the nonzero z0_j only: Π(0) is 0 on every row whose box contains 0.
+    const double* q = problem.q().data();
+    std::copy(q, q + n, w);
+    for (int j = 0; j < n; ++j) {
+      if (z[j] == 0.0) continue;
+      const double* column = M.data() + static_cast<std::ptrdiff_t>(j) * n;
+      for (int r = 0; r < n; ++r) w[r] += z[j] * column[r];
+    }
+  } else {
+    w_.noalias() = M * guess_;
+    w_ += problem.q();
+  }
   for (int sweep = 0; sweep < options_.guess_sweeps; ++sweep) {
+    bool moved = false;
     for (int i = 0; i < n; ++i) {
       if (FixedRow(l[i], u[i])) continue;
       const double next = std::min(std::max(z[i] - w[i] / M(i, i), l[i]), u[i]);
       const double delta = next - z[i];
       if (delta == 0.0) continue;
+      moved = true;
       z[i] = next;
       const double* column = M.data() + static_cast<std::ptrdiff_t>(i) * n;
       for (int r = 0; r < n; ++r) w[r] += delta * column[r];
     }
+    // A sweep that moved nothing is a fixed point: the sweeps left would repeat it (on a box; the symmetric path
+    // keeps its sweeps as measured).
+    if (on_box && !moved) break;
   }
   for (int i = 0; i < n; ++i) {
     if (!std::isfinite(z[i]) || !std::isfinite(w[i])) return false;
@@ -313,7 +395,13 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
   }
   bool swept = false;
   if constexpr (!Sparse) {
-    swept = !warm && options_.guess_sweeps > 0 && n >= kMinSweptRows && SweptGuess(problem, z, s.state);
+    // Symmetric up to the row scaling from kMinSweptRows rows; from kMinBoxSweptRows, a box whose M is neither
+    // symmetric up to the row scaling nor strictly diagonally dominant nor skew-dominant.
+    if (!warm && options_.guess_sweeps > 0 && n >= kMinBoxSweptRows) {
+      const bool on_box = n < kMinSweptRows && !SymmetricUpToRowScaling(problem) &&
+                          BoxWithPositiveDiagonal(problem) && SweepsChooseTheFirstSet(problem);
+      swept = (on_box || n >= kMinSweptRows) && SweptGuess(problem, z, s.state, on_box);
+    }
   }
   if (!warm && !swept) multiply();
   for (int i = 0; i < n && !swept; ++i) {
@@ -462,9 +550,14 @@ void BppSolver::Pivot(const BoxMLCP& problem, const SolverOptions& options, Solv
       }
       if constexpr (!Sparse) {
         // The answer's block was factored afresh (an update's answer is left to the polish) and is exact: when the
-        // polish would read the same set off z, it would only factor the block again.
+        // polish would read the same set off z, it would only factor the block again. Below kMinRows every set is
+        // factored inline; there the test runs on the Cholesky path and after swept sets with a free row (small-h
+        // P-matrix relay at m = 8: the polish was 4.8 k of 12.7 k instructions per solve). Not on every small set:
+        // where the answer's residual is exactly 0 the base does not polish, and the test is pure cost (spd-relay
+        // at m = 8: +22 % instructions in the perf gate).
         if (options.polish && !clipped &&
-            (updatable ? updated_.last_path() == UpdatedFreeBlock::Path::kFactored : small_cholesky_sets_ > 0) &&
+            (updatable ? updated_.last_path() == UpdatedFreeBlock::Path::kFactored
+                       : (small_cholesky_sets_ > 0 || (swept && AnyFree(s.state, n)))) &&
             PolishWouldRepeat(problem, z, s.state)) {
           NotePolishRedundant();
         }

@@ -31,9 +31,17 @@
 // a 1×1 problem is solved by its first set. On a dense M of at least 32 rows that is symmetric up to the base's row
 // scaling (M = D S, S symmetric, checked once per matrix) with a positive diagonal, guess_sweeps (3) projected Gauss–Seidel sweeps
 // from Π(0) come first and the set is read off their iterate the same way: on SPD M they converge, and they halve
-// the sets at m ≥ 64 (docs/auto.md); on nonsymmetric M they are skipped (measured: they help relays, cost LCPs and
-// mixed bounds). A warm start from the solution's own active set solves in one iteration. Nothing is remembered
-// between solves (the session's reused active set does that).
+// the sets at m ≥ 64 (docs/auto.md); on nonsymmetric M of that size they are skipped (measured: they help relays, cost
+// LCPs and mixed bounds). From 5 to 31 rows they also come first on a box (every row with a choice has both bounds
+// finite: the projected iterate cannot run off whatever M is) with a positive diagonal whose M is neither symmetric up
+// to the row scaling nor strictly diagonally dominant by rows nor skew-dominant (checked once per matrix): there the
+// natural map at Π(0) can be far from the answer's set (the small-h P-matrix relay of condition 1e6 at m = 8: 9
+// sets, 2 after the sweeps), while on symmetric or dominant M it usually is the answer's set and the sweeps would
+// only cost, and on skew-dominant M they do not converge (issue 34,
+// docs/auto.md); the sweeps there stop early at a sweep that moves nothing, and an answer from such a solve with a
+// free row is not polished again when the polish would read the same set off z. A warm start from the solution's own
+// active set solves in one iteration. Nothing is remembered between solves (the session's reused active set does
+// that).
 //
 // Dense M of 12 to 15 rows that is symmetric up to the base's row scaling with a positive diagonal: from the third
 // set on (the first two by the inline LU), each set is solved by a Cholesky factor of (R⁻¹ M)_FF that keeps the leading rows of the last set's factor (prefix_cholesky.h), the
@@ -98,7 +106,8 @@ struct BppOptions {
   // Dense M of at least 32 rows, cold start: projected Gauss–Seidel sweeps from Π(0) before the first set is read
   // off (0: the Jacobi-scaled natural map at Π(0) alone). Only where they converge for every problem of the class: M symmetric
   // (up to the base's row scaling) with a positive diagonal; elsewhere they are skipped (measured: on nonsymmetric
-  // P-matrices they help relays and cost LCPs and mixed bounds more sets, docs/auto.md).
+  // P-matrices they help relays and cost LCPs and mixed bounds more sets, docs/auto.md). From 5 to 31 rows: on a box
+  // whose M is neither symmetric (up to the row scaling) nor strictly diagonally dominant (issue 34, docs/auto.md).
   int guess_sweeps = 3;
   // Dense M of at least UpdatedFreeBlock::kMinRows rows that is symmetric up to the base's row scaling with a
   // positive diagonal: factor the free blocks by Cholesky of the symmetric (R⁻¹ M)_FF (half the LU's flops), the LU
@@ -133,8 +142,18 @@ class BppSolver final : public BackendWithOptions<BppOptions> {
   template <bool Sparse>
   bool SolveActiveSet(const BoxMLCP& problem, double* z);
 
-  // The first active set from guess_sweeps projected Gauss–Seidel sweeps (dense M): true when it was read off.
-  bool SweptGuess(const BoxMLCP& problem, const double* z0, signed char* state);
+  // The first active set from guess_sweeps projected Gauss–Seidel sweeps (dense M) from z0 = Π(0) (nullptr: Π(0)
+  // computed here): true when it was read off into state. on_box: the caller checked BoxWithPositiveDiagonal; otherwise M must be symmetric up to the row
+  // scaling (checked here).
+  bool SweptGuess(const BoxMLCP& problem, const double* z0, signed char* state, bool on_box);
+  // Whether every row with a choice (l < u) of the dense M has both bounds finite and M_ii > 0 (O(n), every cold
+  // solve of 5 to 31 rows whose M is not symmetric): the sweeps' iterate then stays in the box whatever M is.
+  bool BoxWithPositiveDiagonal(const BoxMLCP& problem) const;
+  // Whether the sweeps should choose the first set of a small box (kMinBoxSweptRows): the dense M is not strictly
+  // diagonally dominant by rows (M_ii > Σ_j≠i |M_ij|) and its skew part does not outweigh its symmetric part
+  // (kMaxSweptSkewRatio, Frobenius norms); decided once per matrix_id.
+  bool SweepsChooseTheFirstSet(const BoxMLCP& problem);
+
   // Whether the dense M is D·S for a positive diagonal D and a symmetric S (a symmetric M after row scaling) with a
   // positive diagonal, decided once per matrix_id (O(n²) then; row_ratio_ and inv_row_ratio_ hold d_i / d_0 and its
   // inverse when true).
@@ -159,6 +178,9 @@ class BppSolver final : public BackendWithOptions<BppOptions> {
   Vector polish_w_;                           // and its w
   std::uint64_t symmetry_id_ = 0;             // the matrix_id SymmetricUpToRowScaling last decided, and its answer
   bool symmetric_ = false;
+  std::uint64_t sweep_first_id_ = 0;          // the matrix_id SweepsChooseTheFirstSet last decided, and its answer
+  bool sweep_first_ = false;
+  Vector dominance_sums_;                     // its off-diagonal row sums
   // Sparse M only: the free block's factors and its right-hand side and solution.
   SparseFreeBlock sparse_block_;
   Vector sparse_rhs_, sparse_x_, placed_;

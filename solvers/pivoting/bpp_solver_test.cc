@@ -509,6 +509,61 @@ TEST(BppSolver, SinglePivotsAreSolvedByUpdates) {
       << r.GetDetail("factorizations") << " factorizations for " << r.iterations << " sets";
 }
 
+// From 5 to 31 rows the sweeps choose the first set on a box whose M is neither symmetric nor strictly diagonally
+// dominant (kMinBoxSweptRows): every nonsymmetric class with relay bounds is solved to its planted answer, which enum
+// (exact, its own search) finds too, never swept where M is dominant, always on the nonsymmetric P-matrices; a
+// symmetric box of those sizes, a skew-dominant one, an LCP, mixed bounds, a problem of 4 rows, one of 40 (symmetric
+// M only from 32) and guess_sweeps = 0 keep the natural map at Π(0).
+TEST(BppSolver, NonsymmetricSmallBoxesAreSweptAndKeepTheAnswer) {
+  BppSolver bpp;
+  EnumerativeSolver enumerative;
+  for (MatrixFamily family : {MatrixFamily::kNonsymmetricPMatrix, MatrixFamily::kDiagonallyDominant,
+                              MatrixFamily::kSkewPMatrix, MatrixFamily::kScaledPMatrix}) {
+    for (int size : {5, 8, 12, 20, 31}) {
+      for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+        const GeneratedProblem gen = Planted(family, BoundKind::kRelay, size, seed);
+        const SolveResult r = bpp.Solve(gen.problem);
+        ASSERT_TRUE(r.solved()) << gen.problem.name() << ": " << r.message;
+        // Never where M is strictly diagonally dominant by rows (recomputed here; the base's row scaling does not
+        // change dominance by rows); always on the nonsymmetric P-matrices, whose skew part is about as large as
+        // their symmetric part (the skew-dominant test is on the row-scaled M, so the other classes are not pinned).
+        const DenseMatrix& M = gen.problem.dense_matrix();
+        bool dominant = true;
+        for (int i = 0; i < size; ++i) dominant &= M(i, i) > M.row(i).cwiseAbs().sum() - std::abs(M(i, i));
+        if (dominant || family == MatrixFamily::kNonsymmetricPMatrix) {
+          EXPECT_EQ(r.GetDetail("swept_guess") == 1.0, !dominant) << gen.problem.name();
+        }
+        if (family == MatrixFamily::kDiagonallyDominant) {
+          EXPECT_TRUE(dominant) << gen.problem.name();
+        }
+        if (family == MatrixFamily::kNonsymmetricPMatrix && size >= 8) {
+          EXPECT_FALSE(dominant) << gen.problem.name();
+        }
+        EXPECT_LE(ForwardError(r.z, gen.z_star), 1e-8) << gen.problem.name();
+        if (size <= 12) {
+          const SolveResult e = enumerative.Solve(gen.problem);
+          ASSERT_TRUE(e.solved()) << gen.problem.name() << ": " << e.message;
+          EXPECT_LE(ForwardError(r.z, e.z), 1e-8) << gen.problem.name();
+        }
+      }
+    }
+  }
+  const auto swept = [&](BppSolver& solver, MatrixFamily family, BoundKind bounds, int size) {
+    return solver.Solve(Planted(family, bounds, size, 1).problem).GetDetail("swept_guess") == 1.0;
+  };
+  EXPECT_FALSE(swept(bpp, MatrixFamily::kSymmetricPositiveDefinite, BoundKind::kRelay, 8));
+  EXPECT_FALSE(swept(bpp, MatrixFamily::kNonsymmetricPMatrix, BoundKind::kLCP, 8));
+  EXPECT_FALSE(swept(bpp, MatrixFamily::kNonsymmetricPMatrix, BoundKind::kMixed, 8));
+  EXPECT_FALSE(swept(bpp, MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 4));
+  EXPECT_FALSE(swept(bpp, MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 40));  // symmetric only from 32
+  // The strongly nonsymmetric class (skew part about 2.9 times the symmetric part at m = 8): not swept.
+  EXPECT_FALSE(swept(bpp, MatrixFamily::kSkewPMatrix, BoundKind::kRelay, 8));
+  BppOptions off;
+  off.guess_sweeps = 0;
+  BppSolver unswept(off);
+  EXPECT_FALSE(swept(unswept, MatrixFamily::kNonsymmetricPMatrix, BoundKind::kRelay, 8));
+}
+
 // A few projected Gauss–Seidel sweeps choose the first set; the answer does not depend on it.
 TEST(BppSolver, SweptGuessesKeepTheAnswer) {
   for (int sweeps : {0, 1, 3}) {
