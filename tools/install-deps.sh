@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs smcbench's dependencies from Debian 12 packages (as root), skipping what is already there.
 #   tools/install-deps.sh        what the build and the main job need
-#   tools/install-deps.sh test   also what the test gates need: valgrind (perf gate), clang and its sanitizer and
-#                                libFuzzer runtimes (the asan preset and the fuzz targets), and what `pip install .`
-#                                into a virtual environment needs offline (the ctest python_pip_install*, docs/python.md)
+#   tools/install-deps.sh test   also what the test gates need: valgrind (perf gate), clang, its sanitizer and
+#                                libFuzzer runtimes and lld (the asan preset and the fuzz targets), and what
+#                                `pip install .` into a virtual environment needs offline (the ctest
+#                                python_pip_install*, docs/python.md)
 set -euo pipefail
 # libsiconos-numerics-dev, libbullet-dev and libdart-dev are optional for the build (without them the siconos-*,
 # bullet-* and dart-* backends are not built) but are installed so that the default report compares against them.
@@ -13,7 +14,7 @@ packages=(cmake make g++ pkg-config libeigen3-dev libsuitesparse-dev coinor-libi
           pybind11-dev python3-dev python3-numpy python3-scipy python3-pandas python3-pytest)
 case "${1:-}" in
   "") ;;
-  test) packages+=(valgrind clang libclang-rt-14-dev python3-venv python3-pip python3-setuptools python3-wheel) ;;
+  test) packages+=(valgrind clang libclang-rt-14-dev lld python3-venv python3-pip python3-setuptools python3-wheel) ;;
   *) echo "install-deps: unknown argument '$1' (none, or 'test')" >&2; exit 2 ;;
 esac
 missing=()
