@@ -6,6 +6,7 @@
 #include <string>
 #include <utility>
 
+#include "solvers/core/matrix_class.h"
 #include "solvers/enumerative/enumerative_solver.h"
 #include "solvers/lemke/lemke_solver.h"
 #include "solvers/newton/semismooth_newton_solver.h"
@@ -73,20 +74,13 @@ double SpdReciprocalCondition(const BoxMLCP& problem) {
   return cholesky.info() == Eigen::Success ? cholesky.rcond() : 0.0;
 }
 
-// ‖M − Mᵀ‖_F > 4 ‖M + Mᵀ‖_F: the unsymmetric part of M outweighs its symmetric part four times (m² work, once per
-// matrix). The generators' strongly nonsymmetric P-matrices (unit-entry skew part) are at 4-8 from 16 rows on, their
-// nonsymmetric P-matrices (skew part of the symmetric part's 2-norm) near 1, where bpp is the fastest.
+// ‖M − Mᵀ‖_F > kSkewDominanceRatio·‖M + Mᵀ‖_F: the unsymmetric part of M outweighs its symmetric part (m² work,
+// once per matrix). The generators' strongly nonsymmetric P-matrices (unit-entry skew part) are at 4-8 from 16 rows
+// on, their nonsymmetric P-matrices (skew part of the symmetric part's 2-norm) near 1, where bpp is the fastest.
+constexpr double kSkewDominanceRatio = 4.0;
+
 bool SkewDominant(const DenseMatrix& M) {
-  double skew = 0.0, symmetric = 0.0;
-  const Eigen::Index n = M.rows();
-  for (Eigen::Index j = 0; j < n; ++j) {
-    for (Eigen::Index i = 0; i < n; ++i) {
-      const double a = M(i, j), b = M(j, i);
-      skew += (a - b) * (a - b);
-      symmetric += (a + b) * (a + b);
-    }
-  }
-  return skew > 16.0 * symmetric;
+  return SymmetricAndSkewPartNorms(M).SkewOutweighsSymmetric(kSkewDominanceRatio);
 }
 
 // Which triangle of M holds its off-diagonal nonzeros, when that is one triangle and the diagonal is positive.

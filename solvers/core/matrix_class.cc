@@ -113,6 +113,21 @@ SymmetryResult ClassifySymmetry(const SparseMatrix& M, const SymmetryOptions& op
   return r;
 }
 
+SymmetricSkewNorms SymmetricAndSkewPartNorms(const DenseMatrix& M) {
+  SymmetricSkewNorms norms;
+  const Eigen::Index n = M.rows();
+  for (Eigen::Index j = 0; j < n; ++j) {  // column by column (column-major M); each pair i > j counts twice
+    const double* column = M.data() + j * n;
+    norms.symmetric_squared += 4.0 * column[j] * column[j];
+    for (Eigen::Index i = j + 1; i < n; ++i) {
+      const double a = column[i], b = M(j, i);
+      norms.symmetric_squared += 2.0 * (a + b) * (a + b);
+      norms.skew_squared += 2.0 * (a - b) * (a - b);
+    }
+  }
+  return norms;
+}
+
 DefinitenessResult ClassifySymmetricPartPositiveDefinite(const DenseMatrix& M, const DefinitenessOptions& options) {
   RequireFinite("ClassifySymmetricPartPositiveDefinite", M);
   if (!(options.margin >= 0.0) || !std::isfinite(options.margin)) {

@@ -81,6 +81,19 @@ SemidefinitenessResult ClassifySymmetricPartPositiveSemidefinite(const DenseMatr
                                                                  Eigen::LLT<DenseMatrix>* factor);
 SemidefinitenessResult ClassifySymmetricPartPositiveSemidefinite(const SparseMatrix& S, double tolerance);
 
+// ---- How far M is from symmetric: the squared Frobenius norms of its symmetric and skew parts (times two),
+// ‖M + Mᵀ‖_F² and ‖M − Mᵀ‖_F², in one pass over the pairs i < j and the diagonal (m²/2 pairs, no allocation). The
+// backends that steer by it (auto's skew-dominant rule, bpp's swept first set) each keep their own limit.
+struct SymmetricSkewNorms {
+  double symmetric_squared = 0.0;  // ‖M + Mᵀ‖_F²
+  double skew_squared = 0.0;       // ‖M − Mᵀ‖_F²
+  // ‖M − Mᵀ‖_F > ratio · ‖M + Mᵀ‖_F (false for M = 0).
+  bool SkewOutweighsSymmetric(double ratio) const { return skew_squared > ratio * ratio * symmetric_squared; }
+};
+
+// M square (not checked: the callers' problems are validated); a non-finite entry gives non-finite norms.
+SymmetricSkewNorms SymmetricAndSkewPartNorms(const DenseMatrix& M);
+
 // ---- P-matrix: every principal minor positive (the box-MLCP then has exactly one solution for every q, l, u).
 // 2ⁿ − 1 minors, so only up to max_size; larger matrices are not decided.
 enum class PrincipalMinorTest : std::uint8_t {

@@ -178,6 +178,43 @@ TEST(MatrixClass, NearlySymmetricWithinAndOutsideTheMargin) {
   EXPECT_EQ(ClassifySymmetry(scaled, {}, &weights).max_entry, 6.0);
 }
 
+TEST(MatrixClass, SymmetricAndSkewPartNormsHaveTheirHandComputedValues) {
+  // Symmetric: M + Mᵀ = [4 2; 2 6] → 16 + 4 + 4 + 36 = 60; no skew part at all.
+  const SymmetricSkewNorms symmetric = SymmetricAndSkewPartNorms(Matrix2(2, 1, 1, 3));
+  EXPECT_EQ(symmetric.symmetric_squared, 60.0);
+  EXPECT_EQ(symmetric.skew_squared, 0.0);
+  EXPECT_FALSE(symmetric.SkewOutweighsSymmetric(0.0));
+  // Pure skew: M + Mᵀ = 0, M − Mᵀ = [0 4; −4 0] → 32; outweighs a symmetric part of nothing at any ratio.
+  const SymmetricSkewNorms skew = SymmetricAndSkewPartNorms(Matrix2(0, 2, -2, 0));
+  EXPECT_EQ(skew.symmetric_squared, 0.0);
+  EXPECT_EQ(skew.skew_squared, 32.0);
+  EXPECT_TRUE(skew.SkewOutweighsSymmetric(1e6));
+  // [1 3; 1 2]: M + Mᵀ = [2 4; 4 4] → 52, M − Mᵀ = [0 2; −2 0] → 8.
+  const SymmetricSkewNorms mixed = SymmetricAndSkewPartNorms(Matrix2(1, 3, 1, 2));
+  EXPECT_EQ(mixed.symmetric_squared, 52.0);
+  EXPECT_EQ(mixed.skew_squared, 8.0);
+  EXPECT_TRUE(mixed.SkewOutweighsSymmetric(0.3));   // 8 > 0.09 · 52
+  EXPECT_FALSE(mixed.SkewOutweighsSymmetric(0.5));  // 8 ≤ 0.25 · 52
+  // 3×3: M + Mᵀ has diagonal 2, 2, 4 and pairs 2, −1, 3 → 24 + 2·14 = 52; M − Mᵀ has pairs 2, 1, 3 → 2·14 = 28.
+  DenseMatrix M3(3, 3);
+  M3 << 1, 2, 0, 0, 1, 3, -1, 0, 2;
+  const SymmetricSkewNorms three = SymmetricAndSkewPartNorms(M3);
+  EXPECT_EQ(three.symmetric_squared, 52.0);
+  EXPECT_EQ(three.skew_squared, 28.0);
+  EXPECT_EQ(three.symmetric_squared, (M3 + M3.transpose()).squaredNorm());
+  EXPECT_EQ(three.skew_squared, (M3 - M3.transpose()).squaredNorm());
+  // The limit is strict: [a b; −b a] has 8a² and 8b², so b = 2a is exactly ratio 2 (bpp's limit: still swept) and
+  // b = 4a exactly ratio 4 (auto's limit: not skew-dominant).
+  EXPECT_FALSE(SymmetricAndSkewPartNorms(Matrix2(1, 2, -2, 1)).SkewOutweighsSymmetric(2.0));
+  EXPECT_TRUE(SymmetricAndSkewPartNorms(Matrix2(1, 2, -2, 1)).SkewOutweighsSymmetric(1.99));
+  EXPECT_FALSE(SymmetricAndSkewPartNorms(Matrix2(1, 4, -4, 1)).SkewOutweighsSymmetric(4.0));
+  EXPECT_TRUE(SymmetricAndSkewPartNorms(Matrix2(1, 4.01, -4.01, 1)).SkewOutweighsSymmetric(4.0));
+  // Nothing at all: neither part, and nothing outweighs nothing.
+  const SymmetricSkewNorms zero = SymmetricAndSkewPartNorms(DenseMatrix::Zero(3, 3));
+  EXPECT_EQ(zero.symmetric_squared, 0.0);
+  EXPECT_FALSE(zero.SkewOutweighsSymmetric(4.0));
+}
+
 TEST(MatrixClass, TooLargeIsNotDecidedNotNo) {
   const DenseMatrix I = DenseMatrix::Identity(13, 13);  // certainly a P-matrix, but above the default size 12
   const PMatrixResult p = ClassifyPMatrix(I);

@@ -7,6 +7,7 @@
 #include <cstddef>
 #include <cstdio>
 
+#include "solvers/core/matrix_class.h"
 #include "solvers/core/polish.h"
 
 namespace smcbench {
@@ -243,20 +244,13 @@ bool BppSolver::SweepsChooseTheFirstSet(const BoxMLCP& problem) {
   const DenseMatrix& M = problem.dense_matrix();
   if (dominance_sums_.size() != n) dominance_sums_.resize(n);
   dominance_sums_.setZero();
-  double symmetric = 0.0, skew = 0.0;  // ‖M + Mᵀ‖_F², ‖M − Mᵀ‖_F² over the pairs i < j and the diagonal
   for (int j = 0; j < n; ++j) {  // Σ_j≠i |M_ij| column by column (column-major M)
     const double* column = M.data() + static_cast<std::ptrdiff_t>(j) * n;
     for (int i = 0; i < n; ++i) dominance_sums_[i] += i == j ? 0.0 : std::abs(column[i]);
-    symmetric += 4.0 * column[j] * column[j];
-    for (int i = j + 1; i < n; ++i) {
-      const double a = column[i], b = M(j, i);
-      symmetric += 2.0 * (a + b) * (a + b);
-      skew += 2.0 * (a - b) * (a - b);
-    }
   }
   bool dominant = true;
   for (int i = 0; i < n && dominant; ++i) dominant = M(i, i) > dominance_sums_[i];
-  sweep_first_ = !dominant && skew <= kMaxSweptSkewRatio * kMaxSweptSkewRatio * symmetric;
+  sweep_first_ = !dominant && !SymmetricAndSkewPartNorms(M).SkewOutweighsSymmetric(kMaxSweptSkewRatio);
   return sweep_first_;
 }
 
