@@ -443,6 +443,8 @@ class NearestFirst {
   NearestFirst(int nb, const int* radix, int* comb, int* offset) : nb_(nb), radix_(radix), comb_(comb), off_(offset) {
     for (int p = 0; p < nb_; ++p) off_[p] = 0;
   }
+  // Rows changed from the guess in the current state vector (nondecreasing over the order).
+  int distance() const { return d_; }
   // Advances offset[] to the next state vector; false once all have been produced.
   bool Next() {
     for (int j = d_ - 1; j >= 0; --j) {  // odometer over the changed positions, last one fastest
@@ -867,6 +869,7 @@ class EnumerativeSolver::ActiveSetSearch {
   void ExhaustivePhase() {
     const int nb = OrderChoices();
     NearestFirst order(nb, b.radix, b.comb, b.offset);
+    KeyGuidedSets(nb);
     in_exhaustive = true;
     while (true) {
       for (int p = 0; p < nb; ++p) {
@@ -874,12 +877,105 @@ class EnumerativeSolver::ActiveSetSearch {
         b.state[i] = b.choice[3 * i + b.offset[p]];
       }
       ++examined, ++exhaustive;
-      if (Examine() == Outcome::kSolution) {
+      if (order.distance() <= guided_max_distance && GuidedRepeat(OffsetKey(nb))) {
+        CountRepeatedSet();
+      } else if (Examine() == Outcome::kSolution) {
         stop = SolveStatus::kSolved;
         return;
       }
       if (!order.Next() || OutOfBudget()) return;
     }
+  }
+
+  // The exhaustive phase starts at the set the guided phase stopped on, a repeat, and its nearest neighbours are
+  // often guided sets too; examining them again costs most on singular blocks (a QR and the line of solutions:
+  // lcp_CPS_4, lcp_inf_sol_perturbed, relay2_mlcp). The guided sets (the first kKeyedGuidedSets) within
+  // kRepeatDistance rows of that start are keyed by their index in the exhaustive order's mixed radix
+  // (< max_candidates), with a 64-bit filter on key mod 64. Only the first 1 + 2·nb sets (nearest-first) are
+  // checked: keying farther sets cost the 3^8 sets of a strongly nonsymmetric relay 5 % more instructions.
+  void KeyGuidedSets(int nb) {
+    const int n = N > 0 ? N : n_runtime;
+    const long long count = std::min<long long>(guided, kKeyedGuidedSets);
+    for (long long s = 0; s < count; ++s) {
+      const int* seen = b.history + static_cast<std::ptrdiff_t>(s) * n;
+      int changed = 0;  // rows away from the first exhaustive set (offset 0 everywhere), counted up to one too many
+      for (int p = 0; p < nb && changed <= kRepeatDistance; ++p) changed += seen[b.order[p]] != b.choice[3 * b.order[p]];
+      if (changed > kRepeatDistance) continue;
+      std::uint64_t key = 0;
+      int distance = 0;    // rows away from the exhaustive phase's first set
+      bool listed = true;  // every row's guided state is one of its choices (always: both phases use GuessState's)
+      for (int p = nb - 1; p >= 0 && listed; --p) {
+        const int i = b.order[p];
+        int offset = 0;
+        while (offset < b.radix[p] && b.choice[3 * i + offset] != seen[i]) ++offset;
+        listed = offset < b.radix[p];
+        key = key * static_cast<std::uint64_t>(b.radix[p]) + static_cast<std::uint64_t>(offset);
+        distance += offset != 0;
+      }
+      if (!listed || distance > kRepeatDistance) continue;
+      guided_keys[guided_key_count++] = key;
+      guided_key_filter |= std::uint64_t{1} << (key & 63);
+      guided_max_distance = std::max(guided_max_distance, distance);
+    }
+  }
+
+  // The current set's key (KeyGuidedSets) from the order's offsets.
+  std::uint64_t OffsetKey(int nb) const {
+    std::uint64_t key = 0;
+    for (int p = nb - 1; p >= 0; --p) {
+      key = key * static_cast<std::uint64_t>(b.radix[p]) + static_cast<std::uint64_t>(b.offset[p]);
+    }
+    return key;
+  }
+
+  bool GuidedRepeat(std::uint64_t key) const {
+    if ((guided_key_filter >> (key & 63) & 1) == 0) return false;
+    for (int c = 0; c < guided_key_count; ++c) {
+      if (guided_keys[c] == key) return true;
+    }
+    return false;
+  }
+
+  // A set the guided phase examined and refuted (it did not solve, or the search would have stopped): judged again
+  // it is refuted again, the search being deterministic, and every tally but the exhaustive phase's own already
+  // holds it. Only those are kept, as Examine keeps them: its determinant's sign and the singular-block counts.
+  void CountRepeatedSet() {
+    const int k = PlaceBoundRows();
+    if (verbose) Trace(examined, b.state, N > 0 ? N : n_runtime, "examined in the guided phase; not again", 0.0);
+    if (k == 0) {
+      ++det_positive;
+      return;
+    }
+    BuildRhs(k);
+    const double amax = Gather(k);
+    if (SolveBlock(b.A, b.ld, k, b.rhs, b.piv, solver.options_.rank_tolerance * amax)) {
+      CountDeterminantSign(FactoredPivots(b.A, b.ld, k, b.piv), k, amax);
+      return;
+    }
+    ++singular, ++det_unclear;
+    if (!solver.options_.solve_singular_blocks) ++singular_skipped;
+  }
+
+  // The set b.state's bound rows at their bounds in b.z (its free rows at 0, listed in b.free_idx): the free count.
+  [[gnu::always_inline]] inline int PlaceBoundRows() {
+    const int n = N > 0 ? N : n_runtime;
+    int k = 0;
+    for (int i = 0; i < n; ++i) {
+      const int s = b.state[i];
+      if (s == kFree) {
+        b.free_idx[k++] = i;
+        b.z[i] = 0.0;
+      } else {
+        b.z[i] = s == kUpper ? u[i] : l[i];
+      }
+    }
+    return k;
+  }
+
+  // The exhaustive phase's tally of det M_FF's sign (clear pivots) for the one-sign test of ReportUnsolved.
+  void CountDeterminantSign(const BlockPivots& pivots, int k, double amax) {
+    const bool clear = pivots.smallest > kDeterminantSignMargin * k * kEps * amax;
+    ++(!clear ? det_unclear : pivots.sign > 0 ? det_positive : det_negative);
   }
 
   // The exhaustive phase's order: per row its states, the guess at b.y first, then the nearer bound; the rows
@@ -957,17 +1053,7 @@ class EnumerativeSolver::ActiveSetSearch {
 
   // ---- One active set (b.state): factor and solve its free block M_FF z_F = −(q_F + M_FB z_B), then judge.
   [[gnu::always_inline]] inline Outcome Examine() {
-    const int n = N > 0 ? N : n_runtime;
-    int k = 0;
-    for (int i = 0; i < n; ++i) {
-      const int s = b.state[i];
-      if (s == kFree) {
-        b.free_idx[k++] = i;
-        b.z[i] = 0.0;
-      } else {
-        b.z[i] = s == kUpper ? u[i] : l[i];
-      }
-    }
+    const int k = PlaceBoundRows();
     if (k == 0) {
       if (in_exhaustive) ++det_positive;  // the empty block: det = 1
       return Judge(0, 1.0, Refutation::kRefutes);
@@ -976,10 +1062,7 @@ class EnumerativeSolver::ActiveSetSearch {
     const double amax = Gather(k);
     if (SolveBlock(b.A, b.ld, k, b.rhs, b.piv, solver.options_.rank_tolerance * amax)) {
       const BlockPivots pivots = FactoredPivots(b.A, b.ld, k, b.piv);
-      if (in_exhaustive) {
-        const bool clear = pivots.smallest > kDeterminantSignMargin * k * kEps * amax;
-        ++(!clear ? det_unclear : pivots.sign > 0 ? det_positive : det_negative);
-      }
+      if (in_exhaustive) CountDeterminantSign(pivots, k, amax);
       return Judge(k, amax / pivots.smallest, Refutation::kRefutes);
     }
     // Numerically singular M_FF (a pivot below rank_tolerance · max|M_FF|).
@@ -987,7 +1070,7 @@ class EnumerativeSolver::ActiveSetSearch {
     if (in_exhaustive) ++det_unclear;
     if (!solver.options_.solve_singular_blocks) {
       ++singular_skipped;
-      if (verbose) Trace(examined, b.state, n, "singular block skipped", 0.0);
+      if (verbose) Trace(examined, b.state, N > 0 ? N : n_runtime, "singular block skipped", 0.0);
       return Outcome::kBroken;
     }
     return ExamineSingular(k);
@@ -1315,6 +1398,13 @@ class EnumerativeSolver::ActiveSetSearch {
   // pivots, means the Schur complement of the always-free rows is a P-matrix, so a solution exists.
   bool in_exhaustive = false;
   long long det_positive = 0, det_negative = 0, det_unclear = 0;
+  // KeyGuidedSets: the guided sets the exhaustive phase does not examine again.
+  static constexpr int kKeyedGuidedSets = 16;  // guided_steps' default
+  static constexpr int kRepeatDistance = 1;
+  std::uint64_t guided_keys[kKeyedGuidedSets] = {};
+  int guided_key_count = 0;
+  std::uint64_t guided_key_filter = 0;  // bit key mod 64 of every keyed set
+  int guided_max_distance = -1;         // the largest Hamming distance of a keyed set from the first exhaustive one
   SolveStatus stop = SolveStatus::kNotRun;  // kSolved, or why the search stopped early
 };
 

@@ -14,7 +14,9 @@
 // so that a 1×1 problem is solved exactly; (2) guided steps: the natural-map active set at the previous
 // candidate, i.e. block principal pivoting (Júdice & Pires 1994) / the primal-dual active-set step
 // (Hintermüller, Ito & Kunisch 2002), until a set repeats; (3) every active set, nearest-first (by Hamming
-// distance) around the last guess, least confident rows first. Step (3) alone makes the method exact.
+// distance) around the last guess, least confident rows first. Step (3) alone makes the method exact. It starts at
+// the set step (2) stopped on, a repeat: a guided set within one row of that start is counted but not examined again
+// (it was refuted already; only its determinant's sign is taken, for the certificate below).
 //
 // Each candidate: LU with partial pivoting of M_FF (closed forms for 1×1, 2×2); if a pivot falls below
 // rank_tolerance · max|M_FF| the block is treated as singular and solved by column-pivoted QR plus a second

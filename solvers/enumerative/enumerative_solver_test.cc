@@ -606,6 +606,52 @@ TEST(Enumerative, SiconosPerturbedPangProblemIsInfeasible) {
   ExpectSolved(exact, SolveWith(solver, exact));
 }
 
+// Occurrences of what in text.
+int CountOf(const std::string& text, const std::string& what) {
+  int count = 0;
+  for (std::size_t at = text.find(what); at != std::string::npos; at = text.find(what, at + what.size())) ++count;
+  return count;
+}
+
+TEST(Enumerative, TheExhaustivePhaseDoesNotExamineTheGuidedSetsAgain) {
+  // lcp_CPS_4 (M_44 = 0): the guided phase examines LLLF, whose free block (row 4 alone) is singular, and stops
+  // when its next set repeats it; the exhaustive phase starts at that set. It still counts (iterations, singular
+  // blocks, the determinant's sign), but its block's line of solutions is not searched a second time.
+  EnumerativeSolver solver;
+  SolverOptions verbose;
+  verbose.verbosity = 2;
+  const BoxMLCP cps4 = ReadSiconosDenseLcp(SiconosLcp("lcp_CPS_4"));
+  testing::internal::CaptureStderr();
+  SolveResult r = SolveWith(solver, cps4, verbose);
+  std::string trace = testing::internal::GetCapturedStderr();
+  ExpectSolved(cps4, r);
+  EXPECT_NEAR((r.z - Vec({2.0, 2.0, 2.0, 92.0})).cwiseAbs().maxCoeff(), 0.0, 1e-12);
+  EXPECT_EQ(r.iterations, 13);
+  EXPECT_EQ(r.GetDetail("guided_sets"), 1.0);
+  EXPECT_EQ(r.GetDetail("singular_blocks"), 2.0);
+  EXPECT_EQ(CountOf(trace, "singular block, no point of its line"), 1) << trace;
+  EXPECT_NE(trace.find("set 2 LLLF: examined in the guided phase; not again"), std::string::npos) << trace;
+
+  // lcp_inf_sol_perturbed: both guided sets (FFL, then FLL with a singular block) come back first.
+  const BoxMLCP perturbed = ReadSiconosDenseLcp(SiconosLcp("lcp_inf_sol_perturbed"));
+  testing::internal::CaptureStderr();
+  r = SolveWith(solver, perturbed, verbose);
+  trace = testing::internal::GetCapturedStderr();
+  ExpectSolved(perturbed, r);
+  EXPECT_EQ(r.iterations, 5);
+  EXPECT_EQ(CountOf(trace, "examined in the guided phase; not again"), 2) << trace;
+  EXPECT_EQ(CountOf(trace, "singular block, no point of its line"), 1) << trace;
+
+  // A proof of infeasibility still counts every set, the guided ones too (lcp_Pang_isolated_sol_perturbed).
+  const BoxMLCP pang = ReadSiconosDenseLcp(SiconosLcp("lcp_Pang_isolated_sol_perturbed"));
+  testing::internal::CaptureStderr();
+  r = SolveWith(solver, pang, verbose);
+  trace = testing::internal::GetCapturedStderr();
+  EXPECT_EQ(r.status, SolveStatus::kInfeasible) << r.message;
+  EXPECT_NE(r.message.find("all 8 active sets"), std::string::npos) << r.message;
+  EXPECT_GE(CountOf(trace, "examined in the guided phase; not again"), 1) << trace;
+}
+
 TEST(Enumerative, SiconosEnumFailsProblem) {
   // Three 2-D frictional contacts: the friction-cone rows have M_ii = 0 and each multiplier column is a unit
   // vector, so 296 of the 512 complementary bases are singular. Siconos' lcp_enum detects singularity only by
