@@ -11,26 +11,12 @@
 #include <stdexcept>
 #include <utility>
 
+#include "solvers/core/sanitized_build.h"  // a sanitizer build times its allocator, not the solve (CheckColdRepeat)
 #include "solvers/core/verdict.h"
 #include "solvers/enumerative/enumerative_solver.h"
 
-// A sanitizer build times its allocator, not the solve (conformance.h, CheckColdRepeat: the time test is off there).
-#if defined(__SANITIZE_ADDRESS__)
-#define SMCBENCH_CONFORMANCE_SANITIZED 1
-#elif defined(__has_feature)
-#if __has_feature(address_sanitizer)
-#define SMCBENCH_CONFORMANCE_SANITIZED 1
-#endif
-#endif
-
 namespace smcbench {
 namespace {
-
-#ifdef SMCBENCH_CONFORMANCE_SANITIZED
-constexpr bool kSanitizedBuild = true;
-#else
-constexpr bool kSanitizedBuild = false;
-#endif
 
 // Collects failures of one check in the form the report keeps.
 class Findings {
