@@ -348,14 +348,30 @@ const SolverOptions& AutoSolver::UntimedOptions(const SolverOptions& options) {
   return delegate_options_;
 }
 
-void AutoSolver::NoteDelegateFailure(const BoxMLCP& problem, const Solver& delegate, const SolveResult& result) {
+bool AutoSolver::NoteDelegateFailure(const BoxMLCP& problem, const Solver& delegate, SolveResult* result) {
   skip_matrix_id_ = 0;
-  if (DelegateFor(problem, {}) != &delegate || !options_.fallback) return;
+  if (DelegateFor(problem, {}) != &delegate) return false;
   const AutoChoice& choice = ChoiceFor(problem);
-  if (choice.first + 1 >= choice.count || !PassOn(result.status, delegate.info().exact)) return;
+  const bool refused = result->status == SolveStatus::kInvalidOptions;  // Solve refuses them with its own message
+  if (!refused && (!options_.fallback || choice.first + 1 >= choice.count ||
+                   !PassOn(result->status, delegate.info().exact))) {
+    // Solve would run the delegate again and stop there (SolveChain with no candidate passed): its answer, labelled.
+    RefuseInexactInfeasible(delegate, result);
+    LabelAutoAnswer(choice.order[choice.first], 0, result);
+    return true;
+  }
   skip_matrix_id_ = problem.matrix_id();
-  skip_trail_ = std::string(delegate.info().name) + " " + std::string(ToString(result.status)) +
-                (result.message.empty() ? "" : " (" + result.message + ")");
+  skip_trail_ = std::string(delegate.info().name) + " " + std::string(ToString(result->status)) +
+                (result->message.empty() ? "" : " (" + result->message + ")");
+  return false;
+}
+
+void AutoSolver::RefuseInexactInfeasible(const Solver& answered, SolveResult* result) {
+  if (result->status == SolveStatus::kInfeasible && !answered.info().exact) {
+    result->status = SolveStatus::kNumericalFailure;
+    result->message = std::string(answered.info().name) + " reported infeasible, which is not a proof (it is not "
+                      "exact): " + result->message;
+  }
 }
 
 void AutoSolver::DoSolve(const BoxMLCP& problem, const SolverOptions& options, SolveResult* result) {
@@ -394,11 +410,7 @@ void AutoSolver::SolveChain(const BoxMLCP& problem, const SolverOptions& given, 
   }
   const int fallbacks = at - choice.first;
   const Solver& answered = Backend(choice_, at);
-  if (result->status == SolveStatus::kInfeasible && !answered.info().exact) {
-    result->status = SolveStatus::kNumericalFailure;
-    result->message = std::string(answered.info().name) + " reported infeasible, which is not a proof (it is not "
-                      "exact): " + result->message;
-  }
+  RefuseInexactInfeasible(answered, result);
   if (!trail.empty()) {
     if (result->solved()) {
       choice_.first = at;  // later calls on this matrix start with the candidate that answered

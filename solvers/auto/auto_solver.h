@@ -165,9 +165,11 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
   // The backend auto would hand this problem to first (owned by this AutoSolver), without solving; nullptr while
   // auto's own options are invalid (Solve then reports them).
   Solver* DelegateFor(const BoxMLCP& problem, const SolverOptions& options) override;
-  // The session's call of that delegate failed: the next Solve of this matrix goes on with the candidate after it
-  // (its message names the delegate's failure; fallbacks counts it), instead of running the delegate again.
-  void NoteDelegateFailure(const BoxMLCP& problem, const Solver& delegate, const SolveResult& result) override;
+  // The session's call of that delegate did not solve the problem. When the chain ends there (a status it does not
+  // pass on, or no candidate after it), *result becomes auto's answer as Solve would give it (true); otherwise the
+  // next Solve of this matrix goes on with the candidate after it (its message names the delegate's failure;
+  // fallbacks counts it), instead of running the delegate again (false).
+  bool NoteDelegateFailure(const BoxMLCP& problem, const Solver& delegate, SolveResult* result) override;
   // Forgets the candidate a fallback made the first choice for the current matrix (the chain starts at the rule's
   // choice again; the classification itself depends on M alone and stays), and whatever each created candidate
   // keeps (their ForgetWarmState).
@@ -218,6 +220,9 @@ class AutoSolver final : public BackendWithOptions<AutoOptions> {
   // choice answers) sets up nothing.
   [[gnu::noinline]] void SolveChain(const BoxMLCP& problem, const SolverOptions& given, bool have_answer,
                                     SolveResult* result);
+  // The end of every box solve, on the answer of the candidate it stopped at: "infeasible" from a backend that is
+  // not exact becomes a numerical failure (it is not a proof).
+  static void RefuseInexactInfeasible(const Solver& answered, SolveResult* result);
   // ChoiceFor's slow half: classifies the problem and caches the choice.
   const AutoChoice& Reclassify(const BoxMLCP& problem);
   // The options the candidate gets: the caller's, with measure_time off (the base times auto's call; the

@@ -442,13 +442,15 @@ TEST(AutoSolver, ANotedDelegateFailureIsNotRunAgain) {
   failed.status = SolveStatus::kIterationLimit;
   failed.message = "max_single_pivots reached";
   // Another backend's failure is not the delegate's: nothing is skipped.
-  solver.NoteDelegateFailure(gen.problem, solver.candidate(AutoCandidate::kLemke), failed);
+  SolveResult noted = failed;
+  EXPECT_FALSE(solver.NoteDelegateFailure(gen.problem, solver.candidate(AutoCandidate::kLemke), &noted));
   SolveResult r;
   solver.Solve(gen.problem, options, &r);
   ASSERT_TRUE(r.solved()) << r.message;
   EXPECT_EQ(Chosen(r), AutoCandidate::kBpp);
 
-  solver.NoteDelegateFailure(gen.problem, solver.candidate(AutoCandidate::kBpp), failed);
+  noted = failed;
+  EXPECT_FALSE(solver.NoteDelegateFailure(gen.problem, solver.candidate(AutoCandidate::kBpp), &noted));
   solver.Solve(gen.problem, options, &r);
   ASSERT_TRUE(r.solved()) << r.message;
   EXPECT_NE(Chosen(r), AutoCandidate::kBpp);
@@ -456,11 +458,48 @@ TEST(AutoSolver, ANotedDelegateFailureIsNotRunAgain) {
   EXPECT_EQ(solver.DelegateFor(gen.problem, options), &solver.candidate(Chosen(r)));  // it answered: first now
   EXPECT_EQ(solver.ForgetWarmState(), WarmStateReset::kForgotten);
 
-  // A proof (infeasible from an exact backend) or a time limit ends the chain: nothing to skip to.
+  // A proof (infeasible from an exact backend) or a time limit ends the chain: the delegate's answer is auto's,
+  // labelled as Solve labels it, and the caller does not call Solve.
   failed.status = SolveStatus::kTimeLimit;
-  solver.NoteDelegateFailure(gen.problem, solver.candidate(AutoCandidate::kBpp), failed);
+  noted = failed;
+  EXPECT_TRUE(solver.NoteDelegateFailure(gen.problem, solver.candidate(AutoCandidate::kBpp), &noted));
+  EXPECT_EQ(noted.status, SolveStatus::kTimeLimit);
+  EXPECT_EQ(noted.message, failed.message);
+  EXPECT_EQ(Chosen(noted), AutoCandidate::kBpp);
+  EXPECT_EQ(noted.GetDetail("fallbacks"), 0.0);
   solver.Solve(gen.problem, options, &r);
-  EXPECT_EQ(Chosen(r), AutoCandidate::kBpp);
+  EXPECT_EQ(Chosen(r), AutoCandidate::kBpp);  // and nothing was left to skip
+}
+
+// A session on an infeasible problem whose delegate is exact (enum: its answer is a proof): one enum run per call,
+// and the answer auto's Solve gives (before, the session handed the proof to auto's Solve, which ran enum again).
+TEST(AutoSolver, ASessionReturnsTheDelegatesProofWithoutRunningItAgain) {
+  // w = −z − 1 < 0 for every z ≥ 0: no solution.
+  const DenseMatrix M = -DenseMatrix::Identity(2, 2);
+  const Vector q = Vector::Constant(2, -1.0);
+  const BoxMLCP problem = BoxMLCP::LCP(M, q);
+  AutoSolver solver;
+  SolverOptions options;
+  options.tolerance = kTol;
+  ASSERT_EQ(solver.DelegateFor(problem, options), &solver.candidate(AutoCandidate::kEnum));
+  SolveResult direct;
+  solver.Solve(problem, options, &direct);
+  ASSERT_EQ(direct.status, SolveStatus::kInfeasible) << direct.message;
+
+  SessionOptions no_reuse;  // every call through the backend
+  no_reuse.reuse_active_set = false;
+  SolveSession session = solver.Prepare(problem, options, no_reuse);
+  SolveResult r;
+  session.Solve(problem.q(), &r);
+  EXPECT_EQ(r.status, direct.status);
+  EXPECT_EQ(r.message, direct.message);
+  EXPECT_EQ(r.iterations, direct.iterations);
+  EXPECT_EQ(r.z, direct.z);
+  EXPECT_EQ(Chosen(r), AutoCandidate::kEnum);
+  EXPECT_EQ(r.GetDetail("fallbacks"), direct.GetDetail("fallbacks"));
+  // That the session did not call auto's Solve after enum: NoteDelegateFailure took the proof as auto's answer.
+  SolveResult proof = direct;
+  EXPECT_TRUE(solver.NoteDelegateFailure(problem, solver.candidate(AutoCandidate::kEnum), &proof));
 }
 
 // Sparse M up to sparse_bpp_max_size rows: enum on a dense copy where it would take the problem, else bpp (its sparse

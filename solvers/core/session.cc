@@ -185,8 +185,8 @@ bool SolveSession::TryReusedActiveSet(SolveResult* result) {
 }
 
 void SolveSession::ConcludeBackendCall(SolveResult* result) {
-  if (meta_ != nullptr && !result->solved()) {
-    meta_->NoteDelegateFailure(problem_, *backend_, *result);  // its chain goes on after the delegate
+  // The delegate's answer is final (a proof, a spent budget) or the meta-backend's chain goes on after it.
+  if (meta_ != nullptr && !result->solved() && !meta_->NoteDelegateFailure(problem_, *backend_, result)) {
     meta_->Solve(problem_, options_, result);
     // The meta-backend's chain may have learned a better first choice for this matrix (auto: the candidate that
     // answered): later calls go to it, so a delegate that fails on this matrix fails once, not on every call.

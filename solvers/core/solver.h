@@ -99,11 +99,15 @@ class Solver {
   // nothing per step. nullptr (every real backend): this backend solves the problem itself.
   virtual Solver* DelegateFor(const BoxMLCP& /*problem*/, const SolverOptions& /*options*/) { return nullptr; }
 
-  // A caller that solved through DelegateFor's backend tells the meta-backend that it failed on `problem` with
-  // `result`, before handing the problem to this one's Solve: that Solve then goes on after the delegate instead of
-  // running it again. Default: nothing to skip.
-  virtual void NoteDelegateFailure(const BoxMLCP& /*problem*/, const Solver& /*delegate*/,
-                                   const SolveResult& /*result*/) {}
+  // A caller that solved through DelegateFor's backend tells the meta-backend that it did not solve `problem`,
+  // with its answer in `result`. True: that answer is the meta-backend's own (its Solve would return it as it is,
+  // e.g. an exact backend's proof of infeasibility), and *result now holds it as that Solve would; the caller is done.
+  // False: the caller hands the problem to this one's Solve, which goes on after the delegate instead of running it
+  // again. Default: false, nothing to skip.
+  virtual bool NoteDelegateFailure(const BoxMLCP& /*problem*/, const Solver& /*delegate*/,
+                                   SolveResult* /*result*/) {
+    return false;
+  }
 
   // The next solve starts as if it were the first: no cache, no remembered active set, no candidate chosen by an
   // earlier answer. What depends on the problem's M alone and is prepared once (the equilibrated copy, enum's block
